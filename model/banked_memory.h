@@ -1,0 +1,44 @@
+// The banked mip memory of the paper: one memory per level, each split into 4 banks by
+// texel parity, so a 2x2 footprint in each of two levels is 8 reads in 8 different banks.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "pyramid.h"
+
+namespace tex {
+
+struct BankStats {
+  uint64_t reads = 0;                                  // words read, all levels and banks
+  std::vector<std::array<uint64_t, 4>> bank_reads;     // [level][bank]
+};
+
+class BankedMipMemory {
+ public:
+  explicit BankedMipMemory(const Pyramid& pyramid);
+
+  int levels() const { return int(levels_.size()); }
+  LevelShape shape(int level) const { return levels_[level].shape; }
+
+  // Word address of texel (x, y) inside its bank (stride = half the level width, at least 1).
+  int word_of(int level, int32_t x, int32_t y) const;
+
+  // The 2x2 footprint {(x0,y0), (x1,y0), (x0,y1), (x1,y1)} of wrapped indices. Each bank is
+  // read at most once; `reads` counts the distinct (bank, word) pairs. With only_first, just
+  // (x0, y0) is read (point sampling).
+  std::array<Texel, 4> read_footprint(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1, bool only_first);
+
+  const BankStats& stats() const { return stats_; }
+  void reset_stats();
+
+ private:
+  struct Level {
+    LevelShape shape;
+    std::array<std::vector<Texel>, 4> banks;
+  };
+  std::vector<Level> levels_;
+  BankStats stats_;
+};
+
+}  // namespace tex

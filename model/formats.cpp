@@ -1,0 +1,83 @@
+#include "formats.h"
+
+#include <cmath>
+
+namespace tex {
+
+namespace {
+struct FilterName {
+  const char* name;
+  Filter filter;
+};
+constexpr FilterName kFilterNames[] = {
+    {"point", {TexelFilter::Nearest, MipMode::None}},
+    {"bilinear", {TexelFilter::Linear, MipMode::None}},
+    {"mip_nearest", {TexelFilter::Linear, MipMode::Nearest}},
+    {"trilinear", {TexelFilter::Linear, MipMode::Linear}},
+    {"nearest", {TexelFilter::Nearest, MipMode::None}},
+    {"linear", {TexelFilter::Linear, MipMode::None}},
+    {"nearest_mipmap_nearest", {TexelFilter::Nearest, MipMode::Nearest}},
+    {"linear_mipmap_nearest", {TexelFilter::Linear, MipMode::Nearest}},
+    {"nearest_mipmap_linear", {TexelFilter::Nearest, MipMode::Linear}},
+    {"linear_mipmap_linear", {TexelFilter::Linear, MipMode::Linear}},
+};
+
+bool to_fixed(double x, int frac_bits, int64_t lo, int64_t hi, int32_t& out) {
+  if (!std::isfinite(x)) return false;
+  const double scaled = std::ldexp(x, frac_bits);
+  if (scaled < static_cast<double>(lo) - 0.5 || scaled >= static_cast<double>(hi) + 0.5) return false;
+  const long long r = std::llround(scaled);
+  if (r < lo || r > hi) return false;
+  out = static_cast<int32_t>(r);
+  return true;
+}
+}  // namespace
+
+bool parse_filter(const std::string& name, Filter& out) {
+  for (const auto& f : kFilterNames)
+    if (name == f.name) {
+      out = f.filter;
+      return true;
+    }
+  return false;
+}
+
+std::string filter_name(Filter f) {
+  for (const auto& n : kFilterNames)
+    if (n.filter == f) return n.name;  // the first (short) name wins
+  return "?";
+}
+
+bool parse_wrap(const std::string& name, Wrap& out) {
+  if (name == "repeat") out = Wrap::Repeat;
+  else if (name == "clamp") out = Wrap::Clamp;
+  else if (name == "mirror") out = Wrap::Mirror;
+  else return false;
+  return true;
+}
+
+std::string wrap_name(Wrap w) {
+  switch (w) {
+    case Wrap::Repeat: return "repeat";
+    case Wrap::Clamp: return "clamp";
+    case Wrap::Mirror: return "mirror";
+  }
+  return "?";
+}
+
+bool parse_pyramid_mode(const std::string& name, PyramidMode& out) {
+  if (name == "exact") out = PyramidMode::Exact;
+  else if (name == "cascade") out = PyramidMode::Cascade;
+  else return false;
+  return true;
+}
+
+bool to_coord_fixed(double u, int32_t& out) {
+  return to_fixed(u, kCoordFracBits, INT32_MIN, INT32_MAX, out);
+}
+
+bool to_lod_fixed(double lambda, int32_t& out) {
+  return to_fixed(lambda, kLodFracBits, kLodMin, kLodMax, out);
+}
+
+}  // namespace tex

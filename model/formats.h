@@ -1,0 +1,50 @@
+// Fixed-point formats and parameters shared by the model and the RTL.
+// The RTL copy lives in rtl/tex_pkg.sv; tests/test_params.cpp checks that both agree.
+// docs/numerics.md explains every format and every rounding.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace tex {
+
+constexpr int kCoordFracBits = 24;  // u, v: signed Q8.24, 1.0 = one texture width
+constexpr int kLodFracBits = 8;     // lambda: signed Q8.8 in levels
+constexpr int kWeightBits = 8;      // fx, fy, f: 0..255 = 0..255/256
+constexpr int kMaxLog2Size = 11;    // 2048 texels per side at most
+constexpr int kMaxLevels = kMaxLog2Size + 1;
+constexpr int kMaxChannelBits = 16;
+constexpr int kDefaultChannelBits = 8;
+constexpr int kLodMin = -(1 << 15);  // Q8.8 range of lambda, bias and clamps
+constexpr int kLodMax = (1 << 15) - 1;
+
+enum class Wrap : uint8_t { Repeat = 0, Clamp = 1, Mirror = 2 };
+enum class TexelFilter : uint8_t { Nearest = 0, Linear = 1 };
+enum class MipMode : uint8_t { None = 0, Nearest = 1, Linear = 2 };
+enum class PyramidMode : uint8_t { Exact = 0, Cascade = 1 };
+
+// A filter as the user names it: a texel filter within a level and a mip mode between levels.
+// GL's six minification filters are the six combinations; magnification uses the same texel filter.
+struct Filter {
+  TexelFilter texel = TexelFilter::Linear;
+  MipMode mip = MipMode::Linear;
+  bool operator==(const Filter&) const = default;
+};
+
+// Names: point, bilinear, trilinear, mip_nearest (bilinear in the nearest level),
+// and the six GL names (nearest, linear, nearest_mipmap_nearest, ...).
+bool parse_filter(const std::string& name, Filter& out);
+std::string filter_name(Filter f);
+bool parse_wrap(const std::string& name, Wrap& out);
+std::string wrap_name(Wrap w);
+bool parse_pyramid_mode(const std::string& name, PyramidMode& out);
+
+// One texel: up to 4 channels of up to 16 bits (R, G, B, A).
+using Texel = std::array<uint16_t, 4>;
+
+// Real value -> fixed point, rounding half away from zero. Return false when out of range
+// or not finite: callers report the error, the model never clamps silently.
+bool to_coord_fixed(double u, int32_t& out);
+bool to_lod_fixed(double lambda, int32_t& out);
+
+}  // namespace tex

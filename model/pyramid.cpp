@@ -1,0 +1,95 @@
+#include "pyramid.h"
+
+#include <cstdint>
+
+namespace tex {
+
+namespace {
+
+// Sums per channel over each texel's footprint in level 0 (exact mode) or in the parent (cascade).
+struct SumImage {
+  int w = 0, h = 0;
+  std::vector<std::array<uint64_t, 4>> sums;
+};
+
+// Halves each side that is larger than 1, adding the 2x2 (or 2x1, 1x2) children.
+SumImage reduce(const SumImage& in, int log2_w, int log2_h) {
+  SumImage out;
+  out.w = 1 << log2_w;
+  out.h = 1 << log2_h;
+  out.sums.assign(size_t(out.w) * out.h, {0, 0, 0, 0});
+  const int sx = in.w / out.w, sy = in.h / out.h;
+  for (int y = 0; y < out.h; ++y)
+    for (int x = 0; x < out.w; ++x)
+      for (int dy = 0; dy < sy; ++dy)
+        for (int dx = 0; dx < sx; ++dx)
+          for (int c = 0; c < 4; ++c)
+            out.sums[size_t(y) * out.w + x][c] += in.sums[size_t(y * sy + dy) * in.w + x * sx + dx][c];
+  return out;
+}
+
+SumImage from_image(const Image& img) {
+  SumImage s{img.width, img.height, {}};
+  s.sums.resize(img.texels.size());
+  for (size_t i = 0; i < img.texels.size(); ++i)
+    for (int c = 0; c < 4; ++c) s.sums[i][c] = img.texels[i][c];
+  return s;
+}
+
+// Mean of `count` (a power of two) texels per sum, rounded half up.
+Image to_image(const SumImage& s, int count, int channel_bits) {
+  const int shift = log2_exact(count);
+  Image img(s.w, s.h, channel_bits);
+  for (size_t i = 0; i < s.sums.size(); ++i)
+    for (int c = 0; c < 4; ++c) img.texels[i][c] = uint16_t((s.sums[i][c] + uint64_t(count / 2)) >> shift);
+  return img;
+}
+
+}  // namespace
+
+Pyramid build_pyramid(const Image& level0, PyramidMode mode) {
+  Pyramid p;
+  p.mode = mode;
+  p.levels.push_back(level0);
+  const int lw0 = log2_exact(level0.width), lh0 = log2_exact(level0.height);
+  SumImage sums = from_image(level0);
+  for (int k = 1; k < level_count(lw0, lh0); ++k) {
+    const LevelShape shape = level_shape(lw0, lh0, k);
+    if (mode == PyramidMode::Exact) {
+      sums = reduce(sums, shape.log2_w, shape.log2_h);  // footprint sums carried exactly
+      const int count = (level0.width / shape.width()) * (level0.height / shape.height());
+      p.levels.push_back(to_image(sums, count, level0.channel_bits));
+    } else {
+      const Image& parent = p.levels.back();
+      SumImage s = reduce(from_image(parent), shape.log2_w, shape.log2_h);
+      const int count = (parent.width / shape.width()) * (parent.height / shape.height());
+      p.levels.push_back(to_image(s, count, level0.channel_bits));
+    }
+  }
+  return p;
+}
+
+}  // namespace tex
+
+namespace tex {
+
+Image mip_layout(const Pyramid& pyramid) {
+  const Image& l0 = pyramid.levels[0];
+  Image canvas(2 * l0.width, 2 * l0.height, l0.channel_bits);
+  const uint16_t opaque = uint16_t((1u << l0.channel_bits) - 1);
+  for (auto& t : canvas.texels) t = {0, 0, 0, opaque};
+  for (const Image& lvl : pyramid.levels) {
+    const int w = lvl.width, h = lvl.height;
+    const int origin[3][2] = {{w, 0}, {0, h}, {w, h}};  // R, G, B quadrants
+    for (int c = 0; c < 3; ++c)
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          Texel& t = canvas.at(origin[c][0] + x, origin[c][1] + y);
+          t = {0, 0, 0, opaque};
+          t[c] = lvl.at(x, y)[c];
+        }
+  }
+  return canvas;
+}
+
+}  // namespace tex

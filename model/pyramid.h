@@ -1,0 +1,41 @@
+// The mip pyramid: level 0 and its 2x2 box-filtered reductions down to 1x1.
+#pragma once
+#include <vector>
+
+#include "formats.h"
+#include "image.h"
+
+namespace tex {
+
+// Level geometry of docs/numerics.md: a side that reaches 1 stays 1.
+struct LevelShape {
+  int log2_w = 0, log2_h = 0;
+  int width() const { return 1 << log2_w; }
+  int height() const { return 1 << log2_h; }
+};
+inline int level_count(int log2_w0, int log2_h0) { return (log2_w0 > log2_h0 ? log2_w0 : log2_h0) + 1; }
+inline LevelShape level_shape(int log2_w0, int log2_h0, int k) {
+  return {log2_w0 > k ? log2_w0 - k : 0, log2_h0 > k ? log2_h0 - k : 0};
+}
+
+struct Pyramid {
+  std::vector<Image> levels;  // levels[0] is the texture
+  PyramidMode mode = PyramidMode::Exact;
+  int log2_w0() const { return log2_exact(levels[0].width); }
+  int log2_h0() const { return log2_exact(levels[0].height); }
+  int last_level() const { return int(levels.size()) - 1; }
+};
+
+// exact: every texel is the rounded mean of its whole level-0 footprint (maketx --filter box).
+// cascade: every level from its rounded parent, as a simple hardware generator does.
+Pyramid build_pyramid(const Image& level0, PyramidMode mode = PyramidMode::Exact);
+
+}  // namespace tex
+
+namespace tex {
+// The paper's Figure 1: a 2W x 2H canvas with the R, G and B planes of level 0 in the upper-right,
+// lower-left and lower-right quadrants, and the next level recursively in the upper-left one.
+// Each plane is drawn in its own colour. Exact for square textures; for non-square ones, levels
+// past the point where the short side is 1 overlap their parent's slot.
+Image mip_layout(const Pyramid& pyramid);
+}  // namespace tex

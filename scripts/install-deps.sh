@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian bookworm packages the project needs, if any are missing.
+# Called by the Makefile before every build; quiet and quick when all are present.
+set -euo pipefail
+packages=(
+  cmake g++ make pkg-config
+  libgtest-dev libbenchmark-dev          # tests and benchmarks
+  libopenimageio-dev openimageio-tools   # images in and out; maketx for the pyramid check
+  libcli11-dev nlohmann-json3-dev libfmt-dev
+  verilator zlib1g-dev                   # RTL simulation (FST traces need zlib)
+  libsystemc-dev                         # SystemC/TLM-2.0 wrapper
+  yosys nextpnr-ice40 fpga-icestorm      # synthesis and place-and-route
+  python3 python3-matplotlib python3-numpy  # reports and plots (/usr/bin/python3)
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "install-deps: installing ${missing[*]}"
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps: error: not root; run: sudo apt-get install ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

@@ -1,0 +1,202 @@
+// texsim: the command-line tool. Sample query traces, build and dump pyramids, render scenes.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <unistd.h>
+
+#include "engine.h"
+#include "model/error.h"
+#include "model/image.h"
+#include "model/pyramid.h"
+#include "model/trace.h"
+#include "scenes.h"
+
+namespace {
+
+using namespace tex;
+
+// Options shared by every command that samples a texture.
+struct SamplingOptions {
+  std::string texture = "testcard";
+  std::string filter = "trilinear";
+  std::string wrap = "repeat";
+  std::string wrap_u, wrap_v;
+  std::string pyramid = "exact";
+  std::string engine = "model";
+  double lod_bias = 0, min_lod = -128, max_lod = 127.99;
+  bool resize = false;
+  uint64_t seed = 1;
+  std::string stats_path;
+  std::string trace_path;
+  std::string trace_window;
+
+  void add_to(CLI::App& cmd) {
+    cmd.add_option("--texture,-t", texture, "image file (any OpenImageIO format) or pattern NAME[:WxH]")
+        ->capture_default_str();
+    cmd.add_option("--filter,-f", filter,
+                   "point | bilinear | mip_nearest | trilinear, or a GL name (nearest_mipmap_linear, ...)")
+        ->capture_default_str();
+    cmd.add_option("--wrap,-w", wrap, "repeat | clamp | mirror, both axes")->capture_default_str();
+    cmd.add_option("--wrap-u", wrap_u, "wrap mode of u only (overrides --wrap)");
+    cmd.add_option("--wrap-v", wrap_v, "wrap mode of v only (overrides --wrap)");
+    cmd.add_option("--pyramid", pyramid, "exact (mean of the level-0 footprint) | cascade")->capture_default_str();
+    cmd.add_option("--engine,-e", engine, "model (others as this build provides)")->capture_default_str();
+    cmd.add_option("--lod-bias", lod_bias, "added to lambda before the clamp, in levels")->capture_default_str();
+    cmd.add_option("--min-lod", min_lod, "lambda clamp, in levels")->capture_default_str();
+    cmd.add_option("--max-lod", max_lod, "lambda clamp, in levels")->capture_default_str();
+    cmd.add_flag("--resize", resize, "resample a texture whose sides are not powers of two");
+    cmd.add_option("--seed", seed, "seed of the random stall pattern (RTL engines)")->capture_default_str();
+    cmd.add_option("--stats", stats_path, "write counters to this JSON file");
+    cmd.add_option("--trace", trace_path, "write an FST waveform (RTL engines)");
+    cmd.add_option("--trace-window", trace_window, "cycles FIRST:LAST to trace (default: all)");
+  }
+
+  SamplerConfig config() const {
+    SamplerConfig c;
+    if (!parse_filter(filter, c.filter)) throw Error("unknown filter '" + filter + "'");
+    Wrap w;
+    if (!parse_wrap(wrap, w)) throw Error("unknown wrap mode '" + wrap + "' (repeat, clamp, mirror)");
+    c.wrap_u = c.wrap_v = w;
+    if (!wrap_u.empty() && !parse_wrap(wrap_u, c.wrap_u)) throw Error("unknown wrap mode '" + wrap_u + "'");
+    if (!wrap_v.empty() && !parse_wrap(wrap_v, c.wrap_v)) throw Error("unknown wrap mode '" + wrap_v + "'");
+    if (!to_lod_fixed(lod_bias, c.lod_bias)) throw Error("--lod-bias " + std::to_string(lod_bias) + " is outside [-128, 128)");
+    if (!to_lod_fixed(min_lod, c.min_lod)) throw Error("--min-lod " + std::to_string(min_lod) + " is outside [-128, 128)");
+    if (!to_lod_fixed(max_lod, c.max_lod)) throw Error("--max-lod " + std::to_string(max_lod) + " is outside [-128, 128)");
+    if (c.min_lod > c.max_lod) throw Error("--min-lod is greater than --max-lod");
+    return c;
+  }
+
+  PyramidMode pyramid_mode() const {
+    PyramidMode m;
+    if (!parse_pyramid_mode(pyramid, m)) throw Error("unknown pyramid mode '" + pyramid + "' (exact, cascade)");
+    return m;
+  }
+
+  EngineOptions engine_options() const {
+    EngineOptions o;
+    o.seed = seed;
+    o.show_progress = isatty(STDERR_FILENO);
+    o.trace_path = trace_path;
+    if (!trace_window.empty()) {
+      unsigned long long a = 0, b = 0;
+      char extra = 0;
+      if (std::sscanf(trace_window.c_str(), "%llu:%llu%c", &a, &b, &extra) != 2 || b < a)
+        throw Error("--trace-window '" + trace_window + "' is not FIRST:LAST with FIRST <= LAST");
+      o.trace_begin = a;
+      o.trace_end = b;
+    }
+    return o;
+  }
+};
+
+void write_stats(const std::string& path, nlohmann::json stats, double seconds) {
+  if (path.empty()) return;
+  stats["wall_seconds"] = seconds;
+  write_file_atomically(path, stats.dump(2) + "\n");
+}
+
+int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& out_path) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const SamplerConfig cfg = o.config();
+  const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
+  const auto queries = read_queries(queries_path);
+  const auto requests = to_requests(queries, pyr.log2_w0(), pyr.log2_h0(), queries_path);
+  const EngineResult r = run_engine(o.engine, pyr, cfg, requests, o.engine_options());
+  write_file_atomically(out_path, format_results(r.texels));
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_stats(o.stats_path, r.stats, secs);
+  std::printf("texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n", requests.size(),
+              filter_name(cfg.filter).c_str(), wrap_name(cfg.wrap_u).c_str(), wrap_name(cfg.wrap_v).c_str(),
+              pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(), out_path.c_str(), secs);
+  return 0;
+}
+
+int cmd_mip(const std::string& texture, const std::string& mode_name, bool resize, const std::string& dump_dir,
+            const std::string& layout_path) {
+  if (dump_dir.empty() && layout_path.empty()) throw Error("mip: give --dump-levels DIR and/or --layout FILE");
+  PyramidMode mode;
+  if (!parse_pyramid_mode(mode_name, mode)) throw Error("unknown pyramid mode '" + mode_name + "' (exact, cascade)");
+  const Pyramid pyr = build_pyramid(load_texture(texture, resize), mode);
+  if (!dump_dir.empty()) {
+    std::filesystem::create_directories(dump_dir);
+    for (size_t k = 0; k < pyr.levels.size(); ++k) {
+      char name[32];
+      std::snprintf(name, sizeof name, "level%02zu.png", k);
+      save_image(pyr.levels[k], (std::filesystem::path(dump_dir) / name).string());
+    }
+  }
+  if (!layout_path.empty()) save_image(mip_layout(pyr), layout_path);
+  std::printf("texsim mip: %dx%d texture, %zu levels (%s)%s%s%s%s\n", pyr.levels[0].width, pyr.levels[0].height,
+              pyr.levels.size(), mode_name.c_str(), dump_dir.empty() ? "" : ", levels in ", dump_dir.c_str(),
+              layout_path.empty() ? "" : ", layout in ", layout_path.c_str());
+  return 0;
+}
+
+int cmd_render(const SamplingOptions& o, const std::string& scene, int width, int height, const std::string& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const SamplerConfig cfg = o.config();
+  const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
+  const SceneFrame frame = make_scene(scene, width, height);
+  const auto requests = to_requests(frame.queries, pyr.log2_w0(), pyr.log2_h0(), "scene " + scene);
+  const EngineResult r = run_engine(o.engine, pyr, cfg, requests, o.engine_options());
+  save_image(compose(frame, r.texels, pyr.levels[0].channel_bits), out);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_stats(o.stats_path, r.stats, secs);
+  std::printf("texsim render: scene %s, %dx%d, %zu samples, %s, engine %s -> %s (%.2f s)\n", scene.c_str(), width,
+              height, requests.size(), filter_name(cfg.filter).c_str(), o.engine.c_str(), out.c_str(), secs);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"texsim: cycle-accurate mip-mapping texture unit (Williams 1983) - model, RTL and SystemC"};
+  app.require_subcommand(1);
+
+  SamplingOptions sample_opts;
+  std::string queries, out;
+  CLI::App* sample = app.add_subcommand("sample", "sample a query trace (CSV) and write one RGBA line per query");
+  sample_opts.add_to(*sample);
+  sample->add_option("--queries,-q", queries, "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy")->required();
+  sample->add_option("--out,-o", out, "result CSV: header r,g,b,a")->required();
+
+  std::string mip_texture = "testcard", mip_mode = "exact", dump_dir, layout;
+  bool mip_resize = false;
+  CLI::App* mip = app.add_subcommand("mip", "build a pyramid; dump its levels or the paper's Figure 1 layout");
+  mip->add_option("--texture,-t", mip_texture, "image file or pattern NAME[:WxH]")->capture_default_str();
+  mip->add_option("--pyramid", mip_mode, "exact | cascade")->capture_default_str();
+  mip->add_flag("--resize", mip_resize, "resample a texture whose sides are not powers of two");
+  mip->add_option("--dump-levels", dump_dir, "write DIR/level00.png, level01.png, ...");
+  mip->add_option("--layout", layout, "write the packed R/G/B memory layout (paper Figure 1)");
+
+  SamplingOptions render_opts;
+  std::string scene = "plane", render_out;
+  int width = 640, height = 480;
+  CLI::App* render = app.add_subcommand("render", "render a scene of the paper through an engine");
+  render_opts.add_to(*render);
+  render->add_option("--scene,-s", scene, "scene name")->capture_default_str();
+  render->add_option("--width", width, "image width")->capture_default_str();
+  render->add_option("--height", height, "image height")->capture_default_str();
+  render->add_option("--out,-o", render_out, "output image (PNG, TIFF, EXR, ...)")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "texsim: error: %s (see --help)\n", e.what());
+    return 2;
+  }
+  try {
+    if (*sample) return cmd_sample(sample_opts, queries, out);
+    if (*mip) return cmd_mip(mip_texture, mip_mode, mip_resize, dump_dir, layout);
+    if (*render) return cmd_render(render_opts, scene, width, height, render_out);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "texsim: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
