@@ -30,6 +30,7 @@ struct SamplingOptions {
   std::string stats_path;
   std::string trace_path;
   std::string trace_window;
+  bool verify = false;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--texture,-t", texture, "image file (any OpenImageIO format) or pattern NAME[:WxH]")
@@ -50,6 +51,7 @@ struct SamplingOptions {
     cmd.add_option("--stats", stats_path, "write counters to this JSON file");
     cmd.add_option("--trace", trace_path, "write an FST waveform (RTL engines)");
     cmd.add_option("--trace-window", trace_window, "cycles FIRST:LAST to trace (default: all)");
+    cmd.add_flag("--verify", verify, "also run the golden model and fail unless every sample is bit-identical");
   }
 
   SamplerConfig config() const {
@@ -90,6 +92,26 @@ struct SamplingOptions {
   }
 };
 
+// Runs the engine; with --verify also the golden model, and fails on the first differing sample.
+EngineResult run_checked(const SamplingOptions& o, const Pyramid& pyr, const SamplerConfig& cfg,
+                         const std::vector<Request>& requests) {
+  EngineResult r = run_engine(o.engine, pyr, cfg, requests, o.engine_options());
+  if (!o.verify) return r;
+  const EngineResult golden = run_model(pyr, cfg, requests);
+  for (size_t i = 0; i < requests.size(); ++i)
+    if (r.texels[i] != golden.texels[i]) {
+      const Texel& a = r.texels[i];
+      const Texel& b = golden.texels[i];
+      throw Error("verify: sample " + std::to_string(i) + " differs: engine " + o.engine + " gives " +
+                  std::to_string(a[0]) + "," + std::to_string(a[1]) + "," + std::to_string(a[2]) + "," +
+                  std::to_string(a[3]) + ", model gives " + std::to_string(b[0]) + "," + std::to_string(b[1]) +
+                  "," + std::to_string(b[2]) + "," + std::to_string(b[3]));
+    }
+  std::printf("verify: %zu samples of engine %s are bit-identical to the golden model\n", requests.size(),
+              o.engine.c_str());
+  return r;
+}
+
 void write_stats(const std::string& path, nlohmann::json stats, double seconds) {
   if (path.empty()) return;
   stats["wall_seconds"] = seconds;
@@ -102,7 +124,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
   const auto queries = read_queries(queries_path);
   const auto requests = to_requests(queries, pyr.log2_w0(), pyr.log2_h0(), queries_path);
-  const EngineResult r = run_engine(o.engine, pyr, cfg, requests, o.engine_options());
+  const EngineResult r = run_checked(o, pyr, cfg, requests);
   write_file_atomically(out_path, format_results(r.texels));
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_stats(o.stats_path, r.stats, secs);
@@ -139,7 +161,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, int width, in
   const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
   const SceneFrame frame = make_scene(scene, width, height);
   const auto requests = to_requests(frame.queries, pyr.log2_w0(), pyr.log2_h0(), "scene " + scene);
-  const EngineResult r = run_engine(o.engine, pyr, cfg, requests, o.engine_options());
+  const EngineResult r = run_checked(o, pyr, cfg, requests);
   save_image(compose(frame, r.texels, pyr.levels[0].channel_bits), out);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_stats(o.stats_path, r.stats, secs);
