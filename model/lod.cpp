@@ -43,8 +43,9 @@ bool lod_from_derivatives(const Derivatives& d, int log2_w, int log2_h, int32_t&
     lod_q8 = kLodMin;
     return true;
   }
-  // lambda = log2(rho) = (log2 p - 32) / 2; in Q8.8 that is (l10 - 32*1024) / 4, rounded half up.
-  lod_q8 = int32_t((fixed_log2_q10(p) - 32 * 1024 + 2) >> 2);
+  // lambda = log2(rho) = (log2 p - 32) / 2; in Q8.8 that is 256 * (l10/1024 - 32) / 2
+  // = (l10 - 32*1024) / 8, rounded half up.
+  lod_q8 = int32_t((fixed_log2_q10(p) - 32 * 1024 + 4) >> 3);
   return true;
 }
 

@@ -1,0 +1,138 @@
+// LOD stage 1b (docs/numerics.md): fixed_log2_q10 and lod_from_derivatives against log2 in
+// long double. The measured maxima are printed and recorded in docs/accuracy.md.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "model/formats.h"
+#include "model/lod.h"
+
+using namespace tex;
+
+namespace {
+// 1024 * log2(p), p exactly representable in long double (64-bit mantissa on x86-64).
+long double real_log2_q10(uint64_t p) { return 1024.0L * std::log2((long double)p); }
+}  // namespace
+
+// The integer part is exact (leading one); each of the 10 squarings truncates the mantissa, so
+// the result can only be low: the claim is floor(1024 log2 p) - 1 <= l10 <= floor(1024 log2 p).
+TEST(Lod, FixedLog2Q10IsFloorWithinOneUlp) {
+  long double max_err = 0;  // real - l10, in units of 1/1024
+  int64_t below_floor = 0, count = 0;
+  auto check = [&](uint64_t p) {
+    const int64_t l10 = fixed_log2_q10(p);
+    const long double real = real_log2_q10(p);
+    const int64_t fl = int64_t(std::floor(real));
+    ASSERT_LE(l10, fl) << "p=" << p;
+    ASSERT_GE(l10, fl - 1) << "p=" << p;
+    if (l10 < fl) ++below_floor;
+    max_err = std::max(max_err, real - l10);
+    ++count;
+  };
+  for (uint64_t p = 1; p <= (1u << 20); ++p) check(p);
+  std::mt19937_64 rng(5);
+  for (int i = 0; i < 1000000; ++i) {
+    const int shift = int(rng() % 64);
+    const uint64_t p = rng() >> shift;
+    if (p) check(p);
+  }
+  for (int b = 0; b < 64; ++b) {
+    check(uint64_t(1) << b);  // exact powers of two: l10 = 1024 b exactly
+    EXPECT_EQ(fixed_log2_q10(uint64_t(1) << b), 1024 * b);
+    if (b) check((uint64_t(1) << b) - 1);
+  }
+  check(UINT64_MAX);
+  std::printf("fixed_log2_q10: %lld values, max (1024 log2 p - l10) = %.4Lf, l10 < floor in %lld cases\n",
+              (long long)count, max_err, (long long)below_floor);
+  EXPECT_LT(max_err, 2.0L);
+}
+
+// lambda error against 0.5 log2(max(rho_x^2, rho_y^2)) in long double, rho in level-0 texels.
+// Bound, for rho >= 1/16 texel: final Q8.8 round-half-up <= 1/512; l10 is up to 2/1024 below
+// 1024 log2 P, i.e. <= 1/1024 in lambda; Q16.16 derivatives move each component by <= 2^-17
+// texels, so rho moves by <= sqrt(2) 2^-17 <= 2^-12.5 of rho = 1/16, i.e. <= 2.5e-4 levels.
+// Sum < 0.0032 < 1/256 + 0 = 0.0039: the assertion is 1/256 levels (one LSB of Q8.8).
+TEST(Lod, LodFromDerivativesErrorBelowOneLsb) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> expo(-4.0, 14.9), angle(0, 2 * M_PI), unit(0, 1);
+  double max_err = 0, sum_err = 0;
+  int n = 0;
+  for (int lw = 0; lw <= kMaxLog2Size; lw += 3)
+    for (int lh = 0; lh <= kMaxLog2Size; lh += 4)
+      for (int i = 0; i < 50000; ++i) {
+        // Random derivative vectors with lengths 2^-4 .. 2^14.9 texels, random direction and anisotropy.
+        const double W = std::ldexp(1.0, lw), H = std::ldexp(1.0, lh);
+        const double rx = std::exp2(expo(rng)), ax = angle(rng);
+        const double ry = rx * std::exp2(-4.0 * unit(rng)), ay = angle(rng);
+        Derivatives d;
+        d.dudx = rx * std::cos(ax) / W;
+        d.dvdx = rx * std::sin(ax) / H;
+        d.dudy = ry * std::cos(ay) / W;
+        d.dvdy = ry * std::sin(ay) / H;
+        if (rng() & 1) {
+          std::swap(d.dudx, d.dudy);
+          std::swap(d.dvdx, d.dvdy);
+        }
+        int32_t lod = 0;
+        ASSERT_TRUE(lod_from_derivatives(d, lw, lh, lod));
+        const long double px = std::pow((long double)d.dudx * W, 2) + std::pow((long double)d.dvdx * H, 2);
+        const long double py = std::pow((long double)d.dudy * W, 2) + std::pow((long double)d.dvdy * H, 2);
+        const double real = double(0.5L * std::log2(std::max(px, py)));
+        const double err = std::fabs(lod / 256.0 - real);
+        max_err = std::max(max_err, err);
+        sum_err += err;
+        ++n;
+        ASSERT_LE(err, 1.0 / 256) << "lambda=" << real << " model=" << lod / 256.0;
+      }
+  std::printf("lod_from_derivatives: %d queries, rho in [2^-4, 2^14.9] texels: max |lambda - real| = %.5f levels "
+              "(%.3f LSB of Q8.8), mean %.5f levels\n",
+              n, max_err, max_err * 256, sum_err / n);
+}
+
+TEST(Lod, LodFromDerivativesEdgeCases) {
+  int32_t lod = 0;
+  // No derivatives: the most negative lambda (magnify).
+  ASSERT_TRUE(lod_from_derivatives({0, 0, 0, 0}, 8, 8, lod));
+  EXPECT_EQ(lod, kLodMin);
+  // One texel per pixel: lambda = 0 exactly; 2, 4 texels: 1, 2.
+  ASSERT_TRUE(lod_from_derivatives({1.0 / 256, 0, 0, 1.0 / 256}, 8, 8, lod));
+  EXPECT_EQ(lod, 0);
+  ASSERT_TRUE(lod_from_derivatives({2.0 / 256, 0, 0, 1.0 / 256}, 8, 8, lod));
+  EXPECT_EQ(lod, 256);
+  ASSERT_TRUE(lod_from_derivatives({0, 4.0 / 64, 0, 0}, 8, 6, lod));  // v scales by the height
+  EXPECT_EQ(lod, 512);
+  // Not finite or too large (>= 2^15 texels): refused, never clamped.
+  EXPECT_FALSE(lod_from_derivatives({NAN, 0, 0, 0}, 8, 8, lod));
+  EXPECT_FALSE(lod_from_derivatives({0, INFINITY, 0, 0}, 8, 8, lod));
+  EXPECT_FALSE(lod_from_derivatives({0, 0, 32768.0 / 256, 0}, 8, 8, lod));
+  EXPECT_TRUE(lod_from_derivatives({0, 0, 32767.0 / 256, 0}, 8, 8, lod));
+  EXPECT_NEAR(lod / 256.0, std::log2(32767.0), 1.0 / 256);
+}
+
+// to_coord_fixed / to_lod_fixed: round half away from zero, range errors instead of clamping.
+TEST(Lod, RealToFixedConversion) {
+  int32_t x = 0;
+  EXPECT_TRUE(to_coord_fixed(0.5, x));
+  EXPECT_EQ(x, 1 << 23);
+  EXPECT_TRUE(to_coord_fixed(-128.0, x));
+  EXPECT_EQ(x, INT32_MIN);
+  EXPECT_FALSE(to_coord_fixed(128.0, x));
+  EXPECT_TRUE(to_coord_fixed(std::ldexp(2147483647.0, -24), x));
+  EXPECT_EQ(x, INT32_MAX);
+  EXPECT_TRUE(to_coord_fixed(std::ldexp(2.5, -24), x));  // half away from zero
+  EXPECT_EQ(x, 3);
+  EXPECT_TRUE(to_coord_fixed(std::ldexp(-2.5, -24), x));
+  EXPECT_EQ(x, -3);
+  EXPECT_FALSE(to_coord_fixed(NAN, x));
+  EXPECT_FALSE(to_coord_fixed(INFINITY, x));
+  EXPECT_FALSE(to_coord_fixed(-128.0 - std::ldexp(1.0, -23), x));
+  EXPECT_TRUE(to_lod_fixed(1.5 / 256, x));
+  EXPECT_EQ(x, 2);
+  EXPECT_TRUE(to_lod_fixed(-128.0, x));
+  EXPECT_EQ(x, kLodMin);
+  EXPECT_FALSE(to_lod_fixed(128.0, x));
+  EXPECT_FALSE(to_lod_fixed(-NAN, x));
+}
