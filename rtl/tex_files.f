@@ -1,0 +1,13 @@
+rtl/tex_pkg.sv
+rtl/tex_lerp.sv
+rtl/tex_skid.sv
+rtl/tex_lod.sv
+rtl/tex_scale.sv
+rtl/tex_addr.sv
+rtl/tex_wrap.sv
+rtl/tex_bank.sv
+rtl/tex_level_mem.sv
+rtl/tex_level_mux.sv
+rtl/tex_select.sv
+rtl/tex_filter.sv
+rtl/tex_unit.sv
