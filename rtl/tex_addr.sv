@@ -20,8 +20,9 @@ module tex_addr #(
   output logic [7:0]                           w
 );
   localparam int XW = tex_pkg::SCALED_W + 1;  // one more bit: t9 - 255 must not overflow
-  logic signed [XW-1:0] t9, p;
-  assign t9 = {scaled[tex_pkg::SCALED_W-1], scaled} >>> K;
+  logic signed [XW-1:0] wide, t9, p;
+  assign wide = XW'(scaled);  // a size cast of a signed value sign-extends
+  assign t9   = wide >>> K;
   assign p  = (t9 - XW'(255)) >>> 1;
   always_ff @(posedge clk) begin
     if (en) begin

@@ -21,13 +21,17 @@ module tex_lod (
   output logic [7:0]         f
 );
   // ---- clock 1: lambda' = clamp(lambda + bias, min, max) (GL order; exact 17-bit sum)
-  logic signed [16:0] biased;
+  logic signed [16:0] lod17, bias17, min17, max17, biased;  // size casts sign-extend
   logic signed [15:0] clamped_next, clamped;
-  assign biased = {lod[15], lod} + {bias[15], bias};
+  assign lod17  = 17'(lod);
+  assign bias17 = 17'(bias);
+  assign min17  = 17'(min_lod);
+  assign max17  = 17'(max_lod);
+  assign biased = lod17 + bias17;
   always_comb begin
     // Same order as std::clamp: below min wins, then above max.
-    if (biased < {min_lod[15], min_lod}) clamped_next = min_lod;
-    else if ({max_lod[15], max_lod} < biased) clamped_next = max_lod;
+    if (biased < min17) clamped_next = min_lod;
+    else if (max17 < biased) clamped_next = max_lod;
     else clamped_next = biased[15:0];
   end
   always_ff @(posedge clk) if (en) clamped <= clamped_next;

@@ -4,8 +4,9 @@
 // Handshake: req and rsp are valid/ready. req_ready is a register output (the skid buffer's
 //   !full): it never depends combinationally on rsp_ready or req_valid. Responses come in request
 //   order with their tag; nothing is lost or duplicated. Writes (wr_*) are always accepted.
-// Latency: LATENCY = 10 clocks: a request accepted at clock edge n shows rsp_valid after edge
-//   n + 10 when rsp_ready has been high. Stall-enable pipeline: every stage advances together
+// Latency: LATENCY = 10 clocks (10 registers): a request accepted in cycle t (req_valid &&
+//   req_ready at the rising edge ending cycle t) has rsp_valid high in cycle t + 10 if the output
+//   was not stalled. Stall-enable pipeline: every stage advances together
 //   when the skid buffer can take an item; only the valid bits are reset.
 // Throughput: 1 sample per clock sustained (8 texel reads per clock: a 2x2 footprint in each of
 //   levels d and d1); under backpressure the unit adds no bubbles of its own.
@@ -133,9 +134,9 @@ module tex_unit #(
       logic [XO-1:0] x0_n, x1_n, x0_4, x1_4;
       logic [YO-1:0] y0_n, y1_n, y0_4, y1_4;
       tex_wrap #(.OUT_W(XO)) u_wrap_x0 (.i(i0_u3), .log2_n(log2_w_k), .mode(cfg_wrap_u), .o(x0_n));
-      tex_wrap #(.OUT_W(XO)) u_wrap_x1 (.i(i0_u3 + 1'sd1), .log2_n(log2_w_k), .mode(cfg_wrap_u), .o(x1_n));
+      tex_wrap #(.OUT_W(XO)) u_wrap_x1 (.i(i0_u3 + tex_pkg::INDEX_W'(1)), .log2_n(log2_w_k), .mode(cfg_wrap_u), .o(x1_n));
       tex_wrap #(.OUT_W(YO)) u_wrap_y0 (.i(i0_v3), .log2_n(log2_h_k), .mode(cfg_wrap_v), .o(y0_n));
-      tex_wrap #(.OUT_W(YO)) u_wrap_y1 (.i(i0_v3 + 1'sd1), .log2_n(log2_h_k), .mode(cfg_wrap_v), .o(y1_n));
+      tex_wrap #(.OUT_W(YO)) u_wrap_y1 (.i(i0_v3 + tex_pkg::INDEX_W'(1)), .log2_n(log2_h_k), .mode(cfg_wrap_v), .o(y1_n));
       always_ff @(posedge clk) begin
         if (en) begin
           x0_4 <= x0_n;
