@@ -1,11 +1,19 @@
 #include "engine.h"
 
 #include "model/error.h"
+#ifdef TEXSIM_HAVE_RTL
+#include "rtl/rtl_engine.h"
+#endif
 
 namespace tex {
 
 const std::vector<std::string>& engine_names() {
-  static const std::vector<std::string> names = {"model"};
+  static const std::vector<std::string> names = {
+      "model",
+#ifdef TEXSIM_HAVE_RTL
+      "rtl",
+#endif
+  };
   return names;
 }
 
@@ -26,8 +34,12 @@ EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, cons
 }
 
 EngineResult run_engine(const std::string& engine, const Pyramid& pyramid, const SamplerConfig& config,
-                        const std::vector<Request>& requests, const EngineOptions& /*options*/) {
+                        const std::vector<Request>& requests, const EngineOptions& options) {
   if (engine == "model") return run_model(pyramid, config, requests);
+#ifdef TEXSIM_HAVE_RTL
+  if (engine == "rtl") return rtl::run_rtl(pyramid, config, requests, options);
+#endif
+  (void)options;
   std::string list;
   for (const auto& n : engine_names()) list += (list.empty() ? "" : ", ") + n;
   throw Error("unknown engine '" + engine + "' (this build has: " + list + ")");
