@@ -4,12 +4,14 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test bench clean
+.PHONY: help deps build demo test bench clean lint synth synth-latch
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
 	@echo "make test   - build, then run every test suite"
 	@echo "make bench  - samples/s of the model vs OpenImageIO TextureSystem"
+	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
+	@echo "make synth  - Yosys latch check, then iCE40 HX8K synthesis + place and route (Fmax, LUTs)"
 	@echo "make clean  - remove $(BUILD)/ and $(OUT)/"
 
 # Installs missing Debian packages (as root), then configures once.
@@ -28,11 +30,21 @@ demo: build
 	$(TEXSIM) render --scene plane --texture checker --filter trilinear --out $(OUT)/plane_trilinear.png
 	@echo "demo: point-sampled and trilinear planes in $(OUT)/ (compare the aliasing near the horizon)"
 
-test: build
+test: build lint synth-latch
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench: build
 	$(BUILD)/texunit_bench
+
+lint:
+	@bash scripts/lint.sh
+
+# Generic Yosys synthesis of a small configuration; fails on any latch (part of `make test`).
+synth-latch:
+	@bash scripts/synth.sh latch $(BUILD)
+
+synth:
+	@bash scripts/synth.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD) $(OUT)

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Synthesis of tex_unit with Yosys (and nextpnr for iCE40).
+#   scripts/synth.sh latch [BUILD]  generic `synth` of a small configuration; fails on any latch;
+#                                   prints the cell counts (run by `make test`)
+#   scripts/synth.sh [BUILD]        the latch check, then synth_ice40 + nextpnr-ice40 --hx8k:
+#                                   LUT/BRAM use and Fmax (run by `make synth`)
+# Configurations: MAX_LOG2_W MAX_LOG2_H CW. Logs and netlists go to BUILD/synth/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mode=full
+if [ "${1:-}" = latch ]; then mode=latch; shift; fi
+out="${1:-build}/synth"
+mkdir -p "$out"
+files=$(tr '\n' ' ' < rtl/tex_files.f)
+freq=${SYNTH_FREQ:-30}     # MHz target for nextpnr (it exits non-zero when missed)
+hx8k_luts=7680
+
+read_cfg() {  # $1 $2 $3 -> yosys commands that read and parameterize the design
+  echo "read_verilog -sv $files; chparam -set MAX_LOG2_W $1 -set MAX_LOG2_H $2 -set CW $3 tex_unit; hierarchy -top tex_unit"
+}
+
+# ---- latch check: generic synth, no latches allowed
+set -- 4 4 8
+log="$out/generic_w$1_h$2_c$3.log"
+if ! yosys -p "$(read_cfg "$@"); synth -top tex_unit -flatten; tee -o $out/generic_stat.txt stat;
+               select -assert-none t:\$dlatch t:\$adlatch t:\$dlatchsr t:\$_DLATCH* t:\$_DLATCHSR*" \
+     > "$log" 2>&1; then
+  grep -i "latch\|error" "$log" | head -20 >&2
+  echo "synth: FAILED generic synth / latch check (MAX $1x$2 CW=$3), see $log" >&2
+  exit 1
+fi
+cells=$(awk '/Number of cells:/{n=$4} END{print n}' "$out/generic_stat.txt")
+echo "synth: generic synth of MAX_LOG2 $1x$2 CW=$3: 0 latches, $cells cells:"
+awk '/^ +\$/{printf "  %s %s\n", $1, $2}' "$out/generic_stat.txt" | sort -k2 -n -r | head -12
+[ "$mode" = latch ] && exit 0
+
+# ---- iCE40 HX8K: synth_ice40 + nextpnr. 16x16 texels first; if it does not fit, narrower channels.
+fit_cfg=""
+for cfg in "4 4 8" "4 4 4"; do
+  set -- $cfg
+  tag="w$1_h$2_c$3"
+  yosys -p "$(read_cfg "$@"); synth_ice40 -top tex_unit -json $out/ice40_$tag.json; tee -o $out/ice40_$tag.stat stat" \
+    > "$out/ice40_$tag.log" 2>&1
+  luts=$(awk '/SB_LUT4/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
+  brams=$(awk '/SB_RAM40_4K/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
+  ffs=$(awk '/SB_DFF/{n+=$2} END{print n+0}' "$out/ice40_$tag.stat")
+  echo "synth: synth_ice40 MAX_LOG2 $1x$2 CW=$3: $luts SB_LUT4, $ffs flip-flops, $brams SB_RAM40_4K"
+  if [ "$luts" -gt "$hx8k_luts" ]; then
+    echo "synth:   does not fit the HX8K ($luts > $hx8k_luts LUTs): skipping place and route"
+    continue
+  fi
+  fit_cfg=$cfg
+  pnr_log="$out/nextpnr_$tag.log"
+  set +e
+  nextpnr-ice40 --hx8k --package ct256 --json "$out/ice40_$tag.json" --asc "$out/ice40_$tag.asc" \
+    --freq "$freq" --seed 1 > "$pnr_log" 2>&1
+  rc=$?
+  set -e
+  fmax=$(grep -o "Max frequency for clock '[^']*': [0-9.]* MHz" "$pnr_log" | tail -1 | grep -o "[0-9.]* MHz" || true)
+  util_lc=$(grep -o "ICESTORM_LC: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
+  util_ram=$(grep -o "ICESTORM_RAM: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
+  if [ -z "$fmax" ]; then
+    tail -20 "$pnr_log" >&2
+    echo "synth: FAILED nextpnr-ice40 (exit $rc), see $pnr_log" >&2
+    exit 1
+  fi
+  [ $rc -ne 0 ] && echo "synth:   (nextpnr exit $rc: target --freq $freq MHz missed)"
+  echo "synth: SUMMARY nextpnr-ice40 --hx8k ct256, MAX_LOG2 $1x$2 CW=$3: Fmax $fmax (target $freq MHz), $util_lc, $util_ram"
+  break
+done
+[ -n "$fit_cfg" ] || { echo "synth: FAILED: no configuration fits the HX8K" >&2; exit 1; }
