@@ -28,7 +28,9 @@ enum class PyramidMode : uint8_t { Exact = 0, Cascade = 1 };
 struct Filter {
   TexelFilter texel = TexelFilter::Linear;
   MipMode mip = MipMode::Linear;
-  bool operator==(const Filter&) const = default;
+  // Written out (not `= default`) so this header also compiles as C++17 (the SystemC library).
+  bool operator==(const Filter& o) const { return texel == o.texel && mip == o.mip; }
+  bool operator!=(const Filter& o) const { return !(*this == o); }
 };
 
 // Names: point, bilinear, trilinear, mip_nearest (bilinear in the nearest level),
