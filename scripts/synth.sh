@@ -15,8 +15,9 @@ files=$(tr '\n' ' ' < rtl/tex_files.f)
 freq=${SYNTH_FREQ:-30}     # MHz target for nextpnr (it exits non-zero when missed)
 hx8k_luts=7680
 
-read_cfg() {  # $1 $2 $3 -> yosys commands that read and parameterize the design
-  echo "read_verilog -sv $files; chparam -set MAX_LOG2_W $1 -set MAX_LOG2_H $2 -set CW $3 tex_unit; hierarchy -top tex_unit"
+read_cfg() {  # $1 $2 $3 [top] -> yosys commands that read and parameterize the design
+  local top=${4:-tex_unit}
+  echo "read_verilog -sv $files rtl/synth/tex_ice40_top.sv; chparam -set MAX_LOG2_W $1 -set MAX_LOG2_H $2 -set CW $3 $top; hierarchy -top $top"
 }
 
 # ---- latch check: generic synth, no latches allowed
@@ -34,12 +35,14 @@ echo "synth: generic synth of MAX_LOG2 $1x$2 CW=$3: 0 latches, $cells cells:"
 awk '/^ +\$/{printf "  %s %s\n", $1, $2}' "$out/generic_stat.txt" | sort -k2 -n -r | head -12
 [ "$mode" = latch ] && exit 0
 
-# ---- iCE40 HX8K: synth_ice40 + nextpnr. 16x16 texels first; if it does not fit, narrower channels.
+# ---- iCE40 HX8K: synth_ice40 + nextpnr of tex_ice40_top (tex_unit behind a serial pin wrapper,
+# as its ~240 ports exceed the package). 16x16 texels, CW=8 first; smaller until one fits.
 fit_cfg=""
-for cfg in "4 4 8" "4 4 4"; do
+ice40_configs=("4 4 8" "4 4 4" "3 3 4" "3 3 2")
+for cfg in "${ice40_configs[@]}"; do
   set -- $cfg
   tag="w$1_h$2_c$3"
-  yosys -p "$(read_cfg "$@"); synth_ice40 -top tex_unit -json $out/ice40_$tag.json; tee -o $out/ice40_$tag.stat stat" \
+  yosys -p "$(read_cfg "$@" tex_ice40_top); synth_ice40 -top tex_ice40_top -json $out/ice40_$tag.json; tee -o $out/ice40_$tag.stat stat" \
     > "$out/ice40_$tag.log" 2>&1
   luts=$(awk '/SB_LUT4/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
   brams=$(awk '/SB_RAM40_4K/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
@@ -59,6 +62,11 @@ for cfg in "4 4 8" "4 4 4"; do
   fmax=$(grep -o "Max frequency for clock '[^']*': [0-9.]* MHz" "$pnr_log" | tail -1 | grep -o "[0-9.]* MHz" || true)
   util_lc=$(grep -o "ICESTORM_LC: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
   util_ram=$(grep -o "ICESTORM_RAM: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
+  if grep -q "Unable to place\|Unable to find a placement\|ICESTORM_LC: *[0-9]*/ *[0-9]* *1[0-9][0-9]%" "$pnr_log"; then
+    echo "synth:   nextpnr: does not fit the HX8K ($util_lc)"
+    fit_cfg=""
+    continue
+  fi
   if [ -z "$fmax" ]; then
     tail -20 "$pnr_log" >&2
     echo "synth: FAILED nextpnr-ice40 (exit $rc), see $pnr_log" >&2
