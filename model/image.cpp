@@ -134,7 +134,10 @@ Image load_texture(const std::string& spec, bool resize) {
   if (!std::filesystem::exists(spec) && parse_pattern_spec(spec, name, w, h)) return make_pattern(name, w, h);
   if (!std::filesystem::exists(spec)) throw Error(spec + ": no such file or built-in pattern");
 
-  OIIO::ImageBuf src(spec);
+  // Texels are data: keep the file's values (OpenImageIO would premultiply unassociated alpha).
+  OIIO::ImageSpec read_config;
+  read_config.attribute("oiio:UnassociatedAlpha", 1);
+  OIIO::ImageBuf src(spec, 0, 0, nullptr, &read_config);
   if (!src.read(0, 0, true, OIIO::TypeDesc::UINT8)) {
     std::string msg = src.geterror();
     msg.erase(std::remove(msg.begin(), msg.end(), '\n'), msg.end());
@@ -182,6 +185,7 @@ void save_image(const Image& img, const std::string& path) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw Error(path + ": no image writer for this file type");
   OIIO::ImageSpec spec(img.width, img.height, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // write the texels as they are, no un-premultiply
   if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close()) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
