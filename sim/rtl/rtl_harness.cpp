@@ -166,9 +166,12 @@ StreamStats Harness::stream(const Request* requests, size_t n, const Timing& tim
   uint64_t idle_ready_clocks = 0;
   const uint64_t start = cycle_;
   bool filled = false;
+  bool holding = false;  // a request was offered and not taken in the previous clock
   PinsIn in;
   while (done < n) {
-    if (gap_left == 0 && timing.gap_prob > 0 && accepted < n && unit(rng) < timing.gap_prob)
+    // A request once offered stays offered until accepted (the RTL asserts this): gaps start
+    // only between requests.
+    if (gap_left == 0 && !holding && timing.gap_prob > 0 && accepted < n && unit(rng) < timing.gap_prob)
       gap_left = 1 + int(rng() % uint64_t(std::max(1, timing.max_gap)));
     if (stall_left == 0) {
       if (timing.long_stall_prob > 0 && unit(rng) < timing.long_stall_prob)
@@ -227,6 +230,7 @@ StreamStats Harness::stream(const Request* requests, size_t n, const Timing& tim
         throw Error("RTL time-out: req_ready stays low with nothing in flight; request #" + std::to_string(accepted) +
                     " (tag " + std::to_string(accepted & kTagMask) + ") not accepted by clock " + std::to_string(now));
     }
+    holding = offer && !out.req_ready;
     if (offer && out.req_ready) {
       accept_clock[accepted] = now;
       ++accepted;

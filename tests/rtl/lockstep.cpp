@@ -1,0 +1,194 @@
+#include "lockstep.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+
+#include "model/error.h"
+
+namespace tex::rtltest {
+
+uint64_t mix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+
+std::optional<uint64_t> env_u64(const char* name) {
+  const char* s = std::getenv(name);
+  if (!s || !*s) return std::nullopt;
+  return std::strtoull(s, nullptr, 0);
+}
+
+uint64_t seed_base() { return env_u64("TEX_SEED_BASE").value_or(20240601); }
+int scale() { return int(std::max<uint64_t>(1, env_u64("TEX_SCALE").value_or(1))); }
+
+std::string describe(const SamplerConfig& c) {
+  std::ostringstream o;
+  o << filter_name(c.filter) << " wrap " << wrap_name(c.wrap_u) << "/" << wrap_name(c.wrap_v) << " bias "
+    << c.lod_bias << " min " << c.min_lod << " max " << c.max_lod << " (Q8.8)";
+  return o.str();
+}
+
+std::string describe(const Request& r) {
+  std::ostringstream o;
+  o << "u=" << r.u << " (" << r.u / 16777216.0 << ") v=" << r.v << " (" << r.v / 16777216.0 << ") lod=" << r.lod
+    << " (" << r.lod / 256.0 << ")";
+  return o.str();
+}
+
+std::string describe(const Texel& t) {
+  std::ostringstream o;
+  o << "(" << t[0] << "," << t[1] << "," << t[2] << "," << t[3] << ")";
+  return o.str();
+}
+
+LockstepResult lockstep(rtl::Harness& unit, const Pyramid& pyramid, const SamplerConfig& config,
+                        const std::vector<Request>& requests, const rtl::Timing& timing, uint64_t seed) {
+  LockstepResult res;
+  unit.configure(rtl::cfg_pins(config, pyramid.log2_w0(), pyramid.log2_h0()));
+  Sampler model(pyramid, config);
+  std::vector<uint32_t> expected(requests.size());
+  for (size_t i = 0; i < requests.size(); ++i) expected[i] = rtl::pack_rgba8(model.sample(requests[i]));
+  std::vector<uint8_t> answered(requests.size(), 0);
+  std::ostringstream report;
+  try {
+    res.stats = unit.stream(requests.data(), requests.size(), timing, seed, [&](size_t i, uint32_t got) {
+      ++res.compared;
+      if (answered[i]++) report << "request #" << i << " answered twice\n";
+      if (got != expected[i] && ++res.mismatches <= 5)
+        report << "request #" << i << " " << describe(requests[i]) << ": rtl " << describe(rtl::unpack_rgba8(got))
+               << " model " << describe(rtl::unpack_rgba8(expected[i])) << "\n";
+    });
+    for (size_t i = 0; i < requests.size(); ++i)
+      if (!answered[i]) {
+        report << "request #" << i << " never answered\n";
+        break;
+      }
+  } catch (const Error& e) {
+    report << e.what() << "\n";
+  }
+  if (res.mismatches > 5) report << "... " << res.mismatches << " mismatches in all\n";
+  res.report = report.str();
+  return res;
+}
+
+std::vector<Filter> all_filters() {
+  std::vector<Filter> f;
+  for (TexelFilter t : {TexelFilter::Nearest, TexelFilter::Linear})
+    for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear}) f.push_back({t, m});
+  return f;
+}
+
+namespace {
+
+int32_t coordinate(std::mt19937_64& rng, int log2_size, int last_level) {
+  const int kind = int(rng() % 100);
+  const int64_t one = int64_t(1) << kCoordFracBits;
+  if (kind < 35) {  // far outside [0, 1): [-100, 100)
+    return int32_t(int64_t(rng() % uint64_t(200 * one)) - 100 * one);
+  }
+  if (kind < 65) {  // near a texel edge or centre of some level, a few raw units off
+    const int k = int(rng() % uint64_t(last_level + 1));
+    const int lk = std::max(log2_size - k, 0);
+    const int64_t n = int64_t(1) << lk;
+    const int64_t j = int64_t(rng() % uint64_t(n + 5)) - 2 + (rng() % 4 == 0 ? n * (int64_t(rng() % 7) - 3) : 0);
+    const int64_t texel = one >> lk;
+    int64_t u = j * texel + ((rng() & 1) ? texel / 2 : 0);
+    const int64_t jitter = int64_t(rng() % 257) - 128;
+    u += (rng() % 3 == 0) ? 0 : jitter;
+    return int32_t(std::clamp<int64_t>(u, INT32_MIN, INT32_MAX));
+  }
+  if (kind < 85) return int32_t(int64_t(rng() % uint64_t(one)));  // [0, 1)
+  if (kind < 95) return int32_t(uint32_t(rng()));                  // any 32-bit value
+  static const int32_t edges[] = {0, 1, -1, int32_t(one - 1), int32_t(one), int32_t(one + 1), int32_t(-one),
+                                  INT32_MIN, INT32_MAX, int32_t(one / 2), int32_t(-one / 2)};
+  return edges[rng() % (sizeof edges / sizeof edges[0])];
+}
+
+int32_t lod_value(std::mt19937_64& rng, int last_level) {
+  const int kind = int(rng() % 100);
+  const int top = (last_level + 2) * 256;
+  if (kind < 50) return int32_t(int64_t(rng() % uint64_t(top + 512)) - 512);  // [-2, last + 2)
+  if (kind < 75) {  // on a level boundary, or the nearest-level rounding point, +-1/256
+    const int k = int(rng() % uint64_t(last_level + 3)) - 1;
+    const int offsets[] = {-1, 0, 1, 127, 128, 129};
+    return k * 256 + offsets[rng() % 6];
+  }
+  if (kind < 90) return int32_t(int64_t(rng() % 513) - 256);  // [-1, 1]
+  return int32_t(int16_t(uint16_t(rng())));                    // any 16-bit value
+}
+
+}  // namespace
+
+std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_t n) {
+  const int last = std::max(lw, lh);
+  std::vector<Request> r(n);
+  for (size_t i = 0; i < n; ++i) {
+    r[i].u = coordinate(rng, lw, last);
+    r[i].v = coordinate(rng, lh, last);
+    r[i].lod = lod_value(rng, last);
+    r[i].tag = uint32_t(i);
+  }
+  return r;
+}
+
+void randomize_lod_controls(std::mt19937_64& rng, SamplerConfig& c) {
+  c.lod_bias = (rng() % 2) ? 0 : int32_t(int64_t(rng() % 1537) - 768);  // [-3, 3] levels
+  if (rng() % 2) {
+    c.min_lod = kLodMin;
+    c.max_lod = kLodMax;
+  } else {
+    c.min_lod = int32_t(int64_t(rng() % 1537) - 512);  // [-2, 4]
+    c.max_lod = c.min_lod + int32_t(rng() % 2049);     // up to 8 levels above
+  }
+}
+
+rtl::Timing random_timing(std::mt19937_64& rng, std::string& name) {
+  rtl::Timing t;
+  switch (rng() % 4) {
+    case 0:
+      name = "ideal";
+      break;
+    case 1:
+      name = "light";
+      t.gap_prob = 0.1;
+      t.max_gap = 3;
+      t.stall_prob = 0.1;
+      t.max_stall = 3;
+      break;
+    case 2:  // a gap starts in 60% of the free clocks and lasts 1..6: about 30% zero-delay clocks
+      name = "heavy";
+      t.gap_prob = 0.6;
+      t.max_gap = 6;
+      t.stall_prob = 0.6;
+      t.max_stall = 6;
+      break;
+    default:
+      name = "long-stalls";
+      t.gap_prob = 0.05;
+      t.max_gap = 2;
+      t.stall_prob = 0.2;
+      t.max_stall = 4;
+      t.long_stall_prob = 0.003;
+      t.long_stall = 100 + int(rng() % 400);
+      break;
+  }
+  return t;
+}
+
+std::unique_ptr<rtl::Harness> make_unit(int max_log2_w, int max_log2_h, uint64_t seed, const std::string& trace) {
+  for (const rtl::RtlShape& s : rtl::compiled_shapes())
+    if (s.max_log2_w == max_log2_w && s.max_log2_h == max_log2_h) {
+      rtl::HarnessOptions o;
+      o.seed = seed;
+      o.trace_path = trace;
+      auto unit = rtl::Harness::create(s, o);
+      unit->reset();
+      return unit;
+    }
+  throw Error("no compiled configuration " + std::to_string(max_log2_w) + "x" + std::to_string(max_log2_h));
+}
+
+}  // namespace tex::rtltest

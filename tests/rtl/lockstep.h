@@ -1,0 +1,59 @@
+// Lockstep scoreboard and constrained-random stimulus for the RTL tests (docs/verification.md).
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "model/pyramid.h"
+#include "model/sampler.h"
+#include "rtl/rtl_harness.h"
+
+namespace tex::rtltest {
+
+// The documented latency of tex_unit (rtl/tex_unit.sv header: "LATENCY = 10 clocks"), in clocks
+// from the request handshake edge to the response handshake edge with rsp_ready high.
+constexpr uint64_t kDocumentedLatency = 10;
+
+uint64_t mix64(uint64_t x);  // splitmix64 finalizer: independent seeds from (base, indices)
+
+// TEX_SEED=N: replay only the case with this seed. TEX_SEED_BASE=N: another set of random cases.
+// TEX_SCALE=K: K times more random requests per case (soak runs).
+std::optional<uint64_t> env_u64(const char* name);
+uint64_t seed_base();
+int scale();
+
+// Every request is compared with tex::Sampler::sample() of the model; the harness checks tags
+// (order, loss, duplicates) and the time-out; this checks data and that every index came back once.
+struct LockstepResult {
+  uint64_t compared = 0;
+  uint64_t mismatches = 0;
+  std::string report;  // first mismatches, or the harness's error
+  rtl::StreamStats stats;
+  bool ok() const { return mismatches == 0 && report.empty(); }
+};
+LockstepResult lockstep(rtl::Harness& unit, const Pyramid& pyramid, const SamplerConfig& config,
+                        const std::vector<Request>& requests, const rtl::Timing& timing, uint64_t seed);
+
+std::string describe(const SamplerConfig& c);
+std::string describe(const Request& r);
+std::string describe(const Texel& t);
+
+// Constrained-random requests for a 2^lw x 2^lh texture: coordinates in [-100, 100), near texel
+// edges and centres of every level, in [0, 1), and any 32-bit value; lambda from -2 to past the
+// last level, on level and rounding boundaries, and any 16-bit value.
+std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_t n);
+// Random bias and clamps (half of the cases keep the full range).
+void randomize_lod_controls(std::mt19937_64& rng, SamplerConfig& c);
+// One of: ideal, light, heavy (about 30% of clocks without a gap), long stalls (hundreds of clocks).
+rtl::Timing random_timing(std::mt19937_64& rng, std::string& name);
+
+// The six filters (texel filter x mip mode) and three wrap modes.
+std::vector<Filter> all_filters();
+
+// The harness of the named configuration, reset.
+std::unique_ptr<rtl::Harness> make_unit(int max_log2_w, int max_log2_h, uint64_t seed = 1,
+                                        const std::string& trace = "");
+
+}  // namespace tex::rtltest

@@ -1,0 +1,328 @@
+// Timing and handshake: fixed latency, one sample per clock, no bubbles under output stalls,
+// reset in the middle of traffic, the scoreboard's own checks (lost, duplicated, reordered,
+// time-out) on a deliberately broken fake unit, assertion failure and FST trace windows.
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <filesystem>
+#include <unistd.h>
+
+#include "lockstep.h"
+#include "model/error.h"
+#include "model/image.h"
+
+using namespace tex;
+using namespace tex::rtltest;
+
+namespace {
+
+struct Shape {
+  int w, h;
+};
+const Shape kShapes[] = {{4, 4}, {6, 3}, {10, 10}};
+
+Pyramid noise_pyramid(int lw, int lh) { return build_pyramid(make_pattern("noise", 1 << lw, 1 << lh)); }
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("texrtl_" + std::to_string(getpid()) + "_" + name)).string();
+}
+
+}  // namespace
+
+TEST(RtlTiming, FixedLatencyAndOneSamplePerClock) {
+  for (const Shape s : kShapes) {
+    auto unit = make_unit(s.w, s.h);
+    const Pyramid pyr = noise_pyramid(s.w, s.h);
+    unit->load(pyr);
+    std::mt19937_64 rng(mix64(seed_base() + 11));
+    for (const Filter& flt : all_filters()) {
+      SamplerConfig cfg;
+      cfg.filter = flt;
+      const auto reqs = random_requests(rng, s.w, s.h, 3000);
+      const LockstepResult r = lockstep(*unit, pyr, cfg, reqs, rtl::Timing::ideal(), 1);
+      ASSERT_TRUE(r.ok()) << r.report;
+      EXPECT_EQ(r.stats.latency_min, kDocumentedLatency) << s.w << "x" << s.h;
+      EXPECT_EQ(r.stats.latency_max, kDocumentedLatency) << s.w << "x" << s.h;
+      // n samples take n clocks once the pipeline has filled: exactly one per clock.
+      EXPECT_EQ(r.stats.cycles, reqs.size() + kDocumentedLatency);
+      EXPECT_EQ(r.stats.cycles - kDocumentedLatency, r.stats.samples);
+      EXPECT_EQ(r.stats.bubbles_after_fill, 0u);
+      EXPECT_EQ(r.stats.backpressure_cycles, 0u);
+    }
+  }
+}
+
+// Pin-level driver, independent of Harness::stream: requests always offered, rsp_ready random with
+// stalls of 1..8 and some of hundreds of clocks. After the first response, every clock with
+// rsp_ready high must deliver a response until the last one: samples == ready clocks.
+TEST(RtlTiming, NoBubblesUnderRandomOutputStalls) {
+  for (const Shape s : kShapes) {
+    auto unit = make_unit(s.w, s.h);
+    const Pyramid pyr = noise_pyramid(s.w, s.h);
+    unit->load(pyr);
+    SamplerConfig cfg;  // trilinear, repeat
+    unit->configure(rtl::cfg_pins(cfg, s.w, s.h));
+    const uint64_t seed = mix64(seed_base() + 23 + uint64_t(s.w));
+    std::mt19937_64 rng(seed);
+    const auto reqs = random_requests(rng, s.w, s.h, 20000);
+    Sampler model(pyr, cfg);
+
+    size_t accepted = 0, done = 0;
+    uint64_t ready_after_fill = 0, stall_left = 0, long_stalls = 0;
+    bool filled = false;
+    rtl::PinsIn in;
+    while (done < reqs.size()) {
+      ASSERT_LT(unit->cycle(), 10'000'000u) << "hang, seed " << seed;
+      if (stall_left == 0) {
+        if (rng() % 1000 == 0) {
+          stall_left = 100 + rng() % 400;
+          ++long_stalls;
+        } else if (rng() % 3 == 0) {
+          stall_left = 1 + rng() % 8;
+        }
+      }
+      in.rsp_ready = stall_left == 0;
+      if (stall_left) --stall_left;
+      in.req_valid = accepted < reqs.size();
+      if (in.req_valid) {
+        in.req_u = reqs[accepted].u;
+        in.req_v = reqs[accepted].v;
+        in.req_lod = int16_t(reqs[accepted].lod);
+        in.req_tag = uint16_t(accepted);
+      }
+      const rtl::PinsOut out = unit->tick(in);
+      if (filled && in.rsp_ready) ++ready_after_fill;
+      if (out.rsp_valid && in.rsp_ready) {
+        if (!filled) ready_after_fill = 1;
+        filled = true;
+        ASSERT_EQ(out.rsp_tag, uint16_t(done)) << "seed " << seed;
+        ASSERT_EQ(out.rsp_rgba, rtl::pack_rgba8(model.sample(reqs[done]))) << describe(reqs[done]) << " seed " << seed;
+        ++done;
+      } else if (filled && in.rsp_ready) {
+        FAIL() << s.w << "x" << s.h << ": bubble at clock " << unit->cycle() - 1 << " with " << (accepted - done)
+               << " responses owed (seed " << seed << ")";
+      }
+      if (in.req_valid && out.req_ready) ++accepted;
+    }
+    EXPECT_EQ(done, ready_after_fill) << "samples == ready clocks after the fill";
+    EXPECT_GT(long_stalls, 0u);
+  }
+}
+
+TEST(RtlTiming, ResetInTheMiddleOfTraffic) {
+  for (const Shape s : {kShapes[1], kShapes[2]}) {
+    auto unit = make_unit(s.w, s.h);
+    const Pyramid pyr = build_pyramid(make_pattern("noise", 1 << s.w, 1 << s.h), PyramidMode::Cascade);
+    unit->load(pyr);
+    const uint64_t seed = mix64(seed_base() + 31 + uint64_t(s.h));
+    std::mt19937_64 rng(seed);
+    for (int trial = 0; trial < 6; ++trial) {
+      SamplerConfig cfg;
+      cfg.filter = all_filters()[size_t(trial)];
+      cfg.wrap_u = Wrap(trial % 3);
+      cfg.wrap_v = Wrap((trial + 1) % 3);
+      unit->configure(rtl::cfg_pins(cfg, s.w, s.h));
+      // Traffic: requests always offered, the output stalled now and then (in trial 1, 3, 5 for
+      // good: the pipeline and the skid buffer are full and req_ready is low at the reset).
+      const auto junk = random_requests(rng, s.w, s.h, 200);
+      size_t accepted = 0;
+      rtl::PinsIn in;
+      const int clocks = 5 + int(rng() % 60);
+      for (int c = 0; c < clocks; ++c) {
+        in.req_valid = true;
+        in.req_u = junk[accepted % junk.size()].u;
+        in.req_v = junk[accepted % junk.size()].v;
+        in.req_lod = int16_t(junk[accepted % junk.size()].lod);
+        in.req_tag = uint16_t(0xF000 + accepted);
+        in.rsp_ready = (trial % 2) ? false : (rng() % 2 == 0);
+        if (unit->tick(in).req_ready) ++accepted;
+      }
+      unit->reset(1 + int(rng() % 3));
+      // Nothing from before the reset may come out.
+      const rtl::PinsOut after = unit->tick(rtl::PinsIn{});
+      EXPECT_FALSE(after.rsp_valid) << "stale response tag " << after.rsp_tag << " after reset";
+      EXPECT_TRUE(after.req_ready);
+      std::string timing_name;
+      const rtl::Timing timing = random_timing(rng, timing_name);
+      const auto reqs = random_requests(rng, s.w, s.h, 5000);
+      const LockstepResult r = lockstep(*unit, pyr, cfg, reqs, timing, rng());
+      EXPECT_TRUE(r.ok()) << "after reset in trial " << trial << ", timing " << timing_name << ", seed " << seed
+                          << "\n" << r.report;
+      EXPECT_EQ(r.compared, reqs.size());
+    }
+  }
+}
+
+// ---------------------------------------------------------------- the scoreboard catches faults
+
+namespace {
+
+// A fake unit with latency 20 that can lose, duplicate, reorder or withhold responses.
+enum class Fault { None, Lose, Duplicate, Swap, Silence };
+
+class FakeUnit : public rtl::Harness {
+ public:
+  FakeUnit(Fault fault, uint64_t at) : Harness(rtl::RtlShape{"fake", 4, 4}, rtl::HarnessOptions{}), fault_(fault), at_(at) {}
+
+ protected:
+  rtl::PinsOut tick_pins(const rtl::PinsIn& in, bool) override {
+    rtl::PinsOut out;
+    out.req_ready = true;
+    if (!queue_.empty() && queue_.front().ready_at <= cycle()) {
+      out.rsp_valid = true;
+      out.rsp_tag = queue_.front().tag;
+      out.rsp_rgba = queue_.front().tag * 3u;
+    }
+    if (out.rsp_valid && in.rsp_ready) {
+      const Item item = queue_.front();
+      queue_.pop_front();
+      if (fault_ == Fault::Duplicate && item.tag == at_) queue_.push_front({item.tag, cycle() + 1});
+    }
+    if (in.req_valid) {
+      ++seen_;
+      const Item item{in.req_tag, cycle() + 20};
+      if (fault_ == Fault::Lose && in.req_tag == at_) return out;
+      if (fault_ == Fault::Silence && seen_ > at_) return out;
+      if (fault_ == Fault::Swap && in.req_tag == at_ + 1 && !queue_.empty()) {
+        queue_.insert(queue_.end() - 1, item);
+        return out;
+      }
+      queue_.push_back(item);
+    }
+    return out;
+  }
+  void apply_cfg(const rtl::CfgPins&) override {}
+  bool got_finish() const override { return false; }
+  void close_trace_impl() override {}
+
+ private:
+  struct Item {
+    uint16_t tag;
+    uint64_t ready_at;
+  };
+  Fault fault_;
+  uint64_t at_;
+  uint64_t seen_ = 0;
+  std::deque<Item> queue_;
+};
+
+std::string stream_error(Fault fault, uint64_t at, const rtl::Timing& timing) {
+  FakeUnit unit(fault, at);
+  std::vector<Request> reqs(100);
+  try {
+    unit.stream(reqs.data(), reqs.size(), timing, 5, [](size_t i, uint32_t rgba) {
+      if (rgba != i * 3u) throw Error("data of request " + std::to_string(i) + " is wrong");
+    });
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(RtlScoreboard, CatchesLostDuplicatedReorderedAndMissingResponses) {
+  const rtl::Timing heavy{0.6, 6, 0.6, 6, 0, 0};
+  for (const rtl::Timing& t : {rtl::Timing::ideal(), heavy}) {
+    EXPECT_EQ(stream_error(Fault::None, 0, t), "");
+    std::string e = stream_error(Fault::Lose, 40, t);
+    EXPECT_NE(e.find("has tag 41, expected tag 40"), std::string::npos) << e;
+    e = stream_error(Fault::Duplicate, 40, t);
+    EXPECT_NE(e.find("has tag 40, expected tag 41"), std::string::npos) << e;
+    e = stream_error(Fault::Swap, 40, t);
+    EXPECT_NE(e.find("has tag 41, expected tag 40"), std::string::npos) << e;
+    e = stream_error(Fault::Duplicate, 99, t);  // the extra copy comes after the last response
+    EXPECT_NE(e.find("after all 100 requests were answered"), std::string::npos) << e;
+    e = stream_error(Fault::Silence, 60, t);
+    EXPECT_NE(e.find("time-out: no response for tag 60"), std::string::npos) << e;
+    EXPECT_NE(e.find("at clock"), std::string::npos) << e;
+  }
+}
+
+TEST(RtlHarness, AssertionFailureClosesTheTrace) {
+  const std::string trace = temp_path("assert.fst");
+  {
+    auto unit = make_unit(4, 4, 3, trace);
+    rtl::PinsIn in;
+    in.req_valid = true;
+    in.rsp_ready = false;
+    // Fill the pipeline and the skid buffer until req_ready drops, then break the rule that a
+    // request stays offered until taken.
+    int clocks = 0;
+    while (unit->tick(in).req_ready) ASSERT_LT(++clocks, 100);
+    in.req_valid = false;
+    try {
+      unit->tick(in);
+      unit->tick(in);
+      FAIL() << "the RTL assertion on req_valid did not fire";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("assertion"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("trace closed"), std::string::npos) << e.what();
+    }
+  }
+  ASSERT_TRUE(std::filesystem::exists(trace));
+  EXPECT_GT(std::filesystem::file_size(trace), 100u);
+  std::filesystem::remove(trace);
+}
+
+TEST(RtlHarness, TraceWindowIsClosedAfterItsLastClock) {
+  const std::string small = temp_path("w1.fst"), large = temp_path("w2.fst");
+  auto run = [](const std::string& path, uint64_t begin, uint64_t end) {
+    rtl::HarnessOptions o;
+    o.trace_path = path;
+    o.trace_begin = begin;
+    o.trace_end = end;
+    auto unit = rtl::Harness::create(rtl::compiled_shapes()[0], o);
+    unit->reset();
+    const Pyramid pyr = noise_pyramid(4, 4);
+    unit->load(pyr);
+    SamplerConfig cfg;
+    unit->configure(rtl::cfg_pins(cfg, 4, 4));
+    std::mt19937_64 rng(1);
+    const auto reqs = random_requests(rng, 4, 4, 3000);
+    unit->stream(reqs.data(), reqs.size(), rtl::Timing::ideal(), 1, [](size_t, uint32_t) {});
+    // The window ended long ago: the file is complete before the harness goes away.
+    EXPECT_TRUE(std::filesystem::exists(path));
+    return std::filesystem::file_size(path);
+  };
+  const auto s1 = run(small, 400, 420);
+  const auto s2 = run(large, 400, 3000);
+  EXPECT_GT(s1, 0u);
+  EXPECT_GT(s2, s1);
+  std::filesystem::remove(small);
+  std::filesystem::remove(large);
+}
+
+TEST(RtlHarness, PicksTheSmallestConfigurationAndRejectsTooLargeTextures) {
+  EXPECT_EQ(rtl::smallest_shape_for(4, 4).name, "Vtex_unit_4x4");
+  EXPECT_EQ(rtl::smallest_shape_for(0, 0).name, "Vtex_unit_4x4");
+  EXPECT_EQ(rtl::smallest_shape_for(5, 3).name, "Vtex_unit_6x3");
+  EXPECT_EQ(rtl::smallest_shape_for(4, 5).name, "Vtex_unit_10x10");
+  EXPECT_EQ(rtl::smallest_shape_for(10, 10).name, "Vtex_unit_10x10");
+  try {
+    rtl::smallest_shape_for(11, 2);
+    FAIL() << "2048x4 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("2048x4 does not fit the RTL"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1024x1024"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RtlScoreboard, DetectsOneWrongTexelInOneLevel) {
+  // The RTL holds the true pyramid; the model gets a copy with one texel of level 2 off by one.
+  // The lockstep comparison must see it (and only where that texel is read).
+  auto unit = make_unit(4, 4);
+  const Pyramid pyr = noise_pyramid(4, 4);
+  unit->load(pyr);
+  Pyramid wrong = pyr;
+  wrong.levels[2].at(1, 2)[1] ^= 1;
+  SamplerConfig cfg;  // trilinear
+  std::vector<Request> reqs;
+  for (int i = 0; i < 4; ++i)  // centres of level 2 (4x4), lambda 2.0: level 2 only
+    for (int j = 0; j < 4; ++j) reqs.push_back({(2 * i + 1) << 21, (2 * j + 1) << 21, 512, 0});
+  const LockstepResult r = lockstep(*unit, wrong, cfg, reqs, rtl::Timing::ideal(), 1);
+  EXPECT_EQ(r.mismatches, 1u) << r.report;
+  EXPECT_NE(r.report.find("request #6 "), std::string::npos) << r.report;
+  const LockstepResult same = lockstep(*unit, pyr, cfg, reqs, rtl::Timing::ideal(), 1);
+  EXPECT_TRUE(same.ok()) << same.report;
+}
