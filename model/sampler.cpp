@@ -1,5 +1,9 @@
 #include "sampler.h"
 
+#include <string>
+#include <type_traits>
+
+#include "error.h"
 #include "stages.h"
 
 namespace tex {
@@ -51,54 +55,151 @@ Texel Sampler::sample(const Request& r) {
 
 namespace {
 
-// Bilinear of all four 8-bit channels of one level; results CW.16 per channel (24 bits).
-struct Bilinear4 {
-  uint32_t c[4];
+// ---------------------------------------------------------------- fast path (8-bit channels)
+// Same arithmetic as sample() (docs/numerics.md), arranged for speed:
+// - the filter and wrap modes are template parameters, so their branches leave the loop;
+// - per-level constants (texel pointer, shifts, masks) are looked up in a small table;
+// - two channels share one 64-bit word (R|B and G|A, 32 bits each): one multiply does two lerps.
+//   Every value of stage 5 is a non-negative integer < 2^32 per channel (CW.24 with CW = 8), so
+//   (a << 8) + (b - a) * w computed modulo 2^64 on the packed word gives both channels exactly:
+//   the negative (b - a) terms borrow across the halves, but the exact sum has no negative half.
+
+struct FastLevel {
+  const uint32_t* texels;  // row-major packed RGBA8
+  int log2_w;              // row stride is 1 << log2_w
+  int shift_u, shift_v;    // stage 2: t9 = coord >> (15 - log2_size)
+  int32_t mask_w, mask_h;  // size - 1
 };
 
-inline Bilinear4 bilinear_rgba8(const uint32_t* level, int log2_w, int log2_h, int32_t u, int32_t v,
-                                const SamplerConfig& cfg) {
-  const stage::AxisTaps tu = stage::axis_taps(u, log2_w, cfg.filter.texel);
-  const stage::AxisTaps tv = stage::axis_taps(v, log2_h, cfg.filter.texel);
-  const int32_t x0 = stage::wrap_index(tu.i0, log2_w, cfg.wrap_u), x1 = stage::wrap_index(tu.i1, log2_w, cfg.wrap_u);
-  const int32_t y0 = stage::wrap_index(tv.i0, log2_h, cfg.wrap_v), y1 = stage::wrap_index(tv.i1, log2_h, cfg.wrap_v);
-  const uint32_t* row0 = level + (size_t(y0) << log2_w);
-  const uint32_t* row1 = level + (size_t(y1) << log2_w);
-  const uint32_t a = row0[x0], b = row0[x1], c = row1[x0], e = row1[x1];
-  Bilinear4 r;
-  for (int ch = 0; ch < 4; ++ch) {
-    const int sh = ch * 8;
-    const int32_t ta = (a >> sh) & 255, tb = (b >> sh) & 255, tc = (c >> sh) & 255, te = (e >> sh) & 255;
-    const int32_t top = (ta << 8) + (tb - ta) * tu.w;
-    const int32_t bot = (tc << 8) + (te - tc) * tu.w;
-    r.c[ch] = uint32_t((top << 8) + (bot - top) * tv.w);
+// R and B (bytes 0 and 2) in the low and high 32-bit halves; G and A likewise.
+inline uint64_t spread_rb(uint32_t t) { return (t & 0xFFu) | uint64_t(t & 0xFF0000u) << 16; }
+inline uint64_t spread_ga(uint32_t t) { return (t >> 8 & 0xFFu) | uint64_t(t >> 24) << 32; }
+
+// Stage 5's lerp on two packed channels, exact (see above).
+inline uint64_t lerp2(uint64_t a, uint64_t b, uint32_t w) { return (a << 8) + (b - a) * w; }
+
+// Stage 3 for a power-of-two size given as mask = size - 1; same results as stage::wrap_index.
+template <Wrap W>
+inline int32_t wrap_fast(int32_t i, int32_t mask) {
+  if constexpr (W == Wrap::Repeat) return i & mask;
+  if constexpr (W == Wrap::Clamp) return i < 0 ? 0 : (i > mask ? mask : i);
+  if constexpr (W == Wrap::Mirror) {
+    const int32_t m = i & (2 * mask + 1);
+    return m <= mask ? m : 2 * mask + 1 - m;  // (2n - 1) - m: counts back down from the far edge
   }
-  return r;
+  return 0;
+}
+
+// Bilinear (or nearest) of one level: CW.16 per channel, R|B in rb, G|A in ga.
+struct Packed2x2 {
+  uint64_t rb, ga;
+};
+
+template <TexelFilter TF, Wrap WU, Wrap WV>
+inline Packed2x2 filter_level(const FastLevel& lv, int32_t u, int32_t v) {
+  if constexpr (TF == TexelFilter::Nearest) {
+    // i0 = floor(u * size) = t9 >> 9; weights are 0, so the result is texel a, scaled to CW.16.
+    const int32_t x = wrap_fast<WU>((u >> lv.shift_u) >> 9, lv.mask_w);
+    const int32_t y = wrap_fast<WV>((v >> lv.shift_v) >> 9, lv.mask_h);
+    const uint32_t a = lv.texels[(size_t(y) << lv.log2_w) + size_t(x)];
+    return {spread_rb(a) << 16, spread_ga(a) << 16};
+  } else {
+    const int32_t pu = ((u >> lv.shift_u) - 255) >> 1, pv = ((v >> lv.shift_v) - 255) >> 1;
+    const uint32_t wx = uint32_t(pu & 255), wy = uint32_t(pv & 255);
+    const int32_t x0 = wrap_fast<WU>(pu >> 8, lv.mask_w), x1 = wrap_fast<WU>((pu >> 8) + 1, lv.mask_w);
+    const int32_t y0 = wrap_fast<WV>(pv >> 8, lv.mask_h), y1 = wrap_fast<WV>((pv >> 8) + 1, lv.mask_h);
+    const uint32_t* row0 = lv.texels + (size_t(y0) << lv.log2_w);
+    const uint32_t* row1 = lv.texels + (size_t(y1) << lv.log2_w);
+    const uint32_t a = row0[x0], b = row0[x1], c = row1[x0], e = row1[x1];
+    const uint64_t top_rb = lerp2(spread_rb(a), spread_rb(b), wx), bot_rb = lerp2(spread_rb(c), spread_rb(e), wx);
+    const uint64_t top_ga = lerp2(spread_ga(a), spread_ga(b), wx), bot_ga = lerp2(spread_ga(c), spread_ga(e), wx);
+    return {lerp2(top_rb, bot_rb, wy), lerp2(top_ga, bot_ga, wy)};
+  }
+}
+
+template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
+void sample_batch(const FastLevel* levels, int last, const SamplerConfig& cfg, const Request* requests, size_t n,
+                  uint32_t* out) {
+  constexpr uint64_t kHalf = (uint64_t(1) << 23) | (uint64_t(1) << 55);  // rounding of both channels
+  for (size_t i = 0; i < n; ++i) {
+    const Request& r = requests[i];
+    const int32_t lod = stage::bias_and_clamp(r.lod, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
+    uint64_t tri_rb, tri_ga;  // CW.24 per channel
+    if constexpr (MM == MipMode::Linear) {
+      // stage::select_levels without branches: lod <= 0 gives d = 0, f = 0; past the last level
+      // f = 0. Both levels are always filtered (d1 = d when d is last): with f = 0 the blend
+      // returns level d exactly, as in sample().
+      const int32_t l = lod > 0 ? lod : 0;
+      const bool past_last = (l >> kLodFracBits) >= last;
+      const int d = past_last ? last : l >> kLodFracBits;
+      const uint32_t f = past_last ? 0u : uint32_t(l & 255);
+      const int d1 = d < last ? d + 1 : last;
+      const Packed2x2 b0 = filter_level<TF, WU, WV>(levels[d], r.u, r.v);
+      const Packed2x2 b1 = filter_level<TF, WU, WV>(levels[d1], r.u, r.v);
+      tri_rb = lerp2(b0.rb, b1.rb, f);
+      tri_ga = lerp2(b0.ga, b1.ga, f);
+    } else {
+      int d = 0;
+      if constexpr (MM == MipMode::Nearest) d = lod > 0 ? std::min((lod + 127) >> kLodFracBits, last) : 0;
+      const Packed2x2 b0 = filter_level<TF, WU, WV>(levels[d], r.u, r.v);
+      tri_rb = b0.rb << 8;
+      tri_ga = b0.ga << 8;
+    }
+    // The one rounding, half up, of all four channels; then back to packed RGBA8.
+    tri_rb = (tri_rb + kHalf) >> 24;
+    tri_ga = (tri_ga + kHalf) >> 24;
+    out[i] = uint32_t(tri_rb & 0xFF) | uint32_t(tri_ga & 0xFF) << 8 | uint32_t(tri_rb >> 16 & 0xFF0000) |
+             uint32_t(tri_ga >> 8 & 0xFF000000u);
+  }
+}
+
+// Calls fn with the mode as a compile-time constant (std::integral_constant).
+template <class Fn>
+void with_wrap(Wrap w, Fn&& fn) {
+  switch (w) {
+    case Wrap::Repeat: return fn(std::integral_constant<Wrap, Wrap::Repeat>{});
+    case Wrap::Clamp: return fn(std::integral_constant<Wrap, Wrap::Clamp>{});
+    case Wrap::Mirror: return fn(std::integral_constant<Wrap, Wrap::Mirror>{});
+  }
+}
+template <class Fn>
+void with_mip(MipMode m, Fn&& fn) {
+  switch (m) {
+    case MipMode::None: return fn(std::integral_constant<MipMode, MipMode::None>{});
+    case MipMode::Nearest: return fn(std::integral_constant<MipMode, MipMode::Nearest>{});
+    case MipMode::Linear: return fn(std::integral_constant<MipMode, MipMode::Linear>{});
+  }
+}
+template <class Fn>
+void with_texel_filter(TexelFilter t, Fn&& fn) {
+  if (t == TexelFilter::Linear) return fn(std::integral_constant<TexelFilter, TexelFilter::Linear>{});
+  return fn(std::integral_constant<TexelFilter, TexelFilter::Nearest>{});
 }
 
 }  // namespace
 
 void Sampler::sample_rgba8(const Request* requests, size_t n, uint32_t* out) const {
+  if (channel_bits_ != 8)
+    throw Error("sample_rgba8: texture has " + std::to_string(channel_bits_) + "-bit channels; it takes 8-bit only");
+  // Built per call rather than stored, so a copied Sampler never points into another's texels.
+  FastLevel levels[kMaxLevels];
   const int last = int(packed_.size()) - 1;
-  for (size_t i = 0; i < n; ++i) {
-    const Request& r = requests[i];
-    const int32_t lod = stage::bias_and_clamp(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod);
-    const stage::LevelSelect sel = stage::select_levels(lod, config_.filter.mip, last);
-    const LevelShape s0 = level_shape(log2_w0_, log2_h0_, sel.d);
-    const Bilinear4 b0 = bilinear_rgba8(packed_[sel.d].data(), s0.log2_w, s0.log2_h, r.u, r.v, config_);
-    Bilinear4 b1 = b0;
-    if (sel.two_levels) {
-      const LevelShape s1 = level_shape(log2_w0_, log2_h0_, sel.d1);
-      b1 = bilinear_rgba8(packed_[sel.d1].data(), s1.log2_w, s1.log2_h, r.u, r.v, config_);
-    }
-    uint32_t px = 0;
-    for (int ch = 0; ch < 4; ++ch) {
-      // (b0 << 8) + (b1 - b0) * f fits in 32 bits unsigned; modular arithmetic is exact here.
-      const uint32_t tri = (b0.c[ch] << 8) + (b1.c[ch] - b0.c[ch]) * uint32_t(sel.f);
-      px |= ((tri + (1u << 23)) >> 24) << (ch * 8);
-    }
-    out[i] = px;
+  for (int k = 0; k <= last; ++k) {
+    const LevelShape s = level_shape(log2_w0_, log2_h0_, k);
+    levels[k] = {packed_[size_t(k)].data(), s.log2_w, 15 - s.log2_w, 15 - s.log2_h, (1 << s.log2_w) - 1,
+                 (1 << s.log2_h) - 1};
   }
+  const SamplerConfig& cfg = config_;
+  with_texel_filter(cfg.filter.texel, [&](auto tf) {
+    with_mip(cfg.filter.mip, [&](auto mm) {
+      with_wrap(cfg.wrap_u, [&](auto wu) {
+        with_wrap(cfg.wrap_v, [&](auto wv) {
+          sample_batch<decltype(tf)::value, decltype(mm)::value, decltype(wu)::value, decltype(wv)::value>(
+              levels, last, cfg, requests, n, out);
+        });
+      });
+    });
+  });
 }
 
 SamplerStats Sampler::stats() const { return {samples_, multiplies_, memory_.stats()}; }
