@@ -1,0 +1,208 @@
+// The real-valued reference of the scenes and the image metrics (docs/scenes.md).
+// Independent of the model: it reads only level 0 and works in double precision.
+#include <algorithm>
+#include <cmath>
+
+#include "model/error.h"
+#include "scenes.h"
+
+namespace tex {
+
+namespace {
+
+// Box integrals of level 0 seen as a piecewise-constant image (texel (i, j) covers [i, i+1) x [j, j+1)),
+// continued outside [0, W) x [0, H) by the wrap modes. A summed-area table, interpolated bilinearly
+// (exact for a piecewise-constant image), gives F(x, y) = integral over [0, x] x [0, y] inside one period;
+// each wrap mode writes the integral from 0 to any x as a weighted sum of F at points inside [0, n].
+class BoxIntegrator {
+ public:
+  BoxIntegrator(const Image& level0, Wrap wu, Wrap wv) : w_(level0.width), h_(level0.height), wu_(wu), wv_(wv) {
+    const double maxv = (1 << level0.channel_bits) - 1;
+    sat_.assign(size_t(w_ + 1) * (h_ + 1), Rgba{0, 0, 0, 0});
+    for (int y = 0; y < h_; ++y)
+      for (int x = 0; x < w_; ++x)
+        for (int c = 0; c < 4; ++c)
+          at(x + 1, y + 1)[c] = level0.at(x, y)[c] / maxv + at(x, y + 1)[c] + at(x + 1, y)[c] - at(x, y)[c];
+  }
+
+  // Mean over [x0, x1] x [y0, y1] in texels (x0 < x1, y0 < y1).
+  Rgba mean(double x0, double x1, double y0, double y1) const {
+    Terms tx0, tx1, ty0, ty1;
+    terms(x0, w_, wu_, tx0), terms(x1, w_, wu_, tx1), terms(y0, h_, wv_, ty0), terms(y1, h_, wv_, ty1);
+    Rgba sum{0, 0, 0, 0};
+    accumulate(tx1, ty1, 1, sum), accumulate(tx0, ty1, -1, sum), accumulate(tx1, ty0, -1, sum), accumulate(tx0, ty0, 1, sum);
+    const double area = (x1 - x0) * (y1 - y0);
+    for (double& c : sum) c /= area;
+    return sum;
+  }
+
+ private:
+  struct Terms {
+    int count = 0;
+    double weight[3], pos[3];
+    void add(double w, double p) { weight[count] = w, pos[count++] = p; }
+  };
+
+  // Integral of the continued 1-D function from 0 to x = sum of weight * F1(pos), pos in [0, n].
+  static void terms(double x, int n, Wrap wrap, Terms& t) {
+    if (wrap == Wrap::Repeat) {
+      const double q = std::floor(x / n);
+      t.add(q, n), t.add(1, x - q * n);
+    } else if (wrap == Wrap::Clamp) {
+      if (x < 0) t.add(x, 1);  // texel 0 continues to the left
+      else if (x <= n) t.add(1, x);
+      else t.add(1 + (x - n), n), t.add(-(x - n), n - 1);  // texel n-1 continues to the right
+    } else {  // mirror: period 2n, the second half reversed
+      const double q = std::floor(x / (2.0 * n)), r = x - q * 2 * n;
+      if (r <= n) t.add(2 * q, n), t.add(1, r);
+      else t.add(2 * q + 2, n), t.add(-1, 2 * n - r);
+    }
+  }
+
+  void accumulate(const Terms& tx, const Terms& ty, double sign, Rgba& sum) const {
+    for (int i = 0; i < tx.count; ++i)
+      for (int j = 0; j < ty.count; ++j) {
+        const double w = sign * tx.weight[i] * ty.weight[j];
+        if (w == 0) continue;
+        const Rgba f = sat_lerp(tx.pos[i], ty.pos[j]);
+        for (int c = 0; c < 4; ++c) sum[c] += w * f[c];
+      }
+  }
+
+  Rgba sat_lerp(double x, double y) const {
+    x = std::clamp(x, 0.0, double(w_));
+    y = std::clamp(y, 0.0, double(h_));
+    const int ix = std::min(int(x), w_ - 1), iy = std::min(int(y), h_ - 1);
+    const double fx = x - ix, fy = y - iy;
+    const Rgba &a = at(ix, iy), &b = at(ix + 1, iy), &c = at(ix, iy + 1), &d = at(ix + 1, iy + 1);
+    Rgba r;
+    for (int k = 0; k < 4; ++k)
+      r[k] = (a[k] * (1 - fx) + b[k] * fx) * (1 - fy) + (c[k] * (1 - fx) + d[k] * fx) * fy;
+    return r;
+  }
+
+  Rgba& at(int x, int y) { return sat_[size_t(y) * (w_ + 1) + x]; }
+  const Rgba& at(int x, int y) const { return sat_[size_t(y) * (w_ + 1) + x]; }
+
+  int w_, h_;
+  Wrap wu_, wv_;
+  std::vector<Rgba> sat_;
+};
+
+// The mean of the texture over a footprint centred on (u, v) with extents (eu, ev) in texels,
+// widened by one texel: a point footprint gives exactly the bilinear interpolation of level 0.
+Rgba footprint_mean(const BoxIntegrator& box, int w, int h, double u, double v, double eu, double ev) {
+  const double cx = u * w, cy = v * h, hx = 0.5 * (eu + 1), hy = 0.5 * (ev + 1);
+  return box.mean(cx - hx, cx + hx, cy - hy, cy + hy);
+}
+
+}  // namespace
+
+std::vector<Rgba> reference_values(const SceneFrame& frame, const Image& level0, Wrap wrap_u, Wrap wrap_v,
+                                   int samples_per_axis) {
+  const BoxIntegrator box(level0, wrap_u, wrap_v);
+  const int w = level0.width, h = level0.height, s = std::max(1, samples_per_axis);
+  std::vector<Rgba> out(frame.queries.size());
+  for (size_t i = 0; i < frame.queries.size(); ++i) {
+    const Query& q = frame.queries[i];
+    // Extents of the footprint's bounding box, in texels.
+    const double eu = (std::fabs(q.deriv.dudx) + std::fabs(q.deriv.dudy)) * w;
+    const double ev = (std::fabs(q.deriv.dvdx) + std::fabs(q.deriv.dvdy)) * h;
+    if (frame.is_mesh() || !frame.map) {
+      out[i] = footprint_mean(box, w, h, q.u, q.v, eu, ev);
+      continue;
+    }
+    // Stratified sub-pixel positions through the exact mapping; each averages its own share of the
+    // footprint (which keeps far-away perspective pixels from aliasing in the reference itself).
+    const int px = frame.pixel[i] % frame.width, py = frame.pixel[i] / frame.width;
+    Rgba sum{0, 0, 0, 0};
+    int n = 0;
+    for (int sy = 0; sy < s; ++sy)
+      for (int sx = 0; sx < s; ++sx) {
+        double u, v;
+        if (frame.map(px + (sx + 0.5) / s, py + (sy + 0.5) / s, u, v) == Hit::None) continue;
+        const Rgba m = footprint_mean(box, w, h, u, v, eu / s, ev / s);
+        for (int c = 0; c < 4; ++c) sum[c] += m[c];
+        ++n;
+      }
+    if (n == 0) {
+      out[i] = footprint_mean(box, w, h, q.u, q.v, eu, ev);
+    } else {
+      for (int c = 0; c < 4; ++c) out[i][c] = sum[c] / n;
+    }
+  }
+  return out;
+}
+
+ErrorStats compare_images(const RgbaImage& image, const RgbaImage& reference) {
+  if (image.width != reference.width || image.height != reference.height)
+    throw Error("compare_images: sizes differ");
+  double sq = 0, abs_sum = 0, max_err = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    if (!reference.covered[i]) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double d = image.pixels[i][c] - reference.pixels[i][c];
+      sq += d * d;
+      abs_sum += std::fabs(d);
+      max_err = std::max(max_err, std::fabs(d));
+      ++n;
+    }
+  }
+  ErrorStats s;
+  if (n == 0) return s;
+  const double mse = sq / n;
+  s.psnr_db = mse > 0 ? std::min(999.0, 10 * std::log10(1.0 / mse)) : 999.0;
+  s.max_error_lsb = 255 * max_err;
+  s.mean_error_lsb = 255 * abs_sum / n;
+  return s;
+}
+
+Image error_heat_map(const RgbaImage& image, const RgbaImage& reference, double full_scale_lsb) {
+  Image out(image.width, image.height, 8);
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    double e = 0;
+    for (int c = 0; c < 3; ++c) e = std::max(e, std::fabs(image.pixels[i][c] - reference.pixels[i][c]));
+    const double t = std::clamp(255 * e / full_scale_lsb, 0.0, 1.0);
+    // black -> red -> yellow -> white
+    out.texels[i] = {uint16_t(std::lround(255 * std::clamp(3 * t, 0.0, 1.0))),
+                     uint16_t(std::lround(255 * std::clamp(3 * t - 1, 0.0, 1.0))),
+                     uint16_t(std::lround(255 * std::clamp(3 * t - 2, 0.0, 1.0))), 255};
+  }
+  return out;
+}
+
+FlickerStats flicker(const std::vector<RgbaImage>& frames, const std::vector<RgbaImage>& reference_frames) {
+  if (frames.size() != reference_frames.size()) throw Error("flicker: frame counts differ");
+  FlickerStats s;
+  for (size_t t = 0; t + 1 < frames.size(); ++t) {
+    const RgbaImage &a = frames[t], &b = frames[t + 1], &ra = reference_frames[t], &rb = reference_frames[t + 1];
+    double change = 0, ref_change = 0, excess = 0;
+    size_t n = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+      if (!ra.covered[i] || !rb.covered[i]) continue;  // pixels on the surface in both frames
+      for (int c = 0; c < 3; ++c) {
+        const double d = b.pixels[i][c] - a.pixels[i][c], rd = rb.pixels[i][c] - ra.pixels[i][c];
+        change += std::fabs(d);
+        ref_change += std::fabs(rd);
+        excess += std::fabs(d - rd);
+        ++n;
+      }
+    }
+    const double k = n ? 255.0 / n : 0;
+    s.change.push_back(change * k);
+    s.reference_change.push_back(ref_change * k);
+    s.excess.push_back(excess * k);
+  }
+  auto mean = [](const std::vector<double>& v) {
+    double m = 0;
+    for (double x : v) m += x;
+    return v.empty() ? 0 : m / v.size();
+  };
+  s.mean_change = mean(s.change);
+  s.mean_reference_change = mean(s.reference_change);
+  s.mean_excess = mean(s.excess);
+  return s;
+}
+
+}  // namespace tex
