@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "error.h"
 
@@ -106,6 +108,30 @@ Image make_pattern(const std::string& name, int w, int h) {
 
 namespace {
 
+// libpng (inside OpenImageIO) prints its own "libpng error: ..." lines on stderr; the reader's
+// error message already says the same, and bad input must give exactly one line.
+class QuietStderr {
+ public:
+  QuietStderr() : saved_(dup(STDERR_FILENO)) {
+    std::fflush(stderr);
+    const int null_fd = open("/dev/null", O_WRONLY);
+    if (null_fd >= 0) {
+      dup2(null_fd, STDERR_FILENO);
+      close(null_fd);
+    }
+  }
+  ~QuietStderr() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      dup2(saved_, STDERR_FILENO);
+      close(saved_);
+    }
+  }
+
+ private:
+  int saved_;
+};
+
 bool parse_pattern_spec(const std::string& spec, std::string& name, int& w, int& h) {
   const auto colon = spec.find(':');
   name = spec.substr(0, colon);
@@ -137,10 +163,16 @@ Image load_texture(const std::string& spec, bool resize) {
   // Texels are data: keep the file's values (OpenImageIO would premultiply unassociated alpha).
   OIIO::ImageSpec read_config;
   read_config.attribute("oiio:UnassociatedAlpha", 1);
-  OIIO::ImageBuf src(spec, 0, 0, nullptr, &read_config);
-  if (!src.read(0, 0, true, OIIO::TypeDesc::UINT8)) {
+  OIIO::ImageBuf src;
+  bool read_ok;
+  {
+    QuietStderr quiet;
+    src.reset(spec, 0, 0, nullptr, &read_config);
+    read_ok = src.read(0, 0, true, OIIO::TypeDesc::UINT8);
+  }
+  if (!read_ok) {
     std::string msg = src.geterror();
-    msg.erase(std::remove(msg.begin(), msg.end(), '\n'), msg.end());
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
     throw Error(spec + ": cannot read image (" + msg + ")");
   }
   const OIIO::ImageSpec& s = src.spec();
