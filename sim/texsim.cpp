@@ -11,6 +11,7 @@
 #include "model/pyramid.h"
 #include "model/trace.h"
 #include "scenes.h"
+#include "scenes/figures.h"
 
 namespace {
 
@@ -155,18 +156,38 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
   return 0;
 }
 
-int cmd_render(const SamplingOptions& o, const std::string& scene, int width, int height, const std::string& out) {
+// Renders one frame of a scene, or with --frames M and no --frame every frame to OUT_000.png ...
+// A scene with its own map (reflect, mesh) rejects --texture; one whose map is not periodic
+// (reflect, mesh) samples with clamp-to-edge unless a --wrap option is given.
+int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions so, bool all_frames,
+               bool texture_given, bool wrap_given, const std::string& out) {
   const auto t0 = std::chrono::steady_clock::now();
-  const SamplerConfig cfg = o.config();
-  const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
-  const SceneFrame frame = make_scene(scene, width, height);
-  const auto requests = to_requests(frame.queries, pyr.log2_w0(), pyr.log2_h0(), "scene " + scene);
-  const EngineResult r = run_checked(o, pyr, cfg, requests);
-  save_image(compose(frame, r.texels, pyr.levels[0].channel_bits), out);
+  SamplerConfig cfg = o.config();
+  make_scene(scene, so);  // checks the scene name, size and frame numbers before any work
+  const int first = all_frames ? 0 : so.frame, last = all_frames ? so.frames - 1 : so.frame;
+  size_t samples = 0;
+  for (int f = first; f <= last; ++f) {
+    so.frame = f;
+    const SceneFrame frame = make_scene(scene, so);
+    const Pyramid pyr = build_pyramid(scene_texture(frame, texture_given ? o.texture : "", o.resize), o.pyramid_mode());
+    if (frame.clamp_edges && !wrap_given) cfg.wrap_u = cfg.wrap_v = Wrap::Clamp;
+    const auto requests = to_requests(frame.queries, pyr.log2_w0(), pyr.log2_h0(), "scene " + scene);
+    const EngineResult r = run_checked(o, pyr, cfg, requests);
+    std::string path = out;
+    if (all_frames) {
+      const std::filesystem::path p(out);
+      char num[16];
+      std::snprintf(num, sizeof num, "_%03d", f);
+      path = (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
+    }
+    save_image(compose(frame, r.texels, pyr.levels[0].channel_bits), path);
+    samples += requests.size();
+    if (f == last) write_stats(o.stats_path, r.stats, 0);
+  }
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_stats(o.stats_path, r.stats, secs);
-  std::printf("texsim render: scene %s, %dx%d, %zu samples, %s, engine %s -> %s (%.2f s)\n", scene.c_str(), width,
-              height, requests.size(), filter_name(cfg.filter).c_str(), o.engine.c_str(), out.c_str(), secs);
+  std::printf("texsim render: scene %s, %dx%d, frame%s %d..%d of %d, %zu samples, %s, engine %s -> %s (%.2f s)\n",
+              scene.c_str(), so.width, so.height, all_frames ? "s" : "", first, last, so.frames, samples,
+              filter_name(cfg.filter).c_str(), o.engine.c_str(), out.c_str(), secs);
   return 0;
 }
 
@@ -203,6 +224,20 @@ int main(int argc, char** argv) {
   render->add_option("--width", width, "image width")->capture_default_str();
   render->add_option("--height", height, "image height")->capture_default_str();
   render->add_option("--out,-o", render_out, "output image (PNG, TIFF, EXR, ...)")->required();
+  int frame = 0, frames = 1;
+  CLI::Option* frame_opt = render->add_option("--frame", frame, "animation frame to render (0-based)");
+  render->add_option("--frames", frames, "frames of the animation; without --frame renders all to OUT_000.png ...")
+      ->capture_default_str();
+
+  FiguresOptions fig;
+  CLI::App* figures = app.add_subcommand("figures", "render every scene's variants, reference, errors and flicker");
+  figures->add_option("--out,-o", fig.out_dir, "output directory")->capture_default_str();
+  figures->add_option("--engine,-e", fig.engine, "engine of the variants")->capture_default_str();
+  figures->add_option("--width", fig.width, "still image width")->capture_default_str();
+  figures->add_option("--height", fig.height, "still image height")->capture_default_str();
+  figures->add_option("--frames", fig.frames, "animation frames (flicker)")->capture_default_str();
+  figures->add_option("--reference-samples", fig.reference_samples, "reference sub-pixel positions per axis")
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -221,7 +256,17 @@ int main(int argc, char** argv) {
   try {
     if (*sample) return cmd_sample(sample_opts, queries, out);
     if (*mip) return cmd_mip(mip_texture, mip_mode, mip_resize, dump_dir, layout);
-    if (*render) return cmd_render(render_opts, scene, width, height, render_out);
+    if (*render) {
+      SceneOptions so;
+      so.width = width;
+      so.height = height;
+      so.frame = frame;
+      so.frames = frames;
+      const bool wrap_given = render->count("--wrap") + render->count("--wrap-u") + render->count("--wrap-v") > 0;
+      return cmd_render(render_opts, scene, so, frames > 1 && frame_opt->count() == 0,
+                        render->count("--texture") > 0, wrap_given, render_out);
+    }
+    if (*figures) return make_figures(fig);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "texsim: error: %s\n", e.what());
     return 1;
