@@ -4,6 +4,9 @@
 #ifdef TEXSIM_HAVE_RTL
 #include "rtl/rtl_engine.h"
 #endif
+#ifdef TEXSIM_HAVE_SYSTEMC
+#include "systemc/systemc_engine.h"
+#endif
 
 namespace tex {
 
@@ -12,6 +15,10 @@ const std::vector<std::string>& engine_names() {
       "model",
 #ifdef TEXSIM_HAVE_RTL
       "rtl",
+#endif
+#ifdef TEXSIM_HAVE_SYSTEMC
+      "systemc",        // TLM-2.0 socket in front of the Verilated RTL (approximately timed)
+      "systemc-model",  // the same socket in front of the golden model (loosely timed)
 #endif
   };
   return names;
@@ -38,6 +45,13 @@ EngineResult run_engine(const std::string& engine, const Pyramid& pyramid, const
   if (engine == "model") return run_model(pyramid, config, requests);
 #ifdef TEXSIM_HAVE_RTL
   if (engine == "rtl") return rtl::run_rtl(pyramid, config, requests, options);
+#endif
+#ifdef TEXSIM_HAVE_SYSTEMC
+  if (engine == "systemc")
+    return systemc::run_systemc(pyramid, config, requests, systemc::systemc_options_for(systemc::Backend::Rtl, options));
+  if (engine == "systemc-model")
+    return systemc::run_systemc(pyramid, config, requests,
+                                systemc::systemc_options_for(systemc::Backend::Model, options));
 #endif
   (void)options;
   std::string list;

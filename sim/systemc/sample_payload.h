@@ -1,0 +1,28 @@
+// The data of one sample transaction on the texture unit's TLM-2.0 socket (docs/systemc.md).
+// Plain C++ (no SystemC), so a virtual platform's initiator can include it anywhere.
+//
+// A transaction is a tlm_generic_payload with
+//   command     TLM_READ_COMMAND (the initiator reads one filtered texel)
+//   address     kSampleAddress
+//   data_ptr    -> one SampleTransfer (host byte order), data_length = sizeof(SampleTransfer)
+//   streaming width = data_length, no byte enables.
+// The initiator fills the request fields; the target fills `rgba` and sets TLM_OK_RESPONSE.
+// Anything else completes at once with an error response status and is not sampled.
+#pragma once
+#include <cstdint>
+
+namespace tex::systemc {
+
+constexpr uint64_t kSampleAddress = 0;
+
+struct SampleTransfer {
+  // Request (written by the initiator).
+  int32_t u = 0, v = 0;  // Q8.24, 1.0 = one texture width / height
+  int32_t lod = 0;       // Q8.8 levels, before bias and clamp; the RTL port is 16 bits wide
+  uint32_t tag = 0;      // the initiator's own; returned unchanged
+  // Response (written by the target).
+  uint16_t rgba[4] = {0, 0, 0, 0};  // R, G, B, A; channel width of the texture (8 bits on the RTL)
+};
+static_assert(sizeof(SampleTransfer) == 24, "SampleTransfer is the socket's wire format");
+
+}  // namespace tex::systemc
