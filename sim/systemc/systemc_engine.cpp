@@ -168,6 +168,8 @@ bool have_rtl_backend() {
 }
 
 SystemcOptions systemc_options_for(Backend backend, const EngineOptions& options) {
+  if (!options.trace_path.empty())
+    throw Error("--trace is not supported by the SystemC engines; use --engine rtl --trace");
   SystemcOptions o;
   o.backend = backend;
   o.seed = options.seed;
