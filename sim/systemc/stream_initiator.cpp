@@ -71,6 +71,8 @@ StreamInitiator::Slot* StreamInitiator::take_slot(size_t index) {
   s->data.lod = q.lod;
   s->data.tag = uint32_t(index);
   s->set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  const bool bad = timing_.bad_length_index >= 0 && index == size_t(timing_.bad_length_index);
+  s->set_data_length(bad ? sizeof(SampleTransfer) - 4 : sizeof(SampleTransfer));
   return s;
 }
 

@@ -31,6 +31,7 @@ struct InitiatorTiming {
   double stall_prob = 0;  // per response: hold END_RESP for 1..max_stall clocks
   int max_stall = 8;
   uint64_t seed = 1;
+  int64_t bad_length_index = -1;  // this request goes out with a wrong data length (tests)
 };
 
 struct InitiatorCounters {

@@ -58,6 +58,7 @@ Outcome simulate(const Pyramid& pyramid, const SamplerConfig& config, const std:
     timing.stall_prob = o.stall_prob;
     timing.max_stall = o.max_stall;
     timing.seed = o.seed;
+    if (o.fault == Fault::BadLength) timing.bad_length_index = int64_t(o.fault_index);
 
     TexUnitTlm unit("tex_unit_tlm", o.backend, pyramid, config, period, o.seed, o.fault, o.fault_index);
     StreamInitiator bench("testbench", requests, at, unit, timing);

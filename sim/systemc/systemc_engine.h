@@ -25,7 +25,8 @@ enum class Fault {
   CorruptRtlTag,     // the tag on the RTL request pins of request #fault_index is wrong
   DropResponse,      // response #fault_index is never delivered to the initiator
   SwapResponses,     // responses #fault_index and #fault_index+1 are delivered in swapped order
-  DuplicateResponse  // response #fault_index is delivered twice
+  DuplicateResponse,  // response #fault_index is delivered twice
+  BadLength           // the initiator sends request #fault_index with a 20-byte data length
 };
 
 struct SystemcOptions {

@@ -329,6 +329,22 @@ TEST(SystemcTags, DuplicatedResponseIsReported) {
 
 // ------------------------------------------------------------------ input errors
 
+TEST(SystemcErrors, MalformedTransactionGetsBurstErrorStatus) {
+  // The initiator reports the status the target set; both backends, both initiator styles.
+  std::vector<std::pair<Backend, InitiatorStyle>> cases = {{Backend::Model, InitiatorStyle::Lt},
+                                                           {Backend::Model, InitiatorStyle::At}};
+  if (have_rtl_backend()) cases.push_back({Backend::Rtl, InitiatorStyle::At});
+  for (const auto& [backend, style] : cases) {
+    SystemcOptions o;
+    o.backend = backend;
+    o.initiator = style;
+    o.fault = Fault::BadLength;
+    o.fault_index = 42;
+    const std::string e = error_of(o);
+    EXPECT_NE(e.find("sample tag 42: response status TLM_BURST_ERROR_RESPONSE"), std::string::npos) << e;
+  }
+}
+
 TEST(SystemcErrors, TooLargeTextureForTheRtlIsOneLineError) {
   if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   const Pyramid pyr = build_pyramid(make_pattern("checker", 2048, 4), PyramidMode::Exact);
