@@ -4,12 +4,14 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test bench clean lint synth synth-latch
+.PHONY: help deps build demo test bench clean lint synth synth-latch rtl-soak rtl-speed
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
 	@echo "make test   - build, then run every test suite"
 	@echo "make bench  - samples/s of the model vs OpenImageIO TextureSystem"
+	@echo "make rtl-soak  - RTL vs model lockstep, 20x the random samples of make test, new seeds"
+	@echo "make rtl-speed - samples/s and clocks/s of the Verilated RTL per configuration"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make synth  - Yosys latch check, then iCE40 HX8K synthesis + place and route (Fmax, LUTs)"
 	@echo "make clean  - remove $(BUILD)/ and $(OUT)/"
@@ -35,6 +37,17 @@ test: build lint synth-latch
 
 bench: build
 	$(BUILD)/texunit_bench
+
+# Long RTL soak (docs/verification.md): a failing case prints TEX_SEED; replay with the same base.
+ifndef RTL_SOAK_SEED
+RTL_SOAK_SEED := $(shell date +%s)
+endif
+rtl-soak: build
+	@echo "rtl-soak: TEX_SEED_BASE=$(RTL_SOAK_SEED)"
+	cd $(BUILD) && TEX_SCALE=20 TEX_SEED_BASE=$(RTL_SOAK_SEED) ./tests/rtl/texunit_rtl_tests --gtest_filter='RtlRandom.*'
+
+rtl-speed: build
+	$(BUILD)/texunit_rtl_speed
 
 lint:
 	@bash scripts/lint.sh
