@@ -4,12 +4,13 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test bench clean lint synth synth-latch rtl-soak rtl-speed
+.PHONY: help deps build demo test bench clean lint synth synth-latch rtl-soak rtl-speed figures
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
 	@echo "make test   - build, then run every test suite"
 	@echo "make bench  - samples/s of the model vs OpenImageIO TextureSystem"
+	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
 	@echo "make rtl-soak  - RTL vs model lockstep, 20x the random samples of make test, new seeds"
 	@echo "make rtl-speed - samples/s and clocks/s of the Verilated RTL per configuration"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
@@ -37,6 +38,12 @@ test: build lint synth-latch
 
 bench: build
 	$(BUILD)/texunit_bench
+
+# The paper's scenes through an engine (FIG_ENGINE, default model) vs a real-valued reference (docs/scenes.md).
+FIG_ENGINE ?= model
+figures: build
+	$(TEXSIM) figures --engine $(FIG_ENGINE) --width 320 --height 240 --reference-samples 6 --out $(OUT)/figures
+	/usr/bin/python3 scripts/figures.py $(OUT)/figures
 
 # Long RTL soak (docs/verification.md): a failing case prints TEX_SEED; replay with the same base.
 ifndef RTL_SOAK_SEED

@@ -165,7 +165,7 @@ SceneFrame reflect(const SceneOptions& o) {
 
 // Fig. 20-23: the face height field stored as an X, Y, Z map, drawn as four faces whose sizes halve
 // from left to right (shrinking by 1.5% per frame). Each face is a grid of q x q quads with q set by
-// its projected size (a quad about 5 pixels across); every vertex samples the map with derivatives
+// its projected size (a quad about 6 pixels across); every vertex samples the map with derivatives
 // equal to the grid step, so lambda = log2(texels between neighbouring vertices).
 SceneFrame mesh(const SceneOptions& o, int map_bits) {
   struct Face {
@@ -174,9 +174,9 @@ SceneFrame mesh(const SceneOptions& o, int map_bits) {
   };
   std::vector<Face> faces;
   const double scale = std::pow(0.985, o.frame);
-  double size = std::min(0.9 * o.height, 0.92 * o.width / 1.875) * scale, x = 0.02 * o.width;
+  double size = std::min(0.9 * o.height, 0.85 * o.width / 1.875) * scale, x = 0.02 * o.width;
   for (int k = 0; k < 4; ++k, size *= 0.5) {
-    const int quads = std::max(1, int(std::lround(size / 5.0)));
+    const int quads = std::max(1, int(std::lround(size / 6.0)));
     faces.push_back({x, 0.5 * o.height - 0.5 * size, size, quads});
     x += size + 0.03 * o.width;
   }
@@ -216,6 +216,8 @@ SceneFrame mesh(const SceneOptions& o, int map_bits) {
         double x, y, z;
       };
       std::vector<P> p(size_t(n) * n);
+      std::vector<bool> drawn(size_t(q) * q, false);
+      const double flat_z = 0.5 / 255 * 0.9;  // half an 8-bit step of Z
       for (int i = 0; i < n * n; ++i) {
         const Rgba& val = values[base + i];
         p[i] = {face.x0 + val[0] * face.size, face.y0 + val[1] * face.size, val[2] * face.size * 0.9};
@@ -255,11 +257,19 @@ SceneFrame mesh(const SceneOptions& o, int map_bits) {
       for (int j = 0; j < q; ++j)
         for (int i = 0; i < q; ++i) {
           const P &a = p[j * n + i], &b = p[j * n + i + 1], &c = p[(j + 1) * n + i + 1], &d = p[(j + 1) * n + i];
+          // Only the face is drawn: a quad flat on the base (Z = 0 at all corners) is background.
+          if (std::max({a.z, b.z, c.z, d.z}) < flat_z * face.size) continue;
+          drawn[j * q + i] = true;
           triangle(a, b, c);
           triangle(a, c, d);
         }
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < q; ++i) line(p[j * n + i], p[j * n + i + 1]), line(p[i * n + j], p[(i + 1) * n + j]);
+      // Wireframe: the edges of the drawn quads.
+      for (int j = 0; j < q; ++j)
+        for (int i = 0; i < q; ++i)
+          if (drawn[j * q + i]) {
+            const P &a = p[j * n + i], &b = p[j * n + i + 1], &c = p[(j + 1) * n + i + 1], &d = p[(j + 1) * n + i];
+            line(a, b), line(b, c), line(c, d), line(d, a);
+          }
       base += size_t(n) * n;
     }
     for (size_t i = 0; i < wire.size(); ++i)
@@ -307,7 +317,7 @@ Image make_reflectance_map(int size) {
       const double rx = 2 * nz * nx, ry = 2 * nz * ny, rz = 2 * nz * nz - 1;  // reflected view ray
       double c[3] = {0.08 + 0.12 * nz, 0.08 + 0.12 * nz, 0.1 + 0.16 * nz};  // dim sky-like ambient
       for (const Light& l : lights) {
-        const double s = std::pow(std::max(0.0, rx * l.x + ry * l.y + rz * l.z), 120.0);
+        const double s = std::pow(std::max(0.0, rx * l.x + ry * l.y + rz * l.z), 60.0);
         c[0] += s * l.r, c[1] += s * l.g, c[2] += s * l.b;
       }
       for (int k = 0; k < 3; ++k) t[k] = uint16_t(std::lround(255 * std::min(1.0, c[k])));

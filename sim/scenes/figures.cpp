@@ -159,7 +159,7 @@ int make_figures(const FiguresOptions& o) {
   anim.width = o.anim_width;
   anim.height = o.anim_height;
   anim.frames = o.frames;
-  for (const std::string scene : {"panel", "plane", "reflect"}) {
+  for (const std::string scene : {"panel", "plane", "reflect", "mesh"}) {
     std::vector<RgbaImage> reference_frames;
     for (int f = 0; f < o.frames; ++f) {
       anim.frame = f;

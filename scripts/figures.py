@@ -1,0 +1,115 @@
+#!/usr/bin/python3
+"""Composite figures and index.html from `texsim figures` output (metrics.json and the PNGs).
+
+Usage: /usr/bin/python3 scripts/figures.py OUT_DIR
+Writes OUT_DIR/<scene>_comparison.png, OUT_DIR/flicker.png and OUT_DIR/index.html.
+Needs numpy and matplotlib (Debian's python3-matplotlib, in /usr/bin/python3).
+"""
+import html
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def comparison(out_dir, scene, full_scale):
+    """Variants and reference on top, their error heat maps below, PSNR and max error in the titles."""
+    variants = scene["variants"]
+    cols = len(variants) + 1
+    fig, axes = plt.subplots(2, cols, figsize=(3.2 * cols, 5.4), squeeze=False)
+    for i, v in enumerate(variants):
+        axes[0][i].imshow(plt.imread(os.path.join(out_dir, v["image"])))
+        axes[0][i].set_title(f"{v['label']}\nPSNR {v['psnr_db']:.1f} dB, max {v['max_error_lsb']:.0f} LSB", fontsize=8)
+        heat = axes[1][i].imshow(plt.imread(os.path.join(out_dir, v["error_image"])))
+        axes[1][i].set_title(f"error of {v['name']} (mean {v['mean_error_lsb']:.2f} LSB)", fontsize=8)
+    axes[0][-1].imshow(plt.imread(os.path.join(out_dir, scene["reference"])))
+    axes[0][-1].set_title("real-valued reference", fontsize=8)
+    # Colour key of the heat maps (black -> red -> yellow -> white).
+    key = [[(min(1, 3 * t), min(1, max(0, 3 * t - 1)), min(1, max(0, 3 * t - 2))) for t in
+            [k / 99 for k in range(100)]]]
+    axes[1][-1].imshow(key, aspect=8, extent=(0, full_scale, 0, full_scale / 8))
+    axes[1][-1].set_yticks([])
+    axes[1][-1].set_title("heat map scale (LSB)", fontsize=8)
+    for r in range(2):
+        for c in range(cols if r == 0 else cols - 1):
+            axes[r][c].set_xticks([])
+            axes[r][c].set_yticks([])
+    fig.suptitle(f"{scene['scene']}: {scene['caption']}", fontsize=9, wrap=True)
+    fig.tight_layout(rect=(0, 0, 1, 0.9))
+    name = f"{scene['scene']}_comparison.png"
+    fig.savefig(os.path.join(out_dir, name), dpi=110)
+    plt.close(fig)
+    return name
+
+
+def flicker_plot(out_dir, flicker):
+    scenes = sorted({f["scene"] for f in flicker}, key=[f["scene"] for f in flicker].index)
+    fig, axes = plt.subplots(1, len(scenes), figsize=(3.6 * len(scenes), 3.2), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        for f in (f for f in flicker if f["scene"] == scene):
+            ax.plot(f["excess"], label=f"{f['filter']} (mean {f['mean_excess']:.1f})")
+        ax.set_title(f"{scene}: change the reference lacks", fontsize=9)
+        ax.set_xlabel("frame step")
+        ax.set_ylabel("mean |dF - dR| (LSB)")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, "flicker.png"), dpi=110)
+    plt.close(fig)
+    return "flicker.png"
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: scripts/figures.py OUT_DIR")
+    out_dir = sys.argv[1]
+    path = os.path.join(out_dir, "metrics.json")
+    if not os.path.exists(path):
+        sys.exit(f"figures.py: {path}: no such file (run texsim figures first)")
+    with open(path) as f:
+        m = json.load(f)
+    e = html.escape
+    parts = [
+        "<!doctype html><html><head><meta charset='utf-8'><title>Pyramidal parametrics: figures</title>",
+        "<style>body{font-family:sans-serif;max-width:1200px;margin:auto}table{border-collapse:collapse}"
+        "td,th{border:1px solid #aaa;padding:3px 8px;text-align:right}img{max-width:100%}</style></head><body>",
+        "<h1>The paper's experiments through the simulator</h1>",
+        f"<p>Engine <b>{e(m['engine'])}</b>, stills {m['width']}x{m['height']}. The reference is real-valued "
+        f"filtering of level 0 in double precision ({m['reference_samples_per_axis']}<sup>2</sup> sub-pixel "
+        "positions, each averaging its own footprint widened by one texel; see docs/scenes.md). PSNR over R, G, B "
+        "of the pixels on the surface; errors in 8-bit steps (LSB). Plain tables and single images: "
+        "<a href='index.md'>index.md</a>.</p>",
+    ]
+    for scene in m["scenes"]:
+        name = comparison(out_dir, scene, m["heat_map_full_scale_lsb"])
+        parts.append(f"<h2>{e(scene['scene'])}</h2><p>{e(scene['caption'])}</p>")
+        parts.append("<table><tr><th>variant</th><th>PSNR (dB)</th><th>max error (LSB)</th><th>mean error (LSB)</th></tr>")
+        for v in scene["variants"]:
+            parts.append(f"<tr><td>{e(v['label'])}</td><td>{v['psnr_db']:.2f}</td><td>{v['max_error_lsb']:.1f}</td>"
+                         f"<td>{v['mean_error_lsb']:.2f}</td></tr>")
+        parts.append(f"</table><p><img src='{name}' alt='{e(scene['scene'])} comparison'></p>")
+    parts.append("<h2>Temporal aliasing (flicker)</h2><p>Per frame step, the mean |F(t+1) - F(t)| of a variant and of "
+                 "the reference, and the excess mean |(F(t+1) - F(t)) - (R(t+1) - R(t))|: the frame-to-frame change "
+                 "the real-valued reference does not have (0 = no flicker).</p>")
+    parts.append("<table><tr><th>animation</th><th>variant</th><th>mean change</th><th>reference change</th>"
+                 "<th>excess (flicker)</th></tr>")
+    for f in m["flicker"]:
+        parts.append(f"<tr><td>{e(f['scene'])}</td><td>{e(f['filter'])}</td><td>{f['mean_change']:.2f}</td>"
+                     f"<td>{f['mean_reference_change']:.2f}</td><td>{f['mean_excess']:.2f}</td></tr>")
+    parts.append(f"</table><p><img src='{flicker_plot(out_dir, m['flicker'])}' alt='flicker per frame'></p>")
+    parts.append("<h3>The rotating panel (fig. 8-11): point sampling, trilinear, reference</h3>")
+    for v in ("point", "trilinear", "reference"):
+        parts.append(f"<p><img src='panel_frames_{v}.png' alt='panel frames, {v}'></p>")
+    parts.append(f"<p>Generated in {m['seconds']:.1f} s by <code>make figures</code>.</p></body></html>")
+    tmp = os.path.join(out_dir, "index.html.partial")
+    with open(tmp, "w") as f:
+        f.write("\n".join(parts) + "\n")
+    os.replace(tmp, os.path.join(out_dir, "index.html"))
+    print(f"figures.py: {len(m['scenes'])} comparison figures, flicker.png, {out_dir}/index.html")
+
+
+if __name__ == "__main__":
+    main()
