@@ -8,6 +8,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/texture.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,9 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include <csignal>
+#include <cstring>
 
 #include <unistd.h>
 
@@ -108,6 +112,14 @@ struct Fixture {
 };
 Fixture* g = nullptr;
 
+// Ctrl-C or a kill must not leave the temporary .tx behind either.
+char g_tx_path_for_signal[4096];
+extern "C" void remove_tx_and_die(int sig) {
+  unlink(g_tx_path_for_signal);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
 // The texture for OpenImageIO: level 0 as RGBA8, mip-mapped by maketx with a box filter (the same
 // reduction as the model's exact pyramid, within +-1).
 void make_tx(const tex::Image& level0, const std::string& path) {
@@ -172,8 +184,12 @@ void BM_oiio_texturesystem(benchmark::State& state, const QuerySet* set) {
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(set->ts.size()));
 }
 
-// One engine of sim/engine.h on the first kEngineQueries queries. Every engine the build lists
-// (model, and rtl / systemc once they exist) is registered automatically in main().
+// One engine of sim/engine.h on the first kEngineQueries queries, in wall-clock time (an engine may
+// work in a child process). main() registers those of kBenchEngines that this build has.
+// The SystemC engines are left out: run after "rtl" in one process, "systemc" hangs (its forked
+// child waits forever on a Verilator mutex); add them here once that is fixed.
+const std::vector<std::string> kBenchEngines = {"model", "rtl"};
+
 void BM_engine(benchmark::State& state, const std::string& engine, const QuerySet* set) {
   const size_t n = std::min(kEngineQueries, set->requests.size());
   const std::vector<tex::Request> requests(set->requests.begin(), set->requests.begin() + ptrdiff_t(n));
@@ -252,6 +268,14 @@ class RateReporter : public benchmark::ConsoleReporter {
   }
 };
 
+std::vector<std::string> engines_in_build() {
+  std::vector<std::string> out;
+  for (const std::string& e : kBenchEngines)
+    if (std::find(tex::engine_names().begin(), tex::engine_names().end(), e) != tex::engine_names().end())
+      out.push_back(e);
+  return out;
+}
+
 std::string run_name(const std::string& what, const std::string& set) { return what + "/" + set; }
 
 void print_summary(const RateReporter& rep) {
@@ -263,16 +287,18 @@ void print_summary(const RateReporter& rep) {
     const double fast = rep.get(run_name("model_fast", s.name));
     const double ref = rep.get(run_name("model_reference", s.name));
     const double ts = rep.get(run_name("oiio_texturesystem", s.name));
+    if (fast == 0 && ref == 0 && ts == 0) continue;  // filtered out
     std::printf("%-9s %12.2f M %12.2f M %12.2f M %11.2fx %11.2fx\n", s.name.c_str(), fast / 1e6, ref / 1e6,
                 ts / 1e6, ratio(fast, ts), ratio(fast, ref));
   }
   std::printf("\nEngines through tex::run_engine (%zu queries, one run each)\n", kEngineQueries);
   std::printf("%-9s %-9s %14s %16s %16s\n", "queries", "engine", "samples/s", "vs model engine", "vs model fast");
   for (const QuerySet& s : g->sets)
-    for (const std::string& e : tex::engine_names()) {
+    for (const std::string& e : engines_in_build()) {
       const double rate = rep.get(run_name("engine_" + e, s.name));
       const double model = rep.get(run_name("engine_model", s.name));
       const double fast = rep.get(run_name("model_fast", s.name));
+      if (rate == 0) continue;  // filtered out
       std::printf("%-9s %-9s %12.3f M %15.3fx %15.4fx\n", s.name.c_str(), e.c_str(), rate / 1e6, ratio(rate, model),
                   ratio(rate, fast));
     }
@@ -292,6 +318,9 @@ int main(int argc, char** argv) {
 
     fixture.tx_path = (std::filesystem::temp_directory_path() /
                        ("texunit_bench_" + std::to_string(getpid()) + ".tx")).string();
+    std::strncpy(g_tx_path_for_signal, fixture.tx_path.c_str(), sizeof g_tx_path_for_signal - 1);
+    std::signal(SIGINT, remove_tx_and_die);
+    std::signal(SIGTERM, remove_tx_and_die);
     make_tx(level0, fixture.tx_path);
     fixture.ts = OIIO::TextureSystem::create(false);
     fixture.ts->attribute("max_memory_MB", 512.0f);
@@ -315,8 +344,10 @@ int main(int argc, char** argv) {
           ->MinTime(kMinTime);
     }
     for (const QuerySet& s : fixture.sets)
-      for (const std::string& e : tex::engine_names())
-        benchmark::RegisterBenchmark(("engine_" + e + "/" + s.name).c_str(), BM_engine, e, &s)->Iterations(1);
+      for (const std::string& e : engines_in_build())
+        benchmark::RegisterBenchmark(("engine_" + e + "/" + s.name).c_str(), BM_engine, e, &s)
+            ->Iterations(1)
+            ->UseRealTime();
 
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
