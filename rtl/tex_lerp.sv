@@ -1,10 +1,7 @@
 // tex_lerp: one linear interpolation, exact (docs/numerics.md stage 5).
 //   y = (a << 8) + (b - a) * w
-// computed as the one multiply's partial products without a subtraction:
-//   (a << 8) + (b - a) * w = a + sum_j 2^j * (w[j] ? b : a)     (since 256 - w = ~w + 1)
-// i.e. 8 rows of IN_W bits, each a 2:1 select, summed by a balanced adder tree. This is the
-// array multiplier of (b - a) * w with the subtraction folded into the row selects; it is half
-// the iCE40 LUTs of Yosys' generic (IN_W+8) x 8 $mul.
+// written as that one signed multiply ((IN_W+1) x 9 bits): a native multiply in Verilator's C++,
+// a $mul for Yosys. Exact, no rounding.
 // Handshake: none (combinational). Latency: 0. Throughput: 1 per clock.
 // Ports:
 //   a, b : unsigned IN_W bits, any fixed-point format Qi.f (both the same)
@@ -18,23 +15,17 @@ module tex_lerp #(
   input  logic [tex_pkg::WEIGHT_BITS-1:0]       w,
   output logic [IN_W+tex_pkg::WEIGHT_BITS-1:0]  y
 );
-  localparam int OUT_W = IN_W + tex_pkg::WEIGHT_BITS;  // the tree below is written for 8 weight bits
-  logic [IN_W-1:0] r0, r1, r2, r3, r4, r5, r6, r7;  // row j: w[j] ? b : a, weight 2^j
-  logic [IN_W+1:0] p0, p1, p2, p3;                  // rows 2i + 2i+1
-  logic [IN_W+3:0] q0, q1;                          // rows 0-3, 4-7
-  assign r0 = w[0] ? b : a;
-  assign r1 = w[1] ? b : a;
-  assign r2 = w[2] ? b : a;
-  assign r3 = w[3] ? b : a;
-  assign r4 = w[4] ? b : a;
-  assign r5 = w[5] ? b : a;
-  assign r6 = w[6] ? b : a;
-  assign r7 = w[7] ? b : a;
-  assign p0 = (IN_W+2)'(r0) + ((IN_W+2)'(r1) << 1);
-  assign p1 = (IN_W+2)'(r2) + ((IN_W+2)'(r3) << 1);
-  assign p2 = (IN_W+2)'(r4) + ((IN_W+2)'(r5) << 1);
-  assign p3 = (IN_W+2)'(r6) + ((IN_W+2)'(r7) << 1);
-  assign q0 = (IN_W+4)'(p0) + ((IN_W+4)'(p1) << 2);
-  assign q1 = (IN_W+4)'(p2) + ((IN_W+4)'(p3) << 2);
-  assign y  = (OUT_W'(q0) + OUT_W'(a)) + (OUT_W'(q1) << 4);
+  localparam int WB    = tex_pkg::WEIGHT_BITS;
+  localparam int OUT_W = IN_W + WB;
+  logic signed [IN_W:0]  diff;     // b - a in [-(2^IN_W - 1), 2^IN_W - 1]
+  logic signed [WB:0]    weight;   // w as a non-negative signed operand
+  logic signed [OUT_W:0] step;     // (b - a) * w, |step| < 2^OUT_W
+  logic signed [OUT_W:0] sum;      // (a << 8) + step, in [0, (2^IN_W - 1) * 256]
+  logic                  sum_sign_unused;  // always 0 (sum is never negative)
+  assign diff   = $signed({1'b0, b}) - $signed({1'b0, a});
+  assign weight = $signed({1'b0, w});
+  assign step   = diff * weight;  // both operands sign-extended to OUT_W + 1 bits
+  assign sum    = $signed({1'b0, a, WB'(0)}) + step;
+  assign sum_sign_unused = sum[OUT_W];
+  assign y      = sum[OUT_W-1:0];
 endmodule
