@@ -12,7 +12,8 @@
 //   levels d and d1); under backpressure the unit adds no bubbles of its own.
 // Ports (see docs/rtl-interface.md): req_u, req_v signed Q8.24; req_lod, cfg_lod_bias,
 //   cfg_min_lod, cfg_max_lod signed Q8.8; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
-//   cfg_log2_w/h integer <= MAX_LOG2_W/H; cfg_* static while requests are in flight.
+//   cfg_log2_w/h integer <= MAX_LOG2_W/H; cfg_* static while requests are in flight (they are
+//   registered every clock: a request uses the values present in the cycle it is accepted).
 //
 // Pipeline (register at the end of each clock):
 //   1 capture  2 bias+clamp, coordinate scale  3 level select, per-level texel coordinates
@@ -75,6 +76,27 @@ module tex_unit #(
     if (en) tags <= {tags[(NSTAGE-1)*TAG_W-1:0], req_tag};
   end
 
+  // ---------------------------------------------------------------- configuration register
+  // The cfg_* pins are registered every clock and only these copies are used: no request-path
+  // logic depends combinationally on an input pin (for Verilator that logic is then evaluated
+  // once per clock, not on every eval of the inputs). A request uses the cfg_* of the cycle in
+  // which it is accepted and of the next two, which the contract keeps static anyway.
+  logic [3:0]         cfg_log2_w_q, cfg_log2_h_q;
+  logic [1:0]         cfg_wrap_u_q, cfg_wrap_v_q, cfg_mip_mode_q;
+  logic               cfg_texel_linear_q;
+  logic signed [15:0] cfg_lod_bias_q, cfg_min_lod_q, cfg_max_lod_q;
+  always_ff @(posedge clk) begin
+    cfg_log2_w_q       <= cfg_log2_w;
+    cfg_log2_h_q       <= cfg_log2_h;
+    cfg_wrap_u_q       <= cfg_wrap_u;
+    cfg_wrap_v_q       <= cfg_wrap_v;
+    cfg_texel_linear_q <= cfg_texel_linear;
+    cfg_mip_mode_q     <= cfg_mip_mode;
+    cfg_lod_bias_q     <= cfg_lod_bias;
+    cfg_min_lod_q      <= cfg_min_lod;
+    cfg_max_lod_q      <= cfg_max_lod;
+  end
+
   // ---------------------------------------------------------------- clock 1: capture
   logic signed [31:0] u1, v1;
   logic signed [15:0] lod1;
@@ -88,19 +110,19 @@ module tex_unit #(
 
   // ---------------------------------------------------------------- clocks 2-3: LOD, scale
   logic [3:0] last_level;
-  assign last_level = (cfg_log2_w > cfg_log2_h) ? cfg_log2_w : cfg_log2_h;
+  assign last_level = (cfg_log2_w_q > cfg_log2_h_q) ? cfg_log2_w_q : cfg_log2_h_q;
 
   logic [3:0] d3, d1_3;
   logic [7:0] f3;
   tex_lod u_lod (
-    .clk(clk), .en(en), .lod(lod1), .bias(cfg_lod_bias), .min_lod(cfg_min_lod),
-    .max_lod(cfg_max_lod), .mip_mode(cfg_mip_mode), .last_level(last_level),
+    .clk(clk), .en(en), .lod(lod1), .bias(cfg_lod_bias_q), .min_lod(cfg_min_lod_q),
+    .max_lod(cfg_max_lod_q), .mip_mode(cfg_mip_mode_q), .last_level(last_level),
     .d(d3), .d1(d1_3), .f(f3)
   );
 
   logic signed [tex_pkg::SCALED_W-1:0] su2, sv2;
-  tex_scale u_scale_u (.clk(clk), .en(en), .coord(u1), .log2_size0(cfg_log2_w), .scaled(su2));
-  tex_scale u_scale_v (.clk(clk), .en(en), .coord(v1), .log2_size0(cfg_log2_h), .scaled(sv2));
+  tex_scale u_scale_u (.clk(clk), .en(en), .coord(u1), .log2_size0(cfg_log2_w_q), .scaled(su2));
+  tex_scale u_scale_v (.clk(clk), .en(en), .coord(v1), .log2_size0(cfg_log2_h_q), .scaled(sv2));
 
   // ---------------------------------------------------------------- per level k: clocks 3-5
   logic [NL*8-1:0]    fx3_all, fy3_all;   // per-level weights (clock 3)
@@ -117,15 +139,15 @@ module tex_unit #(
 
       // Runtime size of level k: a side that reaches 1 texel stays 1.
       logic [3:0] log2_w_k, log2_h_k;
-      assign log2_w_k = (cfg_log2_w > 4'(k)) ? cfg_log2_w - 4'(k) : 4'd0;
-      assign log2_h_k = (cfg_log2_h > 4'(k)) ? cfg_log2_h - 4'(k) : 4'd0;
+      assign log2_w_k = (cfg_log2_w_q > 4'(k)) ? cfg_log2_w_q - 4'(k) : 4'd0;
+      assign log2_h_k = (cfg_log2_h_q > 4'(k)) ? cfg_log2_h_q - 4'(k) : 4'd0;
 
       // clock 3: texel coordinates (the fixed binary shift of this level memory)
       logic signed [tex_pkg::INDEX_W-1:0] i0_u3, i0_v3;
       logic [7:0] fx3, fy3;
-      tex_addr #(.K(k)) u_addr_u (.clk(clk), .en(en), .scaled(su2), .linear(cfg_texel_linear),
+      tex_addr #(.K(k)) u_addr_u (.clk(clk), .en(en), .scaled(su2), .linear(cfg_texel_linear_q),
                                   .i0(i0_u3), .w(fx3));
-      tex_addr #(.K(k)) u_addr_v (.clk(clk), .en(en), .scaled(sv2), .linear(cfg_texel_linear),
+      tex_addr #(.K(k)) u_addr_v (.clk(clk), .en(en), .scaled(sv2), .linear(cfg_texel_linear_q),
                                   .i0(i0_v3), .w(fy3));
       assign fx3_all[k*8 +: 8] = fx3;
       assign fy3_all[k*8 +: 8] = fy3;
@@ -133,10 +155,10 @@ module tex_unit #(
       // clock 4: wrap both taps of both axes
       logic [XO-1:0] x0_n, x1_n, x0_4, x1_4;
       logic [YO-1:0] y0_n, y1_n, y0_4, y1_4;
-      tex_wrap #(.OUT_W(XO)) u_wrap_x0 (.i(i0_u3), .log2_n(log2_w_k), .mode(cfg_wrap_u), .o(x0_n));
-      tex_wrap #(.OUT_W(XO)) u_wrap_x1 (.i(i0_u3 + tex_pkg::INDEX_W'(1)), .log2_n(log2_w_k), .mode(cfg_wrap_u), .o(x1_n));
-      tex_wrap #(.OUT_W(YO)) u_wrap_y0 (.i(i0_v3), .log2_n(log2_h_k), .mode(cfg_wrap_v), .o(y0_n));
-      tex_wrap #(.OUT_W(YO)) u_wrap_y1 (.i(i0_v3 + tex_pkg::INDEX_W'(1)), .log2_n(log2_h_k), .mode(cfg_wrap_v), .o(y1_n));
+      tex_wrap #(.OUT_W(XO)) u_wrap_x0 (.i(i0_u3), .log2_n(log2_w_k), .mode(cfg_wrap_u_q), .o(x0_n));
+      tex_wrap #(.OUT_W(XO)) u_wrap_x1 (.i(i0_u3 + tex_pkg::INDEX_W'(1)), .log2_n(log2_w_k), .mode(cfg_wrap_u_q), .o(x1_n));
+      tex_wrap #(.OUT_W(YO)) u_wrap_y0 (.i(i0_v3), .log2_n(log2_h_k), .mode(cfg_wrap_v_q), .o(y0_n));
+      tex_wrap #(.OUT_W(YO)) u_wrap_y1 (.i(i0_v3 + tex_pkg::INDEX_W'(1)), .log2_n(log2_h_k), .mode(cfg_wrap_v_q), .o(y1_n));
       always_ff @(posedge clk) begin
         if (en) begin
           x0_4 <= x0_n;
