@@ -16,8 +16,9 @@
 //   registered every clock: a request uses the values present in the cycle it is accepted).
 //
 // Pipeline (register at the end of each clock):
-//   1 capture  2 bias+clamp, coordinate scale  3 level select, per-level texel coordinates
-//   4 per-level wrap  5 all level memories read (4 banks each)  6 select levels d, d1 -> 8 taps
+//   1 capture  2 bias+clamp, coordinate scale  3 level select (d, d1)
+//   4 texel coordinates at levels d and d1  5 wrap; the memories of levels d and d1 read
+//   (4 banks each; the others hold)  6 select levels d, d1 -> 8 taps
 //   7 top/bot lerps  8 bilinear lerps  9 level blend + round  10 skid buffer (output register)
 module tex_unit #(
   parameter int MAX_LOG2_W = 10,  // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H, each 0..11
@@ -124,11 +125,79 @@ module tex_unit #(
   tex_scale u_scale_u (.clk(clk), .en(en), .coord(u1), .log2_size0(cfg_log2_w_q), .scaled(su2));
   tex_scale u_scale_v (.clk(clk), .en(en), .coord(v1), .log2_size0(cfg_log2_h_q), .scaled(sv2));
 
-  // ---------------------------------------------------------------- per level k: clocks 3-5
-  logic [NL*8-1:0]    fx3_all, fy3_all;   // per-level weights (clock 3)
-  logic [NL*4-1:0]    par4_all;           // per-level footprint parities {y1,y0,x1,x0} (clock 4)
-  logic [NL*4*DW-1:0] rdata5;             // per-level bank words (clock 5)
+  // ---------------------------------------------------------------- clock 3: wait for d, d1
+  logic signed [tex_pkg::SCALED_W-1:0] su3, sv3;
+  always_ff @(posedge clk) begin
+    if (en) begin
+      su3 <= su2;
+      sv3 <= sv2;
+    end
+  end
 
+  // ---------------------------------------------------------------- clock 4: coordinates at d, d1
+  // Only the two levels the sample uses are addressed: t9 = s >>> d (and >>> d1).
+  logic signed [tex_pkg::INDEX_W-1:0] i0_u_d4, i0_v_d4, i0_u_d1_4, i0_v_d1_4;
+  logic [7:0] fx_d4, fy_d4, fx_d1_4, fy_d1_4;
+  tex_addr u_addr_u_d  (.clk(clk), .en(en), .scaled(su3), .level(d3),   .linear(cfg_texel_linear_q),
+                        .i0(i0_u_d4),   .w(fx_d4));
+  tex_addr u_addr_v_d  (.clk(clk), .en(en), .scaled(sv3), .level(d3),   .linear(cfg_texel_linear_q),
+                        .i0(i0_v_d4),   .w(fy_d4));
+  tex_addr u_addr_u_d1 (.clk(clk), .en(en), .scaled(su3), .level(d1_3), .linear(cfg_texel_linear_q),
+                        .i0(i0_u_d1_4), .w(fx_d1_4));
+  tex_addr u_addr_v_d1 (.clk(clk), .en(en), .scaled(sv3), .level(d1_3), .linear(cfg_texel_linear_q),
+                        .i0(i0_v_d1_4), .w(fy_d1_4));
+
+  // Runtime sizes of levels d and d1: a side that reaches 1 texel stays 1.
+  logic [3:0] lw_d3, lh_d3, lw_d1_3, lh_d1_3;
+  assign lw_d3   = (cfg_log2_w_q > d3)   ? cfg_log2_w_q - d3   : 4'd0;
+  assign lh_d3   = (cfg_log2_h_q > d3)   ? cfg_log2_h_q - d3   : 4'd0;
+  assign lw_d1_3 = (cfg_log2_w_q > d1_3) ? cfg_log2_w_q - d1_3 : 4'd0;
+  assign lh_d1_3 = (cfg_log2_h_q > d1_3) ? cfg_log2_h_q - d1_3 : 4'd0;
+
+  logic [3:0] d4, d1_4, lw_d4, lh_d4, lw_d1_4, lh_d1_4;
+  logic [7:0] f4;
+  always_ff @(posedge clk) begin
+    if (en) begin
+      d4      <= d3;
+      d1_4    <= d1_3;
+      f4      <= f3;
+      lw_d4   <= lw_d3;
+      lh_d4   <= lh_d3;
+      lw_d1_4 <= lw_d1_3;
+      lh_d1_4 <= lh_d1_3;
+    end
+  end
+
+  // ---------------------------------------------------------------- clock 5: wrap, read d and d1
+  localparam int XW0 = (MAX_LOG2_W > 0) ? MAX_LOG2_W : 1;  // wrapped index bits (level 0's)
+  localparam int YW0 = (MAX_LOG2_H > 0) ? MAX_LOG2_H : 1;
+  logic [XW0-1:0] x0_d, x1_d, x0_d1, x1_d1;
+  logic [YW0-1:0] y0_d, y1_d, y0_d1, y1_d1;
+  tex_wrap #(.OUT_W(XW0)) u_wrap_x0_d  (.i(i0_u_d4),                           .log2_n(lw_d4),
+                                        .mode(cfg_wrap_u_q), .o(x0_d));
+  tex_wrap #(.OUT_W(XW0)) u_wrap_x1_d  (.i(i0_u_d4 + tex_pkg::INDEX_W'(1)),    .log2_n(lw_d4),
+                                        .mode(cfg_wrap_u_q), .o(x1_d));
+  tex_wrap #(.OUT_W(YW0)) u_wrap_y0_d  (.i(i0_v_d4),                           .log2_n(lh_d4),
+                                        .mode(cfg_wrap_v_q), .o(y0_d));
+  tex_wrap #(.OUT_W(YW0)) u_wrap_y1_d  (.i(i0_v_d4 + tex_pkg::INDEX_W'(1)),    .log2_n(lh_d4),
+                                        .mode(cfg_wrap_v_q), .o(y1_d));
+  tex_wrap #(.OUT_W(XW0)) u_wrap_x0_d1 (.i(i0_u_d1_4),                         .log2_n(lw_d1_4),
+                                        .mode(cfg_wrap_u_q), .o(x0_d1));
+  tex_wrap #(.OUT_W(XW0)) u_wrap_x1_d1 (.i(i0_u_d1_4 + tex_pkg::INDEX_W'(1)),  .log2_n(lw_d1_4),
+                                        .mode(cfg_wrap_u_q), .o(x1_d1));
+  tex_wrap #(.OUT_W(YW0)) u_wrap_y0_d1 (.i(i0_v_d1_4),                         .log2_n(lh_d1_4),
+                                        .mode(cfg_wrap_v_q), .o(y0_d1));
+  tex_wrap #(.OUT_W(YW0)) u_wrap_y1_d1 (.i(i0_v_d1_4 + tex_pkg::INDEX_W'(1)),  .log2_n(lh_d1_4),
+                                        .mode(cfg_wrap_v_q), .o(y1_d1));
+
+  // Footprint parities {y1, y0, x1, x0} & 1 of levels d and d1 (they route banks to taps).
+  logic [3:0] par_d4, par_d1_4;
+  assign par_d4   = {y1_d[0],  y0_d[0],  x1_d[0],  x0_d[0]};
+  assign par_d1_4 = {y1_d1[0], y0_d1[0], x1_d1[0], x0_d1[0]};
+
+  // Level memory k reads level d's footprint if k = d, level d1's if k = d1, nothing otherwise
+  // (it holds its words; tex_select ignores them). A wrapped index of level k fits its memory.
+  logic [NL*4*DW-1:0] rdata5;  // per-level bank words (clock 5)
   genvar k;
   generate
     for (k = 0; k < NL; k = k + 1) begin : g_level
@@ -136,74 +205,24 @@ module tex_unit #(
       localparam int YB = (MAX_LOG2_H > k) ? MAX_LOG2_H - k : 0;
       localparam int XO = (XB > 0) ? XB : 1;
       localparam int YO = (YB > 0) ? YB : 1;
-
-      // Runtime size of level k: a side that reaches 1 texel stays 1.
-      logic [3:0] log2_w_k, log2_h_k;
-      assign log2_w_k = (cfg_log2_w_q > 4'(k)) ? cfg_log2_w_q - 4'(k) : 4'd0;
-      assign log2_h_k = (cfg_log2_h_q > 4'(k)) ? cfg_log2_h_q - 4'(k) : 4'd0;
-
-      // clock 3: texel coordinates (the fixed binary shift of this level memory)
-      logic signed [tex_pkg::INDEX_W-1:0] i0_u3, i0_v3;
-      logic [7:0] fx3, fy3;
-      tex_addr #(.K(k)) u_addr_u (.clk(clk), .en(en), .scaled(su2), .linear(cfg_texel_linear_q),
-                                  .i0(i0_u3), .w(fx3));
-      tex_addr #(.K(k)) u_addr_v (.clk(clk), .en(en), .scaled(sv2), .linear(cfg_texel_linear_q),
-                                  .i0(i0_v3), .w(fy3));
-      assign fx3_all[k*8 +: 8] = fx3;
-      assign fy3_all[k*8 +: 8] = fy3;
-
-      // clock 4: wrap both taps of both axes
-      logic [XO-1:0] x0_n, x1_n, x0_4, x1_4;
-      logic [YO-1:0] y0_n, y1_n, y0_4, y1_4;
-      tex_wrap #(.OUT_W(XO)) u_wrap_x0 (.i(i0_u3), .log2_n(log2_w_k), .mode(cfg_wrap_u_q), .o(x0_n));
-      tex_wrap #(.OUT_W(XO)) u_wrap_x1 (.i(i0_u3 + tex_pkg::INDEX_W'(1)), .log2_n(log2_w_k), .mode(cfg_wrap_u_q), .o(x1_n));
-      tex_wrap #(.OUT_W(YO)) u_wrap_y0 (.i(i0_v3), .log2_n(log2_h_k), .mode(cfg_wrap_v_q), .o(y0_n));
-      tex_wrap #(.OUT_W(YO)) u_wrap_y1 (.i(i0_v3 + tex_pkg::INDEX_W'(1)), .log2_n(log2_h_k), .mode(cfg_wrap_v_q), .o(y1_n));
-      always_ff @(posedge clk) begin
-        if (en) begin
-          x0_4 <= x0_n;
-          x1_4 <= x1_n;
-          y0_4 <= y0_n;
-          y1_4 <= y1_n;
-        end
-      end
-      assign par4_all[k*4 +: 4] = {y1_4[0], y0_4[0], x1_4[0], x0_4[0]};
-
-      // clock 5: read the whole 2x2 footprint of this level (its memory latches the words)
+      logic          is_d;  // level k is level d of the sample
+      logic          re;
+      logic [XO-1:0] x0, x1;
+      logic [YO-1:0] y0, y1;
+      assign is_d = d4 == 4'(k);
+      assign re   = en && (is_d || d1_4 == 4'(k));
+      assign x0   = is_d ? x0_d[XO-1:0] : x0_d1[XO-1:0];
+      assign x1   = is_d ? x1_d[XO-1:0] : x1_d1[XO-1:0];
+      assign y0   = is_d ? y0_d[YO-1:0] : y0_d1[YO-1:0];
+      assign y1   = is_d ? y1_d[YO-1:0] : y1_d1[YO-1:0];
       tex_level_mem #(.XB(XB), .YB(YB), .DW(DW)) u_mem (
         .clk(clk),
         .we(wr_en && wr_level == 4'(k)), .wx(wr_x), .wy(wr_y), .wdata(wr_data),
-        .re(en), .x0(x0_4), .x1(x1_4), .y0(y0_4), .y1(y1_4),
+        .re(re), .x0(x0), .x1(x1), .y0(y0), .y1(y1),
         .rdata(rdata5[k*4*DW +: 4*DW])
       );
     end
   endgenerate
-
-  // ---------------------------------------------------------------- clock 4: pick d, d1 weights
-  logic [7:0] fx_d3, fy_d3, fx_d1_3, fy_d1_3;
-  tex_level_mux #(.NL(NL), .W(8)) u_fx_d  (.entries(fx3_all), .sel(d3),   .out(fx_d3));
-  tex_level_mux #(.NL(NL), .W(8)) u_fy_d  (.entries(fy3_all), .sel(d3),   .out(fy_d3));
-  tex_level_mux #(.NL(NL), .W(8)) u_fx_d1 (.entries(fx3_all), .sel(d1_3), .out(fx_d1_3));
-  tex_level_mux #(.NL(NL), .W(8)) u_fy_d1 (.entries(fy3_all), .sel(d1_3), .out(fy_d1_3));
-
-  logic [3:0] d4, d1_4;
-  logic [7:0] f4, fx_d4, fy_d4, fx_d1_4, fy_d1_4;
-  always_ff @(posedge clk) begin
-    if (en) begin
-      d4      <= d3;
-      d1_4    <= d1_3;
-      f4      <= f3;
-      fx_d4   <= fx_d3;
-      fy_d4   <= fy_d3;
-      fx_d1_4 <= fx_d1_3;
-      fy_d1_4 <= fy_d1_3;
-    end
-  end
-
-  // ---------------------------------------------------------------- clock 5: parities of d, d1
-  logic [3:0] par_d4, par_d1_4;
-  tex_level_mux #(.NL(NL), .W(4)) u_par_d  (.entries(par4_all), .sel(d4),   .out(par_d4));
-  tex_level_mux #(.NL(NL), .W(4)) u_par_d1 (.entries(par4_all), .sel(d1_4), .out(par_d1_4));
 
   logic [3:0] d5, d1_5, par_d5, par_d1_5;
   logic [7:0] f5, fx_d5, fy_d5, fx_d1_5, fy_d1_5;
