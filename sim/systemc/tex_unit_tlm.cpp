@@ -38,9 +38,21 @@ struct TexUnitTlm::Rtl {
   sc_signal<uint32_t> req_u{"req_u"}, req_v{"req_v"}, req_lod{"req_lod"}, req_tag{"req_tag"};
   sc_signal<bool> rsp_valid{"rsp_valid"}, rsp_ready{"rsp_ready"};
   sc_signal<uint32_t> rsp_rgba{"rsp_rgba"}, rsp_tag{"rsp_tag"};
-  Vtex_unit_sc dut;
+  // The model's own Verilator context: the --sc model takes Verilated::threadContextp(), which in a
+  // forked child may still point at a context of the parent (e.g. the --engine rtl harness's, freed).
+  std::unique_ptr<VerilatedContext> context;
+  std::unique_ptr<Vtex_unit_sc> model;
 
-  explicit Rtl(const sc_time& period) : clk("clk", period, 0.5, SC_ZERO_TIME, false), dut("tex_unit") {
+  Rtl(const sc_time& period, uint64_t seed) : clk("clk", period, 0.5, SC_ZERO_TIME, false) {
+    context = std::make_unique<VerilatedContext>();
+    // Registers without reset start random: the design must not depend on them. An RTL assertion
+    // sets gotFinish (checked every edge) instead of aborting the process.
+    context->fatalOnError(false);
+    context->randReset(2);
+    context->randSeed(int(seed & 0x7fffffff));
+    Verilated::threadContextp(context.get());
+    model = std::make_unique<Vtex_unit_sc>("tex_unit");
+    Vtex_unit_sc& dut = *model;
     dut.clk(clk);
     dut.rst(rst);
     dut.cfg_log2_w(cfg_log2_w);
@@ -97,12 +109,7 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyra
   if (pyramid.levels[0].channel_bits != 8)
     throw Error("the SystemC RTL backend is built for 8-bit channels; this texture has " +
                 std::to_string(pyramid.levels[0].channel_bits));
-  // Registers without reset start random: the design must not depend on them. An RTL assertion
-  // sets gotFinish (checked every edge) instead of aborting the process.
-  Verilated::threadContextp()->fatalOnError(false);
-  Verilated::threadContextp()->randReset(2);
-  Verilated::threadContextp()->randSeed(int(seed & 0x7fffffff));
-  rtl_ = std::make_unique<Rtl>(clock_period);
+  rtl_ = std::make_unique<Rtl>(clock_period, seed);
   pyramid_ = &pyramid;
   socket.register_nb_transport_fw(this, &TexUnitTlm::nb_transport_fw);
   SC_METHOD(on_posedge);
@@ -272,7 +279,7 @@ void TexUnitTlm::on_posedge() {
   Rtl& r = *rtl_;
   const uint64_t edge = cycle_++;
   if (!error_.empty()) return;
-  if (Verilated::threadContextp()->gotFinish()) {
+  if (r.context->gotFinish()) {
     fail("RTL assertion failed (or $finish) at clock " + std::to_string(edge) + "; see the %Error line above");
     return;
   }
