@@ -1,5 +1,6 @@
-// tex_select: picks the bank words of levels d and d1 out of all level memories (every level is
-// read every clock, as in the paper) and routes the 4 banks of each level to the footprint taps
+// tex_select: picks the bank words of levels d and d1 out of all level memories (only those two
+// read the sample's footprint; the others hold old words) and routes the 4 banks of each level
+// to the footprint taps
 //   a = T(x0,y0), b = T(x1,y0), c = T(x0,y1), e = T(x1,y1),  tap bank = (y&1)*2 + (x&1).
 // Handshake: stall-enable; the registers load when en is high.
 // Latency: 1 clock. Throughput: 1 per clock.
