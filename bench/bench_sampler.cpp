@@ -186,23 +186,28 @@ void BM_oiio_texturesystem(benchmark::State& state, const QuerySet* set) {
 
 // One engine of sim/engine.h on the first kEngineQueries queries, in wall-clock time (an engine may
 // work in a child process). main() registers those of kBenchEngines that this build has.
-// The SystemC engines are left out: run after "rtl" in one process, "systemc" hangs (its forked
-// child waits forever on a Verilator mutex); add them here once that is fixed.
-const std::vector<std::string> kBenchEngines = {"model", "rtl"};
+// Cycle-accurate engines run with ideal timing (seed 0) and also report their sampling phase
+// alone (stats "sample_seconds"), without the texture load through the write port.
+const std::vector<std::string> kBenchEngines = {"model", "rtl", "systemc", "systemc-model"};
 
 void BM_engine(benchmark::State& state, const std::string& engine, const QuerySet* set) {
   const size_t n = std::min(kEngineQueries, set->requests.size());
   const std::vector<tex::Request> requests(set->requests.begin(), set->requests.begin() + ptrdiff_t(n));
+  tex::EngineOptions options;
+  options.seed = 0;
+  double sample_seconds = 0;
   for (auto _ : state) {
     try {
-      const tex::EngineResult r = tex::run_engine(engine, g->pyramid, g->config, requests, {});
+      const tex::EngineResult r = tex::run_engine(engine, g->pyramid, g->config, requests, options);
       benchmark::DoNotOptimize(r.texels.data());
+      sample_seconds += r.stats.value("sample_seconds", 0.0);
     } catch (const std::exception& e) {
       state.SkipWithError(e.what());
       break;
     }
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(n));
+  if (sample_seconds > 0) state.counters["sampling_per_second"] = double(state.iterations()) * double(n) / sample_seconds;
 }
 
 // ------------------------------------------------------------------------------ checks
@@ -253,12 +258,14 @@ void print_ts_difference(const QuerySet& set) {
 class RateReporter : public benchmark::ConsoleReporter {
  public:
   RateReporter() : ConsoleReporter(isatty(STDOUT_FILENO) ? OO_ColorTabular : OO_Tabular) {}
-  std::map<std::string, double> rate;
+  std::map<std::string, double> rate, sampling_rate;
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& r : runs) {
+      if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;
       const auto it = r.counters.find("items_per_second");
-      if (r.run_type == Run::RT_Iteration && !r.error_occurred && it != r.counters.end())
-        rate[r.run_name.function_name] = it->second.value;  // name without /min_time:...
+      if (it != r.counters.end()) rate[r.run_name.function_name] = it->second.value;  // name without /min_time:...
+      const auto st = r.counters.find("sampling_per_second");
+      if (st != r.counters.end()) sampling_rate[r.run_name.function_name] = st->second.value;
     }
     ConsoleReporter::ReportRuns(runs);
   }
@@ -292,15 +299,19 @@ void print_summary(const RateReporter& rep) {
                 ts / 1e6, ratio(fast, ts), ratio(fast, ref));
   }
   std::printf("\nEngines through tex::run_engine (%zu queries, one run each)\n", kEngineQueries);
-  std::printf("%-9s %-9s %14s %16s %16s\n", "queries", "engine", "samples/s", "vs model engine", "vs model fast");
+  std::printf("%-9s %-13s %14s %16s %16s %18s\n", "queries", "engine", "samples/s", "vs model engine", "vs model fast",
+              "sampling only/s");
   for (const QuerySet& s : g->sets)
     for (const std::string& e : engines_in_build()) {
       const double rate = rep.get(run_name("engine_" + e, s.name));
       const double model = rep.get(run_name("engine_model", s.name));
       const double fast = rep.get(run_name("model_fast", s.name));
       if (rate == 0) continue;  // filtered out
-      std::printf("%-9s %-9s %12.3f M %15.3fx %15.4fx\n", s.name.c_str(), e.c_str(), rate / 1e6, ratio(rate, model),
+      const auto sampling = rep.sampling_rate.find(run_name("engine_" + e, s.name));
+      std::printf("%-9s %-13s %12.3f M %15.3fx %15.4fx", s.name.c_str(), e.c_str(), rate / 1e6, ratio(rate, model),
                   ratio(rate, fast));
+      if (sampling != rep.sampling_rate.end()) std::printf(" %16.3f M", sampling->second / 1e6);
+      std::printf("\n");
     }
 }
 
