@@ -347,3 +347,43 @@ TEST_F(TexsimCli, EveryCommandHasHelp) {
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << c << ": " << r.out;
   }
 }
+
+// ---------------------------------------------------------------- engines
+
+// `texsim sample --engine E` writes the same bytes as `--engine model` for every engine of this
+// build (rtl, systemc, ...), for both query headers, a few filters and wrap modes, and textures
+// of different shapes. The cycle-accurate engines run with random stalls (the default seed).
+TEST_F(TexsimCli, EveryEngineWritesByteIdenticalResults) {
+  std::string lod_trace = "u,v,lod\n", deriv_trace = "u,v,dudx,dvdx,dudy,dvdy\n";
+  uint32_t state = 12345;
+  auto next = [&state] {  // small LCG: the trace is data, not a statistical sample
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) / double(1u << 24);
+  };
+  for (int i = 0; i < 3000; ++i) {
+    const double u = next() * 6 - 3, v = next() * 6 - 3;
+    lod_trace += std::to_string(u) + "," + std::to_string(v) + "," + std::to_string(next() * 9 - 2) + "\n";
+    const double d = std::ldexp(next(), -int(next() * 10));
+    deriv_trace += std::to_string(u) + "," + std::to_string(v) + "," + std::to_string(d) + ",0," +
+                   std::to_string(d * next()) + "," + std::to_string(d * 2) + "\n";
+  }
+  write_text(dir / "lod.csv", lod_trace);
+  write_text(dir / "deriv.csv", deriv_trace);
+  const std::vector<std::string> cases = {
+      "-t noise:64x32 -q lod.csv -f trilinear -w repeat",
+      "-t testcard:16x16 -q deriv.csv -f mip_nearest --wrap-u clamp --wrap-v mirror",
+      "-t noise:8x64 -q lod.csv -f point -w mirror --pyramid cascade",
+      "-t noise:32x32 -q deriv.csv -f nearest_mipmap_linear -w clamp --lod-bias 0.5 --max-lod 3",
+  };
+  const std::vector<std::string> engines = {"rtl", "systemc", "systemc-model"};
+  for (const std::string& c : cases) {
+    const Result golden = run("sample " + c + " -e model -o model.csv");
+    ASSERT_EQ(golden.exit_code, 0) << c << ": " << golden.err;
+    const std::string expected = read_text(dir / "model.csv");
+    for (const std::string& e : engines) {
+      const Result r = run("sample " + c + " -e " + e + " -o " + e + ".csv");
+      ASSERT_EQ(r.exit_code, 0) << c << " -e " << e << ": " << r.err;
+      EXPECT_TRUE(read_text(dir / (e + ".csv")) == expected) << c << ": engine " << e << " differs from the model";
+    }
+  }
+}
