@@ -124,7 +124,11 @@ TEST(Accuracy, EveryFilterAndWrapAgainstDoubleGlReference) {
         EXPECT_LE(m.mean_rounded(), 0.25) << what;
         EXPECT_LE(m.mean(), m.floor_mean() + 0.05) << what;
         EXPECT_LE(m.excluded, kQueries / 100) << what;  // boundary crossings are rare, or the rule is wrong
-        if (on_grid) EXPECT_EQ(m.excluded, 0) << what;
-        if (filter.texel == TexelFilter::Nearest) EXPECT_EQ(m.max_err, 0.0) << what;  // point: the texel itself
+        if (on_grid) {
+          EXPECT_EQ(m.excluded, 0) << what;
+        }
+        if (filter.texel == TexelFilter::Nearest) {
+          EXPECT_EQ(m.max_err, 0.0) << what;  // point: the texel itself
+        }
       }
 }
