@@ -167,6 +167,8 @@ StreamStats Harness::stream(const Request* requests, size_t n, const Timing& tim
   const uint64_t start = cycle_;
   bool filled = false;
   bool holding = false;  // a request was offered and not taken in the previous clock
+  uint64_t stall_run = 0;   // clocks the oldest response has waited with rsp_ready low
+  bool after_gap = false;   // the next request follows an input gap
   PinsIn in;
   while (done < n) {
     // A request once offered stays offered until accepted (the RTL asserts this): gaps start
@@ -182,7 +184,10 @@ StreamStats Harness::stream(const Request* requests, size_t n, const Timing& tim
     const bool offer = accepted < n && gap_left == 0;
     if (gap_left > 0) {
       --gap_left;
-      if (accepted < n) ++st.gap_cycles;
+      if (accepted < n) {
+        ++st.gap_cycles;
+        after_gap = true;
+      }
     }
     in.rsp_ready = stall_left == 0;
     if (stall_left > 0) --stall_left;
@@ -212,6 +217,8 @@ StreamStats Harness::stream(const Request* requests, size_t n, const Timing& tim
       const uint64_t lat = now - accept_clock[done];
       st.latency_min = st.samples == 0 ? lat : std::min(st.latency_min, lat);
       st.latency_max = std::max(st.latency_max, lat);
+      ++st.responses_by_stall_run[stall_run == 0 ? 0 : stall_run < 10 ? 1 : stall_run < 100 ? 2 : 3];
+      stall_run = 0;
       on_response(done, out.rsp_rgba);
       ++done;
       ++st.samples;
@@ -232,12 +239,17 @@ StreamStats Harness::stream(const Request* requests, size_t n, const Timing& tim
     }
     holding = offer && !out.req_ready;
     if (offer && out.req_ready) {
+      if (after_gap) ++st.requests_after_gap;
+      after_gap = false;
       accept_clock[accepted] = now;
       ++accepted;
       idle_ready_clocks = 0;
     }
     if (offer && !out.req_ready) ++st.backpressure_cycles;
-    if (out.rsp_valid && !in.rsp_ready) ++st.stall_cycles;
+    if (out.rsp_valid && !in.rsp_ready) {
+      ++st.stall_cycles;
+      ++stall_run;
+    }
     if (in.rsp_ready) ++st.ready_cycles;
   }
   st.cycles = cycle_ - start;

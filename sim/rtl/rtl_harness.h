@@ -97,6 +97,10 @@ struct StreamStats {
   uint64_t latency_min = 0, latency_max = 0;  // accept edge -> response edge, in clocks
   uint64_t bubbles_after_fill = 0;  // clocks after the first response with rsp_ready high, no rsp_valid,
                                     // and responses still owed
+  // Responses by the run of stalled clocks (rsp_valid && !rsp_ready) just before their handshake:
+  // 0, 1-9, 10-99, >= 100 clocks (functional coverage of the output side).
+  uint64_t responses_by_stall_run[4] = {0, 0, 0, 0};
+  uint64_t requests_after_gap = 0;  // requests accepted right after an input gap
 };
 
 class Harness {

@@ -3,13 +3,12 @@
 // request timing, every response compared bit for bit with tex::Sampler::sample().
 #include <gtest/gtest.h>
 
-#include <array>
 #include <chrono>
 #include <cstdio>
 
+#include "coverage.h"
 #include "lockstep.h"
 #include "model/image.h"
-#include "model/stages.h"
 
 using namespace tex;
 using namespace tex::rtltest;
@@ -29,21 +28,10 @@ struct RandomSuite {
   size_t requests_per_case;  // per (texture, filter, wrap u, wrap v)
 };
 
-// Functional coverage of what was actually compared.
-struct Coverage {
-  std::array<uint64_t, 6> filter{};         // all_filters() order
-  std::array<uint64_t, 9> wraps{};          // wrap_u * 3 + wrap_v
-  std::array<uint64_t, 4> lod_region{};     // magnify, between levels, last level (clamped), exactly on a level
-  std::array<uint64_t, 3> coord_region{};   // inside [0,1), within [-1, 2), beyond
+// Totals of one suite (the functional coverage is in coverage.h).
+struct Totals {
   uint64_t rounds = 0, samples = 0, clocks = 0, stall_clocks = 0, gap_clocks = 0, longest_latency = 0;
 };
-
-int coord_region(int32_t c) {
-  const int64_t one = int64_t(1) << kCoordFracBits;
-  if (c >= 0 && c < one) return 0;
-  if (c >= -one && c < 2 * one) return 1;
-  return 2;
-}
 
 void run_suite(const RandomSuite& suite) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -51,7 +39,8 @@ void run_suite(const RandomSuite& suite) {
   const uint64_t base = mix64(seed_base() ^ std::hash<std::string>{}(suite.name));
   auto unit = make_unit(suite.max_log2_w, suite.max_log2_h, base);
   const std::vector<Filter> filters = all_filters();
-  Coverage cov;
+  Totals totals;
+  Coverage coverage(suite.max_log2_w, suite.max_log2_h);
   uint64_t failures = 0;
 
   for (size_t ti = 0; ti < suite.textures.size(); ++ti) {
@@ -77,21 +66,15 @@ void run_suite(const RandomSuite& suite) {
           const auto reqs = random_requests(rng, pyr->log2_w0(), pyr->log2_h0(), suite.requests_per_case * scale());
           const LockstepResult r = lockstep(*unit, *pyr, cfg, reqs, timing, rng());
 
-          ++cov.rounds;
-          cov.samples += r.compared;
-          cov.clocks += r.stats.cycles;
-          cov.stall_clocks += r.stats.stall_cycles;
-          cov.gap_clocks += r.stats.gap_cycles;
-          cov.longest_latency = std::max(cov.longest_latency, r.stats.latency_max);
-          cov.filter[fi] += r.compared;
-          cov.wraps[size_t(wu * 3 + wv)] += r.compared;
-          const int last = pyr->last_level();
-          for (const Request& q : reqs) {
-            const int32_t l = stage::bias_and_clamp(q.lod, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
-            const int region = l <= 0 ? 0 : (l >> 8) >= last ? 2 : (l & 255) == 0 ? 3 : 1;
-            ++cov.lod_region[size_t(region)];
-            ++cov.coord_region[size_t(coord_region(q.u))];
-          }
+          ++totals.rounds;
+          totals.samples += r.compared;
+          totals.clocks += r.stats.cycles;
+          totals.stall_clocks += r.stats.stall_cycles;
+          totals.gap_clocks += r.stats.gap_cycles;
+          totals.longest_latency = std::max(totals.longest_latency, r.stats.latency_max);
+          coverage.timing(r.stats);
+          if (r.compared == reqs.size())
+            for (const Request& q : reqs) coverage.sample(*pyr, cfg, q);
           if (!r.ok()) {
             ++failures;
             ADD_FAILURE() << suite.name << ": texture " << ts.pattern << ":" << ts.width << "x" << ts.height << " "
@@ -108,29 +91,19 @@ void run_suite(const RandomSuite& suite) {
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("%s: %llu cases, %llu samples compared bit for bit in %.1f s (%llu clocks, %llu stall, %llu gap; "
               "latency up to %llu)\n",
-              suite.name.c_str(), (unsigned long long)cov.rounds, (unsigned long long)cov.samples, secs,
-              (unsigned long long)cov.clocks, (unsigned long long)cov.stall_clocks,
-              (unsigned long long)cov.gap_clocks, (unsigned long long)cov.longest_latency);
-  std::printf("  coverage: lambda' magnify %llu, between levels %llu, on a level %llu, last level %llu; "
-              "u in [0,1) %llu, [-1,2) %llu, beyond %llu\n",
-              (unsigned long long)cov.lod_region[0], (unsigned long long)cov.lod_region[1],
-              (unsigned long long)cov.lod_region[3], (unsigned long long)cov.lod_region[2],
-              (unsigned long long)cov.coord_region[0], (unsigned long long)cov.coord_region[1],
-              (unsigned long long)cov.coord_region[2]);
-  testing::Test::RecordProperty("samples_compared", std::to_string(cov.samples));
+              suite.name.c_str(), (unsigned long long)totals.rounds, (unsigned long long)totals.samples, secs,
+              (unsigned long long)totals.clocks, (unsigned long long)totals.stall_clocks,
+              (unsigned long long)totals.gap_clocks, (unsigned long long)totals.longest_latency);
+  std::printf("%s functional coverage (bins hit / reachable):\n%s", suite.name.c_str(), coverage.table(env_u64("TEX_COVERAGE_BINS").value_or(0) != 0).c_str());
+  testing::Test::RecordProperty("samples_compared", std::to_string(totals.samples));
   if (only) {
-    EXPECT_EQ(cov.rounds, 1u) << "TEX_SEED=" << *only << " is not a case of " << suite.name;
+    EXPECT_EQ(totals.rounds, 1u) << "TEX_SEED=" << *only << " is not a case of " << suite.name;
     return;
   }
-  // Every bin of the functional coverage must have been exercised.
-  EXPECT_EQ(cov.rounds, suite.textures.size() * 54);
-  for (size_t i = 0; i < cov.filter.size(); ++i) EXPECT_GT(cov.filter[i], 0u) << filter_name(filters[i]);
-  for (size_t i = 0; i < cov.wraps.size(); ++i) EXPECT_GT(cov.wraps[i], 0u) << "wrap pair " << i;
-  for (size_t i = 0; i < cov.lod_region.size(); ++i) EXPECT_GT(cov.lod_region[i], 100u) << "lambda region " << i;
-  for (size_t i = 0; i < cov.coord_region.size(); ++i) EXPECT_GT(cov.coord_region[i], 100u) << "coord region " << i;
-  EXPECT_GT(cov.stall_clocks, 0u);
-  EXPECT_GT(cov.gap_clocks, 0u);
-  EXPECT_GE(cov.longest_latency, 100u) << "no long stall happened";
+  EXPECT_EQ(totals.rounds, suite.textures.size() * 54);
+  // Every reachable bin of the functional coverage was exercised, and no bin declared unreachable was.
+  for (const std::string& hole : coverage.holes()) ADD_FAILURE() << suite.name << " coverage: " << hole;
+  EXPECT_GE(totals.longest_latency, 100u) << "no long stall happened";
 }
 
 }  // namespace

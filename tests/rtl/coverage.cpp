@@ -1,0 +1,196 @@
+#include "coverage.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "lockstep.h"
+#include "model/stages.h"
+
+namespace tex::rtltest {
+
+size_t CoverGroup::add(const std::string& bin, const std::string& why_unreachable) {
+  bins.push_back(bin);
+  unreachable.push_back(why_unreachable);
+  hits.push_back(0);
+  return bins.size() - 1;
+}
+
+size_t CoverGroup::reachable() const {
+  return size_t(std::count(unreachable.begin(), unreachable.end(), std::string()));
+}
+
+size_t CoverGroup::reachable_hit() const {
+  size_t n = 0;
+  for (size_t i = 0; i < bins.size(); ++i) n += unreachable[i].empty() && hits[i] > 0;
+  return n;
+}
+
+namespace {
+
+const Wrap kWraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror};
+const TexelFilter kTexelFilters[] = {TexelFilter::Nearest, TexelFilter::Linear};
+
+// Level-select cases, per mip mode (exclusive: every request is in exactly one).
+enum LevelCase { kMagnify, kMinifyLevel0, kRoundDown, kRoundUp, kOnLevel, kBetweenLevels, kLastLevel, kLevelCases };
+static_assert(kLevelCases == 7, "level_case_bin_ in coverage.h");
+const char* const kLevelCaseNames[] = {
+    "magnify (lambda' <= 0)", "minify, no mipmaps (level 0)", "nearest level, rounds down",
+    "nearest level, rounds up", "two levels, f == 0", "two levels, f > 0", "d == last level (clamped)"};
+bool level_case_applies(MipMode m, int c) {
+  switch (m) {
+    case MipMode::None: return c == kMagnify || c == kMinifyLevel0;
+    case MipMode::Nearest: return c == kMagnify || c == kRoundDown || c == kRoundUp || c == kLastLevel;
+    case MipMode::Linear: return c == kMagnify || c == kOnLevel || c == kBetweenLevels || c == kLastLevel;
+  }
+  return false;
+}
+
+// Tap cases along one axis of one level (exclusive). A period is [k n, (k+1) n) of the unwrapped index.
+enum TapCase { kInterior, kEdgePair, kEvenPeriod, kOddPeriod, kOneTexel, kTapCases };
+const char* const kTapCaseNames[] = {"interior (period 0)", "pair across a period edge",
+                                     "outside, even period", "outside, odd period", "1-texel level"};
+const char* const kTapCaseMeaning[3][kTapCases] = {
+    {"", "seam: taps n-1 and 0", "wrap-around", "wrap-around", ""},       // repeat
+    {"", "edge: one tap clamped", "beyond edge", "beyond edge", ""},      // clamp
+    {"", "boundary: both taps one texel", "repeat", "reflected", ""}};    // mirror
+
+size_t fi_of(Filter f) { return size_t(f.texel) * 3 + size_t(f.mip); }  // all_filters() order
+
+int tap_case(int32_t coord, int log2_size, TexelFilter filter) {
+  if (log2_size == 0) return kOneTexel;
+  const stage::AxisTaps t = stage::axis_taps(coord, log2_size, filter);
+  const int32_t p0 = t.i0 >> log2_size;
+  const int32_t p1 = filter == TexelFilter::Linear ? t.i1 >> log2_size : p0;
+  if (p0 != p1) return kEdgePair;
+  if (p0 == 0) return kInterior;
+  return (p0 & 1) ? kOddPeriod : kEvenPeriod;
+}
+
+}  // namespace
+
+Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log2_w, max_log2_h)) {
+  auto make = [&](const std::string& name) {
+    groups_.push_back({name, {}, {}, {}});
+    return groups_.size() - 1;
+  };
+  const std::vector<Filter> filters = all_filters();
+
+  g_filter_wrap_ = make("filter x wrap_u x wrap_v");
+  for (const Filter& f : filters)
+    for (Wrap wu : kWraps)
+      for (Wrap wv : kWraps) group(g_filter_wrap_).add(filter_name(f) + " " + wrap_name(wu) + "/" + wrap_name(wv));
+
+  g_level_case_ = make("level select case x filter");
+  for (const Filter& f : filters)
+    for (int c = 0; c < kLevelCases; ++c)
+      if (level_case_applies(f.mip, c)) level_case_bin_[fi_of(f)][c] = group(g_level_case_).add(filter_name(f) + ": " + kLevelCaseNames[c]);
+
+  g_level_d_ = make("level d read (mipmapped filters)");
+  for (int d = 0; d <= max_level_; ++d) group(g_level_d_).add("d = " + std::to_string(d));
+
+  g_taps_ = make("taps: axis x texel filter x wrap x case");
+  for (const char* axis : {"u", "v"})
+    for (TexelFilter tf : kTexelFilters)
+      for (Wrap w : kWraps)
+        for (int c = 0; c < kTapCases; ++c) {
+          std::string name = std::string(axis) + " " + (tf == TexelFilter::Linear ? "linear" : "nearest") + " " +
+                             wrap_name(w) + ": " + kTapCaseNames[c];
+          const char* meaning = kTapCaseMeaning[int(w)][c];
+          if (*meaning) name += std::string(" (") + meaning + ")";
+          group(g_taps_).add(name, tf == TexelFilter::Nearest && c == kEdgePair ? "nearest reads one tap: no pair" : "");
+        }
+
+  g_sign_ = make("coordinate sign x wrap");
+  for (const char* axis : {"u", "v"})
+    for (Wrap w : kWraps)
+      for (const char* s : {">= 0", "< 0"}) group(g_sign_).add(std::string(axis) + " " + s + " " + wrap_name(w));
+
+  g_timing_ = make("timing");
+  for (const char* b : {"response stalled 0 clocks", "response stalled 1-9 clocks", "response stalled 10-99 clocks",
+                        "response stalled >= 100 clocks", "request after an input gap",
+                        "request held by req_ready low"})
+    group(g_timing_).add(b);
+
+  g_pyramid_ = make("pyramid mode");
+  group(g_pyramid_).add("exact");
+  group(g_pyramid_).add("cascade");
+}
+
+void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Request& q) {
+  const size_t fi = fi_of(cfg.filter);
+  ++group(g_filter_wrap_).hits[(fi * 3 + size_t(cfg.wrap_u)) * 3 + size_t(cfg.wrap_v)];
+  ++group(g_pyramid_).hits[size_t(pyr.mode)];
+
+  const int last = pyr.last_level();
+  const int32_t lod = stage::bias_and_clamp(q.lod, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
+  const stage::LevelSelect s = stage::select_levels(lod, cfg.filter.mip, last);
+  int lc = kMagnify;
+  if (lod > 0) {
+    switch (cfg.filter.mip) {
+      case MipMode::None: lc = kMinifyLevel0; break;
+      case MipMode::Nearest: lc = s.d == last ? kLastLevel : s.d > (lod >> kLodFracBits) ? kRoundUp : kRoundDown; break;
+      case MipMode::Linear: lc = !s.two_levels ? kLastLevel : s.f == 0 ? kOnLevel : kBetweenLevels; break;
+    }
+  }
+  ++group(g_level_case_).hits[level_case_bin_[fi][lc]];
+  if (cfg.filter.mip != MipMode::None) ++group(g_level_d_).hits[size_t(s.d)];
+
+  // Taps of every level read: d, and d1 when two levels are blended.
+  const Wrap wraps[2] = {cfg.wrap_u, cfg.wrap_v};
+  const int32_t coords[2] = {q.u, q.v};
+  for (int k = 0; k < (s.two_levels ? 2 : 1); ++k) {
+    const int level = k == 0 ? s.d : s.d1;
+    const LevelShape shape = level_shape(pyr.log2_w0(), pyr.log2_h0(), level);
+    const int log2_sizes[2] = {shape.log2_w, shape.log2_h};
+    for (int axis = 0; axis < 2; ++axis) {
+      const int c = tap_case(coords[axis], log2_sizes[axis], cfg.filter.texel);
+      const size_t bin = ((size_t(axis) * 2 + size_t(cfg.filter.texel)) * 3 + size_t(wraps[axis])) * kTapCases + size_t(c);
+      ++group(g_taps_).hits[bin];
+    }
+  }
+  for (int axis = 0; axis < 2; ++axis)
+    ++group(g_sign_).hits[(size_t(axis) * 3 + size_t(wraps[axis])) * 2 + (coords[axis] < 0)];
+}
+
+void Coverage::timing(const rtl::StreamStats& st) {
+  CoverGroup& g = group(g_timing_);
+  for (size_t i = 0; i < 4; ++i) g.hits[i] += st.responses_by_stall_run[i];
+  g.hits[4] += st.requests_after_gap;
+  g.hits[5] += st.backpressure_cycles;
+}
+
+std::string Coverage::table(bool every_bin) const {
+  std::ostringstream o;
+  size_t all = 0, all_hit = 0, all_unreachable = 0;
+  for (const CoverGroup& g : groups_) {
+    const size_t unreachable = g.bins.size() - g.reachable();
+    o << "  " << g.name << ": " << g.reachable_hit() << " / " << g.reachable() << " hit";
+    if (unreachable) o << " (" << unreachable << " unreachable)";
+    o << "\n";
+    for (size_t i = 0; i < g.bins.size(); ++i)
+      if (g.unreachable[i].empty() && g.hits[i] == 0)
+        o << "    NEVER HIT: " << g.bins[i] << "\n";
+      else if (every_bin)
+        o << "    " << g.hits[i] << "  " << g.bins[i]
+          << (g.unreachable[i].empty() ? "" : "  [unreachable: " + g.unreachable[i] + "]") << "\n";
+    all += g.reachable();
+    all_hit += g.reachable_hit();
+    all_unreachable += unreachable;
+  }
+  o << "  total: " << all_hit << " / " << all << " reachable bins hit, " << all_unreachable << " unreachable\n";
+  return o.str();
+}
+
+std::vector<std::string> Coverage::holes() const {
+  std::vector<std::string> h;
+  for (const CoverGroup& g : groups_)
+    for (size_t i = 0; i < g.bins.size(); ++i) {
+      if (g.unreachable[i].empty() && g.hits[i] == 0) h.push_back(g.name + ": never hit: " + g.bins[i]);
+      if (!g.unreachable[i].empty() && g.hits[i] > 0)
+        h.push_back(g.name + ": hit " + std::to_string(g.hits[i]) + " times but declared unreachable (" +
+                    g.unreachable[i] + "): " + g.bins[i]);
+    }
+  return h;
+}
+
+}  // namespace tex::rtltest
