@@ -108,7 +108,7 @@ Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log
   g_timing_ = make("timing");
   for (const char* b : {"response stalled 0 clocks", "response stalled 1-9 clocks", "response stalled 10-99 clocks",
                         "response stalled >= 100 clocks", "request after an input gap",
-                        "request held by req_ready low"})
+                        "clock with a request held by req_ready low"})
     group(g_timing_).add(b);
 
   g_pyramid_ = make("pyramid mode");
