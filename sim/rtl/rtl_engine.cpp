@@ -46,7 +46,7 @@ EngineResult run_rtl(const Pyramid& pyramid, const SamplerConfig& config, const 
   };
   const StreamStats st = unit->stream(
       requests.data(), requests.size(), timing, options.seed ^ 0x5DEECE66DULL,
-      [&](size_t i, uint32_t rgba) { r.texels[i] = unpack_rgba8(rgba); }, progress);
+      [&](size_t i, uint64_t rgba) { r.texels[i] = unpack_rgba8(rgba); }, progress);
   if (show) std::fprintf(stderr, "\r%60s\r", "");
   const auto t2 = std::chrono::steady_clock::now();
   unit->close_trace();

@@ -35,21 +35,30 @@ inline double unit(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9
 
 }  // namespace
 
-uint32_t pack_rgba8(const Texel& t) {
-  return uint32_t(t[0] & 255) | uint32_t(t[1] & 255) << 8 | uint32_t(t[2] & 255) << 16 | uint32_t(t[3] & 255) << 24;
+uint64_t pack_rgba(const Texel& t, int cw) {
+  const uint64_t mask = (uint64_t(1) << cw) - 1;
+  uint64_t p = 0;
+  for (int c = 3; c >= 0; --c) p = p << cw | (t[size_t(c)] & mask);
+  return p;
 }
 
-Texel unpack_rgba8(uint32_t p) {
-  return {uint16_t(p & 255), uint16_t((p >> 8) & 255), uint16_t((p >> 16) & 255), uint16_t(p >> 24)};
+Texel unpack_rgba(uint64_t p, int cw) {
+  const uint64_t mask = (uint64_t(1) << cw) - 1;
+  Texel t;
+  for (size_t c = 0; c < 4; ++c) t[c] = uint16_t((p >> (int(c) * cw)) & mask);
+  return t;
 }
 
 const RtlShape& smallest_shape_for(int log2_w, int log2_h) {
-  for (const RtlShape& s : compiled_shapes())  // smallest first
+  const RtlShape* big = nullptr;
+  for (const RtlShape& s : compiled_shapes()) {  // smallest first
+    if (s.cw != 8) continue;
     if (s.fits(log2_w, log2_h)) return s;
-  const RtlShape& big = compiled_shapes().back();
+    big = &s;
+  }
   throw Error("texture " + std::to_string(1 << log2_w) + "x" + std::to_string(1 << log2_h) +
-              " does not fit the RTL: the largest compiled tex_unit takes " + std::to_string(1 << big.max_log2_w) +
-              "x" + std::to_string(1 << big.max_log2_h) + " (use --engine model for larger textures)");
+              " does not fit the RTL: the largest compiled tex_unit takes " + std::to_string(1 << big->max_log2_w) +
+              "x" + std::to_string(1 << big->max_log2_h) + " (use --engine model for larger textures)");
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
@@ -134,8 +143,8 @@ void Harness::load(const Pyramid& pyramid) {
   const int lw = pyramid.log2_w0(), lh = pyramid.log2_h0();
   if (!shape_.fits(lw, lh))
     throw Error("texture " + std::to_string(1 << lw) + "x" + std::to_string(1 << lh) + " does not fit " + shape_.name);
-  if (pyramid.levels[0].channel_bits != 8)
-    throw Error("the RTL is built for 8-bit channels; this texture has " +
+  if (pyramid.levels[0].channel_bits != shape_.cw)
+    throw Error(shape_.name + " is built for " + std::to_string(shape_.cw) + "-bit channels; this texture has " +
                 std::to_string(pyramid.levels[0].channel_bits));
   PinsIn in;
   in.wr_en = true;
@@ -147,7 +156,7 @@ void Harness::load(const Pyramid& pyramid) {
       for (int x = 0; x < img.width; ++x) {
         in.wr_x = uint16_t(x);
         in.wr_y = uint16_t(y);
-        in.wr_data = pack_rgba8(img.at(x, y));
+        in.wr_data = pack_rgba(img.at(x, y), shape_.cw);
         tick(in);
       }
   }

@@ -16,17 +16,18 @@
 
 namespace tex::rtl {
 
-// One Verilated parameter configuration of tex_unit (CW = 8, TAG_W = 16).
+// One Verilated parameter configuration of tex_unit (TAG_W = 16).
 struct RtlShape {
   std::string name;  // Verilator --prefix, e.g. "Vtex_unit_10x10"
   int max_log2_w = 0, max_log2_h = 0;
+  int cw = 8;  // bits per channel
   bool fits(int log2_w, int log2_h) const { return log2_w <= max_log2_w && log2_h <= max_log2_h; }
 };
 
-// Every compiled configuration, smallest first.
+// Every compiled configuration: the 8-bit ones smallest first, then the 16-bit one.
 const std::vector<RtlShape>& compiled_shapes();
-// The smallest configuration that holds a 2^log2_w x 2^log2_h texture; throws tex::Error naming
-// the largest one when none does.
+// The smallest 8-bit configuration that holds a 2^log2_w x 2^log2_h texture; throws tex::Error
+// naming the largest one when none does.
 const RtlShape& smallest_shape_for(int log2_w, int log2_h);
 
 constexpr int kTagBits = 16;
@@ -38,7 +39,7 @@ struct PinsIn {
   bool wr_en = false;
   uint8_t wr_level = 0;
   uint16_t wr_x = 0, wr_y = 0;
-  uint32_t wr_data = 0;  // {A, B, G, R}
+  uint64_t wr_data = 0;  // {A, B, G, R}, CW bits each
   bool req_valid = false;
   int32_t req_u = 0, req_v = 0;  // Q8.24
   int16_t req_lod = 0;           // Q8.8
@@ -51,7 +52,7 @@ struct PinsIn {
 struct PinsOut {
   bool req_ready = false;
   bool rsp_valid = false;
-  uint32_t rsp_rgba = 0;
+  uint64_t rsp_rgba = 0;  // {A, B, G, R}, CW bits each
   uint16_t rsp_tag = 0;
 };
 
@@ -133,7 +134,7 @@ class Harness {
   // oldest outstanding one (lost, duplicated or reordered), a response with nothing outstanding,
   // or no progress for the time-out is a tex::Error naming tag, request index and clock.
   // on_response(index, rgba) is called for every response, in order.
-  using ResponseFn = std::function<void(size_t index, uint32_t rgba)>;
+  using ResponseFn = std::function<void(size_t index, uint64_t rgba)>;
   StreamStats stream(const Request* requests, size_t n, const Timing& timing, uint64_t seed,
                      const ResponseFn& on_response, const std::function<void(size_t done)>& progress = {});
 
@@ -157,8 +158,10 @@ class Harness {
   CfgPins cfg_{};
 };
 
-// Texel <-> packed {A, B, G, R}.
-uint32_t pack_rgba8(const Texel& t);
-Texel unpack_rgba8(uint32_t p);
+// Texel <-> packed {A, B, G, R} of cw bits each (R in the low bits).
+uint64_t pack_rgba(const Texel& t, int cw);
+Texel unpack_rgba(uint64_t p, int cw);
+inline uint32_t pack_rgba8(const Texel& t) { return uint32_t(pack_rgba(t, 8)); }
+inline Texel unpack_rgba8(uint64_t p) { return unpack_rgba(p, 8); }
 
 }  // namespace tex::rtl

@@ -5,10 +5,12 @@
 #include <verilated_fst_c.h>
 
 #include <memory>
+#include <type_traits>
 
 #include "Vtex_unit_10x10.h"
 #include "Vtex_unit_4x4.h"
 #include "Vtex_unit_6x3.h"
+#include "Vtex_unit_5x4_cw16.h"
 #include "model/error.h"
 #include "rtl_harness.h"
 
@@ -51,7 +53,7 @@ class VerilatedTexUnit final : public Harness {
     t.wr_level = in.wr_level;
     t.wr_x = in.wr_x;
     t.wr_y = in.wr_y;
-    t.wr_data = in.wr_data;
+    t.wr_data = std::remove_reference_t<decltype(t.wr_data)>(in.wr_data);  // 32 or 64 bits: 4 * CW
     t.req_valid = in.req_valid;
     t.req_u = uint32_t(in.req_u);
     t.req_v = uint32_t(in.req_v);
@@ -106,13 +108,16 @@ class VerilatedTexUnit final : public Harness {
 
 const std::vector<RtlShape>& compiled_shapes() {
   static const std::vector<RtlShape> shapes = {
-      {"Vtex_unit_4x4", 4, 4}, {"Vtex_unit_6x3", 6, 3}, {"Vtex_unit_10x10", 10, 10}};
+      {"Vtex_unit_4x4", 4, 4, 8}, {"Vtex_unit_6x3", 6, 3, 8}, {"Vtex_unit_10x10", 10, 10, 8},
+      {"Vtex_unit_5x4_cw16", 5, 4, 16}};
   return shapes;
 }
 
 std::unique_ptr<Harness> Harness::create(const RtlShape& shape, const HarnessOptions& options) {
   if (shape.name == "Vtex_unit_4x4") return std::make_unique<VerilatedTexUnit<Vtex_unit_4x4>>(shape, options);
   if (shape.name == "Vtex_unit_6x3") return std::make_unique<VerilatedTexUnit<Vtex_unit_6x3>>(shape, options);
+  if (shape.name == "Vtex_unit_5x4_cw16")
+    return std::make_unique<VerilatedTexUnit<Vtex_unit_5x4_cw16>>(shape, options);
   if (shape.name == "Vtex_unit_10x10") return std::make_unique<VerilatedTexUnit<Vtex_unit_10x10>>(shape, options);
   throw Error("no compiled RTL configuration named '" + shape.name + "'");
 }

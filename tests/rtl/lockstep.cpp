@@ -49,17 +49,18 @@ LockstepResult lockstep(rtl::Harness& unit, const Pyramid& pyramid, const Sample
   LockstepResult res;
   unit.configure(rtl::cfg_pins(config, pyramid.log2_w0(), pyramid.log2_h0()));
   Sampler model(pyramid, config);
-  std::vector<uint32_t> expected(requests.size());
-  for (size_t i = 0; i < requests.size(); ++i) expected[i] = rtl::pack_rgba8(model.sample(requests[i]));
+  const int cw = unit.shape().cw;
+  std::vector<uint64_t> expected(requests.size());
+  for (size_t i = 0; i < requests.size(); ++i) expected[i] = rtl::pack_rgba(model.sample(requests[i]), cw);
   std::vector<uint8_t> answered(requests.size(), 0);
   std::ostringstream report;
   try {
-    res.stats = unit.stream(requests.data(), requests.size(), timing, seed, [&](size_t i, uint32_t got) {
+    res.stats = unit.stream(requests.data(), requests.size(), timing, seed, [&](size_t i, uint64_t got) {
       ++res.compared;
       if (answered[i]++) report << "request #" << i << " answered twice\n";
       if (got != expected[i] && ++res.mismatches <= 5)
-        report << "request #" << i << " " << describe(requests[i]) << ": rtl " << describe(rtl::unpack_rgba8(got))
-               << " model " << describe(rtl::unpack_rgba8(expected[i])) << "\n";
+        report << "request #" << i << " " << describe(requests[i]) << ": rtl " << describe(rtl::unpack_rgba(got, cw))
+               << " model " << describe(rtl::unpack_rgba(expected[i], cw)) << "\n";
     });
     for (size_t i = 0; i < requests.size(); ++i)
       if (!answered[i]) {
@@ -178,9 +179,10 @@ rtl::Timing random_timing(std::mt19937_64& rng, std::string& name) {
   return t;
 }
 
-std::unique_ptr<rtl::Harness> make_unit(int max_log2_w, int max_log2_h, uint64_t seed, const std::string& trace) {
+std::unique_ptr<rtl::Harness> make_unit(int max_log2_w, int max_log2_h, uint64_t seed, const std::string& trace,
+                                        int cw) {
   for (const rtl::RtlShape& s : rtl::compiled_shapes())
-    if (s.max_log2_w == max_log2_w && s.max_log2_h == max_log2_h) {
+    if (s.max_log2_w == max_log2_w && s.max_log2_h == max_log2_h && s.cw == cw) {
       rtl::HarnessOptions o;
       o.seed = seed;
       o.trace_path = trace;
@@ -188,7 +190,8 @@ std::unique_ptr<rtl::Harness> make_unit(int max_log2_w, int max_log2_h, uint64_t
       unit->reset();
       return unit;
     }
-  throw Error("no compiled configuration " + std::to_string(max_log2_w) + "x" + std::to_string(max_log2_h));
+  throw Error("no compiled configuration " + std::to_string(max_log2_w) + "x" + std::to_string(max_log2_h) +
+              " with " + std::to_string(cw) + "-bit channels");
 }
 
 }  // namespace tex::rtltest

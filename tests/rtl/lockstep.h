@@ -54,6 +54,6 @@ std::vector<Filter> all_filters();
 
 // The harness of the named configuration, reset.
 std::unique_ptr<rtl::Harness> make_unit(int max_log2_w, int max_log2_h, uint64_t seed = 1,
-                                        const std::string& trace = "");
+                                        const std::string& trace = "", int cw = 8);
 
 }  // namespace tex::rtltest

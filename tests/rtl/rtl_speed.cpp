@@ -33,7 +33,7 @@ void BM_RtlStream(benchmark::State& state) {
   uint64_t samples = 0, clocks = 0, sink = 0;
   for (auto _ : state) {
     const rtl::StreamStats st =
-        unit->stream(reqs.data(), reqs.size(), timing, 7, [&](size_t, uint32_t rgba) { sink += rgba; });
+        unit->stream(reqs.data(), reqs.size(), timing, 7, [&](size_t, uint64_t rgba) { sink += rgba; });
     samples += st.samples;
     clocks += st.cycles + 64;  // + the idle clocks of the duplicate check
   }

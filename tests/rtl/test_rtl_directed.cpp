@@ -29,7 +29,7 @@ struct Fixture {
     std::vector<Texel> out(reqs.size());
     unit->configure(rtl::cfg_pins(cfg, pyr.log2_w0(), pyr.log2_h0()));
     unit->stream(reqs.data(), reqs.size(), rtl::Timing::ideal(), 1,
-                 [&](size_t i, uint32_t p) { out[i] = rtl::unpack_rgba8(p); });
+                 [&](size_t i, uint64_t p) { out[i] = rtl::unpack_rgba8(p); });
     const LockstepResult r = lockstep(*unit, pyr, cfg, reqs, rtl::Timing{0.6, 6, 0.6, 6, 0, 0}, 99);
     EXPECT_TRUE(r.ok()) << describe(cfg) << "\n" << r.report;
     EXPECT_EQ(r.compared, reqs.size());

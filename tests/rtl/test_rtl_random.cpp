@@ -16,16 +16,26 @@ using namespace tex::rtltest;
 namespace {
 
 struct TextureSpec {
-  std::string pattern;
+  std::string pattern;  // a built-in pattern (8-bit), or "noise16": every channel random over 16 bits
   int width, height;
   PyramidMode mode;
 };
+
+Image make_texture(const TextureSpec& ts) {
+  if (ts.pattern != "noise16") return make_pattern(ts.pattern, ts.width, ts.height);
+  Image img(ts.width, ts.height, 16);
+  std::mt19937_64 rng(uint64_t(ts.width) * 4099 + uint64_t(ts.height));
+  for (Texel& t : img.texels)
+    for (uint16_t& c : t) c = uint16_t(rng());
+  return img;
+}
 
 struct RandomSuite {
   std::string name;
   int max_log2_w, max_log2_h;
   std::vector<TextureSpec> textures;
   size_t requests_per_case;  // per (texture, filter, wrap u, wrap v)
+  int cw = 8;                // bits per channel of the configuration and of its textures
 };
 
 // Totals of one suite (the functional coverage is in coverage.h).
@@ -37,7 +47,7 @@ void run_suite(const RandomSuite& suite) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::optional<uint64_t> only = env_u64("TEX_SEED");
   const uint64_t base = mix64(seed_base() ^ std::hash<std::string>{}(suite.name));
-  auto unit = make_unit(suite.max_log2_w, suite.max_log2_h, base);
+  auto unit = make_unit(suite.max_log2_w, suite.max_log2_h, base, "", suite.cw);
   const std::vector<Filter> filters = all_filters();
   Totals totals;
   Coverage coverage(suite.max_log2_w, suite.max_log2_h);
@@ -52,7 +62,7 @@ void run_suite(const RandomSuite& suite) {
           const uint64_t seed = mix64(base + ((ti * 6 + fi) * 3 + wu) * 3 + wv);
           if (only && *only != seed) continue;
           if (!pyr) {
-            pyr = build_pyramid(make_pattern(ts.pattern, ts.width, ts.height), ts.mode);
+            pyr = build_pyramid(make_texture(ts), ts.mode);
             unit->load(*pyr);
           }
           std::mt19937_64 rng(seed);
@@ -132,4 +142,13 @@ TEST(RtlRandom, Large10x10) {
               {"noise", 128, 1024, PyramidMode::Cascade},
               {"noise", 1024, 2, PyramidMode::Exact}},
              6000});
+}
+
+TEST(RtlRandom, Wide16Bit5x4) {
+  // 16-bit channels (CW = 16): the lerps' products and the rounding at full width.
+  run_suite({"Wide16Bit5x4", 5, 4,
+             {{"noise16", 32, 16, PyramidMode::Exact},
+              {"noise16", 8, 16, PyramidMode::Cascade},
+              {"noise16", 32, 1, PyramidMode::Cascade}},
+             3000, 16});
 }

@@ -210,7 +210,7 @@ std::string stream_error(Fault fault, uint64_t at, const rtl::Timing& timing) {
   FakeUnit unit(fault, at);
   std::vector<Request> reqs(100);
   try {
-    unit.stream(reqs.data(), reqs.size(), timing, 5, [](size_t i, uint32_t rgba) {
+    unit.stream(reqs.data(), reqs.size(), timing, 5, [](size_t i, uint64_t rgba) {
       if (rgba != i * 3u) throw Error("data of request " + std::to_string(i) + " is wrong");
     });
   } catch (const Error& e) {
