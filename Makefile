@@ -45,6 +45,7 @@ bench: build
 FIG_ENGINE ?= model
 figures: build
 	$(TEXSIM) figures --engine $(FIG_ENGINE) --width 320 --height 240 --reference-samples 6 --out $(OUT)/figures
+	$(TEXSIM) mip --texture testcard:256x256 --layout $(OUT)/figures/fig1_layout.png
 	/usr/bin/python3 scripts/figures.py $(OUT)/figures
 
 # Long RTL soak (docs/verification.md): a failing case prints TEX_SEED; replay with the same base.

@@ -83,6 +83,10 @@ def main():
         "of the pixels on the surface; errors in 8-bit steps (LSB). Plain tables and single images: "
         "<a href='index.md'>index.md</a>.</p>",
     ]
+    if os.path.exists(os.path.join(out_dir, "fig1_layout.png")):
+        parts.append("<h2>Figure 1: the memory layout of a colour mip map</h2><p>R, G and B planes in three "
+                     "quadrants, each level's planes in the upper-left quadrant of its parent "
+                     "(<code>texsim mip --layout</code>).</p><p><img src='fig1_layout.png' alt='mip map layout'></p>")
     for scene in m["scenes"]:
         name = comparison(out_dir, scene, m["heat_map_full_scale_lsb"])
         parts.append(f"<h2>{e(scene['scene'])}</h2><p>{e(scene['caption'])}</p>")
