@@ -2,6 +2,7 @@
 # Installs the Debian bookworm packages the project needs, if any are missing.
 # Called by the Makefile before every build; quiet and quick when all are present.
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^set -/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0;; esac
 packages=(
   cmake g++ make pkg-config
   libgtest-dev libbenchmark-dev          # tests and benchmarks

@@ -6,6 +6,7 @@
 #                                   LUT/BRAM use and Fmax (run by `make synth`)
 # Configurations: MAX_LOG2_W MAX_LOG2_H CW. Logs and netlists go to BUILD/synth/.
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^set -/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0;; esac
 cd "$(dirname "$0")/.."
 mode=full
 if [ "${1:-}" = latch ]; then mode=latch; shift; fi
