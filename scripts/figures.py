@@ -94,7 +94,25 @@ def main():
         for v in scene["variants"]:
             parts.append(f"<tr><td>{e(v['label'])}</td><td>{v['psnr_db']:.2f}</td><td>{v['max_error_lsb']:.1f}</td>"
                          f"<td>{v['mean_error_lsb']:.2f}</td></tr>")
-        parts.append(f"</table><p><img src='{name}' alt='{e(scene['scene'])} comparison'></p>")
+        parts.append("</table>")
+        if scene.get("vertex_errors"):
+            parts.append("<p>Vertex space: the distance |P - P<sub>ref</sub>| between each sampled vertex position "
+                         "(X, Y, Z) and the reference's (the box-filtered 16-bit map at the vertex's (u, v) and "
+                         "footprint), in level-0 texels (1/256 of the map's full scale); RMS and max over all "
+                         "vertices, the interior ones, and those on a face's border, where the pyramid's "
+                         "clamp-to-edge pulls the vertex 2<sup>&lambda;-1</sup> texels inwards (docs/scenes.md). "
+                         "Unlike the picture metrics it is not swayed by silhouette shifts and flat shading.</p>")
+            parts.append("<table><tr><th>variant</th><th>RMS all</th><th>max all</th><th>RMS interior</th>"
+                         "<th>max interior</th><th>RMS border</th><th>max border</th></tr>")
+            for v in scene["vertex_errors"]:
+                cells = "".join(f"<td>{v[p]['rms_texels']:.2f}</td><td>{v[p]['max_texels']:.2f}</td>"
+                                for p in ("all", "interior", "border"))
+                parts.append(f"<tr><td>{e(v['label'])}</td>{cells}</tr>")
+            v0 = scene["vertex_errors"][0]
+            parts.append(f"<tr><td>vertices</td><td colspan=2>{v0['all']['vertices']}</td>"
+                         f"<td colspan=2>{v0['interior']['vertices']}</td><td colspan=2>{v0['border']['vertices']}</td></tr>")
+            parts.append("</table>")
+        parts.append(f"<p><img src='{name}' alt='{e(scene['scene'])} comparison'></p>")
     parts.append("<h2>Temporal aliasing (flicker)</h2><p>Per frame step, the mean |F(t+1) - F(t)| of a variant and of "
                  "the reference, and the excess mean |(F(t+1) - F(t)) - (R(t+1) - R(t))|: the frame-to-frame change "
                  "the real-valued reference does not have (0 = no flicker).</p>")
@@ -104,6 +122,18 @@ def main():
         parts.append(f"<tr><td>{e(f['scene'])}</td><td>{e(f['filter'])}</td><td>{f['mean_change']:.2f}</td>"
                      f"<td>{f['mean_reference_change']:.2f}</td><td>{f['mean_excess']:.2f}</td></tr>")
     parts.append(f"</table><p><img src='{flicker_plot(out_dir, m['flicker'])}' alt='flicker per frame'></p>")
+    if m.get("mesh_vertex_jitter"):
+        parts.append("<h3>The mesh animation in vertex space</h3><p>Each face as the bilinear patch through its "
+                     "vertices, evaluated at the same 33x33 (u, v) points in every frame; per frame step the mean "
+                     "distance the variant's surface moves, the reference's, and the excess "
+                     "mean |(S(t+1) - S(t)) - (R(t+1) - R(t))| (0 = no popping beyond the ideal surface's), "
+                     "averaged over the steps, in level-0 texels.</p>")
+        parts.append("<table><tr><th>variant</th><th>mean change (texels)</th><th>reference change</th>"
+                     "<th>excess (jitter)</th></tr>")
+        for j in m["mesh_vertex_jitter"]:
+            parts.append(f"<tr><td>{e(j['label'])}</td><td>{j['mean_change']:.3f}</td>"
+                         f"<td>{j['mean_reference_change']:.3f}</td><td>{j['mean_excess']:.3f}</td></tr>")
+        parts.append("</table>")
     parts.append("<h3>The rotating panel (fig. 8-11): point sampling, trilinear, reference</h3>")
     for v in ("point", "trilinear", "reference"):
         parts.append(f"<p><img src='panel_frames_{v}.png' alt='panel frames, {v}'></p>")

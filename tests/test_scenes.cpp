@@ -202,3 +202,78 @@ TEST(SceneMaps, MeshMapHoldsXYZ) {
   // The 8-bit and 16-bit meshes have the same vertices.
   EXPECT_EQ(make_scene("mesh", small()).queries.size(), make_scene("mesh16", small()).queries.size());
 }
+
+// Vertex-space metrics against distances worked out by hand (texels_per_unit 256: 1/256 = 1 texel),
+// on one face of 2 x 2 quads: 9 vertices, the centre one (index 4) interior, 8 on the border.
+TEST(SceneReference, VertexErrorsAreDistancesInTexels) {
+  SceneFrame f;
+  for (int k = 0; k < 9; ++k) {
+    Query q;
+    q.explicit_lod = false;
+    q.u = 0.5 * (k % 3), q.v = 0.5 * (k / 3);
+    q.deriv = {0.5, 0, 0, 0.5};
+    f.queries.push_back(q);
+  }
+  const std::vector<Rgba> reference(9, Rgba{0.5, 0.5, 0.1, 1});
+  std::vector<Rgba> values = reference;
+  values[4] = {0.5 + 3 / 256.0, 0.5 + 4 / 256.0, 0.1, 1};  // off by (3, 4, 0) texels: 5
+  values[0] = {0.5, 0.5, 0.1 + 1 / 256.0, 0};              // off by 1 texel in Z; alpha ignored
+  const VertexErrorStats s = compare_vertices(f, values, reference, 256);
+  EXPECT_EQ(s.all.vertices, 9u);
+  EXPECT_EQ(s.interior.vertices, 1u);
+  EXPECT_EQ(s.border.vertices, 8u);
+  EXPECT_NEAR(s.all.max_texels, 5.0, 1e-9);
+  EXPECT_NEAR(s.all.rms_texels, std::sqrt((25.0 + 1.0) / 9), 1e-9);
+  EXPECT_NEAR(s.interior.rms_texels, 5.0, 1e-9);
+  EXPECT_NEAR(s.border.rms_texels, std::sqrt(1.0 / 8), 1e-9);
+  EXPECT_NEAR(s.border.max_texels, 1.0, 1e-9);
+  values.pop_back();
+  EXPECT_THROW(compare_vertices(f, values, reference, 256), Error);
+}
+
+// A one-quad face whose surface moves 2 texels in X between frames while the reference stays put:
+// change 2, reference change 0, excess 2; moving with the reference leaves no excess.
+TEST(SceneReference, MeshJitterIsTheSurfaceMotionTheReferenceLacks) {
+  SceneFrame f;
+  for (int k = 0; k < 4; ++k) {
+    Query q;
+    q.explicit_lod = false;
+    q.u = k % 2, q.v = k / 2;
+    q.deriv = {1.0, 0, 0, 1.0};  // q = 1: a 2 x 2 vertex grid
+    f.queries.push_back(q);
+  }
+  f.draw = [](const std::vector<Rgba>&) { return RgbaImage{}; };
+  const std::vector<Rgba> still(4, Rgba{0.5, 0.5, 0.2, 1}), moved(4, Rgba{0.5 + 2 / 256.0, 0.5, 0.2, 1});
+  SurfaceJitterStats s = mesh_jitter({f, f}, {still, moved}, {still, still}, 256, 5);
+  ASSERT_EQ(s.excess.size(), 1u);
+  EXPECT_NEAR(s.mean_change, 2.0, 1e-9);
+  EXPECT_NEAR(s.mean_reference_change, 0.0, 1e-12);
+  EXPECT_NEAR(s.mean_excess, 2.0, 1e-9);
+  s = mesh_jitter({f, f}, {still, moved}, {still, moved}, 256, 5);
+  EXPECT_NEAR(s.mean_excess, 0.0, 1e-12);
+}
+
+// Section 5's point, in vertex space at the size `make figures` uses for stills: on the interior
+// vertices, sampling the X, Y, Z pyramid with trilinear interpolation at the mesh's own density is
+// closer to the ideal prefiltered surface than point sampling level 0, with the 8-bit map too (whose
+// shaded picture scores below point's). Measured, not assumed: over ALL vertices trilinear is worse,
+// because on a face's border the pyramid's clamp-to-edge pulls the vertex 2^(lambda-1) texels inwards
+// (checked below); and on faces coarser than this size's smallest (lambda > 6) trilinear's kernel,
+// about 1.7 times as wide as the reference's box, loses the interior too (docs/scenes.md).
+TEST(SceneReference, MeshTrilinearInteriorVerticesAreCloserThanPoint) {
+  const SceneOptions o = small(320, 240);
+  const std::vector<Rgba> reference = reference_query_values("mesh", o);
+  auto errors = [&](const char* scene, const char* filter) {
+    const VariantRender r = render_variant(scene, o, filter, "model");
+    return compare_vertices(r.frame, texels_to_values(r.texels, r.channel_bits), reference, 256);
+  };
+  const VertexErrorStats point = errors("mesh", "point"), tri = errors("mesh", "trilinear");
+  const VertexErrorStats point16 = errors("mesh16", "point"), tri16 = errors("mesh16", "trilinear");
+  EXPECT_LT(tri.interior.rms_texels, point.interior.rms_texels)
+      << "trilinear " << tri.interior.rms_texels << " vs point " << point.interior.rms_texels;
+  EXPECT_LT(tri16.interior.rms_texels, point16.interior.rms_texels)
+      << "trilinear " << tri16.interior.rms_texels << " vs point " << point16.interior.rms_texels;
+  // The border bias: trilinear's border vertices are off by far more than point sampling's.
+  EXPECT_GT(tri16.border.rms_texels, 2 * point16.border.rms_texels)
+      << tri16.border.rms_texels << " vs " << point16.border.rms_texels;
+}

@@ -27,12 +27,17 @@ VariantRender render_variant(const std::string& scene, const SceneOptions& optio
   return r;
 }
 
-RgbaImage render_reference(const std::string& scene, const SceneOptions& options, int samples_per_axis) {
+std::vector<Rgba> reference_query_values(const std::string& scene, const SceneOptions& options,
+                                         int samples_per_axis) {
   // The mesh's reference surface is the 16-bit map: the 8-bit one's rounding is part of the error.
   const SceneFrame frame = make_scene(scene == "mesh" ? "mesh16" : scene, options);
   const Image texture = scene_texture(frame, "");
   const Wrap wrap = frame.clamp_edges ? Wrap::Clamp : Wrap::Repeat;
-  return render_values(frame, reference_values(frame, texture, wrap, wrap, samples_per_axis));
+  return reference_values(frame, texture, wrap, wrap, samples_per_axis);
+}
+
+RgbaImage render_reference(const std::string& scene, const SceneOptions& options, int samples_per_axis) {
+  return render_values(make_scene(scene, options), reference_query_values(scene, options, samples_per_axis));
 }
 
 namespace {
@@ -130,10 +135,33 @@ int make_figures(const FiguresOptions& o) {
                   {"variants", json::array()}};
     md << "## " << scene << "\n\n" << caption_of(scene) << "\n\n"
        << "| variant | PSNR (dB) | max error (LSB) | mean error (LSB) | image | error |\n|---|---|---|---|---|---|\n";
+    // Mesh: also the sampled vertex positions against the reference's (vertex space, texels).
+    const bool mesh = scene == "mesh";
+    const std::vector<Rgba> reference_vertices = mesh ? reference_query_values(scene, still, o.reference_samples) : std::vector<Rgba>{};
+    std::ostringstream vertex_md;
+    double texels_per_unit = 0;  // the mesh map's width: X = 1 is that many level-0 texels
+    std::string vertex_counts;
     for (const Variant& v : variants_of(scene)) {
       const std::string engine = v.model_only ? "model" : o.engine;
       const VariantRender r = render_variant(v.scene, still, v.filter, engine);
       const ErrorStats e = compare_images(r.image, reference);
+      if (mesh) {
+        texels_per_unit = r.frame.own_texture->width;
+        const VertexErrorStats ve = compare_vertices(r.frame, texels_to_values(r.texels, r.channel_bits),
+                                                     reference_vertices, texels_per_unit);
+        json parts;
+        vertex_md << "| " << v.label;
+        for (const auto& [part_name, part] : {std::pair{"all", ve.all}, {"interior", ve.interior}, {"border", ve.border}}) {
+          parts[part_name] = {{"vertices", part.vertices}, {"rms_texels", part.rms_texels}, {"max_texels", part.max_texels}};
+          vertex_md << " | " << fmt(part.rms_texels, 2) << " | " << fmt(part.max_texels, 2);
+        }
+        vertex_md << " |\n";
+        parts["name"] = v.name;
+        parts["label"] = v.label;
+        entry["vertex_errors"].push_back(parts);
+        vertex_counts = "all " + std::to_string(ve.all.vertices) + ", interior " + std::to_string(ve.interior.vertices) +
+                        ", border " + std::to_string(ve.border.vertices);
+      }
       const std::string image = scene + "_" + v.name + ".png", error = scene + "_" + v.name + "_error.png";
       save(to_image8(r.image), dir / image);
       save(error_heat_map(r.image, reference, heat_full_scale), dir / error);
@@ -144,6 +172,15 @@ int make_figures(const FiguresOptions& o) {
          << fmt(e.mean_error_lsb) << " | ![](" << image << ") | ![](" << error << ") |\n";
     }
     md << "| reference | | | | ![](" << scene << "_reference.png) | |\n\n";
+    if (mesh)
+      md << "Vertex space: the distance |P - P_ref| between each sampled vertex position (X, Y, Z) and the "
+         << "reference's (the box-filtered 16-bit map at the vertex's (u, v) and footprint), in level-0 texels "
+         << "(1 texel = 1/" << texels_per_unit << " of the map's full scale); RMS and max over all vertices ("
+         << vertex_counts << "), the interior ones, and those on a face's border (where the pyramid's clamp-to-edge "
+         << "pulls the vertex 2^(lambda-1) texels inwards; docs/scenes.md).\n\n"
+         << "| variant | RMS all | max all | RMS interior | max interior | RMS border | max border |\n"
+         << "|---|---|---|---|---|---|---|\n"
+         << vertex_md.str() << "\n";
     metrics["scenes"].push_back(entry);
     std::fprintf(stderr, "texsim figures: %s done\n", scene.c_str());
   }
@@ -182,6 +219,41 @@ int make_figures(const FiguresOptions& o) {
          << " | " << fmt(s.mean_excess) << " |\n";
     }
     std::fprintf(stderr, "texsim figures: %s animation done\n", scene.c_str());
+  }
+  // The mesh animation in vertex space: how much each variant's surface moves from frame to frame
+  // beyond the reference surface's own change (mesh_jitter, docs/scenes.md).
+  md << "\nMesh animation in vertex space: each face as the bilinear patch through its vertices, evaluated at "
+     << "the same 33x33 (u, v) points in every frame; per frame step the mean distance |S(t+1) - S(t)| the "
+     << "variant's surface moves, the reference's, and the excess mean |(S(t+1) - S(t)) - (R(t+1) - R(t))|, "
+     << "averaged over the steps, in level-0 texels.\n\n"
+     << "| variant | mean change (texels) | reference change | excess (jitter) |\n|---|---|---|---|\n";
+  {
+    std::vector<SceneFrame> mesh_frames;
+    std::vector<std::vector<Rgba>> reference_vertices;
+    for (int f = 0; f < o.frames; ++f) {
+      anim.frame = f;
+      mesh_frames.push_back(make_scene("mesh", anim));
+      reference_vertices.push_back(reference_query_values("mesh", anim, o.reference_samples));
+    }
+    const double texels_per_unit = mesh_frames[0].own_texture->width;
+    for (const Variant& v : variants_of("mesh")) {
+      const std::string engine = v.model_only ? "model" : o.engine;
+      std::vector<std::vector<Rgba>> values;
+      for (int f = 0; f < o.frames; ++f) {
+        anim.frame = f;
+        const VariantRender r = render_variant(v.scene, anim, v.filter, engine);
+        values.push_back(texels_to_values(r.texels, r.channel_bits));
+      }
+      const SurfaceJitterStats s = mesh_jitter(mesh_frames, values, reference_vertices, texels_per_unit);
+      metrics["mesh_vertex_jitter"].push_back({{"name", v.name}, {"label", v.label}, {"change", s.change},
+                                               {"reference_change", s.reference_change}, {"excess", s.excess},
+                                               {"mean_change", s.mean_change},
+                                               {"mean_reference_change", s.mean_reference_change},
+                                               {"mean_excess", s.mean_excess}});
+      md << "| " << v.label << " | " << fmt(s.mean_change, 3) << " | " << fmt(s.mean_reference_change, 3) << " | "
+         << fmt(s.mean_excess, 3) << " |\n";
+    }
+    std::fprintf(stderr, "texsim figures: mesh vertex jitter done\n");
   }
   md << "\nPanel animation, every " << std::max(1, o.frames / 8) << ". frame (point sampling, trilinear, reference):\n\n"
      << "![](panel_frames_point.png)\n\n![](panel_frames_trilinear.png)\n\n![](panel_frames_reference.png)\n";

@@ -19,7 +19,10 @@ struct VariantRender {
 };
 VariantRender render_variant(const std::string& scene, const SceneOptions& options, const std::string& filter,
                              const std::string& engine);
-// The real-valued reference picture of a scene frame (reference_values of the scene's level 0).
+// The real-valued reference value of every query of a scene frame (reference_values of the scene's
+// level 0; the mesh's reference is the 16-bit map), and the picture drawn from them.
+std::vector<Rgba> reference_query_values(const std::string& scene, const SceneOptions& options,
+                                         int samples_per_axis = 4);
 RgbaImage render_reference(const std::string& scene, const SceneOptions& options, int samples_per_axis = 4);
 
 struct FiguresOptions {

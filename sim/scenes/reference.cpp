@@ -205,4 +205,113 @@ FlickerStats flicker(const std::vector<RgbaImage>& frames, const std::vector<Rgb
   return s;
 }
 
+namespace {
+
+// A mesh frame's faces: consecutive blocks of (q+1)^2 vertices, q = 1 / (the block's u step).
+struct FaceBlock {
+  size_t first;
+  int quads;
+};
+std::vector<FaceBlock> face_blocks(const SceneFrame& frame) {
+  std::vector<FaceBlock> faces;
+  for (size_t i = 0; i < frame.queries.size();) {
+    const int q = int(std::lround(1 / frame.queries[i].deriv.dudx));
+    if (q < 1) throw Error("mesh: a face's vertex step is not 1/q");
+    faces.push_back({i, q});
+    i += size_t(q + 1) * (q + 1);
+    if (i > frame.queries.size()) throw Error("mesh: the vertices do not form whole faces");
+  }
+  return faces;
+}
+
+// The bilinear patch through a face's vertex grid at (u, v) in [0, 1].
+Rgba patch_at(const std::vector<Rgba>& values, const FaceBlock& f, double u, double v) {
+  const int n = f.quads + 1;
+  const double x = u * f.quads, y = v * f.quads;
+  const int i = std::min(int(x), f.quads - 1), j = std::min(int(y), f.quads - 1);
+  const double fx = x - i, fy = y - j;
+  const Rgba &a = values[f.first + j * n + i], &b = values[f.first + j * n + i + 1];
+  const Rgba &c = values[f.first + (j + 1) * n + i], &d = values[f.first + (j + 1) * n + i + 1];
+  Rgba r;
+  for (int k = 0; k < 4; ++k) r[k] = (a[k] * (1 - fx) + b[k] * fx) * (1 - fy) + (c[k] * (1 - fx) + d[k] * fx) * fy;
+  return r;
+}
+
+}  // namespace
+
+VertexErrorStats compare_vertices(const SceneFrame& frame, const std::vector<Rgba>& values,
+                                  const std::vector<Rgba>& reference, double texels_per_unit) {
+  if (values.size() != reference.size() || values.size() != frame.queries.size())
+    throw Error("compare_vertices: vertex counts differ");
+  VertexErrorStats s;
+  double sq_all = 0, sq_interior = 0, sq_border = 0;
+  auto add = [](VertexErrorStats::Part& p, double& sq, double d2) {
+    sq += d2;
+    p.max_texels = std::max(p.max_texels, std::sqrt(d2));
+    ++p.vertices;
+  };
+  for (const FaceBlock& f : face_blocks(frame)) {
+    const int n = f.quads + 1;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const size_t k = f.first + size_t(j) * n + i;
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) {
+          const double d = (values[k][c] - reference[k][c]) * texels_per_unit;
+          d2 += d * d;
+        }
+        add(s.all, sq_all, d2);
+        if (i == 0 || j == 0 || i == f.quads || j == f.quads) add(s.border, sq_border, d2);
+        else add(s.interior, sq_interior, d2);
+      }
+  }
+  auto finish = [](VertexErrorStats::Part& p, double sq) {
+    if (p.vertices) p.rms_texels = std::sqrt(sq / p.vertices);
+  };
+  finish(s.all, sq_all), finish(s.interior, sq_interior), finish(s.border, sq_border);
+  return s;
+}
+
+
+SurfaceJitterStats mesh_jitter(const std::vector<SceneFrame>& frames, const std::vector<std::vector<Rgba>>& values,
+                               const std::vector<std::vector<Rgba>>& reference, double texels_per_unit,
+                               int samples_per_axis) {
+  if (frames.size() != values.size() || frames.size() != reference.size())
+    throw Error("mesh_jitter: frame counts differ");
+  const int s = std::max(2, samples_per_axis);
+  SurfaceJitterStats out;
+  for (size_t t = 0; t + 1 < frames.size(); ++t) {
+    const auto fa = face_blocks(frames[t]), fb = face_blocks(frames[t + 1]);
+    if (fa.size() != fb.size()) throw Error("mesh_jitter: face counts differ between frames");
+    double change = 0, ref_change = 0, excess = 0;
+    size_t n = 0;
+    for (size_t k = 0; k < fa.size(); ++k)
+      for (int j = 0; j < s; ++j)
+        for (int i = 0; i < s; ++i) {
+          const double u = double(i) / (s - 1), v = double(j) / (s - 1);
+          const Rgba a = patch_at(values[t], fa[k], u, v), b = patch_at(values[t + 1], fb[k], u, v);
+          const Rgba ra = patch_at(reference[t], fa[k], u, v), rb = patch_at(reference[t + 1], fb[k], u, v);
+          double d2 = 0, rd2 = 0, e2 = 0;
+          for (int c = 0; c < 3; ++c) {
+            const double d = (b[c] - a[c]) * texels_per_unit, rd = (rb[c] - ra[c]) * texels_per_unit;
+            d2 += d * d, rd2 += rd * rd, e2 += (d - rd) * (d - rd);
+          }
+          change += std::sqrt(d2), ref_change += std::sqrt(rd2), excess += std::sqrt(e2);
+          ++n;
+        }
+    out.change.push_back(n ? change / n : 0);
+    out.reference_change.push_back(n ? ref_change / n : 0);
+    out.excess.push_back(n ? excess / n : 0);
+  }
+  auto mean = [](const std::vector<double>& v) {
+    double m = 0;
+    for (double x : v) m += x;
+    return v.empty() ? 0 : m / v.size();
+  };
+  out.mean_change = mean(out.change);
+  out.mean_reference_change = mean(out.reference_change);
+  out.mean_excess = mean(out.excess);
+  return out;
+}
+
 }  // namespace tex
