@@ -118,6 +118,8 @@ VertexErrorStats compare_vertices(const SceneFrame& frame, const std::vector<Rgb
 struct SurfaceJitterStats {
   std::vector<double> change, reference_change, excess;
   double mean_change = 0, mean_reference_change = 0, mean_excess = 0;
+  // The same pooled over the (u, v) points inside both frames' inner quads (clear of the border vertices).
+  double mean_interior_change = 0, mean_interior_reference_change = 0, mean_interior_excess = 0;
 };
 SurfaceJitterStats mesh_jitter(const std::vector<SceneFrame>& frames, const std::vector<std::vector<Rgba>>& values,
                                const std::vector<std::vector<Rgba>>& reference, double texels_per_unit,

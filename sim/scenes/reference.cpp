@@ -280,6 +280,8 @@ SurfaceJitterStats mesh_jitter(const std::vector<SceneFrame>& frames, const std:
     throw Error("mesh_jitter: frame counts differ");
   const int s = std::max(2, samples_per_axis);
   SurfaceJitterStats out;
+  double inner_change = 0, inner_ref_change = 0, inner_excess = 0;
+  size_t inner_n = 0;
   for (size_t t = 0; t + 1 < frames.size(); ++t) {
     const auto fa = face_blocks(frames[t]), fb = face_blocks(frames[t + 1]);
     if (fa.size() != fb.size()) throw Error("mesh_jitter: face counts differ between frames");
@@ -298,6 +300,11 @@ SurfaceJitterStats mesh_jitter(const std::vector<SceneFrame>& frames, const std:
           }
           change += std::sqrt(d2), ref_change += std::sqrt(rd2), excess += std::sqrt(e2);
           ++n;
+          const double inner = 1.0 / std::min(fa[k].quads, fb[k].quads);
+          if (u >= inner && u <= 1 - inner && v >= inner && v <= 1 - inner) {
+            inner_change += std::sqrt(d2), inner_ref_change += std::sqrt(rd2), inner_excess += std::sqrt(e2);
+            ++inner_n;
+          }
         }
     out.change.push_back(n ? change / n : 0);
     out.reference_change.push_back(n ? ref_change / n : 0);
@@ -311,6 +318,11 @@ SurfaceJitterStats mesh_jitter(const std::vector<SceneFrame>& frames, const std:
   out.mean_change = mean(out.change);
   out.mean_reference_change = mean(out.reference_change);
   out.mean_excess = mean(out.excess);
+  if (inner_n) {  // pooled over all steps' interior points (their number varies with q)
+    out.mean_interior_change = inner_change / inner_n;
+    out.mean_interior_reference_change = inner_ref_change / inner_n;
+    out.mean_interior_excess = inner_excess / inner_n;
+  }
   return out;
 }
 
