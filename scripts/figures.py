@@ -5,6 +5,7 @@ Usage: /usr/bin/python3 scripts/figures.py OUT_DIR
 Writes OUT_DIR/<scene>_comparison.png, OUT_DIR/flicker.png and OUT_DIR/index.html.
 Needs numpy and matplotlib (Debian's python3-matplotlib, in /usr/bin/python3).
 """
+import argparse
 import html
 import json
 import os
@@ -63,9 +64,9 @@ def flicker_plot(out_dir, flicker):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: scripts/figures.py OUT_DIR")
-    out_dir = sys.argv[1]
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("out_dir", metavar="OUT_DIR", help="directory written by `texsim figures`")
+    out_dir = parser.parse_args().out_dir
     path = os.path.join(out_dir, "metrics.json")
     if not os.path.exists(path):
         sys.exit(f"figures.py: {path}: no such file (run texsim figures first)")
