@@ -10,6 +10,12 @@ namespace tex {
 
 namespace {
 
+double mean_of(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0 : sum / double(v.size());
+}
+
 // Box integrals of level 0 seen as a piecewise-constant image (texel (i, j) covers [i, i+1) x [j, j+1)),
 // continued outside [0, W) x [0, H) by the wrap modes. A summed-area table, interpolated bilinearly
 // (exact for a piecewise-constant image), gives F(x, y) = integral over [0, x] x [0, y] inside one period;
@@ -194,14 +200,9 @@ FlickerStats flicker(const std::vector<RgbaImage>& frames, const std::vector<Rgb
     s.reference_change.push_back(ref_change * k);
     s.excess.push_back(excess * k);
   }
-  auto mean = [](const std::vector<double>& v) {
-    double m = 0;
-    for (double x : v) m += x;
-    return v.empty() ? 0 : m / v.size();
-  };
-  s.mean_change = mean(s.change);
-  s.mean_reference_change = mean(s.reference_change);
-  s.mean_excess = mean(s.excess);
+  s.mean_change = mean_of(s.change);
+  s.mean_reference_change = mean_of(s.reference_change);
+  s.mean_excess = mean_of(s.excess);
   return s;
 }
 
@@ -310,14 +311,9 @@ SurfaceJitterStats mesh_jitter(const std::vector<SceneFrame>& frames, const std:
     out.reference_change.push_back(n ? ref_change / n : 0);
     out.excess.push_back(n ? excess / n : 0);
   }
-  auto mean = [](const std::vector<double>& v) {
-    double m = 0;
-    for (double x : v) m += x;
-    return v.empty() ? 0 : m / v.size();
-  };
-  out.mean_change = mean(out.change);
-  out.mean_reference_change = mean(out.reference_change);
-  out.mean_excess = mean(out.excess);
+  out.mean_change = mean_of(out.change);
+  out.mean_reference_change = mean_of(out.reference_change);
+  out.mean_excess = mean_of(out.excess);
   if (inner_n) {  // pooled over all steps' interior points (their number varies with q)
     out.mean_interior_change = inner_change / inner_n;
     out.mean_interior_reference_change = inner_ref_change / inner_n;
