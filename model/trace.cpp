@@ -30,7 +30,7 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
-std::string where(const std::string& name, int line, const std::string& /*text*/) {
+std::string where(const std::string& name, int line) {
   return name + ":" + std::to_string(line) + ": ";
 }
 
@@ -40,9 +40,9 @@ double parse_number(const std::string& field, const std::string& name, int line,
   errno = 0;
   const double v = std::strtod(s, &end);
   if (field.empty() || end == s || *end != '\0')
-    throw Error(where(name, line, text) + "'" + field + "' is not a number in \"" + text + "\"");
+    throw Error(where(name, line) + "'" + field + "' is not a number in \"" + text + "\"");
   if (!std::isfinite(v) || errno == ERANGE)
-    throw Error(where(name, line, text) + "'" + field + "' is not finite in \"" + text + "\"");
+    throw Error(where(name, line) + "'" + field + "' is not finite in \"" + text + "\"");
   return v;
 }
 
@@ -65,12 +65,12 @@ std::vector<Query> parse_queries(const std::string& text, const std::string& nam
       if (header == "u,v,lod") columns = 3;
       else if (header == "u,v,dudx,dvdx,dudy,dvdy") columns = 6;
       else
-        throw Error(where(name, line_no, line) + "unknown header \"" + line +
+        throw Error(where(name, line_no) + "unknown header \"" + line +
                     "\" (expected u,v,lod or u,v,dudx,dvdx,dudy,dvdy)");
       continue;
     }
     if (int(fields.size()) != columns)
-      throw Error(where(name, line_no, line) + "expected " + std::to_string(columns) + " values, got " +
+      throw Error(where(name, line_no) + "expected " + std::to_string(columns) + " values, got " +
                   std::to_string(fields.size()) + " in \"" + line + "\"");
     double v[6];
     for (int i = 0; i < columns; ++i) v[i] = parse_number(fields[i], name, line_no, line);
