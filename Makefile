@@ -4,15 +4,15 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test bench clean lint synth synth-latch rtl-soak rtl-speed figures
+.PHONY: help deps build demo test model-test bench clean lint synth synth-latch rtl-soak figures
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
 	@echo "make test   - build, then run every test suite"
-	@echo "make bench  - samples/s of the model vs OpenImageIO TextureSystem"
+	@echo "make model-test - the golden model and its tests alone (no OpenImageIO, Verilator, SystemC)"
+	@echo "make bench  - samples/s of the model, OpenImageIO TextureSystem, every engine and the RTL per configuration"
 	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
 	@echo "make rtl-soak  - RTL vs model lockstep, 20x the random samples of make test, new seeds"
-	@echo "make rtl-speed - samples/s and clocks/s of the Verilated RTL per configuration"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make synth  - Yosys latch check, then iCE40 HX8K synthesis + place and route (Fmax, LUTs)"
 	@echo "make clean  - remove $(BUILD)/ and $(OUT)/"
@@ -28,15 +28,21 @@ build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 # The paper's receding plane (fig. 7): point sampling vs trilinear, both through the Verilated RTL
-# with ideal timing (--seed 0), each checked bit for bit against the golden model (--verify).
+# (ideal timing, the default), each checked bit for bit against the golden model (--verify).
 demo: build
 	@mkdir -p $(OUT)
-	$(TEXSIM) render --scene plane --texture checker --filter point --engine rtl --seed 0 --verify --out $(OUT)/plane_point.png
-	$(TEXSIM) render --scene plane --texture checker --filter trilinear --engine rtl --seed 0 --verify --out $(OUT)/plane_trilinear.png
+	$(TEXSIM) render --scene plane --texture checker --filter point --engine rtl --verify --out $(OUT)/plane_point.png
+	$(TEXSIM) render --scene plane --texture checker --filter trilinear --engine rtl --verify --out $(OUT)/plane_trilinear.png
 	@echo "demo: $(OUT)/plane_point.png aliases near the horizon; $(OUT)/plane_trilinear.png does not"
 
 test: build lint synth-latch
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The model without any simulator or image library: its own build tree.
+model-test: deps
+	cmake -S . -B $(BUILD)-model -DCMAKE_BUILD_TYPE=Release -DTEXUNIT_MODEL_ONLY=ON > /dev/null
+	cmake --build $(BUILD)-model -j $(JOBS)
+	cd $(BUILD)-model && ctest --output-on-failure -j $(JOBS)
 
 bench: build
 	$(BUILD)/texunit_bench
@@ -56,9 +62,6 @@ rtl-soak: build
 	@echo "rtl-soak: TEX_SEED_BASE=$(RTL_SOAK_SEED)"
 	cd $(BUILD) && TEX_SCALE=20 TEX_SEED_BASE=$(RTL_SOAK_SEED) ./tests/rtl/texunit_rtl_tests --gtest_filter='RtlRandom.*'
 
-rtl-speed: build
-	$(BUILD)/texunit_rtl_speed
-
 lint:
 	@bash scripts/lint.sh
 
@@ -70,4 +73,4 @@ synth:
 	@bash scripts/synth.sh $(BUILD)
 
 clean:
-	rm -rf $(BUILD) $(OUT)
+	rm -rf $(BUILD) $(BUILD)-model $(OUT)

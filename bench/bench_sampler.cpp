@@ -1,7 +1,8 @@
 // `make bench`: samples/s of the golden model (fast path sample_rgba8 and reference path sample),
-// of every engine this build has (through tex::run_engine), and of OpenImageIO's TextureSystem, all
-// on the same 1024x1024 texture and the same queries, single-threaded, in one process. Ends with a
-// summary table of the ratios. docs/performance.md explains the set-up and the figures.
+// of every engine this build has (tex::make_engine), of the Verilated RTL's sampling phase per
+// configuration, and of OpenImageIO's TextureSystem, all on the same 1024x1024 texture and queries,
+// single-threaded, in one process. Ends with summary tables of the ratios to the model's fast path.
+// docs/performance.md explains the set-up and the figures.
 #include <benchmark/benchmark.h>
 
 #include <OpenImageIO/imagebuf.h>
@@ -27,7 +28,8 @@
 #include "model/lod.h"
 #include "model/pyramid.h"
 #include "model/sampler.h"
-#include "sim/engine.h"
+#include "bench_rtl.h"
+#include "engines/engine.h"
 
 namespace {
 
@@ -184,23 +186,32 @@ void BM_oiio_texturesystem(benchmark::State& state, const QuerySet* set) {
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(set->ts.size()));
 }
 
-// One engine of sim/engine.h on the first kEngineQueries queries, in wall-clock time (an engine may
-// work in a child process). main() registers those of kBenchEngines that this build has.
-// Cycle-accurate engines run with ideal timing (seed 0) and also report their sampling phase
-// alone (stats "sample_seconds"), without the texture load through the write port.
-const std::vector<std::string> kBenchEngines = {"model", "rtl", "systemc", "systemc-model"};
+// One engine on the first kEngineQueries queries, end to end in wall-clock time (engine set-up,
+// texture load, sampling; an engine may work in a child process), with the defaults of texsim:
+// ideal timing, backdoor load. "rtl-port-load" is the RTL loading through its write port.
+// The sampling phase alone is reported too (stats sample_seconds).
+struct BenchEngine {
+  std::string label, engine;
+  tex::LoadMethod load;
+};
+std::vector<BenchEngine> bench_engines() {
+  std::vector<BenchEngine> list;
+  for (const tex::EngineInfo& e : tex::engines()) list.push_back({e.name, e.name, tex::LoadMethod::Backdoor});
+  list.push_back({"rtl-port-load", "rtl", tex::LoadMethod::Port});
+  return list;
+}
 
-void BM_engine(benchmark::State& state, const std::string& engine, const QuerySet* set) {
+void BM_engine(benchmark::State& state, const BenchEngine& engine, const QuerySet* set) {
   const size_t n = std::min(kEngineQueries, set->requests.size());
   const std::vector<tex::Request> requests(set->requests.begin(), set->requests.begin() + ptrdiff_t(n));
   tex::EngineOptions options;
-  options.seed = 0;
+  options.load = engine.load;
   double sample_seconds = 0;
   for (auto _ : state) {
     try {
-      const tex::EngineResult r = tex::run_engine(engine, g->pyramid, g->config, requests, options);
+      const tex::EngineResult r = tex::make_engine(engine.engine, options)->run(g->pyramid, g->config, requests);
       benchmark::DoNotOptimize(r.texels.data());
-      sample_seconds += r.stats.value("sample_seconds", 0.0);
+      sample_seconds += r.stats.sample_seconds;
     } catch (const std::exception& e) {
       state.SkipWithError(e.what());
       break;
@@ -213,7 +224,7 @@ void BM_engine(benchmark::State& state, const std::string& engine, const QuerySe
 // ------------------------------------------------------------------------------ checks
 
 // The fast path must equal the reference path on every query (the full check is
-// tests/test_fastpath_equivalence.cpp); a mismatch makes the benchmark meaningless.
+// tests/model/test_fastpath_equivalence.cpp); a mismatch makes the benchmark meaningless.
 bool check_fast_equals_reference(const QuerySet& set) {
   tex::Sampler sampler(g->pyramid, g->config);
   std::vector<uint32_t> fast(set.requests.size());
@@ -275,17 +286,9 @@ class RateReporter : public benchmark::ConsoleReporter {
   }
 };
 
-std::vector<std::string> engines_in_build() {
-  std::vector<std::string> out;
-  for (const std::string& e : kBenchEngines)
-    if (std::find(tex::engine_names().begin(), tex::engine_names().end(), e) != tex::engine_names().end())
-      out.push_back(e);
-  return out;
-}
-
 std::string run_name(const std::string& what, const std::string& set) { return what + "/" + set; }
 
-void print_summary(const RateReporter& rep) {
+void print_summary(const RateReporter& rep, const std::vector<std::string>& rtl_runs) {
   auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
   std::printf("\nSummary (samples/s, single thread, 1024x1024 RGBA8, trilinear, repeat; same process)\n");
   std::printf("%-9s %14s %14s %14s %12s %12s\n", "queries", "model fast", "model ref", "OIIO TS", "fast/TS",
@@ -298,21 +301,31 @@ void print_summary(const RateReporter& rep) {
     std::printf("%-9s %12.2f M %12.2f M %12.2f M %11.2fx %11.2fx\n", s.name.c_str(), fast / 1e6, ref / 1e6,
                 ts / 1e6, ratio(fast, ts), ratio(fast, ref));
   }
-  std::printf("\nEngines through tex::run_engine (%zu queries, one run each)\n", kEngineQueries);
-  std::printf("%-9s %-13s %14s %16s %16s %18s\n", "queries", "engine", "samples/s", "vs model engine", "vs model fast",
-              "sampling only/s");
+  std::printf("\nEngines end to end (%zu queries, one run each; texsim's defaults: no stalls, backdoor load)\n",
+              kEngineQueries);
+  std::printf("%-9s %-14s %14s %16s %16s %18s %14s\n", "queries", "engine", "samples/s", "vs model engine",
+              "vs model fast", "sampling only/s", "vs model fast");
   for (const QuerySet& s : g->sets)
-    for (const std::string& e : engines_in_build()) {
-      const double rate = rep.get(run_name("engine_" + e, s.name));
+    for (const BenchEngine& e : bench_engines()) {
+      const double rate = rep.get(run_name("engine_" + e.label, s.name));
       const double model = rep.get(run_name("engine_model", s.name));
       const double fast = rep.get(run_name("model_fast", s.name));
       if (rate == 0) continue;  // filtered out
-      const auto sampling = rep.sampling_rate.find(run_name("engine_" + e, s.name));
-      std::printf("%-9s %-13s %12.3f M %15.3fx %15.4fx", s.name.c_str(), e.c_str(), rate / 1e6, ratio(rate, model),
-                  ratio(rate, fast));
-      if (sampling != rep.sampling_rate.end()) std::printf(" %16.3f M", sampling->second / 1e6);
+      const auto sampling = rep.sampling_rate.find(run_name("engine_" + e.label, s.name));
+      std::printf("%-9s %-14s %12.3f M %15.3fx %15.4fx", s.name.c_str(), e.label.c_str(), rate / 1e6,
+                  ratio(rate, model), ratio(rate, fast));
+      if (sampling != rep.sampling_rate.end())
+        std::printf(" %16.3f M %13.4fx", sampling->second / 1e6, ratio(sampling->second, fast));
       std::printf("\n");
     }
+  const double fast = rep.get(run_name("model_fast", "random"));
+  std::printf("\nVerilated RTL, sampling phase per configuration (random trilinear queries, ideal timing)\n");
+  std::printf("%-24s %14s %16s\n", "configuration", "samples/s", "vs model fast");
+  for (const std::string& name : rtl_runs) {
+    const double rate = rep.get(name);
+    if (rate == 0) continue;  // filtered out
+    std::printf("%-24s %12.3f M %15.4fx\n", name.substr(name.find('/') + 1).c_str(), rate / 1e6, ratio(rate, fast));
+  }
 }
 
 }  // namespace
@@ -354,9 +367,11 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(("oiio_texturesystem/" + s.name).c_str(), BM_oiio_texturesystem, &s)
           ->MinTime(kMinTime);
     }
+    const std::vector<std::string> rtl_runs = bench::register_rtl_benchmarks(kMinTime);
+    static const std::vector<BenchEngine> engines = bench_engines();
     for (const QuerySet& s : fixture.sets)
-      for (const std::string& e : engines_in_build())
-        benchmark::RegisterBenchmark(("engine_" + e + "/" + s.name).c_str(), BM_engine, e, &s)
+      for (const BenchEngine& e : engines)
+        benchmark::RegisterBenchmark(("engine_" + e.label + "/" + s.name).c_str(), BM_engine, e, &s)
             ->Iterations(1)
             ->UseRealTime();
 
@@ -364,7 +379,7 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     RateReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
-    print_summary(reporter);
+    print_summary(reporter, rtl_runs);
 
     benchmark::Shutdown();
   } catch (const std::exception& e) {

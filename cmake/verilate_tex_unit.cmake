@@ -1,4 +1,4 @@
-# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [SYSTEMC] [TRACE_FST]): tex_unit of rtl/
+# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [TRACE_FST]): tex_unit of rtl/
 # verilated into TARGET as class PREFIX, for textures up to 2^LOG2_W x 2^LOG2_H with CW-bit
 # channels (default 8).
 # One set of options for every build: -Wall (make lint keeps it at zero warnings), assertions on,
@@ -7,7 +7,7 @@
 find_package(verilator 5 REQUIRED HINTS /usr/share/verilator $ENV{VERILATOR_ROOT})
 
 function(verilate_tex_unit target prefix log2_w log2_h)
-  cmake_parse_arguments(ARG "SYSTEMC;TRACE_FST" "CW" "" ${ARGN})
+  cmake_parse_arguments(ARG "TRACE_FST" "CW" "" ${ARGN})
   if(NOT ARG_CW)
     set(ARG_CW 8)
   endif()
@@ -24,9 +24,6 @@ function(verilate_tex_unit target prefix log2_w log2_h)
   endforeach()
   file(GLOB waivers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/rtl/*.vlt)
   set(mode "")
-  if(ARG_SYSTEMC)
-    list(APPEND mode SYSTEMC)
-  endif()
   if(ARG_TRACE_FST)
     list(APPEND mode TRACE_FST)
   endif()

@@ -15,7 +15,7 @@ BankedMipMemory::BankedMipMemory(const Pyramid& pyramid) {
     levels_.push_back(std::move(lvl));
     const int k = int(levels_.size()) - 1;
     for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x) levels_[k].banks[stage::bank_of(x, y)][word_of(k, x, y)] = img.at(x, y);
+      for (int x = 0; x < img.width; ++x) levels_[k].banks[stage::bank(x, y)][word_of(k, x, y)] = img.at(x, y);
   }
   reset_stats();
 }
@@ -25,14 +25,14 @@ int BankedMipMemory::word_of(int level, int32_t x, int32_t y) const {
   return (y >> 1) * stride + (x >> 1);
 }
 
-std::array<Texel, 4> BankedMipMemory::read_footprint(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1,
+std::array<Texel, 4> BankedMipMemory::fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1,
                                                      bool only_first) {
   const int32_t xs[4] = {x0, x1, x0, x1}, ys[4] = {y0, y0, y1, y1};
   std::array<Texel, 4> out{};
   std::array<int, 4> word_read = {-1, -1, -1, -1};  // which word each bank delivered this clock
   Level& lvl = levels_[level];
   for (int t = 0; t < (only_first ? 1 : 4); ++t) {
-    const int bank = stage::bank_of(xs[t], ys[t]);
+    const int bank = stage::bank(xs[t], ys[t]);
     const int word = word_of(level, xs[t], ys[t]);
     if (word_read[bank] < 0) {
       word_read[bank] = word;

@@ -24,10 +24,10 @@ class BankedMipMemory {
   // Word address of texel (x, y) inside its bank (stride = half the level width, at least 1).
   int word_of(int level, int32_t x, int32_t y) const;
 
-  // The 2x2 footprint {(x0,y0), (x1,y0), (x0,y1), (x1,y1)} of wrapped indices. Each bank is
-  // read at most once; `reads` counts the distinct (bank, word) pairs. With only_first, just
-  // (x0, y0) is read (point sampling).
-  std::array<Texel, 4> read_footprint(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1, bool only_first);
+  // The fetch stage (RTL: tex_fetch) of one level: the 2x2 footprint {(x0,y0), (x1,y0), (x0,y1),
+  // (x1,y1)} of wrapped indices. Each bank is read at most once; `reads` counts the distinct
+  // (bank, word) pairs. With only_first, just (x0, y0) is read (point sampling).
+  std::array<Texel, 4> fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1, bool only_first);
 
   const BankStats& stats() const { return stats_; }
   void reset_stats();

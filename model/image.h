@@ -1,4 +1,4 @@
-// RGBA images of up to 16 bits per channel: loading (OpenImageIO), built-in patterns, saving.
+// RGBA images of up to 16 bits per channel and the built-in patterns (file I/O: sim/workloads/texture_io.h).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -26,15 +26,10 @@ int log2_exact(int n);  // n must be a power of two
 // Names of the built-in patterns, for --help and error messages.
 const std::vector<std::string>& pattern_names();
 
-// A texture is a file that OpenImageIO reads, or a built-in pattern: NAME or NAME:WxH
-// (default 512x512). Files become RGBA8 (gray -> RGB, missing alpha -> opaque).
-// Sizes must be powers of two from 1 to 2048 per side; with resize = true other sizes are
-// resampled (OpenImageIO, to the nearest power of two, at most 2048). Throws tex::Error.
-Image load_texture(const std::string& spec, bool resize = false);
-Image make_pattern(const std::string& name, int width, int height);
+// Throws tex::Error naming `what` unless both sides are powers of two from 1 to 2^kMaxLog2Size.
+void check_texture_size(int w, int h, const std::string& what);
 
-// Writes 8-bit RGBA (channels wider than 8 bits are scaled). Writes to a temporary name and
-// renames, so a failed write leaves nothing behind. Throws tex::Error.
-void save_image(const Image& img, const std::string& path);
+// A built-in pattern (pattern_names()) of w x h texels. Throws tex::Error for a bad size.
+Image make_pattern(const std::string& name, int width, int height);
 
 }  // namespace tex

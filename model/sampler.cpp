@@ -25,38 +25,40 @@ Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config)
     }
 }
 
+// The stages in pipeline order, as the RTL runs them (model/stages.h, docs/architecture.md).
 Texel Sampler::sample(const Request& r) {
-  const int32_t lod = stage::bias_and_clamp(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod);
-  const stage::LevelSelect sel = stage::select_levels(lod, config_.filter.mip, last_level());
+  const stage::LevelSelect sel =
+      stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
+  const int32_t su = stage::scale(r.u, log2_w0_), sv = stage::scale(r.v, log2_h0_);
   const bool linear = config_.filter.texel == TexelFilter::Linear;
 
-  int64_t bil[2][4] = {};
-  const int levels_used = sel.two_levels ? 2 : 1;
-  for (int l = 0; l < levels_used; ++l) {
-    const int k = l == 0 ? sel.d : sel.d1;
+  // Slot 0 is level d, slot 1 level d1 (fetched only when the filter blends two levels: with
+  // f = 0 the blend returns slot 0 exactly).
+  stage::Footprint slot[2];
+  const int slots = sel.two_levels ? 2 : 1;
+  for (int s = 0; s < slots; ++s) {
+    const int k = s == 0 ? sel.d : sel.d1;
     const LevelShape shape = memory_.shape(k);
-    const stage::AxisTaps tu = stage::axis_taps(r.u, shape.log2_w, config_.filter.texel);
-    const stage::AxisTaps tv = stage::axis_taps(r.v, shape.log2_h, config_.filter.texel);
-    const auto t = memory_.read_footprint(
-        k, stage::wrap_index(tu.i0, shape.log2_w, config_.wrap_u), stage::wrap_index(tu.i1, shape.log2_w, config_.wrap_u),
-        stage::wrap_index(tv.i0, shape.log2_h, config_.wrap_v), stage::wrap_index(tv.i1, shape.log2_h, config_.wrap_v),
-        !linear);
-    for (int c = 0; c < 4; ++c) bil[l][c] = stage::bilerp(t[0][c], t[1][c], t[2][c], t[3][c], tu.w, tv.w);
+    const stage::AxisTaps tu = stage::address(su, k, config_.filter.texel);
+    const stage::AxisTaps tv = stage::address(sv, k, config_.filter.texel);
+    slot[s].taps = memory_.fetch(k, stage::wrap(tu.i0, shape.log2_w, config_.wrap_u),
+                                 stage::wrap(tu.i1, shape.log2_w, config_.wrap_u),
+                                 stage::wrap(tv.i0, shape.log2_h, config_.wrap_v),
+                                 stage::wrap(tv.i1, shape.log2_h, config_.wrap_v), !linear);
+    slot[s].fx = tu.w;
+    slot[s].fy = tv.w;
     if (linear) multiplies_ += 3;
   }
   if (sel.two_levels) multiplies_ += 1;
   ++samples_;
-
-  Texel out;
-  for (int c = 0; c < 4; ++c)
-    out[c] = uint16_t(stage::blend_and_round(bil[0][c], sel.two_levels ? bil[1][c] : bil[0][c], sel.f));
-  return out;
+  return stage::filter(slot[0], slot[sel.two_levels ? 1 : 0], sel.f);
 }
 
 namespace {
 
 // ---------------------------------------------------------------- fast path (8-bit channels)
-// Same arithmetic as sample() (docs/numerics.md), arranged for speed:
+// Same results as sample() (docs/numerics.md), arranged for speed; it does not call the stage
+// functions (tests/model/test_fastpath_equivalence.cpp checks every filter and wrap against sample()):
 // - the filter and wrap modes are template parameters, so their branches leave the loop;
 // - per-level constants (texel pointer, shifts, masks) are looked up in a small table;
 // - two channels share one 64-bit word (R|B and G|A, 32 bits each): one multiply does two lerps.
@@ -75,10 +77,10 @@ struct FastLevel {
 inline uint64_t spread_rb(uint32_t t) { return (t & 0xFFu) | uint64_t(t & 0xFF0000u) << 16; }
 inline uint64_t spread_ga(uint32_t t) { return (t >> 8 & 0xFFu) | uint64_t(t >> 24) << 32; }
 
-// Stage 5's lerp on two packed channels, exact (see above).
+// stage::lerp on two packed channels, exact (see above).
 inline uint64_t lerp2(uint64_t a, uint64_t b, uint32_t w) { return (a << 8) + (b - a) * w; }
 
-// Stage 3 for a power-of-two size given as mask = size - 1; same results as stage::wrap_index.
+// stage::wrap for a power-of-two size given as mask = size - 1; same results.
 template <Wrap W>
 inline int32_t wrap_fast(int32_t i, int32_t mask) {
   if constexpr (W == Wrap::Repeat) return i & mask;
@@ -123,10 +125,10 @@ void sample_batch(const FastLevel* levels, int last, const SamplerConfig& cfg, c
   constexpr uint64_t kHalf = (uint64_t(1) << 23) | (uint64_t(1) << 55);  // rounding of both channels
   for (size_t i = 0; i < n; ++i) {
     const Request& r = requests[i];
-    const int32_t lod = stage::bias_and_clamp(r.lod, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
+    const int32_t lod = stage::lod_clamp(r.lod, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
     uint64_t tri_rb, tri_ga;  // CW.24 per channel
     if constexpr (MM == MipMode::Linear) {
-      // stage::select_levels without branches: lod <= 0 gives d = 0, f = 0; past the last level
+      // stage::lod_select without branches: lod <= 0 gives d = 0, f = 0; past the last level
       // f = 0. Both levels are always filtered (d1 = d when d is last): with f = 0 the blend
       // returns level d exactly, as in sample().
       const int32_t l = lod > 0 ? lod : 0;

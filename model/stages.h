@@ -1,15 +1,22 @@
-// The sampler's pipeline stages as pure, bit-exact functions (docs/numerics.md, stages 1-5).
-// Both the reference sampler and the fast path call these, and the RTL implements them.
+// The sampler's pipeline stages as pure, bit-exact functions (docs/numerics.md). Each carries the
+// name of the RTL module that implements it (docs/architecture.md has the table):
+//   lod -> tex_lod, scale -> tex_scale, address -> tex_address, wrap -> tex_wrap,
+//   bank -> tex_bank (with BankedMipMemory::fetch -> tex_fetch), lerp -> tex_lerp, filter -> tex_filter.
+// Sampler::sample() (the reference path) calls them in pipeline order; the 8-bit fast path
+// (Sampler::sample_rgba8) re-implements the same arithmetic for speed and is tested equal to it.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cstdint>
 
 #include "formats.h"
 
 namespace tex::stage {
 
-// Stage 1: GL order: add the bias, then clamp to [min_lod, max_lod]. All Q8.8.
-inline int32_t bias_and_clamp(int32_t lod, int32_t bias, int32_t min_lod, int32_t max_lod) {
+// ---------------------------------------------------------------- lod (tex_lod)
+
+// GL order: add the bias, then clamp to [min_lod, max_lod]. All Q8.8. (tex_lod clock 1)
+inline int32_t lod_clamp(int32_t lod, int32_t bias, int32_t min_lod, int32_t max_lod) {
   return std::clamp(lod + bias, min_lod, max_lod);
 }
 
@@ -20,7 +27,8 @@ struct LevelSelect {
   bool two_levels = false;  // the filter blends two levels (trilinear minification, d < last)
 };
 
-inline LevelSelect select_levels(int32_t lod, MipMode mip, int last_level) {
+// Levels d, d1 and the blend weight from a clamped lambda. (tex_lod clock 2)
+inline LevelSelect lod_select(int32_t lod, MipMode mip, int last_level) {
   LevelSelect s;
   if (mip != MipMode::None && lod > 0) {
     if (mip == MipMode::Nearest) {
@@ -35,14 +43,26 @@ inline LevelSelect select_levels(int32_t lod, MipMode mip, int last_level) {
   return s;
 }
 
-// Stage 2: the two integer texel indices along one axis and the weight of the second.
+inline LevelSelect lod(int32_t lambda, int32_t bias, int32_t min_lod, int32_t max_lod, MipMode mip, int last_level) {
+  return lod_select(lod_clamp(lambda, bias, min_lod, max_lod), mip, last_level);
+}
+
+// ---------------------------------------------------------------- scale (tex_scale)
+
+// floor(coord * 2^log2_size0 * 512): level-0 texels with 9 fraction bits, so that level k is a
+// FIXED shift (scaled >> k) of it: the paper's binary shift (floors of arithmetic shifts compose).
+inline int32_t scale(int32_t coord, int log2_size0) { return coord >> (kCoordFracBits - 9 - log2_size0); }
+
+// ---------------------------------------------------------------- address (tex_address)
+
+// The two integer texel indices along one axis at `level` and the weight of the second.
 struct AxisTaps {
   int32_t i0 = 0, i1 = 0;
   int w = 0;
 };
 
-inline AxisTaps axis_taps(int32_t coord, int log2_size, TexelFilter filter) {
-  const int32_t t9 = coord >> (15 - log2_size);  // floor(u * size * 512): a fixed shift per level
+inline AxisTaps address(int32_t scaled, int level, TexelFilter filter) {
+  const int32_t t9 = scaled >> level;  // floor(u * size_level * 512)
   AxisTaps t;
   if (filter == TexelFilter::Linear) {
     const int32_t p = (t9 - 255) >> 1;  // round-half-up((u * size - 1/2) * 256)
@@ -55,10 +75,12 @@ inline AxisTaps axis_taps(int32_t coord, int log2_size, TexelFilter filter) {
   return t;
 }
 
-// Stage 3: OpenGL wrap of an integer texel index into [0, 2^log2_size).
-inline int32_t wrap_index(int32_t i, int log2_size, Wrap wrap) {
+// ---------------------------------------------------------------- wrap (tex_wrap)
+
+// OpenGL wrap of an integer texel index into [0, 2^log2_size).
+inline int32_t wrap(int32_t i, int log2_size, Wrap mode) {
   const int32_t n = 1 << log2_size;
-  switch (wrap) {
+  switch (mode) {
     case Wrap::Repeat: return i & (n - 1);
     case Wrap::Clamp: return std::clamp(i, 0, n - 1);
     case Wrap::Mirror: {
@@ -69,10 +91,14 @@ inline int32_t wrap_index(int32_t i, int log2_size, Wrap wrap) {
   return 0;
 }
 
-// Stage 4: the bank of a texel: its parity in x and y.
-inline int bank_of(int32_t x, int32_t y) { return int((y & 1) << 1 | (x & 1)); }
+// ---------------------------------------------------------------- fetch (tex_fetch, tex_bank)
 
-// Stage 5: one lerp is one multiply; the result gains 8 fraction bits and is exact.
+// The bank of a texel: its parity in x and y.
+inline int bank(int32_t x, int32_t y) { return int((y & 1) << 1 | (x & 1)); }
+
+// ---------------------------------------------------------------- filter (tex_filter, tex_lerp)
+
+// One lerp is one multiply; the result gains 8 fraction bits and is exact.
 inline int64_t lerp(int64_t a, int64_t b, int w) { return (a << kWeightBits) + (b - a) * w; }
 
 // Bilinear of one channel: CW.16, exact.
@@ -83,6 +109,22 @@ inline int64_t bilerp(int64_t a, int64_t b, int64_t c, int64_t e, int wx, int wy
 // Blend of two bilinear results (CW.16) by f, then the one rounding (half up) to CW bits.
 inline uint32_t blend_and_round(int64_t bil_d, int64_t bil_d1, int f) {
   return uint32_t((lerp(bil_d, bil_d1, f) + (int64_t(1) << 23)) >> 24);
+}
+
+// The whole filter, all four channels: taps {a, b, c, e} = T(x0,y0), T(x1,y0), T(x0,y1), T(x1,y1)
+// of levels d (slot 0) and d1 (slot 1), their weights, and the level blend f.
+struct Footprint {
+  std::array<Texel, 4> taps;
+  int fx = 0, fy = 0;
+};
+inline Texel filter(const Footprint& d, const Footprint& d1, int f) {
+  Texel out;
+  for (size_t c = 0; c < 4; ++c) {
+    const int64_t b0 = bilerp(d.taps[0][c], d.taps[1][c], d.taps[2][c], d.taps[3][c], d.fx, d.fy);
+    const int64_t b1 = bilerp(d1.taps[0][c], d1.taps[1][c], d1.taps[2][c], d1.taps[3][c], d1.fx, d1.fy);
+    out[c] = uint16_t(blend_and_round(b0, b1, f));
+  }
+  return out;
 }
 
 }  // namespace tex::stage

@@ -58,7 +58,7 @@ size_t fi_of(Filter f) { return size_t(f.texel) * 3 + size_t(f.mip); }  // all_f
 
 int tap_case(int32_t coord, int log2_size, TexelFilter filter) {
   if (log2_size == 0) return kOneTexel;
-  const stage::AxisTaps t = stage::axis_taps(coord, log2_size, filter);
+  const stage::AxisTaps t = stage::address(stage::scale(coord, log2_size), 0, filter);
   const int32_t p0 = t.i0 >> log2_size;
   const int32_t p1 = filter == TexelFilter::Linear ? t.i1 >> log2_size : p0;
   if (p0 != p1) return kEdgePair;
@@ -122,8 +122,8 @@ void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Reques
   ++group(g_pyramid_).hits[size_t(pyr.mode)];
 
   const int last = pyr.last_level();
-  const int32_t lod = stage::bias_and_clamp(q.lod, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
-  const stage::LevelSelect s = stage::select_levels(lod, cfg.filter.mip, last);
+  const int32_t lod = stage::lod_clamp(q.lod, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
+  const stage::LevelSelect s = stage::lod_select(lod, cfg.filter.mip, last);
   int lc = kMagnify;
   if (lod > 0) {
     switch (cfg.filter.mip) {
@@ -154,9 +154,9 @@ void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Reques
 
 void Coverage::timing(const rtl::StreamStats& st) {
   CoverGroup& g = group(g_timing_);
-  for (size_t i = 0; i < 4; ++i) g.hits[i] += st.responses_by_stall_run[i];
+  for (size_t i = 0; i < 4; ++i) g.hits[i] += st.protocol.responses_by_stall_run[i];
   g.hits[4] += st.requests_after_gap;
-  g.hits[5] += st.backpressure_cycles;
+  g.hits[5] += st.protocol.backpressure_cycles;
 }
 
 std::string Coverage::table(bool every_bin) const {

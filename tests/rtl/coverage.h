@@ -9,7 +9,7 @@
 
 #include "model/pyramid.h"
 #include "model/sampler.h"
-#include "rtl/rtl_harness.h"
+#include "engines/rtl/driver.h"
 
 namespace tex::rtltest {
 

@@ -44,18 +44,18 @@ std::string describe(const Texel& t) {
   return o.str();
 }
 
-LockstepResult lockstep(rtl::Harness& unit, const Pyramid& pyramid, const SamplerConfig& config,
+LockstepResult lockstep(rtl::Driver& unit, const Pyramid& pyramid, const SamplerConfig& config,
                         const std::vector<Request>& requests, const rtl::Timing& timing, uint64_t seed) {
   LockstepResult res;
-  unit.configure(rtl::cfg_pins(config, pyramid.log2_w0(), pyramid.log2_h0()));
+  unit.configure(config, pyramid);
   Sampler model(pyramid, config);
-  const int cw = unit.shape().cw;
+  const int cw = unit.config().cw;
   std::vector<uint64_t> expected(requests.size());
   for (size_t i = 0; i < requests.size(); ++i) expected[i] = rtl::pack_rgba(model.sample(requests[i]), cw);
   std::vector<uint8_t> answered(requests.size(), 0);
   std::ostringstream report;
   try {
-    res.stats = unit.stream(requests.data(), requests.size(), timing, seed, [&](size_t i, uint64_t got) {
+    res.stats = rtl::stream(unit, requests.data(), requests.size(), timing, seed, [&](size_t i, uint64_t got) {
       ++res.compared;
       if (answered[i]++) report << "request #" << i << " answered twice\n";
       if (got != expected[i] && ++res.mismatches <= 5)
@@ -179,14 +179,14 @@ rtl::Timing random_timing(std::mt19937_64& rng, std::string& name) {
   return t;
 }
 
-std::unique_ptr<rtl::Harness> make_unit(int max_log2_w, int max_log2_h, uint64_t seed, const std::string& trace,
+std::unique_ptr<rtl::Driver> make_unit(int max_log2_w, int max_log2_h, uint64_t seed, const std::string& trace,
                                         int cw) {
-  for (const rtl::RtlShape& s : rtl::compiled_shapes())
+  for (const rtl::RtlConfig& s : rtl::compiled_configs())
     if (s.max_log2_w == max_log2_w && s.max_log2_h == max_log2_h && s.cw == cw) {
-      rtl::HarnessOptions o;
+      rtl::DriverOptions o;
       o.seed = seed;
       o.trace_path = trace;
-      auto unit = rtl::Harness::create(s, o);
+      auto unit = rtl::Driver::create(s, o);
       unit->reset();
       return unit;
     }

@@ -8,7 +8,7 @@
 
 #include "model/pyramid.h"
 #include "model/sampler.h"
-#include "rtl/rtl_harness.h"
+#include "engines/rtl/driver.h"
 
 namespace tex::rtltest {
 
@@ -24,7 +24,7 @@ std::optional<uint64_t> env_u64(const char* name);
 uint64_t seed_base();
 int scale();
 
-// Every request is compared with tex::Sampler::sample() of the model; the harness checks tags
+// Every request is compared with tex::Sampler::sample() of the model; the driver checks tags
 // (order, loss, duplicates) and the time-out; this checks data and that every index came back once.
 struct LockstepResult {
   uint64_t compared = 0;
@@ -33,7 +33,7 @@ struct LockstepResult {
   rtl::StreamStats stats;
   bool ok() const { return mismatches == 0 && report.empty(); }
 };
-LockstepResult lockstep(rtl::Harness& unit, const Pyramid& pyramid, const SamplerConfig& config,
+LockstepResult lockstep(rtl::Driver& unit, const Pyramid& pyramid, const SamplerConfig& config,
                         const std::vector<Request>& requests, const rtl::Timing& timing, uint64_t seed);
 
 std::string describe(const SamplerConfig& c);
@@ -52,8 +52,8 @@ rtl::Timing random_timing(std::mt19937_64& rng, std::string& name);
 // The six filters (texel filter x mip mode) and three wrap modes.
 std::vector<Filter> all_filters();
 
-// The harness of the named configuration, reset.
-std::unique_ptr<rtl::Harness> make_unit(int max_log2_w, int max_log2_h, uint64_t seed = 1,
+// The driver of the named configuration, reset.
+std::unique_ptr<rtl::Driver> make_unit(int max_log2_w, int max_log2_h, uint64_t seed = 1,
                                         const std::string& trace = "", int cw = 8);
 
 }  // namespace tex::rtltest

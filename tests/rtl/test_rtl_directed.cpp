@@ -18,18 +18,18 @@ constexpr int32_t kOne = 1 << kCoordFracBits;
 int32_t centre(int64_t i, int n) { return int32_t(((2 * i + 1) * int64_t(kOne)) / (2 * n)); }
 
 struct Fixture {
-  std::unique_ptr<rtl::Harness> unit;
+  std::unique_ptr<rtl::Driver> unit;
   Pyramid pyr;
   Fixture(int mw, int mh, const char* pattern, int w, int h, PyramidMode mode = PyramidMode::Exact)
       : unit(make_unit(mw, mh, 7)), pyr(build_pyramid(make_pattern(pattern, w, h), mode)) {
-    unit->load(pyr);
+    unit->load(pyr, LoadMethod::Port);
   }
   // Lockstep against the model, and returns the RTL's texels (ideal and heavy timing agree).
   std::vector<Texel> run(const SamplerConfig& cfg, const std::vector<Request>& reqs) {
     std::vector<Texel> out(reqs.size());
-    unit->configure(rtl::cfg_pins(cfg, pyr.log2_w0(), pyr.log2_h0()));
-    unit->stream(reqs.data(), reqs.size(), rtl::Timing::ideal(), 1,
-                 [&](size_t i, uint64_t p) { out[i] = rtl::unpack_rgba8(p); });
+    unit->configure(cfg, pyr);
+    rtl::stream(*unit, reqs.data(), reqs.size(), rtl::Timing{}, 1,
+                [&](size_t i, uint64_t p) { out[i] = rtl::unpack_rgba(p, 8); });
     const LockstepResult r = lockstep(*unit, pyr, cfg, reqs, rtl::Timing{0.6, 6, 0.6, 6, 0, 0}, 99);
     EXPECT_TRUE(r.ok()) << describe(cfg) << "\n" << r.report;
     EXPECT_EQ(r.compared, reqs.size());

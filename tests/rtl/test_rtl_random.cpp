@@ -63,7 +63,8 @@ void run_suite(const RandomSuite& suite) {
           if (only && *only != seed) continue;
           if (!pyr) {
             pyr = build_pyramid(make_texture(ts), ts.mode);
-            unit->load(*pyr);
+            // Half the textures through the write port, half by the backdoor: both must give the same samples.
+            unit->load(*pyr, ti % 2 ? LoadMethod::Port : LoadMethod::Backdoor);
           }
           std::mt19937_64 rng(seed);
           SamplerConfig cfg;
@@ -78,10 +79,10 @@ void run_suite(const RandomSuite& suite) {
 
           ++totals.rounds;
           totals.samples += r.compared;
-          totals.clocks += r.stats.cycles;
-          totals.stall_clocks += r.stats.stall_cycles;
+          totals.clocks += r.stats.cycles();
+          totals.stall_clocks += r.stats.protocol.output_stall_cycles;
           totals.gap_clocks += r.stats.gap_cycles;
-          totals.longest_latency = std::max(totals.longest_latency, r.stats.latency_max);
+          totals.longest_latency = std::max(totals.longest_latency, r.stats.protocol.latency_max);
           coverage.timing(r.stats);
           if (r.compared == reqs.size())
             for (const Request& q : reqs) coverage.sample(*pyr, cfg, q);

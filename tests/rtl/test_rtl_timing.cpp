@@ -33,35 +33,36 @@ TEST(RtlTiming, FixedLatencyAndOneSamplePerClock) {
   for (const Shape s : kShapes) {
     auto unit = make_unit(s.w, s.h);
     const Pyramid pyr = noise_pyramid(s.w, s.h);
-    unit->load(pyr);
+    unit->load(pyr, LoadMethod::Backdoor);
     std::mt19937_64 rng(mix64(seed_base() + 11));
     for (const Filter& flt : all_filters()) {
       SamplerConfig cfg;
       cfg.filter = flt;
       const auto reqs = random_requests(rng, s.w, s.h, 3000);
-      const LockstepResult r = lockstep(*unit, pyr, cfg, reqs, rtl::Timing::ideal(), 1);
+      const LockstepResult r = lockstep(*unit, pyr, cfg, reqs, rtl::Timing{}, 1);
       ASSERT_TRUE(r.ok()) << r.report;
-      EXPECT_EQ(r.stats.latency_min, kDocumentedLatency) << s.w << "x" << s.h;
-      EXPECT_EQ(r.stats.latency_max, kDocumentedLatency) << s.w << "x" << s.h;
+      const rtl::ProtocolCounters& pc = r.stats.protocol;
+      EXPECT_EQ(pc.latency_min, kDocumentedLatency) << s.w << "x" << s.h;
+      EXPECT_EQ(pc.latency_max, kDocumentedLatency) << s.w << "x" << s.h;
       // n samples take n clocks once the pipeline has filled: exactly one per clock.
-      EXPECT_EQ(r.stats.cycles, reqs.size() + kDocumentedLatency);
-      EXPECT_EQ(r.stats.cycles - kDocumentedLatency, r.stats.samples);
-      EXPECT_EQ(r.stats.bubbles_after_fill, 0u);
-      EXPECT_EQ(r.stats.backpressure_cycles, 0u);
+      EXPECT_EQ(r.stats.cycles(), reqs.size() + kDocumentedLatency);
+      EXPECT_EQ(r.stats.cycles() - kDocumentedLatency, r.stats.samples());
+      EXPECT_EQ(pc.bubbles_after_fill, 0u);
+      EXPECT_EQ(pc.backpressure_cycles, 0u);
     }
   }
 }
 
-// Pin-level driver, independent of Harness::stream: requests always offered, rsp_ready random with
+// Raw pins, independent of the driver's clock() and stream(): requests always offered, rsp_ready random with
 // stalls of 1..8 and some of hundreds of clocks. After the first response, every clock with
 // rsp_ready high must deliver a response until the last one: samples == ready clocks.
 TEST(RtlTiming, NoBubblesUnderRandomOutputStalls) {
   for (const Shape s : kShapes) {
     auto unit = make_unit(s.w, s.h);
     const Pyramid pyr = noise_pyramid(s.w, s.h);
-    unit->load(pyr);
+    unit->load(pyr, LoadMethod::Backdoor);
     SamplerConfig cfg;  // trilinear, repeat
-    unit->configure(rtl::cfg_pins(cfg, s.w, s.h));
+    unit->configure(cfg, pyr);
     const uint64_t seed = mix64(seed_base() + 23 + uint64_t(s.w));
     std::mt19937_64 rng(seed);
     const auto reqs = random_requests(rng, s.w, s.h, 20000);
@@ -96,7 +97,7 @@ TEST(RtlTiming, NoBubblesUnderRandomOutputStalls) {
         if (!filled) ready_after_fill = 1;
         filled = true;
         ASSERT_EQ(out.rsp_tag, uint16_t(done)) << "seed " << seed;
-        ASSERT_EQ(out.rsp_rgba, rtl::pack_rgba8(model.sample(reqs[done]))) << describe(reqs[done]) << " seed " << seed;
+        ASSERT_EQ(out.rsp_rgba, rtl::pack_rgba(model.sample(reqs[done]), 8)) << describe(reqs[done]) << " seed " << seed;
         ++done;
       } else if (filled && in.rsp_ready) {
         FAIL() << s.w << "x" << s.h << ": bubble at clock " << unit->cycle() - 1 << " with " << (accepted - done)
@@ -113,7 +114,7 @@ TEST(RtlTiming, ResetInTheMiddleOfTraffic) {
   for (const Shape s : {kShapes[1], kShapes[2]}) {
     auto unit = make_unit(s.w, s.h);
     const Pyramid pyr = build_pyramid(make_pattern("noise", 1 << s.w, 1 << s.h), PyramidMode::Cascade);
-    unit->load(pyr);
+    unit->load(pyr, LoadMethod::Backdoor);
     const uint64_t seed = mix64(seed_base() + 31 + uint64_t(s.h));
     std::mt19937_64 rng(seed);
     for (int trial = 0; trial < 6; ++trial) {
@@ -121,7 +122,7 @@ TEST(RtlTiming, ResetInTheMiddleOfTraffic) {
       cfg.filter = all_filters()[size_t(trial)];
       cfg.wrap_u = Wrap(trial % 3);
       cfg.wrap_v = Wrap((trial + 1) % 3);
-      unit->configure(rtl::cfg_pins(cfg, s.w, s.h));
+      unit->configure(cfg, pyr);
       // Traffic: requests always offered, the output stalled now and then (in trial 1, 3, 5 for
       // good: the pipeline and the skid buffer are full and req_ready is low at the reset).
       const auto junk = random_requests(rng, s.w, s.h, 200);
@@ -160,9 +161,9 @@ namespace {
 // A fake unit with latency 20 that can lose, duplicate, reorder or withhold responses.
 enum class Fault { None, Lose, Duplicate, Swap, Silence };
 
-class FakeUnit : public rtl::Harness {
+class FakeUnit : public rtl::Driver {
  public:
-  FakeUnit(Fault fault, uint64_t at) : Harness(rtl::RtlShape{"fake", 4, 4}, rtl::HarnessOptions{}), fault_(fault), at_(at) {}
+  FakeUnit(Fault fault, uint64_t at) : Driver(rtl::RtlConfig{"fake", 4, 4}, rtl::DriverOptions{}), fault_(fault), at_(at) {}
 
  protected:
   rtl::PinsOut tick_pins(const rtl::PinsIn& in, bool) override {
@@ -192,6 +193,7 @@ class FakeUnit : public rtl::Harness {
     return out;
   }
   void apply_cfg(const rtl::CfgPins&) override {}
+  void backdoor_write(int, int, uint32_t, uint64_t) override {}
   bool got_finish() const override { return false; }
   void close_trace_impl() override {}
 
@@ -210,7 +212,7 @@ std::string stream_error(Fault fault, uint64_t at, const rtl::Timing& timing) {
   FakeUnit unit(fault, at);
   std::vector<Request> reqs(100);
   try {
-    unit.stream(reqs.data(), reqs.size(), timing, 5, [](size_t i, uint64_t rgba) {
+    rtl::stream(unit, reqs.data(), reqs.size(), timing, 5, [](size_t i, uint64_t rgba) {
       if (rgba != i * 3u) throw Error("data of request " + std::to_string(i) + " is wrong");
     });
   } catch (const Error& e) {
@@ -223,7 +225,7 @@ std::string stream_error(Fault fault, uint64_t at, const rtl::Timing& timing) {
 
 TEST(RtlScoreboard, CatchesLostDuplicatedReorderedAndMissingResponses) {
   const rtl::Timing heavy{0.6, 6, 0.6, 6, 0, 0};
-  for (const rtl::Timing& t : {rtl::Timing::ideal(), heavy}) {
+  for (const rtl::Timing& t : {rtl::Timing{}, heavy}) {
     EXPECT_EQ(stream_error(Fault::None, 0, t), "");
     std::string e = stream_error(Fault::Lose, 40, t);
     EXPECT_NE(e.find("has tag 41, expected tag 40"), std::string::npos) << e;
@@ -239,7 +241,7 @@ TEST(RtlScoreboard, CatchesLostDuplicatedReorderedAndMissingResponses) {
   }
 }
 
-TEST(RtlHarness, AssertionFailureClosesTheTrace) {
+TEST(RtlDriver, AssertionFailureClosesTheTrace) {
   const std::string trace = temp_path("assert.fst");
   {
     auto unit = make_unit(4, 4, 3, trace);
@@ -265,22 +267,22 @@ TEST(RtlHarness, AssertionFailureClosesTheTrace) {
   std::filesystem::remove(trace);
 }
 
-TEST(RtlHarness, TraceWindowIsClosedAfterItsLastClock) {
+TEST(RtlDriver, TraceWindowIsClosedAfterItsLastClock) {
   const std::string small = temp_path("w1.fst"), large = temp_path("w2.fst");
   auto run = [](const std::string& path, uint64_t begin, uint64_t end) {
-    rtl::HarnessOptions o;
+    rtl::DriverOptions o;
     o.trace_path = path;
     o.trace_begin = begin;
     o.trace_end = end;
-    auto unit = rtl::Harness::create(rtl::compiled_shapes()[0], o);
+    auto unit = rtl::Driver::create(rtl::smallest_config_for(4, 4), o);
     unit->reset();
     const Pyramid pyr = noise_pyramid(4, 4);
-    unit->load(pyr);
+    unit->load(pyr, LoadMethod::Backdoor);
     SamplerConfig cfg;
-    unit->configure(rtl::cfg_pins(cfg, 4, 4));
+    unit->configure(cfg, pyr);
     std::mt19937_64 rng(1);
     const auto reqs = random_requests(rng, 4, 4, 3000);
-    unit->stream(reqs.data(), reqs.size(), rtl::Timing::ideal(), 1, [](size_t, uint32_t) {});
+    rtl::stream(*unit, reqs.data(), reqs.size(), rtl::Timing{}, 1, [](size_t, uint64_t) {});
     // The window ended long ago: the file is complete before the harness goes away.
     EXPECT_TRUE(std::filesystem::exists(path));
     return std::filesystem::file_size(path);
@@ -293,14 +295,15 @@ TEST(RtlHarness, TraceWindowIsClosedAfterItsLastClock) {
   std::filesystem::remove(large);
 }
 
-TEST(RtlHarness, PicksTheSmallestConfigurationAndRejectsTooLargeTextures) {
-  EXPECT_EQ(rtl::smallest_shape_for(4, 4).name, "Vtex_unit_4x4");
-  EXPECT_EQ(rtl::smallest_shape_for(0, 0).name, "Vtex_unit_4x4");
-  EXPECT_EQ(rtl::smallest_shape_for(5, 3).name, "Vtex_unit_6x3");
-  EXPECT_EQ(rtl::smallest_shape_for(4, 5).name, "Vtex_unit_10x10");
-  EXPECT_EQ(rtl::smallest_shape_for(10, 10).name, "Vtex_unit_10x10");
+TEST(RtlDriver, PicksTheSmallestConfigurationAndRejectsTooLargeTextures) {
+  EXPECT_EQ(rtl::smallest_config_for(4, 4).name, "Vtex_unit_4x4");
+  EXPECT_EQ(rtl::smallest_config_for(0, 0).name, "Vtex_unit_4x4");
+  EXPECT_EQ(rtl::smallest_config_for(5, 3).name, "Vtex_unit_6x3");
+  EXPECT_EQ(rtl::smallest_config_for(4, 5).name, "Vtex_unit_10x10");
+  EXPECT_EQ(rtl::smallest_config_for(10, 10).name, "Vtex_unit_10x10");
+  EXPECT_EQ(rtl::smallest_config_for(5, 4, 16).name, "Vtex_unit_5x4_cw16");
   try {
-    rtl::smallest_shape_for(11, 2);
+    rtl::smallest_config_for(11, 2);
     FAIL() << "2048x4 accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("2048x4 does not fit the RTL"), std::string::npos) << e.what();
@@ -313,16 +316,44 @@ TEST(RtlScoreboard, DetectsOneWrongTexelInOneLevel) {
   // The lockstep comparison must see it (and only where that texel is read).
   auto unit = make_unit(4, 4);
   const Pyramid pyr = noise_pyramid(4, 4);
-  unit->load(pyr);
+  unit->load(pyr, LoadMethod::Backdoor);
   Pyramid wrong = pyr;
   wrong.levels[2].at(1, 2)[1] ^= 1;
   SamplerConfig cfg;  // trilinear
   std::vector<Request> reqs;
   for (int i = 0; i < 4; ++i)  // centres of level 2 (4x4), lambda 2.0: level 2 only
     for (int j = 0; j < 4; ++j) reqs.push_back({(2 * i + 1) << 21, (2 * j + 1) << 21, 512, 0});
-  const LockstepResult r = lockstep(*unit, wrong, cfg, reqs, rtl::Timing::ideal(), 1);
+  const LockstepResult r = lockstep(*unit, wrong, cfg, reqs, rtl::Timing{}, 1);
   EXPECT_EQ(r.mismatches, 1u) << r.report;
   EXPECT_NE(r.report.find("request #6 "), std::string::npos) << r.report;
-  const LockstepResult same = lockstep(*unit, pyr, cfg, reqs, rtl::Timing::ideal(), 1);
+  const LockstepResult same = lockstep(*unit, pyr, cfg, reqs, rtl::Timing{}, 1);
   EXPECT_TRUE(same.ok()) << same.report;
+}
+
+// The backdoor load (texsim's default) fills the memories exactly as the write port does: in every
+// configuration, both units answer the same random requests with the model's texels; the port
+// takes one clock per texel plus one, the backdoor none.
+TEST(RtlDriver, BackdoorAndPortLoadGiveTheSameSamples) {
+  for (const rtl::RtlConfig& c : rtl::compiled_configs()) {
+    Pyramid pyr = build_pyramid(make_pattern("noise", 1 << c.max_log2_w, 1 << c.max_log2_h), PyramidMode::Cascade);
+    for (Image& img : pyr.levels) {  // use every bit of a wider channel
+      img.channel_bits = c.cw;
+      for (Texel& t : img.texels)
+        for (uint16_t& ch : t) ch = uint16_t((ch * 257u) >> (16 - c.cw));
+    }
+    size_t texels = 0;
+    for (const Image& img : pyr.levels) texels += img.texels.size();
+    std::mt19937_64 rng(mix64(seed_base() + 41 + uint64_t(c.max_log2_w)));
+    const auto reqs = random_requests(rng, c.max_log2_w, c.max_log2_h, 4000);
+    SamplerConfig cfg;
+    cfg.wrap_v = Wrap::Mirror;
+    for (LoadMethod method : {LoadMethod::Port, LoadMethod::Backdoor}) {
+      auto unit = make_unit(c.max_log2_w, c.max_log2_h, 5, "", c.cw);
+      unit->load(pyr, method);
+      EXPECT_EQ(unit->load_cycles(), method == LoadMethod::Port ? texels + 1 : 0) << c.name;
+      const LockstepResult r = lockstep(*unit, pyr, cfg, reqs, rtl::Timing::of(Stalls::Random), 3);
+      EXPECT_TRUE(r.ok()) << c.name << " " << load_method_name(method) << "\n" << r.report;
+      EXPECT_EQ(r.compared, reqs.size());
+    }
+  }
 }

@@ -1,7 +1,8 @@
-// The SystemC/TLM-2.0 texture unit (sim/systemc/) against the golden model: bit-exact texels over
-// random requests for both backends, throughput through the socket, and the tag checks (a lost,
-// duplicated, reordered or mis-tagged response must be reported). Every run_systemc call forks its
-// own simulation process, so one test can run many simulations.
+// The SystemC/TLM-2.0 texture unit (sim/engines/systemc/) against the golden model: bit-exact
+// texels over random requests for both backends, throughput through the socket, and the
+// initiator's checks (a lost, duplicated or reordered response must be reported), shown on a
+// deliberately faulty target defined here. Every simulation runs in its own forked process
+// (run_systemc, run_forked), so one test can run many.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,10 +11,14 @@
 #include <random>
 #include <sstream>
 
-#include "engine.h"
+#include <deque>
+
+#include "engines/engine.h"
+#include "engines/systemc/stream_initiator.h"
+#include "engines/systemc/systemc_engine.h"
+#include "engines/systemc/tex_unit_tlm.h"
 #include "model/error.h"
 #include "model/image.h"
-#include "systemc/systemc_engine.h"
 
 using namespace tex;
 using namespace tex::systemc;
@@ -94,47 +99,25 @@ void run_filter_wrap_matrix(const TextureSpec& spec, Backend backend, InitiatorS
         const SamplerConfig cfg = random_config(rng, f, wu, wv);
         const auto reqs = random_requests(rng, per_case, pyr.last_level() + 1);
         SystemcOptions o;
-        o.backend = backend;
         o.initiator = style;
-        o.seed = seed + uint64_t(n);
-        if (n++ % 2 == 1 && style != InitiatorStyle::Lt) {
-          o.gap_prob = 0.1;
-          o.stall_prob = 0.1;
-        }
+        o.engine.seed = seed + uint64_t(n);
+        if (n++ % 2 == 1 && style != InitiatorStyle::Lt) o.engine.stalls = n % 4 == 0 ? Stalls::Heavy : Stalls::Random;
+        if (n % 3 == 0) o.engine.load = LoadMethod::Port;
         const std::string what = spec.pattern + " " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                                  " " + filter_name(f) + " " + wrap_name(wu) + "/" + wrap_name(wv) + " seed " +
-                                 std::to_string(o.seed);
+                                 std::to_string(o.engine.seed) + " stalls " + stalls_name(o.engine.stalls);
         EngineResult r;
         try {
-          r = run_systemc(pyr, cfg, reqs, o);
+          r = run_systemc(backend, pyr, cfg, reqs, o);
         } catch (const Error& e) {
           FAIL() << what << ": " << e.what();
         }
         expect_bit_exact(r, pyr, cfg, reqs, what);
-        EXPECT_EQ(r.stats["samples"].get<uint64_t>(), per_case) << what;
+        EXPECT_EQ(r.stats.samples, per_case) << what;
       }
 }
 
 Pyramid small_pyramid() { return build_pyramid(make_pattern("testcard", 32, 16), PyramidMode::Exact); }
-
-SystemcOptions rtl_options() {
-  SystemcOptions o;
-  o.backend = Backend::Rtl;
-  return o;
-}
-
-// Runs with a fault and returns the error message ("" when none was reported).
-std::string error_of(const SystemcOptions& o, size_t n = 200) {
-  const Pyramid pyr = small_pyramid();
-  std::mt19937_64 rng(7);
-  const auto reqs = random_requests(rng, n, pyr.last_level() + 1);
-  try {
-    run_systemc(pyr, SamplerConfig{}, reqs, o);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 std::string read_file(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
@@ -148,33 +131,27 @@ std::string read_file(const std::string& path) {
 // ------------------------------------------------------------------ bit-exact: RTL backend (AT)
 
 TEST(SystemcRtl, BitExactEveryFilterAndWrapNonSquare) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   run_filter_wrap_matrix({"testcard", 64, 16, PyramidMode::Exact}, Backend::Rtl, InitiatorStyle::Auto, 300, 101);
 }
 
 TEST(SystemcRtl, BitExactEveryFilterAndWrapTallCascade) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   run_filter_wrap_matrix({"noise", 4, 32, PyramidMode::Cascade}, Backend::Rtl, InitiatorStyle::Auto, 300, 202);
 }
 
 TEST(SystemcRtl, BitExactEveryFilterAndWrapSquareAndOneTexel) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   run_filter_wrap_matrix({"checker", 16, 16, PyramidMode::Exact}, Backend::Rtl, InitiatorStyle::Auto, 200, 303);
   run_filter_wrap_matrix({"gradient", 1, 8, PyramidMode::Exact}, Backend::Rtl, InitiatorStyle::Auto, 100, 404);
 }
 
 TEST(SystemcRtl, BitExactLargestTexture) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   const Pyramid pyr = build_pyramid(make_pattern("testcard", 1024, 512), PyramidMode::Exact);
   std::mt19937_64 rng(505);
   const SamplerConfig cfg;  // trilinear, repeat
   const auto reqs = random_requests(rng, 20000, pyr.last_level() + 1);
-  const EngineResult r = run_systemc(pyr, cfg, reqs, rtl_options());
+  const EngineResult r = run_systemc(Backend::Rtl, pyr, cfg, reqs, SystemcOptions{});
   expect_bit_exact(r, pyr, cfg, reqs, "testcard 1024x512 trilinear");
-  // Every texel of every level went through the write port, one per clock, after 5 reset clocks.
-  size_t texels = 0;
-  for (const Image& img : pyr.levels) texels += size_t(img.width) * size_t(img.height);
-  EXPECT_EQ(r.stats["load_cycles"].get<uint64_t>(), texels + 5);
+  EXPECT_EQ(r.stats.cycle->load_cycles, 0u) << "the backdoor load takes no clock";
+  EXPECT_EQ(r.stats.cycle->configuration, "Vtex_unit_10x10");
 }
 
 // ------------------------------------------------------------------ bit-exact: model backend (LT)
@@ -191,11 +168,9 @@ TEST(SystemcModel, SixteenBitChannelsAndLargeTexture) {
   std::mt19937_64 rng(808);
   const SamplerConfig cfg;
   const auto reqs = random_requests(rng, 5000, pyr.last_level() + 1);
-  SystemcOptions o;
-  o.backend = Backend::Model;
-  const EngineResult r = run_systemc(pyr, cfg, reqs, o);
+  const EngineResult r = run_systemc(Backend::Model, pyr, cfg, reqs, SystemcOptions{});
   expect_bit_exact(r, pyr, cfg, reqs, "noise 2048x64 model backend");
-  EXPECT_EQ(r.stats["cycles"].get<uint64_t>(), 5000u);  // one clock per sample annotated
+  EXPECT_FALSE(r.stats.cycle) << "loosely timed: no clock counters";
 }
 
 // The other initiator styles go through simple_target_socket's b<->nb adapters: same texels.
@@ -206,162 +181,229 @@ TEST(SystemcAdapters, AtInitiatorOnModelAndLtInitiatorOnRtl) {
   cfg.wrap_u = Wrap::Mirror;
   const auto reqs = random_requests(rng, 500, pyr.last_level() + 1);
   SystemcOptions o;
-  o.backend = Backend::Model;
   o.initiator = InitiatorStyle::At;
-  expect_bit_exact(run_systemc(pyr, cfg, reqs, o), pyr, cfg, reqs, "AT initiator, model backend");
-  if (!have_rtl_backend()) return;
-  o.backend = Backend::Rtl;
+  expect_bit_exact(run_systemc(Backend::Model, pyr, cfg, reqs, o), pyr, cfg, reqs, "AT initiator, model backend");
   o.initiator = InitiatorStyle::Lt;
-  const EngineResult r = run_systemc(pyr, cfg, reqs, o);
+  const EngineResult r = run_systemc(Backend::Rtl, pyr, cfg, reqs, o);
   expect_bit_exact(r, pyr, cfg, reqs, "LT initiator, RTL backend");
   // A blocking call waits the whole pipeline latency: far below one sample per clock.
-  EXPECT_LT(r.stats["samples_per_clock"].get<double>(), 0.5);
-  std::printf("LT initiator through the b->nb adapter on the RTL: %.3f samples/clock\n",
-              r.stats["samples_per_clock"].get<double>());
+  EXPECT_LT(r.stats.samples_per_clock(), 0.5);
+  std::printf("LT initiator through the b->nb adapter on the RTL: %.3f samples/clock\n", r.stats.samples_per_clock());
 }
 
 // ------------------------------------------------------------------ throughput
 
 TEST(SystemcRtl, ThroughputAtLeast099SamplesPerClock) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   const Pyramid pyr = build_pyramid(make_pattern("testcard", 256, 256), PyramidMode::Exact);
   std::mt19937_64 rng(1001);
   const SamplerConfig cfg;  // trilinear: 8 texel reads per sample
   const auto reqs = random_requests(rng, 200000, pyr.last_level() + 1);
-  const EngineResult r = run_systemc(pyr, cfg, reqs, rtl_options());
+  const EngineResult r = run_systemc(Backend::Rtl, pyr, cfg, reqs, SystemcOptions{});
   expect_bit_exact(r, pyr, cfg, reqs, "throughput stream");
-  const uint64_t samples = r.stats["samples"], cycles = r.stats["cycles"];
+  const CycleStats& c = *r.stats.cycle;
+  const uint64_t samples = r.stats.samples, cycles = c.cycles;
   EXPECT_EQ(samples, reqs.size());
   // Independent of the counters' own division: samples / cycles from the raw counts.
   EXPECT_GE(double(samples) / double(cycles), 0.99) << samples << " samples in " << cycles << " clocks";
   // The socket never throttles the RTL: no clock with a request waiting and the RTL not ready, no
   // clock with a response waiting for the initiator, and the first-to-last span is the samples plus
   // one pipeline latency.
-  EXPECT_EQ(r.stats["rtl_backpressure_cycles"].get<uint64_t>(), 0u);
-  EXPECT_EQ(r.stats["rtl_response_stall_cycles"].get<uint64_t>(), 0u);
-  EXPECT_EQ(cycles, samples + r.stats["latency_cycles"].get<uint64_t>());
-  EXPECT_EQ(r.stats["latency_cycles"], r.stats["latency_max_cycles"]);
-  std::printf("systemc rtl: %llu samples, %llu clocks, %.5f samples/clock, latency %llu, %.0f clocks per CPU second\n",
+  EXPECT_EQ(c.backpressure_cycles, 0u);
+  EXPECT_EQ(c.output_stall_cycles, 0u);
+  EXPECT_EQ(cycles, samples + c.latency_cycles);
+  EXPECT_EQ(c.latency_cycles, 10u);
+  EXPECT_EQ(c.latency_cycles, c.latency_max_cycles);
+  std::printf("systemc rtl: %llu samples, %llu clocks, %.5f samples/clock, latency %llu\n",
               (unsigned long long)samples, (unsigned long long)cycles, double(samples) / double(cycles),
-              (unsigned long long)r.stats["latency_cycles"].get<uint64_t>(),
-              r.stats["simulated_clocks_per_cpu_second"].get<double>());
+              (unsigned long long)c.latency_cycles);
 }
 
 TEST(SystemcRtl, RandomGapsAndStallsReachTheRtl) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   const Pyramid pyr = small_pyramid();
   std::mt19937_64 rng(1102);
   const SamplerConfig cfg;
   const auto reqs = random_requests(rng, 30000, pyr.last_level() + 1);
-  SystemcOptions o = rtl_options();
-  o.gap_prob = 0.2;
-  o.stall_prob = 0.3;
-  o.max_stall = 12;
-  o.seed = 1102;
-  const EngineResult r = run_systemc(pyr, cfg, reqs, o);
+  SystemcOptions o;
+  o.engine.stalls = Stalls::Heavy;
+  o.engine.seed = 1102;
+  const EngineResult r = run_systemc(Backend::Rtl, pyr, cfg, reqs, o);
   expect_bit_exact(r, pyr, cfg, reqs, "random gaps and stalls");
-  EXPECT_GT(r.stats["input_gap_cycles"].get<uint64_t>(), 1000u);
-  EXPECT_GT(r.stats["response_stall_cycles"].get<uint64_t>(), 1000u);
+  const CycleStats& c = *r.stats.cycle;
+  EXPECT_GT(c.input_gap_cycles, 1000u);
   // Held END_RESPs turn into rsp_ready low at the RTL, which then backs up to req_ready.
-  EXPECT_GT(r.stats["rtl_response_stall_cycles"].get<uint64_t>(), 0u);
-  EXPECT_GT(r.stats["rtl_backpressure_cycles"].get<uint64_t>(), 0u);
-  EXPECT_LT(r.stats["samples_per_clock"].get<double>(), 0.9);
+  EXPECT_GT(c.output_stall_cycles, 1000u);
+  EXPECT_GT(c.backpressure_cycles, 0u);
+  EXPECT_LT(r.stats.samples_per_clock(), 0.9);
 }
 
-// ------------------------------------------------------------------ tag order and loss
+// ------------------------------------------------------------------ the initiator's checks
 
-TEST(SystemcTags, CleanRunReportsNoError) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
-  SystemcOptions o = rtl_options();
-  o.fault = Fault::DropResponse;
-  o.fault_index = 100000;  // beyond the stream: the fault never fires
-  EXPECT_EQ(error_of(o), "");
+namespace {
+
+// A deliberately faulty approximately-timed target (test code only): it answers every request from
+// the golden model, one BEGIN_RESP per clock, and drops, swaps or duplicates response `at`.
+enum class Fault { None, Drop, Swap, Duplicate };
+
+class FaultyTarget : public sc_core::sc_module {
+ public:
+  tlm_utils::simple_target_socket<FaultyTarget> socket;
+  FaultyTarget(sc_core::sc_module_name name, const Pyramid& pyr, const sc_core::sc_time& period, Fault fault,
+               uint64_t at)
+      : sc_module(name), socket("socket"), sampler_(pyr, SamplerConfig{}), period_(period), fault_(fault), at_(at) {
+    socket.register_nb_transport_fw(this, &FaultyTarget::fw);
+    SC_METHOD(clock);
+  }
+  SC_HAS_PROCESS(FaultyTarget);
+
+ private:
+  tlm::tlm_sync_enum fw(tlm::tlm_generic_payload& t, tlm::tlm_phase& phase, sc_core::sc_time&) {
+    if (phase == tlm::END_RESP) {
+      open_ = false;
+      return tlm::TLM_COMPLETED;
+    }
+    auto* s = reinterpret_cast<SampleTransfer*>(t.get_data_ptr());
+    const Texel texel = sampler_.sample(Request{s->u, s->v, s->lod, 0});
+    for (int c = 0; c < 4; ++c) s->rgba[c] = texel[size_t(c)];
+    t.set_response_status(tlm::TLM_OK_RESPONSE);
+    const uint64_t i = count_++;
+    if (!(fault_ == Fault::Drop && i == at_)) queue_.push_back({&t, fault_ == Fault::Duplicate && i == at_});
+    if (fault_ == Fault::Swap && i == at_ + 1) std::swap(queue_[queue_.size() - 1], queue_[queue_.size() - 2]);
+    phase = tlm::END_REQ;
+    return tlm::TLM_UPDATED;
+  }
+  void clock() {
+    next_trigger(period_);
+    if (open_ || queue_.empty()) return;
+    const Item item = queue_.front();
+    queue_.pop_front();
+    for (int copy = 0; copy < (item.twice ? 2 : 1); ++copy) {
+      tlm::tlm_phase phase = tlm::BEGIN_RESP;
+      sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
+      if (socket->nb_transport_bw(*item.trans, phase, delay) == tlm::TLM_ACCEPTED) open_ = true;
+    }
+  }
+  struct Item {
+    tlm::tlm_generic_payload* trans;
+    bool twice;
+  };
+  Sampler sampler_;
+  sc_core::sc_time period_;
+  Fault fault_;
+  uint64_t at_, count_ = 0;
+  std::deque<Item> queue_;
+  bool open_ = false;
+};
+
+// The production initiator against the faulty target; the error message ("" when none).
+std::string fault_error(Fault fault, uint64_t at, size_t n = 200) {
+  const Pyramid pyr = small_pyramid();
+  std::mt19937_64 rng(7);
+  const auto reqs = random_requests(rng, n, pyr.last_level() + 1);
+  try {
+    run_forked([&] {
+      const sc_core::sc_time period(10, sc_core::SC_NS);
+      FaultyTarget target("faulty", pyr, period, fault, at);
+      StreamInitiator bench("testbench", reqs, true, period, InitiatorTiming{});
+      bench.socket.bind(target.socket);
+      run_stream(bench, reqs.size(), period, 5000, false, [] { return std::string(); });
+      EngineResult r;
+      r.texels = bench.texels();
+      r.stats.engine = "faulty";
+      return r;
+    });
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
-TEST(SystemcTags, WrongTagOnTheRtlPinsIsReported) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
-  SystemcOptions o = rtl_options();
-  o.fault = Fault::CorruptRtlTag;
-  o.fault_index = 37;
-  const std::string e = error_of(o);
-  EXPECT_NE(e.find("has tag 38, expected tag 37 (request #37)"), std::string::npos) << e;
-}
+}  // namespace
 
-TEST(SystemcTags, LostResponseIsReported) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
-  SystemcOptions o = rtl_options();
-  o.fault = Fault::DropResponse;
-  o.fault_index = 50;
-  const std::string e = error_of(o);
+TEST(SystemcInitiatorChecks, CleanRunReportsNoError) { EXPECT_EQ(fault_error(Fault::None, 0), ""); }
+
+TEST(SystemcInitiatorChecks, LostResponseIsReported) {
+  const std::string e = fault_error(Fault::Drop, 50);
   EXPECT_NE(e.find("response with tag 51"), std::string::npos) << e;
   EXPECT_NE(e.find("expected tag 50"), std::string::npos) << e;
 }
 
-TEST(SystemcTags, LostLastResponseTimesOut) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
-  SystemcOptions o = rtl_options();
-  o.fault = Fault::DropResponse;
-  o.fault_index = 199;
-  o.timeout_cycles = 5000;
-  const std::string e = error_of(o, 200);
+TEST(SystemcInitiatorChecks, LostLastResponseTimesOut) {
+  const std::string e = fault_error(Fault::Drop, 199, 200);
   EXPECT_NE(e.find("time-out: no response for tag 199"), std::string::npos) << e;
 }
 
-TEST(SystemcTags, ReorderedResponsesAreReported) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
-  SystemcOptions o = rtl_options();
-  o.fault = Fault::SwapResponses;
-  o.fault_index = 10;
-  const std::string e = error_of(o);
+TEST(SystemcInitiatorChecks, ReorderedResponsesAreReported) {
+  const std::string e = fault_error(Fault::Swap, 10);
   EXPECT_NE(e.find("response with tag 11"), std::string::npos) << e;
   EXPECT_NE(e.find("expected tag 10"), std::string::npos) << e;
 }
 
-TEST(SystemcTags, DuplicatedResponseIsReported) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
-  SystemcOptions o = rtl_options();
-  o.fault = Fault::DuplicateResponse;
-  o.fault_index = 120;
-  const std::string e = error_of(o);
+TEST(SystemcInitiatorChecks, DuplicatedResponseIsReported) {
+  const std::string e = fault_error(Fault::Duplicate, 120);
   EXPECT_NE(e.find("response with tag 120"), std::string::npos) << e;
   EXPECT_NE(e.find("expected tag 121"), std::string::npos) << e;
 }
 
 // ------------------------------------------------------------------ input errors
 
-TEST(SystemcErrors, MalformedTransactionGetsBurstErrorStatus) {
-  // The initiator reports the status the target set; both backends, both initiator styles.
-  std::vector<std::pair<Backend, InitiatorStyle>> cases = {{Backend::Model, InitiatorStyle::Lt},
-                                                           {Backend::Model, InitiatorStyle::At}};
-  if (have_rtl_backend()) cases.push_back({Backend::Rtl, InitiatorStyle::At});
-  for (const auto& [backend, style] : cases) {
-    SystemcOptions o;
-    o.backend = backend;
-    o.initiator = style;
-    o.fault = Fault::BadLength;
-    o.fault_index = 42;
-    const std::string e = error_of(o);
-    EXPECT_NE(e.find("sample tag 42: response status TLM_BURST_ERROR_RESPONSE"), std::string::npos) << e;
-  }
+namespace {
+struct OneShotInitiator : sc_core::sc_module {
+  tlm_utils::simple_initiator_socket<OneShotInitiator> socket{"socket"};
+  explicit OneShotInitiator(sc_core::sc_module_name name) : sc_module(name) {}
+};
+}  // namespace
+
+TEST(SystemcErrors, MalformedTransactionGetsAnErrorStatus) {
+  // A transaction with a wrong data length, sent straight to the target's socket: both backends,
+  // both transport styles; the target sets an error status and never samples it.
+  for (const Backend backend : {Backend::Model, Backend::Rtl})
+    for (const bool blocking : {true, false}) {
+      const Pyramid pyr = small_pyramid();
+      const EngineResult r = run_forked([&] {
+        const sc_core::sc_time period(10, sc_core::SC_NS);
+        TexUnitTlm unit("tex_unit_tlm", backend, pyr, SamplerConfig{}, period);
+        OneShotInitiator initiator("initiator");
+        auto& socket = initiator.socket;
+        socket.bind(unit.socket);
+        SampleTransfer data;
+        tlm::tlm_generic_payload t;
+        t.set_command(tlm::TLM_READ_COMMAND);
+        t.set_address(kSampleAddress);
+        t.set_data_ptr(reinterpret_cast<unsigned char*>(&data));
+        t.set_data_length(sizeof data - 4);
+        t.set_streaming_width(sizeof data - 4);
+        sc_core::sc_start(sc_core::SC_ZERO_TIME);
+        sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
+        if (blocking) {
+          socket->b_transport(t, delay);
+        } else {
+          tlm::tlm_phase phase = tlm::BEGIN_REQ;
+          socket->nb_transport_fw(t, phase, delay);
+        }
+        EngineResult out;
+        out.stats.engine = t.get_response_string();
+        return out;
+      });
+      EXPECT_EQ(r.stats.engine, "TLM_BURST_ERROR_RESPONSE") << (backend == Backend::Rtl ? "rtl" : "model")
+                                                            << (blocking ? " b_transport" : " nb_transport");
+    }
 }
 
 TEST(SystemcErrors, TooLargeTextureForTheRtlIsOneLineError) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   const Pyramid pyr = build_pyramid(make_pattern("checker", 2048, 4), PyramidMode::Exact);
   try {
-    run_systemc(pyr, SamplerConfig{}, {Request{}}, rtl_options());
+    run_systemc(Backend::Rtl, pyr, SamplerConfig{}, {Request{}}, SystemcOptions{});
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("2048x4 does not fit"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("2048x4 does not fit the RTL"), std::string::npos) << e.what();
   }
 }
 
 TEST(SystemcErrors, LodOutsideTheRtlPortIsOneLineError) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   Request q;
   q.lod = 40000;
   try {
-    run_systemc(small_pyramid(), SamplerConfig{}, {Request{}, q}, rtl_options());
+    run_systemc(Backend::Rtl, small_pyramid(), SamplerConfig{}, {Request{}, q}, SystemcOptions{});
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("request 1: lod 40000/256"), std::string::npos) << e.what();
@@ -391,21 +433,21 @@ TEST(SystemcTexsim, SampleOutputByteIdenticalToModel) {
   const std::string model = run("model", "");
   ASSERT_GT(model.size(), 3000u);
   EXPECT_EQ(run("systemc-model", ""), model);
-  if (!have_rtl_backend()) return;
   const std::string stats = dir + "/systemc_stats.json";
-  EXPECT_EQ(run("systemc", "--seed 0 --stats " + stats), model);
+  EXPECT_EQ(run("systemc", "--stats " + stats), model);
   const auto js = nlohmann::json::parse(read_file(stats));
-  EXPECT_EQ(js["backend"], "rtl");
+  EXPECT_EQ(js["engine"], "systemc");
   EXPECT_EQ(js["samples"].get<uint64_t>(), 3000u);
   EXPECT_GE(js["samples_per_clock"].get<double>(), 0.99);
   EXPECT_EQ(js["cycles"].get<uint64_t>(), 3000u + js["latency_cycles"].get<uint64_t>());
-  EXPECT_EQ(run("systemc", "--seed 5"), model);  // random gaps and stalls: same texels
+  EXPECT_EQ(run("systemc", "--stalls random --seed 5"), model);  // random gaps and stalls: same texels
+  EXPECT_EQ(run("systemc", "--stalls heavy --seed 6 --load port"), model);
 }
 
 TEST(SystemcTexsim, RenderSeveralFramesByteIdenticalToModel) {
   // Each frame is its own SystemC simulation (one forked process each).
   const std::string dir = ::testing::TempDir();
-  const std::string engine = have_rtl_backend() ? "systemc" : "systemc-model";
+  const std::string engine = "systemc";
   for (const std::string& e : {std::string("model"), engine}) {
     const std::string cmd = std::string(TEXSIM_PATH) + " render -s plane -t checker:64x64 --width 96 --height 64" +
                             " --frames 2 -o " + dir + "/systemc_render_" + e + ".png -e " + e + " > /dev/null";
@@ -420,7 +462,6 @@ TEST(SystemcTexsim, RenderSeveralFramesByteIdenticalToModel) {
 }
 
 TEST(SystemcTexsim, TooLargeTextureFailsWithOneLineAndNoOutput) {
-  if (!have_rtl_backend()) GTEST_SKIP() << "no Verilated RTL in this build";
   const std::string dir = ::testing::TempDir();
   const std::string queries = dir + "/systemc_one.csv", out = dir + "/systemc_never.csv", err = dir + "/systemc_err.txt";
   std::ofstream(queries) << "u,v,lod\n0.5,0.5,0\n";
@@ -429,7 +470,7 @@ TEST(SystemcTexsim, TooLargeTextureFailsWithOneLineAndNoOutput) {
                           " -e systemc 2> " + err;
   EXPECT_NE(std::system(cmd.c_str()), 0);
   const std::string msg = read_file(err);
-  EXPECT_NE(msg.find("does not fit the SystemC RTL backend"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("2048x2048 does not fit the RTL"), std::string::npos) << msg;
   EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
   EXPECT_FALSE(std::ifstream(out).good());
 }

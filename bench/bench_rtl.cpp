@@ -1,0 +1,59 @@
+#include "bench_rtl.h"
+
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "engines/rtl/driver.h"
+#include "model/image.h"
+
+namespace bench {
+
+namespace {
+
+void BM_rtl_sampling(benchmark::State& state, const tex::rtl::RtlConfig* config) {
+  using namespace tex;
+  auto unit = rtl::Driver::create(*config);
+  unit->reset();
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 1 << config->max_log2_w, 1 << config->max_log2_h));
+  Pyramid wide = pyr;  // 16-bit configurations take 16-bit texels
+  for (Image& img : wide.levels) {
+    img.channel_bits = config->cw;
+    for (Texel& t : img.texels)
+      for (uint16_t& c : t) c = uint16_t(c * ((1u << config->cw) - 1) / 255);
+  }
+  unit->load(wide, LoadMethod::Backdoor);
+  SamplerConfig cfg;  // trilinear, repeat
+  unit->configure(cfg, wide);
+  std::mt19937_64 rng(1);
+  std::vector<Request> reqs(1 << 18);
+  const int last = std::max(config->max_log2_w, config->max_log2_h);
+  for (Request& r : reqs) {
+    r.u = int32_t(rng() % (uint64_t(4) << 24)) - (int32_t(2) << 24);
+    r.v = int32_t(rng() % (uint64_t(4) << 24)) - (int32_t(2) << 24);
+    r.lod = int32_t(rng() % uint64_t((last + 1) * 256));
+  }
+  uint64_t samples = 0, clocks = 0, sink = 0;
+  for (auto _ : state) {
+    const rtl::StreamStats st =
+        rtl::stream(*unit, reqs.data(), reqs.size(), rtl::Timing{}, 7, [&](size_t, uint64_t rgba) { sink += rgba; });
+    samples += st.samples();
+    clocks += st.cycles();
+  }
+  benchmark::DoNotOptimize(sink);
+  state.SetItemsProcessed(int64_t(samples));
+  state.counters["clocks/s"] = benchmark::Counter(double(clocks), benchmark::Counter::kIsRate);
+}
+
+}  // namespace
+
+std::vector<std::string> register_rtl_benchmarks(double min_time) {
+  std::vector<std::string> names;
+  for (const tex::rtl::RtlConfig& c : tex::rtl::compiled_configs()) {
+    names.push_back("rtl_sampling/" + c.name);
+    benchmark::RegisterBenchmark(names.back().c_str(), BM_rtl_sampling, &c)->MinTime(min_time)->UseRealTime();
+  }
+  return names;
+}
+
+}  // namespace bench

@@ -1,0 +1,88 @@
+#include "engines/engine.h"
+
+namespace tex {
+
+namespace {
+
+template <class E>
+bool parse_named(const std::vector<std::string>& names, const std::string& name, E& out) {
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) {
+      out = E(i);
+      return true;
+    }
+  return false;
+}
+
+const std::vector<std::string>& load_names() {
+  static const std::vector<std::string> n = {"backdoor", "port"};
+  return n;
+}
+
+
+}  // namespace
+
+const std::vector<std::string>& stalls_names() {
+  static const std::vector<std::string> n = {"none", "random", "heavy"};
+  return n;
+}
+bool parse_stalls(const std::string& name, Stalls& out) { return parse_named(stalls_names(), name, out); }
+std::string stalls_name(Stalls s) { return stalls_names()[size_t(s)]; }
+bool parse_load_method(const std::string& name, LoadMethod& out) { return parse_named(load_names(), name, out); }
+std::string load_method_name(LoadMethod m) { return load_names()[size_t(m)]; }
+
+nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
+  nlohmann::json j = {{"engine", engine},
+                      {"samples", samples},
+                      {"load_seconds", load_seconds},
+                      {"sample_seconds", sample_seconds},
+                      {"samples_per_second", sample_seconds > 0 ? double(samples) / sample_seconds : 0.0}};
+  if (cycle) {
+    j["configuration"] = cycle->configuration;
+    j["stalls"] = stalls_name(options.stalls);
+    j["seed"] = options.seed;
+    j["load"] = load_method_name(options.load);
+    j["cycles"] = cycle->cycles;
+    j["samples_per_clock"] = samples_per_clock();
+    j["latency_cycles"] = cycle->latency_cycles;
+    j["latency_max_cycles"] = cycle->latency_max_cycles;
+    j["output_stall_cycles"] = cycle->output_stall_cycles;
+    j["input_gap_cycles"] = cycle->input_gap_cycles;
+    j["backpressure_cycles"] = cycle->backpressure_cycles;
+    j["load_cycles"] = cycle->load_cycles;
+    j["clocks_per_second"] = sample_seconds > 0 ? double(cycle->cycles) / sample_seconds : 0.0;
+    if (!options.trace_path.empty()) j["trace"] = options.trace_path;
+  } else {
+    j["texel_reads"] = texel_reads;
+    j["multiplies_per_channel"] = multiplies_per_channel;
+    j["bank_reads"] = bank_reads;
+  }
+  return j;
+}
+
+EngineStats EngineStats::from_json(const nlohmann::json& j) {
+  EngineStats s;
+  s.engine = j.at("engine").get<std::string>();
+  s.samples = j.at("samples").get<uint64_t>();
+  s.load_seconds = j.at("load_seconds").get<double>();
+  s.sample_seconds = j.at("sample_seconds").get<double>();
+  if (j.contains("cycles")) {
+    CycleStats c;
+    c.configuration = j.at("configuration").get<std::string>();
+    c.cycles = j.at("cycles").get<uint64_t>();
+    c.latency_cycles = j.at("latency_cycles").get<uint64_t>();
+    c.latency_max_cycles = j.at("latency_max_cycles").get<uint64_t>();
+    c.output_stall_cycles = j.at("output_stall_cycles").get<uint64_t>();
+    c.input_gap_cycles = j.at("input_gap_cycles").get<uint64_t>();
+    c.backpressure_cycles = j.at("backpressure_cycles").get<uint64_t>();
+    c.load_cycles = j.at("load_cycles").get<uint64_t>();
+    s.cycle = c;
+  } else {
+    s.texel_reads = j.at("texel_reads").get<uint64_t>();
+    s.multiplies_per_channel = j.at("multiplies_per_channel").get<uint64_t>();
+    s.bank_reads = j.at("bank_reads").get<std::vector<std::array<uint64_t, 4>>>();
+  }
+  return s;
+}
+
+}  // namespace tex

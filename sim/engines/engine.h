@@ -1,0 +1,104 @@
+// An engine runs a list of requests against a pyramid: the golden model, the Verilated RTL, or the
+// RTL / the model behind the SystemC/TLM-2.0 socket. Every engine returns the same texels, in
+// request order; cycle-accurate engines also count clocks. Statistics are typed (EngineStats);
+// JSON is only their output format (to_json), with the same key for the same quantity everywhere.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/pyramid.h"
+#include "model/sampler.h"
+
+namespace tex {
+
+// Stimulus timing of cycle-accurate engines: `none` offers a request and takes a response in every
+// clock (what the hardware does when nothing stalls it); `random` and `heavy` add input gaps and
+// output stalls drawn from the seed (moderate, and in about 60% of the clocks).
+enum class Stalls { None, Random, Heavy };
+const std::vector<std::string>& stalls_names();
+bool parse_stalls(const std::string& name, Stalls& out);
+std::string stalls_name(Stalls s);
+
+// How a cycle-accurate engine fills its texture memories: `backdoor` writes them directly (0 clocks),
+// `port` simulates the write port (one texel per clock).
+enum class LoadMethod { Backdoor, Port };
+bool parse_load_method(const std::string& name, LoadMethod& out);
+std::string load_method_name(LoadMethod m);
+
+struct EngineOptions {
+  Stalls stalls = Stalls::None;
+  uint64_t seed = 1;  // random stalls; the RTL's registers without reset start from it too
+  LoadMethod load = LoadMethod::Backdoor;
+  bool show_progress = false;  // progress line on stderr (a terminal)
+  std::string trace_path;      // FST waveform, empty = none (engines with can_trace)
+  uint64_t trace_begin = 0, trace_end = 0;  // clock window of the trace; end 0 = to the end
+};
+
+// Counters of a cycle-accurate engine (the sampling phase; clocks are rising edges).
+struct CycleStats {
+  uint64_t cycles = 0;               // first clock a request is offered .. last response, inclusive
+  uint64_t latency_cycles = 0;       // least request -> response handshake distance
+  uint64_t latency_max_cycles = 0;
+  uint64_t output_stall_cycles = 0;  // a response waits: rsp_valid && !rsp_ready
+  uint64_t input_gap_cycles = 0;     // no request offered while some remain
+  uint64_t backpressure_cycles = 0;  // a request waits: req_valid && !req_ready
+  uint64_t load_cycles = 0;          // clocks spent loading the texture (0 for the backdoor)
+  std::string configuration;         // the Verilated parameter configuration
+};
+
+struct EngineStats {
+  std::string engine;
+  uint64_t samples = 0;
+  double load_seconds = 0;    // building the engine and loading the texture
+  double sample_seconds = 0;  // the sampling phase alone (wall time)
+  std::optional<CycleStats> cycle;  // cycle-accurate engines only
+  // Golden model only: texel words read, lerps that multiply.
+  uint64_t texel_reads = 0, multiplies_per_channel = 0;
+  std::vector<std::array<uint64_t, 4>> bank_reads;  // [level][bank]
+
+  // Throughput: samples per clock once the pipeline has filled, samples / (cycles - latency), so
+  // that a short run of a unit that takes one sample per clock reports 1.0 (cycles has the total).
+  double samples_per_clock() const {
+    if (!cycle || cycle->cycles <= cycle->latency_cycles) return 0.0;
+    return double(samples) / double(cycle->cycles - cycle->latency_cycles);
+  }
+  nlohmann::json to_json(const EngineOptions& options) const;
+  static EngineStats from_json(const nlohmann::json& j);  // what to_json wrote (SystemC child -> parent)
+};
+
+struct EngineResult {
+  std::vector<Texel> texels;  // one per request, in request order
+  EngineStats stats;
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  // Throws tex::Error for input the engine cannot take (one line), before any simulation.
+  virtual EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) = 0;
+};
+
+struct EngineInfo {
+  std::string name;
+  std::string description;
+  bool cycle_accurate = false;
+  bool can_trace = false;
+  std::function<std::unique_ptr<Engine>(const EngineOptions&)> make;
+};
+// Every engine of this build, in the order --help lists them.
+const std::vector<EngineInfo>& engines();
+const EngineInfo& engine_info(const std::string& name);  // throws tex::Error naming the known ones
+// "model | rtl | ..." for --help.
+std::string engine_list();
+
+// Throws tex::Error for an unknown engine or options it cannot honour (e.g. --trace on the model).
+std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions& options);
+
+// The golden model, with its read and multiply counters.
+EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
+
+}  // namespace tex

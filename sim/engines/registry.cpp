@@ -1,0 +1,74 @@
+// The engines of this build and the golden model's engine.
+#include <chrono>
+
+#include "engines/engine.h"
+#include "engines/rtl/rtl_engine.h"
+#include "engines/systemc/systemc_engine.h"
+#include "model/error.h"
+
+namespace tex {
+
+namespace {
+
+class ModelEngine final : public Engine {
+ public:
+  EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) override {
+    return run_model(pyramid, config, requests);
+  }
+};
+
+}  // namespace
+
+const std::vector<EngineInfo>& engines() {
+  static const std::vector<EngineInfo> list = {
+      {"model", "the golden model (bit-exact executable specification)", false, false,
+       [](const EngineOptions&) -> std::unique_ptr<Engine> { return std::make_unique<ModelEngine>(); }},
+      {"rtl", "the Verilated RTL, cycle-accurate, smallest configuration that holds the texture", true, true,
+       rtl::make_rtl_engine},
+      {"systemc", "the Verilated RTL behind a TLM-2.0 socket (approximately timed, pipelined)", true, false,
+       [](const EngineOptions& o) { return systemc::make_systemc_engine(systemc::Backend::Rtl, o); }},
+      {"systemc-model", "the golden model behind the same socket (loosely timed)", false, false,
+       [](const EngineOptions& o) { return systemc::make_systemc_engine(systemc::Backend::Model, o); }},
+  };
+  return list;
+}
+
+std::string engine_list() {
+  std::string s;
+  for (const EngineInfo& e : engines()) s += (s.empty() ? "" : " | ") + e.name;
+  return s;
+}
+
+const EngineInfo& engine_info(const std::string& name) {
+  for (const EngineInfo& e : engines())
+    if (e.name == name) return e;
+  throw Error("unknown engine '" + name + "' (" + engine_list() + ")");
+}
+
+std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions& options) {
+  const EngineInfo& info = engine_info(name);
+  if (!options.trace_path.empty() && !info.can_trace)
+    throw Error("--trace: engine " + name + " cannot write waveforms (use --engine rtl)");
+  return info.make(options);
+}
+
+EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Sampler sampler(pyramid, config);
+  const auto t1 = std::chrono::steady_clock::now();
+  EngineResult r;
+  r.texels.reserve(requests.size());
+  for (const Request& q : requests) r.texels.push_back(sampler.sample(q));
+  const auto t2 = std::chrono::steady_clock::now();
+  const SamplerStats s = sampler.stats();
+  r.stats.engine = "model";
+  r.stats.samples = s.samples;
+  r.stats.load_seconds = std::chrono::duration<double>(t1 - t0).count();
+  r.stats.sample_seconds = std::chrono::duration<double>(t2 - t1).count();
+  r.stats.texel_reads = s.memory.reads;
+  r.stats.multiplies_per_channel = s.multiplies_per_channel;
+  r.stats.bank_reads = s.memory.bank_reads;
+  return r;
+}
+
+}  // namespace tex

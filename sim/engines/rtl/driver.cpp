@@ -1,0 +1,358 @@
+#include "engines/rtl/driver.h"
+
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <random>
+
+#include "model/error.h"
+#include "model/formats.h"
+
+namespace tex::rtl {
+
+namespace {
+
+// Ctrl-C while a trace is open: the next clock closes the trace, then the process ends as Ctrl-C
+// would. Only a flag is set in the handler (async-signal-safe).
+volatile std::sig_atomic_t g_sigint = 0;
+int g_handlers_installed = 0;
+struct sigaction g_previous_sigint;
+
+void on_sigint(int) { g_sigint = 1; }
+
+void install_sigint_handler() {
+  if (g_handlers_installed++ > 0) return;
+  struct sigaction sa {};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, &g_previous_sigint);
+}
+
+void remove_sigint_handler() {
+  if (--g_handlers_installed == 0) sigaction(SIGINT, &g_previous_sigint, nullptr);
+}
+
+// Uniform double in [0, 1) from 53 random bits.
+inline double unit(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
+
+std::string size_text(int log2_w, int log2_h) { return std::to_string(1 << log2_w) + "x" + std::to_string(1 << log2_h); }
+
+}  // namespace
+
+// ---------------------------------------------------------------- configurations and inputs
+
+std::string RtlConfig::max_texture() const { return size_text(max_log2_w, max_log2_h); }
+
+const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw) {
+  const RtlConfig* best = nullptr;
+  const RtlConfig* largest = nullptr;
+  for (const RtlConfig& c : compiled_configs()) {
+    if (c.cw != cw) continue;
+    const int area = c.max_log2_w + c.max_log2_h;
+    if (c.fits(log2_w, log2_h) && (!best || area < best->max_log2_w + best->max_log2_h)) best = &c;
+    if (!largest || area > largest->max_log2_w + largest->max_log2_h) largest = &c;
+  }
+  if (best) return *best;
+  if (!largest) throw Error("no RTL configuration is built for " + std::to_string(cw) + "-bit channels");
+  throw Error("texture " + size_text(log2_w, log2_h) + " does not fit the RTL: the largest compiled tex_unit takes " +
+              largest->max_texture() + " (use --engine model for larger textures)");
+}
+
+void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests) {
+  if (!config.fits(pyramid.log2_w0(), pyramid.log2_h0()))
+    throw Error("texture " + size_text(pyramid.log2_w0(), pyramid.log2_h0()) + " does not fit " + config.name +
+                " (at most " + config.max_texture() + ")");
+  if (pyramid.levels[0].channel_bits != config.cw)
+    throw Error(config.name + " is built for " + std::to_string(config.cw) + "-bit channels; this texture has " +
+                std::to_string(pyramid.levels[0].channel_bits) + "-bit channels");
+  for (size_t i = 0; i < requests.size(); ++i)
+    if (requests[i].lod < kLodMin || requests[i].lod > kLodMax)
+      throw Error("request " + std::to_string(i) + ": lod " + std::to_string(requests[i].lod) +
+                  "/256 is outside the 16-bit Q8.8 port of the RTL");
+}
+
+CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
+  CfgPins c;
+  c.log2_w = uint8_t(log2_w);
+  c.log2_h = uint8_t(log2_h);
+  c.wrap_u = uint8_t(config.wrap_u);
+  c.wrap_v = uint8_t(config.wrap_v);
+  c.texel_linear = config.filter.texel == TexelFilter::Linear;
+  c.mip_mode = uint8_t(config.filter.mip);
+  c.lod_bias = int16_t(config.lod_bias);
+  c.min_lod = int16_t(config.min_lod);
+  c.max_lod = int16_t(config.max_lod);
+  return c;
+}
+
+uint64_t pack_rgba(const Texel& t, int cw) {
+  const uint64_t mask = (uint64_t(1) << cw) - 1;
+  uint64_t p = 0;
+  for (int c = 3; c >= 0; --c) p = p << cw | (t[size_t(c)] & mask);
+  return p;
+}
+
+Texel unpack_rgba(uint64_t p, int cw) {
+  const uint64_t mask = (uint64_t(1) << cw) - 1;
+  Texel t;
+  for (size_t c = 0; c < 4; ++c) t[c] = uint16_t((p >> (int(c) * cw)) & mask);
+  return t;
+}
+
+// ---------------------------------------------------------------- driver
+
+Driver::Driver(const RtlConfig& config, const DriverOptions& options) : config_(config), options_(options) {
+  tracing_ = !options_.trace_path.empty();
+  if (tracing_) install_sigint_handler();
+}
+
+Driver::~Driver() {
+  if (tracing_) remove_sigint_handler();
+}
+
+void Driver::close_trace() {
+  if (!tracing_) return;
+  close_trace_impl();
+  remove_sigint_handler();
+  tracing_ = false;
+}
+
+PinsOut Driver::tick(const PinsIn& in) {
+  if (tracing_) {
+    if (g_sigint) {
+      close_trace();
+      std::fprintf(stderr, "\ninterrupted at clock %llu; FST trace closed: %s\n", (unsigned long long)cycle_,
+                   options_.trace_path.c_str());
+      std::signal(SIGINT, SIG_DFL);
+      std::raise(SIGINT);
+    }
+    // Past the window: close now, so the file is complete even if the run is killed later.
+    if (options_.trace_end != 0 && cycle_ > options_.trace_end) close_trace();
+  }
+  const bool dump = tracing_ && cycle_ >= options_.trace_begin;
+  const PinsOut out = tick_pins(in, dump);
+  if (got_finish()) {
+    close_trace();
+    throw Error("RTL assertion failed (or $finish) at clock " + std::to_string(cycle_) + " of " + config_.name +
+                "; see the %Error line above" +
+                (options_.trace_path.empty() ? std::string() : "; FST trace closed: " + options_.trace_path));
+  }
+  ++cycle_;
+  return out;
+}
+
+void Driver::reset(int clocks) {
+  PinsIn in;
+  in.rst = true;
+  in.rsp_ready = false;
+  for (int i = 0; i < clocks; ++i) tick(in);
+  tick(PinsIn{});
+  issued_ = answered_ = 0;
+  idle_ready_clocks_ = stall_run_ = 0;
+  filled_ = false;
+}
+
+void Driver::configure(const CfgPins& cfg) { apply_cfg(cfg); }
+
+void Driver::load(const Pyramid& pyramid, LoadMethod method) {
+  check_inputs(config_, pyramid, {});
+  const int cw = config_.cw;
+  if (method == LoadMethod::Backdoor) {
+    // The layout of tex_level_mem: bank = parity (y & 1) * 2 + (x & 1), word (y >> 1) * stride +
+    // (x >> 1) with the stride of the largest level this memory can hold.
+    for (size_t k = 0; k < pyramid.levels.size(); ++k) {
+      const Image& img = pyramid.levels[k];
+      const int xb = std::max(config_.max_log2_w - int(k), 0);
+      const uint32_t stride = xb > 1 ? 1u << (xb - 1) : 1u;
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+          backdoor_write(int(k), (y & 1) * 2 + (x & 1), uint32_t(y >> 1) * stride + uint32_t(x >> 1),
+                         pack_rgba(img.at(x, y), cw));
+    }
+    return;
+  }
+  PinsIn in;
+  in.wr_en = true;
+  in.rsp_ready = false;
+  const uint64_t start = cycle_;
+  for (size_t k = 0; k < pyramid.levels.size(); ++k) {
+    const Image& img = pyramid.levels[k];
+    in.wr_level = uint8_t(k);
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        in.wr_x = uint16_t(x);
+        in.wr_y = uint16_t(y);
+        in.wr_data = pack_rgba(img.at(x, y), cw);
+        tick(in);
+      }
+  }
+  tick(PinsIn{});  // the last write lands; requests may follow
+  load_cycles_ += cycle_ - start;
+}
+
+Driver::Clock Driver::clock(const Request* offer, bool take_response) {
+  PinsIn& in = pins_;
+  in.req_valid = offer != nullptr;
+  if (offer) {
+    in.req_u = offer->u;
+    in.req_v = offer->v;
+    in.req_lod = int16_t(offer->lod);
+    in.req_tag = uint16_t(issued_ & kTagMask);
+    if (!counters_.any_offer) {
+      counters_.any_offer = true;
+      counters_.first_offer_cycle = cycle_;
+    }
+  }
+  in.rsp_ready = take_response;
+  const uint64_t now = cycle_;
+  const PinsOut out = tick(in);
+
+  Clock c;
+  if (out.rsp_valid && take_response) {
+    if (answered_ == issued_)
+      throw Error("RTL response with tag " + std::to_string(out.rsp_tag) + " at clock " + std::to_string(now) +
+                  " while no request is in flight (" + std::to_string(answered_) +
+                  " answered): duplicated or spurious response");
+    const uint32_t want = uint32_t(answered_ & kTagMask);
+    if (out.rsp_tag != want)
+      throw Error("RTL response at clock " + std::to_string(now) + " has tag " + std::to_string(out.rsp_tag) +
+                  ", expected tag " + std::to_string(want) + " (request #" + std::to_string(answered_) +
+                  "): a response was lost, duplicated or reordered");
+    const uint64_t latency = now - accept_clock_[answered_ % kRing];
+    counters_.latency_min = counters_.samples == 0 ? latency : std::min(counters_.latency_min, latency);
+    counters_.latency_max = std::max(counters_.latency_max, latency);
+    ++counters_.responses_by_stall_run[stall_run_ == 0 ? 0 : stall_run_ < 10 ? 1 : stall_run_ < 100 ? 2 : 3];
+    ++counters_.samples;
+    counters_.last_response_cycle = now;
+    stall_run_ = 0;
+    filled_ = true;
+    idle_ready_clocks_ = 0;
+    c.responded = true;
+    c.response_index = answered_++;
+    c.rgba = out.rsp_rgba;
+  } else if (take_response && answered_ < issued_) {
+    if (filled_) ++counters_.bubbles_after_fill;
+    if (++idle_ready_clocks_ > options_.timeout_cycles)
+      throw Error("RTL time-out: no response for tag " + std::to_string(answered_ & kTagMask) + " (request #" +
+                  std::to_string(answered_) + ", accepted at clock " +
+                  std::to_string(accept_clock_[answered_ % kRing]) + ") after " +
+                  std::to_string(options_.timeout_cycles) + " ready clocks, at clock " + std::to_string(now));
+  } else if (offer && !out.req_ready && answered_ == issued_) {
+    if (++idle_ready_clocks_ > options_.timeout_cycles)
+      throw Error("RTL time-out: req_ready stays low with nothing in flight; request #" + std::to_string(issued_) +
+                  " (tag " + std::to_string(issued_ & kTagMask) + ") not accepted by clock " + std::to_string(now));
+  }
+  if (offer) {
+    if (out.req_ready) {
+      if (issued_ - answered_ >= kRing)
+        throw Error("RTL accepted " + std::to_string(kRing) + " requests without answering the oldest (tag " +
+                    std::to_string(answered_ & kTagMask) + ") by clock " + std::to_string(now));
+      accept_clock_[issued_ % kRing] = now;
+      c.accepted = true;
+      c.accepted_index = issued_++;
+      idle_ready_clocks_ = 0;
+    } else {
+      ++counters_.backpressure_cycles;
+    }
+  }
+  if (out.rsp_valid && !take_response) {
+    ++counters_.output_stall_cycles;
+    ++stall_run_;
+  }
+  if (take_response) ++counters_.ready_cycles;
+  return c;
+}
+
+// ---------------------------------------------------------------- stimulus
+
+Timing Timing::of(Stalls stalls) {
+  Timing t;
+  switch (stalls) {
+    case Stalls::None:
+      break;
+    case Stalls::Random:  // moderate gaps and stalls, now and then a long stall
+      t.gap_prob = 0.05;
+      t.max_gap = 4;
+      t.stall_prob = 0.05;
+      t.max_stall = 8;
+      t.long_stall_prob = 0.0005;
+      t.long_stall = 200;
+      break;
+    case Stalls::Heavy:  // a gap or stall starts in 60% of the free clocks and lasts 1..6
+      t.gap_prob = 0.6;
+      t.max_gap = 6;
+      t.stall_prob = 0.6;
+      t.max_stall = 6;
+      break;
+  }
+  return t;
+}
+
+StreamStats stream(Driver& driver, const Request* requests, size_t n, const Timing& timing, uint64_t seed,
+                   const ResponseFn& on_response, const std::function<void(size_t)>& progress) {
+  StreamStats st;
+  driver.reset_counters();
+  const uint64_t base = driver.issued();  // sequence numbers continue across streams until a reset
+  size_t accepted = 0, done = 0;
+  if (timing.ideal()) {
+    while (done < n) {
+      const Driver::Clock c = driver.clock(accepted < n ? &requests[accepted] : nullptr, true);
+      if (c.responded) {
+        on_response(size_t(c.response_index - base), c.rgba);
+        if ((++done & 0xFFFF) == 0 && progress) progress(done);
+      }
+      accepted += c.accepted;
+    }
+  } else {
+    std::mt19937_64 rng(seed);
+    int gap_left = 0, stall_left = 0;
+    bool holding = false;    // a request was offered and not taken in the previous clock
+    bool after_gap = false;  // the next request follows an input gap
+    while (done < n) {
+      // A request once offered stays offered until accepted: gaps start only between requests.
+      if (gap_left == 0 && !holding && timing.gap_prob > 0 && accepted < n && unit(rng) < timing.gap_prob)
+        gap_left = 1 + int(rng() % uint64_t(std::max(1, timing.max_gap)));
+      if (stall_left == 0) {
+        if (timing.long_stall_prob > 0 && unit(rng) < timing.long_stall_prob)
+          stall_left = timing.long_stall;
+        else if (timing.stall_prob > 0 && unit(rng) < timing.stall_prob)
+          stall_left = 1 + int(rng() % uint64_t(std::max(1, timing.max_stall)));
+      }
+      const bool offer = accepted < n && gap_left == 0;
+      if (gap_left > 0) {
+        --gap_left;
+        if (accepted < n) {
+          ++st.gap_cycles;
+          after_gap = true;
+        }
+      }
+      const bool ready = stall_left == 0;
+      if (stall_left > 0) --stall_left;
+      const Driver::Clock c = driver.clock(offer ? &requests[accepted] : nullptr, ready);
+      if (c.responded) {
+        on_response(size_t(c.response_index - base), c.rgba);
+        ++done;
+        if (progress && (done & 0xFFFF) == 0) progress(done);
+      }
+      holding = offer && !c.accepted;
+      if (c.accepted) {
+        if (after_gap) ++st.requests_after_gap;
+        after_gap = false;
+        ++accepted;
+      }
+    }
+  }
+  st.protocol = driver.counters();
+
+  // A few idle clocks: anything that still comes out is a duplicate.
+  for (int i = 0; i < 64; ++i) {
+    const uint64_t now = driver.cycle();
+    const PinsOut out = driver.tick(PinsIn{});
+    if (out.rsp_valid)
+      throw Error("RTL response with tag " + std::to_string(out.rsp_tag) + " at clock " + std::to_string(now) +
+                  " after all " + std::to_string(n) + " requests were answered: duplicated or spurious response");
+  }
+  return st;
+}
+
+}  // namespace tex::rtl

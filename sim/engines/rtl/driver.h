@@ -1,0 +1,212 @@
+// The one pin-level driver of the Verilated tex_unit (docs/rtl-interface.md): reset, texture load
+// (write port or backdoor), the cfg pins, request packing with a tag, response unpacking and the
+// in-order tag scoreboard, the time-out, the protocol counters and the FST trace window. The
+// Verilator engine (`texsim --engine rtl`), the lockstep tests and the SystemC/TLM wrapper all
+// drive the RTL through it. The configuration-specific part (one Verilated class per parameter
+// set, rtl_configs.h) is a small template behind tick_pins() in verilated_tex_unit.cpp.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engines/engine.h"
+#include "model/pyramid.h"
+#include "model/sampler.h"
+
+namespace tex::rtl {
+
+// One Verilated parameter configuration of tex_unit (TAG_W = kTagBits).
+struct RtlConfig {
+  std::string name;  // Verilator --prefix, e.g. "Vtex_unit_10x10"
+  int max_log2_w = 0, max_log2_h = 0;
+  int cw = 8;  // bits per channel
+  bool fits(int log2_w, int log2_h) const { return log2_w <= max_log2_w && log2_h <= max_log2_h; }
+  std::string max_texture() const;  // "1024x1024"
+};
+
+// Every compiled configuration (declared once, in sim/engines/rtl/CMakeLists.txt), in that order.
+const std::vector<RtlConfig>& compiled_configs();
+// The smallest configuration with cw-bit channels that holds the pyramid; throws tex::Error naming
+// the largest one when none does.
+const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw = 8);
+// Everything the RTL cannot take, as one tex::Error, before any clock: a texture too large or with
+// other channel widths than the configuration's, a lambda outside the 16-bit Q8.8 port.
+void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests);
+
+constexpr int kTagBits = 16;
+constexpr uint32_t kTagMask = (1u << kTagBits) - 1;
+constexpr int kResetClocks = 4;
+
+// Values on the input pins during one clock.
+struct PinsIn {
+  bool rst = false;
+  bool wr_en = false;
+  uint8_t wr_level = 0;
+  uint16_t wr_x = 0, wr_y = 0;
+  uint64_t wr_data = 0;  // {A, B, G, R}, CW bits each
+  bool req_valid = false;
+  int32_t req_u = 0, req_v = 0;  // Q8.24
+  int16_t req_lod = 0;           // Q8.8
+  uint16_t req_tag = 0;
+  bool rsp_ready = true;
+};
+
+// Output pins as seen just before the rising edge: a handshake fires at that edge when
+// valid && ready.
+struct PinsOut {
+  bool req_ready = false;
+  bool rsp_valid = false;
+  uint64_t rsp_rgba = 0;  // {A, B, G, R}, CW bits each
+  uint16_t rsp_tag = 0;
+};
+
+// Static configuration pins.
+struct CfgPins {
+  uint8_t log2_w = 0, log2_h = 0;
+  uint8_t wrap_u = 0, wrap_v = 0;
+  bool texel_linear = true;
+  uint8_t mip_mode = 2;
+  int16_t lod_bias = 0, min_lod = 0, max_lod = 0;
+};
+CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h);
+
+// Texel <-> packed {A, B, G, R} of cw bits each (R in the low bits).
+uint64_t pack_rgba(const Texel& t, int cw);
+Texel unpack_rgba(uint64_t p, int cw);
+
+struct DriverOptions {
+  uint64_t seed = 1;            // Verilator's random start values of registers without reset
+  std::string trace_path;       // FST, empty = none
+  uint64_t trace_begin = 0;     // window of clocks to dump [begin, end]; end 0 = to the end
+  uint64_t trace_end = 0;
+  uint64_t timeout_cycles = 10000;  // ready clocks without a response while one is owed
+};
+
+// Protocol counters since reset_counters(), counted by clock().
+struct ProtocolCounters {
+  uint64_t samples = 0;
+  uint64_t first_offer_cycle = 0, last_response_cycle = 0;  // valid once samples > 0
+  bool any_offer = false;
+  uint64_t output_stall_cycles = 0;  // rsp_valid && !rsp_ready
+  uint64_t backpressure_cycles = 0;  // req_valid && !req_ready
+  uint64_t ready_cycles = 0;         // rsp_ready high
+  uint64_t latency_min = 0, latency_max = 0;  // accept edge -> response edge, in clocks
+  uint64_t bubbles_after_fill = 0;   // rsp_ready high, no response, one owed, after the first response
+  // Responses by the run of stalled clocks just before their handshake: 0, 1-9, 10-99, >= 100.
+  uint64_t responses_by_stall_run[4] = {0, 0, 0, 0};
+  uint64_t cycles() const { return samples ? last_response_cycle - first_offer_cycle + 1 : 0; }
+};
+
+class Driver {
+ public:
+  virtual ~Driver();
+  Driver(const Driver&) = delete;
+  Driver& operator=(const Driver&) = delete;
+
+  // The Verilated model of `config`. Throws tex::Error.
+  static std::unique_ptr<Driver> create(const RtlConfig& config, const DriverOptions& options = {});
+
+  const RtlConfig& config() const { return config_; }
+  uint64_t cycle() const { return cycle_; }
+  uint64_t load_cycles() const { return load_cycles_; }
+
+  // rst high for `clocks` clocks (no request, no response taken), then one idle clock. Forgets
+  // everything in flight.
+  void reset(int clocks = kResetClocks);
+  // Fills the level memories with the pyramid: Backdoor writes them directly (0 clocks), Port
+  // drives the write port, one texel per clock, then one idle clock. Throws tex::Error when the
+  // pyramid does not fit the configuration.
+  void load(const Pyramid& pyramid, LoadMethod method);
+  void configure(const CfgPins& cfg);
+  void configure(const SamplerConfig& config, const Pyramid& pyramid) {
+    configure(cfg_pins(config, pyramid.log2_w0(), pyramid.log2_h0()));
+  }
+
+  // One clock of the request/response protocol. `offer` is presented on the request pins (nullptr:
+  // req_valid low), tagged with its sequence number mod 2^16; once offered it must be offered again
+  // until accepted (the RTL asserts it). rsp_ready = take_response. The scoreboard checks that each
+  // response carries the tag of the oldest request in flight: a lost, duplicated, reordered or
+  // spurious response, or no response for timeout_cycles ready clocks, is a tex::Error naming the
+  // tag, the request number and the clock.
+  struct Clock {
+    bool accepted = false;   // the offered request was taken at this edge (sequence `accepted_index`)
+    bool responded = false;  // a response was taken at this edge
+    uint64_t accepted_index = 0;
+    uint64_t response_index = 0;  // sequence number of the request it answers
+    uint64_t rgba = 0;            // {A, B, G, R} CW bits each
+  };
+  Clock clock(const Request* offer, bool take_response);
+
+  uint64_t in_flight() const { return issued_ - answered_; }
+  uint64_t issued() const { return issued_; }
+  const ProtocolCounters& counters() const { return counters_; }
+  void reset_counters() { counters_ = {}; }
+
+  // One clock with raw pins, for tests that drive the protocol themselves; bypasses the scoreboard.
+  // Closes the trace and throws tex::Error when an RTL assertion fires; on SIGINT closes the trace
+  // and ends the process as Ctrl-C would.
+  PinsOut tick(const PinsIn& in);
+  void close_trace();
+
+ protected:
+  Driver(const RtlConfig& config, const DriverOptions& options);
+  // Configuration-specific part: set the pins, clock once, read the outputs.
+  virtual PinsOut tick_pins(const PinsIn& in, bool dump_trace) = 0;
+  virtual void apply_cfg(const CfgPins& cfg) = 0;
+  // Writes one word into the bank memory of `level` holding texels of parity `bank`.
+  virtual void backdoor_write(int level, int bank, uint32_t word, uint64_t data) = 0;
+  virtual bool got_finish() const = 0;  // an assertion ($stop) or $finish happened
+  virtual void close_trace_impl() = 0;
+
+  RtlConfig config_;
+  DriverOptions options_;
+  bool tracing_ = false;
+
+ private:
+  uint64_t cycle_ = 0;
+  uint64_t load_cycles_ = 0;
+  // Scoreboard: requests issued and answered since reset, accept clocks of those in flight.
+  uint64_t issued_ = 0, answered_ = 0;
+  static constexpr size_t kRing = 256;  // more in flight than this is an RTL error
+  uint64_t accept_clock_[kRing] = {};
+  uint64_t idle_ready_clocks_ = 0;
+  uint64_t stall_run_ = 0;
+  bool filled_ = false;
+  ProtocolCounters counters_;
+  PinsIn pins_;
+};
+
+// ---------------------------------------------------------------- stimulus
+
+// Input gaps and output stalls, probabilities per clock; all 0 = ideal (a request offered and the
+// response taken in every clock).
+struct Timing {
+  double gap_prob = 0;         // start an input gap (req_valid low) in this clock
+  int max_gap = 1;             // a gap lasts 1..max_gap clocks
+  double stall_prob = 0;       // start an output stall (rsp_ready low) in this clock
+  int max_stall = 1;           // a stall lasts 1..max_stall clocks
+  double long_stall_prob = 0;  // start a long stall of long_stall clocks instead
+  int long_stall = 300;
+  bool ideal() const { return gap_prob == 0 && stall_prob == 0 && long_stall_prob == 0; }
+  static Timing of(Stalls stalls);  // the profiles of --stalls
+};
+
+// Counters of one stream() call: the driver's protocol counters plus the stimulus's own.
+struct StreamStats {
+  ProtocolCounters protocol;
+  uint64_t gap_cycles = 0;          // req_valid held low by the stimulus with requests left
+  uint64_t requests_after_gap = 0;  // requests accepted right after an input gap
+  uint64_t samples() const { return protocol.samples; }
+  uint64_t cycles() const { return protocol.cycles(); }
+};
+
+// Streams the requests through the driver with the given timing (random choices from `seed`),
+// calls on_response(index, rgba) for every response in order, then idles 64 clocks: anything that
+// still comes out is a duplicated response (tex::Error). progress(done) every 65536 responses.
+using ResponseFn = std::function<void(size_t index, uint64_t rgba)>;
+StreamStats stream(Driver& driver, const Request* requests, size_t n, const Timing& timing, uint64_t seed,
+                   const ResponseFn& on_response, const std::function<void(size_t done)>& progress = {});
+
+}  // namespace tex::rtl

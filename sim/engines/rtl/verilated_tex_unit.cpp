@@ -1,0 +1,162 @@
+// The configuration-specific part of the driver: one template over the Verilated class, one
+// instance per compiled configuration. The list of configurations comes from the generated
+// rtl_configs.h (declared once, in sim/engines/rtl/CMakeLists.txt).
+#include <verilated.h>
+#include <verilated_fst_c.h>
+#include <verilated_syms.h>
+
+#include <cstring>
+#include <memory>
+#include <type_traits>
+
+#include "engines/rtl/driver.h"
+#include "model/error.h"
+#include "rtl_configs.h"  // generated: #include "Vtex_unit_*.h" and TEX_RTL_CONFIGS(X)
+
+namespace tex::rtl {
+
+namespace {
+
+template <class Top>
+class VerilatedTexUnit final : public Driver {
+ public:
+  VerilatedTexUnit(const RtlConfig& config, const DriverOptions& options) : Driver(config, options) {
+    context_ = std::make_unique<VerilatedContext>();
+    context_->fatalOnError(false);  // an assertion sets gotFinish; tick() closes the trace and throws
+    // Registers without reset start random (from the seed): the design must not depend on them.
+    context_->randReset(2);
+    context_->randSeed(int(options.seed & 0x7fffffff));
+    if (tracing_) context_->traceEverOn(true);
+    top_ = std::make_unique<Top>(context_.get(), "tex_unit");
+    if (tracing_) {
+      trace_ = std::make_unique<VerilatedFstC>();
+      top_->trace(trace_.get(), 99);
+      trace_->open(options.trace_path.c_str());
+      if (!trace_->isOpen()) throw Error("cannot open FST trace '" + options.trace_path + "'");
+    }
+    find_banks();
+    top_->clk = 1;
+    top_->rst = 1;
+    top_->eval();
+  }
+
+  ~VerilatedTexUnit() override {
+    close_trace();
+    top_->final();
+  }
+
+ protected:
+  PinsOut tick_pins(const PinsIn& in, bool dump) override {
+    Top& t = *top_;
+    t.rst = in.rst;
+    t.wr_en = in.wr_en;
+    t.wr_level = in.wr_level;
+    t.wr_x = in.wr_x;
+    t.wr_y = in.wr_y;
+    t.wr_data = std::remove_reference_t<decltype(t.wr_data)>(in.wr_data);  // 32 or 64 bits: 4 * CW
+    t.req_valid = in.req_valid;
+    t.req_u = uint32_t(in.req_u);
+    t.req_v = uint32_t(in.req_v);
+    t.req_lod = uint16_t(in.req_lod);
+    t.req_tag = in.req_tag;
+    t.rsp_ready = in.rsp_ready;
+    t.clk = 0;
+    t.eval();
+    const uint64_t time = 2 * cycle();
+    if (dump) trace_->dump(time);
+    PinsOut out;
+    out.req_ready = t.req_ready;
+    out.rsp_valid = t.rsp_valid;
+    out.rsp_rgba = t.rsp_rgba;
+    out.rsp_tag = t.rsp_tag;
+    t.clk = 1;
+    t.eval();
+    if (dump) trace_->dump(time + 1);
+    return out;
+  }
+
+  void apply_cfg(const CfgPins& c) override {
+    Top& t = *top_;
+    t.cfg_log2_w = c.log2_w;
+    t.cfg_log2_h = c.log2_h;
+    t.cfg_wrap_u = c.wrap_u;
+    t.cfg_wrap_v = c.wrap_v;
+    t.cfg_texel_linear = c.texel_linear;
+    t.cfg_mip_mode = c.mip_mode;
+    t.cfg_lod_bias = uint16_t(c.lod_bias);
+    t.cfg_min_lod = uint16_t(c.min_lod);
+    t.cfg_max_lod = uint16_t(c.max_lod);
+    t.eval();
+  }
+
+  void backdoor_write(int level, int bank, uint32_t word, uint64_t data) override {
+    const Bank& b = banks_[size_t(level)][size_t(bank)];
+    if (banks_[0][0].data == nullptr)
+      throw Error(config_.name + ": no texel banks visible for the backdoor load (see rtl/tex_unit.vlt)");
+    if (!b.data || word >= b.words)
+      throw Error(config_.name + ": backdoor write to level " + std::to_string(level) + " bank " +
+                  std::to_string(bank) + " word " + std::to_string(word) + " outside its memory");
+    if (b.bytes == 8) {
+      static_cast<uint64_t*>(b.data)[word] = data;
+    } else {
+      static_cast<uint32_t*>(b.data)[word] = uint32_t(data);
+    }
+  }
+
+  bool got_finish() const override { return context_->gotFinish(); }
+
+  void close_trace_impl() override {
+    if (trace_) {
+      trace_->close();
+      trace_.reset();
+    }
+  }
+
+ private:
+  // Every tex_bank's storage `mem`, found by its public LEVEL and PARITY parameters
+  // (rtl/tex_unit.vlt makes them visible).
+  struct Bank {
+    void* data = nullptr;
+    uint32_t words = 0, bytes = 0;
+  };
+  void find_banks() {
+    const int levels = std::max(config_.max_log2_w, config_.max_log2_h) + 1;
+    banks_.assign(size_t(levels), {});
+    for (const auto& entry : *context_->scopeNameMap()) {
+      const VerilatedScope* scope = entry.second;
+      const VerilatedVar* mem = scope->varFind("mem");
+      const VerilatedVar* level = scope->varFind("LEVEL");
+      const VerilatedVar* parity = scope->varFind("PARITY");
+      if (!mem || !level || !parity) continue;
+      const int k = *static_cast<const int32_t*>(level->datap());
+      const int p = *static_cast<const int32_t*>(parity->datap());
+      if (k < 0 || k >= levels || p < 0 || p > 3 || mem->udims() != 1)
+        throw Error(config_.name + ": unexpected texel bank " + entry.first);
+      banks_[size_t(k)][size_t(p)] = {mem->datap(), uint32_t(mem->elements(1)), mem->entSize()};
+    }
+  }
+
+  std::unique_ptr<VerilatedContext> context_;
+  std::unique_ptr<Top> top_;
+  std::unique_ptr<VerilatedFstC> trace_;
+  std::vector<std::array<Bank, 4>> banks_;  // [level][parity]
+};
+
+}  // namespace
+
+const std::vector<RtlConfig>& compiled_configs() {
+#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw) RtlConfig{#prefix, log2_w, log2_h, cw},
+  static const std::vector<RtlConfig> configs = {TEX_RTL_CONFIGS(TEX_RTL_CONFIG_ENTRY)};
+#undef TEX_RTL_CONFIG_ENTRY
+  return configs;
+}
+
+std::unique_ptr<Driver> Driver::create(const RtlConfig& config, const DriverOptions& options) {
+#define TEX_RTL_CONFIG_CREATE(prefix, log2_w, log2_h, cw) \
+  if (config.name == #prefix) return std::make_unique<VerilatedTexUnit<prefix>>(config, options);
+  TEX_RTL_CONFIGS(TEX_RTL_CONFIG_CREATE)
+#undef TEX_RTL_CONFIG_CREATE
+  throw Error("no compiled RTL configuration named '" + config.name + "'");
+}
+
+}  // namespace tex::rtl

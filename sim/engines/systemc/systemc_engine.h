@@ -1,0 +1,44 @@
+// `texsim --engine systemc` / `--engine systemc-model`: the requests through the SystemC/TLM-2.0
+// texture unit (tex_unit_tlm.h) driven by the streaming testbench initiator (stream_initiator.h).
+// Plain C++: no SystemC header here, so the C++20 rest of the project can include it (Debian's
+// SystemC 2.3.4 links only with C++17; the SystemC translation units are built as C++17).
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "engines/engine.h"
+
+namespace tex::systemc {
+
+enum class Backend {
+  Rtl,    // the Verilated tex_unit; approximately timed (nb_transport)
+  Model,  // the golden model tex::Sampler; loosely timed (b_transport), one clock per sample annotated
+};
+
+// How the testbench talks to the socket. Auto = At for the RTL backend, Lt for the model.
+// The other combinations go through simple_target_socket's b<->nb adapters (slower, same texels).
+enum class InitiatorStyle { Auto, Lt, At };
+
+struct SystemcOptions {
+  EngineOptions engine;  // stalls, seed, load method, trace, progress
+  InitiatorStyle initiator = InitiatorStyle::Auto;
+  double clock_ns = 10.0;           // clock period of the RTL (and the model's per-sample annotation)
+  uint64_t timeout_cycles = 20000;  // clocks without a response while some are owed
+};
+
+std::unique_ptr<Engine> make_systemc_engine(Backend backend, const EngineOptions& options);
+
+// One SystemC simulation (target + testbench initiator) in a forked child process: SystemC
+// elaborates once per process, and the fork lets texsim render several frames and the tests run
+// many cases. Texels come back in request order. Throws tex::Error with the simulation's one-line
+// error (tag mismatch, time-out, bad input).
+EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
+                         const std::vector<Request>& requests, const SystemcOptions& options);
+
+// Runs `simulation` in a forked child process and returns its result; an exception in the child
+// becomes a tex::Error with its message in the parent. For tests that build their own platform.
+EngineResult run_forked(const std::function<EngineResult()>& simulation);
+
+}  // namespace tex::systemc

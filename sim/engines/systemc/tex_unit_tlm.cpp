@@ -1,0 +1,157 @@
+#include "engines/systemc/tex_unit_tlm.h"
+
+#include "model/error.h"
+
+namespace tex::systemc {
+
+using namespace sc_core;
+using tlm::tlm_generic_payload;
+using tlm::tlm_phase;
+using tlm::tlm_sync_enum;
+
+TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
+                       const sc_time& clock_period, const EngineOptions& options)
+    : sc_module(name), socket("socket"), backend_(backend), period_(clock_period) {
+  if (backend == Backend::Model) {
+    sampler_ = std::make_unique<Sampler>(pyramid, config);
+    socket.register_b_transport(this, &TexUnitTlm::b_transport);
+    return;
+  }
+  const rtl::RtlConfig& rc =
+      rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits);
+  rtl::DriverOptions d;
+  d.seed = options.seed;
+  d.trace_path = options.trace_path;
+  d.trace_begin = options.trace_begin;
+  d.trace_end = options.trace_end;
+  driver_ = rtl::Driver::create(rc, d);
+  driver_->reset();
+  driver_->load(pyramid, options.load);
+  driver_->configure(config, pyramid);
+  driver_->reset_counters();
+  socket.register_nb_transport_fw(this, &TexUnitTlm::nb_transport_fw);
+  SC_METHOD(on_clock);  // first edge at time 0, then one per period (next_trigger)
+}
+
+TexUnitTlm::~TexUnitTlm() = default;
+
+void TexUnitTlm::fail(const std::string& message) {
+  if (error_.empty()) error_ = message;
+}
+
+SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
+  trans.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  if (trans.get_command() != tlm::TLM_READ_COMMAND) {
+    trans.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+    return nullptr;
+  }
+  if (trans.get_address() != kSampleAddress) {
+    trans.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    return nullptr;
+  }
+  if (trans.get_byte_enable_ptr() != nullptr) {
+    trans.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
+    return nullptr;
+  }
+  if (trans.get_data_length() != sizeof(SampleTransfer) || trans.get_data_ptr() == nullptr ||
+      trans.get_streaming_width() != sizeof(SampleTransfer)) {
+    trans.set_response_status(tlm::TLM_BURST_ERROR_RESPONSE);
+    return nullptr;
+  }
+  auto* s = reinterpret_cast<SampleTransfer*>(trans.get_data_ptr());
+  if (backend_ == Backend::Rtl && (s->lod < kLodMin || s->lod > kLodMax)) {  // the 16-bit req_lod port
+    trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+    return nullptr;
+  }
+  return s;
+}
+
+// ------------------------------------------------------------------------------ model backend
+
+void TexUnitTlm::b_transport(tlm_generic_payload& trans, sc_time& delay) {
+  SampleTransfer* s = decode(trans);
+  if (!s) return;
+  Request q;
+  q.u = s->u;
+  q.v = s->v;
+  q.lod = s->lod;
+  const Texel t = sampler_->sample(q);
+  for (int c = 0; c < 4; ++c) s->rgba[c] = t[size_t(c)];
+  trans.set_response_status(tlm::TLM_OK_RESPONSE);
+  delay += period_;  // pipelined: one sample per clock
+}
+
+// ------------------------------------------------------------------------------ RTL backend
+
+tlm_sync_enum TexUnitTlm::nb_transport_fw(tlm_generic_payload& trans, tlm_phase& phase, sc_time& delay) {
+  (void)delay;  // a request or END_RESP takes effect at the next clock edge
+  if (phase == tlm::BEGIN_REQ) {
+    // A malformed request completes at once with its error status; it never reaches the RTL.
+    const SampleTransfer* s = decode(trans);
+    if (!s) return tlm::TLM_COMPLETED;
+    if (pending_) fail("TLM protocol: BEGIN_REQ before END_REQ of the previous request (request exclusion rule)");
+    pending_ = &trans;  // offered on the request pins from the next edge until the RTL takes it
+    pending_request_.u = s->u;
+    pending_request_.v = s->v;
+    pending_request_.lod = s->lod;
+    return tlm::TLM_ACCEPTED;
+  }
+  if (phase == tlm::END_RESP) {
+    if (&trans != awaiting_end_resp_) fail("TLM protocol: END_RESP for a transaction with no response open");
+    awaiting_end_resp_ = nullptr;
+    send_queued_responses();
+    return tlm::TLM_COMPLETED;
+  }
+  fail("TLM protocol: the target got phase " + std::string(phase.get_name()) + " on the forward path");
+  return tlm::TLM_COMPLETED;
+}
+
+void TexUnitTlm::on_clock() {
+  next_trigger(period_);
+  if (!error_.empty()) return;
+  // Take a response from the RTL only when it can go straight onto the socket.
+  const bool take = awaiting_end_resp_ == nullptr && to_respond_.empty();
+  rtl::Driver::Clock c;
+  try {
+    c = driver_->clock(pending_ ? &pending_request_ : nullptr, take);
+  } catch (const std::exception& e) {  // scoreboard, time-out or RTL assertion
+    fail(e.what());
+    return;
+  }
+  if (c.responded) {
+    tlm_generic_payload* t = in_flight_.front();
+    in_flight_.pop_front();
+    auto* s = reinterpret_cast<SampleTransfer*>(t->get_data_ptr());
+    const Texel texel = rtl::unpack_rgba(c.rgba, driver_->config().cw);
+    for (int ch = 0; ch < 4; ++ch) s->rgba[ch] = texel[size_t(ch)];
+    t->set_response_status(tlm::TLM_OK_RESPONSE);
+    to_respond_.push_back(t);
+    send_queued_responses();
+  }
+  if (c.accepted) {
+    tlm_generic_payload* t = pending_;
+    pending_ = nullptr;  // free before END_REQ: the initiator may send the next BEGIN_REQ at once
+    in_flight_.push_back(t);
+    tlm_phase phase = tlm::END_REQ;
+    sc_time delay = SC_ZERO_TIME;
+    if (socket->nb_transport_bw(*t, phase, delay) != tlm::TLM_ACCEPTED)
+      fail("TLM protocol: the initiator did not return TLM_ACCEPTED for END_REQ");
+  }
+}
+
+// BEGIN_RESP for queued responses while the initiator completes each at once (response exclusion:
+// the next BEGIN_RESP waits for the END_RESP of the previous one).
+void TexUnitTlm::send_queued_responses() {
+  while (awaiting_end_resp_ == nullptr && !to_respond_.empty()) {
+    tlm_generic_payload* t = to_respond_.front();
+    to_respond_.pop_front();
+    tlm_phase phase = tlm::BEGIN_RESP;
+    sc_time delay = SC_ZERO_TIME;
+    const tlm_sync_enum status = socket->nb_transport_bw(*t, phase, delay);
+    if (status == tlm::TLM_ACCEPTED || (status == tlm::TLM_UPDATED && phase == tlm::BEGIN_RESP))
+      awaiting_end_resp_ = t;  // END_RESP comes later on the forward path
+    // TLM_COMPLETED, or TLM_UPDATED with END_RESP: this response is done.
+  }
+}
+
+}  // namespace tex::systemc

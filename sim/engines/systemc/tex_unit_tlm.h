@@ -1,0 +1,80 @@
+// TexUnitTlm: the texture unit as a SystemC module with one TLM-2.0 target socket (docs/systemc.md).
+// Each transaction carries one sample request (sample_payload.h) and returns one RGBA texel.
+// Behind the socket, chosen at construction (run time):
+//   Backend::Model  the golden model tex::Sampler. Loosely timed: b_transport samples at once and
+//                   adds one clock period to the delay (the unit's sustained rate of one sample per
+//                   clock); no clock, no latency.
+//   Backend::Rtl    the Verilated tex_unit, clocked once per period by an SC_METHOD through the
+//                   same pin-level driver as `--engine rtl` (engines/rtl/driver.h). Approximately
+//                   timed, base protocol, pipelined: BEGIN_REQ is answered with END_REQ (on the
+//                   backward path) at the clock edge where the RTL accepts the request, and
+//                   BEGIN_RESP is sent at the edge where the RTL's response fires, so one request
+//                   per clock is accepted while earlier ones are still in flight.
+// The texture is loaded at construction, before simulated time starts (backdoor: 0 clocks; write
+// port: load_cycles() clocks of the RTL).
+// The socket is a simple_target_socket with only one of b_transport / nb_transport_fw registered:
+// its built-in adapters serve the other style (at a cost, see docs/systemc.md).
+#pragma once
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_target_socket.h>
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+
+#include "engines/engine.h"
+#include "engines/rtl/driver.h"
+#include "engines/systemc/systemc_engine.h"
+#include "engines/systemc/sample_payload.h"
+#include "model/pyramid.h"
+#include "model/sampler.h"
+
+namespace tex::systemc {
+
+class TexUnitTlm : public sc_core::sc_module {
+ public:
+  tlm_utils::simple_target_socket<TexUnitTlm> socket;
+
+  // Throws tex::Error for a texture or option the backend cannot take.
+  TexUnitTlm(sc_core::sc_module_name name, Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
+             const sc_core::sc_time& clock_period, const EngineOptions& options = {});
+  ~TexUnitTlm() override;
+  SC_HAS_PROCESS(TexUnitTlm);
+
+  Backend backend() const { return backend_; }
+  const sc_core::sc_time& clock_period() const { return period_; }
+  // RTL backend: the driver (protocol counters, clocks, load clocks); nullptr for the model.
+  const rtl::Driver* driver() const { return driver_.get(); }
+  size_t in_flight() const { return in_flight_.size(); }
+  // The first protocol or RTL error seen (empty if none); the module stops working after one.
+  const std::string& error() const { return error_; }
+
+ private:
+  // Decode and check one payload; sets an error response status when it is malformed.
+  SampleTransfer* decode(tlm::tlm_generic_payload& trans);
+  void fail(const std::string& message);
+
+  // Model backend.
+  void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay);
+
+  // RTL backend.
+  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload& trans, tlm::tlm_phase& phase, sc_core::sc_time& delay);
+  void on_clock();  // one rising edge of the RTL: handshakes, END_REQ, BEGIN_RESP
+  void send_queued_responses();
+
+  Backend backend_;
+  sc_core::sc_time period_;
+  std::unique_ptr<Sampler> sampler_;     // model backend
+  std::unique_ptr<rtl::Driver> driver_;  // RTL backend
+  std::string error_;
+
+  tlm::tlm_generic_payload* pending_ = nullptr;       // between BEGIN_REQ and the RTL accepting it
+  Request pending_request_;
+  std::deque<tlm::tlm_generic_payload*> in_flight_;   // accepted by the RTL, in order
+  std::deque<tlm::tlm_generic_payload*> to_respond_;  // answered by the RTL, not yet sent
+  tlm::tlm_generic_payload* awaiting_end_resp_ = nullptr;
+};
+
+}  // namespace tex::systemc

@@ -1,0 +1,140 @@
+// Texture files and pictures through OpenImageIO: the only place image files are read or written.
+#include "workloads/texture_io.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "model/error.h"
+
+namespace tex {
+
+namespace OIIO = OIIO_NAMESPACE;
+
+namespace {
+
+// libpng (inside OpenImageIO) prints its own "libpng error: ..." lines on stderr; the reader's
+// error message already says the same, and bad input must give exactly one line.
+class QuietStderr {
+ public:
+  QuietStderr() : saved_(dup(STDERR_FILENO)) {
+    std::fflush(stderr);
+    const int null_fd = open("/dev/null", O_WRONLY);
+    if (null_fd >= 0) {
+      dup2(null_fd, STDERR_FILENO);
+      close(null_fd);
+    }
+  }
+  ~QuietStderr() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      dup2(saved_, STDERR_FILENO);
+      close(saved_);
+    }
+  }
+
+ private:
+  int saved_;
+};
+
+bool parse_pattern_spec(const std::string& spec, std::string& name, int& w, int& h) {
+  const auto colon = spec.find(':');
+  name = spec.substr(0, colon);
+  if (std::find(pattern_names().begin(), pattern_names().end(), name) == pattern_names().end()) return false;
+  w = h = 512;
+  if (colon == std::string::npos) return true;
+  const std::string size = spec.substr(colon + 1);
+  char x = 0, extra = 0;
+  if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x')
+    throw Error("pattern '" + spec + "': size must be WxH, e.g. " + name + ":256x128");
+  return true;
+}
+
+int nearest_power_of_two(int n) {
+  int p = 1;
+  while (p < n && p < (1 << kMaxLog2Size)) p <<= 1;
+  if (p > 1 && (p - n) > (n - p / 2)) p >>= 1;
+  return p;
+}
+
+}  // namespace
+
+Image load_texture(const std::string& spec, bool resize) {
+  std::string name;
+  int w = 0, h = 0;
+  if (!std::filesystem::exists(spec) && parse_pattern_spec(spec, name, w, h)) return make_pattern(name, w, h);
+  if (!std::filesystem::exists(spec)) throw Error(spec + ": no such file or built-in pattern");
+
+  // Texels are data: keep the file's values (OpenImageIO would premultiply unassociated alpha).
+  OIIO::ImageSpec read_config;
+  read_config.attribute("oiio:UnassociatedAlpha", 1);
+  OIIO::ImageBuf src;
+  bool read_ok;
+  {
+    QuietStderr quiet;
+    src.reset(spec, 0, 0, nullptr, &read_config);
+    read_ok = src.read(0, 0, true, OIIO::TypeDesc::UINT8);
+  }
+  if (!read_ok) {
+    std::string msg = src.geterror();
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    throw Error(spec + ": cannot read image (" + msg + ")");
+  }
+  const OIIO::ImageSpec& s = src.spec();
+  w = s.width;
+  h = s.height;
+  if (!resize || (is_power_of_two(w) && is_power_of_two(h) && w <= 2048 && h <= 2048)) {
+    check_texture_size(w, h, spec);
+  } else {
+    const int nw = nearest_power_of_two(w), nh = nearest_power_of_two(h);
+    std::fprintf(stderr, "texsim: %s: resampled %dx%d to %dx%d\n", spec.c_str(), w, h, nw, nh);
+    OIIO::ImageBuf resized = OIIO::ImageBufAlgo::resize(src, "", 0, OIIO::ROI(0, nw, 0, nh, 0, 1, 0, s.nchannels));
+    if (resized.has_error()) throw Error(spec + ": resize failed (" + resized.geterror() + ")");
+    src = std::move(resized);
+    w = nw;
+    h = nh;
+  }
+  const int nch = src.spec().nchannels;
+  std::vector<uint8_t> pixels(size_t(w) * h * nch);
+  if (!src.get_pixels(OIIO::ROI(0, w, 0, h, 0, 1, 0, nch), OIIO::TypeDesc::UINT8, pixels.data()))
+    throw Error(spec + ": cannot read pixels (" + src.geterror() + ")");
+  Image img(w, h);
+  for (size_t i = 0; i < img.texels.size(); ++i) {
+    const uint8_t* p = &pixels[i * nch];
+    Texel& t = img.texels[i];
+    if (nch >= 3) t = {p[0], p[1], p[2], uint16_t(nch >= 4 ? p[3] : 255)};
+    else t = {p[0], p[0], p[0], uint16_t(nch == 2 ? p[1] : 255)};  // gray (+ alpha)
+  }
+  return img;
+}
+
+void save_image(const Image& img, const std::string& path) {
+  std::vector<uint8_t> pixels(img.texels.size() * 4);
+  const int shift = std::max(0, img.channel_bits - 8);
+  for (size_t i = 0; i < img.texels.size(); ++i)
+    for (int c = 0; c < 4; ++c) pixels[i * 4 + c] = uint8_t(img.texels[i][c] >> shift);
+  const std::filesystem::path final_path(path);
+  if (final_path.has_parent_path() && !std::filesystem::is_directory(final_path.parent_path()))
+    throw Error(path + ": directory does not exist");
+  // Keep the extension so OpenImageIO picks the format, e.g. out.png -> out.partial.png.
+  const std::string tmp = (final_path.parent_path() / (final_path.stem().string() + ".partial" +
+                                                        final_path.extension().string())).string();
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw Error(path + ": no image writer for this file type");
+  OIIO::ImageSpec spec(img.width, img.height, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // write the texels as they are, no un-premultiply
+  if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close()) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw Error(path + ": cannot write image (" + out->geterror() + ")");
+  }
+  std::filesystem::rename(tmp, final_path);
+}
+
+}  // namespace tex

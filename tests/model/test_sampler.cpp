@@ -1,0 +1,139 @@
+// The sampler end to end: wrap at every level (1-texel levels included), level selection at its
+// boundaries, point sampling, and the fast path against the reference path.
+// Expected values: on inputs where every weight is a multiple of 1/256 the real-valued GL filter
+// (tests/reference/gl_reference.h) is exact in double, so the model must equal its rounding exactly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "model/image.h"
+#include "model/sampler.h"
+#include "reference/gl_reference.h"
+
+using namespace tex;
+
+namespace {
+
+constexpr Wrap kWraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror};
+
+Request request(double u, double v, double lambda) {
+  Request r;
+  EXPECT_TRUE(to_coord_fixed(u, r.u)) << u;
+  EXPECT_TRUE(to_coord_fixed(v, r.v)) << v;
+  EXPECT_TRUE(to_lod_fixed(lambda, r.lod)) << lambda;
+  return r;
+}
+
+// Round half up, the pipeline's one rounding.
+Texel rounded(const ref::Rgba& x) {
+  Texel t;
+  for (int c = 0; c < 4; ++c) t[c] = uint16_t(std::floor(x[c] + 0.5));
+  return t;
+}
+
+ref::GlSampler reference(const Pyramid& p, Filter f, Wrap ws, Wrap wt) {
+  ref::GlSampler g;
+  g.levels = &p.levels;
+  g.texel = f.texel;
+  g.mip = f.mip;
+  g.wrap_s = ws;
+  g.wrap_t = wt;
+  return g;
+}
+
+// A normalized coordinate whose texel coordinate at a level of 2^lw texels is (i + a/256) + 1/2:
+// exactly representable in Q8.24, so the bilinear weight is exactly a/256.
+double on_grid(int64_t i, int a, int lw) { return (double(i) + a / 256.0 + 0.5) / double(1 << lw); }
+
+std::string name_of(Filter f, Wrap wu, Wrap wv) { return filter_name(f) + "/" + wrap_name(wu) + "/" + wrap_name(wv); }
+
+}  // namespace
+
+TEST(Sampler, WrapAtEveryLevelIncludingOneTexelLevels) {
+  // 32x4: levels 32x4, 16x2, 8x1, 4x1, 2x1, 1x1; levels with a 1-texel side from level 2 on.
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 32, 4));
+  std::mt19937 rng(8);
+  for (Wrap wu : kWraps)
+    for (Wrap wv : kWraps)
+      for (TexelFilter tf : {TexelFilter::Nearest, TexelFilter::Linear}) {
+        const Filter f{tf, MipMode::Nearest};
+        Sampler s(pyr, {f, wu, wv});
+        const ref::GlSampler g = reference(pyr, f, wu, wv);
+        for (int k = 0; k <= pyr.last_level(); ++k) {
+          const LevelShape sh = level_shape(5, 2, k);
+          for (int n = 0; n < 3000; ++n) {
+            // Texel coordinates from -3 to +3 level widths: every wrap period and both edges.
+            const int64_t i = int64_t(rng() % (6 * sh.width() + 2)) - 3 * sh.width() - 1;
+            const int64_t j = int64_t(rng() % (6 * sh.height() + 2)) - 3 * sh.height() - 1;
+            const double u = on_grid(i, int(rng() & 255), sh.log2_w), v = on_grid(j, int(rng() & 255), sh.log2_h);
+            const double lambda = k;  // nearest level: exactly level k
+            const Texel got = s.sample(request(u, v, lambda));
+            ASSERT_EQ(got, rounded(g.sample(u, v, lambda)))
+                << name_of(f, wu, wv) << " level " << k << " (" << sh.width() << "x" << sh.height() << ") u=" << u
+                << " v=" << v;
+          }
+        }
+      }
+}
+
+TEST(Sampler, PointSamplingIsTexelAtFloorUW) {
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 64, 16));
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<int32_t> coord(INT32_MIN, INT32_MAX);
+  for (Wrap w : kWraps) {
+    Sampler s(pyr, {{TexelFilter::Nearest, MipMode::None}, w, w});
+    for (int n = 0; n < 50000; ++n) {
+      Request r;
+      r.u = (n & 1) ? coord(rng) : coord(rng) >> 6;  // whole range, and near the texture
+      r.v = (n & 1) ? coord(rng) : coord(rng) >> 6;
+      r.lod = int32_t(rng() % 4000) - 1000;
+      // floor(u * W) from the exact rational u = U / 2^24, wrapped by GL's formula.
+      const int64_t x = int64_t(std::floor(std::ldexp(double(r.u), 6 - 24)));
+      const int64_t y = int64_t(std::floor(std::ldexp(double(r.v), 4 - 24)));
+      ASSERT_EQ(s.sample(r), pyr.levels[0].at(int(ref::gl_wrap(x, 64, w)), int(ref::gl_wrap(y, 16, w))))
+          << "U=" << r.u << " V=" << r.v;
+    }
+  }
+}
+
+TEST(Sampler, MagnifyMinifyBoundaryAndLastLevelClamp) {
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 16, 16));
+  const int q = pyr.last_level();
+  Sampler tri(pyr, {{TexelFilter::Linear, MipMode::Linear}});
+  Sampler bil(pyr, {{TexelFilter::Linear, MipMode::None}});
+  const ref::GlSampler g = reference(pyr, {TexelFilter::Linear, MipMode::Linear}, Wrap::Repeat, Wrap::Repeat);
+  std::mt19937 rng(10);
+  for (int n = 0; n < 5000; ++n) {
+    // On the 1/256-texel grid of every level at once (1/2048 = 1/128 texel of level 0).
+    const double u = (int(rng() % 40000) - 20000) / 2048.0, v = (int(rng() % 40000) - 20000) / 2048.0;
+    // lambda <= 0 magnifies: level 0 alone, identical to bilinear.
+    for (double lambda : {0.0, -1.0 / 256, -5.0}) ASSERT_EQ(tri.sample(request(u, v, lambda)), bil.sample(request(u, v, 0)));
+    // lambda = +1/256 blends level 1 with weight 1/256: exact in double, the model rounds it.
+    ASSERT_EQ(tri.sample(request(u, v, 1.0 / 256)), rounded(g.sample(u, v, 1.0 / 256))) << "u=" << u << " v=" << v;
+    ASSERT_EQ(tri.sample(request(u, v, 0.5)), rounded(g.sample(u, v, 0.5)));
+    // At and beyond the last level: the 1x1 level, whatever u, v.
+    for (double lambda : {double(q), q + 1.0 / 256, q + 0.5, 100.0})
+      ASSERT_EQ(tri.sample(request(u, v, lambda)), pyr.levels[q].at(0, 0)) << "lambda=" << lambda;
+    // Just below the last level: blend of level q-1 and q with weight 255/256.
+    ASSERT_EQ(tri.sample(request(u, v, q - 1.0 / 256)), rounded(g.sample(u, v, q - 1.0 / 256)));
+  }
+}
+
+TEST(Sampler, NearestLevelSelection) {
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 64, 64));
+  Sampler s(pyr, {{TexelFilter::Nearest, MipMode::Nearest}});
+  std::mt19937 rng(11);
+  // GL: level ceil(lambda + 1/2) - 1: 0.5 -> 0, 0.5 + 1/256 -> 1, 1.5 -> 1, 1.5 + 1/256 -> 2.
+  const std::pair<double, int> cases[] = {{-3, 0}, {0, 0},         {0.5, 0}, {0.5 + 1.0 / 256, 1}, {1.0, 1},
+                                          {1.5, 1}, {1.5 + 1.0 / 256, 2}, {5.5, 5}, {5.5 + 1.0 / 256, 6}, {9.0, 6}};
+  for (auto [lambda, level] : cases)
+    for (int n = 0; n < 200; ++n) {
+      const double u = (rng() % 100000) / 100000.0, v = (rng() % 100000) / 100000.0;
+      const Request r = request(u, v, lambda);
+      const Image& lvl = pyr.levels[level];
+      const int x = int(std::floor(std::ldexp(double(r.u), -24) * lvl.width));
+      const int y = int(std::floor(std::ldexp(double(r.v), -24) * lvl.height));
+      ASSERT_EQ(s.sample(r), lvl.at(x, y)) << "lambda=" << lambda << " level " << level;
+    }
+}

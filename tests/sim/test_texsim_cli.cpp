@@ -1,0 +1,455 @@
+// The texsim command line: bad input (one line on stderr, non-zero exit, no output left behind)
+// and the documented behaviour of sample and mip. Runs this build's texsim (TEXSIM_PATH).
+#include <gtest/gtest.h>
+#include <OpenImageIO/imageio.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engines/engine.h"
+#include "model/image.h"
+#include "model/pyramid.h"
+#include "workloads/scenes.h"
+
+using namespace tex;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+void write_text(const fs::path& p, const std::string& s) { std::ofstream(p, std::ios::binary) << s; }
+
+// Writes an 8-bit image with `channels` channels, pixel values from `value(x, y, c)`.
+template <class F>
+void write_image(const fs::path& p, int w, int h, int channels, F value) {
+  std::vector<uint8_t> px(size_t(w) * h * channels);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < channels; ++c) px[(size_t(y) * w + x) * channels + c] = uint8_t(value(x, y, c));
+  auto out = OIIO::ImageOutput::create(p.string());
+  ASSERT_TRUE(out);
+  OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  ASSERT_TRUE(out->open(p.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data()) && out->close());
+}
+
+// RGBA8 pixels of an image file as stored (no alpha premultiplication).
+std::vector<uint8_t> read_image(const fs::path& p, int& w, int& h) {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(p.string(), &config);
+  if (!in) return {};
+  w = in->spec().width;
+  h = in->spec().height;
+  std::vector<uint8_t> px(size_t(w) * h * 4, 0);
+  if (in->spec().nchannels != 4 || !in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, px.data())) return {};
+  return px;
+}
+
+std::vector<std::vector<int>> read_csv_rows(const fs::path& p, std::string& header) {
+  std::istringstream in(read_text(p));
+  std::getline(in, header);
+  std::vector<std::vector<int>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<int> row;
+    std::stringstream ls(line);
+    std::string f;
+    while (std::getline(ls, f, ',')) row.push_back(std::stoi(f));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+class TexsimCli : public ::testing::Test {
+ protected:
+  fs::path dir;
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir = fs::temp_directory_path() / ("texsim_cli_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  Result run(const std::string& args) {
+    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+    const std::string cmd = "cd '" + dir.string() + "' && timeout 300 '" + std::string(TEXSIM_PATH) + "' " + args + " > '" +
+                            out.string() + "' 2> '" + err.string() + "' < /dev/null";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read_text(out);
+    r.err = read_text(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  // A bad input: non-zero exit, exactly one line on stderr that contains every `needles`, and
+  // neither the output file nor any *.partial* file in the directory.
+  void expect_clean_failure(const std::string& args, const std::string& output,
+                            const std::vector<std::string>& needles) {
+    const Result r = run(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\nstderr: " << r.err;
+    EXPECT_FALSE(r.err.empty() || r.err.back() != '\n') << "stderr: " << r.err;
+    for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << "'" << n << "' missing in: " << r.err;
+    EXPECT_FALSE(fs::exists(dir / output)) << args << " left " << output << " behind";
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+      EXPECT_EQ(e.path().filename().string().find("partial"), std::string::npos) << "left " << e.path();
+  }
+
+  void queries(const std::string& text) { write_text(dir / "q.csv", text); }
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------- bad input
+
+TEST_F(TexsimCli, MissingTextureFile) {
+  queries("u,v,lod\n0.5,0.5,0\n");
+  expect_clean_failure("sample -t missing.png -q q.csv -o r.csv", "r.csv", {"missing.png"});
+  expect_clean_failure("mip -t missing.png --dump-levels lv", "lv/level00.png", {"missing.png"});
+}
+
+TEST_F(TexsimCli, MissingQueryFile) {
+  expect_clean_failure("sample -t noise:8x8 -q nothere.csv -o r.csv", "r.csv", {"nothere.csv"});
+}
+
+TEST_F(TexsimCli, CorruptImage) {
+  write_text(dir / "bad.png", "this is not a PNG file at all\n");
+  write_text(dir / "trunc.png", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16));
+  queries("u,v,lod\n0.5,0.5,0\n");
+  expect_clean_failure("sample -t bad.png -q q.csv -o r.csv", "r.csv", {"bad.png"});
+  expect_clean_failure("sample -t trunc.png -q q.csv -o r.csv", "r.csv", {"trunc.png"});
+  expect_clean_failure("mip -t bad.png --layout lay.png", "lay.png", {"bad.png"});
+}
+
+TEST_F(TexsimCli, NonPowerOfTwoNamesSizeAndResizeWorks) {
+  write_image(dir / "npot.png", 12, 5, 3, [](int x, int y, int c) { return (x * 20 + y * 7 + c * 50) & 255; });
+  queries("u,v,lod\n0.5,0.5,0\n0.25,0.75,1\n");
+  expect_clean_failure("sample -t npot.png -q q.csv -o r.csv", "r.csv", {"npot.png", "12x5"});
+  const Result r = run("sample -t npot.png --resize -q q.csv -o r.csv");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::string header;
+  EXPECT_EQ(read_csv_rows(dir / "r.csv", header).size(), 2u);
+  EXPECT_EQ(header, "r,g,b,a");
+}
+
+TEST_F(TexsimCli, MalformedCsvLineGivesLineNumberAndText) {
+  queries("u,v,lod\n0.1,0.2,0\n# a comment\n0.3,abc,0\n");
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:4", "0.3,abc,0"});
+  queries("u,v,lod\n0.1,0.2\n");
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:2", "0.1,0.2"});
+  queries("u,v,lod\n0.1,0.2,0,7\n");
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:2", "0.1,0.2,0,7"});
+}
+
+TEST_F(TexsimCli, UnknownHeader) {
+  queries("s,t,lambda\n0.1,0.2,0\n");
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:1", "s,t,lambda"});
+  queries("");
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv"});
+}
+
+TEST_F(TexsimCli, NanInfAndOutOfRangeValues) {
+  const std::pair<std::string, std::string> bad[] = {
+      {"0.1,nan,0", "nan"},   {"inf,0.2,0", "inf"},        {"0.1,0.2,-inf", "inf"},
+      {"200,0.2,0", "u"},     {"0.1,-128.5,0", "v"},       {"0.1,0.2,128", "lod"},
+      {"1e999,0,0", "1e999"},
+  };
+  for (const auto& [line, word] : bad) {
+    queries("u,v,lod\n0.5,0.5,0\n" + line + "\n");
+    expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:3", word});
+  }
+  queries("u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,nan,0,0,0\n");
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:2"});
+  queries("u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,1e9,0,0,0\n");
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:2"});
+}
+
+TEST_F(TexsimCli, UnknownOptionFilterWrap) {
+  queries("u,v,lod\n0.5,0.5,0\n");
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --bogus-option", "r.csv", {"bogus-option"});
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --filter cubic", "r.csv", {"cubic"});
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --wrap border", "r.csv", {"border"});
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --wrap-v tile", "r.csv", {"tile"});
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --pyramid gauss", "r.csv", {"gauss"});
+  expect_clean_failure("sample -t nosuchpattern:8x8 -q q.csv -o r.csv", "r.csv", {"nosuchpattern"});
+  expect_clean_failure("nosuchcommand", "r.csv", {"nosuchcommand"});
+  expect_clean_failure("", "r.csv", {});
+}
+
+TEST_F(TexsimCli, OutputIntoMissingDirectory) {
+  queries("u,v,lod\n0.5,0.5,0\n");
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o nodir/r.csv", "nodir/r.csv", {"nodir/r.csv"});
+  expect_clean_failure("mip -t noise:8x8 --layout nodir/l.png", "nodir/l.png", {"nodir/l.png"});
+}
+
+// ---------------------------------------------------------------- documented behaviour
+
+TEST_F(TexsimCli, GrayBecomesOpaqueRgbAndRgbGetsOpaqueAlpha) {
+  auto gray = [](int x, int y, int) { return 10 + x * 30 + y * 3; };
+  auto rgb = [](int x, int y, int c) { return 5 + x * 40 + y * 9 + c * 2; };
+  auto rgba = [](int x, int y, int c) { return c == 3 ? 128 : 200 - x * 20 - y - c; };  // alpha 128, not premultiplied
+  write_image(dir / "gray.png", 4, 2, 1, gray);
+  write_image(dir / "rgb.png", 4, 2, 3, rgb);
+  write_image(dir / "rgba.png", 4, 2, 4, rgba);
+  write_image(dir / "rgb.tif", 4, 2, 3, rgb);
+  // Point sampling at every texel centre, in row order.
+  std::string q = "u,v,lod\n";
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) q += std::to_string((x + 0.5) / 4) + "," + std::to_string((y + 0.5) / 2) + ",0\n";
+  queries(q);
+  for (const char* file : {"gray.png", "rgb.png", "rgba.png", "rgb.tif"}) {
+    const Result r = run(std::string("sample -f point -t ") + file + " -q q.csv -o r.csv");
+    ASSERT_EQ(r.exit_code, 0) << file << ": " << r.err;
+    std::string header;
+    const auto rows = read_csv_rows(dir / "r.csv", header);
+    ASSERT_EQ(rows.size(), 8u) << file;
+    for (int i = 0; i < 8; ++i) {
+      const int x = i % 4, y = i / 4;
+      std::vector<int> want;
+      if (file == std::string("gray.png")) want = {gray(x, y, 0), gray(x, y, 0), gray(x, y, 0), 255};
+      else if (file == std::string("rgba.png")) want = {rgba(x, y, 0), rgba(x, y, 1), rgba(x, y, 2), 128};
+      else want = {rgb(x, y, 0), rgb(x, y, 1), rgb(x, y, 2), 255};
+      EXPECT_EQ(rows[i], want) << file << " texel " << x << "," << y;
+    }
+  }
+}
+
+TEST_F(TexsimCli, ResultCsvHasHeaderAndOneLinePerQueryInOrder) {
+  // Point samples of a 16x16 noise pattern at chosen texels, with comments and blank lines between.
+  const Image tex = make_pattern("noise", 16, 16);
+  std::string q = "# leading comment\n\nu,v,lod\n";
+  std::vector<std::pair<int, int>> texels;
+  for (int i = 0; i < 40; ++i) {
+    const int x = (i * 7) % 16, y = (i * 11 + 3) % 16;
+    texels.push_back({x, y});
+    q += std::to_string((x + 0.5) / 16) + ", " + std::to_string((y + 0.5) / 16) + " ,0\n";
+    if (i % 10 == 0) q += "# comment line " + std::to_string(i) + "\n   \n";
+  }
+  queries(q);
+  const Result r = run("sample -f point -t noise:16x16 -q q.csv -o r.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  std::string header;
+  const auto rows = read_csv_rows(dir / "r.csv", header);
+  EXPECT_EQ(header, "r,g,b,a");
+  ASSERT_EQ(rows.size(), texels.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const Texel& t = tex.at(texels[i].first, texels[i].second);
+    EXPECT_EQ(rows[i], (std::vector<int>{t[0], t[1], t[2], t[3]})) << "query " << i;
+  }
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find("partial"), std::string::npos);
+}
+
+TEST_F(TexsimCli, DerivativeHeaderGivesTheSameAsExplicitLod) {
+  // 64x64 texture: du/dx = 2/64 is 2 texels per pixel -> lambda = 1; 4/64 and 3/64 -> lambda = 2.
+  queries("u,v,dudx,dvdx,dudy,dvdy\n0.3,0.6,0.03125,0,0,0.03125\n0.71,0.2,0,0.0625,0.046875,0\n0.5,0.5,0,0,0,0\n");
+  Result r = run("sample -t noise:64x64 -q q.csv -o d.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  queries("u,v,lod\n0.3,0.6,1\n0.71,0.2,2\n0.5,0.5,-128\n");
+  r = run("sample -t noise:64x64 -q q.csv -o l.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir / "d.csv"), read_text(dir / "l.csv"));
+  std::string header;
+  EXPECT_EQ(read_csv_rows(dir / "d.csv", header).size(), 3u);
+}
+
+TEST_F(TexsimCli, MipDumpLevelsWritesEveryLevel) {
+  const Result r = run("mip -t noise:64x16 --dump-levels lv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 64, 16));
+  const int sizes[7][2] = {{64, 16}, {32, 8}, {16, 4}, {8, 2}, {4, 1}, {2, 1}, {1, 1}};
+  for (int k = 0; k < 7; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "level%02d.png", k);
+    int w = 0, h = 0;
+    const auto px = read_image(dir / "lv" / name, w, h);
+    ASSERT_FALSE(px.empty()) << name;
+    EXPECT_EQ(w, sizes[k][0]) << name;
+    EXPECT_EQ(h, sizes[k][1]) << name;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 4; ++c)
+          ASSERT_EQ(px[(size_t(y) * w + x) * 4 + c], pyr.levels[k].at(x, y)[c]) << name << " " << x << "," << y;
+  }
+  EXPECT_FALSE(fs::exists(dir / "lv" / "level07.png"));
+}
+
+TEST_F(TexsimCli, MipLayoutHoldsRgbPlanesInQuadrants) {
+  const Result r = run("mip -t testcard:16x16 --layout lay.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int w = 0, h = 0;
+  const auto px = read_image(dir / "lay.png", w, h);
+  ASSERT_EQ(w, 32);
+  ASSERT_EQ(h, 32);
+  const Pyramid pyr = build_pyramid(make_pattern("testcard", 16, 16));
+  auto at = [&](int x, int y) {
+    const uint8_t* p = &px[(size_t(y) * w + x) * 4];
+    return std::vector<int>{p[0], p[1], p[2], p[3]};
+  };
+  // Level 0: R upper right, G lower left, B lower right; level 1 the same inside the upper-left quadrant.
+  for (int k = 0; k < 2; ++k) {
+    const Image& lvl = pyr.levels[k];
+    const int n = lvl.width;
+    for (auto [x, y] : {std::pair{0, 0}, std::pair{3, 5}, std::pair{n - 1, n - 1}, std::pair{n / 2, 1}}) {
+      const Texel& t = lvl.at(x, y);
+      EXPECT_EQ(at(n + x, y), (std::vector<int>{t[0], 0, 0, 255})) << "R level " << k;
+      EXPECT_EQ(at(x, n + y), (std::vector<int>{0, t[1], 0, 255})) << "G level " << k;
+      EXPECT_EQ(at(n + x, n + y), (std::vector<int>{0, 0, t[2], 255})) << "B level " << k;
+    }
+  }
+  // The 1x1 level sits at (1, 0), (0, 1), (1, 1); (0, 0) stays empty.
+  const Texel& last = pyr.levels[4].at(0, 0);
+  EXPECT_EQ(at(1, 0), (std::vector<int>{last[0], 0, 0, 255}));
+  EXPECT_EQ(at(1, 1), (std::vector<int>{0, 0, last[2], 255}));
+  EXPECT_EQ(at(0, 0), (std::vector<int>{0, 0, 0, 255}));
+}
+
+TEST_F(TexsimCli, EveryCommandHasHelp) {
+  const Result top = run("--help");
+  ASSERT_EQ(top.exit_code, 0);
+  // The subcommands as the top-level help lists them.
+  std::vector<std::string> commands;
+  std::istringstream in(top.out);
+  std::string line;
+  bool in_list = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("Subcommands:", 0) == 0) {
+      in_list = true;
+      continue;
+    }
+    if (in_list && line.size() > 2 && line[0] == ' ') commands.push_back(line.substr(2, line.find(' ', 2) - 2));
+  }
+  for (const char* required : {"sample", "mip", "render"})
+    EXPECT_NE(std::find(commands.begin(), commands.end(), required), commands.end()) << required;
+  for (const auto& c : commands) {
+    const Result r = run(c + " --help");
+    EXPECT_EQ(r.exit_code, 0) << c;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << c << ": " << r.out;
+  }
+}
+
+// ---------------------------------------------------------------- engines
+
+// The one engine-equivalence test: every engine of this build gives the golden model's texels.
+// `texsim sample --engine E` writes the same bytes as `--engine model` for both query headers, a
+// few filters and wrap modes, and textures of different shapes, with every --stalls profile and
+// both --load methods of the cycle-accurate engines; `texsim render --verify` (the model alongside,
+// failing on any differing sample) does the same for every scene. One texsim process per run: the
+// SystemC engines fork their simulation; `timeout` turns a hang into a failure.
+TEST_F(TexsimCli, EveryEngineGivesTheModelsTexels) {
+  std::string lod_trace = "u,v,lod\n", deriv_trace = "u,v,dudx,dvdx,dudy,dvdy\n";
+  uint32_t state = 12345;
+  auto next = [&state] {  // small LCG: the trace is data, not a statistical sample
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) / double(1u << 24);
+  };
+  for (int i = 0; i < 3000; ++i) {
+    const double u = next() * 6 - 3, v = next() * 6 - 3;
+    lod_trace += std::to_string(u) + "," + std::to_string(v) + "," + std::to_string(next() * 9 - 2) + "\n";
+    const double d = std::ldexp(next(), -int(next() * 10));
+    deriv_trace += std::to_string(u) + "," + std::to_string(v) + "," + std::to_string(d) + ",0," +
+                   std::to_string(d * next()) + "," + std::to_string(d * 2) + "\n";
+  }
+  write_text(dir / "lod.csv", lod_trace);
+  write_text(dir / "deriv.csv", deriv_trace);
+  const std::vector<std::string> cases = {
+      "-t noise:64x32 -q lod.csv -f trilinear -w repeat",
+      "-t testcard:16x16 -q deriv.csv -f mip_nearest --wrap-u clamp --wrap-v mirror",
+      "-t noise:8x64 -q lod.csv -f point -w mirror --pyramid cascade",
+      "-t noise:32x32 -q deriv.csv -f nearest_mipmap_linear -w clamp --lod-bias 0.5 --max-lod 3",
+  };
+  const char* timings[] = {"--stalls none --load port", "--stalls random --seed 3", "--stalls heavy --seed 4",
+                           "--stalls random --seed 5 --load port"};
+  size_t n = 0;
+  for (const std::string& c : cases) {
+    const Result golden = run("sample " + c + " -e model -o model.csv");
+    ASSERT_EQ(golden.exit_code, 0) << c << ": " << golden.err;
+    const std::string expected = read_text(dir / "model.csv");
+    for (const EngineInfo& e : engines()) {
+      if (e.name == "model") continue;
+      const std::string timing = e.cycle_accurate ? timings[n++ % 4] : "";
+      const Result r = run("sample " + c + " -e " + e.name + " " + timing + " -o " + e.name + ".csv");
+      ASSERT_EQ(r.exit_code, 0) << c << " -e " << e.name << ": " << r.err;
+      EXPECT_TRUE(read_text(dir / (e.name + ".csv")) == expected)
+          << c << " " << timing << ": engine " << e.name << " differs from the model";
+    }
+  }
+  for (const EngineInfo& e : engines())
+    for (const std::string& scene : scene_names())
+      for (const char* filter : {"point", "bilinear", "trilinear"}) {
+        const Result r = run("render --scene " + scene + " --engine " + e.name + " --filter " + filter +
+                             " --verify --width 24 --height 18 --out scene.png");
+        EXPECT_EQ(r.exit_code, 0) << e.name << " " << scene << " " << filter << ": " << r.err;
+        EXPECT_TRUE(fs::exists(dir / "scene.png")) << e.name << " " << scene << " " << filter;
+        fs::remove(dir / "scene.png");
+      }
+}
+
+// A new user's first cycle-accurate run measures the design: ideal timing, backdoor load, one
+// sample per clock once the pipeline has filled; the summary line says which timing ran.
+TEST_F(TexsimCli, DefaultsMeasureTheDesign) {
+  write_text(dir / "q.csv", "u,v,lod\n0.5,0.5,0\n0.25,0.75,2.5\n0.1,0.9,1.25\n");
+  for (const char* engine : {"rtl", "systemc"}) {
+    const Result r = run(std::string("sample -q q.csv -o r.csv --stats s.json --engine ") + engine);
+    ASSERT_EQ(r.exit_code, 0) << engine << ": " << r.err;
+    const auto stats = nlohmann::json::parse(read_text(dir / "s.json"));
+    EXPECT_GE(stats.at("samples_per_clock").get<double>(), 0.99) << engine << ": " << stats.dump();
+    EXPECT_EQ(stats.at("stalls"), "none") << engine;
+    EXPECT_EQ(stats.at("load"), "backdoor") << engine;
+    EXPECT_EQ(stats.at("load_cycles"), 0) << engine;
+    EXPECT_EQ(stats.at("output_stall_cycles"), 0) << engine;
+    EXPECT_EQ(stats.at("cycles").get<uint64_t>(), 3 + stats.at("latency_cycles").get<uint64_t>()) << engine;
+    EXPECT_NE(r.out.find("stalls none"), std::string::npos) << r.out;
+  }
+  // Random stalls are asked for, and they show.
+  const Result r = run("sample -q q.csv -o r.csv --stats s.json --engine rtl --stalls heavy --load port");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto stats = nlohmann::json::parse(read_text(dir / "s.json"));
+  EXPECT_EQ(stats.at("stalls"), "heavy");
+  EXPECT_GT(stats.at("load_cycles").get<uint64_t>(), 512u * 512u) << "a 512x512 pyramid through the write port";
+  EXPECT_NE(r.out.find("stalls heavy"), std::string::npos) << r.out;
+}
+
+TEST_F(TexsimCli, HelpListsEnginesStallsAndScenes) {
+  const Result s = run("sample --help");
+  for (const EngineInfo& e : engines()) EXPECT_NE(s.out.find(e.name), std::string::npos) << e.name << "\n" << s.out;
+  for (const char* word : {"none | random | heavy", "backdoor | port"}) EXPECT_NE(s.out.find(word), std::string::npos) << word;
+  const Result r = run("render --help");
+  for (const std::string& scene : scene_names()) EXPECT_NE(r.out.find(scene), std::string::npos) << scene;
+  EXPECT_NE(r.out.find("mesh16"), std::string::npos) << r.out;
+}
+
+TEST_F(TexsimCli, EngineOptionErrorsComeBeforeAnyWork) {
+  write_text(dir / "q.csv", "u,v,lod\n0.5,0.5,0\n");
+  expect_clean_failure("sample -q q.csv -o r.csv --engine gpu", "r.csv", {"unknown engine 'gpu'", "rtl"});
+  expect_clean_failure("sample -q q.csv -o r.csv --stalls sometimes", "r.csv", {"--stalls 'sometimes'"});
+  expect_clean_failure("sample -q q.csv -o r.csv --load dma", "r.csv", {"--load 'dma'"});
+  expect_clean_failure("sample -q q.csv -o r.csv --engine model --trace t.fst", "r.csv", {"--trace", "model"});
+  EXPECT_FALSE(fs::exists(dir / "t.fst"));
+  const Result f = run("figures --engine gpu --out figs");
+  EXPECT_NE(f.exit_code, 0);
+  EXPECT_NE(f.err.find("unknown engine 'gpu'"), std::string::npos) << f.err;
+  EXPECT_FALSE(fs::exists(dir / "figs")) << "figures --engine gpu left files";
+}
