@@ -35,7 +35,7 @@ demo: build
 	$(TEXSIM) render --scene plane --texture checker --filter trilinear --engine rtl --verify --out $(OUT)/plane_trilinear.png
 	@echo "demo: $(OUT)/plane_point.png aliases near the horizon; $(OUT)/plane_trilinear.png does not"
 
-test: build lint synth-latch
+test: build lint synth-latch model-test
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The model without any simulator or image library: its own build tree.

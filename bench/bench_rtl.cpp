@@ -51,7 +51,7 @@ std::vector<std::string> register_rtl_benchmarks(double min_time) {
   std::vector<std::string> names;
   for (const tex::rtl::RtlConfig& c : tex::rtl::compiled_configs()) {
     names.push_back("rtl_sampling/" + c.name);
-    benchmark::RegisterBenchmark(names.back().c_str(), BM_rtl_sampling, &c)->MinTime(min_time)->UseRealTime();
+    benchmark::RegisterBenchmark(names.back().c_str(), BM_rtl_sampling, &c)->MinTime(min_time);
   }
   return names;
 }

@@ -3,11 +3,10 @@ rtl/tex_lerp.sv
 rtl/tex_skid.sv
 rtl/tex_lod.sv
 rtl/tex_scale.sv
-rtl/tex_addr.sv
+rtl/tex_address.sv
 rtl/tex_wrap.sv
 rtl/tex_bank.sv
 rtl/tex_level_mem.sv
-rtl/tex_level_mux.sv
-rtl/tex_select.sv
+rtl/tex_fetch.sv
 rtl/tex_filter.sv
 rtl/tex_unit.sv

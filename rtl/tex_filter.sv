@@ -1,83 +1,79 @@
-// tex_filter: stage 5 of docs/numerics.md, all 4 channels: two bilinears and the level blend,
-// 7 one-multiply lerps per channel, exact until the single final rounding.
-//   clock 1: top = lerp(a, b, fx), bot = lerp(c, e, fx)   per level          CW.8
-//   clock 2: bil = lerp(top, bot, fy)                      per level          CW.16
-//   clock 3: tri = lerp(bil_d, bil_d1, f); out = (tri + 2^23) >> 24           CW.24 -> CW
-// Point sampling is the same datapath with fx = fy = 0 and f = 0 (out = a).
+// tex_filter: the model's `filter` stage (docs/numerics.md stage 5), all 4 channels: a bilinear
+// in each slot (level d, level d1) and the level blend, 7 one-multiply tex_lerps per channel,
+// exact until the single final rounding.
+//   clock 7: top = lerp(a, b, fx), bot = lerp(c, e, fx)   per slot            CW.8
+//   clock 8: bil = lerp(top, bot, fy)                      per slot            CW.16
+//   clock 9: tri = lerp(bil[0], bil[1], f); rgba = (tri + 2^23) >> 24          CW.24 -> CW
+// Point sampling is the same datapath with fx = fy = 0 and f = 0 (rgba = a of slot 0).
 // Handshake: stall-enable; every register loads when en is high.
-// Latency: 3 clocks. Throughput: 1 per clock.
+// Latency: 3 clocks (tex_unit clocks 7, 8, 9). Throughput: 1 per clock.
 // Ports:
-//   taps_d, taps_d1 : {e, c, b, a} texels of levels d and d1, each {A, B, G, R} of CW-bit
-//                     unsigned channels
-//   fx_d, fy_d, fx_d1, fy_d1 : unsigned 8 bits, weights of the +1 taps in 1/256
-//   f      : unsigned 8 bits, weight of level d1 in 1/256
-//   rgba   : {A, B, G, R}, CW-bit unsigned channels, rounded half up
+//   taps : slot s tap t (0 a, 1 b, 2 c, 3 e) at [(s*4 + t)*4*CW +: 4*CW], each {A, B, G, R} of
+//          CW-bit unsigned channels
+//   w    : slot s axis a (0 fx, 1 fy) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS], unsigned, the
+//          weight of the +1 tap in 1/256
+//   f    : unsigned WEIGHT_BITS, weight of slot 1 (level d1) in 1/256
+//   rgba : {A, B, G, R}, CW-bit unsigned channels, rounded half up
 module tex_filter #(
   parameter int CW = 8
 ) (
-  input  logic              clk,
-  input  logic              en,
-  input  logic [16*CW-1:0]  taps_d,
-  input  logic [16*CW-1:0]  taps_d1,
-  input  logic [7:0]        fx_d,
-  input  logic [7:0]        fy_d,
-  input  logic [7:0]        fx_d1,
-  input  logic [7:0]        fy_d1,
-  input  logic [7:0]        f,
-  output logic [4*CW-1:0]   rgba
+  input  logic                                clk,
+  input  logic                                en,
+  input  logic [32*CW-1:0]                    taps,
+  input  logic [4*tex_pkg::WEIGHT_BITS-1:0]   w,
+  input  logic [tex_pkg::WEIGHT_BITS-1:0]     f,
+  output logic [4*CW-1:0]                     rgba
 );
+  localparam int WB = tex_pkg::WEIGHT_BITS;
+
   // Weights delayed to the clock that uses them.
-  logic [7:0] fy_d_q, fy_d1_q, f_q, f_qq;
+  logic [2*WB-1:0] fy_s7;  // slot s at [s*WB +: WB]
+  logic [WB-1:0]   f_s7, f_s8;
   always_ff @(posedge clk) begin
     if (en) begin
-      fy_d_q  <= fy_d;
-      fy_d1_q <= fy_d1;
-      f_q     <= f;
-      f_qq    <= f_q;
+      fy_s7 <= {w[3*WB +: WB], w[1*WB +: WB]};
+      f_s7  <= f;
+      f_s8  <= f_s7;
     end
   end
 
-  genvar ch;
+  genvar c, s;
   generate
-    for (ch = 0; ch < 4; ch = ch + 1) begin : g_channel
-      // Channel ch of tap t (0 a, 1 b, 2 c, 3 e) is taps[(t*4 + ch)*CW +: CW].
-      logic [CW+7:0]  top_d_n, bot_d_n, top_d1_n, bot_d1_n, top_d, bot_d, top_d1, bot_d1;
-      logic [CW+15:0] bil_d_n, bil_d1_n, bil_d, bil_d1;
-      logic [CW+23:0] tri_n;
-      logic [22:0]    tri_fraction_unused;  // below the rounding bit
-
-      tex_lerp #(.IN_W(CW)) u_top_d  (.a(taps_d[(0*4+ch)*CW +: CW]),  .b(taps_d[(1*4+ch)*CW +: CW]),
-                                      .w(fx_d),  .y(top_d_n));
-      tex_lerp #(.IN_W(CW)) u_bot_d  (.a(taps_d[(2*4+ch)*CW +: CW]),  .b(taps_d[(3*4+ch)*CW +: CW]),
-                                      .w(fx_d),  .y(bot_d_n));
-      tex_lerp #(.IN_W(CW)) u_top_d1 (.a(taps_d1[(0*4+ch)*CW +: CW]), .b(taps_d1[(1*4+ch)*CW +: CW]),
-                                      .w(fx_d1), .y(top_d1_n));
-      tex_lerp #(.IN_W(CW)) u_bot_d1 (.a(taps_d1[(2*4+ch)*CW +: CW]), .b(taps_d1[(3*4+ch)*CW +: CW]),
-                                      .w(fx_d1), .y(bot_d1_n));
-      always_ff @(posedge clk) begin
-        if (en) begin
-          top_d  <= top_d_n;
-          bot_d  <= bot_d_n;
-          top_d1 <= top_d1_n;
-          bot_d1 <= bot_d1_n;
+    for (c = 0; c < 4; c = c + 1) begin : g_channel
+      for (s = 0; s < 2; s = s + 1) begin : g_slot
+        // Channel c of the taps a, b, c, e of slot s.
+        logic [CW-1:0]      ta, tb, tc, te;
+        logic [CW+WB-1:0]   top_next, bot_next, top_s7, bot_s7;  // CW.8
+        logic [CW+2*WB-1:0] bil_next, bil_s8;                    // CW.16
+        assign ta = taps[((s*4 + 0)*4 + c)*CW +: CW];
+        assign tb = taps[((s*4 + 1)*4 + c)*CW +: CW];
+        assign tc = taps[((s*4 + 2)*4 + c)*CW +: CW];
+        assign te = taps[((s*4 + 3)*4 + c)*CW +: CW];
+        tex_lerp #(.IN_W(CW)) u_top (.a(ta), .b(tb), .w(w[(s*2)*WB +: WB]), .y(top_next));
+        tex_lerp #(.IN_W(CW)) u_bot (.a(tc), .b(te), .w(w[(s*2)*WB +: WB]), .y(bot_next));
+        always_ff @(posedge clk) begin
+          if (en) begin
+            top_s7 <= top_next;
+            bot_s7 <= bot_next;
+          end
         end
+        tex_lerp #(.IN_W(CW+WB)) u_bil (.a(top_s7), .b(bot_s7), .w(fy_s7[s*WB +: WB]), .y(bil_next));
+        always_ff @(posedge clk) if (en) bil_s8 <= bil_next;
       end
 
-      tex_lerp #(.IN_W(CW+8)) u_bil_d  (.a(top_d),  .b(bot_d),  .w(fy_d_q),  .y(bil_d_n));
-      tex_lerp #(.IN_W(CW+8)) u_bil_d1 (.a(top_d1), .b(bot_d1), .w(fy_d1_q), .y(bil_d1_n));
-      always_ff @(posedge clk) begin
-        if (en) begin
-          bil_d  <= bil_d_n;
-          bil_d1 <= bil_d1_n;
-        end
-      end
-
-      tex_lerp #(.IN_W(CW+16)) u_tri (.a(bil_d), .b(bil_d1), .w(f_qq), .y(tri_n));
+      logic [CW+3*WB-1:0] tri_next;                              // CW.24
+      logic [CW-1:0]      rgba_next;
+      logic [3*WB-2:0]    tri_fraction_unused;  // below the rounding bit
+      tex_lerp #(.IN_W(CW+2*WB)) u_tri (.a(g_slot[0].bil_s8), .b(g_slot[1].bil_s8), .w(f_s8),
+                                        .y(tri_next));
       // (tri + 2^23) >> 24 == tri[CW+23:24] + tri[23]; cannot overflow CW bits (tri <= (2^CW-1)*2^24).
-      assign tri_fraction_unused = tri_n[22:0];
-      always_ff @(posedge clk) begin
-        if (en) rgba[ch*CW +: CW] <= tri_n[CW+23:24] + CW'(tri_n[23]);
-      end
+      assign rgba_next = tri_next[CW+3*WB-1:3*WB] + CW'(tri_next[3*WB-1]);
+      assign tri_fraction_unused = tri_next[3*WB-2:0];
     end
   endgenerate
+
+  always_ff @(posedge clk) begin
+    if (en) rgba <= {g_channel[3].rgba_next, g_channel[2].rgba_next, g_channel[1].rgba_next,
+                     g_channel[0].rgba_next};
+  end
 endmodule

@@ -1,85 +1,81 @@
-// tex_level_mem: stage 4 of docs/numerics.md: the memory of one mip level, split into 4 banks by
-// texel parity, bank b = (y & 1) * 2 + (x & 1), word (y >> 1) * 2^(XB-1) + (x >> 1) (fixed stride
-// of the largest texture this level can hold: 2^XB x 2^YB texels). A 2x2 footprint after wrap has
-// x taps that are equal or of different parity (likewise y), so each bank serves at most one word:
-// the whole footprint is read in one clock.
-// Handshake: none. Write: one texel per clock when we (ignored outside 2^XB x 2^YB).
-//   Read: the 4 banks read at the clock edge when re is high and hold their data otherwise.
-// Latency: 1 clock (x0..y1 -> rdata). Throughput: one 2x2 footprint per clock, plus 1 write.
+// tex_level_mem: the memory of one mip level (part of the model's `fetch` stage), split into 4
+// tex_banks by texel parity: bank b = (y & 1) * 2 + (x & 1) holds word
+// (y >> 1) * 2^(XB-1) + (x >> 1), a fixed stride of the largest texture this level can hold
+// (2^XB x 2^YB texels; stride 1 when XB <= 1). A 2x2 footprint after wrap has x taps that are
+// equal or of different parity (likewise y), so each bank serves at most one word: the whole
+// footprint is read in one clock.
+// Handshake: none. Write: one texel per clock when we and wlevel = LEVEL and (wx, wy) lies inside
+//   2^XB x 2^YB (ignored otherwise; each tex_bank decodes it). Read: when re (the pipeline enable)
+//   and rsel (this level is d or d1), every bank reads the word of slot sel (0 or 1) at the clock
+//   edge; otherwise the banks hold their data.
+// Latency: 1 clock (raddr -> rdata0..3; tex_unit clock 5). Throughput: one 2x2 footprint per
+//   clock, plus 1 write.
 // Ports:
-//   wx, wy        : unsigned COORD_W bits, texel coordinate of the write in this level
-//   wdata         : 4*CW bits, texel {A, B, G, R}
-//   x0, x1, y0, y1: unsigned, wrapped texel indices of the footprint (x1 = x0 or other parity)
-//   rdata         : 4 texels, bank b in [b*DW +: DW]; banks outside the level read as 0
+//   wlevel     : integer, the level of the write
+//   wx, wy     : unsigned COORD_W bits, texel coordinate of the write in its level
+//   wdata      : DW bits, texel {A, B, G, R}
+//   raddr      : 2 slots x 4 banks of RAW-bit word addresses, slot s bank b at
+//                [(s*4 + b)*RAW +: RAW], in this level's layout when the slot's level is LEVEL
+//                (it then fits the bank: the bits above the bank's address width are zero)
+//   rdata0..3  : the read words of banks 0..3 (one port each: tex_fetch stores them straight into
+//                its array of bank words); a bank that cannot exist reads as 0
 module tex_level_mem #(
-  parameter int XB = 4,  // log2 of the largest width at this level (0: one texel wide)
-  parameter int YB = 4,
-  parameter int DW = 32,
-  parameter int XO = (XB > 0) ? XB : 1,  // read-port widths (a 1-texel side still has bit 0);
-  parameter int YO = (YB > 0) ? YB : 1   // derived, do not override
+  parameter int LEVEL      = 0,   // mip level (0 = largest)
+  parameter int MAX_LOG2_W = 4,   // tex_unit's parameters
+  parameter int MAX_LOG2_H = 4,
+  parameter int DW         = 32,
+  parameter int RAW        = 8    // bits of each word address in raddr (level 0's address width)
 ) (
   input  logic                         clk,
   input  logic                         we,
+  input  logic [tex_pkg::LEVEL_W-1:0]  wlevel,
   input  logic [tex_pkg::COORD_W-1:0]  wx,
   input  logic [tex_pkg::COORD_W-1:0]  wy,
   input  logic [DW-1:0]                wdata,
   input  logic                         re,
-  input  logic [XO-1:0]                x0,
-  input  logic [XO-1:0]                x1,
-  input  logic [YO-1:0]                y0,
-  input  logic [YO-1:0]                y1,
-  output logic [4*DW-1:0]              rdata
+  input  logic                         rsel,
+  input  logic                         sel,
+  input  logic [8*RAW-1:0]             raddr,
+  output logic [DW-1:0]                rdata0,
+  output logic [DW-1:0]                rdata1,
+  output logic [DW-1:0]                rdata2,
+  output logic [DW-1:0]                rdata3
 );
+  localparam int XB = (MAX_LOG2_W > LEVEL) ? MAX_LOG2_W - LEVEL : 0;  // largest log2 width
+  localparam int YB = (MAX_LOG2_H > LEVEL) ? MAX_LOG2_H - LEVEL : 0;
   localparam int BX = (XB > 1) ? XB - 1 : 0;  // word-address bits from x >> 1
   localparam int BY = (YB > 1) ? YB - 1 : 0;
   localparam int AW = (BX + BY > 0) ? BX + BY : 1;
-  localparam int DEPTH = 1 << (BX + BY);
 
-  logic in_range;
-  assign in_range = ((wx >> XB) == '0) && ((wy >> YB) == '0);
-
-  // Word address of texel (x, y) in its bank: {y >> 1, x >> 1}.
+  // The bits of raddr above this level's AW are zero (and those of the other slot, unused).
+  logic [8*RAW-1:0] raddr_unused;
+  assign raddr_unused = raddr;
 
   genvar b;
   generate
     for (b = 0; b < 4; b = b + 1) begin : g_bank
-      localparam logic PX = b[0];
-      localparam logic PY = b[1];
-      if ((PX && XB == 0) || (PY && YB == 0)) begin : g_absent
+      logic [DW-1:0] word;  // the bank's read register
+      if ((b[0] && XB == 0) || (b[1] && YB == 0)) begin : g_absent
         // A 1-texel side has no odd texels: this bank would never be written.
-        assign rdata[b*DW +: DW] = '0;
+        assign word = '0;
       end else begin : g_present
-        logic [XO-1:0] xs;  // the tap whose x parity is PX (either tap if both are equal)
-        logic [YO-1:0] ys;
-        logic [AW-1:0] raddr_b, waddr_b;
-        assign xs = (x0[0] == PX) ? x0 : x1;
-        assign ys = (y0[0] == PY) ? y0 : y1;
-        // Bit 0 is the bank's parity: it steers (above) but is not part of the word address.
-        logic parity_bits_unused;
-        assign parity_bits_unused = ^{xs[0], ys[0]};
-        if (BX > 0 && BY > 0) begin : g_xy
-          assign raddr_b = {ys[YO-1:1], xs[XO-1:1]};
-          assign waddr_b = {wy[YB-1:1], wx[XB-1:1]};
-        end else if (BX > 0) begin : g_x
-          assign raddr_b = xs[XO-1:1];
-          assign waddr_b = wx[XB-1:1];
-        end else if (BY > 0) begin : g_y
-          assign raddr_b = ys[YO-1:1];
-          assign waddr_b = wy[YB-1:1];
-        end else begin : g_one
-          assign raddr_b = '0;
-          assign waddr_b = '0;
-        end
-        tex_bank #(.AW(AW), .DEPTH(DEPTH), .DW(DW)) u_bank (
-          .clk  (clk),
-          .we   (we && in_range && wx[0] == PX && wy[0] == PY),
-          .waddr(waddr_b),
-          .wdata(wdata),
-          .re   (re),
-          .raddr(raddr_b),
-          .rdata(rdata[b*DW +: DW])
+        tex_bank #(.LEVEL(LEVEL), .PARITY(b), .XB(XB), .YB(YB), .DW(DW)) u_bank (
+          .clk   (clk),
+          .we    (we),
+          .wlevel(wlevel),
+          .wx    (wx),
+          .wy    (wy),
+          .wdata (wdata),
+          .re    (re),
+          .rsel  (rsel),
+          .raddr (sel ? raddr[(4 + b)*RAW +: AW] : raddr[b*RAW +: AW]),
+          .rdata (word)
         );
       end
     end
   endgenerate
+  assign rdata0 = g_bank[0].word;
+  assign rdata1 = g_bank[1].word;
+  assign rdata2 = g_bank[2].word;
+  assign rdata3 = g_bank[3].word;
 endmodule

@@ -1,61 +1,69 @@
-// tex_lod: stage 1 of docs/numerics.md: bias, clamp, and level select from an explicit lambda.
+// tex_lod: the model's `lod` stage (docs/numerics.md stage 1): bias, clamp and level select from
+// an explicit lambda.
 // Handshake: stall-enable; every register loads when en is high (no valid bits inside).
-// Latency: 2 clocks (clamp register, then level-select register). Throughput: 1 per clock.
+// Latency: 2 clocks: tex_unit clock 2 (lambda_s2, the clamped lambda) and clock 3 (level, f).
+// Throughput: 1 per clock.
 // Ports:
-//   lod, bias, min_lod, max_lod : signed Q8.8
+//   lod, bias, min_lod, max_lod : signed Q8.8 (LOD_W bits)
 //   mip_mode   : tex_pkg::MIP_* (3 is treated like MIP_LINEAR, as the model's else branch does)
 //   last_level : q = max(log2_w0, log2_h0), integer 0..11
-//   d, d1      : integer level indices 0..q (d1 = min(d + 1, q))
-//   f          : unsigned 8 bits, weight of level d1 in 1/256 (0 unless linear mip below q)
+//   level      : 2 slots of LEVEL_W bits, slot s at [s*LEVEL_W +: LEVEL_W]: slot 0 = d,
+//                slot 1 = d1 = min(d + 1, q); integers 0..q
+//   f          : unsigned WEIGHT_BITS, weight of level d1 in 1/256 (0 unless linear mip below q)
 module tex_lod (
-  input  logic               clk,
-  input  logic               en,
-  input  logic signed [15:0] lod,
-  input  logic signed [15:0] bias,
-  input  logic signed [15:0] min_lod,
-  input  logic signed [15:0] max_lod,
-  input  logic [1:0]         mip_mode,
-  input  logic [3:0]         last_level,
-  output logic [3:0]         d,
-  output logic [3:0]         d1,
-  output logic [7:0]         f
+  input  logic                                 clk,
+  input  logic                                 en,
+  input  logic signed [tex_pkg::LOD_W-1:0]     lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]     bias,
+  input  logic signed [tex_pkg::LOD_W-1:0]     min_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]     max_lod,
+  input  logic [tex_pkg::MIP_W-1:0]            mip_mode,
+  input  logic [tex_pkg::LEVEL_W-1:0]          last_level,
+  output logic [2*tex_pkg::LEVEL_W-1:0]        level,
+  output logic [tex_pkg::WEIGHT_BITS-1:0]      f
 );
-  // ---- clock 1: lambda' = clamp(lambda + bias, min, max) (GL order; exact 17-bit sum)
-  logic signed [16:0] lod17, bias17, min17, max17, biased;  // size casts sign-extend
-  logic signed [15:0] clamped_next, clamped;
-  assign lod17  = 17'(lod);
-  assign bias17 = 17'(bias);
-  assign min17  = 17'(min_lod);
-  assign max17  = 17'(max_lod);
-  assign biased = lod17 + bias17;
+  localparam int LW    = tex_pkg::LOD_W;
+  localparam int LF    = tex_pkg::LOD_FRAC;
+  localparam int IW    = LW - LF;            // integer bits of lambda (sign included): 8
+  localparam int VW    = tex_pkg::LEVEL_W;
+  localparam int WB    = tex_pkg::WEIGHT_BITS;
+
+  // ---- clock 2: lambda' = clamp(lambda + bias, min, max) (GL order; exact LW+1-bit sum)
+  logic signed [LW:0]   lod_x, bias_x, min_x, max_x, biased;  // size casts sign-extend
+  logic signed [LW-1:0] lambda_next, lambda_s2;
+  assign lod_x  = (LW+1)'(lod);
+  assign bias_x = (LW+1)'(bias);
+  assign min_x  = (LW+1)'(min_lod);
+  assign max_x  = (LW+1)'(max_lod);
+  assign biased = lod_x + bias_x;
   always_comb begin
     // Same order as std::clamp: below min wins, then above max.
-    if (biased < min17) clamped_next = min_lod;
-    else if (max17 < biased) clamped_next = max_lod;
-    else clamped_next = biased[15:0];
+    if (biased < min_x) lambda_next = min_lod;
+    else if (max_x < biased) lambda_next = max_lod;
+    else lambda_next = biased[LW-1:0];
   end
-  always_ff @(posedge clk) if (en) clamped <= clamped_next;
+  always_ff @(posedge clk) if (en) lambda_s2 <= lambda_next;
 
-  // ---- clock 2: level select
-  logic       minify;          // lambda' > 0
-  logic [7:0] floor_level;     // lambda' >> 8 (lambda' > 0, so at most 127)
-  logic [7:0] nearest_level;   // (lambda' + 127) >> 8, at most 128
-  logic [7:0] q8;
-  logic [3:0] d_next;
-  logic [7:0] f_next;
-  assign minify        = !clamped[15] && (clamped != 16'sd0);
-  assign floor_level   = 8'(clamped[14:0] >> tex_pkg::LOD_FRAC);
-  assign nearest_level = 8'(({1'b0, clamped[14:0]} + 16'd127) >> tex_pkg::LOD_FRAC);
-  assign q8            = {4'b0, last_level};
+  // ---- clock 3: level select
+  logic          minify;          // lambda' > 0
+  logic [IW-1:0] floor_level;     // lambda' >> 8 (lambda' > 0, so at most 127)
+  logic [IW-1:0] nearest_level;   // (lambda' + 127) >> 8, at most 128
+  logic [IW-1:0] last_wide;
+  logic [VW-1:0] d_next;          // slot 0's level
+  logic [WB-1:0] f_next;
+  assign minify        = !lambda_s2[LW-1] && (lambda_s2 != '0);
+  assign floor_level   = IW'(lambda_s2[LW-2:0] >> LF);
+  assign nearest_level = IW'(({1'b0, lambda_s2[LW-2:0]} + LW'((1 << (LF - 1)) - 1)) >> LF);
+  assign last_wide     = IW'(last_level);
   always_comb begin
-    d_next = 4'd0;
-    f_next = 8'd0;
+    d_next = '0;
+    f_next = '0;
     if (mip_mode != tex_pkg::MIP_NONE && minify) begin
       if (mip_mode == tex_pkg::MIP_NEAREST) begin
-        d_next = (nearest_level < q8) ? nearest_level[3:0] : last_level;
-      end else if (floor_level < q8) begin  // MIP_LINEAR (and the unused code 3)
-        d_next = floor_level[3:0];
-        f_next = clamped[7:0];
+        d_next = (nearest_level < last_wide) ? nearest_level[VW-1:0] : last_level;
+      end else if (floor_level < last_wide) begin  // MIP_LINEAR (and the unused code 3)
+        d_next = floor_level[VW-1:0];
+        f_next = WB'(lambda_s2[LF-1:0]);  // the fraction of lambda'
       end else begin
         d_next = last_level;  // at the last level there is nothing to blend with
       end
@@ -63,9 +71,8 @@ module tex_lod (
   end
   always_ff @(posedge clk) begin
     if (en) begin
-      d  <= d_next;
-      d1 <= (d_next == last_level) ? last_level : d_next + 4'd1;
-      f  <= f_next;
+      level <= {(d_next == last_level) ? last_level : d_next + VW'(1), d_next};
+      f     <= f_next;
     end
   end
 endmodule

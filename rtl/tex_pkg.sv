@@ -1,21 +1,32 @@
-// tex_pkg: constants shared by every tex_* module; the C++ twin is model/formats.h.
+// tex_pkg: constants shared by every tex_* module. The C++ twin is model/formats.h;
+// tests/model/test_params.cpp parses every localparam below (each must be a plain literal) and
+// compares those that have a twin.
 // Referenced as tex_pkg::NAME (Yosys 0.23 rejects `import tex_pkg::*`).
 package tex_pkg;
-  localparam int COORD_FRAC   = 24;  // u, v: signed Q8.24, 1.0 = one texture width
-  localparam int LOD_FRAC     = 8;   // lambda, bias, min/max lod: signed Q8.8
-  localparam int WEIGHT_BITS  = 8;   // fx, fy, f: 0..255 = 0..255/256 of the second tap
-  localparam int MAX_LOG2_SIZE = 11; // 2048 texels per side at most
-  localparam int COORD_W      = 11;  // bits of a wrapped texel index / write coordinate
-  localparam int INDEX_W      = 21;  // signed unwrapped texel index (|u| < 128 at 2048 texels)
-  localparam int SCALED_W     = 28;  // u >>> (15 - log2_w0): 32 - minimum shift of 4
+  // ---- number formats
+  localparam int REQ_COORD_W   = 32;  // req_u, req_v: signed Q8.24, 1.0 = one texture width
+  localparam int COORD_FRAC    = 24;  //   fraction bits of u, v
+  localparam int LOD_W         = 16;  // lambda, bias, min/max lod: signed Q8.8
+  localparam int LOD_FRAC      = 8;   //   fraction bits of lambda
+  localparam int WEIGHT_BITS   = 8;   // fx, fy, f: 0..255 = 0..255/256 of the second tap
+  localparam int MAX_CW        = 16;  // bits per channel: CW = 1..MAX_CW
 
-  // cfg_wrap_u / cfg_wrap_v
-  localparam logic [1:0] WRAP_REPEAT = 2'd0;
-  localparam logic [1:0] WRAP_CLAMP  = 2'd1;  // CLAMP_TO_EDGE
-  localparam logic [1:0] WRAP_MIRROR = 2'd2;  // MIRRORED_REPEAT
+  // ---- sizes, levels, texel indices
+  localparam int MAX_LOG2_SIZE = 11;  // 2048 texels per side at most
+  localparam int LEVEL_W       = 4;   // a level index or a log2 size (0..11): cfg_log2_w, wr_level
+  localparam int COORD_W       = 11;  // bits of a wrapped texel index / write coordinate
+  localparam int INDEX_W       = 21;  // signed unwrapped texel index (|u| < 128 at 2048 texels)
+  localparam int SCALED_W      = 28;  // u >>> (15 - log2_w0): 32 - minimum shift of 4
 
-  // cfg_mip_mode
-  localparam logic [1:0] MIP_NONE    = 2'd0;
-  localparam logic [1:0] MIP_NEAREST = 2'd1;
-  localparam logic [1:0] MIP_LINEAR  = 2'd2;
+  // ---- cfg_wrap_u / cfg_wrap_v
+  localparam int WRAP_W = 2;
+  localparam logic [WRAP_W-1:0] WRAP_REPEAT = 2'd0;
+  localparam logic [WRAP_W-1:0] WRAP_CLAMP  = 2'd1;  // CLAMP_TO_EDGE
+  localparam logic [WRAP_W-1:0] WRAP_MIRROR = 2'd2;  // MIRRORED_REPEAT
+
+  // ---- cfg_mip_mode
+  localparam int MIP_W = 2;
+  localparam logic [MIP_W-1:0] MIP_NONE    = 2'd0;
+  localparam logic [MIP_W-1:0] MIP_NEAREST = 2'd1;
+  localparam logic [MIP_W-1:0] MIP_LINEAR  = 2'd2;
 endpackage

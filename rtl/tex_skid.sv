@@ -1,8 +1,8 @@
 // tex_skid: two-entry skid buffer that registers the ready path of a valid/ready channel.
 // Handshake: valid/ready on both sides; in_ready is a register (!skid_valid), so it never depends
 //   combinationally on out_ready. The producer advances on in_valid && in_ready.
-// Latency: 1 clock (in -> out register). Throughput: 1 per clock; the output is valid in every
-//   cycle in which an item is stored, so the only bubbles are those of the producer.
+// Latency: 1 clock (in -> out register; tex_unit clock 10). Throughput: 1 per clock; the output
+//   is valid in every cycle in which an item is stored, so the only bubbles are the producer's.
 // Ports: in_data / out_data: W bits, opaque. Only the two valid bits are reset.
 module tex_skid #(
   parameter int W = 8

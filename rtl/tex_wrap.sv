@@ -1,25 +1,25 @@
-// tex_wrap: stage 3 of docs/numerics.md: OpenGL wrap of one integer texel index, n = 2^log2_n.
+// tex_wrap: the model's `wrap` stage (docs/numerics.md stage 3): OpenGL wrap of one integer texel
+// index, n = 2^log2_n.
 //   repeat: i & (n-1)   clamp: min(max(i, 0), n-1)   mirror: m = i & (2n-1); m < n ? m : 2n-1-m
 //   (mode 3 gives 0, as the model's switch does). n = 1 maps every index to 0.
-// Handshake: none (combinational). Latency: 0. Throughput: 1 per clock.
+// Handshake: none (combinational; tex_unit clock 5). Latency: 0. Throughput: 1 per clock.
 // Ports:
 //   i      : signed INDEX_W bits, unwrapped integer texel index
 //   log2_n : integer 0..11, log2 of the level's size along this axis (must fit OUT_W bits)
 //   mode   : tex_pkg::WRAP_*
 //   o      : unsigned OUT_W bits, wrapped index in [0, n)
 module tex_wrap #(
-  parameter int OUT_W = 11
+  parameter int OUT_W = tex_pkg::COORD_W
 ) (
   input  logic signed [tex_pkg::INDEX_W-1:0] i,
-  input  logic [3:0]                         log2_n,
-  input  logic [1:0]                         mode,
+  input  logic [tex_pkg::LEVEL_W-1:0]        log2_n,
+  input  logic [tex_pkg::WRAP_W-1:0]         mode,
   output logic [OUT_W-1:0]                   o
 );
   localparam int IW = tex_pkg::INDEX_W;
   logic [IW-1:0]    n, mask;          // n = 2^log2_n, mask = n - 1
   logic [OUT_W-1:0] mask_o, low;      // n - 1 and i & (n - 1), in the output width
   logic             negative, beyond, odd_period;
-  logic [OUT_W-1:0] wrapped;
   assign n          = IW'(1) << log2_n;
   assign mask       = n - IW'(1);
   assign mask_o     = OUT_W'(mask);
@@ -29,11 +29,10 @@ module tex_wrap #(
   assign odd_period = |(i & n);             // m >= n: the mirrored half of the period 2n
   always_comb begin
     case (mode)
-      tex_pkg::WRAP_REPEAT: wrapped = low;
-      tex_pkg::WRAP_CLAMP:  wrapped = negative ? '0 : (beyond ? mask_o : low);
-      tex_pkg::WRAP_MIRROR: wrapped = odd_period ? (~low & mask_o) : low;  // 2n-1-m = ~m in lw bits
-      default:              wrapped = '0;
+      tex_pkg::WRAP_REPEAT: o = low;
+      tex_pkg::WRAP_CLAMP:  o = negative ? '0 : (beyond ? mask_o : low);
+      tex_pkg::WRAP_MIRROR: o = odd_period ? (~low & mask_o) : low;  // 2n-1-m = ~m in lw bits
+      default:              o = '0;
     endcase
   end
-  assign o = wrapped;
 endmodule

@@ -1,17 +1,32 @@
 #!/usr/bin/env bash
-# Verilator -Wall lint of tex_unit in several configurations; any warning fails.
+# Verilator -Wall lint of tex_unit in several configurations; any warning fails. Then the
+# parameter checks: each out-of-range parameter must stop Verilator with tex_unit's message.
 # Waivers live only in rtl/tex_unit.vlt. Usage: scripts/lint.sh
 set -euo pipefail
 case "${1:-}" in -h|--help) sed -n '2,/^set -/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0;; esac
 cd "$(dirname "$0")/.."
+lint() { verilator --lint-only -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit "$@" 2>&1; }
 configs=("4 4 8" "6 3 8" "10 10 8" "0 0 8" "11 2 16" "3 7 1")  # MAX_LOG2_W MAX_LOG2_H CW
 for cfg in "${configs[@]}"; do
   set -- $cfg
-  if ! out=$(verilator --lint-only -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit \
-               -GMAX_LOG2_W="$1" -GMAX_LOG2_H="$2" -GCW="$3" 2>&1) || [ -n "$out" ]; then
+  if ! out=$(lint -GMAX_LOG2_W="$1" -GMAX_LOG2_H="$2" -GCW="$3") || [ -n "$out" ]; then
     echo "$out" >&2
     echo "lint: FAILED for MAX_LOG2_W=$1 MAX_LOG2_H=$2 CW=$3" >&2
     exit 1
   fi
 done
-echo "lint: verilator -Wall clean for ${#configs[@]} configurations (MAX_LOG2_W MAX_LOG2_H CW: ${configs[*]/%/;})"
+# Out-of-range parameters: lint must fail, naming the parameter.
+bad=("MAX_LOG2_W=12" "MAX_LOG2_H=-1" "CW=0" "CW=17" "TAG_W=0")
+for p in "${bad[@]}"; do
+  if out=$(lint -G"$p"); then
+    echo "lint: parameter check did not fire for $p" >&2
+    exit 1
+  fi
+  if ! grep -q "tex_unit: parameter ${p%%=*} must" <<< "$out"; then
+    echo "$out" >&2
+    echo "lint: $p failed without tex_unit's parameter message" >&2
+    exit 1
+  fi
+done
+echo "lint: verilator -Wall clean for ${#configs[@]} configurations (MAX_LOG2_W MAX_LOG2_H CW: ${configs[*]/%/;});" \
+     "parameter checks fire for ${bad[*]}"

@@ -18,10 +18,35 @@ module tex_ice40_top #(
   output logic rsp_valid,
   output logic sout
 );
-  localparam int NIN = 4 + 4 + 2 + 2 + 1 + 2 + 16 * 3      // cfg
-                     + 1 + 4 + 11 + 11 + 4 * CW             // write port
-                     + 1 + 32 + 32 + 16 + TAG_W             // request
-                     + 1;                                    // rsp_ready
+  localparam int VW = tex_pkg::LEVEL_W;
+  localparam int WW = tex_pkg::WRAP_W;
+  localparam int MW = tex_pkg::MIP_W;
+  localparam int LW = tex_pkg::LOD_W;
+  localparam int XW = tex_pkg::COORD_W;
+  localparam int UW = tex_pkg::REQ_COORD_W;
+  // Field offsets in the input shift register, in port order.
+  localparam int O_LOG2_W  = 0;
+  localparam int O_LOG2_H  = O_LOG2_W + VW;
+  localparam int O_WRAP_U  = O_LOG2_H + VW;
+  localparam int O_WRAP_V  = O_WRAP_U + WW;
+  localparam int O_LINEAR  = O_WRAP_V + WW;
+  localparam int O_MIP     = O_LINEAR + 1;
+  localparam int O_BIAS    = O_MIP + MW;
+  localparam int O_MIN_LOD = O_BIAS + LW;
+  localparam int O_MAX_LOD = O_MIN_LOD + LW;
+  localparam int O_WR_EN   = O_MAX_LOD + LW;
+  localparam int O_WR_LVL  = O_WR_EN + 1;
+  localparam int O_WR_X    = O_WR_LVL + VW;
+  localparam int O_WR_Y    = O_WR_X + XW;
+  localparam int O_WR_DATA = O_WR_Y + XW;
+  localparam int O_VALID   = O_WR_DATA + 4*CW;
+  localparam int O_U       = O_VALID + 1;
+  localparam int O_V       = O_U + UW;
+  localparam int O_LOD     = O_V + UW;
+  localparam int O_TAG     = O_LOD + LW;
+  localparam int O_READY   = O_TAG + TAG_W;
+  localparam int NIN       = O_READY + 1;
+
   logic [NIN-1:0] in_bits;
   always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
 
@@ -29,15 +54,16 @@ module tex_ice40_top #(
   logic [TAG_W-1:0] rsp_tag;
   tex_unit #(.MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W)) u_unit (
     .clk(clk), .rst(rst),
-    .cfg_log2_w(in_bits[3:0]), .cfg_log2_h(in_bits[7:4]), .cfg_wrap_u(in_bits[9:8]),
-    .cfg_wrap_v(in_bits[11:10]), .cfg_texel_linear(in_bits[12]), .cfg_mip_mode(in_bits[14:13]),
-    .cfg_lod_bias(in_bits[30:15]), .cfg_min_lod(in_bits[46:31]), .cfg_max_lod(in_bits[62:47]),
-    .wr_en(in_bits[63]), .wr_level(in_bits[67:64]), .wr_x(in_bits[78:68]), .wr_y(in_bits[89:79]),
-    .wr_data(in_bits[90 +: 4*CW]),
-    .req_valid(in_bits[90+4*CW]), .req_ready(req_ready), .req_u(in_bits[91+4*CW +: 32]),
-    .req_v(in_bits[123+4*CW +: 32]), .req_lod(in_bits[155+4*CW +: 16]),
-    .req_tag(in_bits[171+4*CW +: TAG_W]),
-    .rsp_valid(rsp_valid), .rsp_ready(in_bits[NIN-1]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag)
+    .cfg_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_log2_h(in_bits[O_LOG2_H +: VW]),
+    .cfg_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_wrap_v(in_bits[O_WRAP_V +: WW]),
+    .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mip_mode(in_bits[O_MIP +: MW]),
+    .cfg_lod_bias(in_bits[O_BIAS +: LW]), .cfg_min_lod(in_bits[O_MIN_LOD +: LW]),
+    .cfg_max_lod(in_bits[O_MAX_LOD +: LW]),
+    .wr_en(in_bits[O_WR_EN]), .wr_level(in_bits[O_WR_LVL +: VW]), .wr_x(in_bits[O_WR_X +: XW]),
+    .wr_y(in_bits[O_WR_Y +: XW]), .wr_data(in_bits[O_WR_DATA +: 4*CW]),
+    .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
+    .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
+    .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag)
   );
   always_ff @(posedge clk) sout <= ^{rsp_rgba, rsp_tag};
 endmodule

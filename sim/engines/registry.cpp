@@ -25,7 +25,7 @@ const std::vector<EngineInfo>& engines() {
        [](const EngineOptions&) -> std::unique_ptr<Engine> { return std::make_unique<ModelEngine>(); }},
       {"rtl", "the Verilated RTL, cycle-accurate, smallest configuration that holds the texture", true, true,
        rtl::make_rtl_engine},
-      {"systemc", "the Verilated RTL behind a TLM-2.0 socket (approximately timed, pipelined)", true, false,
+      {"systemc", "the Verilated RTL behind a TLM-2.0 socket (approximately timed, pipelined)", true, true,
        [](const EngineOptions& o) { return systemc::make_systemc_engine(systemc::Backend::Rtl, o); }},
       {"systemc-model", "the golden model behind the same socket (loosely timed)", false, false,
        [](const EngineOptions& o) { return systemc::make_systemc_engine(systemc::Backend::Model, o); }},

@@ -89,6 +89,7 @@ TEST(Params, RtlPackageAgreesWithModel) {
       {"MIP_NONE", int(MipMode::None)},
       {"MIP_NEAREST", int(MipMode::Nearest)},
       {"MIP_LINEAR", int(MipMode::Linear)},
+      {"MAX_CW", kMaxChannelBits},
       // u >> (15 - log2 w): the smallest shift (4, at 2048 texels) leaves 32 - 4 bits.
       {"SCALED_W", 32 - (15 - kMaxLog2Size)},
   };
@@ -99,6 +100,11 @@ TEST(Params, RtlPackageAgreesWithModel) {
   }
   // Widths that must hold the model's extreme values.
   ASSERT_TRUE(p.count("COORD_W") && p.count("INDEX_W")) << path << " lacks COORD_W or INDEX_W";
+  ASSERT_TRUE(p.count("LOD_W") && p.count("LEVEL_W")) << path << " lacks LOD_W or LEVEL_W";
+  // lambda, bias and the clamps are LOD_W-bit signed on the pins: exactly the model's range.
+  EXPECT_EQ(-(int64_t(1) << (p.at("LOD_W") - 1)), kLodMin) << "LOD_W";
+  EXPECT_EQ((int64_t(1) << (p.at("LOD_W") - 1)) - 1, kLodMax) << "LOD_W";
+  EXPECT_GE(int64_t(1) << p.at("LEVEL_W"), int64_t(kMaxLevels)) << "LEVEL_W cannot index every level";
   EXPECT_GE(int64_t(1) << p.at("COORD_W"), int64_t(1) << kMaxLog2Size) << "COORD_W cannot index 2048 texels";
   int32_t lo = 0, hi = 0;
   for (int32_t u : {INT32_MIN, INT32_MAX})

@@ -194,7 +194,6 @@ class FakeUnit : public rtl::Driver {
   }
   void apply_cfg(const rtl::CfgPins&) override {}
   void backdoor_write(int, int, uint32_t, uint64_t) override {}
-  bool got_finish() const override { return false; }
   void close_trace_impl() override {}
 
  private:

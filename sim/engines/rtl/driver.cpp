@@ -117,28 +117,27 @@ void Driver::close_trace() {
   tracing_ = false;
 }
 
-PinsOut Driver::tick(const PinsIn& in) {
-  if (tracing_) {
-    if (g_sigint) {
-      close_trace();
-      std::fprintf(stderr, "\ninterrupted at clock %llu; FST trace closed: %s\n", (unsigned long long)cycle_,
-                   options_.trace_path.c_str());
-      std::signal(SIGINT, SIG_DFL);
-      std::raise(SIGINT);
-    }
-    // Past the window: close now, so the file is complete even if the run is killed later.
-    if (options_.trace_end != 0 && cycle_ > options_.trace_end) close_trace();
-  }
-  const bool dump = tracing_ && cycle_ >= options_.trace_begin;
-  const PinsOut out = tick_pins(in, dump);
-  if (got_finish()) {
+PinsOut Driver::tick_traced(const PinsIn& in) {
+  if (g_sigint) {
     close_trace();
-    throw Error("RTL assertion failed (or $finish) at clock " + std::to_string(cycle_) + " of " + config_.name +
-                "; see the %Error line above" +
-                (options_.trace_path.empty() ? std::string() : "; FST trace closed: " + options_.trace_path));
+    std::fprintf(stderr, "\ninterrupted at clock %llu; FST trace closed: %s\n", (unsigned long long)cycle_,
+                 options_.trace_path.c_str());
+    std::signal(SIGINT, SIG_DFL);
+    std::raise(SIGINT);
   }
+  // Past the window: close now, so the file is complete even if the run is killed later.
+  if (options_.trace_end != 0 && cycle_ > options_.trace_end) close_trace();
+  const PinsOut out = tick_pins(in, tracing_ && cycle_ >= options_.trace_begin);
+  if (out.finished) fail_finished();
   ++cycle_;
   return out;
+}
+
+void Driver::fail_finished() {
+  close_trace();
+  throw Error("RTL assertion failed (or $finish) at clock " + std::to_string(cycle_) + " of " + config_.name +
+              "; see the %Error line above" +
+              (options_.trace_path.empty() ? std::string() : "; FST trace closed: " + options_.trace_path));
 }
 
 void Driver::reset(int clocks) {
@@ -153,6 +152,12 @@ void Driver::reset(int clocks) {
 }
 
 void Driver::configure(const CfgPins& cfg) { apply_cfg(cfg); }
+
+void Driver::reset_counters() {
+  counters_ = {};
+  filled_ = false;  // a new stream fills the pipeline again
+  stall_run_ = 0;
+}
 
 void Driver::load(const Pyramid& pyramid, LoadMethod method) {
   check_inputs(config_, pyramid, {});

@@ -60,6 +60,7 @@ struct PinsOut {
   bool rsp_valid = false;
   uint64_t rsp_rgba = 0;  // {A, B, G, R}, CW bits each
   uint16_t rsp_tag = 0;
+  bool finished = false;  // an RTL assertion ($stop) or $finish happened in this clock
 };
 
 // Static configuration pins.
@@ -142,22 +143,28 @@ class Driver {
   uint64_t in_flight() const { return issued_ - answered_; }
   uint64_t issued() const { return issued_; }
   const ProtocolCounters& counters() const { return counters_; }
-  void reset_counters() { counters_ = {}; }
+  void reset_counters();
 
   // One clock with raw pins, for tests that drive the protocol themselves; bypasses the scoreboard.
   // Closes the trace and throws tex::Error when an RTL assertion fires; on SIGINT closes the trace
   // and ends the process as Ctrl-C would.
-  PinsOut tick(const PinsIn& in);
+  PinsOut tick(const PinsIn& in) {
+    if (tracing_) return tick_traced(in);  // the rare paths stay out of the per-clock code
+    const PinsOut out = tick_pins(in, false);
+    if (out.finished) fail_finished();
+    ++cycle_;
+    return out;
+  }
   void close_trace();
 
  protected:
   Driver(const RtlConfig& config, const DriverOptions& options);
-  // Configuration-specific part: set the pins, clock once, read the outputs.
+  // Configuration-specific part: set the pins, clock once, read the outputs (and whether an RTL
+  // assertion or $finish happened).
   virtual PinsOut tick_pins(const PinsIn& in, bool dump_trace) = 0;
   virtual void apply_cfg(const CfgPins& cfg) = 0;
   // Writes one word into the bank memory of `level` holding texels of parity `bank`.
   virtual void backdoor_write(int level, int bank, uint32_t word, uint64_t data) = 0;
-  virtual bool got_finish() const = 0;  // an assertion ($stop) or $finish happened
   virtual void close_trace_impl() = 0;
 
   RtlConfig config_;
@@ -165,6 +172,9 @@ class Driver {
   bool tracing_ = false;
 
  private:
+  PinsOut tick_traced(const PinsIn& in);
+  [[noreturn]] void fail_finished();
+
   uint64_t cycle_ = 0;
   uint64_t load_cycles_ = 0;
   // Scoreboard: requests issued and answered since reset, accept clocks of those in flight.

@@ -72,6 +72,7 @@ class VerilatedTexUnit final : public Driver {
     t.clk = 1;
     t.eval();
     if (dump) trace_->dump(time + 1);
+    out.finished = context_->gotFinish();
     return out;
   }
 
@@ -96,14 +97,14 @@ class VerilatedTexUnit final : public Driver {
     if (!b.data || word >= b.words)
       throw Error(config_.name + ": backdoor write to level " + std::to_string(level) + " bank " +
                   std::to_string(bank) + " word " + std::to_string(word) + " outside its memory");
-    if (b.bytes == 8) {
-      static_cast<uint64_t*>(b.data)[word] = data;
-    } else {
-      static_cast<uint32_t*>(b.data)[word] = uint32_t(data);
+    switch (b.bytes) {  // Verilator stores a DW-bit word in 1, 2, 4 or 8 bytes
+      case 1: static_cast<uint8_t*>(b.data)[word] = uint8_t(data); break;
+      case 2: static_cast<uint16_t*>(b.data)[word] = uint16_t(data); break;
+      case 4: static_cast<uint32_t*>(b.data)[word] = uint32_t(data); break;
+      case 8: static_cast<uint64_t*>(b.data)[word] = data; break;
+      default: throw Error(config_.name + ": texel banks of " + std::to_string(b.bytes) + " bytes per word");
     }
   }
-
-  bool got_finish() const override { return context_->gotFinish(); }
 
   void close_trace_impl() override {
     if (trace_) {

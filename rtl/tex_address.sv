@@ -1,0 +1,38 @@
+// tex_address: the model's `address` stage (docs/numerics.md stage 2) for one axis at one of the
+// two levels a sample reads (a slot: level d or d1).
+//   t9 = scaled >>> level                   (see tex_scale: floors of arithmetic shifts compose)
+//   linear:  p = (t9 - 255) >>> 1, i0 = p >>> 8, w = p & 255   (round half up of u*size - 1/2)
+//   nearest: i0 = t9 >>> 9, w = 0                               (floor of u*size)
+// Handshake: stall-enable; the registers load when en is high.
+// Latency: 1 clock (tex_unit clock 4). Throughput: 1 per clock.
+// Ports:
+//   scaled : signed SCALED_W bits, floor(coord * 2^log2_size0 * 512) (from tex_scale)
+//   level  : integer 0..11, the mip level whose texel coordinates are wanted
+//   linear : 1 = linear texel filter, 0 = nearest
+//   i0     : signed INDEX_W bits, integer texel index of the first tap (unwrapped; the second
+//            tap is i0 + 1)
+//   w      : unsigned WEIGHT_BITS, weight of the second tap in 1/256
+module tex_address (
+  input  logic                                 clk,
+  input  logic                                 en,
+  input  logic signed [tex_pkg::SCALED_W-1:0]  scaled,
+  input  logic [tex_pkg::LEVEL_W-1:0]          level,
+  input  logic                                 linear,
+  output logic signed [tex_pkg::INDEX_W-1:0]   i0,
+  output logic [tex_pkg::WEIGHT_BITS-1:0]      w
+);
+  localparam int WB = tex_pkg::WEIGHT_BITS;
+  localparam int XW = tex_pkg::SCALED_W + 1;  // one more bit: t9 - 255 must not overflow
+  // p = t9 - 255 (linear) or t9 (nearest); then linear i0 = (p >>> 1) >>> 8 = p >>> 9 and
+  // w = (p >>> 1) & 255 = p[8:1]; nearest i0 = t9 >>> 9. One arithmetic shift either way.
+  logic signed [XW-1:0] wide, t9, p;
+  assign wide = XW'(scaled);  // a size cast of a signed value sign-extends
+  assign t9   = wide >>> level;
+  assign p    = linear ? t9 - XW'((1 << WB) - 1) : t9;
+  always_ff @(posedge clk) begin
+    if (en) begin
+      i0 <= tex_pkg::INDEX_W'(p >>> (WB + 1));
+      w  <= linear ? p[WB:1] : '0;
+    end
+  end
+endmodule
