@@ -26,7 +26,7 @@ void BM_rtl_sampling(benchmark::State& state, const tex::rtl::RtlConfig* config)
   SamplerConfig cfg;  // trilinear, repeat
   unit->configure(cfg, wide);
   std::mt19937_64 rng(1);
-  std::vector<Request> reqs(1 << 18);
+  std::vector<Request> reqs(1 << 16);  // 1 MB: the requests do not push the texture out of the cache
   const int last = std::max(config->max_log2_w, config->max_log2_h);
   for (Request& r : reqs) {
     r.u = int32_t(rng() % (uint64_t(4) << 24)) - (int32_t(2) << 24);
