@@ -105,9 +105,6 @@ struct SamplingOptions {
     }
     return o;
   }
-
-  // Everything about the engine that can be wrong, before any work.
-  std::unique_ptr<Engine> engine_checked() const { return make_engine(engine, engine_options()); }
 };
 
 // Runs the engine; with --verify also the golden model, and fails on the first differing sample.
@@ -152,15 +149,16 @@ void write_stats(const std::string& path, const EngineStats& stats, const Engine
 int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& out_path) {
   const auto t0 = std::chrono::steady_clock::now();
   const SamplerConfig cfg = o.config();
-  const auto engine = o.engine_checked();
+  const EngineOptions eo = o.engine_options();
+  const auto engine = make_engine(o.engine, eo);  // engine errors come before any work
   const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
   const auto queries = read_queries(queries_path);
   const auto requests = to_requests(queries, pyr.log2_w0(), pyr.log2_h0(), queries_path);
   const EngineResult r = run_checked(o, *engine, pyr, cfg, requests);
   write_file_atomically(out_path, format_results(r.texels));
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_stats(o.stats_path, r.stats, o.engine_options(), secs);
-  print_cycle_stats(r.stats, o.engine_options());
+  write_stats(o.stats_path, r.stats, eo, secs);
+  print_cycle_stats(r.stats, eo);
   std::printf("texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n", requests.size(),
               filter_name(cfg.filter).c_str(), wrap_name(cfg.wrap_u).c_str(), wrap_name(cfg.wrap_v).c_str(),
               pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(), out_path.c_str(), secs);
@@ -195,7 +193,8 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
                bool texture_given, bool wrap_given, const std::string& out) {
   const auto t0 = std::chrono::steady_clock::now();
   SamplerConfig cfg = o.config();
-  const auto engine = o.engine_checked();
+  const EngineOptions eo = o.engine_options();
+  const auto engine = make_engine(o.engine, eo);  // engine errors come before any work
   make_scene(scene, so);  // checks the scene name, size and frame numbers before any work
   const int first = all_frames ? 0 : so.frame, last = all_frames ? so.frames - 1 : so.frame;
   size_t samples = 0;
@@ -219,8 +218,8 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     last_stats = r.stats;
   }
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_stats(o.stats_path, last_stats, o.engine_options(), secs);  // counters of the last frame, time of them all
-  print_cycle_stats(last_stats, o.engine_options());
+  write_stats(o.stats_path, last_stats, eo, secs);  // counters of the last frame, time of them all
+  print_cycle_stats(last_stats, eo);
   std::printf("texsim render: scene %s, %dx%d, frame%s %d..%d of %d, %zu samples, %s, engine %s -> %s (%.2f s)\n",
               scene.c_str(), so.width, so.height, all_frames ? "s" : "", first, last, so.frames, samples,
               filter_name(cfg.filter).c_str(), o.engine.c_str(), out.c_str(), secs);

@@ -19,7 +19,6 @@ const std::vector<std::string>& load_names() {
   return n;
 }
 
-
 }  // namespace
 
 const std::vector<std::string>& stalls_names() {

@@ -29,7 +29,7 @@ int scale();
 struct LockstepResult {
   uint64_t compared = 0;
   uint64_t mismatches = 0;
-  std::string report;  // first mismatches, or the harness's error
+  std::string report;  // first mismatches, or the driver's error
   rtl::StreamStats stats;
   bool ok() const { return mismatches == 0 && report.empty(); }
 };

@@ -282,7 +282,7 @@ TEST(RtlDriver, TraceWindowIsClosedAfterItsLastClock) {
     std::mt19937_64 rng(1);
     const auto reqs = random_requests(rng, 4, 4, 3000);
     rtl::stream(*unit, reqs.data(), reqs.size(), rtl::Timing{}, 1, [](size_t, uint64_t) {});
-    // The window ended long ago: the file is complete before the harness goes away.
+    // The window ended long ago: the file is complete before the driver goes away.
     EXPECT_TRUE(std::filesystem::exists(path));
     return std::filesystem::file_size(path);
   };

@@ -1,4 +1,4 @@
-// Scenes of the paper (sim/scenes.cpp), their real-valued reference and metrics, and the texsim
+// Scenes of the paper (sim/workloads/scenes.cpp, sim/reports/), their real-valued reference and metrics, and the texsim
 // render command's scene errors. Small images: the RTL engine simulates every cycle.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -11,7 +11,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "engines/engine.h"
 #include "model/error.h"
 #include "workloads/scenes.h"
 #include "reports/figures.h"

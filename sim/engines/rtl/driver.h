@@ -83,6 +83,14 @@ struct DriverOptions {
   uint64_t trace_begin = 0;     // window of clocks to dump [begin, end]; end 0 = to the end
   uint64_t trace_end = 0;
   uint64_t timeout_cycles = 10000;  // ready clocks without a response while one is owed
+  static DriverOptions of(const EngineOptions& o) {
+    DriverOptions d;
+    d.seed = o.seed;
+    d.trace_path = o.trace_path;
+    d.trace_begin = o.trace_begin;
+    d.trace_end = o.trace_end;
+    return d;
+  }
 };
 
 // Protocol counters since reset_counters(), counted by clock().

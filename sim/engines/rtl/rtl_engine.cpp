@@ -18,12 +18,7 @@ class RtlEngine final : public Engine {
     check_inputs(rc, pyramid, requests);
 
     const auto t0 = std::chrono::steady_clock::now();
-    DriverOptions d;
-    d.seed = options_.seed;
-    d.trace_path = options_.trace_path;
-    d.trace_begin = options_.trace_begin;
-    d.trace_end = options_.trace_end;
-    auto unit = Driver::create(rc, d);
+    auto unit = Driver::create(rc, DriverOptions::of(options_));
     unit->reset();
     unit->load(pyramid, options_.load);
     unit->configure(config, pyramid);

@@ -30,20 +30,16 @@ using namespace sc_core;
 
 namespace {
 
+// The --stalls profile of --engine rtl, applied per request (gap before BEGIN_REQ) and per
+// response (END_RESP held); the rare long stalls of `random` are left to the RTL engine.
 InitiatorTiming initiator_timing(const EngineOptions& o) {
+  const rtl::Timing p = rtl::Timing::of(o.stalls);
   InitiatorTiming t;
   t.seed = o.seed;
-  if (o.stalls == Stalls::Random) {
-    t.gap_prob = 0.05;
-    t.max_gap = 4;
-    t.stall_prob = 0.05;
-    t.max_stall = 8;
-  } else if (o.stalls == Stalls::Heavy) {
-    t.gap_prob = 0.6;
-    t.max_gap = 6;
-    t.stall_prob = 0.6;
-    t.max_stall = 6;
-  }
+  t.gap_prob = p.gap_prob;
+  t.max_gap = p.max_gap;
+  t.stall_prob = p.stall_prob;
+  t.max_stall = p.max_stall;
   return t;
 }
 

@@ -19,12 +19,7 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyra
   }
   const rtl::RtlConfig& rc =
       rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits);
-  rtl::DriverOptions d;
-  d.seed = options.seed;
-  d.trace_path = options.trace_path;
-  d.trace_begin = options.trace_begin;
-  d.trace_end = options.trace_end;
-  driver_ = rtl::Driver::create(rc, d);
+  driver_ = rtl::Driver::create(rc, rtl::DriverOptions::of(options));
   driver_->reset();
   driver_->load(pyramid, options.load);
   driver_->configure(config, pyramid);
