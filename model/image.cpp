@@ -20,11 +20,13 @@ const std::vector<std::string>& pattern_names() {
   return names;
 }
 
-void check_texture_size(int w, int h, const std::string& what) {
+void check_texture_size(int w, int h, const std::string& what, const std::string& hint) {
   const int max = 1 << kMaxLog2Size;
-  if (!is_power_of_two(w) || !is_power_of_two(h) || w > max || h > max)
-    throw Error(what + ": size " + std::to_string(w) + "x" + std::to_string(h) +
-                " is not a power of two from 1 to 2048 per side (use --resize to resample)");
+  const std::string size = what + ": size " + std::to_string(w) + "x" + std::to_string(h);
+  const std::string tail = hint.empty() ? "" : " (" + hint + ")";
+  if (w < 1 || h < 1) throw Error(size + " is empty: each side must be at least 1");
+  if (w > max || h > max) throw Error(size + " is too large: at most " + std::to_string(max) + " per side" + tail);
+  if (!is_power_of_two(w) || !is_power_of_two(h)) throw Error(size + ": each side must be a power of two" + tail);
 }
 
 namespace {

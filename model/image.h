@@ -26,8 +26,9 @@ int log2_exact(int n);  // n must be a power of two
 // Names of the built-in patterns, for --help and error messages.
 const std::vector<std::string>& pattern_names();
 
-// Throws tex::Error naming `what` unless both sides are powers of two from 1 to 2^kMaxLog2Size.
-void check_texture_size(int w, int h, const std::string& what);
+// Throws tex::Error unless both sides are powers of two from 1 to 2^kMaxLog2Size; `hint` (if any)
+// is appended in parentheses, e.g. how to resample.
+void check_texture_size(int w, int h, const std::string& what, const std::string& hint = "");
 
 // A built-in pattern (pattern_names()) of w x h texels. Throws tex::Error for a bad size.
 Image make_pattern(const std::string& name, int width, int height);

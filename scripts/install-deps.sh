@@ -11,6 +11,8 @@ packages=(
   verilator zlib1g-dev                   # RTL simulation (FST traces need zlib)
   libsystemc-dev                         # SystemC/TLM-2.0 wrapper
   yosys nextpnr-ice40 fpga-icestorm      # synthesis and place-and-route
+  z3                                     # yosys-smtbmc's solver (make formal)
+  iverilog                               # 4-state simulation (make xprop)
   python3 python3-matplotlib python3-numpy  # reports and plots (/usr/bin/python3)
 )
 missing=()

@@ -1,6 +1,8 @@
 // texsim: the command-line tool. Sample query traces, build and dump pyramids, render scenes.
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <chrono>
+#include <deque>
 #include <cstdio>
 #include <filesystem>
 #include <unistd.h>
@@ -12,11 +14,21 @@
 #include "reports/figures.h"
 #include "workloads/query_trace.h"
 #include "workloads/scenes.h"
+#include "workloads/output_files.h"
 #include "workloads/texture_io.h"
 
 namespace {
 
 using namespace tex;
+
+// Unsigned decimal of an option: no sign, no wrap-around. Throws tex::Error naming the option.
+uint64_t parse_unsigned(const std::string& text, const std::string& option) {
+  uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size())
+    throw Error(option + " " + quote_clipped(text) + " is not a whole number from 0 to 18446744073709551615");
+  return v;
+}
 
 // Options shared by every command that samples a texture.
 struct SamplingOptions {
@@ -29,22 +41,23 @@ struct SamplingOptions {
   double lod_bias = 0, min_lod = -128, max_lod = 127.99;
   bool resize = false;
   std::string stalls = "none";
-  uint64_t seed = 1;
+  std::string seed = "1";
   std::string load = "backdoor";
   std::string stats_path;
   std::string trace_path;
   std::string trace_window;
   bool verify = false;
+  CLI::Option *wrap_u_opt = nullptr, *wrap_v_opt = nullptr, *texture_opt = nullptr;
 
   void add_to(CLI::App& cmd) {
-    cmd.add_option("--texture,-t", texture, "image file (any OpenImageIO format) or pattern NAME[:WxH]")
-        ->capture_default_str();
+    texture_opt = cmd.add_option("--texture,-t", texture, "image file (any OpenImageIO format) or pattern NAME[:WxH]")
+                      ->capture_default_str();
     cmd.add_option("--filter,-f", filter,
                    "point | bilinear | mip_nearest | trilinear, or a GL name (nearest_mipmap_linear, ...)")
         ->capture_default_str();
     cmd.add_option("--wrap,-w", wrap, "repeat | clamp | mirror, both axes")->capture_default_str();
-    cmd.add_option("--wrap-u", wrap_u, "wrap mode of u only (overrides --wrap)");
-    cmd.add_option("--wrap-v", wrap_v, "wrap mode of v only (overrides --wrap)");
+    wrap_u_opt = cmd.add_option("--wrap-u", wrap_u, "wrap mode of u only (overrides --wrap)");
+    wrap_v_opt = cmd.add_option("--wrap-v", wrap_v, "wrap mode of v only (overrides --wrap)");
     cmd.add_option("--pyramid", pyramid, "exact (mean of the level-0 footprint) | cascade")->capture_default_str();
     cmd.add_option("--engine,-e", engine, engine_list())->capture_default_str();
     cmd.add_option("--lod-bias", lod_bias, "added to lambda before the clamp, in levels")->capture_default_str();
@@ -55,26 +68,29 @@ struct SamplingOptions {
                    "none | random | heavy: input gaps and output stalls of cycle-accurate engines (none = ideal "
                    "timing, what the hardware sustains)")
         ->capture_default_str();
-    cmd.add_option("--seed", seed, "seed of --stalls random|heavy and of the RTL's unreset registers")
+    cmd.add_option("--seed", seed, "seed of --stalls random|heavy and of the RTL's unreset registers (0 and up)")
         ->capture_default_str();
     cmd.add_option("--load", load,
                    "backdoor | port: fill the RTL's texture memories directly (0 clocks) or through the write "
                    "port (one texel per clock)")
         ->capture_default_str();
-    cmd.add_option("--stats", stats_path, "write counters to this JSON file");
-    cmd.add_option("--trace", trace_path, "write an FST waveform (engines rtl, systemc)");
-    cmd.add_option("--trace-window", trace_window, "cycles FIRST:LAST to trace (default: all)");
+    cmd.add_option("--stats", stats_path, "write counters to this JSON file (- = standard output)");
+    cmd.add_option("--trace", trace_path,
+                   "write an FST waveform (engines rtl, systemc); kept when the simulation fails");
+    cmd.add_option("--trace-window", trace_window, "clocks FIRST:LAST to trace (default: all)");
     cmd.add_flag("--verify", verify, "also run the golden model and fail unless every sample is bit-identical");
   }
 
   SamplerConfig config() const {
     SamplerConfig c;
-    if (!parse_filter(filter, c.filter)) throw Error("unknown filter '" + filter + "'");
+    if (!parse_filter(filter, c.filter)) throw Error("unknown filter " + quote_clipped(filter));
     Wrap w;
-    if (!parse_wrap(wrap, w)) throw Error("unknown wrap mode '" + wrap + "' (repeat, clamp, mirror)");
+    if (!parse_wrap(wrap, w)) throw Error("unknown wrap mode " + quote_clipped(wrap) + " (repeat, clamp, mirror)");
     c.wrap_u = c.wrap_v = w;
-    if (!wrap_u.empty() && !parse_wrap(wrap_u, c.wrap_u)) throw Error("unknown wrap mode '" + wrap_u + "'");
-    if (!wrap_v.empty() && !parse_wrap(wrap_v, c.wrap_v)) throw Error("unknown wrap mode '" + wrap_v + "'");
+    if (wrap_u_opt->count() && !parse_wrap(wrap_u, c.wrap_u))
+      throw Error("--wrap-u: unknown wrap mode " + quote_clipped(wrap_u) + " (repeat, clamp, mirror)");
+    if (wrap_v_opt->count() && !parse_wrap(wrap_v, c.wrap_v))
+      throw Error("--wrap-v: unknown wrap mode " + quote_clipped(wrap_v) + " (repeat, clamp, mirror)");
     if (!to_lod_fixed(lod_bias, c.lod_bias)) throw Error("--lod-bias " + std::to_string(lod_bias) + " is outside [-128, 128)");
     if (!to_lod_fixed(min_lod, c.min_lod)) throw Error("--min-lod " + std::to_string(min_lod) + " is outside [-128, 128)");
     if (!to_lod_fixed(max_lod, c.max_lod)) throw Error("--max-lod " + std::to_string(max_lod) + " is outside [-128, 128)");
@@ -84,47 +100,106 @@ struct SamplingOptions {
 
   PyramidMode pyramid_mode() const {
     PyramidMode m;
-    if (!parse_pyramid_mode(pyramid, m)) throw Error("unknown pyramid mode '" + pyramid + "' (exact, cascade)");
+    if (!parse_pyramid_mode(pyramid, m)) throw Error("unknown pyramid mode " + quote_clipped(pyramid) + " (exact, cascade)");
     return m;
   }
 
+  // Also checks that the engine exists and can honour the options (before any work).
   EngineOptions engine_options() const {
     EngineOptions o;
-    if (!parse_stalls(stalls, o.stalls)) throw Error("unknown --stalls '" + stalls + "' (none, random, heavy)");
-    if (!parse_load_method(load, o.load)) throw Error("unknown --load '" + load + "' (backdoor, port)");
-    o.seed = seed;
+    if (!parse_stalls(stalls, o.stalls)) throw Error("unknown --stalls " + quote_clipped(stalls) + " (none, random, heavy)");
+    if (!parse_load_method(load, o.load)) throw Error("unknown --load " + quote_clipped(load) + " (backdoor, port)");
+    o.seed = parse_unsigned(seed, "--seed");
     o.show_progress = isatty(STDERR_FILENO);
     o.trace_path = trace_path;
     if (!trace_window.empty()) {
-      unsigned long long a = 0, b = 0;
-      char extra = 0;
-      if (std::sscanf(trace_window.c_str(), "%llu:%llu%c", &a, &b, &extra) != 2 || b < a)
-        throw Error("--trace-window '" + trace_window + "' is not FIRST:LAST with FIRST <= LAST");
-      o.trace_begin = a;
-      o.trace_end = b;
+      const auto colon = trace_window.find(':');
+      if (colon == std::string::npos)
+        throw Error("--trace-window " + quote_clipped(trace_window) + " is not FIRST:LAST (clocks)");
+      o.trace_begin = parse_unsigned(trace_window.substr(0, colon), "--trace-window FIRST");
+      o.trace_end = parse_unsigned(trace_window.substr(colon + 1), "--trace-window LAST");
+      if (o.trace_end < o.trace_begin) throw Error("--trace-window " + quote_clipped(trace_window) + ": LAST < FIRST");
     }
+    make_engine(engine, o);  // unknown engine, --trace with an engine that cannot trace
     return o;
+  }
+
+  // The inputs of the command, for OutputSet's input-versus-output check.
+  void add_inputs(OutputSet& outputs) const { outputs.add_input(texture, "--texture"); }
+  // --stats and --trace, declared with the command's other outputs.
+  OutputFile* stats_output(OutputSet& outputs) const {
+    return stats_path.empty() ? nullptr : &outputs.declare(stats_path, "--stats");
+  }
+  OutputFile* trace_output(OutputSet& outputs) const {
+    return trace_path.empty() ? nullptr : &outputs.declare(trace_path, "--trace", OutputSet::Kind::File);
   }
 };
 
-// Runs the engine; with --verify also the golden model, and fails on the first differing sample.
-EngineResult run_checked(const SamplingOptions& o, Engine& engine, const Pyramid& pyr, const SamplerConfig& cfg,
-                         const std::vector<Request>& requests) {
-  EngineResult r = engine.run(pyr, cfg, requests);
-  if (!o.verify) return r;
-  const EngineResult golden = run_model(pyr, cfg, requests);
-  for (size_t i = 0; i < requests.size(); ++i)
-    if (r.texels[i] != golden.texels[i]) {
-      const Texel& a = r.texels[i];
-      const Texel& b = golden.texels[i];
-      throw Error("verify: sample " + std::to_string(i) + " differs: engine " + o.engine + " gives " +
-                  std::to_string(a[0]) + "," + std::to_string(a[1]) + "," + std::to_string(a[2]) + "," +
-                  std::to_string(a[3]) + ", model gives " + std::to_string(b[0]) + "," + std::to_string(b[1]) +
-                  "," + std::to_string(b[2]) + "," + std::to_string(b[3]));
+// --verify: the golden model samples every request as the engine takes it, and every texel the
+// engine returns must equal the model's.
+class Verifier {
+ public:
+  Verifier(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
+           std::string engine)
+      : sampler_(pyramid, config), source_(*this, source), sink_(*this, sink), engine_(std::move(engine)) {}
+  RequestSource& source() { return source_; }
+  TexelSink& sink() { return sink_; }
+  size_t checked() const { return checked_; }
+
+ private:
+  struct Source final : RequestSource {
+    Source(Verifier& v, RequestSource& inner) : v(v), inner(inner) {}
+    size_t read(Request* out, size_t max) override {
+      const size_t n = inner.read(out, max);
+      for (size_t i = 0; i < n; ++i) v.expected_.push_back(v.sampler_.sample(out[i]));
+      return n;
     }
-  std::printf("verify: %zu samples of engine %s are bit-identical to the golden model\n", requests.size(),
-              o.engine.c_str());
-  return r;
+    Verifier& v;
+    RequestSource& inner;
+  };
+  struct Sink final : TexelSink {
+    Sink(Verifier& v, TexelSink& inner) : v(v), inner(inner) {}
+    void write(const Texel* t, size_t n) override {
+      for (size_t i = 0; i < n; ++i, ++v.checked_) {
+        if (v.expected_.empty()) throw SimulationError("verify: engine " + v.engine_ + " returned more samples than requests");
+        const Texel b = v.expected_.front();
+        v.expected_.pop_front();
+        if (t[i] != b)
+          throw SimulationError("verify: sample " + std::to_string(v.checked_) + " differs: engine " + v.engine_ +
+                                " gives " + texel_text(t[i]) + ", model gives " + texel_text(b));
+      }
+      inner.write(t, n);
+    }
+    static std::string texel_text(const Texel& t) {
+      return std::to_string(t[0]) + "," + std::to_string(t[1]) + "," + std::to_string(t[2]) + "," + std::to_string(t[3]);
+    }
+    Verifier& v;
+    TexelSink& inner;
+  };
+  Sampler sampler_;
+  Source source_;
+  Sink sink_;
+  std::string engine_;
+  std::deque<Texel> expected_;
+  size_t checked_ = 0;
+};
+
+// Runs the engine (with --verify through the golden model too). A failure inside the simulation
+// keeps the waveform, the one output of a failed command: it shows what went wrong.
+EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
+                       const Pyramid& pyr, const SamplerConfig& cfg, RequestSource& source, TexelSink& sink) {
+  const auto engine = make_engine(o.engine, eo);
+  try {
+    if (!o.verify) return engine->run(pyr, cfg, source, sink);
+    Verifier verifier(pyr, cfg, source, sink, o.engine);
+    const EngineStats stats = engine->run(pyr, cfg, verifier.source(), verifier.sink());
+    std::printf("verify: %zu samples of engine %s are bit-identical to the golden model\n", verifier.checked(),
+                o.engine.c_str());
+    return stats;
+  } catch (const SimulationError& e) {
+    if (trace && outputs.keep(*trace)) throw Error(std::string(e.what()) + "; waveform kept: " + trace->path());
+    throw;
+  }
 }
 
 // Cycle counters of a cycle-accurate engine, one line (the model has none).
@@ -139,29 +214,52 @@ void print_cycle_stats(const EngineStats& stats, const EngineOptions& options) {
               load_method_name(options.load).c_str(), (unsigned long long)c.load_cycles);
 }
 
-void write_stats(const std::string& path, const EngineStats& stats, const EngineOptions& options, double seconds) {
-  if (path.empty()) return;
+void write_stats(OutputFile* out, const EngineStats& stats, const EngineOptions& options, double seconds) {
+  if (!out) return;
   nlohmann::json j = stats.to_json(options);
   j["wall_seconds"] = seconds;
-  write_file_atomically(path, j.dump(2) + "\n");
+  std::fputs((j.dump(2) + "\n").c_str(), out->open());
+  out->close();
 }
 
 int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& out_path) {
   const auto t0 = std::chrono::steady_clock::now();
+  // Everything is checked before the work: options, engine, outputs, texture, every query.
   const SamplerConfig cfg = o.config();
-  const EngineOptions eo = o.engine_options();
-  const auto engine = make_engine(o.engine, eo);  // engine errors come before any work
+  EngineOptions eo = o.engine_options();
+  OutputSet outputs;
+  o.add_inputs(outputs);
+  outputs.add_input(queries_path, "--queries");
+  OutputFile& result = outputs.declare(out_path, "--out");
+  OutputFile* stats_out = o.stats_output(outputs);
+  OutputFile* trace = o.trace_output(outputs);
   const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
-  const auto queries = read_queries(queries_path);
-  const auto requests = to_requests(queries, pyr.log2_w0(), pyr.log2_h0(), queries_path);
-  const EngineResult r = run_checked(o, *engine, pyr, cfg, requests);
-  write_file_atomically(out_path, format_results(r.texels));
+  QueryReader reader(queries_path);
+  if (reader.rewindable()) {  // a file: check every query now; a pipe is checked as it streams
+    QuerySource check(reader, pyr.log2_w0(), pyr.log2_h0());
+    std::vector<Request> scratch(4096);
+    while (check.read(scratch.data(), scratch.size())) {
+    }
+    reader.rewind();
+  }
+  if (trace) eo.trace_path = trace->write_path();
+
+  QuerySource source(reader, pyr.log2_w0(), pyr.log2_h0());
+  CsvTexelWriter writer(result.open());
+  const EngineStats stats = run_engine(o, eo, outputs, trace, pyr, cfg, source, writer);
+  if (source.count() == 0)
+    std::fprintf(stderr, "texsim: %s has no queries (only a header): the result has only its header\n",
+                 reader.name().c_str());
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_stats(o.stats_path, r.stats, eo, secs);
-  print_cycle_stats(r.stats, eo);
-  std::printf("texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n", requests.size(),
-              filter_name(cfg.filter).c_str(), wrap_name(cfg.wrap_u).c_str(), wrap_name(cfg.wrap_v).c_str(),
-              pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(), out_path.c_str(), secs);
+  write_stats(stats_out, stats, eo, secs);
+  outputs.commit();
+  // The summary goes to stderr when the result itself is on standard output.
+  std::FILE* report = result.path() == "-" || result.path() == "/dev/stdout" ? stderr : stdout;
+  if (report == stdout) print_cycle_stats(stats, eo);
+  std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
+               source.count(), filter_name(cfg.filter).c_str(), wrap_name(cfg.wrap_u).c_str(),
+               wrap_name(cfg.wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
+               out_path.c_str(), secs);
   return 0;
 }
 
@@ -169,17 +267,25 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
             const std::string& layout_path) {
   if (dump_dir.empty() && layout_path.empty()) throw Error("mip: give --dump-levels DIR and/or --layout FILE");
   PyramidMode mode;
-  if (!parse_pyramid_mode(mode_name, mode)) throw Error("unknown pyramid mode '" + mode_name + "' (exact, cascade)");
+  if (!parse_pyramid_mode(mode_name, mode)) throw Error("unknown pyramid mode " + quote_clipped(mode_name) + " (exact, cascade)");
+  OutputSet outputs;
+  outputs.add_input(texture, "--texture");
+  if (!layout_path.empty()) check_image_path(layout_path);
+  OutputFile* layout = layout_path.empty() ? nullptr : &outputs.declare(layout_path, "--layout", OutputSet::Kind::File);
   const Pyramid pyr = build_pyramid(load_texture(texture, resize), mode);
   if (!dump_dir.empty()) {
-    std::filesystem::create_directories(dump_dir);
+    outputs.make_directory(dump_dir, "--dump-levels");
+    std::vector<OutputFile*> levels;
     for (size_t k = 0; k < pyr.levels.size(); ++k) {
       char name[32];
       std::snprintf(name, sizeof name, "level%02zu.png", k);
-      save_image(pyr.levels[k], (std::filesystem::path(dump_dir) / name).string());
+      levels.push_back(&outputs.declare((std::filesystem::path(dump_dir) / name).string(), "--dump-levels",
+                                        OutputSet::Kind::File));
     }
+    for (size_t k = 0; k < pyr.levels.size(); ++k) save_image(pyr.levels[k], *levels[k]);
   }
-  if (!layout_path.empty()) save_image(mip_layout(pyr), layout_path);
+  if (layout) save_image(mip_layout(pyr), *layout);
+  outputs.commit();
   std::printf("texsim mip: %dx%d texture, %zu levels (%s)%s%s%s%s\n", pyr.levels[0].width, pyr.levels[0].height,
               pyr.levels.size(), mode_name.c_str(), dump_dir.empty() ? "" : ", levels in ", dump_dir.c_str(),
               layout_path.empty() ? "" : ", layout in ", layout_path.c_str());
@@ -193,10 +299,27 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
                bool texture_given, bool wrap_given, const std::string& out) {
   const auto t0 = std::chrono::steady_clock::now();
   SamplerConfig cfg = o.config();
-  const EngineOptions eo = o.engine_options();
-  const auto engine = make_engine(o.engine, eo);  // engine errors come before any work
+  EngineOptions eo = o.engine_options();
   make_scene(scene, so);  // checks the scene name, size and frame numbers before any work
+  check_image_path(out);
   const int first = all_frames ? 0 : so.frame, last = all_frames ? so.frames - 1 : so.frame;
+  OutputSet outputs;
+  if (texture_given) o.add_inputs(outputs);
+  std::vector<OutputFile*> images;
+  for (int f = first; f <= last; ++f) {
+    std::string path = out;
+    if (all_frames) {
+      const std::filesystem::path p(out);
+      char num[16];
+      std::snprintf(num, sizeof num, "_%03d", f);
+      path = (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
+    }
+    images.push_back(&outputs.declare(path, "--out", OutputSet::Kind::File));
+  }
+  OutputFile* stats_out = o.stats_output(outputs);
+  OutputFile* trace = o.trace_output(outputs);
+  if (trace) eo.trace_path = trace->write_path();
+
   size_t samples = 0;
   EngineStats last_stats;
   for (int f = first; f <= last; ++f) {
@@ -205,20 +328,15 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     const Pyramid pyr = build_pyramid(scene_texture(frame, texture_given ? o.texture : "", o.resize), o.pyramid_mode());
     if (frame.clamp_edges && !wrap_given) cfg.wrap_u = cfg.wrap_v = Wrap::Clamp;
     const auto requests = to_requests(frame.queries, pyr.log2_w0(), pyr.log2_h0(), "scene " + scene);
-    const EngineResult r = run_checked(o, *engine, pyr, cfg, requests);
-    std::string path = out;
-    if (all_frames) {
-      const std::filesystem::path p(out);
-      char num[16];
-      std::snprintf(num, sizeof num, "_%03d", f);
-      path = (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
-    }
-    save_image(compose(frame, r.texels, pyr.levels[0].channel_bits), path);
+    VectorSource source(requests);
+    VectorSink texels;
+    last_stats = run_engine(o, eo, outputs, trace, pyr, cfg, source, texels);
+    save_image(compose(frame, texels.texels, pyr.levels[0].channel_bits), *images[size_t(f - first)]);
     samples += requests.size();
-    last_stats = r.stats;
   }
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_stats(o.stats_path, last_stats, eo, secs);  // counters of the last frame, time of them all
+  write_stats(stats_out, last_stats, eo, secs);  // counters of the last frame, time of them all
+  outputs.commit();
   print_cycle_stats(last_stats, eo);
   std::printf("texsim render: scene %s, %dx%d, frame%s %d..%d of %d, %zu samples, %s, engine %s -> %s (%.2f s)\n",
               scene.c_str(), so.width, so.height, all_frames ? "s" : "", first, last, so.frames, samples,
@@ -238,8 +356,9 @@ int main(int argc, char** argv) {
   std::string queries, out;
   CLI::App* sample = app.add_subcommand("sample", "sample a query trace (CSV) and write one RGBA line per query");
   sample_opts.add_to(*sample);
-  sample->add_option("--queries,-q", queries, "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy")->required();
-  sample->add_option("--out,-o", out, "result CSV: header r,g,b,a")->required();
+  sample->add_option("--queries,-q", queries, "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy (- = standard input)")
+      ->required();
+  sample->add_option("--out,-o", out, "result CSV: header r,g,b,a (- = standard output)")->required();
 
   std::string mip_texture = "testcard", mip_mode = "exact", dump_dir, layout;
   bool mip_resize = false;
@@ -302,7 +421,7 @@ int main(int argc, char** argv) {
       so.frames = frames;
       const bool wrap_given = render->count("--wrap") + render->count("--wrap-u") + render->count("--wrap-v") > 0;
       return cmd_render(render_opts, scene, so, frames > 1 && frame_opt->count() == 0,
-                        render->count("--texture") > 0, wrap_given, render_out);
+                        render_opts.texture_opt->count() > 0, wrap_given, render_out);
     }
     if (*figures) return make_figures(fig);
   } catch (const std::exception& e) {

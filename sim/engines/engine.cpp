@@ -1,5 +1,7 @@
 #include "engines/engine.h"
 
+#include <algorithm>
+
 namespace tex {
 
 namespace {
@@ -82,6 +84,29 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
     s.bank_reads = j.at("bank_reads").get<std::vector<std::array<uint64_t, 4>>>();
   }
   return s;
+}
+
+size_t VectorSource::read(Request* out, size_t max) {
+  const size_t n = std::min(max, n_ - next_);
+  std::copy_n(requests_ + next_, n, out);
+  next_ += n;
+  return n;
+}
+
+void RequestQueue::refill() {
+  at_ = size_ = 0;
+  if (!ended_) size_ = source_.read(buffer_.data(), buffer_.size());
+  ended_ = size_ == 0;
+}
+
+EngineResult Engine::run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) {
+  VectorSource source(requests);
+  VectorSink sink;
+  sink.texels.reserve(requests.size());
+  EngineResult r;
+  r.stats = run(pyramid, config, source, sink);
+  r.texels = std::move(sink.texels);
+  return r;
 }
 
 }  // namespace tex

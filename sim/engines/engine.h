@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "model/error.h"
 #include "model/pyramid.h"
 #include "model/sampler.h"
 
@@ -75,11 +76,90 @@ struct EngineResult {
   EngineStats stats;
 };
 
+// Requests in order, pulled a chunk at a time as an engine takes them: a query trace is never
+// held whole in memory.
+class RequestSource {
+ public:
+  virtual ~RequestSource() = default;
+  // Up to `max` next requests into `out`; 0 at the end. Throws tex::Error on bad input.
+  virtual size_t read(Request* out, size_t max) = 0;
+};
+
+// Texels in request order, delivered a chunk at a time.
+class TexelSink {
+ public:
+  virtual ~TexelSink() = default;
+  virtual void write(const Texel* texels, size_t n) = 0;
+};
+
+// A failure inside a simulation (RTL assertion, time-out, lost or extra response, a sample that
+// differs from the golden model): texsim keeps the waveform of such a run.
+struct SimulationError : Error {
+  using Error::Error;
+};
+
+// In-memory source and sink, and the chunked views engines use to take one request per clock.
+class VectorSource final : public RequestSource {
+ public:
+  explicit VectorSource(const std::vector<Request>& r) : VectorSource(r.data(), r.size()) {}
+  VectorSource(const Request* requests, size_t n) : requests_(requests), n_(n) {}
+  size_t read(Request* out, size_t max) override;
+
+ private:
+  const Request* requests_;
+  size_t n_, next_ = 0;
+};
+
+class VectorSink final : public TexelSink {
+ public:
+  void write(const Texel* t, size_t n) override { texels.insert(texels.end(), t, t + n); }
+  std::vector<Texel> texels;
+};
+
+class RequestQueue {
+ public:
+  explicit RequestQueue(RequestSource& source, size_t chunk = 4096) : source_(source), buffer_(chunk) {}
+  // The next request not yet popped, or nullptr at the end of the source.
+  const Request* peek() {
+    if (at_ == size_) refill();
+    return at_ < size_ ? &buffer_[at_] : nullptr;
+  }
+  void pop() { ++at_; }
+
+ private:
+  void refill();
+  RequestSource& source_;
+  std::vector<Request> buffer_;
+  size_t at_ = 0, size_ = 0;
+  bool ended_ = false;
+};
+
+class TexelQueue {
+ public:
+  explicit TexelQueue(TexelSink& sink, size_t chunk = 4096) : sink_(sink) { buffer_.reserve(chunk); }
+  void push(const Texel& t) {
+    buffer_.push_back(t);
+    if (buffer_.size() == buffer_.capacity()) flush();
+  }
+  void flush() {
+    if (!buffer_.empty()) sink_.write(buffer_.data(), buffer_.size());
+    buffer_.clear();
+  }
+
+ private:
+  TexelSink& sink_;
+  std::vector<Texel> buffer_;
+};
+
 class Engine {
  public:
   virtual ~Engine() = default;
-  // Throws tex::Error for input the engine cannot take (one line), before any simulation.
-  virtual EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) = 0;
+  // Streams every request of `source` through the engine into `sink`, in order. Throws
+  // tex::Error for input the engine cannot take (one line), before any simulation where it can.
+  virtual EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
+                          TexelSink& sink) = 0;
+  // The same for requests in memory.
+  EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
 };
 
 struct EngineInfo {
@@ -99,6 +179,7 @@ std::string engine_list();
 std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions& options);
 
 // The golden model, with its read and multiply counters.
+EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink);
 EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
 
 }  // namespace tex

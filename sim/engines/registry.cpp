@@ -12,8 +12,9 @@ namespace {
 
 class ModelEngine final : public Engine {
  public:
-  EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) override {
-    return run_model(pyramid, config, requests);
+  EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
+                  TexelSink& sink) override {
+    return run_model(pyramid, config, source, sink);
   }
 };
 
@@ -52,22 +53,36 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions
   return info.make(options);
 }
 
-EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) {
+EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink) {
   const auto t0 = std::chrono::steady_clock::now();
   Sampler sampler(pyramid, config);
   const auto t1 = std::chrono::steady_clock::now();
-  EngineResult r;
-  r.texels.reserve(requests.size());
-  for (const Request& q : requests) r.texels.push_back(sampler.sample(q));
+  std::vector<Request> requests(4096);
+  std::vector<Texel> texels(requests.size());
+  while (const size_t n = source.read(requests.data(), requests.size())) {
+    for (size_t i = 0; i < n; ++i) texels[i] = sampler.sample(requests[i]);
+    sink.write(texels.data(), n);
+  }
   const auto t2 = std::chrono::steady_clock::now();
   const SamplerStats s = sampler.stats();
-  r.stats.engine = "model";
-  r.stats.samples = s.samples;
-  r.stats.load_seconds = std::chrono::duration<double>(t1 - t0).count();
-  r.stats.sample_seconds = std::chrono::duration<double>(t2 - t1).count();
-  r.stats.texel_reads = s.memory.reads;
-  r.stats.multiplies_per_channel = s.multiplies_per_channel;
-  r.stats.bank_reads = s.memory.bank_reads;
+  EngineStats stats;
+  stats.engine = "model";
+  stats.samples = s.samples;
+  stats.load_seconds = std::chrono::duration<double>(t1 - t0).count();
+  stats.sample_seconds = std::chrono::duration<double>(t2 - t1).count();
+  stats.texel_reads = s.memory.reads;
+  stats.multiplies_per_channel = s.multiplies_per_channel;
+  stats.bank_reads = s.memory.bank_reads;
+  return stats;
+}
+
+EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) {
+  VectorSource source(requests);
+  VectorSink sink;
+  sink.texels.reserve(requests.size());
+  EngineResult r;
+  r.stats = run_model(pyramid, config, source, sink);
+  r.texels = std::move(sink.texels);
   return r;
 }
 

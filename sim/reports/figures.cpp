@@ -76,7 +76,7 @@ const char* caption_of(const std::string& scene) {
   return "";
 }
 
-void save(const Image& img, const fs::path& path) { save_image(img, path.string()); }
+
 
 std::string fmt(double x, int decimals = 2) {
   char buf[64];
@@ -109,7 +109,17 @@ int make_figures(const FiguresOptions& o) {
   engine_info(o.engine);  // an unknown engine is reported before any file is written
   const auto t0 = std::chrono::steady_clock::now();
   const fs::path dir(o.out_dir);
-  fs::create_directories(dir);
+  // Every file of the run is written all or nothing (output_files.h).
+  OutputSet outputs;
+  outputs.make_directory(dir.string(), "--out");
+  auto save = [&](const Image& img, const fs::path& path) {
+    save_image(img, outputs.declare(path.string(), "--out", OutputSet::Kind::File));
+  };
+  auto save_text = [&](const fs::path& path, const std::string& text) {
+    OutputFile& out = outputs.declare(path.string(), "--out");
+    std::fputs(text.c_str(), out.open());
+    out.close();
+  };
   const double heat_full_scale = 64;  // LSB at white in the heat maps
   json metrics = {{"engine", o.engine},
                   {"width", o.width},
@@ -268,8 +278,9 @@ int make_figures(const FiguresOptions& o) {
 
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   metrics["seconds"] = secs;
-  write_file_atomically((dir / "metrics.json").string(), metrics.dump(1) + "\n");
-  write_file_atomically((dir / "index.md").string(), md.str());
+  save_text(dir / "metrics.json", metrics.dump(1) + "\n");
+  save_text(dir / "index.md", md.str());
+  outputs.commit();
   std::printf("texsim figures: %zu scenes, engine %s -> %s/index.md, metrics.json (%.1f s)\n", scene_names().size(),
               o.engine.c_str(), o.out_dir.c_str(), secs);
   return 0;

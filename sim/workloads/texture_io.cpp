@@ -6,12 +6,14 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include "model/error.h"
+#include "workloads/query_trace.h"
 
 namespace tex {
 
@@ -50,10 +52,39 @@ bool parse_pattern_spec(const std::string& spec, std::string& name, int& w, int&
   w = h = 512;
   if (colon == std::string::npos) return true;
   const std::string size = spec.substr(colon + 1);
-  char x = 0, extra = 0;
-  if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x')
-    throw Error("pattern '" + spec + "': size must be WxH, e.g. " + name + ":256x128");
+  const auto x = size.find('x');
+  auto side = [&](const std::string& text, int& out) {
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+    if (ec == std::errc::result_out_of_range || (ec == std::errc() && end == text.data() + text.size() && out > 2048))
+      throw Error("pattern " + quote_clipped(spec) + ": size " + quote_clipped(size) +
+                  " is too large: at most 2048 per side");
+    return ec == std::errc() && end == text.data() + text.size() && !text.empty();
+  };
+  if (x == std::string::npos || !side(size.substr(0, x), w) || !side(size.substr(x + 1), h))
+    throw Error("pattern " + quote_clipped(spec) + ": size must be WxH, e.g. " + name + ":256x128");
   return true;
+}
+
+// Float images hold values outside 0..1 that 8-bit texels cannot: they are clamped, and the user
+// is told once.
+void warn_if_clamped(const OIIO::ImageBuf& src, const std::string& spec) {
+  if (!src.nativespec().format.is_floating_point()) return;
+  const OIIO::ImageSpec& s = src.spec();
+  std::vector<float> values(size_t(s.width) * s.height * s.nchannels);
+  OIIO::ImageBuf fsrc(spec);
+  if (!fsrc.get_pixels(OIIO::ROI(0, s.width, 0, s.height, 0, 1, 0, s.nchannels), OIIO::TypeDesc::FLOAT, values.data()))
+    return;
+  size_t below = 0, above = 0;
+  float lo = 0, hi = 1;
+  for (float v : values) {
+    below += v < 0.0f;
+    above += v > 1.0f;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (below + above > 0)
+    std::fprintf(stderr, "texsim: %s: %zu of %zu values are outside 0..1 (%g to %g) and were clamped to 8 bits\n",
+                 spec.c_str(), below + above, values.size(), double(lo), double(hi));
 }
 
 int nearest_power_of_two(int n) {
@@ -89,8 +120,9 @@ Image load_texture(const std::string& spec, bool resize) {
   const OIIO::ImageSpec& s = src.spec();
   w = s.width;
   h = s.height;
+  warn_if_clamped(src, spec);
   if (!resize || (is_power_of_two(w) && is_power_of_two(h) && w <= 2048 && h <= 2048)) {
-    check_texture_size(w, h, spec);
+    check_texture_size(w, h, spec, "use --resize to resample");
   } else {
     const int nw = nearest_power_of_two(w), nh = nearest_power_of_two(h);
     std::fprintf(stderr, "texsim: %s: resampled %dx%d to %dx%d\n", spec.c_str(), w, h, nw, nh);
@@ -114,27 +146,24 @@ Image load_texture(const std::string& spec, bool resize) {
   return img;
 }
 
-void save_image(const Image& img, const std::string& path) {
+void check_image_path(const std::string& path) {
+  if (path == "-") throw Error("-: images cannot go to standard output; give a file name");
+  if (!OIIO::ImageOutput::create(path))
+    throw Error(path + ": no image writer for this file type (use .png, .tif, .exr, ...)");
+}
+
+void save_image(const Image& img, const OutputFile& out) {
   std::vector<uint8_t> pixels(img.texels.size() * 4);
   const int shift = std::max(0, img.channel_bits - 8);
   for (size_t i = 0; i < img.texels.size(); ++i)
     for (int c = 0; c < 4; ++c) pixels[i * 4 + c] = uint8_t(img.texels[i][c] >> shift);
-  const std::filesystem::path final_path(path);
-  if (final_path.has_parent_path() && !std::filesystem::is_directory(final_path.parent_path()))
-    throw Error(path + ": directory does not exist");
-  // Keep the extension so OpenImageIO picks the format, e.g. out.png -> out.partial.png.
-  const std::string tmp = (final_path.parent_path() / (final_path.stem().string() + ".partial" +
-                                                        final_path.extension().string())).string();
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw Error(path + ": no image writer for this file type");
+  auto writer = OIIO::ImageOutput::create(out.path());  // the format of the name the user gave
+  if (!writer) throw Error(out.path() + ": no image writer for this file type");
   OIIO::ImageSpec spec(img.width, img.height, 4, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:UnassociatedAlpha", 1);  // write the texels as they are, no un-premultiply
-  if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close()) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw Error(path + ": cannot write image (" + out->geterror() + ")");
-  }
-  std::filesystem::rename(tmp, final_path);
+  if (!writer->open(out.write_path(), spec) || !writer->write_image(OIIO::TypeDesc::UINT8, pixels.data()) ||
+      !writer->close())
+    throw Error(out.path() + ": cannot write image (" + writer->geterror() + ")");
 }
 
 }  // namespace tex

@@ -303,11 +303,13 @@ std::string fault_error(Fault fault, uint64_t at, size_t n = 200) {
     run_forked([&] {
       const sc_core::sc_time period(10, sc_core::SC_NS);
       FaultyTarget target("faulty", pyr, period, fault, at);
-      StreamInitiator bench("testbench", reqs, true, period, InitiatorTiming{});
+      VectorSource source(reqs);
+      VectorSink sink;
+      StreamInitiator bench("testbench", source, sink, true, period, InitiatorTiming{});
       bench.socket.bind(target.socket);
-      run_stream(bench, reqs.size(), period, 5000, false, [] { return std::string(); });
+      run_stream(bench, period, 5000, false, [] { return std::string(); });
       EngineResult r;
-      r.texels = bench.texels();
+      r.texels = sink.texels;
       r.stats.engine = "faulty";
       return r;
     });

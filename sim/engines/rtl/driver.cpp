@@ -1,7 +1,6 @@
 #include "engines/rtl/driver.h"
 
 #include <algorithm>
-#include <csignal>
 #include <cstdio>
 #include <random>
 
@@ -11,26 +10,6 @@
 namespace tex::rtl {
 
 namespace {
-
-// Ctrl-C while a trace is open: the next clock closes the trace, then the process ends as Ctrl-C
-// would. Only a flag is set in the handler (async-signal-safe).
-volatile std::sig_atomic_t g_sigint = 0;
-int g_handlers_installed = 0;
-struct sigaction g_previous_sigint;
-
-void on_sigint(int) { g_sigint = 1; }
-
-void install_sigint_handler() {
-  if (g_handlers_installed++ > 0) return;
-  struct sigaction sa {};
-  sa.sa_handler = on_sigint;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, &g_previous_sigint);
-}
-
-void remove_sigint_handler() {
-  if (--g_handlers_installed == 0) sigaction(SIGINT, &g_previous_sigint, nullptr);
-}
 
 // Uniform double in [0, 1) from 53 random bits.
 inline double unit(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
@@ -65,10 +44,13 @@ void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::ve
   if (pyramid.levels[0].channel_bits != config.cw)
     throw Error(config.name + " is built for " + std::to_string(config.cw) + "-bit channels; this texture has " +
                 std::to_string(pyramid.levels[0].channel_bits) + "-bit channels");
-  for (size_t i = 0; i < requests.size(); ++i)
-    if (requests[i].lod < kLodMin || requests[i].lod > kLodMax)
-      throw Error("request " + std::to_string(i) + ": lod " + std::to_string(requests[i].lod) +
-                  "/256 is outside the 16-bit Q8.8 port of the RTL");
+  for (size_t i = 0; i < requests.size(); ++i) check_request(requests[i], i);
+}
+
+void check_request(const Request& request, size_t index) {
+  if (request.lod < kLodMin || request.lod > kLodMax)
+    throw Error("request " + std::to_string(index) + ": lod " + std::to_string(request.lod) +
+                "/256 is outside the 16-bit Q8.8 port of the RTL");
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
@@ -103,28 +85,17 @@ Texel unpack_rgba(uint64_t p, int cw) {
 
 Driver::Driver(const RtlConfig& config, const DriverOptions& options) : config_(config), options_(options) {
   tracing_ = !options_.trace_path.empty();
-  if (tracing_) install_sigint_handler();
 }
 
-Driver::~Driver() {
-  if (tracing_) remove_sigint_handler();
-}
+Driver::~Driver() = default;
 
 void Driver::close_trace() {
   if (!tracing_) return;
   close_trace_impl();
-  remove_sigint_handler();
   tracing_ = false;
 }
 
 PinsOut Driver::tick_traced(const PinsIn& in) {
-  if (g_sigint) {
-    close_trace();
-    std::fprintf(stderr, "\ninterrupted at clock %llu; FST trace closed: %s\n", (unsigned long long)cycle_,
-                 options_.trace_path.c_str());
-    std::signal(SIGINT, SIG_DFL);
-    std::raise(SIGINT);
-  }
   // Past the window: close now, so the file is complete even if the run is killed later.
   if (options_.trace_end != 0 && cycle_ > options_.trace_end) close_trace();
   const PinsOut out = tick_pins(in, tracing_ && cycle_ >= options_.trace_begin);
@@ -135,9 +106,8 @@ PinsOut Driver::tick_traced(const PinsIn& in) {
 
 void Driver::fail_finished() {
   close_trace();
-  throw Error("RTL assertion failed (or $finish) at clock " + std::to_string(cycle_) + " of " + config_.name +
-              "; see the %Error line above" +
-              (options_.trace_path.empty() ? std::string() : "; FST trace closed: " + options_.trace_path));
+  throw SimulationError("RTL assertion failed (or $finish) at clock " + std::to_string(cycle_) + " of " + config_.name +
+              "; see the %Error line above");
 }
 
 void Driver::reset(int clocks) {
@@ -215,12 +185,12 @@ Driver::Clock Driver::clock(const Request* offer, bool take_response) {
   Clock c;
   if (out.rsp_valid && take_response) {
     if (answered_ == issued_)
-      throw Error("RTL response with tag " + std::to_string(out.rsp_tag) + " at clock " + std::to_string(now) +
+      throw SimulationError("RTL response with tag " + std::to_string(out.rsp_tag) + " at clock " + std::to_string(now) +
                   " while no request is in flight (" + std::to_string(answered_) +
                   " answered): duplicated or spurious response");
     const uint32_t want = uint32_t(answered_ & kTagMask);
     if (out.rsp_tag != want)
-      throw Error("RTL response at clock " + std::to_string(now) + " has tag " + std::to_string(out.rsp_tag) +
+      throw SimulationError("RTL response at clock " + std::to_string(now) + " has tag " + std::to_string(out.rsp_tag) +
                   ", expected tag " + std::to_string(want) + " (request #" + std::to_string(answered_) +
                   "): a response was lost, duplicated or reordered");
     const uint64_t latency = now - accept_clock_[answered_ % kRing];
@@ -238,19 +208,19 @@ Driver::Clock Driver::clock(const Request* offer, bool take_response) {
   } else if (take_response && answered_ < issued_) {
     if (filled_) ++counters_.bubbles_after_fill;
     if (++idle_ready_clocks_ > options_.timeout_cycles)
-      throw Error("RTL time-out: no response for tag " + std::to_string(answered_ & kTagMask) + " (request #" +
+      throw SimulationError("RTL time-out: no response for tag " + std::to_string(answered_ & kTagMask) + " (request #" +
                   std::to_string(answered_) + ", accepted at clock " +
                   std::to_string(accept_clock_[answered_ % kRing]) + ") after " +
                   std::to_string(options_.timeout_cycles) + " ready clocks, at clock " + std::to_string(now));
   } else if (offer && !out.req_ready && answered_ == issued_) {
     if (++idle_ready_clocks_ > options_.timeout_cycles)
-      throw Error("RTL time-out: req_ready stays low with nothing in flight; request #" + std::to_string(issued_) +
+      throw SimulationError("RTL time-out: req_ready stays low with nothing in flight; request #" + std::to_string(issued_) +
                   " (tag " + std::to_string(issued_ & kTagMask) + ") not accepted by clock " + std::to_string(now));
   }
   if (offer) {
     if (out.req_ready) {
       if (issued_ - answered_ >= kRing)
-        throw Error("RTL accepted " + std::to_string(kRing) + " requests without answering the oldest (tag " +
+        throw SimulationError("RTL accepted " + std::to_string(kRing) + " requests without answering the oldest (tag " +
                     std::to_string(answered_ & kTagMask) + ") by clock " + std::to_string(now));
       accept_clock_[issued_ % kRing] = now;
       c.accepted = true;
@@ -293,29 +263,37 @@ Timing Timing::of(Stalls stalls) {
   return t;
 }
 
-StreamStats stream(Driver& driver, const Request* requests, size_t n, const Timing& timing, uint64_t seed,
+StreamStats stream(Driver& driver, RequestSource& source, const Timing& timing, uint64_t seed,
                    const ResponseFn& on_response, const std::function<void(size_t)>& progress) {
   StreamStats st;
   driver.reset_counters();
   const uint64_t base = driver.issued();  // sequence numbers continue across streams until a reset
+  RequestQueue queue(source);
   size_t accepted = 0, done = 0;
   if (timing.ideal()) {
-    while (done < n) {
-      const Driver::Clock c = driver.clock(accepted < n ? &requests[accepted] : nullptr, true);
+    for (;;) {
+      const Request* next = queue.peek();
+      if (!next && done == accepted) break;
+      const Driver::Clock c = driver.clock(next, true);
       if (c.responded) {
         on_response(size_t(c.response_index - base), c.rgba);
         if ((++done & 0xFFFF) == 0 && progress) progress(done);
       }
-      accepted += c.accepted;
+      if (c.accepted) {
+        queue.pop();
+        ++accepted;
+      }
     }
   } else {
     std::mt19937_64 rng(seed);
     int gap_left = 0, stall_left = 0;
     bool holding = false;    // a request was offered and not taken in the previous clock
     bool after_gap = false;  // the next request follows an input gap
-    while (done < n) {
+    for (;;) {
+      const Request* next = queue.peek();
+      if (!next && done == accepted) break;
       // A request once offered stays offered until accepted: gaps start only between requests.
-      if (gap_left == 0 && !holding && timing.gap_prob > 0 && accepted < n && unit(rng) < timing.gap_prob)
+      if (gap_left == 0 && !holding && timing.gap_prob > 0 && next && unit(rng) < timing.gap_prob)
         gap_left = 1 + int(rng() % uint64_t(std::max(1, timing.max_gap)));
       if (stall_left == 0) {
         if (timing.long_stall_prob > 0 && unit(rng) < timing.long_stall_prob)
@@ -323,17 +301,17 @@ StreamStats stream(Driver& driver, const Request* requests, size_t n, const Timi
         else if (timing.stall_prob > 0 && unit(rng) < timing.stall_prob)
           stall_left = 1 + int(rng() % uint64_t(std::max(1, timing.max_stall)));
       }
-      const bool offer = accepted < n && gap_left == 0;
+      const bool offer = next && gap_left == 0;
       if (gap_left > 0) {
         --gap_left;
-        if (accepted < n) {
+        if (next) {
           ++st.gap_cycles;
           after_gap = true;
         }
       }
       const bool ready = stall_left == 0;
       if (stall_left > 0) --stall_left;
-      const Driver::Clock c = driver.clock(offer ? &requests[accepted] : nullptr, ready);
+      const Driver::Clock c = driver.clock(offer ? next : nullptr, ready);
       if (c.responded) {
         on_response(size_t(c.response_index - base), c.rgba);
         ++done;
@@ -343,6 +321,7 @@ StreamStats stream(Driver& driver, const Request* requests, size_t n, const Timi
       if (c.accepted) {
         if (after_gap) ++st.requests_after_gap;
         after_gap = false;
+        queue.pop();
         ++accepted;
       }
     }
@@ -354,10 +333,16 @@ StreamStats stream(Driver& driver, const Request* requests, size_t n, const Timi
     const uint64_t now = driver.cycle();
     const PinsOut out = driver.tick(PinsIn{});
     if (out.rsp_valid)
-      throw Error("RTL response with tag " + std::to_string(out.rsp_tag) + " at clock " + std::to_string(now) +
-                  " after all " + std::to_string(n) + " requests were answered: duplicated or spurious response");
+      throw SimulationError("RTL response with tag " + std::to_string(out.rsp_tag) + " at clock " + std::to_string(now) +
+                  " after all " + std::to_string(done) + " requests were answered: duplicated or spurious response");
   }
   return st;
+}
+
+StreamStats stream(Driver& driver, const Request* requests, size_t n, const Timing& timing, uint64_t seed,
+                   const ResponseFn& on_response, const std::function<void(size_t)>& progress) {
+  VectorSource source(requests, n);
+  return stream(driver, source, timing, seed, on_response, progress);
 }
 
 }  // namespace tex::rtl

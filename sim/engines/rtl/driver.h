@@ -33,7 +33,8 @@ const std::vector<RtlConfig>& compiled_configs();
 const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw = 8);
 // Everything the RTL cannot take, as one tex::Error, before any clock: a texture too large or with
 // other channel widths than the configuration's, a lambda outside the 16-bit Q8.8 port.
-void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests);
+void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests = {});
+void check_request(const Request& request, size_t index);  // the lod fits the 16-bit Q8.8 port
 
 constexpr int kTagBits = 16;
 constexpr uint32_t kTagMask = (1u << kTagBits) - 1;
@@ -154,8 +155,7 @@ class Driver {
   void reset_counters();
 
   // One clock with raw pins, for tests that drive the protocol themselves; bypasses the scoreboard.
-  // Closes the trace and throws tex::Error when an RTL assertion fires; on SIGINT closes the trace
-  // and ends the process as Ctrl-C would.
+  // Closes the trace and throws tex::SimulationError when an RTL assertion fires.
   PinsOut tick(const PinsIn& in) {
     if (tracing_) return tick_traced(in);  // the rare paths stay out of the per-clock code
     const PinsOut out = tick_pins(in, false);
@@ -224,6 +224,8 @@ struct StreamStats {
 // calls on_response(index, rgba) for every response in order, then idles 64 clocks: anything that
 // still comes out is a duplicated response (tex::Error). progress(done) every 65536 responses.
 using ResponseFn = std::function<void(size_t index, uint64_t rgba)>;
+StreamStats stream(Driver& driver, RequestSource& source, const Timing& timing, uint64_t seed,
+                   const ResponseFn& on_response, const std::function<void(size_t done)>& progress = {});
 StreamStats stream(Driver& driver, const Request* requests, size_t n, const Timing& timing, uint64_t seed,
                    const ResponseFn& on_response, const std::function<void(size_t done)>& progress = {});
 

@@ -21,17 +21,17 @@ constexpr size_t kSlots = 64;
 inline double unit_random(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
 }  // namespace
 
-StreamInitiator::StreamInitiator(sc_module_name name, const std::vector<Request>& requests, bool approximately_timed,
-                                 const sc_time& clock_period, const InitiatorTiming& timing)
+StreamInitiator::StreamInitiator(sc_module_name name, RequestSource& source, TexelSink& sink,
+                                 bool approximately_timed, const sc_time& clock_period, const InitiatorTiming& timing)
     : sc_module(name),
       socket("socket"),
-      requests_(requests),
+      requests_(source),
+      texels_(sink),
       at_(approximately_timed),
       timing_(timing),
       period_(clock_period),
       rng_(timing.seed),
-      end_resp_peq_(this, &StreamInitiator::send_end_resp),
-      texels_(requests.size()) {
+      end_resp_peq_(this, &StreamInitiator::send_end_resp) {
   socket.register_nb_transport_bw(this, &StreamInitiator::nb_transport_bw);
   for (size_t i = 0; i < kSlots; ++i) {
     slots_.push_back(std::make_unique<Slot>());
@@ -61,17 +61,17 @@ void StreamInitiator::fail(const std::string& message) {
   if (error_.empty()) error_ = message;
 }
 
-StreamInitiator::Slot* StreamInitiator::take_slot(size_t index) {
+StreamInitiator::Slot* StreamInitiator::take_slot(const Request& q, size_t index) {
   while (free_slots_.empty()) wait(slot_freed_);
   Slot* s = free_slots_.back();
   free_slots_.pop_back();
-  const Request& q = requests_[index];
   s->data = SampleTransfer{};
   s->data.u = q.u;
   s->data.v = q.v;
   s->data.lod = q.lod;
   s->data.tag = uint32_t(index);
   s->set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  ++issued_;
   return s;
 }
 
@@ -89,8 +89,8 @@ void StreamInitiator::check_response(Slot& slot) {
     fail("sample tag " + std::to_string(tag) + ": response status " + slot.get_response_string());
     return;
   }
-  if (want >= requests_.size()) {
-    fail("response with tag " + std::to_string(tag) + " after all " + std::to_string(requests_.size()) +
+  if (want >= issued_) {
+    fail("response with tag " + std::to_string(tag) + " after all " + std::to_string(issued_) +
          " requests were answered: duplicated response");
     return;
   }
@@ -99,7 +99,7 @@ void StreamInitiator::check_response(Slot& slot) {
          std::to_string(want) + ": a response was lost, duplicated or reordered");
     return;
   }
-  texels_[tag] = {slot.data.rgba[0], slot.data.rgba[1], slot.data.rgba[2], slot.data.rgba[3]};
+  texels_.push({slot.data.rgba[0], slot.data.rgba[1], slot.data.rgba[2], slot.data.rgba[3]});
   ++counters_.responses;
   counters_.last_response = sc_time_stamp();
 }
@@ -107,13 +107,16 @@ void StreamInitiator::check_response(Slot& slot) {
 // ----------------------------------------------------------------------------- approximately timed
 
 void StreamInitiator::run_at() {
-  for (size_t i = 0; i < requests_.size() && error_.empty(); ++i) {
+  for (size_t i = 0; error_.empty(); ++i) {
+    const Request* q = requests_.peek();
+    if (!q) break;
     if (timing_.gap_prob > 0 && unit_random(rng_) < timing_.gap_prob) {
       const int gap = 1 + int(rng_() % uint64_t(std::max(1, timing_.max_gap)));
       counters_.gap_cycles += uint64_t(gap);
       wait(gap * period_);
     }
-    Slot* s = take_slot(i);
+    Slot* s = take_slot(*q, i);
+    requests_.pop();
     tlm_phase phase = tlm::BEGIN_REQ;
     sc_time delay = SC_ZERO_TIME;
     awaiting_end_req_ = s;
@@ -142,6 +145,7 @@ void StreamInitiator::run_at() {
     // Request exclusion: the next BEGIN_REQ only after END_REQ (or BEGIN_RESP) of this one.
     while (awaiting_end_req_ && error_.empty()) wait(request_ended_);
   }
+  all_issued_ = true;
 }
 
 void StreamInitiator::on_request_accepted(Slot& slot) {
@@ -202,8 +206,11 @@ void StreamInitiator::run_lt() {
   tlm_utils::tlm_quantumkeeper::set_global_quantum(1024 * period_);
   tlm_utils::tlm_quantumkeeper keeper;
   keeper.reset();
-  for (size_t i = 0; i < requests_.size() && error_.empty(); ++i) {
-    Slot* s = take_slot(i);
+  for (size_t i = 0; error_.empty(); ++i) {
+    const Request* q = requests_.peek();
+    if (!q) break;
+    Slot* s = take_slot(*q, i);
+    requests_.pop();
     sc_time delay = keeper.get_local_time();
     socket->b_transport(*s, delay);
     keeper.set(delay);
@@ -212,12 +219,13 @@ void StreamInitiator::run_lt() {
     release(*s);
     if (keeper.need_sync()) keeper.sync();
   }
+  all_issued_ = true;
   keeper.sync();
 }
 
 // ----------------------------------------------------------------------------- the run loop
 
-void run_stream(StreamInitiator& bench, size_t requests, const sc_time& period, uint64_t timeout_cycles,
+void run_stream(StreamInitiator& bench, const sc_time& period, uint64_t timeout_cycles,
                 bool show_progress, const std::function<std::string()>& target_error) {
   const uint64_t slice = 4096;
   uint64_t last_done = 0, idle_clocks = 0;
@@ -227,18 +235,19 @@ void run_stream(StreamInitiator& bench, size_t requests, const sc_time& period, 
     if (done != last_done) {
       last_done = done;
       idle_clocks = 0;
-      if (show_progress) std::fprintf(stderr, "\rsystemc: %llu / %zu samples", (unsigned long long)done, requests);
+      if (show_progress) std::fprintf(stderr, "\rsystemc: %llu samples", (unsigned long long)done);
     } else if ((idle_clocks += slice) > timeout_cycles) {
-      throw Error("SystemC time-out: no response for tag " + std::to_string(done) + " (" +
-                  std::to_string(requests - done) + " of " + std::to_string(requests) + " owed) for " +
+      throw SimulationError("SystemC time-out: no response for tag " + std::to_string(done) + " (" +
+                  std::to_string(bench.issued() - done) + " of " + std::to_string(bench.issued()) + " owed) for " +
                   std::to_string(idle_clocks) + " clocks, at " + sc_time_stamp().to_string() +
                   ": a response was lost");
     }
   }
   if (show_progress) std::fprintf(stderr, "\r%60s\r", "");
   if (bench.error().empty() && target_error().empty()) sc_start(64.0 * period);
-  if (!target_error().empty()) throw Error(target_error());
-  if (!bench.error().empty()) throw Error(bench.error());
+  if (!target_error().empty()) throw SimulationError(target_error());
+  if (!bench.error().empty()) throw SimulationError(bench.error());
+  bench.flush();
 }
 
 }  // namespace tex::systemc

@@ -1,4 +1,5 @@
-// StreamInitiator: the SystemC testbench. Streams a list of sample requests through a TLM-2.0
+// StreamInitiator: the SystemC testbench. Streams sample requests (pulled from a RequestSource as
+// it goes; texels pushed to a TexelSink in request order) through a TLM-2.0
 // initiator socket, checks every response (status OK, echoed tag = the next one in request order:
 // nothing lost, duplicated or reordered) and measures throughput at the socket.
 //   At: base-protocol non-blocking transport, pipelined. BEGIN_REQ for request i+1 goes out as soon
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "engines/systemc/sample_payload.h"
+#include "engines/engine.h"
 #include "model/sampler.h"
 
 namespace tex::systemc {
@@ -44,14 +46,15 @@ class StreamInitiator : public sc_core::sc_module {
  public:
   tlm_utils::simple_initiator_socket<StreamInitiator> socket;
 
-  // `requests` must outlive the simulation; `clock_period` is the target's clock (gaps, stalls and
-  // latency are counted in it).
-  StreamInitiator(sc_core::sc_module_name name, const std::vector<Request>& requests, bool approximately_timed,
+  // `source` and `sink` must outlive the simulation; `clock_period` is the target's clock (gaps,
+  // stalls and latency are counted in it).
+  StreamInitiator(sc_core::sc_module_name name, RequestSource& source, TexelSink& sink, bool approximately_timed,
                   const sc_core::sc_time& clock_period, const InitiatorTiming& timing);
   SC_HAS_PROCESS(StreamInitiator);
 
-  bool done() const { return counters_.responses == requests_.size() || !error_.empty(); }
-  const std::vector<Texel>& texels() const { return texels_; }  // by request index
+  bool done() const { return (all_issued_ && counters_.responses == issued_) || !error_.empty(); }
+  uint64_t issued() const { return issued_; }
+  void flush() { texels_.flush(); }  // hands the last texels to the sink (run_stream does)
   const InitiatorCounters& counters() const { return counters_; }
   const std::string& error() const { return error_; }
   // Clocks from the first accepted request to the last response, inclusive (0 before any).
@@ -66,7 +69,7 @@ class StreamInitiator : public sc_core::sc_module {
 
   void run_at();
   void run_lt();
-  Slot* take_slot(size_t index);
+  Slot* take_slot(const Request& request, size_t index);
   void check_response(Slot& slot);
   void release(Slot& slot);
   tlm::tlm_sync_enum nb_transport_bw(tlm::tlm_generic_payload& trans, tlm::tlm_phase& phase, sc_core::sc_time& delay);
@@ -76,7 +79,10 @@ class StreamInitiator : public sc_core::sc_module {
   void fail(const std::string& message);
   static Slot& slot_of(tlm::tlm_generic_payload& trans) { return static_cast<Slot&>(trans); }
 
-  const std::vector<Request>& requests_;
+  RequestQueue requests_;
+  TexelQueue texels_;
+  uint64_t issued_ = 0;
+  bool all_issued_ = false;
   bool at_;
   InitiatorTiming timing_;
   sc_core::sc_time period_;
@@ -86,7 +92,6 @@ class StreamInitiator : public sc_core::sc_module {
   sc_core::sc_event slot_freed_, request_ended_;
   tlm::tlm_generic_payload* awaiting_end_req_ = nullptr;
   tlm_utils::peq_with_cb_and_phase<StreamInitiator> end_resp_peq_;
-  std::vector<Texel> texels_;
   InitiatorCounters counters_;
   bool any_accepted_ = false;
   std::string error_;
@@ -96,7 +101,7 @@ class StreamInitiator : public sc_core::sc_module {
 // between slices `target_error` (empty = none), progress (a line on stderr) and the time-out (no
 // new response for timeout_cycles clocks: a lost response). Then 64 idle clocks (a response that
 // still comes out is a duplicate). Throws tex::Error with the first error.
-void run_stream(StreamInitiator& bench, size_t requests, const sc_core::sc_time& period, uint64_t timeout_cycles,
+void run_stream(StreamInitiator& bench, const sc_core::sc_time& period, uint64_t timeout_cycles,
                 bool show_progress, const std::function<std::string()>& target_error);
 
 }  // namespace tex::systemc

@@ -1,6 +1,8 @@
 // run_systemc: one SystemC simulation (target + testbench initiator) in a forked child process.
 #include "engines/systemc/systemc_engine.h"
 
+#include <fcntl.h>
+#include <poll.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -44,27 +46,25 @@ InitiatorTiming initiator_timing(const EngineOptions& o) {
 }
 
 // Runs in the child: elaborate, load, stream, check.
-EngineResult simulate(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
-                      const std::vector<Request>& requests, const SystemcOptions& o) {
+EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
+                     TexelSink& sink, const SystemcOptions& o) {
   const bool at = o.initiator == InitiatorStyle::At || (o.initiator == InitiatorStyle::Auto && backend == Backend::Rtl);
   const sc_time period(o.clock_ns, SC_NS);
   const auto wall0 = std::chrono::steady_clock::now();
   TexUnitTlm unit("tex_unit_tlm", backend, pyramid, config, period, o.engine);
-  StreamInitiator bench("testbench", requests, at, period, initiator_timing(o.engine));
+  StreamInitiator bench("testbench", source, sink, at, period, initiator_timing(o.engine));
   bench.socket.bind(unit.socket);
   const auto wall1 = std::chrono::steady_clock::now();
 
-  run_stream(bench, requests.size(), period, o.timeout_cycles, o.engine.show_progress,
-             [&unit] { return unit.error(); });
+  run_stream(bench, period, o.timeout_cycles, o.engine.show_progress, [&unit] { return unit.error(); });
   const auto wall2 = std::chrono::steady_clock::now();
-  if (unit.in_flight() != 0) throw Error("SystemC: requests still in flight after the last response");
+  if (unit.in_flight() != 0) throw SimulationError("SystemC: requests still in flight after the last response");
 
-  EngineResult r;
-  r.texels = bench.texels();
-  r.stats.engine = backend == Backend::Rtl ? "systemc" : "systemc-model";
-  r.stats.samples = bench.counters().responses;
-  r.stats.load_seconds = std::chrono::duration<double>(wall1 - wall0).count();
-  r.stats.sample_seconds = std::chrono::duration<double>(wall2 - wall1).count();
+  EngineStats r;
+  r.engine = backend == Backend::Rtl ? "systemc" : "systemc-model";
+  r.samples = bench.counters().responses;
+  r.load_seconds = std::chrono::duration<double>(wall1 - wall0).count();
+  r.sample_seconds = std::chrono::duration<double>(wall2 - wall1).count();
   if (const rtl::Driver* d = unit.driver()) {
     const rtl::ProtocolCounters& pc = d->counters();
     CycleStats c;
@@ -76,12 +76,16 @@ EngineResult simulate(Backend backend, const Pyramid& pyramid, const SamplerConf
     c.input_gap_cycles = bench.counters().gap_cycles;
     c.backpressure_cycles = pc.backpressure_cycles;
     c.load_cycles = d->load_cycles();
-    r.stats.cycle = c;
+    r.cycle = c;
   }
   return r;
 }
 
-// Child -> parent: [u64 length][JSON {"error"} or {"stats"}][u64 count][count x 4 x u16].
+// ---------------------------------------------------------------- parent <-> child
+// Parent -> child: the requests as raw structs (same binary), then end of file.
+// Child -> parent: frames [type][u64 length][bytes]: 'T' texels, then one 'S' (stats JSON) or
+// 'E' (error JSON: message, and whether it is a simulation failure).
+
 bool write_all(int fd, const void* data, size_t n) {
   const char* p = static_cast<const char*>(data);
   while (n > 0) {
@@ -94,22 +98,69 @@ bool write_all(int fd, const void* data, size_t n) {
   return true;
 }
 
-void send_outcome(int fd, const std::string& error, const EngineResult& r) {
-  const nlohmann::json head =
-      error.empty() ? nlohmann::json{{"stats", r.stats.to_json(EngineOptions{})}} : nlohmann::json{{"error", error}};
-  const std::string text = head.dump();
-  const uint64_t len = text.size(), count = error.empty() ? r.texels.size() : 0;
-  bool ok = write_all(fd, &len, sizeof len) && write_all(fd, text.data(), text.size()) &&
-            write_all(fd, &count, sizeof count);
-  if (ok && count) write_all(fd, r.texels.data(), count * sizeof(Texel));
+bool send_frame(int fd, char type, const void* data, uint64_t n) {
+  return write_all(fd, &type, 1) && write_all(fd, &n, sizeof n) && (n == 0 || write_all(fd, data, n));
+}
+
+// The child's view of the requests: read from the pipe, whole structs only.
+class PipeSource final : public RequestSource {
+ public:
+  explicit PipeSource(int fd) : fd_(fd) {}
+  size_t read(Request* out, size_t max) override {
+    char* dst = reinterpret_cast<char*>(out);
+    const size_t want = max * sizeof(Request);
+    size_t have = 0;
+    while (have < sizeof(Request) || have % sizeof(Request) != 0) {
+      const ssize_t k = ::read(fd_, dst + have, want - have);
+      if (k < 0 && errno == EINTR) continue;
+      if (k <= 0) break;
+      have += size_t(k);
+    }
+    return have / sizeof(Request);
+  }
+
+ private:
+  int fd_;
+};
+
+class PipeSink final : public TexelSink {
+ public:
+  explicit PipeSink(int fd) : fd_(fd) {}
+  void write(const Texel* t, size_t n) override {
+    if (!send_frame(fd_, 'T', t, n * sizeof(Texel))) throw Error("SystemC: the parent process went away");
+  }
+
+ private:
+  int fd_;
+};
+
+[[noreturn]] void run_child(int request_fd, int result_fd, const Simulation& simulation) {
+  ::setenv("SYSC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
+  std::signal(SIGPIPE, SIG_IGN);
+  PipeSource source(request_fd);
+  PipeSink sink(result_fd);
+  nlohmann::json outcome;
+  try {
+    outcome["stats"] = simulation(source, sink).to_json(EngineOptions{});
+  } catch (const SimulationError& e) {
+    outcome = {{"error", e.what()}, {"simulation", true}};
+  } catch (const std::exception& e) {
+    outcome = {{"error", e.what()}, {"simulation", false}};
+  }
+  const std::string text = outcome.dump();
+  send_frame(result_fd, outcome.contains("error") ? 'E' : 'S', text.data(), text.size());
+  ::close(result_fd);
+  std::fflush(nullptr);
+  ::_exit(0);  // skip the parent's atexit handlers, destructors and SystemC's teardown
 }
 
 class SystemcEngine final : public Engine {
  public:
   SystemcEngine(Backend backend, const EngineOptions& options) : backend_(backend) { options_.engine = options; }
 
-  EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) override {
-    return run_systemc(backend_, pyramid, config, requests, options_);
+  EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
+                  TexelSink& sink) override {
+    return run_systemc(backend_, pyramid, config, source, sink, options_);
   }
 
  private:
@@ -123,90 +174,162 @@ std::unique_ptr<Engine> make_systemc_engine(Backend backend, const EngineOptions
   return std::make_unique<SystemcEngine>(backend, options);
 }
 
-EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
-                         const std::vector<Request>& requests, const SystemcOptions& options) {
+EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
+                        TexelSink& sink, const SystemcOptions& options) {
   // Input errors are reported here, before any simulation, as one line.
   if (backend == Backend::Rtl) {
     const rtl::RtlConfig& rc =
         rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits);
-    rtl::check_inputs(rc, pyramid, requests);
+    rtl::check_inputs(rc, pyramid);
   } else if (!options.engine.trace_path.empty()) {
     throw Error("--trace: the model behind the SystemC socket has no waveforms (use --engine systemc)");
   }
   if (!(options.clock_ns > 0)) throw Error("SystemC clock period must be positive");
-  return run_forked([&] { return simulate(backend, pyramid, config, requests, options); });
+  // Requests are checked against the RTL's ports in the parent, as they are read.
+  size_t index = 0;
+  auto check = [&](const Request* r, size_t n) {
+    if (backend == Backend::Rtl)
+      for (size_t i = 0; i < n; ++i) rtl::check_request(r[i], index + i);
+    index += n;
+  };
+  return run_forked(source, sink, [&](RequestSource& s, TexelSink& t) {
+    return simulate(backend, pyramid, config, s, t, options);
+  }, check);
 }
 
-EngineResult run_forked(const std::function<EngineResult()>& simulation) {
-  int fds[2];
-  if (::pipe(fds) != 0) throw Error(std::string("pipe: ") + std::strerror(errno));
+EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
+                         const std::vector<Request>& requests, const SystemcOptions& options) {
+  VectorSource source(requests);
+  VectorSink sink;
+  EngineResult r;
+  r.stats = run_systemc(backend, pyramid, config, source, sink, options);
+  r.texels = std::move(sink.texels);
+  return r;
+}
+
+EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation& simulation,
+                       const std::function<void(const Request*, size_t)>& check) {
+  int to_child[2], from_child[2];
+  if (::pipe(to_child) != 0) throw Error(std::string("pipe: ") + std::strerror(errno));
+  if (::pipe(from_child) != 0) {
+    ::close(to_child[0]);
+    ::close(to_child[1]);
+    throw Error(std::string("pipe: ") + std::strerror(errno));
+  }
   std::fflush(nullptr);  // nothing buffered may be written twice
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
-    ::close(fds[0]);
-    ::close(fds[1]);
+    for (int fd : {to_child[0], to_child[1], from_child[0], from_child[1]}) ::close(fd);
     throw Error(std::string("fork: ") + std::strerror(errno));
   }
   if (pid == 0) {
     // The child: a fresh SystemC kernel (the parent never touches SystemC). It ends with its parent.
-    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) ::_exit(1);
-    ::close(fds[0]);
-    ::setenv("SYSC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
-    std::signal(SIGPIPE, SIG_IGN);
-    EngineResult r;
-    std::string error;
-    try {
-      r = simulation();
-    } catch (const std::exception& e) {
-      error = e.what();
+    ::close(to_child[1]);
+    ::close(from_child[0]);
+    run_child(to_child[0], from_child[1], simulation);
+  }
+  ::close(to_child[0]);
+  ::close(from_child[1]);
+  int request_fd = to_child[1];
+  const int result_fd = from_child[0];
+  ::fcntl(request_fd, F_SETFL, O_NONBLOCK);
+  struct sigaction ignore {}, old_pipe {};
+  ignore.sa_handler = SIG_IGN;
+  sigaction(SIGPIPE, &ignore, &old_pipe);  // a child that died shows as EPIPE, not as a signal
+
+  auto finish_child = [&](bool kill_it) {
+    if (request_fd >= 0) ::close(request_fd);
+    request_fd = -1;
+    ::close(result_fd);
+    if (kill_it) ::kill(pid, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
-    send_outcome(fds[1], error, r);
-    ::close(fds[1]);
-    std::fflush(nullptr);
-    ::_exit(0);  // skip the parent's atexit handlers and SystemC's teardown
-  }
+    sigaction(SIGPIPE, &old_pipe, nullptr);
+    return status;
+  };
 
-  ::close(fds[1]);
-  std::string bytes;
-  char buf[1 << 16];
-  for (;;) {
-    const ssize_t k = ::read(fds[0], buf, sizeof buf);
-    if (k < 0 && errno == EINTR) continue;
-    if (k <= 0) break;
-    bytes.append(buf, size_t(k));
+  std::vector<Request> pending(4096);
+  size_t pending_at = 0, pending_end = 0;  // bytes of `pending` not yet written
+  std::string in;                          // bytes from the child not yet decoded
+  nlohmann::json outcome;
+  try {
+    char buf[1 << 16];
+    for (bool eof = false; !eof;) {
+      if (request_fd >= 0 && pending_at == pending_end) {
+        const size_t n = source.read(pending.data(), pending.size());
+        check(pending.data(), n);
+        pending_at = 0;
+        pending_end = n * sizeof(Request);
+        if (n == 0) {
+          ::close(request_fd);
+          request_fd = -1;
+        }
+      }
+      pollfd fds[2] = {{result_fd, POLLIN, 0}, {request_fd, POLLOUT, 0}};
+      if (::poll(fds, request_fd >= 0 ? 2 : 1, -1) < 0 && errno != EINTR)
+        throw Error(std::string("poll: ") + std::strerror(errno));
+      if (request_fd >= 0 && (fds[1].revents & (POLLOUT | POLLERR | POLLHUP))) {
+        const ssize_t k = ::write(request_fd, reinterpret_cast<const char*>(pending.data()) + pending_at,
+                                  pending_end - pending_at);
+        if (k > 0) pending_at += size_t(k);
+        else if (k < 0 && errno != EAGAIN && errno != EINTR) {  // the child is gone: its result says why
+          ::close(request_fd);
+          request_fd = -1;
+        }
+      }
+      if (fds[0].revents & (POLLIN | POLLHUP | POLLERR)) {
+        const ssize_t k = ::read(result_fd, buf, sizeof buf);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) eof = true;
+        else in.append(buf, size_t(k));
+      }
+      // Decode every whole frame.
+      size_t at = 0;
+      while (in.size() - at >= 9) {
+        uint64_t len = 0;
+        std::memcpy(&len, in.data() + at + 1, sizeof len);
+        if (in.size() - at - 9 < len) break;
+        const char type = in[at];
+        const char* body = in.data() + at + 9;
+        if (type == 'T') sink.write(reinterpret_cast<const Texel*>(body), len / sizeof(Texel));
+        else outcome = nlohmann::json::parse(std::string(body, len));
+        at += 9 + len;
+      }
+      in.erase(0, at);
+    }
+  } catch (...) {
+    finish_child(true);
+    throw;
   }
-  ::close(fds[0]);
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-
-  // Decode; anything short means the child died (an abort inside SystemC or Verilator).
-  auto died = [&]() {
+  const int status = finish_child(false);
+  if (outcome.is_null()) {  // the child died (an abort inside SystemC or Verilator)
     if (WIFSIGNALED(status))
-      return Error("the SystemC simulation process died with signal " + std::to_string(WTERMSIG(status)) +
-                   " (see the messages above)");
-    return Error("the SystemC simulation process ended without a result (exit status " +
-                 std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "; see the messages above)");
-  };
-  size_t at = 0;
-  auto take = [&](void* dst, size_t n) {
-    if (bytes.size() - at < n) throw died();
-    std::memcpy(dst, bytes.data() + at, n);
-    at += n;
-  };
-  uint64_t len = 0, count = 0;
-  take(&len, sizeof len);
-  if (bytes.size() - at < len) throw died();
-  const nlohmann::json head = nlohmann::json::parse(bytes.substr(at, len));
-  at += len;
-  if (head.contains("error")) throw Error(head["error"].get<std::string>());
-  take(&count, sizeof count);
+      throw Error("the SystemC simulation process died with signal " + std::to_string(WTERMSIG(status)) +
+                  " (see the messages above)");
+    throw Error("the SystemC simulation process ended without a result (exit status " +
+                std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "; see the messages above)");
+  }
+  if (outcome.contains("error")) {
+    if (outcome.value("simulation", false)) throw SimulationError(outcome["error"].get<std::string>());
+    throw Error(outcome["error"].get<std::string>());
+  }
+  return EngineStats::from_json(outcome["stats"]);
+}
+
+EngineResult run_forked(const std::function<EngineResult()>& simulation) {
+  VectorSource none(nullptr, 0);
+  VectorSink sink;
   EngineResult r;
-  r.texels.resize(count);
-  if (count) take(r.texels.data(), count * sizeof(Texel));
-  r.stats = EngineStats::from_json(head["stats"]);
+  r.stats = run_forked(none, sink, [&](RequestSource&, TexelSink& out) {
+    const EngineResult x = simulation();
+    out.write(x.texels.data(), x.texels.size());
+    return x.stats;
+  });
+  r.texels = std::move(sink.texels);
   return r;
 }
 

@@ -34,11 +34,21 @@ std::unique_ptr<Engine> make_systemc_engine(Backend backend, const EngineOptions
 // elaborates once per process, and the fork lets texsim render several frames and the tests run
 // many cases. Texels come back in request order. Throws tex::Error with the simulation's one-line
 // error (tag mismatch, time-out, bad input).
+// The requests stream from `source` into the child through a pipe and the texels come back through
+// another, so memory does not grow with the number of requests.
+EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
+                        TexelSink& sink, const SystemcOptions& options);
 EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
                          const std::vector<Request>& requests, const SystemcOptions& options);
 
-// Runs `simulation` in a forked child process and returns its result; an exception in the child
-// becomes a tex::Error with its message in the parent. For tests that build their own platform.
+// Runs `simulation` in a forked child process: requests from `source` (each chunk passed to
+// `check` in the parent first) go to the child's source, texels from the child's sink to `sink`.
+// An exception in the child becomes a tex::Error (tex::SimulationError if it was one) with its
+// message in the parent; the child is killed if the parent fails (a bad request, a sink error).
+using Simulation = std::function<EngineStats(RequestSource& source, TexelSink& sink)>;
+EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation& simulation,
+                       const std::function<void(const Request*, size_t)>& check = [](const Request*, size_t) {});
+// For tests that build their own platform: no requests in, the result's texels out.
 EngineResult run_forked(const std::function<EngineResult()>& simulation);
 
 }  // namespace tex::systemc
