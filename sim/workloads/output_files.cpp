@@ -21,7 +21,7 @@ namespace {
 // only while the signals are blocked, so the handler never sees a vector being reallocated.
 std::vector<std::string>* g_staged = nullptr;
 std::vector<std::string>* g_created_dirs = nullptr;
-constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
+constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 
 void on_fatal_signal(int sig) {
   for (const std::string& p : *g_staged) ::unlink(p.c_str());

@@ -10,9 +10,9 @@
 //  - refused with a one-line tex::Error: a directory, a block device, a socket, a directory that
 //    does not exist or cannot be written, a read-only file, a path that is one of the command's
 //    inputs (same device and inode, whatever the name) or another of its outputs.
-// Without commit(), the destructor removes every staged file; SIGINT, SIGTERM and SIGHUP remove
-// them too before the process ends as the signal would end it. No existing file is touched
-// until commit().
+// Without commit(), the destructor removes every staged file; SIGINT, SIGTERM, SIGHUP and SIGPIPE
+// (`-o - | head`) remove them too before the process ends as the signal would end it. No existing
+// file is touched until commit().
 #pragma once
 #include <sys/types.h>
 
