@@ -4,7 +4,7 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test model-test bench clean lint formal synth synth-latch rtl-soak figures
+.PHONY: help deps build demo test model-test bench clean lint formal xprop synth synth-latch rtl-soak figures
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
@@ -14,6 +14,7 @@ help:
 	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
 	@echo "make rtl-soak  - RTL vs model lockstep, 20x the random samples of make test, new seeds"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
+	@echo "make xprop  - 4-state X-propagation run of the RTL in Icarus Verilog, with planted bugs"
 	@echo "make formal - Yosys proofs of the handshake (skid buffer, req_ready path), each shown failing on a planted bug"
 	@echo "make synth  - Yosys latch check, then iCE40 HX8K synthesis + place and route (Fmax, LUTs)"
 	@echo "make clean  - remove $(BUILD)/ and $(OUT)/"
@@ -36,7 +37,7 @@ demo: build
 	$(TEXSIM) render --scene plane --texture checker --filter trilinear --engine rtl --verify --out $(OUT)/plane_trilinear.png
 	@echo "demo: $(OUT)/plane_point.png aliases near the horizon; $(OUT)/plane_trilinear.png does not"
 
-test: build lint formal synth-latch model-test
+test: build lint formal xprop synth-latch model-test
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The model without any simulator or image library: its own build tree.
@@ -68,6 +69,9 @@ lint:
 
 formal: deps
 	@bash scripts/formal.sh
+
+xprop: deps
+	@bash scripts/xprop.sh
 
 # Generic Yosys synthesis of a small configuration; fails on any latch (part of `make test`).
 synth-latch:
