@@ -70,8 +70,9 @@ lint:
 formal: deps
 	@bash scripts/formal.sh
 
-xprop: deps
-	@bash scripts/xprop.sh
+xprop: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) --target xprop_vectors -j $(JOBS)
+	@bash scripts/xprop.sh $(BUILD)
 
 # Generic Yosys synthesis of a small configuration; fails on any latch (part of `make test`).
 synth-latch:
