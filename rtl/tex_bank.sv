@@ -43,8 +43,8 @@ module tex_bank #(
   localparam int BX = (XB > 1) ? XB - 1 : 0;  // word-address bits from x >> 1
   localparam int BY = (YB > 1) ? YB - 1 : 0;
   localparam int DEPTH = 1 << (BX + BY);
-  localparam logic [CB-1:0] OUTSIDE_X = ~CB'((1 << XB) - 1);  // coordinate bits beyond the level
-  localparam logic [CB-1:0] OUTSIDE_Y = ~CB'((1 << YB) - 1);
+  localparam logic [CB-1:0] OUTSIDE_X = ~(CB'((1 << XB) - 1));  // coordinate bits beyond the level (brackets: Yosys 0.23 drops a unary ~ right before a size cast)
+  localparam logic [CB-1:0] OUTSIDE_Y = ~(CB'((1 << YB) - 1));
   localparam logic [1:0]    PAR = 2'(PARITY);
   localparam int            WW = 2 * CB;  // room for the write address arithmetic
 

@@ -15,6 +15,10 @@ module tex_skid #(
   output logic         out_valid,
   input  logic         out_ready,
   output logic [W-1:0] out_data
+`ifdef FORMAL
+  ,
+  output logic [W-1:0] f_skid_data  // the skid entry, for tex_unit's formal invariants
+`endif
 );
   logic         skid_valid;
   logic [W-1:0] skid_data;
@@ -38,4 +42,55 @@ module tex_skid #(
     if (out_ready || !out_valid) out_data <= skid_valid ? skid_data : in_data;
     else if (in_valid && !skid_valid) skid_data <= in_data;
   end
+
+`ifdef FORMAL
+  // ---------------------------------------------------------------- formal properties
+  // Proven by scripts/formal.sh (k-induction, Yosys), standalone and inside tex_unit. They hold
+  // from the first reset on, for any inputs, also with a reset in mid-traffic. The tracked item:
+  // the f_pick-th accepted (mod 8; f_pick any constant), its data taken when it is accepted.
+  assign f_skid_data = skid_data;
+
+  logic       f_reset_done = 1'b0;  // a reset has been applied (the valid bits are defined)
+  logic [2:0] f_held;               // items accepted minus emitted since the reset
+  logic [2:0] f_emitted;            // items emitted since the reset, mod 8
+  (* anyconst *) logic [2:0] f_pick;
+  logic [W-1:0] f_pick_data;
+  logic [2:0] f_pos;                // the tracked item's place: 0 output register, 1 skid entry
+  logic       f_stalled_q;          // out_valid && !out_ready in the previous cycle, no reset
+  logic [W-1:0] f_out_data_q;
+  logic       f_in_take, f_out_take;
+
+  assign f_in_take  = in_valid && in_ready;
+  assign f_out_take = out_valid && out_ready;
+  assign f_pos      = f_pick - f_emitted;
+  always_ff @(posedge clk) begin
+    f_stalled_q  <= !rst && out_valid && !out_ready;
+    f_out_data_q <= out_data;
+    // (an item accepted now is number f_emitted + f_held: it is f_pick when f_pos == f_held)
+    if (f_in_take && f_pos == f_held) f_pick_data <= in_data;
+    if (rst) begin
+      f_reset_done <= 1'b1;
+      f_held       <= '0;
+      f_emitted    <= '0;
+    end else begin
+      f_held    <= f_held + 3'(f_in_take) - 3'(f_out_take);
+      f_emitted <= f_emitted + 3'(f_out_take);
+    end
+  end
+
+  always_comb begin
+    if (f_reset_done) begin
+      // capacity: the items held are the valid bits; the skid entry only behind a valid output
+      assert (f_held == 3'(out_valid) + 3'(skid_valid));
+      assert (!skid_valid || out_valid);
+      assert (f_held <= 3'd2);
+      // order: the tracked item leaves as the f_pick-th emitted, with its data (none lost,
+      // duplicated or reordered); while held it sits at place f_pos with its data
+      if (out_valid && f_pos == 3'd0) assert (out_data == f_pick_data);
+      if (skid_valid && f_pos == 3'd1) assert (skid_data == f_pick_data);
+      // hold: a stalled output stays valid with the same data
+      if (f_stalled_q) assert (out_valid && out_data == f_out_data_q);
+    end
+  end
+`endif
 endmodule

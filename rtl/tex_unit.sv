@@ -267,10 +267,16 @@ module tex_unit #(
   );
 
   // ---------------------------------------------------------------- clock 10: skid buffer
+`ifdef FORMAL
+  logic [TGW+4*CWD-1:0] f_skid_data;  // the skid entry {tag, rgba} (formal properties, below)
+`endif
   tex_skid #(.W(TGW + 4*CWD)) u_skid (
     .clk(clk), .rst(rst),
     .in_valid(valid[NSTAGE]), .in_ready(en), .in_data({g_tag[NSTAGE].tag, rgba_s9}),
     .out_valid(rsp_valid), .out_ready(rsp_ready), .out_data({rsp_tag, rsp_rgba})
+`ifdef FORMAL
+    , .f_skid_data(f_skid_data)
+`endif
   );
 
 `ifndef SYNTHESIS
@@ -330,5 +336,76 @@ module tex_unit #(
         else $error("tex_unit: rsp_valid dropped or response changed while rsp_ready was low");
     end
   end
+`endif
+
+`ifdef FORMAL
+  // ---------------------------------------------------------------- formal properties
+  // Proven by scripts/formal.sh (k-induction, Yosys) in a small configuration; the handshake
+  // logic is the same in all. They hold from the first reset on, for any inputs (rsp_ready, the
+  // request, configuration and write pins free in every clock), also with a reset in mid-traffic.
+  // Items in flight, oldest first: the output register (rsp_valid), the skid entry (!en), then
+  // the pipeline registers valid[NSTAGE] down to valid[1]. The tracked request: the f_pick-th
+  // accepted (mod 32; f_pick any constant), its tag taken when it is accepted.
+  localparam int F_CAPACITY = LATENCY + 1;  // LATENCY - 1 pipeline registers + 2 skid entries
+  localparam int FN = 5;                    // counter bits: 2^FN > F_CAPACITY + 1
+
+  function automatic logic [FN-1:0] f_count(input logic [NSTAGE:1] v);  // valid bits set
+    f_count = '0;
+    for (int i = 1; i <= NSTAGE; i++) f_count = f_count + FN'(v[i]);
+  endfunction
+
+  logic          f_reset_done = 1'b0;  // a reset has been applied (the valid bits are defined)
+  logic [FN-1:0] f_held;               // requests accepted minus responses emitted since reset
+  logic [FN-1:0] f_emitted;            // responses emitted since the reset, mod 2^FN
+  (* anyconst *) logic [FN-1:0] f_pick;
+  logic [TGW-1:0] f_pick_tag;
+  logic [FN-1:0] f_pos;                // the tracked request's place in the order above
+  logic          f_stalled_q;          // rsp_valid && !rsp_ready in the previous cycle, no reset
+  logic [TGW-1:0] f_tag_q;
+  logic [4*CW-1:0] f_rgba_q;
+  logic          f_in_take, f_out_take;
+
+  assign f_in_take  = req_valid && req_ready;
+  assign f_out_take = rsp_valid && rsp_ready;
+  assign f_pos      = f_pick - f_emitted;
+  always_ff @(posedge clk) begin
+    f_stalled_q <= !rst && rsp_valid && !rsp_ready;
+    f_tag_q     <= rsp_tag;
+    f_rgba_q    <= rsp_rgba;
+    // (a request accepted now is number f_emitted + f_held: it is f_pick when f_pos == f_held)
+    if (f_in_take && f_pos == f_held) f_pick_tag <= req_tag;
+    if (rst) begin
+      f_reset_done <= 1'b1;
+      f_held       <= '0;
+      f_emitted    <= '0;
+    end else begin
+      f_held    <= f_held + FN'(f_in_take) - FN'(f_out_take);
+      f_emitted <= f_emitted + FN'(f_out_take);
+    end
+  end
+
+  always_comb begin
+    if (f_reset_done) begin
+      // capacity: in flight = the items the unit holds, at most F_CAPACITY
+      assert (f_held == f_count(valid) + FN'(rsp_valid) + FN'(!en));
+      assert (en || rsp_valid);
+      assert (f_held <= FN'(F_CAPACITY));
+      // order: the tracked request is answered as the f_pick-th response, with its tag (none
+      // lost, duplicated or reordered); until then its tag is in the register at place f_pos
+      if (rsp_valid && f_pos == FN'(0)) assert (rsp_tag == f_pick_tag);
+      if (!en && f_pos == FN'(1)) assert (f_skid_data[4*CWD +: TGW] == f_pick_tag);
+      // hold: a stalled response stays valid with the same tag and texel
+      if (f_stalled_q) assert (rsp_valid && rsp_tag == f_tag_q && rsp_rgba == f_rgba_q);
+    end
+  end
+  generate
+    for (n = 1; n <= NSTAGE; n = n + 1) begin : g_f_stage
+      // requests ahead of the one in the clock-n register: output, skid entry, later registers
+      logic [FN-1:0] ahead;
+      assign ahead = FN'(rsp_valid) + FN'(!en) + f_count(valid >> n);
+      always_comb
+        if (f_reset_done && valid[n] && f_pos == ahead) assert (g_tag[n].tag == f_pick_tag);
+    end
+  endgenerate
 `endif
 endmodule

@@ -1,0 +1,41 @@
+// Formal environment of tex_unit (scripts/formal.sh): a reset in the first clock, then every
+// input free in every clock: requests (valid, tag, coordinates, lod), rsp_ready, configuration,
+// texel writes, and further resets. The properties are tex_unit's own, under `ifdef FORMAL in
+// rtl/tex_unit.sv (and tex_skid's, in rtl/tex_skid.sv). Parameters from scripts/formal.sh.
+module tex_unit_formal #(
+  parameter int MAX_LOG2_W = 1,
+  parameter int MAX_LOG2_H = 1,
+  parameter int CW         = 1,
+  parameter int TAG_W      = 2
+) (
+  input  logic                                   clk,
+  input  logic                                   rst,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_h,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_v,
+  input  logic                                   cfg_texel_linear,
+  input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
+  input  logic                                   wr_en,
+  input  logic [tex_pkg::LEVEL_W-1:0]            wr_level,
+  input  logic [tex_pkg::COORD_W-1:0]            wr_x,
+  input  logic [tex_pkg::COORD_W-1:0]            wr_y,
+  input  logic [4*CW-1:0]                        wr_data,
+  input  logic                                   req_valid,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic [TAG_W-1:0]                       req_tag,
+  input  logic                                   rsp_ready
+);
+  logic              req_ready, rsp_valid;
+  logic [4*CW-1:0]   rsp_rgba;
+  logic [TAG_W-1:0]  rsp_tag;
+
+  tex_unit #(.MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W)) dut (.*);
+
+  always_comb if ($initstate) assume (rst);
+endmodule
