@@ -99,14 +99,19 @@ void RequestQueue::refill() {
   ended_ = size_ == 0;
 }
 
-EngineResult Engine::run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) {
+EngineResult run_collected(const std::vector<Request>& requests,
+                           const std::function<EngineStats(RequestSource&, TexelSink&)>& run) {
   VectorSource source(requests);
   VectorSink sink;
   sink.texels.reserve(requests.size());
   EngineResult r;
-  r.stats = run(pyramid, config, source, sink);
+  r.stats = run(source, sink);
   r.texels = std::move(sink.texels);
   return r;
+}
+
+EngineResult Engine::run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) {
+  return run_collected(requests, [&](RequestSource& s, TexelSink& t) { return run(pyramid, config, s, t); });
 }
 
 }  // namespace tex

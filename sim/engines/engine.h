@@ -116,6 +116,10 @@ class VectorSink final : public TexelSink {
   std::vector<Texel> texels;
 };
 
+// Runs `run` over requests in memory and collects the texels (the vector forms of the engines).
+EngineResult run_collected(const std::vector<Request>& requests,
+                           const std::function<EngineStats(RequestSource&, TexelSink&)>& run);
+
 class RequestQueue {
  public:
   explicit RequestQueue(RequestSource& source, size_t chunk = 4096) : source_(source), buffer_(chunk) {}

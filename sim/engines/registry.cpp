@@ -77,13 +77,7 @@ EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, Reque
 }
 
 EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) {
-  VectorSource source(requests);
-  VectorSink sink;
-  sink.texels.reserve(requests.size());
-  EngineResult r;
-  r.stats = run_model(pyramid, config, source, sink);
-  r.texels = std::move(sink.texels);
-  return r;
+  return run_collected(requests, [&](RequestSource& s, TexelSink& t) { return run_model(pyramid, config, s, t); });
 }
 
 }  // namespace tex

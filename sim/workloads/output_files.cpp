@@ -223,10 +223,7 @@ OutputFile& OutputSet::declare(const std::string& path, const std::string& optio
   return *outputs_.back();
 }
 
-bool OutputSet::keep(OutputFile& o) {
-  if (o.direct_ || o.write_path_.empty()) return false;
-  struct stat st {};
-  if (::stat(o.write_path_.c_str(), &st) != 0 || st.st_size == 0) return false;
+bool OutputSet::place(OutputFile& o) {
   ::chmod(o.write_path_.c_str(), o.mode_);
   if (::rename(o.write_path_.c_str(), o.target_.c_str()) != 0) return false;
   unregister(*g_staged, o.write_path_);
@@ -234,16 +231,18 @@ bool OutputSet::keep(OutputFile& o) {
   return true;
 }
 
+bool OutputSet::keep(OutputFile& o) {
+  if (o.direct_ || o.write_path_.empty()) return false;
+  struct stat st {};
+  if (::stat(o.write_path_.c_str(), &st) != 0 || st.st_size == 0) return false;
+  return place(o);
+}
+
 void OutputSet::commit() {
   for (auto& o : outputs_) o->close();
-  for (auto& o : outputs_) {
-    if (o->direct_ || o->write_path_.empty()) continue;
-    ::chmod(o->write_path_.c_str(), o->mode_);
-    if (::rename(o->write_path_.c_str(), o->target_.c_str()) != 0)
+  for (auto& o : outputs_)
+    if (!o->direct_ && !o->write_path_.empty() && !place(*o))
       throw Error(o->path_ + ": cannot move the result into place (" + errno_text() + ")");
-    unregister(*g_staged, o->write_path_);
-    o->write_path_.clear();
-  }
   committed_ = true;
   BlockSignals block;
   for (const std::string& d : created_dirs_) unregister(*g_created_dirs, d);

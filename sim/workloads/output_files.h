@@ -73,6 +73,7 @@ class OutputSet {
     dev_t dev;
     ino_t ino;
   };
+  bool place(OutputFile& output);  // chmod + rename a staged output onto its target
   std::vector<Input> inputs_;
   std::vector<std::unique_ptr<OutputFile>> outputs_;
   std::vector<std::string> created_dirs_;

@@ -199,12 +199,9 @@ EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerCo
 
 EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
                          const std::vector<Request>& requests, const SystemcOptions& options) {
-  VectorSource source(requests);
-  VectorSink sink;
-  EngineResult r;
-  r.stats = run_systemc(backend, pyramid, config, source, sink, options);
-  r.texels = std::move(sink.texels);
-  return r;
+  return run_collected(requests, [&](RequestSource& s, TexelSink& t) {
+    return run_systemc(backend, pyramid, config, s, t, options);
+  });
 }
 
 EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation& simulation,
