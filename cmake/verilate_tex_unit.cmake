@@ -1,13 +1,14 @@
-# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [TRACE_FST]): tex_unit of rtl/
-# verilated into TARGET as class PREFIX, for textures up to 2^LOG2_W x 2^LOG2_H with CW-bit
-# channels (default 8).
+# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [TRACE_FST] [CACHED BW BH LINES FIFO MEM_W]):
+# tex_unit of rtl/ verilated into TARGET as class PREFIX, for textures up to 2^LOG2_W x 2^LOG2_H
+# with CW-bit channels (default 8); with CACHED, tex_unit_cached with those BLOCK_W, BLOCK_H,
+# LINES, FIFO_DEPTH and MEM_W.
 # One set of options for every build: -Wall (make lint keeps it at zero warnings), assertions on,
 # registers without reset start random (the design must not rely on zero initialisation),
 # single-threaded, C++ at -O2 (Verilator's default -Os is about 1.5x slower).
 find_package(verilator 5 REQUIRED HINTS /usr/share/verilator $ENV{VERILATOR_ROOT})
 
 function(verilate_tex_unit target prefix log2_w log2_h)
-  cmake_parse_arguments(ARG "TRACE_FST" "CW" "" ${ARGN})
+  cmake_parse_arguments(ARG "TRACE_FST" "CW" "CACHED" ${ARGN})
   if(NOT ARG_CW)
     set(ARG_CW 8)
   endif()
@@ -27,11 +28,23 @@ function(verilate_tex_unit target prefix log2_w log2_h)
   if(ARG_TRACE_FST)
     list(APPEND mode TRACE_FST)
   endif()
+  set(top tex_unit)
+  set(cache_params "")
+  if(ARG_CACHED)
+    set(top tex_unit_cached)
+    list(GET ARG_CACHED 0 bw)
+    list(GET ARG_CACHED 1 bh)
+    list(GET ARG_CACHED 2 lines)
+    list(GET ARG_CACHED 3 fifo)
+    list(GET ARG_CACHED 4 mem_w)
+    set(cache_params -GBLOCK_W=${bw} -GBLOCK_H=${bh} -GLINES=${lines} -GFIFO_DEPTH=${fifo} -GMEM_W=${mem_w})
+  endif()
   verilate(${target} ${mode}
     PREFIX ${prefix}
-    TOP_MODULE tex_unit
+    TOP_MODULE ${top}
     SOURCES ${waivers} ${sources}
     VERILATOR_ARGS -Wall --assert -GMAX_LOG2_W=${log2_w} -GMAX_LOG2_H=${log2_h} -GCW=${ARG_CW} -GTAG_W=16
+                   ${cache_params}
                    --x-assign unique --x-initial unique
     OPT_FAST -O2
     OPT_GLOBAL -O2

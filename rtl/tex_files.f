@@ -5,8 +5,13 @@ rtl/tex_lod.sv
 rtl/tex_scale.sv
 rtl/tex_address.sv
 rtl/tex_wrap.sv
+rtl/tex_front.sv
 rtl/tex_bank.sv
 rtl/tex_level_mem.sv
 rtl/tex_fetch.sv
 rtl/tex_filter.sv
 rtl/tex_unit.sv
+rtl/tex_cache_tags.sv
+rtl/tex_cache_data.sv
+rtl/tex_cached_fetch.sv
+rtl/tex_unit_cached.sv

@@ -18,6 +18,11 @@ package tex_pkg;
   localparam int INDEX_W       = 21;  // signed unwrapped texel index (|u| < 128 at 2048 texels)
   localparam int SCALED_W      = 28;  // u >>> (15 - log2_w0): 32 - minimum shift of 4
 
+  // ---- cached memory (docs/memory.md)
+  localparam int MEM_ADDR_W    = 32;  // byte address of a line in external memory
+  localparam int LOG2_SETS_W   = 5;   // cfg_log2_sets: sets per cache, 4 .. 2^(2^5 - 1)
+  localparam int LOG2_WAYS_W   = 2;   // cfg_log2_ways: 0, 1, 2 = 1, 2, 4 ways
+
   // ---- cfg_wrap_u / cfg_wrap_v
   localparam int WRAP_W = 2;
   localparam logic [WRAP_W-1:0] WRAP_REPEAT = 2'd0;

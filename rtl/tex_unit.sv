@@ -160,88 +160,24 @@ module tex_unit #(
     end
   end
 
-  // ---------------------------------------------------------------- clock 1: capture
-  logic signed [tex_pkg::REQ_COORD_W-1:0] u_s1, v_s1;
-  logic signed [tex_pkg::LOD_W-1:0]       lod_s1;
-  always_ff @(posedge clk) begin
-    if (en) begin
-      u_s1   <= req_u;
-      v_s1   <= req_v;
-      lod_s1 <= req_lod;
-    end
-  end
-
-  // ---------------------------------------------------------------- clocks 2-3: lod, scale
-  logic [VW-1:0] last_level;
-  assign last_level = (cfg_log2_w_q > cfg_log2_h_q) ? cfg_log2_w_q : cfg_log2_h_q;
-
-  logic [2*VW-1:0] level_s3;       // slot s at [s*VW +: VW]: slot 0 = d, slot 1 = d1
-  logic [WB-1:0]   f_s3;
-  tex_lod u_lod (
-    .clk(clk), .en(en), .lod(lod_s1), .bias(cfg_lod_bias_q), .min_lod(cfg_min_lod_q),
-    .max_lod(cfg_max_lod_q), .mip_mode(cfg_mip_mode_q), .last_level(last_level),
-    .level(level_s3), .f(f_s3)
-  );
-
-  // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the scaled
-  // coordinate, held one clock while tex_lod selects the levels.
-  localparam int SW = tex_pkg::SCALED_W;
-  logic [2*SW-1:0] scaled_s2, scaled_s3;
-  logic [2*VW-1:0] log2_size0_q;   // {cfg_log2_h_q, cfg_log2_w_q}
-  assign log2_size0_q = {cfg_log2_h_q, cfg_log2_w_q};
-  genvar a, s;
-  generate
-    for (a = 0; a < 2; a = a + 1) begin : g_axis
-      tex_scale u_scale (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
-                         .log2_size0(log2_size0_q[a*VW +: VW]), .scaled(scaled_s2[a*SW +: SW]));
-    end
-  endgenerate
-  always_ff @(posedge clk) if (en) scaled_s3 <= scaled_s2;
-
-  // ---------------------------------------------------------------- clocks 4-5: per slot
-  // Slot s = level d (s = 0) or d1 (s = 1): the texel coordinates of both axes at that level
-  // (clock 4), then their wrap (clock 5, combinational, into tex_fetch).
-  logic [2*VW-1:0] level_s4;
+  // ---------------------------------------------------------------- clocks 1-4: tex_front
+  // lod, scale, address (clock-4 registers) and wrap (combinational, into tex_fetch).
+  logic [2*VW-1:0] level_s4;           // slot s at [s*VW +: VW]: slot 0 = d, slot 1 = d1
   logic [WB-1:0]   f_s4, f_s5, f_s6;
   logic [4*WB-1:0] w_s4, w_s5, w_s6;   // slot s axis a weight at [(s*2 + a)*WB +: WB]
+  logic [4*VW-1:0] log2_size_s4;       // (the level memories have fixed sizes: unused)
   logic [4*XW-1:0] x;                  // wrapped x taps: slot s tap j at [(s*2 + j)*XW +: XW]
   logic [4*YW-1:0] y;
-  always_ff @(posedge clk) begin
-    if (en) begin
-      level_s4 <= level_s3;
-      f_s4     <= f_s3;
-    end
-  end
-  generate
-    for (s = 0; s < 2; s = s + 1) begin : g_slot
-      for (a = 0; a < 2; a = a + 1) begin : g_axis
-        localparam int OW = (a == 0) ? XW : YW;
-        logic signed [tex_pkg::INDEX_W-1:0] i0_s4;
-        logic [VW-1:0]                      log2_size_s4;  // runtime size of the slot's level
-        logic [OW-1:0]                      t0, t1;        // wrapped taps i0, i0 + 1
-        tex_address u_address (
-          .clk(clk), .en(en), .scaled(scaled_s3[a*SW +: SW]), .level(level_s3[s*VW +: VW]),
-          .linear(cfg_texel_linear_q), .i0(i0_s4), .w(w_s4[(s*2 + a)*WB +: WB])
-        );
-        // max(log2_size0 - level, 0): a side that reaches 1 texel stays 1. (The borrow masks the
-        // difference: no data-dependent branch in Verilator's C++.)
-        logic [VW:0] size_diff;
-        assign size_diff = {1'b0, log2_size0_q[a*VW +: VW]} - {1'b0, level_s3[s*VW +: VW]};
-        always_ff @(posedge clk) if (en) log2_size_s4 <= size_diff[VW-1:0] & ~{VW{size_diff[VW]}};
-        tex_wrap #(.OUT_W(OW)) u_wrap0 (.i(i0_s4), .log2_n(log2_size_s4),
-                                        .mode((a == 0) ? cfg_wrap_u_q : cfg_wrap_v_q), .o(t0));
-        tex_wrap #(.OUT_W(OW)) u_wrap1 (.i(i0_s4 + tex_pkg::INDEX_W'(1)), .log2_n(log2_size_s4),
-                                        .mode((a == 0) ? cfg_wrap_u_q : cfg_wrap_v_q), .o(t1));
-        if (a == 0) begin : g_x
-          assign x[(s*2 + 0)*XW +: XW] = t0;
-          assign x[(s*2 + 1)*XW +: XW] = t1;
-        end else begin : g_y
-          assign y[(s*2 + 0)*YW +: YW] = t0;
-          assign y[(s*2 + 1)*YW +: YW] = t1;
-        end
-      end
-    end
-  endgenerate
+  tex_front #(.XW(XW), .YW(YW)) u_front (
+    .clk(clk), .en(en), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
+    .cfg_log2_w(cfg_log2_w_q), .cfg_log2_h(cfg_log2_h_q), .cfg_wrap_u(cfg_wrap_u_q),
+    .cfg_wrap_v(cfg_wrap_v_q), .cfg_texel_linear(cfg_texel_linear_q),
+    .cfg_mip_mode(cfg_mip_mode_q), .cfg_lod_bias(cfg_lod_bias_q), .cfg_min_lod(cfg_min_lod_q),
+    .cfg_max_lod(cfg_max_lod_q),
+    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
+  );
+  logic [4*VW-1:0] log2_size_unused;
+  assign log2_size_unused = log2_size_s4;
 
   always_ff @(posedge clk) begin
     if (en) begin

@@ -5,6 +5,7 @@
 #include <deque>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <unistd.h>
 
 #include "engines/engine.h"
@@ -47,6 +48,11 @@ struct SamplingOptions {
   std::string trace_path;
   std::string trace_window;
   bool verify = false;
+  // Memory hierarchy (docs/memory.md).
+  std::string memory = "onchip";
+  std::string cache_kib = "8", ways = "2", block = "4x4", block_order = "row-major";
+  std::string mem_latency = "100", mem_jitter = "0", mem_bytes_per_clock = "16", mem_outstanding = "64";
+  std::string miss_trace;
   CLI::Option *wrap_u_opt = nullptr, *wrap_v_opt = nullptr, *texture_opt = nullptr;
 
   void add_to(CLI::App& cmd) {
@@ -79,6 +85,27 @@ struct SamplingOptions {
                    "write an FST waveform (engines rtl, systemc); kept when the simulation fails");
     cmd.add_option("--trace-window", trace_window, "clocks FIRST:LAST to trace (default: all)");
     cmd.add_flag("--verify", verify, "also run the golden model and fail unless every sample is bit-identical");
+    cmd.add_option("--memory", memory,
+                   "onchip | cached: per-level memories, or the pyramid in external memory behind two caches "
+                   "(engines model, rtl; docs/memory.md)")
+        ->capture_default_str();
+    cmd.add_option("--cache-kib", cache_kib, "cached: size of each cache (even levels, odd levels) in KiB")
+        ->capture_default_str();
+    cmd.add_option("--ways", ways, "cached: associativity, 1 | 2 | 4")->capture_default_str();
+    cmd.add_option("--block", block, "cached: texels per block (= cache line) WxH, each 2 | 4 | 8")
+        ->capture_default_str();
+    cmd.add_option("--block-order", block_order, "cached: row-major | morton order of a level's blocks")
+        ->capture_default_str();
+    cmd.add_option("--mem-latency", mem_latency, "cached, rtl: clocks from a memory read to its first beat")
+        ->capture_default_str();
+    cmd.add_option("--mem-jitter", mem_jitter, "cached, rtl: + a random 0..N clocks per read (order kept)")
+        ->capture_default_str();
+    cmd.add_option("--mem-bytes-per-clock", mem_bytes_per_clock, "cached, rtl: memory bandwidth")
+        ->capture_default_str();
+    cmd.add_option("--mem-outstanding", mem_outstanding, "cached, rtl: reads in flight at most")
+        ->capture_default_str();
+    cmd.add_option("--miss-trace", miss_trace,
+                   "cached: write the line addresses read from memory, in order, one 0x%08x per line");
   }
 
   SamplerConfig config() const {
@@ -120,6 +147,39 @@ struct SamplingOptions {
       o.trace_end = parse_unsigned(trace_window.substr(colon + 1), "--trace-window LAST");
       if (o.trace_end < o.trace_begin) throw Error("--trace-window " + quote_clipped(trace_window) + ": LAST < FIRST");
     }
+    if (!parse_memory(memory, o.memory)) throw Error("unknown --memory " + quote_clipped(memory) + " (onchip, cached)");
+    if (o.memory == Memory::Cached) {
+      const uint64_t kib = parse_unsigned(cache_kib, "--cache-kib");
+      if (kib == 0 || kib > 1024) throw Error("--cache-kib " + cache_kib + " is outside 1..1024");
+      o.cache.size_bytes = int(kib * 1024);
+      const uint64_t w = parse_unsigned(ways, "--ways");
+      if (w != 1 && w != 2 && w != 4) throw Error("--ways " + quote_clipped(ways) + " is not 1, 2 or 4");
+      o.cache.ways = int(w);
+      const auto x = block.find('x');
+      const uint64_t bw = x == std::string::npos ? 0 : parse_unsigned(block.substr(0, x), "--block W");
+      const uint64_t bh = x == std::string::npos ? 0 : parse_unsigned(block.substr(x + 1), "--block H");
+      if ((bw != 2 && bw != 4 && bw != 8) || (bh != 2 && bh != 4 && bh != 8))
+        throw Error("--block " + quote_clipped(block) + " is not WxH with W and H each 2, 4 or 8");
+      o.layout.block_w = int(bw);
+      o.layout.block_h = int(bh);
+      if (!parse_block_order(block_order, o.layout.order))
+        throw Error("unknown --block-order " + quote_clipped(block_order) + " (row-major, morton)");
+      auto bounded = [](const std::string& text, const char* option, uint64_t lo, uint64_t hi) {
+        const uint64_t v = parse_unsigned(text, option);
+        if (v < lo || v > hi)
+          throw Error(std::string(option) + " " + text + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
+        return uint32_t(v);
+      };
+      o.mem_latency = bounded(mem_latency, "--mem-latency", 1, 100000);
+      o.mem_jitter = bounded(mem_jitter, "--mem-jitter", 0, 100000);
+      o.mem_bytes_per_clock = bounded(mem_bytes_per_clock, "--mem-bytes-per-clock", 1, 1024);
+      o.mem_outstanding = bounded(mem_outstanding, "--mem-outstanding", 1, 4096);
+      // The geometry must be one the caches can have (the texture's channel width sets the line
+      // size; 8-bit lines are checked here, the engine checks again with the real texture).
+      TextureCache(MemoryLayout(0, 0, 8, o.layout), o.cache, SamplerConfig{}, 0, 0);
+    } else if (!miss_trace.empty()) {
+      throw Error("--miss-trace needs --memory cached (the on-chip memories never miss)");
+    }
     make_engine(engine, o);  // unknown engine, --trace with an engine that cannot trace
     return o;
   }
@@ -133,6 +193,23 @@ struct SamplingOptions {
   OutputFile* trace_output(OutputSet& outputs) const {
     return trace_path.empty() ? nullptr : &outputs.declare(trace_path, "--trace", OutputSet::Kind::File);
   }
+  OutputFile* miss_trace_output(OutputSet& outputs) const {
+    return miss_trace.empty() ? nullptr : &outputs.declare(miss_trace, "--miss-trace");
+  }
+};
+
+// --miss-trace: one line address per line, 0x%08x.
+class MissTraceWriter final : public MissSink {
+ public:
+  explicit MissTraceWriter(OutputFile& out) : out_(out), file_(out.open()) {}
+  void write(const uint32_t* a, size_t n) override {
+    for (size_t i = 0; i < n; ++i) std::fprintf(file_, "0x%08x\n", a[i]);
+  }
+  void close() { out_.close(); }
+
+ private:
+  OutputFile& out_;
+  std::FILE* file_;
 };
 
 // --verify: the golden model samples every request as the engine takes it, and every texel the
@@ -214,6 +291,19 @@ void print_cycle_stats(const EngineStats& stats, const EngineOptions& options) {
               load_method_name(options.load).c_str(), (unsigned long long)c.load_cycles);
 }
 
+// Cached mode: hits, bytes and (cycle engines) the FIFO and memory stalls, one line.
+void print_cache_stats(const EngineStats& stats) {
+  if (!stats.cache) return;
+  const CacheCounters& k = *stats.cache;
+  std::printf("  caches: %llu lookups, %.2f%% hits, %llu lines read = %.2f bytes/sample",
+              (unsigned long long)k.lookups, k.lookups ? 100.0 * double(k.hits) / double(k.lookups) : 0.0,
+              (unsigned long long)k.misses, stats.samples ? double(k.memory_read_bytes) / double(stats.samples) : 0.0);
+  if (stats.cycle)
+    std::printf(", FIFO up to %u samples, %llu clocks waiting for memory", k.fifo_max_occupancy,
+                (unsigned long long)k.memory_stall_cycles);
+  std::printf("\n");
+}
+
 void write_stats(OutputFile* out, const EngineStats& stats, const EngineOptions& options, double seconds) {
   if (!out) return;
   nlohmann::json j = stats.to_json(options);
@@ -233,6 +323,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   OutputFile& result = outputs.declare(out_path, "--out");
   OutputFile* stats_out = o.stats_output(outputs);
   OutputFile* trace = o.trace_output(outputs);
+  OutputFile* miss_out = o.miss_trace_output(outputs);
   const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
   QueryReader reader(queries_path);
   if (reader.rewindable()) {  // a file: check every query now; a pipe is checked as it streams
@@ -244,9 +335,13 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   }
   if (trace) eo.trace_path = trace->write_path();
 
+  std::optional<MissTraceWriter> misses;
+  if (miss_out) eo.miss_sink = &misses.emplace(*miss_out);
+
   QuerySource source(reader, pyr.log2_w0(), pyr.log2_h0());
   CsvTexelWriter writer(result.open());
   const EngineStats stats = run_engine(o, eo, outputs, trace, pyr, cfg, source, writer);
+  if (misses) misses->close();
   if (source.count() == 0)
     std::fprintf(stderr, "texsim: %s has no queries (only a header): the result has only its header\n",
                  reader.name().c_str());
@@ -255,7 +350,10 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   outputs.commit();
   // The summary goes to stderr when the result itself is on standard output.
   std::FILE* report = result.path() == "-" || result.path() == "/dev/stdout" ? stderr : stdout;
-  if (report == stdout) print_cycle_stats(stats, eo);
+  if (report == stdout) {
+    print_cycle_stats(stats, eo);
+    print_cache_stats(stats);
+  }
   std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
                source.count(), filter_name(cfg.filter).c_str(), wrap_name(cfg.wrap_u).c_str(),
                wrap_name(cfg.wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
@@ -319,6 +417,8 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
   OutputFile* stats_out = o.stats_output(outputs);
   OutputFile* trace = o.trace_output(outputs);
   if (trace) eo.trace_path = trace->write_path();
+  std::optional<MissTraceWriter> misses;  // every frame's, in order
+  if (OutputFile* miss_out = o.miss_trace_output(outputs)) eo.miss_sink = &misses.emplace(*miss_out);
 
   size_t samples = 0;
   EngineStats last_stats;
@@ -334,10 +434,12 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     save_image(compose(frame, texels.texels, pyr.levels[0].channel_bits), *images[size_t(f - first)]);
     samples += requests.size();
   }
+  if (misses) misses->close();
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_stats(stats_out, last_stats, eo, secs);  // counters of the last frame, time of them all
   outputs.commit();
   print_cycle_stats(last_stats, eo);
+  print_cache_stats(last_stats);
   std::printf("texsim render: scene %s, %dx%d, frame%s %d..%d of %d, %zu samples, %s, engine %s -> %s (%.2f s)\n",
               scene.c_str(), so.width, so.height, all_frames ? "s" : "", first, last, so.frames, samples,
               filter_name(cfg.filter).c_str(), o.engine.c_str(), out.c_str(), secs);

@@ -23,6 +23,13 @@ const std::vector<std::string>& load_names() {
 
 }  // namespace
 
+const std::vector<std::string>& memory_names() {
+  static const std::vector<std::string> n = {"onchip", "cached"};
+  return n;
+}
+bool parse_memory(const std::string& name, Memory& out) { return parse_named(memory_names(), name, out); }
+std::string memory_name(Memory m) { return memory_names()[size_t(m)]; }
+
 const std::vector<std::string>& stalls_names() {
   static const std::vector<std::string> n = {"none", "random", "heavy"};
   return n;
@@ -38,6 +45,27 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
                       {"load_seconds", load_seconds},
                       {"sample_seconds", sample_seconds},
                       {"samples_per_second", sample_seconds > 0 ? double(samples) / sample_seconds : 0.0}};
+  j["memory"] = memory_name(options.memory);
+  if (cache) {
+    j["cache_kib"] = options.cache.size_bytes / 1024.0;
+    j["ways"] = options.cache.ways;
+    j["block"] = std::to_string(options.layout.block_w) + "x" + std::to_string(options.layout.block_h);
+    j["block_order"] = block_order_name(options.layout.order);
+    j["cache_lookups"] = cache->lookups;
+    j["cache_hits"] = cache->hits;
+    j["cache_misses"] = cache->misses;
+    j["hit_rate"] = cache->lookups ? double(cache->hits) / double(cache->lookups) : 0.0;
+    j["memory_read_bytes"] = cache->memory_read_bytes;
+    j["bytes_per_sample"] = samples ? double(cache->memory_read_bytes) / double(samples) : 0.0;
+    if (cycle) {
+      j["mem_latency"] = options.mem_latency;
+      j["mem_jitter"] = options.mem_jitter;
+      j["mem_bytes_per_clock"] = options.mem_bytes_per_clock;
+      j["mem_outstanding"] = options.mem_outstanding;
+      j["fifo_max_occupancy"] = cache->fifo_max_occupancy;
+      j["memory_stall_cycles"] = cache->memory_stall_cycles;
+    }
+  }
   if (cycle) {
     j["configuration"] = cycle->configuration;
     j["stalls"] = stalls_name(options.stalls);
@@ -78,6 +106,16 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
     c.backpressure_cycles = j.at("backpressure_cycles").get<uint64_t>();
     c.load_cycles = j.at("load_cycles").get<uint64_t>();
     s.cycle = c;
+    if (j.contains("cache_lookups")) {
+      CacheCounters k;
+      k.lookups = j.at("cache_lookups").get<uint64_t>();
+      k.hits = j.at("cache_hits").get<uint64_t>();
+      k.misses = j.at("cache_misses").get<uint64_t>();
+      k.memory_read_bytes = j.at("memory_read_bytes").get<uint64_t>();
+      k.fifo_max_occupancy = j.at("fifo_max_occupancy").get<uint32_t>();
+      k.memory_stall_cycles = j.at("memory_stall_cycles").get<uint64_t>();
+      s.cache = k;
+    }
   } else {
     s.texel_reads = j.at("texel_reads").get<uint64_t>();
     s.multiplies_per_channel = j.at("multiplies_per_channel").get<uint64_t>();

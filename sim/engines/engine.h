@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "model/error.h"
+#include "model/memory_layout.h"
 #include "model/pyramid.h"
 #include "model/sampler.h"
+#include "model/texture_cache.h"
 
 namespace tex {
 
@@ -30,6 +32,19 @@ enum class LoadMethod { Backdoor, Port };
 bool parse_load_method(const std::string& name, LoadMethod& out);
 std::string load_method_name(LoadMethod m);
 
+// Memory organisation (docs/memory.md): `onchip` per-level memories, or `cached`: the pyramid in
+// external memory behind two texture caches.
+enum class Memory { OnChip, Cached };
+bool parse_memory(const std::string& name, Memory& out);
+std::string memory_name(Memory m);
+
+// Receives the line addresses a cached engine reads from memory, in order (--miss-trace).
+class MissSink {
+ public:
+  virtual ~MissSink() = default;
+  virtual void write(const uint32_t* addresses, size_t n) = 0;
+};
+
 struct EngineOptions {
   Stalls stalls = Stalls::None;
   uint64_t seed = 1;  // random stalls; the RTL's registers without reset start from it too
@@ -37,6 +52,20 @@ struct EngineOptions {
   bool show_progress = false;  // progress line on stderr (a terminal)
   std::string trace_path;      // FST waveform, empty = none (engines with can_trace)
   uint64_t trace_begin = 0, trace_end = 0;  // clock window of the trace; end 0 = to the end
+  // Memory hierarchy: organisation, layout in memory, caches, and the external memory's timing.
+  Memory memory = Memory::OnChip;
+  LayoutParams layout;
+  CacheParams cache;
+  uint32_t mem_latency = 100, mem_jitter = 0, mem_bytes_per_clock = 16, mem_outstanding = 64;
+  MissSink* miss_sink = nullptr;  // cached: the line addresses read from memory, in order
+};
+
+// Cached mode: what the caches and the memory did (every engine; timing ones from cycle engines).
+struct CacheCounters {
+  uint64_t lookups = 0, hits = 0, misses = 0;
+  uint64_t memory_read_bytes = 0;
+  uint32_t fifo_max_occupancy = 0;  // cycle-accurate engines only
+  uint64_t memory_stall_cycles = 0; // the FIFO's head waits for memory, the output ready (cycle engines)
 };
 
 // Counters of a cycle-accurate engine (the sampling phase; clocks are rising edges).
@@ -60,6 +89,7 @@ struct EngineStats {
   // Golden model only: texel words read, lerps that multiply.
   uint64_t texel_reads = 0, multiplies_per_channel = 0;
   std::vector<std::array<uint64_t, 4>> bank_reads;  // [level][bank]
+  std::optional<CacheCounters> cache;               // cached mode only
 
   // Throughput: samples per clock once the pipeline has filled, samples / (cycles - latency), so
   // that a short run of a unit that takes one sample per clock reports 1.0 (cycles has the total).
@@ -182,8 +212,10 @@ std::string engine_list();
 // Throws tex::Error for an unknown engine or options it cannot honour (e.g. --trace on the model).
 std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions& options);
 
-// The golden model, with its read and multiply counters.
-EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink);
+// The golden model, with its read and multiply counters; in cached mode (options.memory) also its
+// caches' hits and misses, and the miss stream into options.miss_sink.
+EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
+                      const EngineOptions& options = {});
 EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
 
 }  // namespace tex

@@ -12,10 +12,14 @@ namespace {
 
 class ModelEngine final : public Engine {
  public:
+  explicit ModelEngine(const EngineOptions& options) : options_(options) {}
   EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
                   TexelSink& sink) override {
-    return run_model(pyramid, config, source, sink);
+    return run_model(pyramid, config, source, sink, options_);
   }
+
+ private:
+  EngineOptions options_;
 };
 
 }  // namespace
@@ -23,7 +27,7 @@ class ModelEngine final : public Engine {
 const std::vector<EngineInfo>& engines() {
   static const std::vector<EngineInfo> list = {
       {"model", "the golden model (bit-exact executable specification)", false, false,
-       [](const EngineOptions&) -> std::unique_ptr<Engine> { return std::make_unique<ModelEngine>(); }},
+       [](const EngineOptions& o) -> std::unique_ptr<Engine> { return std::make_unique<ModelEngine>(o); }},
       {"rtl", "the Verilated RTL, cycle-accurate, smallest configuration that holds the texture", true, true,
        rtl::make_rtl_engine},
       {"systemc", "the Verilated RTL behind a TLM-2.0 socket (approximately timed, pipelined)", true, true,
@@ -50,18 +54,31 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions
   const EngineInfo& info = engine_info(name);
   if (!options.trace_path.empty() && !info.can_trace)
     throw Error("--trace: engine " + name + " cannot write waveforms (use --engine rtl)");
+  if (options.memory == Memory::Cached && name != "model" && name != "rtl")
+    throw Error("--memory cached: engine " + name + " has no memory socket yet (use --engine model or rtl)");
   return info.make(options);
 }
 
-EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink) {
+EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
+                      const EngineOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   Sampler sampler(pyramid, config);
+  std::optional<TextureCache> cache;
+  if (options.memory == Memory::Cached)
+    cache.emplace(MemoryLayout(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits, options.layout),
+                  options.cache, config, pyramid.log2_w0(), pyramid.log2_h0());
   const auto t1 = std::chrono::steady_clock::now();
   std::vector<Request> requests(4096);
   std::vector<Texel> texels(requests.size());
+  std::vector<uint32_t> misses;
   while (const size_t n = source.read(requests.data(), requests.size())) {
     for (size_t i = 0; i < n; ++i) texels[i] = sampler.sample(requests[i]);
     sink.write(texels.data(), n);
+    if (cache) {
+      misses.clear();
+      for (size_t i = 0; i < n; ++i) cache->lookup(requests[i], options.miss_sink ? &misses : nullptr);
+      if (options.miss_sink && !misses.empty()) options.miss_sink->write(misses.data(), misses.size());
+    }
   }
   const auto t2 = std::chrono::steady_clock::now();
   const SamplerStats s = sampler.stats();
@@ -73,6 +90,14 @@ EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, Reque
   stats.texel_reads = s.memory.reads;
   stats.multiplies_per_channel = s.multiplies_per_channel;
   stats.bank_reads = s.memory.bank_reads;
+  if (cache) {
+    CacheCounters k;
+    k.lookups = cache->stats().total_lookups();
+    k.hits = cache->stats().total_hits();
+    k.misses = cache->stats().total_misses();
+    k.memory_read_bytes = cache->memory_read_bytes();
+    stats.cache = k;
+  }
   return stats;
 }
 

@@ -193,6 +193,7 @@ class FakeUnit : public rtl::Driver {
     return out;
   }
   void apply_cfg(const rtl::CfgPins&) override {}
+  void apply_cache_pins(const rtl::CachePins&) override {}
   void backdoor_write(int, int, uint32_t, uint64_t) override {}
   void close_trace_impl() override {}
 

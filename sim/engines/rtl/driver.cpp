@@ -22,17 +22,29 @@ std::string size_text(int log2_w, int log2_h) { return std::to_string(1 << log2_
 
 std::string RtlConfig::max_texture() const { return size_text(max_log2_w, max_log2_h); }
 
-const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw) {
+const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memory, int block_w, int block_h) {
   const RtlConfig* best = nullptr;
   const RtlConfig* largest = nullptr;
+  const bool cached = memory == Memory::Cached;
   for (const RtlConfig& c : compiled_configs()) {
-    if (c.cw != cw) continue;
+    if (c.cw != cw || c.cached != cached) continue;
+    if (cached && (c.block_w != block_w || c.block_h != block_h)) continue;
     const int area = c.max_log2_w + c.max_log2_h;
     if (c.fits(log2_w, log2_h) && (!best || area < best->max_log2_w + best->max_log2_h)) best = &c;
     if (!largest || area > largest->max_log2_w + largest->max_log2_h) largest = &c;
   }
   if (best) return *best;
-  if (!largest) throw Error("no RTL configuration is built for " + std::to_string(cw) + "-bit channels");
+  if (!largest) {
+    std::string built;
+    for (const RtlConfig& c : compiled_configs())
+      if (c.cached == cached && c.cw == cw)
+        built += (built.empty() ? "" : ", ") + std::to_string(c.block_w) + "x" + std::to_string(c.block_h);
+    if (cached && !built.empty())
+      throw Error("no cached RTL configuration is built for " + std::to_string(block_w) + "x" +
+                  std::to_string(block_h) + " blocks of " + std::to_string(cw) + "-bit texels (built: " + built + ")");
+    throw Error("no " + memory_name(memory) + " RTL configuration is built for " + std::to_string(cw) +
+                "-bit channels");
+  }
   throw Error("texture " + size_text(log2_w, log2_h) + " does not fit the RTL: the largest compiled tex_unit takes " +
               largest->max_texture() + " (use --engine model for larger textures)");
 }
@@ -51,6 +63,29 @@ void check_request(const Request& request, size_t index) {
   if (request.lod < kLodMin || request.lod > kLodMax)
     throw Error("request " + std::to_string(index) + ": lod " + std::to_string(request.lod) +
                 "/256 is outside the 16-bit Q8.8 port of the RTL");
+}
+
+CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const CacheParams& cache) {
+  if (layout.block_w != config.block_w || layout.block_h != config.block_h)
+    throw Error(config.name + " is built for " + std::to_string(config.block_w) + "x" + std::to_string(config.block_h) +
+                " blocks, not " + std::to_string(layout.block_w) + "x" + std::to_string(layout.block_h));
+  const int line = config.line_bytes();
+  const int lines = cache.size_bytes / line;
+  const int sets = lines / std::max(cache.ways, 1);
+  if (lines > config.lines)
+    throw Error("a cache of " + std::to_string(cache.size_bytes / 1024.0).substr(0, 5) + " KiB (" +
+                std::to_string(lines) + " lines of " + std::to_string(line) + " bytes) does not fit " + config.name +
+                ": at most " + std::to_string(config.lines) + " lines (" +
+                std::to_string(config.lines * line / 1024) + " KiB) per cache");
+  CachePins p;
+  p.mem_base = layout.base;
+  p.block_morton = layout.order == BlockOrder::Morton;
+  while ((1 << p.log2_sets) < sets) ++p.log2_sets;
+  while ((1 << p.log2_ways) < cache.ways) ++p.log2_ways;
+  if ((1 << p.log2_sets) != sets || (1 << p.log2_ways) != cache.ways || sets < 4)
+    throw Error("cache geometry " + std::to_string(lines) + " lines / " + std::to_string(cache.ways) +
+                " ways: the sets must be a power of two, at least 4");
+  return p;
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
@@ -95,11 +130,29 @@ void Driver::close_trace() {
   tracing_ = false;
 }
 
-PinsOut Driver::tick_traced(const PinsIn& in) {
+PinsOut Driver::tick_full(const PinsIn& in) {
   // Past the window: close now, so the file is complete even if the run is killed later.
-  if (options_.trace_end != 0 && cycle_ > options_.trace_end) close_trace();
-  const PinsOut out = tick_pins(in, tracing_ && cycle_ >= options_.trace_begin);
+  if (tracing_ && options_.trace_end != 0 && cycle_ > options_.trace_end) close_trace();
+  if (!memory_) {
+    const PinsOut out = tick_pins(in, tracing_ && cycle_ >= options_.trace_begin);
+    if (out.finished) fail_finished();
+    ++cycle_;
+    return out;
+  }
+  PinsIn pins = in;
+  pins.mem_req_ready = memory_->request_ready();
+  pins.mem_rsp_valid = memory_->response_valid();
+  pins.mem_rsp_data = memory_->response_beat();
+  const PinsOut out = tick_pins(pins, tracing_ && cycle_ >= options_.trace_begin);
   if (out.finished) fail_finished();
+  // (In reset the unit ignores its memory port, and the memory model is emptied by reset().)
+  if (!pins.rst) {
+    const bool request = out.mem_req_valid && pins.mem_req_ready;
+    memory_->clock(request, out.mem_req_addr, pins.mem_rsp_valid && out.mem_rsp_ready);
+    memory_counters_.lines_read += request;
+    memory_counters_.fifo_max = std::max(memory_counters_.fifo_max, out.fifo_count);
+    memory_counters_.head_wait_cycles += out.head_waits;
+  }
   ++cycle_;
   return out;
 }
@@ -116,15 +169,21 @@ void Driver::reset(int clocks) {
   in.rsp_ready = false;
   for (int i = 0; i < clocks; ++i) tick(in);
   tick(PinsIn{});
+  if (memory_) memory_->reset();
   issued_ = answered_ = 0;
   idle_ready_clocks_ = stall_run_ = 0;
   filled_ = false;
 }
 
-void Driver::configure(const CfgPins& cfg) { apply_cfg(cfg); }
+void Driver::configure(const CfgPins& cfg) {
+  cfg_ = cfg;
+  apply_cfg(cfg);
+  if (config_.cached) reset();  // the caches start empty under the new configuration
+}
 
 void Driver::reset_counters() {
   counters_ = {};
+  memory_counters_ = {};
   filled_ = false;  // a new stream fills the pipeline again
   stall_run_ = 0;
 }
@@ -132,6 +191,20 @@ void Driver::reset_counters() {
 void Driver::load(const Pyramid& pyramid, LoadMethod method) {
   check_inputs(config_, pyramid, {});
   const int cw = config_.cw;
+  if (config_.cached) {
+    // The pyramid's memory image goes straight into the memory model (0 clocks); the caches
+    // start empty (cache pins, then a reset).
+    if (method == LoadMethod::Port)
+      throw Error(config_.name + " has no texture write port: a cached unit reads its texture from memory "
+                  "(use --load backdoor)");
+    const CachePins pins = cache_pins(config_, options_.layout, options_.cache);
+    const MemoryLayout layout(pyramid.log2_w0(), pyramid.log2_h0(), cw, options_.layout);
+    memory_ = std::make_unique<MemoryModel>(build_memory_image(pyramid, layout), options_.layout.base,
+                                            config_.line_bytes(), config_.mem_bits / 8, options_.memory);
+    apply_cache_pins(pins);
+    reset();
+    return;
+  }
   if (method == LoadMethod::Backdoor) {
     // The layout of tex_level_mem: bank = parity (y & 1) * 2 + (x & 1), word (y >> 1) * stride +
     // (x >> 1) with the stride of the largest level this memory can hold.
@@ -327,6 +400,7 @@ StreamStats stream(Driver& driver, RequestSource& source, const Timing& timing, 
     }
   }
   st.protocol = driver.counters();
+  st.memory = driver.memory_counters();
 
   // A few idle clocks: anything that still comes out is a duplicate.
   for (int i = 0; i < 64; ++i) {

@@ -12,29 +12,51 @@
 #include <vector>
 
 #include "engines/engine.h"
+#include "engines/rtl/memory_model.h"
+#include "model/memory_layout.h"
 #include "model/pyramid.h"
 #include "model/sampler.h"
+#include "model/texture_cache.h"
 
 namespace tex::rtl {
 
-// One Verilated parameter configuration of tex_unit (TAG_W = kTagBits).
+// One Verilated parameter configuration of tex_unit or tex_unit_cached (TAG_W = kTagBits).
 struct RtlConfig {
   std::string name;  // Verilator --prefix, e.g. "Vtex_unit_10x10"
   int max_log2_w = 0, max_log2_h = 0;
   int cw = 8;  // bits per channel
+  // tex_unit_cached only (cached = false: tex_unit, the on-chip level memories).
+  bool cached = false;
+  int block_w = 0, block_h = 0;  // BLOCK_W, BLOCK_H
+  int lines = 0;                 // LINES: lines per cache at most
+  int fifo_depth = 0;            // FIFO_DEPTH
+  int mem_bits = 0;              // MEM_W: bits of a memory beat
+  int line_bytes() const { return block_w * block_h * (cw > 8 ? 8 : 4); }
+  Memory memory() const { return cached ? Memory::Cached : Memory::OnChip; }
   bool fits(int log2_w, int log2_h) const { return log2_w <= max_log2_w && log2_h <= max_log2_h; }
   std::string max_texture() const;  // "1024x1024"
 };
 
 // Every compiled configuration (declared once, in sim/engines/rtl/CMakeLists.txt), in that order.
 const std::vector<RtlConfig>& compiled_configs();
-// The smallest configuration with cw-bit channels that holds the pyramid; throws tex::Error naming
-// the largest one when none does.
-const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw = 8);
+// The smallest configuration of that memory organisation with cw-bit channels that holds the
+// pyramid (cached: with the block shape asked for); throws tex::Error naming the largest one when
+// none does.
+const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw = 8, Memory memory = Memory::OnChip,
+                                     int block_w = 4, int block_h = 4);
 // Everything the RTL cannot take, as one tex::Error, before any clock: a texture too large or with
 // other channel widths than the configuration's, a lambda outside the 16-bit Q8.8 port.
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests = {});
 void check_request(const Request& request, size_t index);  // the lod fits the 16-bit Q8.8 port
+
+// The cache pins of tex_unit_cached for a cache geometry (throws tex::Error when the
+// configuration cannot hold it).
+struct CachePins {
+  uint32_t mem_base = 0;
+  bool block_morton = false;
+  uint8_t log2_sets = 2, log2_ways = 0;
+};
+CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const CacheParams& cache);
 
 constexpr int kTagBits = 16;
 constexpr uint32_t kTagMask = (1u << kTagBits) - 1;
@@ -52,6 +74,10 @@ struct PinsIn {
   int16_t req_lod = 0;           // Q8.8
   uint16_t req_tag = 0;
   bool rsp_ready = true;
+  // Memory port of tex_unit_cached: driven by the driver's memory model (ignored otherwise).
+  bool mem_req_ready = false;
+  bool mem_rsp_valid = false;
+  const uint8_t* mem_rsp_data = nullptr;  // MEM_W / 8 bytes of the beat
 };
 
 // Output pins as seen just before the rising edge: a handshake fires at that edge when
@@ -62,6 +88,12 @@ struct PinsOut {
   uint64_t rsp_rgba = 0;  // {A, B, G, R}, CW bits each
   uint16_t rsp_tag = 0;
   bool finished = false;  // an RTL assertion ($stop) or $finish happened in this clock
+  // tex_unit_cached: the memory port, and the statistics signals (sampled before the edge).
+  bool mem_req_valid = false;
+  uint32_t mem_req_addr = 0;
+  bool mem_rsp_ready = false;
+  uint32_t fifo_count = 0;
+  bool head_waits = false;
 };
 
 // Static configuration pins.
@@ -84,14 +116,34 @@ struct DriverOptions {
   uint64_t trace_begin = 0;     // window of clocks to dump [begin, end]; end 0 = to the end
   uint64_t trace_end = 0;
   uint64_t timeout_cycles = 10000;  // ready clocks without a response while one is owed
+  // tex_unit_cached: layout of the pyramid in memory, cache geometry, memory timing.
+  LayoutParams layout;
+  CacheParams cache;
+  MemoryTiming memory;
   static DriverOptions of(const EngineOptions& o) {
     DriverOptions d;
     d.seed = o.seed;
     d.trace_path = o.trace_path;
     d.trace_begin = o.trace_begin;
     d.trace_end = o.trace_end;
+    d.layout = o.layout;
+    d.cache = o.cache;
+    d.memory.latency = o.mem_latency;
+    d.memory.jitter = o.mem_jitter;
+    d.memory.bytes_per_clock = o.mem_bytes_per_clock;
+    d.memory.max_outstanding = o.mem_outstanding;
+    d.memory.seed = o.seed ^ 0x9E3779B97F4A7C15ULL;
+    if (d.memory.latency + d.memory.jitter + 10000 > d.timeout_cycles)
+      d.timeout_cycles = d.memory.latency + d.memory.jitter + 10000;
     return d;
   }
+};
+
+// Counters of tex_unit_cached's memory side since reset_counters().
+struct MemoryCounters {
+  uint64_t lines_read = 0;         // memory reads (= cache misses)
+  uint32_t fifo_max = 0;           // largest sample-FIFO occupancy
+  uint64_t head_wait_cycles = 0;   // the FIFO's head sample waits for memory, the output ready
 };
 
 // Protocol counters since reset_counters(), counted by clock().
@@ -149,6 +201,16 @@ class Driver {
   };
   Clock clock(const Request* offer, bool take_response);
 
+  // tex_unit_cached: layout, cache geometry and memory timing of the next load().
+  void set_memory(const LayoutParams& layout, const CacheParams& cache, const MemoryTiming& timing) {
+    options_.layout = layout;
+    options_.cache = cache;
+    options_.memory = timing;
+  }
+  // tex_unit_cached: the memory model (null for tex_unit) and its counters.
+  MemoryModel* memory() { return memory_.get(); }
+  const MemoryCounters& memory_counters() const { return memory_counters_; }
+
   uint64_t in_flight() const { return issued_ - answered_; }
   uint64_t issued() const { return issued_; }
   const ProtocolCounters& counters() const { return counters_; }
@@ -156,8 +218,9 @@ class Driver {
 
   // One clock with raw pins, for tests that drive the protocol themselves; bypasses the scoreboard.
   // Closes the trace and throws tex::SimulationError when an RTL assertion fires.
+  // For tex_unit_cached, the memory model drives the mem_* inputs.
   PinsOut tick(const PinsIn& in) {
-    if (tracing_) return tick_traced(in);  // the rare paths stay out of the per-clock code
+    if (tracing_ || memory_) return tick_full(in);  // the rare paths stay out of the per-clock code
     const PinsOut out = tick_pins(in, false);
     if (out.finished) fail_finished();
     ++cycle_;
@@ -171,6 +234,7 @@ class Driver {
   // assertion or $finish happened).
   virtual PinsOut tick_pins(const PinsIn& in, bool dump_trace) = 0;
   virtual void apply_cfg(const CfgPins& cfg) = 0;
+  virtual void apply_cache_pins(const CachePins& pins) = 0;  // tex_unit_cached only
   // Writes one word into the bank memory of `level` holding texels of parity `bank`.
   virtual void backdoor_write(int level, int bank, uint32_t word, uint64_t data) = 0;
   virtual void close_trace_impl() = 0;
@@ -180,20 +244,24 @@ class Driver {
   bool tracing_ = false;
 
  private:
-  PinsOut tick_traced(const PinsIn& in);
+  PinsOut tick_full(const PinsIn& in);
   [[noreturn]] void fail_finished();
+  void apply_cache_config();  // cached: pins from options_, then a reset (empties the caches)
 
   uint64_t cycle_ = 0;
   uint64_t load_cycles_ = 0;
   // Scoreboard: requests issued and answered since reset, accept clocks of those in flight.
   uint64_t issued_ = 0, answered_ = 0;
-  static constexpr size_t kRing = 256;  // more in flight than this is an RTL error
+  static constexpr size_t kRing = 4096;  // more in flight than this is an RTL error
   uint64_t accept_clock_[kRing] = {};
   uint64_t idle_ready_clocks_ = 0;
   uint64_t stall_run_ = 0;
   bool filled_ = false;
   ProtocolCounters counters_;
   PinsIn pins_;
+  std::unique_ptr<MemoryModel> memory_;
+  MemoryCounters memory_counters_;
+  CfgPins cfg_;
 };
 
 // ---------------------------------------------------------------- stimulus
@@ -214,6 +282,7 @@ struct Timing {
 // Counters of one stream() call: the driver's protocol counters plus the stimulus's own.
 struct StreamStats {
   ProtocolCounters protocol;
+  MemoryCounters memory;
   uint64_t gap_cycles = 0;          // req_valid held low by the stimulus with requests left
   uint64_t requests_after_gap = 0;  // requests accepted right after an input gap
   uint64_t samples() const { return protocol.samples; }

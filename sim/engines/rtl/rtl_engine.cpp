@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "engines/rtl/driver.h"
 
@@ -25,14 +26,67 @@ class CheckedSource final : public RequestSource {
   size_t count_ = 0;
 };
 
+// Cached mode: runs the golden model's caches on every request as it is read, and compares the
+// RTL's memory reads with the model's predicted misses, one for one (then hands them to the miss
+// sink). Any difference is a simulation error naming the read.
+class MissChecker final : public RequestSource {
+ public:
+  MissChecker(RequestSource& inner, TextureCache& cache, MissSink* sink) : inner_(inner), cache_(cache), sink_(sink) {}
+  size_t read(Request* out, size_t max) override {
+    const size_t n = inner_.read(out, max);
+    for (size_t i = 0; i < n; ++i) cache_.lookup(out[i], &predicted_);
+    return n;
+  }
+  // The RTL's reads since the last call; at the end, every predicted miss must have been read.
+  void compare(const std::vector<uint32_t>& actual, bool at_end) {
+    for (uint32_t a : actual) {
+      if (matched_ == predicted_.size())
+        throw SimulationError("the RTL read line " + hex(a) + " from memory (read #" + std::to_string(done_) +
+                              ") that the model's caches do not miss");
+      if (predicted_[matched_] != a)
+        throw SimulationError("memory read #" + std::to_string(done_) + ": the RTL read line " + hex(a) +
+                              ", the model's caches miss line " + hex(predicted_[matched_]));
+      ++matched_;
+      ++done_;
+    }
+    if (sink_ && matched_) sink_->write(predicted_.data(), matched_);
+    predicted_.erase(predicted_.begin(), predicted_.begin() + long(matched_));
+    matched_ = 0;
+    if (at_end && !predicted_.empty())
+      throw SimulationError("the model's caches miss " + std::to_string(predicted_.size()) +
+                            " more lines than the RTL read (first: " + hex(predicted_.front()) + ")");
+  }
+
+ private:
+  static std::string hex(uint32_t a) {
+    char s[16];
+    std::snprintf(s, sizeof s, "0x%08x", a);
+    return s;
+  }
+  RequestSource& inner_;
+  TextureCache& cache_;
+  MissSink* sink_;
+  std::vector<uint32_t> predicted_;
+  size_t matched_ = 0;
+  uint64_t done_ = 0;
+};
+
 class RtlEngine final : public Engine {
  public:
   explicit RtlEngine(const EngineOptions& options) : options_(options) {}
 
   EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
                   TexelSink& sink) override {
-    const RtlConfig& rc = smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits);
+    const bool cached = options_.memory == Memory::Cached;
+    const RtlConfig& rc = smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits,
+                                              options_.memory, options_.layout.block_w, options_.layout.block_h);
     check_inputs(rc, pyramid);
+    std::optional<TextureCache> cache;
+    if (cached) {
+      cache_pins(rc, options_.layout, options_.cache);  // the geometry fits the configuration
+      cache.emplace(MemoryLayout(pyramid.log2_w0(), pyramid.log2_h0(), rc.cw, options_.layout), options_.cache,
+                    config, pyramid.log2_w0(), pyramid.log2_h0());
+    }
 
     const auto t0 = std::chrono::steady_clock::now();
     auto unit = Driver::create(rc, DriverOptions::of(options_));
@@ -42,16 +96,21 @@ class RtlEngine final : public Engine {
     const auto t1 = std::chrono::steady_clock::now();
 
     CheckedSource checked(source);
+    std::optional<MissChecker> misses;
+    if (cached) misses.emplace(checked, *cache, options_.miss_sink);
+    RequestSource& requests = cached ? static_cast<RequestSource&>(*misses) : checked;
     TexelQueue texels(sink);
     const int cw = rc.cw;
     const bool show = options_.show_progress;
     auto progress = [&](size_t done) {
+      if (misses) misses->compare(unit->memory()->take_reads(), false);
       if (show) std::fprintf(stderr, "\rrtl: %zu samples, clock %llu", done, (unsigned long long)unit->cycle());
     };
     const StreamStats st = stream(
-        *unit, checked, Timing::of(options_.stalls), options_.seed ^ 0x5DEECE66DULL,
+        *unit, requests, Timing::of(options_.stalls), options_.seed ^ 0x5DEECE66DULL,
         [&](size_t, uint64_t rgba) { texels.push(unpack_rgba(rgba, cw)); }, progress);
     texels.flush();
+    if (misses) misses->compare(unit->memory()->take_reads(), true);
     if (show) std::fprintf(stderr, "\r%60s\r", "");
     const auto t2 = std::chrono::steady_clock::now();
     unit->close_trace();
@@ -71,6 +130,16 @@ class RtlEngine final : public Engine {
     c.backpressure_cycles = st.protocol.backpressure_cycles;
     c.load_cycles = unit->load_cycles();
     r.cycle = c;
+    if (cache) {
+      CacheCounters k;
+      k.lookups = cache->stats().total_lookups();
+      k.hits = cache->stats().total_hits();
+      k.misses = cache->stats().total_misses();
+      k.memory_read_bytes = cache->memory_read_bytes();
+      k.fifo_max_occupancy = st.memory.fifo_max;
+      k.memory_stall_cycles = st.memory.head_wait_cycles;
+      r.cache = k;
+    }
     return r;
   }
 

@@ -17,8 +17,22 @@ namespace tex::rtl {
 
 namespace {
 
+// A beat of the memory port into a Verilated input of MEM_W bits (an integer or a VlWide).
+template <class Pin>
+void set_beat(Pin& pin, const uint8_t* bytes) {
+  if constexpr (std::is_integral_v<Pin>) {
+    Pin v = 0;
+    if (bytes) std::memcpy(&v, bytes, sizeof v);  // little-endian host: byte 0 in the low bits
+    pin = v;
+  } else if (bytes) {
+    std::memcpy(pin.data(), bytes, sizeof pin);
+  }
+}
+
 template <class Top>
 class VerilatedTexUnit final : public Driver {
+  static constexpr bool kCached = requires(Top& t) { t.mem_req_valid; };
+
  public:
   VerilatedTexUnit(const RtlConfig& config, const DriverOptions& options) : Driver(config, options) {
     context_ = std::make_unique<VerilatedContext>();
@@ -34,7 +48,11 @@ class VerilatedTexUnit final : public Driver {
       trace_->open(options.trace_path.c_str());
       if (!trace_->isOpen()) throw Error("cannot open FST trace '" + options.trace_path + "'");
     }
-    find_banks();
+    if constexpr (kCached) {
+      find_statistics();
+    } else {
+      find_banks();
+    }
     top_->clk = 1;
     top_->rst = 1;
     top_->eval();
@@ -49,11 +67,17 @@ class VerilatedTexUnit final : public Driver {
   PinsOut tick_pins(const PinsIn& in, bool dump) override {
     Top& t = *top_;
     t.rst = in.rst;
-    t.wr_en = in.wr_en;
-    t.wr_level = in.wr_level;
-    t.wr_x = in.wr_x;
-    t.wr_y = in.wr_y;
-    t.wr_data = std::remove_reference_t<decltype(t.wr_data)>(in.wr_data);  // 32 or 64 bits: 4 * CW
+    if constexpr (kCached) {
+      t.mem_req_ready = in.mem_req_ready;
+      t.mem_rsp_valid = in.mem_rsp_valid;
+      set_beat(t.mem_rsp_data, in.mem_rsp_data);
+    } else {
+      t.wr_en = in.wr_en;
+      t.wr_level = in.wr_level;
+      t.wr_x = in.wr_x;
+      t.wr_y = in.wr_y;
+      t.wr_data = std::remove_reference_t<decltype(t.wr_data)>(in.wr_data);  // 32 or 64 bits: 4 * CW
+    }
     t.req_valid = in.req_valid;
     t.req_u = uint32_t(in.req_u);
     t.req_v = uint32_t(in.req_v);
@@ -69,6 +93,15 @@ class VerilatedTexUnit final : public Driver {
     out.rsp_valid = t.rsp_valid;
     out.rsp_rgba = t.rsp_rgba;
     out.rsp_tag = t.rsp_tag;
+    if constexpr (kCached) {
+      out.mem_req_valid = t.mem_req_valid;
+      out.mem_req_addr = t.mem_req_addr;
+      out.mem_rsp_ready = t.mem_rsp_ready;
+      out.fifo_count = fifo_count_bytes_ == 1 ? *static_cast<const uint8_t*>(fifo_count_)
+                       : fifo_count_bytes_ == 2 ? *static_cast<const uint16_t*>(fifo_count_)
+                                                : *static_cast<const uint32_t*>(fifo_count_);
+      out.head_waits = *head_waits_;
+    }
     t.clk = 1;
     t.eval();
     if (dump) trace_->dump(time + 1);
@@ -88,6 +121,19 @@ class VerilatedTexUnit final : public Driver {
     t.cfg_min_lod = uint16_t(c.min_lod);
     t.cfg_max_lod = uint16_t(c.max_lod);
     t.eval();
+  }
+
+  void apply_cache_pins(const CachePins& p) override {
+    if constexpr (kCached) {
+      Top& t = *top_;
+      t.cfg_mem_base = p.mem_base;
+      t.cfg_block_morton = p.block_morton;
+      t.cfg_log2_sets = p.log2_sets;
+      t.cfg_log2_ways = p.log2_ways;
+      t.eval();
+    } else {
+      throw Error(config_.name + " has no cache");
+    }
   }
 
   void backdoor_write(int level, int bank, uint32_t word, uint64_t data) override {
@@ -137,23 +183,43 @@ class VerilatedTexUnit final : public Driver {
     }
   }
 
+  // tex_cached_fetch's statistics signals (public_flat_rd in rtl/tex_unit.vlt).
+  void find_statistics() {
+    for (const auto& entry : *context_->scopeNameMap()) {
+      const VerilatedScope* scope = entry.second;
+      const VerilatedVar* count = scope->varFind("fifo_count");
+      const VerilatedVar* waits = scope->varFind("head_waits");
+      if (!count || !waits) continue;
+      if (count->entSize() > sizeof(uint32_t) || waits->entSize() != 1)
+        throw Error(config_.name + ": unexpected statistics signals in " + entry.first);
+      fifo_count_ = count->datap();  // a CData, SData or IData: read by its size
+      fifo_count_bytes_ = count->entSize();
+      head_waits_ = static_cast<const uint8_t*>(waits->datap());
+    }
+    if (!fifo_count_) throw Error(config_.name + ": no fifo_count signal visible (see rtl/tex_unit.vlt)");
+  }
+
   std::unique_ptr<VerilatedContext> context_;
   std::unique_ptr<Top> top_;
   std::unique_ptr<VerilatedFstC> trace_;
   std::vector<std::array<Bank, 4>> banks_;  // [level][parity]
+  const void* fifo_count_ = nullptr;
+  size_t fifo_count_bytes_ = 0;
+  const uint8_t* head_waits_ = nullptr;
 };
 
 }  // namespace
 
 const std::vector<RtlConfig>& compiled_configs() {
-#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw) RtlConfig{#prefix, log2_w, log2_h, cw},
+#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w) \
+  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w},
   static const std::vector<RtlConfig> configs = {TEX_RTL_CONFIGS(TEX_RTL_CONFIG_ENTRY)};
 #undef TEX_RTL_CONFIG_ENTRY
   return configs;
 }
 
 std::unique_ptr<Driver> Driver::create(const RtlConfig& config, const DriverOptions& options) {
-#define TEX_RTL_CONFIG_CREATE(prefix, log2_w, log2_h, cw) \
+#define TEX_RTL_CONFIG_CREATE(prefix, log2_w, log2_h, cw, ...) \
   if (config.name == #prefix) return std::make_unique<VerilatedTexUnit<prefix>>(config, options);
   TEX_RTL_CONFIGS(TEX_RTL_CONFIG_CREATE)
 #undef TEX_RTL_CONFIG_CREATE

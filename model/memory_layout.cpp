@@ -1,0 +1,112 @@
+#include "memory_layout.h"
+
+#include <algorithm>
+
+#include "error.h"
+
+namespace tex {
+
+namespace {
+int log2_of_side(int v, const char* what) {
+  if (v != 2 && v != 4 && v != 8)
+    throw Error(std::string("block ") + what + " " + std::to_string(v) + " texels: must be 2, 4 or 8");
+  return v == 2 ? 1 : v == 4 ? 2 : 3;
+}
+}  // namespace
+
+bool parse_block_order(const std::string& name, BlockOrder& out) {
+  if (name == "row-major") out = BlockOrder::RowMajor;
+  else if (name == "morton") out = BlockOrder::Morton;
+  else return false;
+  return true;
+}
+std::string block_order_name(BlockOrder o) { return o == BlockOrder::Morton ? "morton" : "row-major"; }
+
+MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params)
+    : params_(params) {
+  log2_bw_ = log2_of_side(params.block_w, "width");
+  log2_bh_ = log2_of_side(params.block_h, "height");
+  texel_bytes_ = channel_bits > 8 ? 8 : 4;
+  line_bytes_ = params.block_w * params.block_h * texel_bytes_;
+  if (params.base % uint32_t(line_bytes_) != 0)
+    throw Error("memory base address " + std::to_string(params.base) + " is not a multiple of the " +
+                std::to_string(line_bytes_) + "-byte line");
+  uint64_t at = params.base;
+  for (int k = 0; k < level_count(log2_w0, log2_h0); ++k) {
+    const LevelShape s = level_shape(log2_w0, log2_h0, k);
+    Level l;
+    l.log2_bx = std::max(s.log2_w - log2_bw_, 0);
+    l.log2_by = std::max(s.log2_h - log2_bh_, 0);
+    l.base = uint32_t(at);
+    at += uint64_t(line_bytes_) << (l.log2_bx + l.log2_by);
+    levels_.push_back(l);
+  }
+  if (at > (uint64_t(1) << 32))
+    throw Error("the texture's memory image ends at byte " + std::to_string(at) +
+                ", beyond the 32-bit address space of the memory port");
+  image_bytes_ = at - params.base;
+}
+
+uint32_t MemoryLayout::block_index(int level, uint32_t bx, uint32_t by) const {
+  const Level& l = levels_[size_t(level)];
+  if (params_.order == BlockOrder::RowMajor) return by << l.log2_bx | bx;
+  const int m = std::min(l.log2_bx, l.log2_by);
+  const uint32_t low = (1u << m) - 1;
+  return uint32_t(interleave_bits(bx & low, by & low)) | ((bx >> m) | (by >> m)) << (2 * m);
+}
+
+std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout) {
+  std::vector<uint8_t> image(size_t(layout.image_bytes()), 0);
+  const int tb = layout.texel_bytes(), bw = layout.params().block_w, bh = layout.params().block_h;
+  const uint32_t base = layout.params().base;
+  for (int k = 0; k < int(pyramid.levels.size()); ++k) {
+    const Image& img = pyramid.levels[size_t(k)];
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const size_t at = size_t(layout.line_address(k, uint32_t(x) >> layout.log2_block_w(),
+                                                     uint32_t(y) >> layout.log2_block_h()) - base) +
+                          size_t(((y & (bh - 1)) * bw + (x & (bw - 1))) * tb);
+        const Texel t = img.at(x, y);
+        for (int c = 0; c < 4; ++c) {
+          const uint16_t v = t[size_t(c)];
+          if (tb == 4) {
+            image[at + size_t(c)] = uint8_t(v);
+          } else {
+            image[at + size_t(2 * c)] = uint8_t(v);
+            image[at + size_t(2 * c + 1)] = uint8_t(v >> 8);
+          }
+        }
+      }
+  }
+  return image;
+}
+
+std::vector<uint8_t> memory_image_file(const Pyramid& pyramid, const MemoryLayout& layout) {
+  std::vector<uint8_t> out;
+  auto u32 = [&](uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i)));
+  };
+  auto u64 = [&](uint64_t v) {
+    for (int i = 0; i < 8; ++i) out.push_back(uint8_t(v >> (8 * i)));
+  };
+  const char magic[8] = {'T', 'E', 'X', 'M', 'E', 'M', '0', '1'};
+  out.insert(out.end(), magic, magic + 8);
+  u32(uint32_t(64 + 8 * layout.levels()));
+  u32(uint32_t(pyramid.log2_w0()));
+  u32(uint32_t(pyramid.log2_h0()));
+  u32(uint32_t(layout.levels()));
+  u32(uint32_t(pyramid.levels[0].channel_bits));
+  u32(uint32_t(layout.texel_bytes()));
+  u32(uint32_t(layout.params().block_w));
+  u32(uint32_t(layout.params().block_h));
+  u32(uint32_t(layout.params().order));
+  u32(uint32_t(layout.line_bytes()));
+  u64(layout.params().base);
+  u64(layout.image_bytes());
+  for (int k = 0; k < layout.levels(); ++k) u64(layout.level_base(k));
+  const std::vector<uint8_t> image = build_memory_image(pyramid, layout);
+  out.insert(out.end(), image.begin(), image.end());
+  return out;
+}
+
+}  // namespace tex

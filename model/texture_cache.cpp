@@ -1,0 +1,101 @@
+#include "texture_cache.h"
+
+#include "error.h"
+#include "stages.h"
+
+namespace tex {
+
+TextureCache::TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config,
+                           int log2_w0, int log2_h0)
+    : layout_(layout), config_(config), log2_w0_(log2_w0), log2_h0_(log2_h0),
+      last_level_(level_count(log2_w0, log2_h0) - 1), ways_(params.ways) {
+  if (ways_ != 1 && ways_ != 2 && ways_ != 4)
+    throw Error("cache ways " + std::to_string(ways_) + ": must be 1, 2 or 4");
+  const int line = layout.line_bytes();
+  if (params.size_bytes <= 0 || params.size_bytes % line != 0)
+    throw Error("cache size " + std::to_string(params.size_bytes) + " bytes is not a whole number of " +
+                std::to_string(line) + "-byte lines");
+  sets_ = params.size_bytes / line / ways_;
+  if (sets_ < 4 || (sets_ & (sets_ - 1)) != 0)
+    throw Error("a cache of " + std::to_string(params.size_bytes) + " bytes with " + std::to_string(ways_) +
+                " ways has " + std::to_string(sets_) + " sets: must be a power of two, at least 4");
+  for (auto& c : caches_) {
+    c.assign(size_t(sets_ * ways_), Way{});
+    for (int s = 0; s < sets_; ++s)
+      for (int w = 0; w < ways_; ++w) c[size_t(s * ways_ + w)].age = w;  // reset: age = way number
+  }
+}
+
+bool TextureCache::access(int cache, int set, uint32_t line) {
+  Way* ways = &caches_[size_t(cache)][size_t(set * ways_)];
+  int hit = -1, victim = 0;
+  for (int w = 0; w < ways_; ++w) {
+    if (ways[w].valid && ways[w].tag == line) hit = w;
+    if (ways[w].age == ways_ - 1) victim = w;
+  }
+  const int used = hit >= 0 ? hit : victim;
+  const int age = ways[used].age;
+  for (int w = 0; w < ways_; ++w)
+    if (ways[w].age < age) ++ways[w].age;
+  ways[used].age = 0;
+  ++stats_.lookups[size_t(cache)];
+  const uint64_t previous_use = ways[used].last_use;
+  ways[used].last_use = sample_ + 1;
+  if (hit >= 0) {
+    ++stats_.hits[size_t(cache)];
+    return true;
+  }
+  if (ways[used].valid && previous_use == sample_) ++stats_.evictions_of_previous;
+  ways[used].valid = true;
+  ways[used].tag = line;
+  ++stats_.misses[size_t(cache)];
+  return false;
+}
+
+SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misses) {
+  const stage::LevelSelect sel =
+      stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level_);
+  const int32_t su = stage::scale(r.u, log2_w0_), sv = stage::scale(r.v, log2_h0_);
+  SampleLookup out;
+  for (int s = 0; s < 2; ++s) {
+    SlotLookup& sl = out.slot[size_t(s)];
+    sl.level = s == 0 ? sel.d : sel.d1;
+    sl.needed = s == 0 || sel.f != 0;
+    if (!sl.needed) continue;
+    const int k = sl.level;
+    const LevelShape shape = level_shape(log2_w0_, log2_h0_, k);
+    const stage::AxisTaps tu = stage::address(su, k, config_.filter.texel);
+    const stage::AxisTaps tv = stage::address(sv, k, config_.filter.texel);
+    // The taps whose weight is not 0: (x0, y0) always, x1 / y1 when their weight is not 0.
+    const uint32_t x[2] = {uint32_t(stage::wrap(tu.i0, shape.log2_w, config_.wrap_u)),
+                           uint32_t(stage::wrap(tu.i1, shape.log2_w, config_.wrap_u))};
+    const uint32_t y[2] = {uint32_t(stage::wrap(tv.i0, shape.log2_h, config_.wrap_v)),
+                           uint32_t(stage::wrap(tv.i1, shape.log2_h, config_.wrap_v))};
+    const int nx = tu.w != 0 ? 2 : 1, ny = tv.w != 0 ? 2 : 1;
+    // Distinct blocks by parity (two distinct blocks of a footprint differ in a parity).
+    uint32_t bx_of[4] = {}, by_of[4] = {};
+    for (int j = 0; j < nx; ++j)
+      for (int i = 0; i < ny; ++i) {
+        const uint32_t bx = x[j] >> layout_.log2_block_w(), by = y[i] >> layout_.log2_block_h();
+        const int p = int((by & 1) << 1 | (bx & 1));
+        sl.block_mask |= uint8_t(1 << p);
+        bx_of[p] = bx;
+        by_of[p] = by;
+      }
+    const int cache = k & 1;
+    for (int p = 0; p < 4; ++p) {
+      if (!(sl.block_mask >> p & 1)) continue;
+      ++sl.blocks;
+      const uint32_t address = layout_.line_address(k, bx_of[p], by_of[p]);
+      const int set = int(interleave_bits(bx_of[p], by_of[p]) & uint64_t(sets_ - 1));
+      if (!access(cache, set, address / uint32_t(layout_.line_bytes()))) {
+        ++sl.misses;
+        if (misses) misses->push_back(address);
+      }
+    }
+  }
+  ++sample_;
+  return out;
+}
+
+}  // namespace tex

@@ -1,0 +1,82 @@
+// The two texture caches of the cached memory hierarchy (docs/memory.md §2): cache 0 holds the
+// even levels, cache 1 the odd levels; set index = the block's Morton code mod SETS (its two low
+// bits are the block's parities), tag = line address, true LRU. lookup() runs one sample through
+// them exactly as tex_unit_cached's tag stage does, in the same order, so the line addresses it
+// appends are the RTL's memory reads, one for one.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "memory_layout.h"
+#include "sampler.h"
+
+namespace tex {
+
+struct CacheParams {
+  int size_bytes = 8192;  // per cache
+  int ways = 2;           // 1, 2 or 4
+};
+
+// What one sample did in one of its levels (slot 0 = d, slot 1 = d1).
+struct SlotLookup {
+  int level = 0;
+  bool needed = false;    // slot 1: only when the level blend weight f != 0
+  int blocks = 0;         // distinct blocks looked up, 0..4
+  int misses = 0;         // of those, missing: 0..4
+  uint8_t block_mask = 0; // bit p: a block with parities p = (by & 1) * 2 + (bx & 1) was looked up
+};
+struct SampleLookup {
+  std::array<SlotLookup, 2> slot;
+};
+
+struct CacheStats {
+  std::array<uint64_t, 2> lookups{}, hits{}, misses{};  // per cache (0 even, 1 odd levels)
+  uint64_t total_lookups() const { return lookups[0] + lookups[1]; }
+  uint64_t total_hits() const { return hits[0] + hits[1]; }
+  uint64_t total_misses() const { return misses[0] + misses[1]; }
+  // Misses that evicted a line the previous sample used: that sample still has to read the old
+  // data when the new line is allocated (the case the fill-at-the-head rule is for).
+  uint64_t evictions_of_previous = 0;
+};
+
+class TextureCache {
+ public:
+  // Throws tex::Error naming a geometry the hardware cannot have (ways not 1/2/4, sets not a
+  // power of two >= 4, size not a whole number of lines).
+  TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config, int log2_w0,
+               int log2_h0);
+
+  // One sample: looks its needed blocks up in request order, updates the LRU state, and appends the
+  // line address of every miss to `misses` (if not null), in the order docs/memory.md gives.
+  SampleLookup lookup(const Request& r, std::vector<uint32_t>* misses);
+
+  const CacheStats& stats() const { return stats_; }
+  void reset_stats() { stats_ = {}; }
+  uint64_t memory_read_bytes() const { return stats_.total_misses() * uint64_t(layout_.line_bytes()); }
+  int sets() const { return sets_; }
+  int ways() const { return ways_; }
+
+  // One way of a set, for tests.
+  struct Way {
+    bool valid = false;
+    uint32_t tag = 0;       // line number (line address / line bytes)
+    int age = 0;            // 0 = most recently used
+    uint64_t last_use = 0;  // 1 + the number of the last sample that looked it up
+  };
+  Way way(int cache, int set, int w) const { return caches_[size_t(cache)][size_t(set * ways_ + w)]; }
+
+ private:
+  // Looks the line up in its set; on a miss allocates the LRU way. Returns true on a hit.
+  bool access(int cache, int set, uint32_t line);
+
+  MemoryLayout layout_;
+  SamplerConfig config_;
+  int log2_w0_, log2_h0_, last_level_;
+  int sets_, ways_;
+  std::array<std::vector<Way>, 2> caches_;
+  CacheStats stats_;
+  uint64_t sample_ = 0;  // samples looked up so far
+};
+
+}  // namespace tex

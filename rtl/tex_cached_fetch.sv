@@ -1,0 +1,466 @@
+// tex_cached_fetch: the model's `fetch` stage in cached mode (docs/memory.md): the pyramid lives
+// in external memory and is read through two texture caches (cache 0: even levels, cache 1: odd
+// levels), with the latency hidden by a sample FIFO (Igehy, Eldridge & Proudfoot 1998).
+//   tag stage  (on tex_front's clock-4 outputs): which taps the sample needs, their blocks, line
+//              addresses; up to 4 lookups per cache (tex_cache_tags), LRU update, victims chosen;
+//              misses go into the miss ring (to mem_req) in the order of docs/memory.md; the
+//              sample, with its taps' line slots and texel offsets, into the sample FIFO.
+//   H (head)   the FIFO's oldest sample writes its fills (lines from mem_rsp, in order) into the
+//              data banks, one line per clock; it leaves when the last one is written.
+//   R          reads the data banks (tex_cache_data), 4 banks x 2 caches.
+//   T          routes bank texels to the 8 taps (slot 0 = level d, slot 1 = level d1).
+//   taps       registered outputs, into tex_filter.
+// Handshake: two stall-enable halves. The front (tex_front and the tag stage) advances when
+//   en_front is high: a register output, high when the FIFO has room for one more sample and the
+//   miss ring for 8 more misses after this clock. The back (H, R, T, taps, and the filter after
+//   it) advances when en_back is high (the top's skid buffer has room). Fills are written only
+//   when en_back is high: a sample in R reads the banks at that same edge, before the write.
+//   mem_req / mem_rsp are valid/ready; mem_req_valid, mem_req_addr and mem_rsp_ready are
+//   functions of registers only.
+// Latency: front_valid at clock 4 -> out_valid 5 clocks later when every line hits (FIFO push,
+//   H, R, T, taps); a miss adds the memory's latency. Throughput: 1 sample per clock while lines
+//   hit; a sample with k fills occupies H for max(k, 1) clocks.
+// Ports (formats as tex_front's; XW, YW wrapped index bits):
+//   front_valid, front_tag          : the clock-4 register holds a request, and its tag
+//   level, f, w, log2_size, x, y    : tex_front's outputs
+//   cfg_log2_w, cfg_log2_h          : level 0's size (the level bases in memory depend on it)
+//   cfg_mem_base                    : byte address of level 0, a multiple of the line size
+//   cfg_block_morton                : 0 row-major, 1 Morton order of the blocks of a level
+//   cfg_log2_sets, cfg_log2_ways    : cache geometry (both caches), see tex_cache_tags
+//   mem_req_addr                    : byte address of a line (MEM_ADDR_W bits, line aligned)
+//   mem_rsp_data                    : one beat, MEM_W bits: bytes [i*MEM_W/8 +: MEM_W/8] of the
+//                                     line in beat i; LINE_BITS / MEM_W beats per line, in order
+//   out_valid, out_tag, taps, out_w, out_f : as tex_fetch's taps with the weights beside them
+// The harness reads fifo_count (the FIFO's occupancy) and head_waits (the head sample waits for
+// memory) for its statistics (public in Verilator, rtl/tex_unit.vlt).
+module tex_cached_fetch #(
+  parameter int MAX_LOG2_W = 10,
+  parameter int MAX_LOG2_H = 10,
+  parameter int CW         = 8,
+  parameter int TAG_W      = 16,
+  parameter int BW         = 4,    // block (= cache line) width and height in texels: 2, 4, 8
+  parameter int BH         = 4,
+  parameter int LINES      = 256,  // lines per cache, at most (power of two)
+  parameter int MAX_WAYS   = 4,    // 1, 2, 4
+  parameter int FIFO_DEPTH = 256,  // samples waiting for their lines (power of two)
+  parameter int MISS_DEPTH = 64,   // misses not yet written into the cache (power of two, >= 8)
+  parameter int FILL_DEPTH = 4,    // lines received, not yet written (power of two)
+  parameter int MEM_W      = 128,  // bits of a memory response beat
+  parameter int XW         = (MAX_LOG2_W > 0) ? MAX_LOG2_W : 1,  // derived, do not override
+  parameter int YW         = (MAX_LOG2_H > 0) ? MAX_LOG2_H : 1
+) (
+  input  logic                              clk,
+  input  logic                              rst,
+  output logic                              en_front,
+  input  logic                              en_back,
+
+  input  logic                              front_valid,
+  input  logic [TAG_W-1:0]                  front_tag,
+  input  logic [2*tex_pkg::LEVEL_W-1:0]     level,
+  input  logic [tex_pkg::WEIGHT_BITS-1:0]   f,
+  input  logic [4*tex_pkg::WEIGHT_BITS-1:0] w,
+  input  logic [4*tex_pkg::LEVEL_W-1:0]     log2_size,
+  input  logic [4*XW-1:0]                   x,
+  input  logic [4*YW-1:0]                   y,
+
+  input  logic [tex_pkg::LEVEL_W-1:0]       cfg_log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]       cfg_log2_h,
+  input  logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_mem_base,
+  input  logic                              cfg_block_morton,
+  input  logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets,
+  input  logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways,
+
+  output logic                              mem_req_valid,
+  input  logic                              mem_req_ready,
+  output logic [tex_pkg::MEM_ADDR_W-1:0]    mem_req_addr,
+  input  logic                              mem_rsp_valid,
+  output logic                              mem_rsp_ready,
+  input  logic [MEM_W-1:0]                  mem_rsp_data,
+
+  output logic                              out_valid,
+  output logic [TAG_W-1:0]                  out_tag,
+  output logic [32*CW-1:0]                  taps,
+  output logic [4*tex_pkg::WEIGHT_BITS-1:0] out_w,
+  output logic [tex_pkg::WEIGHT_BITS-1:0]   out_f
+);
+  localparam int VW   = tex_pkg::LEVEL_W;
+  localparam int WB   = tex_pkg::WEIGHT_BITS;
+  localparam int AW   = tex_pkg::MEM_ADDR_W;
+  localparam int DW   = 4 * CW;                     // a texel in the cache
+  localparam int TB   = (CW > 8) ? 8 : 4;           // bytes of a texel in memory
+  localparam int LBW  = $clog2(BW);                 // log2 block width, height
+  localparam int LBH  = $clog2(BH);
+  localparam int LINE_BITS = BW * BH * TB * 8;
+  localparam int LOG2_LB   = $clog2(BW * BH * TB);  // log2 line bytes
+  localparam int LNW  = AW - LOG2_LB;               // bits of a line number
+  localparam int SLW  = $clog2(LINES);              // bits of a line slot
+  localparam int SHW  = SLW - 2;                    // bits of a set >> 2
+  localparam int OFW  = (LBW + LBH - 2 > 0) ? LBW + LBH - 2 : 1;  // texel offset in a bank word
+  localparam int BEATS = LINE_BITS / MEM_W;
+  localparam int FCW  = $clog2(FIFO_DEPTH + 1);
+  localparam int MCW  = $clog2(MISS_DEPTH + 1);
+  localparam int LCW  = $clog2(FILL_DEPTH + 1);
+  localparam int BTW  = (BEATS > 1) ? $clog2(BEATS) : 1;
+  localparam int RD   = SLW + OFW;                  // a bank read: {slot, offset}
+
+  // ---------------------------------------------------------------- level bases in memory
+  // base[k] = cfg_mem_base + the lines of levels 0..k-1 (docs/memory.md §1), as line numbers.
+  // Recomputed every clock from the static configuration (registered). All 2^LEVEL_W entries,
+  // so that any level index is in range (those past the last level are never used).
+  logic [LNW-1:0] base_line [1 << VW];
+  always_ff @(posedge clk) begin
+    logic [LNW-1:0] acc;
+    acc = LNW'(cfg_mem_base >> LOG2_LB);
+    for (int k = 0; k < (1 << VW); k++) begin
+      logic [VW:0] lw, lh, lbx, lby;
+      base_line[k] <= acc;
+      lw  = ({1'b0, cfg_log2_w} > (VW+1)'(k)) ? {1'b0, cfg_log2_w} - (VW+1)'(k) : '0;
+      lh  = ({1'b0, cfg_log2_h} > (VW+1)'(k)) ? {1'b0, cfg_log2_h} - (VW+1)'(k) : '0;
+      lbx = (lw > (VW+1)'(LBW)) ? lw - (VW+1)'(LBW) : '0;
+      lby = (lh > (VW+1)'(LBH)) ? lh - (VW+1)'(LBH) : '0;
+      acc = acc + (LNW'(1) << (lbx + lby));
+    end
+  end
+
+  // ---------------------------------------------------------------- tag stage
+  // Morton interleave: a bit 0 at bit 0, b bit 0 at bit 1, a bit 1 at bit 2, ...
+  localparam int MCW2 = 2 * ((XW > YW) ? XW : YW);
+  function automatic logic [MCW2-1:0] interleave(input logic [XW-1:0] a, input logic [YW-1:0] b);
+    interleave = '0;
+    for (int i = 0; i < XW; i++) interleave[2*i]     = a[i];
+    for (int i = 0; i < YW; i++) interleave[2*i + 1] = b[i];
+  endfunction
+  // The set index >> 2 (docs/memory.md §2): bits 2 .. SHW+1 of interleave(a, b); tex_cache_tags
+  // masks it to the configured number of sets.
+  function automatic logic [SHW-1:0] set_high(input logic [XW-1:0] a, input logic [YW-1:0] b);
+    logic [MCW2+SHW+1:0] code;
+    code = (MCW2+SHW+2)'(interleave(a, b));
+    set_high = code[SHW+1:2];
+  endfunction
+
+  logic [1:0] slot_needed;  // level d always; d1 when f != 0
+  assign slot_needed = {f != '0, 1'b1};
+  logic c0;                 // the cache of slot 0 (level d's parity); slot 1 uses the other
+  assign c0 = level[0];
+
+  // Per slot s and block parity p = {y parity, x parity}: the lookup, its line number and set.
+  logic [3:0]       look [2];
+  logic [4*LNW-1:0] look_line [2];
+  logic [4*SHW-1:0] look_set_hi [2];
+  logic [7:0]       bank_block [2];  // texel bank b: the parity of its tap's block at [b*2 +: 2]
+  logic [4*OFW-1:0] bank_offset [2];
+  logic [3:0]       tap_parity [2];  // {y1, y0, x1, x0} & 1
+  genvar s, p, b;
+  generate
+    for (s = 0; s < 2; s = s + 1) begin : g_slot
+      logic [VW-1:0] lev, lw, lh, lnbx, lnby, m;
+      logic [XW-1:0] x0, x1, bx0, bx1;
+      logic [YW-1:0] y0, y1, by0, by1;
+      logic          nx1, ny1;       // the second tap along x (y) is needed: its weight != 0
+      assign lev  = level[s*VW +: VW];
+      assign lw   = log2_size[(s*2 + 0)*VW +: VW];
+      assign lh   = log2_size[(s*2 + 1)*VW +: VW];
+      assign lnbx = (lw > VW'(LBW)) ? lw - VW'(LBW) : '0;
+      assign lnby = (lh > VW'(LBH)) ? lh - VW'(LBH) : '0;
+      assign m    = (lnbx < lnby) ? lnbx : lnby;
+      assign x0   = x[(s*2 + 0)*XW +: XW];
+      assign x1   = x[(s*2 + 1)*XW +: XW];
+      assign y0   = y[(s*2 + 0)*YW +: YW];
+      assign y1   = y[(s*2 + 1)*YW +: YW];
+      assign bx0  = x0 >> LBW;
+      assign bx1  = x1 >> LBW;
+      assign by0  = y0 >> LBH;
+      assign by1  = y1 >> LBH;
+      assign nx1  = w[(s*2 + 0)*WB +: WB] != '0;
+      assign ny1  = w[(s*2 + 1)*WB +: WB] != '0;
+      assign tap_parity[s] = {y1[0], y0[0], x1[0], x0[0]};
+      for (p = 0; p < 4; p = p + 1) begin : g_block
+        // The needed x taps whose block has x parity p[0] (likewise y): bx0 if its parity
+        // matches, else bx1 (two distinct blocks of a footprint differ in parity).
+        logic          has_x, has_y;
+        logic [XW-1:0] bx;
+        logic [YW-1:0] by;
+        logic [LNW-1:0] index;  // the block's number in its level
+        logic [XW-1:0]  bx_high;
+        logic [YW-1:0]  by_high;
+        assign bx_high = bx >> m;
+        assign by_high = by >> m;
+        assign has_x = (bx0[0] == p[0]) || (nx1 && bx1[0] == p[0]);
+        assign has_y = (by0[0] == p[1]) || (ny1 && by1[0] == p[1]);
+        assign bx    = (bx0[0] == p[0]) ? bx0 : bx1;
+        assign by    = (by0[0] == p[1]) ? by0 : by1;
+        assign look[s][p] = front_valid && slot_needed[s] && has_x && has_y;
+        always_comb begin
+          if (!cfg_block_morton) begin
+            index = (LNW'(by) << lnbx) | LNW'(bx);
+          end else begin
+            index = LNW'(interleave(bx & XW'((1 << m) - 1), by & YW'((1 << m) - 1)))
+                  | ((LNW'(bx_high) | LNW'(by_high)) << (2 * m));
+          end
+        end
+        assign look_line[s][p*LNW +: LNW]   = base_line[lev] + index;
+        assign look_set_hi[s][p*SHW +: SHW] = set_high(bx, by);
+      end
+      for (b = 0; b < 4; b = b + 1) begin : g_bank
+        // The texel bank b reads: the x tap of parity b[0], the y tap of parity b[1] (either
+        // one if both are equal; as masks: Verilator's C++ would branch on data), the parity of
+        // its block (which tag bank has its line slot) and its offset in the bank word.
+        logic [XW-1:0] xs;
+        logic [YW-1:0] ys;
+        assign xs = x0 ^ ({XW{x0[0] ^ b[0]}} & (x0 ^ x1));
+        assign ys = y0 ^ ({YW{y0[0] ^ b[1]}} & (y0 ^ y1));
+        assign bank_block[s][b*2 +: 2] = {(y0[0] == b[1]) ? by0[0] : by1[0],
+                                          (x0[0] == b[0]) ? bx0[0] : bx1[0]};
+        assign bank_offset[s][b*OFW +: OFW] =
+            OFW'((((32'(ys) & (BH - 1)) >> 1) * (BW / 2)) + ((32'(xs) & (BW - 1)) >> 1));
+      end
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------- the two caches' tags
+  // Cache c takes the lookups of the slot whose level has parity c (slot 1 reads the other
+  // cache even when it needs nothing: each data bank then has one reader).
+  logic [3:0]       hit_c  [2];
+  logic [4*SLW-1:0] slot_c [2];
+  genvar c;
+  generate
+    for (c = 0; c < 2; c = c + 1) begin : g_cache
+      logic sc;  // the slot that uses cache c
+      assign sc = (c0 != 1'(c));
+      tex_cache_tags #(.LINES(LINES), .MAX_WAYS(MAX_WAYS), .LNW(LNW)) u_tags (
+        .clk(clk), .rst(rst), .en(en_front), .cfg_log2_sets(cfg_log2_sets),
+        .cfg_log2_ways(cfg_log2_ways), .look_valid(look[sc]), .look_set_hi(look_set_hi[sc]),
+        .look_line(look_line[sc]), .hit(hit_c[c]), .slot(slot_c[c])
+      );
+    end
+  endgenerate
+
+  // Per slot: its cache's answers; the misses in order (slot 0, then slot 1; block parity 0..3).
+  localparam int MEW = AW + 1 + SLW;  // a miss: {line address, cache, line slot}
+  logic [7:0]       miss;
+  logic [8*MEW-1:0] miss_entry;
+  logic [8*RD-1:0]  reads;           // slot s bank b at [(s*4 + b)*RD +: RD]: {line slot, offset}
+  generate
+    for (s = 0; s < 2; s = s + 1) begin : g_result
+      logic [3:0]       hit_s;
+      logic [4*SLW-1:0] slot_s;
+      logic             cache_s;
+      assign cache_s = c0 ^ 1'(s);
+      assign hit_s   = hit_c[cache_s];
+      assign slot_s  = slot_c[cache_s];
+      for (p = 0; p < 4; p = p + 1) begin : g_miss
+        assign miss[s*4 + p] = look[s][p] && !hit_s[p];
+        assign miss_entry[(s*4 + p)*MEW +: MEW] =
+            {AW'(look_line[s][p*LNW +: LNW]) << LOG2_LB, cache_s, slot_s[p*SLW +: SLW]};
+      end
+      for (b = 0; b < 4; b = b + 1) begin : g_read
+        assign reads[(s*4 + b)*RD +: RD] =
+            {slot_s[bank_block[s][b*2 +: 2]*SLW +: SLW], bank_offset[s][b*OFW +: OFW]};
+      end
+    end
+  endgenerate
+
+  logic [3:0] fills;  // misses of this sample: 0..8
+  always_comb begin
+    fills = '0;
+    for (int i = 0; i < 8; i++) fills = fills + 4'(miss[i]);
+  end
+
+  // ---------------------------------------------------------------- miss ring
+  // Misses not yet written into the cache, in order: [retire, issue) sent to memory, [issue,
+  // write) waiting for mem_req. The tag stage writes up to 8 per clock.
+  localparam int MPW = $clog2(MISS_DEPTH);
+  logic [MEW-1:0] ring [MISS_DEPTH];
+  logic [MPW-1:0] ring_wr, ring_iss, ring_ret;
+  logic [MCW-1:0] ring_used, ring_unissued;
+  logic           push, issue, retire;
+  assign push  = en_front && front_valid;
+  assign issue = mem_req_valid && mem_req_ready;
+  assign mem_req_valid = ring_unissued != '0;
+  assign mem_req_addr  = ring[ring_iss][MEW-1 -: AW];
+  always_ff @(posedge clk) begin
+    if (push) begin
+      logic [MPW-1:0] at;
+      at = ring_wr;
+      for (int i = 0; i < 8; i++) begin
+        if (miss[i]) begin
+          ring[at] <= miss_entry[i*MEW +: MEW];
+          at = at + 1'b1;
+        end
+      end
+    end
+  end
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      ring_wr       <= '0;
+      ring_iss      <= '0;
+      ring_ret      <= '0;
+      ring_used     <= '0;
+      ring_unissued <= '0;
+    end else begin
+      ring_wr       <= ring_wr + (push ? MPW'(fills) : '0);
+      ring_iss      <= ring_iss + MPW'(issue);
+      ring_ret      <= ring_ret + MPW'(retire);
+      ring_used     <= ring_used + (push ? MCW'(fills) : '0) - MCW'(retire);
+      ring_unissued <= ring_unissued + (push ? MCW'(fills) : '0) - MCW'(issue);
+    end
+  end
+
+  // ---------------------------------------------------------------- fill FIFO
+  // Lines from memory, assembled beat by beat in place, oldest first.
+  localparam int LPW = (FILL_DEPTH > 1) ? $clog2(FILL_DEPTH) : 1;
+  logic [LINE_BITS-1:0] fill_mem [FILL_DEPTH];
+  logic [LPW-1:0]       fill_wr, fill_rd;
+  logic [LCW-1:0]       fill_count;
+  logic [BTW-1:0]       beat;
+  logic                 beat_take, line_done;
+  assign mem_rsp_ready = fill_count != LCW'(FILL_DEPTH);
+  assign beat_take     = mem_rsp_valid && mem_rsp_ready;
+  assign line_done     = beat_take && (BEATS == 1 || beat == BTW'(BEATS - 1));
+  always_ff @(posedge clk) begin
+    if (beat_take) fill_mem[fill_wr][((BEATS > 1) ? beat : '0)*MEM_W +: MEM_W] <= mem_rsp_data;
+  end
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      fill_wr    <= '0;
+      fill_rd    <= '0;
+      fill_count <= '0;
+      beat       <= '0;
+    end else begin
+      if (beat_take) beat <= line_done ? '0 : beat + 1'b1;
+      if (line_done) fill_wr <= (FILL_DEPTH > 1) ? fill_wr + 1'b1 : '0;
+      if (retire)    fill_rd <= (FILL_DEPTH > 1) ? fill_rd + 1'b1 : '0;
+      fill_count <= fill_count + LCW'(line_done) - LCW'(retire);
+    end
+  end
+
+  // The line at the head of the fill FIFO in the cache's format: texel j, channel k at
+  // [(j*4 + k)*CW +: CW] from memory bytes [j*TB + k*TB/4 +: TB/4].
+  logic [BW*BH*DW-1:0] fill_line;
+  generate
+    genvar j, k;
+    for (j = 0; j < BW * BH; j = j + 1) begin : g_fill_texel
+      for (k = 0; k < 4; k = k + 1) begin : g_fill_channel
+        assign fill_line[(j*4 + k)*CW +: CW] = fill_mem[fill_rd][(j*TB + k*TB/4)*8 +: CW];
+      end
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------- sample FIFO
+  // An entry: {tag, w, f, c0, tap parities (slot 1, slot 0), bank reads, fills}.
+  localparam int EW = TAG_W + 4*WB + WB + 1 + 8 + 8*RD + 4;
+  localparam int FPW = $clog2(FIFO_DEPTH);
+  logic [EW-1:0]  fifo [FIFO_DEPTH];
+  logic [FPW-1:0] fifo_wr, fifo_rd;
+  logic [FCW-1:0] fifo_count;
+  logic           fifo_pop;
+  logic [FCW-1:0] fifo_next;
+  logic [MCW-1:0] ring_next;
+  always_ff @(posedge clk) begin
+    if (push) fifo[fifo_wr] <= {front_tag, w, f, c0, tap_parity[1], tap_parity[0], reads, fills};
+  end
+  assign fifo_next = fifo_count + FCW'(push) - FCW'(fifo_pop);
+  assign ring_next = ring_used + (push ? MCW'(fills) : '0) - MCW'(retire);
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      fifo_wr    <= '0;
+      fifo_rd    <= '0;
+      fifo_count <= '0;
+      en_front   <= 1'b0;
+    end else begin
+      fifo_wr    <= fifo_wr + FPW'(push);
+      fifo_rd    <= fifo_rd + FPW'(fifo_pop);
+      fifo_count <= fifo_next;
+      // Room after this clock for one more sample and its (at most 8) misses.
+      en_front   <= fifo_next < FCW'(FIFO_DEPTH) && ring_next <= MCW'(MISS_DEPTH - 8);
+    end
+  end
+
+  // ---------------------------------------------------------------- H: the head writes its fills
+  logic          h_valid, h_go;
+  logic [EW-1:0] h_entry;
+  logic [3:0]    h_fills;   // fills still to write
+  logic          fill_write;
+  logic          head_waits;
+  assign fill_write = en_back && h_valid && h_fills != '0 && fill_count != '0;
+  assign retire     = fill_write;
+  assign h_go       = en_back && h_valid && (h_fills == '0 || (h_fills == 4'd1 && fill_write));
+  assign fifo_pop   = (!h_valid || h_go) && fifo_count != '0;
+  assign head_waits = en_back && h_valid && !h_go;
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      h_valid <= 1'b0;
+    end else begin
+      if (fifo_pop) h_valid <= 1'b1;
+      else if (h_go) h_valid <= 1'b0;
+    end
+    if (fifo_pop) begin
+      h_entry <= fifo[fifo_rd];
+      h_fills <= fifo[fifo_rd][3:0];
+    end else if (fill_write) begin
+      h_fills <= h_fills - 1'b1;
+    end
+  end
+
+  // The fill's destination: the oldest miss in the ring.
+  logic             fill_cache;
+  logic [SLW-1:0]   fill_slot;
+  assign {fill_cache, fill_slot} = ring[ring_ret][SLW:0];
+
+  // ---------------------------------------------------------------- R: read the data banks
+  logic          r_valid;
+  logic [EW-1:0] r_entry;
+  always_ff @(posedge clk) begin
+    if (rst) r_valid <= 1'b0;
+    else if (en_back) r_valid <= h_go;
+    if (en_back) r_entry <= h_entry;
+  end
+  logic [8*RD-1:0] r_reads;
+  logic            r_c0;
+  assign r_reads = r_entry[4 +: 8*RD];
+  assign r_c0    = r_entry[4 + 8*RD + 8];
+
+  logic [4*DW-1:0] bank_texel [2];  // cache c, bank b at [b*DW +: DW] (clock T)
+  generate
+    for (c = 0; c < 2; c = c + 1) begin : g_data
+      logic [4*SLW-1:0] rd_slot;
+      logic [4*OFW-1:0] rd_offset;
+      logic             sc;
+      assign sc = (r_c0 != 1'(c));
+      for (b = 0; b < 4; b = b + 1) begin : g_bank
+        assign {rd_slot[b*SLW +: SLW], rd_offset[b*OFW +: OFW]} = r_reads[(sc*4 + b)*RD +: RD];
+      end
+      tex_cache_data #(.LINES(LINES), .BW(BW), .BH(BH), .DW(DW)) u_data (
+        .clk(clk), .wr_en(fill_write && fill_cache == 1'(c)), .wr_slot(fill_slot),
+        .wr_line(fill_line), .re(en_back), .rd_slot(rd_slot), .rd_offset(rd_offset),
+        .rd_texel(bank_texel[c])
+      );
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------- T: texels -> taps
+  logic          t_valid;
+  logic [EW-1:0] t_entry;
+  always_ff @(posedge clk) begin
+    if (rst) t_valid <= 1'b0;
+    else if (en_back) t_valid <= r_valid;
+    if (en_back) t_entry <= r_entry;
+  end
+  logic       t_c0;
+  logic [7:0] t_parity;  // slot s at [s*4 +: 4]: {y1, y0, x1, x0} & 1
+  assign t_c0     = t_entry[4 + 8*RD + 8];
+  assign t_parity = t_entry[4 + 8*RD +: 8];
+  always_ff @(posedge clk) begin
+    if (rst) out_valid <= 1'b0;
+    else if (en_back) out_valid <= t_valid;
+    if (en_back) begin
+      {out_tag, out_w, out_f} <= t_entry[EW-1 -: TAG_W + 5*WB];
+      for (int sl = 0; sl < 2; sl++) begin
+        for (int t = 0; t < 4; t++) begin  // t: the tap, bit 0 = tx, bit 1 = ty
+          taps[(sl*4 + t)*DW +: DW] <= bank_texel[t_c0 ^ 1'(sl)][{t_parity[sl*4 + 2 + t/2],
+                                                                   t_parity[sl*4 + t%2]}*DW +: DW];
+        end
+      end
+    end
+  end
+endmodule

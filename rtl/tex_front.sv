@@ -1,0 +1,127 @@
+// tex_front: the model's stages lod, scale, address and wrap (docs/numerics.md stages 1-3) for
+// both levels a sample reads (slot 0 = level d, slot 1 = level d1): everything before the texel
+// fetch, shared by tex_unit (on-chip level memories) and tex_unit_cached (texture caches).
+//   clock 1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_scale  3 tex_lod level select
+//   4 tex_address per slot and axis; then tex_wrap, combinational on the clock-4 registers
+// Handshake: stall-enable; every register loads when en is high (the valid bits and tags are
+//   the top's). The cfg_* inputs are the top's registered copies.
+// Latency: 4 clocks from the request pins to the clock-4 registers; x, y are combinational on
+//   them. Throughput: 1 per clock.
+// Ports:
+//   req_u, req_v          : signed Q8.24; req_lod: signed Q8.8 (before bias and clamp)
+//   cfg_log2_w, cfg_log2_h: integers, level 0's size; cfg_* else as tex_unit's pins
+//   level                 : slot s at [s*LEVEL_W +: LEVEL_W], integer level (clock 4)
+//   f                     : unsigned WEIGHT_BITS, weight of slot 1 in 1/256 (clock 4)
+//   w                     : slot s axis a (0 x, 1 y) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS],
+//                           weight of the +1 tap in 1/256 (clock 4)
+//   log2_size             : slot s axis a at [(s*2 + a)*LEVEL_W +: LEVEL_W], log2 of the slot's
+//                           level size along the axis (clock 4)
+//   x, y                  : wrapped texel indices, unsigned XW (YW) bits; slot s tap j (0: i0,
+//                           1: i0 + 1) at [(s*2 + j)*XW +: XW]; each inside its level
+module tex_front #(
+  parameter int XW = 10,  // bits of a wrapped x index: max(MAX_LOG2_W, 1)
+  parameter int YW = 10
+) (
+  input  logic                                   clk,
+  input  logic                                   en,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_h,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_v,
+  input  logic                                   cfg_texel_linear,
+  input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
+  output logic [2*tex_pkg::LEVEL_W-1:0]          level,
+  output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
+  output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
+  output logic [4*tex_pkg::LEVEL_W-1:0]          log2_size,
+  output logic [4*XW-1:0]                        x,
+  output logic [4*YW-1:0]                        y
+);
+  localparam int VW = tex_pkg::LEVEL_W;
+  localparam int WB = tex_pkg::WEIGHT_BITS;
+  localparam int SW = tex_pkg::SCALED_W;
+
+  // ---------------------------------------------------------------- clock 1: capture
+  logic signed [tex_pkg::REQ_COORD_W-1:0] u_s1, v_s1;
+  logic signed [tex_pkg::LOD_W-1:0]       lod_s1;
+  always_ff @(posedge clk) begin
+    if (en) begin
+      u_s1   <= req_u;
+      v_s1   <= req_v;
+      lod_s1 <= req_lod;
+    end
+  end
+
+  // ---------------------------------------------------------------- clocks 2-3: lod, scale
+  logic [VW-1:0] last_level;
+  assign last_level = (cfg_log2_w > cfg_log2_h) ? cfg_log2_w : cfg_log2_h;
+
+  logic [2*VW-1:0] level_s3;       // slot s at [s*VW +: VW]: slot 0 = d, slot 1 = d1
+  logic [WB-1:0]   f_s3;
+  tex_lod u_lod (
+    .clk(clk), .en(en), .lod(lod_s1), .bias(cfg_lod_bias), .min_lod(cfg_min_lod),
+    .max_lod(cfg_max_lod), .mip_mode(cfg_mip_mode), .last_level(last_level),
+    .level(level_s3), .f(f_s3)
+  );
+
+  // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the scaled
+  // coordinate, held one clock while tex_lod selects the levels.
+  logic [2*SW-1:0] scaled_s2, scaled_s3;
+  logic [2*VW-1:0] log2_size0;     // {cfg_log2_h, cfg_log2_w}
+  assign log2_size0 = {cfg_log2_h, cfg_log2_w};
+  genvar a, s;
+  generate
+    for (a = 0; a < 2; a = a + 1) begin : g_axis
+      tex_scale u_scale (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
+                         .log2_size0(log2_size0[a*VW +: VW]), .scaled(scaled_s2[a*SW +: SW]));
+    end
+  endgenerate
+  always_ff @(posedge clk) if (en) scaled_s3 <= scaled_s2;
+
+  // ---------------------------------------------------------------- clock 4: per slot
+  // Slot s = level d (s = 0) or d1 (s = 1): the texel coordinates of both axes at that level
+  // (clock 4), then their wrap (combinational, into the fetch).
+  always_ff @(posedge clk) begin
+    if (en) begin
+      level <= level_s3;
+      f     <= f_s3;
+    end
+  end
+  generate
+    for (s = 0; s < 2; s = s + 1) begin : g_slot
+      for (a = 0; a < 2; a = a + 1) begin : g_axis
+        localparam int OW = (a == 0) ? XW : YW;
+        logic signed [tex_pkg::INDEX_W-1:0] i0_s4;
+        logic [VW-1:0]                      log2_size_s4;  // runtime size of the slot's level
+        logic [OW-1:0]                      t0, t1;        // wrapped taps i0, i0 + 1
+        tex_address u_address (
+          .clk(clk), .en(en), .scaled(scaled_s3[a*SW +: SW]), .level(level_s3[s*VW +: VW]),
+          .linear(cfg_texel_linear), .i0(i0_s4), .w(w[(s*2 + a)*WB +: WB])
+        );
+        // max(log2_size0 - level, 0): a side that reaches 1 texel stays 1. (The borrow masks the
+        // difference: no data-dependent branch in Verilator's C++.)
+        logic [VW:0] size_diff;
+        assign size_diff = {1'b0, log2_size0[a*VW +: VW]} - {1'b0, level_s3[s*VW +: VW]};
+        always_ff @(posedge clk) if (en) log2_size_s4 <= size_diff[VW-1:0] & ~{VW{size_diff[VW]}};
+        assign log2_size[(s*2 + a)*VW +: VW] = log2_size_s4;
+        tex_wrap #(.OUT_W(OW)) u_wrap0 (.i(i0_s4), .log2_n(log2_size_s4),
+                                        .mode((a == 0) ? cfg_wrap_u : cfg_wrap_v), .o(t0));
+        tex_wrap #(.OUT_W(OW)) u_wrap1 (.i(i0_s4 + tex_pkg::INDEX_W'(1)), .log2_n(log2_size_s4),
+                                        .mode((a == 0) ? cfg_wrap_u : cfg_wrap_v), .o(t1));
+        if (a == 0) begin : g_x
+          assign x[(s*2 + 0)*XW +: XW] = t0;
+          assign x[(s*2 + 1)*XW +: XW] = t1;
+        end else begin : g_y
+          assign y[(s*2 + 0)*YW +: YW] = t0;
+          assign y[(s*2 + 1)*YW +: YW] = t1;
+        end
+      end
+    end
+  endgenerate
+endmodule

@@ -1,0 +1,283 @@
+// tex_unit_cached: the texture unit with the pyramid in external memory behind two texture caches
+// (even and odd levels) and a latency-hiding sample FIFO (docs/memory.md). Same numerics, request
+// and response ports as tex_unit (bit-identical responses); the level memories and their write
+// port are replaced by a memory read port. Interface contract: docs/rtl-interface.md.
+//
+// Handshake: req, rsp, mem_req and mem_rsp are valid/ready. req_ready is a register output
+//   (tex_cached_fetch's en_front: room in the sample FIFO and the miss ring). Responses come in
+//   request order with their tag, with full backpressure; mem_rsp beats come in mem_req order.
+// Latency: 13 clocks from the request handshake edge to rsp_valid when every line hits
+//   and the output is not stalled (clocks 1-4 tex_front, 5 tag stage and FIFO push, 6 head,
+//   7 data read, 8 taps, 9-11 tex_filter, 12 tex_skid); a miss adds the memory's latency.
+// Throughput: 1 sample per clock while lines hit; the FIFO (FIFO_DEPTH samples) keeps requests
+//   flowing while misses are outstanding. Memory traffic is a function of the requests and the
+//   cache configuration alone (docs/memory.md §2).
+// Ports: as tex_unit (req_u, req_v signed Q8.24; req_lod, cfg_lod_bias, cfg_min_lod,
+//   cfg_max_lod signed Q8.8; rsp_rgba {A, B, G, R} CW-bit unsigned), plus
+//   cfg_mem_base     : byte address of level 0 in memory (MEM_ADDR_W bits, line aligned)
+//   cfg_block_morton : 0 row-major, 1 Morton order of a level's blocks
+//   cfg_log2_sets, cfg_log2_ways : geometry of each cache (sets >= 4, sets * ways <= LINES)
+//   mem_req_addr     : byte address of a line; mem_rsp_data: one MEM_W-bit beat of it
+// cfg_* are registered every clock and must be static while requests are in flight;
+//   cfg_log2_sets, cfg_log2_ways, cfg_mem_base, cfg_block_morton and the texture in memory
+//   change only under reset (the caches are emptied by rst).
+module tex_unit_cached #(
+  parameter int MAX_LOG2_W = 10,   // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H, each 0..11
+  parameter int MAX_LOG2_H = 10,
+  parameter int CW         = 8,    // bits per channel, 1..16
+  parameter int TAG_W      = 16,   // >= 1
+  parameter int BLOCK_W    = 4,    // texels per cache line: BLOCK_W x BLOCK_H, each 2, 4 or 8
+  parameter int BLOCK_H    = 4,
+  parameter int LINES      = 256,  // lines per cache at most (power of two, >= 16)
+  parameter int MAX_WAYS   = 4,    // 1, 2 or 4
+  parameter int FIFO_DEPTH = 256,  // samples waiting for memory (power of two, >= 2)
+  parameter int MISS_DEPTH = 64,   // misses in flight (power of two, >= 16)
+  parameter int FILL_DEPTH = 4,    // received lines not yet written (power of two)
+  parameter int MEM_W      = 128   // bits of a memory beat (power of two, divides the line)
+) (
+  input  logic                                   clk,
+  input  logic                                   rst,
+
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_h,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_v,
+  input  logic                                   cfg_texel_linear,
+  input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
+  input  logic [tex_pkg::MEM_ADDR_W-1:0]         cfg_mem_base,
+  input  logic                                   cfg_block_morton,
+  input  logic [tex_pkg::LOG2_SETS_W-1:0]        cfg_log2_sets,
+  input  logic [tex_pkg::LOG2_WAYS_W-1:0]        cfg_log2_ways,
+
+  input  logic                                   req_valid,
+  output logic                                   req_ready,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic [TAG_W-1:0]                       req_tag,
+
+  output logic                                   rsp_valid,
+  input  logic                                   rsp_ready,
+  output logic [4*CW-1:0]                        rsp_rgba,
+  output logic [TAG_W-1:0]                       rsp_tag,
+
+  output logic                                   mem_req_valid,
+  input  logic                                   mem_req_ready,
+  output logic [tex_pkg::MEM_ADDR_W-1:0]         mem_req_addr,
+  input  logic                                   mem_rsp_valid,
+  output logic                                   mem_rsp_ready,
+  input  logic [MEM_W-1:0]                       mem_rsp_data
+);
+  localparam int VW = tex_pkg::LEVEL_W;
+  localparam int WB = tex_pkg::WEIGHT_BITS;
+
+  // ---------------------------------------------------------------- parameter checks
+  localparam int MLW = (MAX_LOG2_W < 0) ? 0 : (MAX_LOG2_W > tex_pkg::MAX_LOG2_SIZE)
+                       ? tex_pkg::MAX_LOG2_SIZE : MAX_LOG2_W;
+  localparam int MLH = (MAX_LOG2_H < 0) ? 0 : (MAX_LOG2_H > tex_pkg::MAX_LOG2_SIZE)
+                       ? tex_pkg::MAX_LOG2_SIZE : MAX_LOG2_H;
+  localparam int CWD = (CW < 1) ? 1 : (CW > tex_pkg::MAX_CW) ? tex_pkg::MAX_CW : CW;
+  localparam int TGW = (TAG_W < 1) ? 1 : TAG_W;
+  localparam int XW  = (MLW > 0) ? MLW : 1;
+  localparam int YW  = (MLH > 0) ? MLH : 1;
+  localparam int LINE_BITS = BLOCK_W * BLOCK_H * ((CW > 8) ? 64 : 32);
+`ifdef __ICARUS__
+  `define TEX_PARAM_ERROR(msg) initial $fatal(1, msg);
+`else
+  `define TEX_PARAM_ERROR(msg) $error(msg);
+`endif
+  generate
+    if (MAX_LOG2_W < 0 || MAX_LOG2_W > tex_pkg::MAX_LOG2_SIZE) begin : g_bad_max_log2_w
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter MAX_LOG2_W must be in 0..11 (tex_pkg::MAX_LOG2_SIZE)")
+    end
+    if (MAX_LOG2_H < 0 || MAX_LOG2_H > tex_pkg::MAX_LOG2_SIZE) begin : g_bad_max_log2_h
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter MAX_LOG2_H must be in 0..11 (tex_pkg::MAX_LOG2_SIZE)")
+    end
+    if (CW < 1 || CW > tex_pkg::MAX_CW) begin : g_bad_cw
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter CW must be in 1..16 (tex_pkg::MAX_CW)")
+    end
+    if (TAG_W < 1) begin : g_bad_tag_w
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter TAG_W must be at least 1")
+    end
+    if (!(BLOCK_W == 2 || BLOCK_W == 4 || BLOCK_W == 8)) begin : g_bad_block_w
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter BLOCK_W must be 2, 4 or 8")
+    end
+    if (!(BLOCK_H == 2 || BLOCK_H == 4 || BLOCK_H == 8)) begin : g_bad_block_h
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter BLOCK_H must be 2, 4 or 8")
+    end
+    if (!(MAX_WAYS == 1 || MAX_WAYS == 2 || MAX_WAYS == 4)) begin : g_bad_ways
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter MAX_WAYS must be 1, 2 or 4")
+    end
+    if (LINES < 16 || (LINES & (LINES - 1)) != 0) begin : g_bad_lines
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter LINES must be a power of two, at least 16")
+    end
+    if (FIFO_DEPTH < 2 || (FIFO_DEPTH & (FIFO_DEPTH - 1)) != 0) begin : g_bad_fifo
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter FIFO_DEPTH must be a power of two, at least 2")
+    end
+    if (MISS_DEPTH < 16 || (MISS_DEPTH & (MISS_DEPTH - 1)) != 0) begin : g_bad_miss
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter MISS_DEPTH must be a power of two, at least 16")
+    end
+    if (FILL_DEPTH < 1 || (FILL_DEPTH & (FILL_DEPTH - 1)) != 0) begin : g_bad_fill
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter FILL_DEPTH must be a power of two")
+    end
+    if (MEM_W < 8 || (MEM_W & (MEM_W - 1)) != 0 || MEM_W > LINE_BITS) begin : g_bad_mem_w
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter MEM_W must be a power of two from 8 to the line's bits")
+    end
+  endgenerate
+`undef TEX_PARAM_ERROR
+
+  // ---------------------------------------------------------------- input registers
+  logic [VW-1:0]                      cfg_log2_w_q, cfg_log2_h_q;
+  logic [tex_pkg::WRAP_W-1:0]         cfg_wrap_u_q, cfg_wrap_v_q;
+  logic [tex_pkg::MIP_W-1:0]          cfg_mip_mode_q;
+  logic                               cfg_texel_linear_q;
+  logic signed [tex_pkg::LOD_W-1:0]   cfg_lod_bias_q, cfg_min_lod_q, cfg_max_lod_q;
+  logic [tex_pkg::MEM_ADDR_W-1:0]     cfg_mem_base_q;
+  logic                               cfg_block_morton_q;
+  logic [tex_pkg::LOG2_SETS_W-1:0]    cfg_log2_sets_q;
+  logic [tex_pkg::LOG2_WAYS_W-1:0]    cfg_log2_ways_q;
+  always_ff @(posedge clk) begin
+    cfg_log2_w_q       <= cfg_log2_w;
+    cfg_log2_h_q       <= cfg_log2_h;
+    cfg_wrap_u_q       <= cfg_wrap_u;
+    cfg_wrap_v_q       <= cfg_wrap_v;
+    cfg_texel_linear_q <= cfg_texel_linear;
+    cfg_mip_mode_q     <= cfg_mip_mode;
+    cfg_lod_bias_q     <= cfg_lod_bias;
+    cfg_min_lod_q      <= cfg_min_lod;
+    cfg_max_lod_q      <= cfg_max_lod;
+    cfg_mem_base_q     <= cfg_mem_base;
+    cfg_block_morton_q <= cfg_block_morton;
+    cfg_log2_sets_q    <= cfg_log2_sets;
+    cfg_log2_ways_q    <= cfg_log2_ways;
+  end
+
+  // ---------------------------------------------------------------- front: clocks 1-4
+  logic en_front, en_back;
+  logic [4:1] valid_f;             // the front's clock-n register holds a request
+  logic [TGW-1:0] tag_f [4:1];
+  assign req_ready = en_front;
+  always_ff @(posedge clk) begin
+    if (rst) valid_f <= '0;
+    else if (en_front) valid_f <= {valid_f[3:1], req_valid};
+    if (en_front) begin
+      tag_f[1] <= req_tag;
+      for (int n = 2; n <= 4; n++) tag_f[n] <= tag_f[n-1];
+    end
+  end
+
+  logic [2*VW-1:0] level_s4;
+  logic [WB-1:0]   f_s4;
+  logic [4*WB-1:0] w_s4;
+  logic [4*VW-1:0] log2_size_s4;
+  logic [4*XW-1:0] x;
+  logic [4*YW-1:0] y;
+  tex_front #(.XW(XW), .YW(YW)) u_front (
+    .clk(clk), .en(en_front), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
+    .cfg_log2_w(cfg_log2_w_q), .cfg_log2_h(cfg_log2_h_q), .cfg_wrap_u(cfg_wrap_u_q),
+    .cfg_wrap_v(cfg_wrap_v_q), .cfg_texel_linear(cfg_texel_linear_q),
+    .cfg_mip_mode(cfg_mip_mode_q), .cfg_lod_bias(cfg_lod_bias_q), .cfg_min_lod(cfg_min_lod_q),
+    .cfg_max_lod(cfg_max_lod_q),
+    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
+  );
+
+  // ---------------------------------------------------------------- cached fetch: clocks 5-8
+  logic              fetch_valid;
+  logic [TGW-1:0]    fetch_tag;
+  logic [32*CWD-1:0] taps;
+  logic [4*WB-1:0]   fetch_w;
+  logic [WB-1:0]     fetch_f;
+  tex_cached_fetch #(
+    .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .CW(CWD), .TAG_W(TGW), .BW(BLOCK_W), .BH(BLOCK_H),
+    .LINES(LINES), .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH),
+    .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W)
+  ) u_fetch (
+    .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
+    .front_valid(valid_f[4]), .front_tag(tag_f[4]), .level(level_s4), .f(f_s4), .w(w_s4),
+    .log2_size(log2_size_s4), .x(x), .y(y),
+    .cfg_log2_w(cfg_log2_w_q), .cfg_log2_h(cfg_log2_h_q), .cfg_mem_base(cfg_mem_base_q),
+    .cfg_block_morton(cfg_block_morton_q), .cfg_log2_sets(cfg_log2_sets_q),
+    .cfg_log2_ways(cfg_log2_ways_q),
+    .mem_req_valid(mem_req_valid), .mem_req_ready(mem_req_ready), .mem_req_addr(mem_req_addr),
+    .mem_rsp_valid(mem_rsp_valid), .mem_rsp_ready(mem_rsp_ready), .mem_rsp_data(mem_rsp_data),
+    .out_valid(fetch_valid), .out_tag(fetch_tag), .taps(taps), .out_w(fetch_w),
+    .out_f(fetch_f)
+  );
+
+  // ---------------------------------------------------------------- filter: clocks 9-11
+  logic [4*CWD-1:0] rgba;
+  tex_filter #(.CW(CWD)) u_filter (
+    .clk(clk), .en(en_back), .taps(taps), .w(fetch_w), .f(fetch_f), .rgba(rgba)
+  );
+  logic [3:1]     valid_b;
+  logic [TGW-1:0] tag_b [3:1];
+  always_ff @(posedge clk) begin
+    if (rst) valid_b <= '0;
+    else if (en_back) valid_b <= {valid_b[2:1], fetch_valid};
+    if (en_back) begin
+      tag_b[1] <= fetch_tag;
+      tag_b[2] <= tag_b[1];
+      tag_b[3] <= tag_b[2];
+    end
+  end
+
+  // ---------------------------------------------------------------- clock 12: skid buffer
+  tex_skid #(.W(TGW + 4*CWD)) u_skid (
+    .clk(clk), .rst(rst),
+    .in_valid(valid_b[3]), .in_ready(en_back), .in_data({tag_b[3], rgba}),
+    .out_valid(rsp_valid), .out_ready(rsp_ready), .out_data({rsp_tag, rsp_rgba})
+  );
+
+`ifndef SYNTHESIS
+  // ---------------------------------------------------------------- simulation checks
+  // Requests in flight never go below 0 (no response without a request); handshake rules of the
+  // request, response and memory request channels: a valid is held until ready, with a stable
+  // payload.
+  logic [31:0] in_flight;
+  logic        req_stalled_q, rsp_stalled_q, mreq_stalled_q;
+  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u_q, req_v_q;
+  logic signed [tex_pkg::LOD_W-1:0]       req_lod_q;
+  logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
+  logic [4*CW-1:0]                        rsp_rgba_q;
+  logic [tex_pkg::MEM_ADDR_W-1:0]         mreq_addr_q;
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      in_flight <= '0;
+    end else begin
+      assert (in_flight != '0 || !rsp_valid)
+        else $error("tex_unit_cached: rsp_valid high with no request in flight");
+      in_flight <= in_flight + 32'(req_valid && req_ready) - 32'(rsp_valid && rsp_ready);
+    end
+    req_stalled_q  <= !rst && req_valid && !req_ready;
+    rsp_stalled_q  <= !rst && rsp_valid && !rsp_ready;
+    mreq_stalled_q <= !rst && mem_req_valid && !mem_req_ready;
+    if (req_valid && !req_ready) begin
+      req_u_q   <= req_u;
+      req_v_q   <= req_v;
+      req_lod_q <= req_lod;
+      req_tag_q <= req_tag;
+    end
+    if (rsp_valid && !rsp_ready) begin
+      rsp_tag_q  <= rsp_tag;
+      rsp_rgba_q <= rsp_rgba;
+    end
+    if (mem_req_valid && !mem_req_ready) mreq_addr_q <= mem_req_addr;
+    if (!rst && req_stalled_q) begin
+      assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q
+              && req_tag == req_tag_q)
+        else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
+    end
+    if (!rst && rsp_stalled_q) begin
+      assert (rsp_valid && rsp_tag == rsp_tag_q && rsp_rgba == rsp_rgba_q)
+        else $error("tex_unit_cached: rsp_valid dropped or response changed while rsp_ready was low");
+    end
+    if (!rst && mreq_stalled_q) begin
+      assert (mem_req_valid && mem_req_addr == mreq_addr_q)
+        else $error("tex_unit_cached: mem_req_valid dropped or address changed while mem_req_ready was low");
+    end
+  end
+`endif
+endmodule
