@@ -24,9 +24,12 @@ int64_t fixed_log2_q10(uint64_t p) {
 }
 
 namespace {
+// Q15.16 texels; 2^15 texels or more saturates (lambda is then past every level, and clamps to
+// the last one, as in GL: near a horizon a pixel's footprint is that large).
 bool to_q16(double texels, int64_t& out) {
-  if (!std::isfinite(texels) || std::fabs(texels) >= 32768.0) return false;
-  out = std::llround(std::ldexp(texels, 16));
+  if (!std::isfinite(texels)) return false;
+  constexpr int64_t kMax = (int64_t(1) << 31) - 1;
+  out = std::fabs(texels) >= 32768.0 ? (texels < 0 ? -kMax : kMax) : std::llround(std::ldexp(texels, 16));
   return true;
 }
 }  // namespace

@@ -13,7 +13,8 @@ struct Derivatives {
 int64_t fixed_log2_q10(uint64_t p);
 
 // lambda in Q8.8 for a texture of 2^log2_w x 2^log2_h level-0 texels (docs/numerics.md,
-// stage 1b). Returns false when a derivative is not finite or too large (>= 2^15 texels).
+// stage 1b). A derivative of 2^15 texels or more saturates there (lambda >= 15, past every level:
+// the filter clamps it to the last level). Returns false when a derivative is not finite.
 bool lod_from_derivatives(const Derivatives& d, int log2_w, int log2_h, int32_t& lod_q8);
 
 }  // namespace tex

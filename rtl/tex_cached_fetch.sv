@@ -318,7 +318,7 @@ module tex_cached_fetch #(
   assign beat_take     = mem_rsp_valid && mem_rsp_ready;
   assign line_done     = beat_take && (BEATS == 1 || beat == BTW'(BEATS - 1));
   always_ff @(posedge clk) begin
-    if (beat_take) fill_mem[fill_wr][((BEATS > 1) ? beat : '0)*MEM_W +: MEM_W] <= mem_rsp_data;
+    if (beat_take) fill_mem[fill_wr][32'(beat)*MEM_W +: MEM_W] <= mem_rsp_data;  // (beat is 0 if BEATS = 1)
   end
   always_ff @(posedge clk) begin
     if (rst) begin

@@ -139,7 +139,7 @@ Request to_request(const Query& q, int log2_w0, int log2_h0, const std::string& 
   if (q.explicit_lod) {
     if (!to_lod_fixed(q.lod, r.lod)) throw Error(at() + "lod = " + std::to_string(q.lod) + " is outside [-128, 128)");
   } else if (!lod_from_derivatives(q.deriv, log2_w0, log2_h0, r.lod)) {
-    throw Error(at() + "a derivative is 32768 texels or more");
+    throw Error(at() + "a derivative is not a finite number");
   }
   return r;
 }

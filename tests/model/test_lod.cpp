@@ -104,12 +104,17 @@ TEST(Lod, LodFromDerivativesEdgeCases) {
   EXPECT_EQ(lod, 256);
   ASSERT_TRUE(lod_from_derivatives({0, 4.0 / 64, 0, 0}, 8, 6, lod));  // v scales by the height
   EXPECT_EQ(lod, 512);
-  // Not finite or too large (>= 2^15 texels): refused, never clamped.
+  // Not finite: refused. 2^15 texels or more (a pixel at a horizon): saturates at lambda >= 15,
+  // past the last level of any texture (13 at most), never below the value just under it.
   EXPECT_FALSE(lod_from_derivatives({NAN, 0, 0, 0}, 8, 8, lod));
   EXPECT_FALSE(lod_from_derivatives({0, INFINITY, 0, 0}, 8, 8, lod));
-  EXPECT_FALSE(lod_from_derivatives({0, 0, 32768.0 / 256, 0}, 8, 8, lod));
   EXPECT_TRUE(lod_from_derivatives({0, 0, 32767.0 / 256, 0}, 8, 8, lod));
   EXPECT_NEAR(lod / 256.0, std::log2(32767.0), 1.0 / 256);
+  for (double texels : {32768.0, 1e6, -1e30}) {
+    ASSERT_TRUE(lod_from_derivatives({0, 0, texels / 256, 0}, 8, 8, lod)) << texels;
+    EXPECT_GE(lod, 15 * 256) << texels;
+    EXPECT_LE(lod, 16 * 256) << texels;
+  }
 }
 
 // to_coord_fixed / to_lod_fixed: round half away from zero, range errors instead of clamping.
