@@ -361,16 +361,43 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   return 0;
 }
 
+// The memory image options of `mip` (docs/memory.md §1).
+struct ImageOptions {
+  std::string path, block = "4x4", order = "row-major", base = "0";
+  LayoutParams layout() const {
+    LayoutParams p;
+    const auto x = block.find('x');
+    const uint64_t bw = x == std::string::npos ? 0 : parse_unsigned(block.substr(0, x), "--block W");
+    const uint64_t bh = x == std::string::npos ? 0 : parse_unsigned(block.substr(x + 1), "--block H");
+    if ((bw != 2 && bw != 4 && bw != 8) || (bh != 2 && bh != 4 && bh != 8))
+      throw Error("--block " + quote_clipped(block) + " is not WxH with W and H each 2, 4 or 8");
+    p.block_w = int(bw);
+    p.block_h = int(bh);
+    if (!parse_block_order(order, p.order)) throw Error("unknown --block-order " + quote_clipped(order) + " (row-major, morton)");
+    const uint64_t b = parse_unsigned(base, "--mem-base");
+    if (b > 0xFFFFFFFFull) throw Error("--mem-base " + base + " is beyond the 32-bit address space");
+    p.base = uint32_t(b);
+    return p;
+  }
+};
+
 int cmd_mip(const std::string& texture, const std::string& mode_name, bool resize, const std::string& dump_dir,
-            const std::string& layout_path) {
-  if (dump_dir.empty() && layout_path.empty()) throw Error("mip: give --dump-levels DIR and/or --layout FILE");
+            const std::string& layout_path, const ImageOptions& image) {
+  if (dump_dir.empty() && layout_path.empty() && image.path.empty())
+    throw Error("mip: give --dump-levels DIR, --layout FILE and/or --memory-image FILE");
+  const LayoutParams memory_layout = image.layout();
   PyramidMode mode;
   if (!parse_pyramid_mode(mode_name, mode)) throw Error("unknown pyramid mode " + quote_clipped(mode_name) + " (exact, cascade)");
   OutputSet outputs;
   outputs.add_input(texture, "--texture");
   if (!layout_path.empty()) check_image_path(layout_path);
   OutputFile* layout = layout_path.empty() ? nullptr : &outputs.declare(layout_path, "--layout", OutputSet::Kind::File);
+  OutputFile* image_out = image.path.empty() ? nullptr : &outputs.declare(image.path, "--memory-image");
   const Pyramid pyr = build_pyramid(load_texture(texture, resize), mode);
+  std::vector<uint8_t> image_bytes;
+  if (image_out)  // (the layout checks the block, base and size before anything is written)
+    image_bytes = memory_image_file(
+        pyr, MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, memory_layout));
   if (!dump_dir.empty()) {
     outputs.make_directory(dump_dir, "--dump-levels");
     std::vector<OutputFile*> levels;
@@ -383,10 +410,17 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
     for (size_t k = 0; k < pyr.levels.size(); ++k) save_image(pyr.levels[k], *levels[k]);
   }
   if (layout) save_image(mip_layout(pyr), *layout);
+  if (image_out) {
+    std::FILE* f = image_out->open();
+    if (std::fwrite(image_bytes.data(), 1, image_bytes.size(), f) != image_bytes.size())
+      throw Error("cannot write " + image_out->path());
+    image_out->close();
+  }
   outputs.commit();
-  std::printf("texsim mip: %dx%d texture, %zu levels (%s)%s%s%s%s\n", pyr.levels[0].width, pyr.levels[0].height,
+  std::printf("texsim mip: %dx%d texture, %zu levels (%s)%s%s%s%s%s%s\n", pyr.levels[0].width, pyr.levels[0].height,
               pyr.levels.size(), mode_name.c_str(), dump_dir.empty() ? "" : ", levels in ", dump_dir.c_str(),
-              layout_path.empty() ? "" : ", layout in ", layout_path.c_str());
+              layout_path.empty() ? "" : ", layout in ", layout_path.c_str(),
+              image.path.empty() ? "" : ", memory image in ", image.path.c_str());
   return 0;
 }
 
@@ -470,6 +504,13 @@ int main(int argc, char** argv) {
   mip->add_flag("--resize", mip_resize, "resample a texture whose sides are not powers of two");
   mip->add_option("--dump-levels", dump_dir, "write DIR/level00.png, level01.png, ...");
   mip->add_option("--layout", layout, "write the packed R/G/B memory layout (paper Figure 1)");
+  ImageOptions image;
+  mip->add_option("--memory-image", image.path,
+                  "write the pyramid as the cached unit's external memory holds it (header: docs/memory.md)");
+  mip->add_option("--block", image.block, "memory image: texels per block WxH, each 2 | 4 | 8")->capture_default_str();
+  mip->add_option("--block-order", image.order, "memory image: row-major | morton")->capture_default_str();
+  mip->add_option("--mem-base", image.base, "memory image: byte address of level 0 (a multiple of the line)")
+      ->capture_default_str();
 
   SamplingOptions render_opts;
   std::string scene = "plane", render_out;
@@ -514,7 +555,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*sample) return cmd_sample(sample_opts, queries, out);
-    if (*mip) return cmd_mip(mip_texture, mip_mode, mip_resize, dump_dir, layout);
+    if (*mip) return cmd_mip(mip_texture, mip_mode, mip_resize, dump_dir, layout, image);
     if (*render) {
       SceneOptions so;
       so.width = width;

@@ -14,6 +14,7 @@
 #include "cli_fixture.h"
 #include "engines/engine.h"
 #include "model/image.h"
+#include "model/memory_layout.h"
 #include "model/pyramid.h"
 #include "workloads/scenes.h"
 
@@ -351,4 +352,29 @@ TEST_F(TexsimCli, EngineOptionErrorsComeBeforeAnyWork) {
   EXPECT_NE(f.exit_code, 0);
   EXPECT_NE(f.err.find("unknown engine 'gpu'"), std::string::npos) << f.err;
   EXPECT_FALSE(fs::exists(dir / "figs")) << "figures --engine gpu left files";
+}
+
+// --memory-image: the header of docs/memory.md, then the image the cached RTL reads, byte for byte
+// the model's (checked against hand-computed sizes and a texel read back).
+TEST_F(TexsimCli, MipMemoryImageIsTheModelsImage) {
+  const Result r = run("mip -t noise:64x16 --memory-image mem.bin --block 8x2 --block-order morton --mem-base 2048");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(dir / "mem.bin", std::ios::binary);
+  const std::vector<uint8_t> file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 64, 16));
+  LayoutParams p;
+  p.block_w = 8;
+  p.block_h = 2;
+  p.order = BlockOrder::Morton;
+  p.base = 2048;
+  const MemoryLayout layout(6, 4, 8, p);
+  EXPECT_EQ(file, memory_image_file(pyr, layout));
+  // 7 levels: 8x8 + 4x4 + 2x2 + 1x1 + 1x1 + 1x1 + 1x1 blocks of 64 bytes after a 64 + 7*8 byte header.
+  ASSERT_EQ(file.size(), 120u + (64u + 16u + 4u + 4u) * 64u);
+  // Texel (9, 3) of level 0: block (1, 1), Morton index 3, at 2048 + 3*64, texel (1, 1) of it.
+  const size_t at = 120 + 3 * 64 + (1 * 8 + 1) * 4;
+  EXPECT_EQ(file[at], pyr.levels[0].at(9, 3)[0]);
+  EXPECT_EQ(file[at + 3], pyr.levels[0].at(9, 3)[3]);
+  EXPECT_NE(run("mip --memory-image m2.bin --mem-base 100").exit_code, 0);  // not a multiple of 64
+  EXPECT_FALSE(std::filesystem::exists(dir / "m2.bin"));
 }
