@@ -81,8 +81,11 @@ TEST_F(TexsimCli, NanInfAndOutOfRangeValues) {
   }
   queries("u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,nan,0,0,0\n");
   expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:2"});
+  // A finite derivative of 2^15 texels or more is not an error: lambda saturates past the last
+  // level, which the filter clamps to (as in GL).
   queries("u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,1e9,0,0,0\n");
-  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:2"});
+  const Result big = run("sample -t noise:8x8 -q q.csv -o r.csv");
+  EXPECT_EQ(big.exit_code, 0) << big.err;
 }
 
 TEST_F(TexsimCli, UnknownOptionFilterWrap) {
