@@ -23,7 +23,14 @@ bool parse_block_order(const std::string& name, BlockOrder& out) {
 std::string block_order_name(BlockOrder o) { return o == BlockOrder::Morton ? "morton" : "row-major"; }
 
 MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params)
-    : params_(params) {
+    : params_(params), log2_w0_(log2_w0), log2_h0_(log2_h0), channel_bits_(channel_bits) {
+  for (const int s : {log2_w0, log2_h0})
+    if (s < 0 || s > kMaxLog2Size)
+      throw Error("texture side 2^" + std::to_string(s) + ": must be 1 to " + std::to_string(1 << kMaxLog2Size) +
+                  " texels");
+  if (channel_bits < 1 || channel_bits > kMaxChannelBits)
+    throw Error("channel width " + std::to_string(channel_bits) + " bits: must be 1 to " +
+                std::to_string(kMaxChannelBits));
   log2_bw_ = log2_of_side(params.block_w, "width");
   log2_bh_ = log2_of_side(params.block_h, "height");
   texel_bytes_ = channel_bits > 8 ? 8 : 4;
@@ -41,6 +48,7 @@ MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const Lay
     at += uint64_t(line_bytes_) << (l.log2_bx + l.log2_by);
     levels_.push_back(l);
   }
+  // The last byte must have a 32-bit address: the image may end exactly at 2^32.
   if (at > (uint64_t(1) << 32))
     throw Error("the texture's memory image ends at byte " + std::to_string(at) +
                 ", beyond the 32-bit address space of the memory port");
@@ -50,30 +58,36 @@ MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const Lay
 uint32_t MemoryLayout::block_index(int level, uint32_t bx, uint32_t by) const {
   const Level& l = levels_[size_t(level)];
   if (params_.order == BlockOrder::RowMajor) return by << l.log2_bx | bx;
+  // The square part interleaved; the longer side's remaining bits above it.
   const int m = std::min(l.log2_bx, l.log2_by);
   const uint32_t low = (1u << m) - 1;
   return uint32_t(interleave_bits(bx & low, by & low)) | ((bx >> m) | (by >> m)) << (2 * m);
 }
 
 std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout) {
+  if (pyramid.log2_w0() != layout.log2_w0() || pyramid.log2_h0() != layout.log2_h0() ||
+      pyramid.levels[0].channel_bits != layout.channel_bits() || int(pyramid.levels.size()) != layout.levels())
+    throw Error("the memory layout is for a " + std::to_string(1 << layout.log2_w0()) + "x" +
+                std::to_string(1 << layout.log2_h0()) + " texture of " + std::to_string(layout.channel_bits()) +
+                "-bit channels; the pyramid is " + std::to_string(pyramid.levels[0].width) + "x" +
+                std::to_string(pyramid.levels[0].height) + ", " + std::to_string(pyramid.levels[0].channel_bits) +
+                "-bit, " + std::to_string(pyramid.levels.size()) + " levels");
   std::vector<uint8_t> image(size_t(layout.image_bytes()), 0);
-  const int tb = layout.texel_bytes(), bw = layout.params().block_w, bh = layout.params().block_h;
+  const int tb = layout.texel_bytes();
   const uint32_t base = layout.params().base;
-  for (int k = 0; k < int(pyramid.levels.size()); ++k) {
+  for (int k = 0; k < layout.levels(); ++k) {
     const Image& img = pyramid.levels[size_t(k)];
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x) {
-        const size_t at = size_t(layout.line_address(k, uint32_t(x) >> layout.log2_block_w(),
-                                                     uint32_t(y) >> layout.log2_block_h()) - base) +
-                          size_t(((y & (bh - 1)) * bw + (x & (bw - 1))) * tb);
-        const Texel t = img.at(x, y);
-        for (int c = 0; c < 4; ++c) {
-          const uint16_t v = t[size_t(c)];
+        const uint32_t ux = uint32_t(x), uy = uint32_t(y);
+        uint8_t* at = &image[layout.line_address(k, ux, uy) - base + layout.texel_offset(ux, uy)];
+        const Texel& t = img.at(x, y);
+        for (size_t c = 0; c < 4; ++c) {
           if (tb == 4) {
-            image[at + size_t(c)] = uint8_t(v);
+            at[c] = uint8_t(t[c]);
           } else {
-            image[at + size_t(2 * c)] = uint8_t(v);
-            image[at + size_t(2 * c + 1)] = uint8_t(v >> 8);
+            at[2 * c] = uint8_t(t[c]);
+            at[2 * c + 1] = uint8_t(t[c] >> 8);
           }
         }
       }
@@ -82,20 +96,21 @@ std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayo
 }
 
 std::vector<uint8_t> memory_image_file(const Pyramid& pyramid, const MemoryLayout& layout) {
+  std::vector<uint8_t> image = build_memory_image(pyramid, layout);
   std::vector<uint8_t> out;
+  out.reserve(64 + 8 * size_t(layout.levels()) + image.size());
   auto u32 = [&](uint32_t v) {
     for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i)));
   };
   auto u64 = [&](uint64_t v) {
     for (int i = 0; i < 8; ++i) out.push_back(uint8_t(v >> (8 * i)));
   };
-  const char magic[8] = {'T', 'E', 'X', 'M', 'E', 'M', '0', '1'};
-  out.insert(out.end(), magic, magic + 8);
+  for (const char c : std::string("TEXMEM01")) out.push_back(uint8_t(c));
   u32(uint32_t(64 + 8 * layout.levels()));
-  u32(uint32_t(pyramid.log2_w0()));
-  u32(uint32_t(pyramid.log2_h0()));
+  u32(uint32_t(layout.log2_w0()));
+  u32(uint32_t(layout.log2_h0()));
   u32(uint32_t(layout.levels()));
-  u32(uint32_t(pyramid.levels[0].channel_bits));
+  u32(uint32_t(layout.channel_bits()));
   u32(uint32_t(layout.texel_bytes()));
   u32(uint32_t(layout.params().block_w));
   u32(uint32_t(layout.params().block_h));
@@ -104,7 +119,6 @@ std::vector<uint8_t> memory_image_file(const Pyramid& pyramid, const MemoryLayou
   u64(layout.params().base);
   u64(layout.image_bytes());
   for (int k = 0; k < layout.levels(); ++k) u64(layout.level_base(k));
-  const std::vector<uint8_t> image = build_memory_image(pyramid, layout);
   out.insert(out.end(), image.begin(), image.end());
   return out;
 }

@@ -20,28 +20,55 @@ struct LayoutParams {
   uint32_t base = 0;  // byte address of level 0, a multiple of the line size
 };
 
+// Morton code: a bit i at bit 2i, b bit i at bit 2i + 1.
+inline uint64_t interleave_bits(uint32_t a, uint32_t b) {
+  // Spreads the 32 bits of v to the even bits of a 64-bit word, in five shift-and-mask steps
+  // (the cache computes one per block lookup).
+  auto spread = [](uint64_t v) {
+    v = (v | v << 16) & 0x0000FFFF0000FFFFull;
+    v = (v | v << 8) & 0x00FF00FF00FF00FFull;
+    v = (v | v << 4) & 0x0F0F0F0F0F0F0F0Full;
+    v = (v | v << 2) & 0x3333333333333333ull;
+    return (v | v << 1) & 0x5555555555555555ull;
+  };
+  return spread(a) | spread(b) << 1;
+}
+
 class MemoryLayout {
  public:
-  // Throws tex::Error naming the bad value (block side, base alignment, image beyond 32 bits).
+  // Throws tex::Error naming the bad value: a texture size or channel width the unit cannot have,
+  // a block side, a base not aligned to the line, an image ending beyond the 32-bit address space.
   MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params);
 
   const LayoutParams& params() const { return params_; }
+  int log2_w0() const { return log2_w0_; }
+  int log2_h0() const { return log2_h0_; }
+  int channel_bits() const { return channel_bits_; }
   int levels() const { return int(levels_.size()); }
   int texel_bytes() const { return texel_bytes_; }    // 4 (channels <= 8 bits) or 8
   int line_bytes() const { return line_bytes_; }      // block_w * block_h * texel_bytes
-  int log2_blocks_x(int level) const { return levels_[size_t(level)].log2_bx; }
-  int log2_blocks_y(int level) const { return levels_[size_t(level)].log2_by; }
+  int log2_block_w() const { return log2_bw_; }
+  int log2_block_h() const { return log2_bh_; }
+  // The block grid of a level: NBX_k x NBY_k blocks, each at least 1.
+  uint32_t blocks_x(int level) const { return 1u << levels_[size_t(level)].log2_bx; }
+  uint32_t blocks_y(int level) const { return 1u << levels_[size_t(level)].log2_by; }
   uint32_t level_base(int level) const { return levels_[size_t(level)].base; }
-  uint64_t image_bytes() const { return image_bytes_; }
+  uint64_t image_bytes() const { return image_bytes_; }  // from base to the end of the last level
 
   // Index of block (bx, by) within its level (row-major or Morton).
   uint32_t block_index(int level, uint32_t bx, uint32_t by) const;
   // Byte address of the line holding block (bx, by) of `level`.
-  uint32_t line_address(int level, uint32_t bx, uint32_t by) const {
+  uint32_t block_address(int level, uint32_t bx, uint32_t by) const {
     return level_base(level) + block_index(level, bx, by) * uint32_t(line_bytes_);
   }
-  int log2_block_w() const { return log2_bw_; }
-  int log2_block_h() const { return log2_bh_; }
+  // Byte address of the line holding texel (x, y) of `level`.
+  uint32_t line_address(int level, uint32_t x, uint32_t y) const {
+    return block_address(level, x >> log2_bw_, y >> log2_bh_);
+  }
+  // Byte offset of texel (x, y) inside its line.
+  uint32_t texel_offset(uint32_t x, uint32_t y) const {
+    return (((y & ((1u << log2_bh_) - 1)) << log2_bw_) | (x & ((1u << log2_bw_) - 1))) * uint32_t(texel_bytes_);
+  }
 
  private:
   struct Level {
@@ -49,22 +76,17 @@ class MemoryLayout {
     uint32_t base = 0;
   };
   LayoutParams params_;
+  int log2_w0_, log2_h0_, channel_bits_;
   int texel_bytes_, line_bytes_, log2_bw_, log2_bh_;
   std::vector<Level> levels_;
   uint64_t image_bytes_ = 0;
 };
 
-// The bytes at addresses base .. base + image_bytes - 1 (padding texels 0).
+// The bytes at addresses base .. base + image_bytes - 1 (padding texels 0). Throws tex::Error when
+// the pyramid is not the one the layout was made for (sizes, channel width).
 std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout);
 
 // The memory image file of `texsim mip --memory-image`: header (docs/memory.md §1), then the image.
 std::vector<uint8_t> memory_image_file(const Pyramid& pyramid, const MemoryLayout& layout);
-
-// Morton code: a bit i at bit 2i, b bit i at bit 2i + 1.
-inline uint64_t interleave_bits(uint32_t a, uint32_t b) {
-  uint64_t r = 0;
-  for (int i = 0; i < 32; ++i) r |= uint64_t((a >> i) & 1) << (2 * i) | uint64_t((b >> i) & 1) << (2 * i + 1);
-  return r;
-}
 
 }  // namespace tex

@@ -9,6 +9,10 @@ TextureCache::TextureCache(const MemoryLayout& layout, const CacheParams& params
                            int log2_w0, int log2_h0)
     : layout_(layout), config_(config), log2_w0_(log2_w0), log2_h0_(log2_h0),
       last_level_(level_count(log2_w0, log2_h0) - 1), ways_(params.ways) {
+  if (log2_w0 != layout.log2_w0() || log2_h0 != layout.log2_h0())
+    throw Error("texture cache: the texture is 2^" + std::to_string(log2_w0) + " x 2^" + std::to_string(log2_h0) +
+                " texels, its memory layout 2^" + std::to_string(layout.log2_w0()) + " x 2^" +
+                std::to_string(layout.log2_h0()));
   if (ways_ != 1 && ways_ != 2 && ways_ != 4)
     throw Error("cache ways " + std::to_string(ways_) + ": must be 1, 2 or 4");
   const int line = layout.line_bytes();
@@ -26,11 +30,11 @@ TextureCache::TextureCache(const MemoryLayout& layout, const CacheParams& params
   }
 }
 
-bool TextureCache::access(int cache, int set, uint32_t line) {
+bool TextureCache::access(int cache, int set, uint32_t address) {
   Way* ways = &caches_[size_t(cache)][size_t(set * ways_)];
   int hit = -1, victim = 0;
   for (int w = 0; w < ways_; ++w) {
-    if (ways[w].valid && ways[w].tag == line) hit = w;
+    if (ways[w].valid && ways[w].tag == address) hit = w;
     if (ways[w].age == ways_ - 1) victim = w;
   }
   const int used = hit >= 0 ? hit : victim;
@@ -47,7 +51,7 @@ bool TextureCache::access(int cache, int set, uint32_t line) {
   }
   if (ways[used].valid && previous_use == sample_) ++stats_.evictions_of_previous;
   ways[used].valid = true;
-  ways[used].tag = line;
+  ways[used].tag = address;
   ++stats_.misses[size_t(cache)];
   return false;
 }
@@ -86,9 +90,8 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     for (int p = 0; p < 4; ++p) {
       if (!(sl.block_mask >> p & 1)) continue;
       ++sl.blocks;
-      const uint32_t address = layout_.line_address(k, bx_of[p], by_of[p]);
-      const int set = int(interleave_bits(bx_of[p], by_of[p]) & uint64_t(sets_ - 1));
-      if (!access(cache, set, address / uint32_t(layout_.line_bytes()))) {
+      const uint32_t address = layout_.block_address(k, bx_of[p], by_of[p]);
+      if (!access(cache, set_index(bx_of[p], by_of[p]), address)) {
         ++sl.misses;
         if (misses) misses->push_back(address);
       }

@@ -43,7 +43,7 @@ struct CacheStats {
 class TextureCache {
  public:
   // Throws tex::Error naming a geometry the hardware cannot have (ways not 1/2/4, sets not a
-  // power of two >= 4, size not a whole number of lines).
+  // power of two >= 4, size not a whole number of lines), or a texture size that is not the layout's.
   TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config, int log2_w0,
                int log2_h0);
 
@@ -56,11 +56,13 @@ class TextureCache {
   uint64_t memory_read_bytes() const { return stats_.total_misses() * uint64_t(layout_.line_bytes()); }
   int sets() const { return sets_; }
   int ways() const { return ways_; }
+  // The set of block (bx, by) of any level: its Morton code mod SETS.
+  int set_index(uint32_t bx, uint32_t by) const { return int(interleave_bits(bx, by) & uint64_t(sets_ - 1)); }
 
   // One way of a set, for tests.
   struct Way {
     bool valid = false;
-    uint32_t tag = 0;       // line number (line address / line bytes)
+    uint32_t tag = 0;       // the line address
     int age = 0;            // 0 = most recently used
     uint64_t last_use = 0;  // 1 + the number of the last sample that looked it up
   };
@@ -68,7 +70,7 @@ class TextureCache {
 
  private:
   // Looks the line up in its set; on a miss allocates the LRU way. Returns true on a hit.
-  bool access(int cache, int set, uint32_t line);
+  bool access(int cache, int set, uint32_t address);
 
   MemoryLayout layout_;
   SamplerConfig config_;

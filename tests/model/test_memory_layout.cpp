@@ -1,0 +1,291 @@
+// The pyramid in memory (docs/memory.md §1): block grids, level bases, row-major and Morton block
+// order, texel bytes, padding, the memory image and its file header. Addresses are worked out by
+// hand from the specification; the whole-image check places every texel with its own small
+// implementation of the specification's formulas.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "model/error.h"
+#include "model/memory_layout.h"
+
+using namespace tex;
+
+namespace {
+
+// Texel (x, y) of level 0: R = x, G = y, B = x + y, A = 200 (8-bit); 16-bit channels put x and y in
+// the high byte too, so that both bytes of a word are checked.
+Image numbered(int w, int h, int bits = 8) {
+  Image img(w, h, bits);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      img.at(x, y) = bits > 8 ? Texel{uint16_t(0x100 * x + 0x11), uint16_t(0x1000 * y + 0x22), uint16_t(x + y), 0x1234}
+                              : Texel{uint16_t(x), uint16_t(y), uint16_t(x + y), 200};
+  return img;
+}
+
+LayoutParams params(int bw, int bh, BlockOrder order = BlockOrder::RowMajor, uint32_t base = 0) {
+  LayoutParams p;
+  p.block_w = bw;
+  p.block_h = bh;
+  p.order = order;
+  p.base = base;
+  return p;
+}
+
+uint32_t u32_at(const std::vector<uint8_t>& b, size_t at) {
+  uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = v << 8 | b[at + size_t(i)];
+  return v;
+}
+uint64_t u64_at(const std::vector<uint8_t>& b, size_t at) { return uint64_t(u32_at(b, at + 4)) << 32 | u32_at(b, at); }
+
+// The 4 bytes of an 8-bit texel at `at` of the image.
+void expect_rgba8_at(const std::vector<uint8_t>& img, size_t at, const Texel& t) {
+  for (size_t c = 0; c < 4; ++c) EXPECT_EQ(img[at + c], t[c]) << "byte " << at + c;
+}
+
+void expect_zero(const std::vector<uint8_t>& img, size_t from, size_t to) {
+  for (size_t i = from; i < to; ++i) EXPECT_EQ(img[i], 0) << "padding byte " << i;
+}
+
+std::string error_of(int log2_w, int log2_h, int bits, const LayoutParams& p) {
+  try {
+    MemoryLayout(log2_w, log2_h, bits, p);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST(MemoryLayout, BlockOrderNames) {
+  BlockOrder o = BlockOrder::Morton;
+  EXPECT_TRUE(parse_block_order("row-major", o));
+  EXPECT_EQ(o, BlockOrder::RowMajor);
+  EXPECT_TRUE(parse_block_order("morton", o));
+  EXPECT_EQ(o, BlockOrder::Morton);
+  for (const char* bad : {"rowmajor", "Morton", "z-order", ""}) EXPECT_FALSE(parse_block_order(bad, o)) << bad;
+  EXPECT_EQ(block_order_name(BlockOrder::RowMajor), "row-major");
+  EXPECT_EQ(block_order_name(BlockOrder::Morton), "morton");
+}
+
+TEST(MemoryLayout, EightByFourIn4x4Blocks) {
+  // 64-byte lines. Level 0 (8x4): 2x1 blocks; level 1 (4x2), 2 (2x1), 3 (1x1): one padded block each.
+  const MemoryLayout l(3, 2, 8, LayoutParams{});
+  EXPECT_EQ(l.texel_bytes(), 4);
+  EXPECT_EQ(l.line_bytes(), 64);
+  ASSERT_EQ(l.levels(), 4);
+  const uint32_t nbx[] = {2, 1, 1, 1}, base[] = {0, 128, 192, 256};
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(l.blocks_x(k), nbx[k]) << k;
+    EXPECT_EQ(l.blocks_y(k), 1u) << k;
+    EXPECT_EQ(l.level_base(k), base[k]) << k;
+  }
+  EXPECT_EQ(l.image_bytes(), 320u);
+  EXPECT_EQ(l.line_address(0, 3, 3), 0u);
+  EXPECT_EQ(l.line_address(0, 5, 2), 64u);
+  EXPECT_EQ(l.line_address(1, 3, 1), 128u);
+  EXPECT_EQ(l.line_address(3, 0, 0), 256u);
+  EXPECT_EQ(l.texel_offset(5, 2), (2u * 4 + 1) * 4);
+  // A one-row grid: Morton order is row-major order.
+  const MemoryLayout m(3, 2, 8, params(4, 4, BlockOrder::Morton));
+  EXPECT_EQ(m.block_index(0, 1, 0), 1u);
+  EXPECT_EQ(m.image_bytes(), 320u);
+
+  const Pyramid pyr = build_pyramid(numbered(8, 4));
+  const std::vector<uint8_t> img = build_memory_image(pyr, l);
+  ASSERT_EQ(img.size(), 320u);
+  expect_rgba8_at(img, 64 + (2 * 4 + 1) * 4, Texel{5, 2, 7, 200});  // texel (5, 2) of level 0
+  expect_rgba8_at(img, 0, Texel{0, 0, 0, 200});
+  expect_rgba8_at(img, 128 + (1 * 4 + 3) * 4, pyr.levels[1].at(3, 1));
+  expect_rgba8_at(img, 192 + 4, pyr.levels[2].at(1, 0));
+  expect_rgba8_at(img, 256, pyr.levels[3].at(0, 0));
+  // Padding: level 1's block rows 2 and 3, level 2's past its first two texels, level 3's past one.
+  expect_zero(img, 128 + 2 * 16, 192);
+  expect_zero(img, 192 + 8, 256);
+  expect_zero(img, 256 + 4, 320);
+  EXPECT_EQ(build_memory_image(pyr, m), img);
+}
+
+TEST(MemoryLayout, EightByFourIn2x2BlocksBothOrders) {
+  // 16-byte lines. Level 0: 4x2 blocks (128 B); level 1 (4x2): 2x1 (32 B); level 2 (2x1): one block,
+  // its second row padding; level 3: one block.
+  const MemoryLayout rm(3, 2, 8, params(2, 2));
+  const MemoryLayout mo(3, 2, 8, params(2, 2, BlockOrder::Morton));
+  for (const MemoryLayout* l : {&rm, &mo}) {
+    EXPECT_EQ(l->line_bytes(), 16);
+    const uint32_t nbx[] = {4, 2, 1, 1}, nby[] = {2, 1, 1, 1}, base[] = {0, 128, 160, 176};
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(l->blocks_x(k), nbx[k]) << k;
+      EXPECT_EQ(l->blocks_y(k), nby[k]) << k;
+      EXPECT_EQ(l->level_base(k), base[k]) << k;
+    }
+    EXPECT_EQ(l->image_bytes(), 192u);
+  }
+  // Level 0 in Morton order (m = 1): (0,0) (1,0) (0,1) (1,1), then (2,0) (3,0) (2,1) (3,1).
+  EXPECT_EQ(rm.line_address(0, 4, 1), 2u * 16);  // block (2, 0)
+  EXPECT_EQ(mo.line_address(0, 4, 1), 4u * 16);
+  EXPECT_EQ(rm.line_address(0, 2, 2), 5u * 16);  // block (1, 1)
+  EXPECT_EQ(mo.line_address(0, 2, 2), 3u * 16);
+  EXPECT_EQ(rm.line_address(0, 6, 0), 3u * 16);  // block (3, 0)
+  EXPECT_EQ(mo.line_address(0, 6, 0), 5u * 16);
+  EXPECT_EQ(rm.line_address(0, 7, 3), 7u * 16);  // block (3, 1): last in both
+  EXPECT_EQ(mo.line_address(0, 7, 3), 7u * 16);
+  EXPECT_EQ(mo.line_address(1, 3, 1), 128u + 16);  // level 1, block (1, 0)
+
+  const Pyramid pyr = build_pyramid(numbered(8, 4));
+  const std::vector<uint8_t> a = build_memory_image(pyr, rm), b = build_memory_image(pyr, mo);
+  // Texel (4, 1) is texel (0, 1) of block (2, 0): byte 8 of the line.
+  expect_rgba8_at(a, 32 + 8, Texel{4, 1, 5, 200});
+  expect_rgba8_at(b, 64 + 8, Texel{4, 1, 5, 200});
+  expect_rgba8_at(a, 112 + 12, Texel{7, 3, 10, 200});
+  expect_rgba8_at(b, 112 + 12, Texel{7, 3, 10, 200});
+  expect_rgba8_at(b, 144 + 12, pyr.levels[1].at(3, 1));
+  expect_rgba8_at(b, 160 + 4, pyr.levels[2].at(1, 0));
+  expect_zero(b, 160 + 8, 176);  // level 2's second row
+  expect_zero(b, 176 + 4, 192);
+}
+
+TEST(MemoryLayout, MortonIndexOfSquareWideAndTallGrids) {
+  const LayoutParams p = params(2, 2, BlockOrder::Morton);
+  const MemoryLayout sq(3, 3, 8, p);  // 4x4 blocks
+  EXPECT_EQ(sq.block_index(0, 1, 2), 0b1001u);  // bx bit 0 -> bit 0, by bit 1 -> bit 3
+  EXPECT_EQ(sq.block_index(0, 3, 3), 15u);
+  EXPECT_EQ(sq.block_index(0, 2, 1), 0b0110u);
+  const MemoryLayout wide(4, 2, 8, p);  // 8x2 blocks, m = 1: (bx >> 1) above the low pair
+  EXPECT_EQ(wide.block_index(0, 5, 1), 3u + (2u << 2));
+  EXPECT_EQ(wide.block_index(0, 6, 0), 0u + (3u << 2));
+  const MemoryLayout tall(2, 4, 8, p);  // 2x8 blocks
+  EXPECT_EQ(tall.block_index(0, 1, 5), 3u + (2u << 2));
+  EXPECT_EQ(tall.block_index(0, 0, 6), 0u + (3u << 2));
+  EXPECT_EQ(tall.block_index(1, 0, 3), 3u);  // level 1 is 1x4 blocks: m = 0
+}
+
+TEST(MemoryLayout, SixteenBitTexels) {
+  EXPECT_EQ(MemoryLayout(2, 2, 1, LayoutParams{}).texel_bytes(), 4);
+  EXPECT_EQ(MemoryLayout(2, 2, 8, LayoutParams{}).texel_bytes(), 4);
+  EXPECT_EQ(MemoryLayout(2, 2, 9, LayoutParams{}).texel_bytes(), 8);
+  const MemoryLayout l(3, 2, 16, LayoutParams{});  // 8x4: 128-byte lines
+  EXPECT_EQ(l.texel_bytes(), 8);
+  EXPECT_EQ(l.line_bytes(), 128);
+  EXPECT_EQ(l.level_base(1), 256u);
+  EXPECT_EQ(l.level_base(3), 512u);
+  EXPECT_EQ(l.image_bytes(), 640u);
+  const Pyramid pyr = build_pyramid(numbered(8, 4, 16));
+  const std::vector<uint8_t> img = build_memory_image(pyr, l);
+  ASSERT_EQ(img.size(), 640u);
+  // Texel (5, 2): block (1, 0), texel (1, 2) of it: 128 + (2*4 + 1)*8. R 0x0511, G 0x2022, B 7, A 0x1234.
+  const std::vector<uint8_t> want = {0x11, 0x05, 0x22, 0x20, 7, 0, 0x34, 0x12};
+  EXPECT_EQ(std::vector<uint8_t>(img.begin() + 200, img.begin() + 208), want);
+  const Texel t = pyr.levels[2].at(1, 0);
+  for (size_t c = 0; c < 4; ++c) EXPECT_EQ(img[384 + 8 + 2 * c] | img[384 + 8 + 2 * c + 1] << 8, t[c]) << c;
+  expect_zero(img, 384 + 16, 512);
+  // A 12-bit texture is stored in the low 12 bits of each word.
+  Image twelve(2, 2, 12);
+  for (Texel& x : twelve.texels) x = {0xABC, 0xFFF, 0x001, 0x800};
+  const std::vector<uint8_t> t12 = build_memory_image(build_pyramid(twelve), MemoryLayout(1, 1, 12, params(2, 2)));
+  EXPECT_EQ(std::vector<uint8_t>(t12.begin(), t12.begin() + 8),
+            (std::vector<uint8_t>{0xBC, 0x0A, 0xFF, 0x0F, 0x01, 0x00, 0x00, 0x08}));
+}
+
+TEST(MemoryLayout, EveryTexelWhereTheSpecificationPutsIt) {
+  struct Case {
+    int lw, lh, bits, bw, bh;
+    BlockOrder order;
+    uint32_t base;
+  };
+  const Case cases[] = {{5, 2, 8, 4, 4, BlockOrder::Morton, 0},   {2, 5, 8, 2, 8, BlockOrder::Morton, 4096},
+                        {4, 4, 16, 8, 2, BlockOrder::RowMajor, 128}, {5, 3, 16, 2, 2, BlockOrder::Morton, 0},
+                        {3, 3, 8, 8, 8, BlockOrder::RowMajor, 256}, {0, 0, 8, 2, 4, BlockOrder::Morton, 32}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::to_string(c.lw) + "x" + std::to_string(c.lh) + " cw" + std::to_string(c.bits) + " block " +
+                 std::to_string(c.bw) + "x" + std::to_string(c.bh) + " " + block_order_name(c.order));
+    const MemoryLayout l(c.lw, c.lh, c.bits, params(c.bw, c.bh, c.order, c.base));
+    const Pyramid pyr = build_pyramid(numbered(1 << c.lw, 1 << c.lh, c.bits));
+    const std::vector<uint8_t> img = build_memory_image(pyr, l);
+    const size_t tb = c.bits > 8 ? 8 : 4, lb = size_t(c.bw * c.bh) * tb;
+    std::vector<bool> written(img.size(), false);
+    size_t level_base = 0;  // from the base
+    for (size_t k = 0; k < pyr.levels.size(); ++k) {
+      const Image& lv = pyr.levels[k];
+      const int nbx = std::max(lv.width / c.bw, 1), nby = std::max(lv.height / c.bh, 1);
+      EXPECT_EQ(l.level_base(int(k)), c.base + level_base);
+      for (int y = 0; y < lv.height; ++y)
+        for (int x = 0; x < lv.width; ++x) {
+          const int bx = x / c.bw, by = y / c.bh;
+          size_t index = size_t(by * nbx + bx);
+          if (c.order == BlockOrder::Morton) {
+            int m = 0;
+            while ((2 << m) <= nbx && (2 << m) <= nby) ++m;
+            index = 0;
+            for (int i = 0; i < m; ++i) index |= size_t((bx >> i) & 1) << (2 * i) | size_t((by >> i) & 1) << (2 * i + 1);
+            index += size_t((bx >> m) + (by >> m)) << (2 * m);
+          }
+          const size_t at = level_base + index * lb + size_t((y % c.bh) * c.bw + x % c.bw) * tb;
+          ASSERT_LT(at + tb, img.size() + 1);
+          for (size_t c4 = 0; c4 < 4; ++c4) {
+            const uint16_t v = lv.at(x, y)[c4];
+            const uint16_t got = tb == 4 ? img[at + c4] : uint16_t(img[at + 2 * c4] | img[at + 2 * c4 + 1] << 8);
+            ASSERT_EQ(got, v) << "level " << k << " texel " << x << "," << y << " channel " << c4;
+          }
+          for (size_t i = 0; i < tb; ++i) {
+            ASSERT_FALSE(written[at + i]) << "two texels at byte " << at + i;
+            written[at + i] = true;
+          }
+        }
+      level_base += size_t(nbx * nby) * lb;
+    }
+    EXPECT_EQ(l.image_bytes(), level_base);
+    for (size_t i = 0; i < img.size(); ++i)
+      if (!written[i]) {
+        ASSERT_EQ(img[i], 0) << "padding byte " << i;
+      }
+  }
+}
+
+TEST(MemoryLayout, FileHeader) {
+  const MemoryLayout l(3, 2, 8, params(2, 2, BlockOrder::Morton, 4096));
+  const Pyramid pyr = build_pyramid(numbered(8, 4));
+  const std::vector<uint8_t> f = memory_image_file(pyr, l);
+  ASSERT_EQ(f.size(), 96u + 192u);
+  EXPECT_EQ(std::string(f.begin(), f.begin() + 8), "TEXMEM01");
+  const uint32_t want32[] = {96, 3, 2, 4, 8, 4, 2, 2, 1, 16};  // offsets 8 .. 44
+  for (size_t i = 0; i < 10; ++i) EXPECT_EQ(u32_at(f, 8 + 4 * i), want32[i]) << "offset " << 8 + 4 * i;
+  EXPECT_EQ(u64_at(f, 48), 4096u);
+  EXPECT_EQ(u64_at(f, 56), 192u);
+  const uint64_t bases[] = {4096, 4096 + 128, 4096 + 160, 4096 + 176};
+  for (size_t k = 0; k < 4; ++k) EXPECT_EQ(u64_at(f, 64 + 8 * k), bases[k]) << k;
+  // Texel (2, 2) of level 0: Morton block 3 of 16 bytes, first texel.
+  expect_rgba8_at(f, 96 + 48, Texel{2, 2, 4, 200});
+  EXPECT_EQ(std::vector<uint8_t>(f.begin() + 96, f.end()), build_memory_image(pyr, l));
+
+  const std::vector<uint8_t> g = memory_image_file(build_pyramid(numbered(4, 4, 16)), MemoryLayout(2, 2, 16, {}));
+  EXPECT_EQ(u32_at(g, 8), 64u + 8 * 3);
+  EXPECT_EQ(u32_at(g, 24), 16u);   // channel bits
+  EXPECT_EQ(u32_at(g, 28), 8u);    // texel bytes
+  EXPECT_EQ(u32_at(g, 40), 0u);    // row-major
+  EXPECT_EQ(u32_at(g, 44), 128u);  // line bytes
+  EXPECT_EQ(g.size(), 88u + 3 * 128);
+}
+
+TEST(MemoryLayout, BadGeometryIsAnErrorNamingTheValue) {
+  EXPECT_NE(error_of(3, 3, 8, params(3, 4)).find("block width 3"), std::string::npos);
+  EXPECT_NE(error_of(3, 3, 8, params(4, 16)).find("block height 16"), std::string::npos);
+  EXPECT_NE(error_of(3, 3, 8, params(1, 2)).find("block width 1"), std::string::npos);
+  EXPECT_NE(error_of(3, 3, 8, params(4, 4, BlockOrder::RowMajor, 100)).find("100"), std::string::npos);
+  EXPECT_NE(error_of(3, 3, 16, params(4, 4, BlockOrder::RowMajor, 64)).find("128-byte"), std::string::npos);
+  EXPECT_NE(error_of(3, 3, 0, LayoutParams{}).find("0 bits"), std::string::npos);
+  EXPECT_NE(error_of(3, 3, 17, LayoutParams{}).find("17 bits"), std::string::npos);
+  EXPECT_NE(error_of(12, 3, 8, LayoutParams{}).find("2^12"), std::string::npos);
+  // 8x8 in 4x4 blocks is 256 + 64 + 64 + 64 = 448 bytes: it may end at 2^32 exactly, not past it.
+  EXPECT_EQ(error_of(3, 3, 8, params(4, 4, BlockOrder::RowMajor, 0xFFFFFE40u)), "(no error)");
+  EXPECT_NE(error_of(3, 3, 8, params(4, 4, BlockOrder::RowMajor, 0xFFFFFE80u)).find("4294967360"), std::string::npos);
+  // An image for another texture.
+  const MemoryLayout l(3, 2, 8, LayoutParams{});
+  EXPECT_THROW(build_memory_image(build_pyramid(numbered(4, 8)), l), Error);
+  EXPECT_THROW(build_memory_image(build_pyramid(numbered(8, 4, 16)), l), Error);
+}
