@@ -31,6 +31,17 @@ uint64_t parse_unsigned(const std::string& text, const std::string& option) {
   return v;
 }
 
+// --block WxH: texels per block (= cache line), each side 2, 4 or 8.
+void parse_block(const std::string& text, LayoutParams& out) {
+  const auto x = text.find('x');
+  const uint64_t w = x == std::string::npos ? 0 : parse_unsigned(text.substr(0, x), "--block W");
+  const uint64_t h = x == std::string::npos ? 0 : parse_unsigned(text.substr(x + 1), "--block H");
+  if ((w != 2 && w != 4 && w != 8) || (h != 2 && h != 4 && h != 8))
+    throw Error("--block " + quote_clipped(text) + " is not WxH with W and H each 2, 4 or 8");
+  out.block_w = int(w);
+  out.block_h = int(h);
+}
+
 // Options shared by every command that samples a texture.
 struct SamplingOptions {
   std::string texture = "testcard";
@@ -54,6 +65,7 @@ struct SamplingOptions {
   std::string mem_latency = "100", mem_jitter = "0", mem_bytes_per_clock = "16", mem_outstanding = "64";
   std::string miss_trace;
   CLI::Option *wrap_u_opt = nullptr, *wrap_v_opt = nullptr, *texture_opt = nullptr;
+  std::vector<CLI::Option*> cached_opts;  // meaningful with --memory cached only
 
   void add_to(CLI::App& cmd) {
     texture_opt = cmd.add_option("--texture,-t", texture, "image file (any OpenImageIO format) or pattern NAME[:WxH]")
@@ -89,23 +101,23 @@ struct SamplingOptions {
                    "onchip | cached: per-level memories, or the pyramid in external memory behind two caches "
                    "(engines model, rtl; docs/memory.md)")
         ->capture_default_str();
-    cmd.add_option("--cache-kib", cache_kib, "cached: size of each cache (even levels, odd levels) in KiB")
-        ->capture_default_str();
-    cmd.add_option("--ways", ways, "cached: associativity, 1 | 2 | 4")->capture_default_str();
-    cmd.add_option("--block", block, "cached: texels per block (= cache line) WxH, each 2 | 4 | 8")
-        ->capture_default_str();
-    cmd.add_option("--block-order", block_order, "cached: row-major | morton order of a level's blocks")
-        ->capture_default_str();
-    cmd.add_option("--mem-latency", mem_latency, "cached, rtl: clocks from a memory read to its first beat")
-        ->capture_default_str();
-    cmd.add_option("--mem-jitter", mem_jitter, "cached, rtl: + a random 0..N clocks per read (order kept)")
-        ->capture_default_str();
-    cmd.add_option("--mem-bytes-per-clock", mem_bytes_per_clock, "cached, rtl: memory bandwidth")
-        ->capture_default_str();
-    cmd.add_option("--mem-outstanding", mem_outstanding, "cached, rtl: reads in flight at most")
-        ->capture_default_str();
-    cmd.add_option("--miss-trace", miss_trace,
-                   "cached: write the line addresses read from memory, in order, one 0x%08x per line");
+    cached_opts.push_back(cmd.add_option("--cache-kib", cache_kib, "cached: size of each cache (even levels, odd levels) in KiB")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--ways", ways, "cached: associativity, 1 | 2 | 4")->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--block", block, "cached: texels per block (= cache line) WxH, each 2 | 4 | 8")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--block-order", block_order, "cached: row-major | morton order of a level's blocks")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--mem-latency", mem_latency, "cached, rtl: clocks from a memory read to its first beat")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--mem-jitter", mem_jitter, "cached, rtl: + a random 0..N clocks per read (order kept)")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--mem-bytes-per-clock", mem_bytes_per_clock, "cached, rtl: memory bandwidth")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--mem-outstanding", mem_outstanding, "cached, rtl: reads in flight at most")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--miss-trace", miss_trace,
+                   "cached: write the line addresses read from memory, in order, one 0x%08x per line"));
   }
 
   SamplerConfig config() const {
@@ -155,13 +167,7 @@ struct SamplingOptions {
       const uint64_t w = parse_unsigned(ways, "--ways");
       if (w != 1 && w != 2 && w != 4) throw Error("--ways " + quote_clipped(ways) + " is not 1, 2 or 4");
       o.cache.ways = int(w);
-      const auto x = block.find('x');
-      const uint64_t bw = x == std::string::npos ? 0 : parse_unsigned(block.substr(0, x), "--block W");
-      const uint64_t bh = x == std::string::npos ? 0 : parse_unsigned(block.substr(x + 1), "--block H");
-      if ((bw != 2 && bw != 4 && bw != 8) || (bh != 2 && bh != 4 && bh != 8))
-        throw Error("--block " + quote_clipped(block) + " is not WxH with W and H each 2, 4 or 8");
-      o.layout.block_w = int(bw);
-      o.layout.block_h = int(bh);
+      parse_block(block, o.layout);
       if (!parse_block_order(block_order, o.layout.order))
         throw Error("unknown --block-order " + quote_clipped(block_order) + " (row-major, morton)");
       auto bounded = [](const std::string& text, const char* option, uint64_t lo, uint64_t hi) {
@@ -177,8 +183,9 @@ struct SamplingOptions {
       // The geometry must be one the caches can have (the texture's channel width sets the line
       // size; 8-bit lines are checked here, the engine checks again with the real texture).
       TextureCache(MemoryLayout(0, 0, 8, o.layout), o.cache, SamplerConfig{}, 0, 0);
-    } else if (!miss_trace.empty()) {
-      throw Error("--miss-trace needs --memory cached (the on-chip memories never miss)");
+    } else {
+      for (const CLI::Option* opt : cached_opts)
+        if (opt->count()) throw Error(opt->get_name() + " needs --memory cached (the on-chip memories have no cache)");
     }
     make_engine(engine, o);  // unknown engine, --trace with an engine that cannot trace
     return o;
@@ -366,13 +373,7 @@ struct ImageOptions {
   std::string path, block = "4x4", order = "row-major", base = "0";
   LayoutParams layout() const {
     LayoutParams p;
-    const auto x = block.find('x');
-    const uint64_t bw = x == std::string::npos ? 0 : parse_unsigned(block.substr(0, x), "--block W");
-    const uint64_t bh = x == std::string::npos ? 0 : parse_unsigned(block.substr(x + 1), "--block H");
-    if ((bw != 2 && bw != 4 && bw != 8) || (bh != 2 && bh != 4 && bh != 8))
-      throw Error("--block " + quote_clipped(block) + " is not WxH with W and H each 2, 4 or 8");
-    p.block_w = int(bw);
-    p.block_h = int(bh);
+    parse_block(block, p);
     if (!parse_block_order(order, p.order)) throw Error("unknown --block-order " + quote_clipped(order) + " (row-major, morton)");
     const uint64_t b = parse_unsigned(base, "--mem-base");
     if (b > 0xFFFFFFFFull) throw Error("--mem-base " + base + " is beyond the 32-bit address space");

@@ -39,6 +39,15 @@ std::string stalls_name(Stalls s) { return stalls_names()[size_t(s)]; }
 bool parse_load_method(const std::string& name, LoadMethod& out) { return parse_named(load_names(), name, out); }
 std::string load_method_name(LoadMethod m) { return load_names()[size_t(m)]; }
 
+CacheCounters cache_counters(const TextureCache& cache) {
+  CacheCounters k;
+  k.lookups = cache.stats().total_lookups();
+  k.hits = cache.stats().total_hits();
+  k.misses = cache.stats().total_misses();
+  k.memory_read_bytes = cache.memory_read_bytes();
+  return k;
+}
+
 nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
   nlohmann::json j = {{"engine", engine},
                       {"samples", samples},

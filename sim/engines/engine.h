@@ -67,6 +67,8 @@ struct CacheCounters {
   uint32_t fifo_max_occupancy = 0;  // cycle-accurate engines only
   uint64_t memory_stall_cycles = 0; // the FIFO's head waits for memory, the output ready (cycle engines)
 };
+// The model caches' counters (the timing ones stay 0).
+CacheCounters cache_counters(const TextureCache& cache);
 
 // Counters of a cycle-accurate engine (the sampling phase; clocks are rising edges).
 struct CycleStats {

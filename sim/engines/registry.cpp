@@ -90,14 +90,7 @@ EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, Reque
   stats.texel_reads = s.memory.reads;
   stats.multiplies_per_channel = s.multiplies_per_channel;
   stats.bank_reads = s.memory.bank_reads;
-  if (cache) {
-    CacheCounters k;
-    k.lookups = cache->stats().total_lookups();
-    k.hits = cache->stats().total_hits();
-    k.misses = cache->stats().total_misses();
-    k.memory_read_bytes = cache->memory_read_bytes();
-    stats.cache = k;
-  }
+  if (cache) stats.cache = cache_counters(*cache);
   return stats;
 }
 

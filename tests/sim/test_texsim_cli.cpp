@@ -381,3 +381,28 @@ TEST_F(TexsimCli, MipMemoryImageIsTheModelsImage) {
   EXPECT_NE(run("mip --memory-image m2.bin --mem-base 100").exit_code, 0);  // not a multiple of 64
   EXPECT_FALSE(std::filesystem::exists(dir / "m2.bin"));
 }
+
+// --memory cached: the model and the RTL write the same miss trace (every line read, in order) and
+// the same samples; the cache options are refused without --memory cached.
+TEST_F(TexsimCli, CachedMissTraceIsTheSameForModelAndRtl) {
+  std::string q = "u,v,lod\n";
+  for (int i = 0; i < 400; ++i) q += std::to_string(i * 0.013) + "," + std::to_string(i * 0.029) + "," + std::to_string(i % 7 - 1) + "\n";
+  queries(q);
+  const std::string common = "sample -t noise:64x8 -q q.csv --memory cached --cache-kib 1 --ways 4 --block-order morton";
+  const Result m = run(common + " -o m.csv --miss-trace m.txt --stats ms.json");
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const Result r = run(common + " -e rtl --mem-latency 30 -o r.csv --miss-trace r.txt --stats rs.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto text = [&](const char* name) {
+    std::ifstream in(dir / name);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(text("m.csv"), text("r.csv"));
+  const std::string misses = text("m.txt");
+  EXPECT_EQ(misses, text("r.txt"));
+  ASSERT_GE(misses.size(), 11u);
+  EXPECT_EQ(misses.substr(0, 2), "0x");
+  EXPECT_NE(text("rs.json").find("\"fifo_max_occupancy\""), std::string::npos);
+  EXPECT_NE(text("ms.json").find("\"cache_misses\""), std::string::npos);
+  expect_clean_failure("sample -t noise:64x8 -q q.csv -o x.csv --cache-kib 4", "x.csv", {"--cache-kib", "--memory cached"});
+}

@@ -9,12 +9,13 @@ namespace tex::rtl {
 
 namespace {
 inline double unit(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
-std::string hex(uint32_t a) {
+}  // namespace
+
+std::string hex_address(uint32_t address) {
   char s[16];
-  std::snprintf(s, sizeof s, "0x%08x", a);
+  std::snprintf(s, sizeof s, "0x%08x", address);
   return s;
 }
-}  // namespace
 
 MemoryModel::MemoryModel(std::vector<uint8_t> image, uint32_t base, int line_bytes, int beat_bytes,
                          const MemoryTiming& timing)
@@ -49,7 +50,6 @@ void MemoryModel::prepare() {
 }
 
 void MemoryModel::clock(bool request_fire, uint32_t address, bool response_fire) {
-  if (!pending_.empty()) ++busy_clocks_;
   if (response_fire) {
     if (!response_valid_) throw SimulationError("memory model: a beat taken while none was offered");
     credit_ -= uint32_t(beat_bytes_);
@@ -62,8 +62,8 @@ void MemoryModel::clock(bool request_fire, uint32_t address, bool response_fire)
     if (!request_ready_) throw SimulationError("memory model: a read taken while mem_req_ready was low");
     if (address % uint32_t(line_bytes_) != 0 || address < base_ ||
         uint64_t(address) - base_ + uint64_t(line_bytes_) > image_.size())
-      throw SimulationError("RTL read of line " + hex(address) + " outside the texture's memory image " + hex(base_) +
-                            ".." + hex(uint32_t(base_ + image_.size() - 1)) + " (or not aligned to " +
+      throw SimulationError("RTL read of line " + hex_address(address) + " outside the texture's memory image " + hex_address(base_) +
+                            ".." + hex_address(uint32_t(base_ + image_.size() - 1)) + " (or not aligned to " +
                             std::to_string(line_bytes_) + " bytes) at memory clock " + std::to_string(now_));
     uint64_t ready = now_ + timing_.latency + (timing_.jitter ? rng_() % (uint64_t(timing_.jitter) + 1) : 0);
     ready = std::max(ready, last_ready_);  // in order
@@ -71,7 +71,6 @@ void MemoryModel::clock(bool request_fire, uint32_t address, bool response_fire)
     last_ready_ = ready;
     pending_.push_back({address, ready});
     reads_.push_back(address);
-    max_seen_ = std::max(max_seen_, uint32_t(pending_.size()));
   }
   ++now_;
   credit_ = std::min<uint32_t>(credit_ + timing_.bytes_per_clock, uint32_t(beat_bytes_));

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct MemoryTiming {
   double response_stall_prob = 0;  // a beat that could be sent is held back (test stress)
   uint64_t seed = 1;
 };
+
+// "0x%08x": a line address in messages and in --miss-trace.
+std::string hex_address(uint32_t address);
 
 class MemoryModel {
  public:
@@ -41,11 +45,9 @@ class MemoryModel {
 
   // Line addresses read since the last take_reads(), in order (the RTL's miss stream).
   std::vector<uint32_t> take_reads() { return std::exchange(reads_, {}); }
-  uint64_t busy_clocks() const { return busy_clocks_; }          // clocks with a read outstanding
   uint64_t repeats_in_flight() const { return repeats_; }  // reads of a line already in flight
   // Changes one byte of the image (tests plant a wrong texel with it).
   void poke(uint32_t address, uint8_t value) { image_.at(address - base_) = value; }
-  uint32_t max_outstanding_seen() const { return max_seen_; }
 
  private:
   void prepare();  // the pins of the next clock
@@ -65,8 +67,7 @@ class MemoryModel {
   bool request_ready_ = true, response_valid_ = false;
   const uint8_t* beat_data_ = nullptr;
   std::vector<uint32_t> reads_;
-  uint64_t busy_clocks_ = 0, repeats_ = 0;
-  uint32_t max_seen_ = 0;
+  uint64_t repeats_ = 0;
 };
 
 }  // namespace tex::rtl

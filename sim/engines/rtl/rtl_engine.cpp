@@ -41,11 +41,11 @@ class MissChecker final : public RequestSource {
   void compare(const std::vector<uint32_t>& actual, bool at_end) {
     for (uint32_t a : actual) {
       if (matched_ == predicted_.size())
-        throw SimulationError("the RTL read line " + hex(a) + " from memory (read #" + std::to_string(done_) +
+        throw SimulationError("the RTL read line " + hex_address(a) + " from memory (read #" + std::to_string(done_) +
                               ") that the model's caches do not miss");
       if (predicted_[matched_] != a)
-        throw SimulationError("memory read #" + std::to_string(done_) + ": the RTL read line " + hex(a) +
-                              ", the model's caches miss line " + hex(predicted_[matched_]));
+        throw SimulationError("memory read #" + std::to_string(done_) + ": the RTL read line " + hex_address(a) +
+                              ", the model's caches miss line " + hex_address(predicted_[matched_]));
       ++matched_;
       ++done_;
     }
@@ -54,15 +54,10 @@ class MissChecker final : public RequestSource {
     matched_ = 0;
     if (at_end && !predicted_.empty())
       throw SimulationError("the model's caches miss " + std::to_string(predicted_.size()) +
-                            " more lines than the RTL read (first: " + hex(predicted_.front()) + ")");
+                            " more lines than the RTL read (first: " + hex_address(predicted_.front()) + ")");
   }
 
  private:
-  static std::string hex(uint32_t a) {
-    char s[16];
-    std::snprintf(s, sizeof s, "0x%08x", a);
-    return s;
-  }
   RequestSource& inner_;
   TextureCache& cache_;
   MissSink* sink_;
@@ -131,11 +126,7 @@ class RtlEngine final : public Engine {
     c.load_cycles = unit->load_cycles();
     r.cycle = c;
     if (cache) {
-      CacheCounters k;
-      k.lookups = cache->stats().total_lookups();
-      k.hits = cache->stats().total_hits();
-      k.misses = cache->stats().total_misses();
-      k.memory_read_bytes = cache->memory_read_bytes();
+      CacheCounters k = cache_counters(*cache);
       k.fifo_max_occupancy = st.memory.fifo_max;
       k.memory_stall_cycles = st.memory.head_wait_cycles;
       r.cache = k;
