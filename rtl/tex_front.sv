@@ -4,12 +4,14 @@
 //   clock 1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_scale  3 tex_lod level select
 //   4 tex_address per slot and axis; then tex_wrap, combinational on the clock-4 registers
 // Handshake: stall-enable; every register loads when en is high (the valid bits and tags are
-//   the top's). The cfg_* inputs are the top's registered copies.
+//   the top's). The cfg_* pins are registered here every clock, without enable (cfg_*_q); the
+//   datapath reads only those copies, so no logic depends combinationally on a pin.
 // Latency: 4 clocks from the request pins to the clock-4 registers; x, y are combinational on
 //   them. Throughput: 1 per clock.
 // Ports:
 //   req_u, req_v          : signed Q8.24; req_lod: signed Q8.8 (before bias and clamp)
 //   cfg_log2_w, cfg_log2_h: integers, level 0's size; cfg_* else as tex_unit's pins
+//   log2_w0, log2_h0      : the registered cfg_log2_w, cfg_log2_h (for the cached fetch)
 //   level                 : slot s at [s*LEVEL_W +: LEVEL_W], integer level (clock 4)
 //   f                     : unsigned WEIGHT_BITS, weight of slot 1 in 1/256 (clock 4)
 //   w                     : slot s axis a (0 x, 1 y) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS],
@@ -36,6 +38,8 @@ module tex_front #(
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
+  output logic [tex_pkg::LEVEL_W-1:0]            log2_w0,
+  output logic [tex_pkg::LEVEL_W-1:0]            log2_h0,
   output logic [2*tex_pkg::LEVEL_W-1:0]          level,
   output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
@@ -46,6 +50,26 @@ module tex_front #(
   localparam int VW = tex_pkg::LEVEL_W;
   localparam int WB = tex_pkg::WEIGHT_BITS;
   localparam int SW = tex_pkg::SCALED_W;
+
+  // ---------------------------------------------------------------- cfg registers
+  logic [VW-1:0]                    cfg_log2_w_q, cfg_log2_h_q;
+  logic [tex_pkg::WRAP_W-1:0]       cfg_wrap_u_q, cfg_wrap_v_q;
+  logic [tex_pkg::MIP_W-1:0]        cfg_mip_mode_q;
+  logic                             cfg_texel_linear_q;
+  logic signed [tex_pkg::LOD_W-1:0] cfg_lod_bias_q, cfg_min_lod_q, cfg_max_lod_q;
+  always_ff @(posedge clk) begin
+    cfg_log2_w_q       <= cfg_log2_w;
+    cfg_log2_h_q       <= cfg_log2_h;
+    cfg_wrap_u_q       <= cfg_wrap_u;
+    cfg_wrap_v_q       <= cfg_wrap_v;
+    cfg_texel_linear_q <= cfg_texel_linear;
+    cfg_mip_mode_q     <= cfg_mip_mode;
+    cfg_lod_bias_q     <= cfg_lod_bias;
+    cfg_min_lod_q      <= cfg_min_lod;
+    cfg_max_lod_q      <= cfg_max_lod;
+  end
+  assign log2_w0 = cfg_log2_w_q;
+  assign log2_h0 = cfg_log2_h_q;
 
   // ---------------------------------------------------------------- clock 1: capture
   logic signed [tex_pkg::REQ_COORD_W-1:0] u_s1, v_s1;
@@ -60,21 +84,21 @@ module tex_front #(
 
   // ---------------------------------------------------------------- clocks 2-3: lod, scale
   logic [VW-1:0] last_level;
-  assign last_level = (cfg_log2_w > cfg_log2_h) ? cfg_log2_w : cfg_log2_h;
+  assign last_level = (cfg_log2_w_q > cfg_log2_h_q) ? cfg_log2_w_q : cfg_log2_h_q;
 
   logic [2*VW-1:0] level_s3;       // slot s at [s*VW +: VW]: slot 0 = d, slot 1 = d1
   logic [WB-1:0]   f_s3;
   tex_lod u_lod (
-    .clk(clk), .en(en), .lod(lod_s1), .bias(cfg_lod_bias), .min_lod(cfg_min_lod),
-    .max_lod(cfg_max_lod), .mip_mode(cfg_mip_mode), .last_level(last_level),
+    .clk(clk), .en(en), .lod(lod_s1), .bias(cfg_lod_bias_q), .min_lod(cfg_min_lod_q),
+    .max_lod(cfg_max_lod_q), .mip_mode(cfg_mip_mode_q), .last_level(last_level),
     .level(level_s3), .f(f_s3)
   );
 
   // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the scaled
   // coordinate, held one clock while tex_lod selects the levels.
   logic [2*SW-1:0] scaled_s2, scaled_s3;
-  logic [2*VW-1:0] log2_size0;     // {cfg_log2_h, cfg_log2_w}
-  assign log2_size0 = {cfg_log2_h, cfg_log2_w};
+  logic [2*VW-1:0] log2_size0;     // {cfg_log2_h_q, cfg_log2_w_q}
+  assign log2_size0 = {cfg_log2_h_q, cfg_log2_w_q};
   genvar a, s;
   generate
     for (a = 0; a < 2; a = a + 1) begin : g_axis
@@ -102,7 +126,7 @@ module tex_front #(
         logic [OW-1:0]                      t0, t1;        // wrapped taps i0, i0 + 1
         tex_address u_address (
           .clk(clk), .en(en), .scaled(scaled_s3[a*SW +: SW]), .level(level_s3[s*VW +: VW]),
-          .linear(cfg_texel_linear), .i0(i0_s4), .w(w[(s*2 + a)*WB +: WB])
+          .linear(cfg_texel_linear_q), .i0(i0_s4), .w(w[(s*2 + a)*WB +: WB])
         );
         // max(log2_size0 - level, 0): a side that reaches 1 texel stays 1. (The borrow masks the
         // difference: no data-dependent branch in Verilator's C++.)
@@ -111,9 +135,9 @@ module tex_front #(
         always_ff @(posedge clk) if (en) log2_size_s4 <= size_diff[VW-1:0] & ~{VW{size_diff[VW]}};
         assign log2_size[(s*2 + a)*VW +: VW] = log2_size_s4;
         tex_wrap #(.OUT_W(OW)) u_wrap0 (.i(i0_s4), .log2_n(log2_size_s4),
-                                        .mode((a == 0) ? cfg_wrap_u : cfg_wrap_v), .o(t0));
+                                        .mode((a == 0) ? cfg_wrap_u_q : cfg_wrap_v_q), .o(t0));
         tex_wrap #(.OUT_W(OW)) u_wrap1 (.i(i0_s4 + tex_pkg::INDEX_W'(1)), .log2_n(log2_size_s4),
-                                        .mode((a == 0) ? cfg_wrap_u : cfg_wrap_v), .o(t1));
+                                        .mode((a == 0) ? cfg_wrap_u_q : cfg_wrap_v_q), .o(t1));
         if (a == 0) begin : g_x
           assign x[(s*2 + 0)*XW +: XW] = t0;
           assign x[(s*2 + 1)*XW +: XW] = t1;

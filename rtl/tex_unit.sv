@@ -14,8 +14,8 @@
 //   cfg_min_lod, cfg_max_lod signed Q8.8; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   cfg_log2_w/h integer <= MAX_LOG2_W/H; wr_level, wr_x, wr_y unsigned integers.
 // Inputs are only ever registered: no logic depends combinationally on an input pin.
-//   cfg_* are registered every clock (cfg_*_q); a request accepted in cycle t uses the cfg_* pins
-//   of cycles t to t + 3 (clock 2: bias, clamp, sizes; clock 3: mip mode, last level; clock 4:
+//   cfg_* are registered every clock (in tex_front); a request accepted in cycle t uses the
+//   cfg_* pins of cycles t to t + 3 (clock 2: bias, clamp, sizes; clock 3: mip mode, last level; clock 4:
 //   texel filter, level sizes; clock 5: wrap modes), which the contract keeps static anyway.
 //   wr_* are registered (wr_*_q) and written one clock later: a texel on the write pins in cycle
 //   t is in its memory from cycle t + 2 on, and is seen by every request accepted in cycle t - 2
@@ -126,24 +126,6 @@ module tex_unit #(
   endgenerate
 
   // ---------------------------------------------------------------- input registers
-  // cfg_* every clock, without enable (the pipeline reads only these copies).
-  logic [VW-1:0]                     cfg_log2_w_q, cfg_log2_h_q;
-  logic [tex_pkg::WRAP_W-1:0]        cfg_wrap_u_q, cfg_wrap_v_q;
-  logic [tex_pkg::MIP_W-1:0]         cfg_mip_mode_q;
-  logic                              cfg_texel_linear_q;
-  logic signed [tex_pkg::LOD_W-1:0]  cfg_lod_bias_q, cfg_min_lod_q, cfg_max_lod_q;
-  always_ff @(posedge clk) begin
-    cfg_log2_w_q       <= cfg_log2_w;
-    cfg_log2_h_q       <= cfg_log2_h;
-    cfg_wrap_u_q       <= cfg_wrap_u;
-    cfg_wrap_v_q       <= cfg_wrap_v;
-    cfg_texel_linear_q <= cfg_texel_linear;
-    cfg_mip_mode_q     <= cfg_mip_mode;
-    cfg_lod_bias_q     <= cfg_lod_bias;
-    cfg_min_lod_q      <= cfg_min_lod;
-    cfg_max_lod_q      <= cfg_max_lod;
-  end
-
   // wr_*: tex_fetch writes the memories from these copies, one clock later. The texel and its
   // coordinates are loaded only with a write (wr_en_q says whether they are one).
   logic                         wr_en_q;
@@ -166,18 +148,18 @@ module tex_unit #(
   logic [WB-1:0]   f_s4, f_s5, f_s6;
   logic [4*WB-1:0] w_s4, w_s5, w_s6;   // slot s axis a weight at [(s*2 + a)*WB +: WB]
   logic [4*VW-1:0] log2_size_s4;       // (the level memories have fixed sizes: unused)
+  logic [VW-1:0]   log2_w0_unused, log2_h0_unused;
   logic [4*XW-1:0] x;                  // wrapped x taps: slot s tap j at [(s*2 + j)*XW +: XW]
   logic [4*YW-1:0] y;
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
-    .cfg_log2_w(cfg_log2_w_q), .cfg_log2_h(cfg_log2_h_q), .cfg_wrap_u(cfg_wrap_u_q),
-    .cfg_wrap_v(cfg_wrap_v_q), .cfg_texel_linear(cfg_texel_linear_q),
-    .cfg_mip_mode(cfg_mip_mode_q), .cfg_lod_bias(cfg_lod_bias_q), .cfg_min_lod(cfg_min_lod_q),
-    .cfg_max_lod(cfg_max_lod_q),
-    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
+    .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h), .cfg_wrap_u(cfg_wrap_u),
+    .cfg_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
+    .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
+    .log2_w0(log2_w0_unused), .log2_h0(log2_h0_unused), .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
   );
   logic [4*VW-1:0] log2_size_unused;
-  assign log2_size_unused = log2_size_s4;
+  assign log2_size_unused = log2_size_s4;  // (log2_*_unused: likewise)
 
   always_ff @(posedge clk) begin
     if (en) begin

@@ -130,25 +130,12 @@ module tex_unit_cached #(
 `undef TEX_PARAM_ERROR
 
   // ---------------------------------------------------------------- input registers
-  logic [VW-1:0]                      cfg_log2_w_q, cfg_log2_h_q;
-  logic [tex_pkg::WRAP_W-1:0]         cfg_wrap_u_q, cfg_wrap_v_q;
-  logic [tex_pkg::MIP_W-1:0]          cfg_mip_mode_q;
-  logic                               cfg_texel_linear_q;
-  logic signed [tex_pkg::LOD_W-1:0]   cfg_lod_bias_q, cfg_min_lod_q, cfg_max_lod_q;
+  // (the sampling cfg_* pins are registered in tex_front; these four here)
   logic [tex_pkg::MEM_ADDR_W-1:0]     cfg_mem_base_q;
   logic                               cfg_block_morton_q;
   logic [tex_pkg::LOG2_SETS_W-1:0]    cfg_log2_sets_q;
   logic [tex_pkg::LOG2_WAYS_W-1:0]    cfg_log2_ways_q;
   always_ff @(posedge clk) begin
-    cfg_log2_w_q       <= cfg_log2_w;
-    cfg_log2_h_q       <= cfg_log2_h;
-    cfg_wrap_u_q       <= cfg_wrap_u;
-    cfg_wrap_v_q       <= cfg_wrap_v;
-    cfg_texel_linear_q <= cfg_texel_linear;
-    cfg_mip_mode_q     <= cfg_mip_mode;
-    cfg_lod_bias_q     <= cfg_lod_bias;
-    cfg_min_lod_q      <= cfg_min_lod;
-    cfg_max_lod_q      <= cfg_max_lod;
     cfg_mem_base_q     <= cfg_mem_base;
     cfg_block_morton_q <= cfg_block_morton;
     cfg_log2_sets_q    <= cfg_log2_sets;
@@ -175,13 +162,14 @@ module tex_unit_cached #(
   logic [4*VW-1:0] log2_size_s4;
   logic [4*XW-1:0] x;
   logic [4*YW-1:0] y;
+  logic [VW-1:0]   cfg_log2_w_q, cfg_log2_h_q;
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en_front), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
-    .cfg_log2_w(cfg_log2_w_q), .cfg_log2_h(cfg_log2_h_q), .cfg_wrap_u(cfg_wrap_u_q),
-    .cfg_wrap_v(cfg_wrap_v_q), .cfg_texel_linear(cfg_texel_linear_q),
-    .cfg_mip_mode(cfg_mip_mode_q), .cfg_lod_bias(cfg_lod_bias_q), .cfg_min_lod(cfg_min_lod_q),
-    .cfg_max_lod(cfg_max_lod_q),
-    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
+    .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h), .cfg_wrap_u(cfg_wrap_u),
+    .cfg_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
+    .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
+    .log2_w0(cfg_log2_w_q), .log2_h0(cfg_log2_h_q), .level(level_s4), .f(f_s4), .w(w_s4),
+    .log2_size(log2_size_s4), .x(x), .y(y)
   );
 
   // ---------------------------------------------------------------- cached fetch: clocks 5-8
