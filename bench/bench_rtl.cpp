@@ -13,7 +13,12 @@ namespace {
 
 void BM_rtl_sampling(benchmark::State& state, const tex::rtl::RtlConfig* config) {
   using namespace tex;
-  auto unit = rtl::Driver::create(*config);
+  rtl::DriverOptions options;  // cached configurations: the default caches (8 KiB, 2 ways) where they fit
+  options.layout.block_w = config->block_w;
+  options.layout.block_h = config->block_h;
+  options.cache.size_bytes = std::min(options.cache.size_bytes, config->lines * config->line_bytes());
+  if (config->cached) options.memory.bytes_per_clock = std::min(16u, uint32_t(config->mem_bits / 8));
+  auto unit = rtl::Driver::create(*config, options);
   unit->reset();
   const Pyramid pyr = build_pyramid(make_pattern("noise", 1 << config->max_log2_w, 1 << config->max_log2_h));
   Pyramid wide = pyr;  // 16-bit configurations take 16-bit texels
