@@ -23,6 +23,11 @@ TextureCache::TextureCache(const MemoryLayout& layout, const CacheParams& params
   if (sets_ < 4 || (sets_ & (sets_ - 1)) != 0)
     throw Error("a cache of " + std::to_string(params.size_bytes) + " bytes with " + std::to_string(ways_) +
                 " ways has " + std::to_string(sets_) + " sets: must be a power of two, at least 4");
+  while ((4 << log2_sets_hi_) < sets_) ++log2_sets_hi_;
+  reversed_.assign(size_t(sets_ / 4), 0);
+  for (uint32_t i = 0; i < reversed_.size(); ++i)
+    for (int b = 0; b < log2_sets_hi_; ++b)
+      if (i >> b & 1) reversed_[i] |= 1u << (log2_sets_hi_ - 1 - b);
   for (auto& c : caches_) {
     c.assign(size_t(sets_ * ways_), Way{});
     for (int s = 0; s < sets_; ++s)

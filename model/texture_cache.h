@@ -1,6 +1,6 @@
 // The two texture caches of the cached memory hierarchy (docs/memory.md §2): cache 0 holds the
-// even levels, cache 1 the odd levels; set index = the block's Morton code mod SETS (its two low
-// bits are the block's parities), tag = line address, true LRU. lookup() runs one sample through
+// even levels, cache 1 the odd levels; set index = the block's parities in the two low bits, a hash
+// of the rest above them (set_index), tag = line address, true LRU. lookup() runs one sample through
 // them exactly as tex_unit_cached's tag stage does, in the same order, so the line addresses it
 // appends are the RTL's memory reads, one for one.
 #pragma once
@@ -56,8 +56,15 @@ class TextureCache {
   uint64_t memory_read_bytes() const { return stats_.total_misses() * uint64_t(layout_.line_bytes()); }
   int sets() const { return sets_; }
   int ways() const { return ways_; }
-  // The set of block (bx, by) of any level: its Morton code mod SETS.
-  int set_index(uint32_t bx, uint32_t by) const { return int(interleave_bits(bx, by) & uint64_t(sets_ - 1)); }
+  // The set of block (bx, by) of any level (docs/memory.md §2): {hash, by & 1, bx & 1} with
+  // hash = (xh XOR reverse_k(yh mod 2^k) XOR (yh >> k)) mod 2^k, xh = bx >> 1, yh = by >> 1,
+  // k = log2(SETS / 4). A row of blocks spreads over half of the sets (the other y parity has the
+  // other half), a column too, and neighbouring block rows land far apart.
+  int set_index(uint32_t bx, uint32_t by) const {
+    const uint32_t xh = bx >> 1, yh = by >> 1, k_mask = uint32_t(sets_ / 4 - 1);
+    const uint32_t hash = (xh ^ reversed_[yh & k_mask] ^ (yh >> log2_sets_hi_)) & k_mask;
+    return int(hash << 2 | (by & 1) << 1 | (bx & 1));
+  }
 
   // One way of a set, for tests.
   struct Way {
@@ -76,6 +83,8 @@ class TextureCache {
   SamplerConfig config_;
   int log2_w0_, log2_h0_, last_level_;
   int sets_, ways_;
+  int log2_sets_hi_ = 0;             // k = log2(SETS / 4)
+  std::vector<uint32_t> reversed_;   // reversed_[i]: the k bits of i in reverse order
   std::array<std::vector<Way>, 2> caches_;
   CacheStats stats_;
   uint64_t sample_ = 0;  // samples looked up so far

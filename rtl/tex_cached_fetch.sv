@@ -130,12 +130,21 @@ module tex_cached_fetch #(
     for (int i = 0; i < XW; i++) interleave[2*i]     = a[i];
     for (int i = 0; i < YW; i++) interleave[2*i + 1] = b[i];
   endfunction
-  // The set index >> 2 (docs/memory.md §2): bits 2 .. SHW+1 of interleave(a, b); tex_cache_tags
-  // masks it to the configured number of sets.
-  function automatic logic [SHW-1:0] set_high(input logic [XW-1:0] a, input logic [YW-1:0] b);
-    logic [MCW2+SHW+1:0] code;
-    code = (MCW2+SHW+2)'(interleave(a, b));
-    set_high = code[SHW+1:2];
+  // The set index >> 2 (docs/memory.md §2): (xh ^ reverse_k(yh mod 2^k) ^ (yh >> k)) mod 2^k with
+  // xh = bx >> 1, yh = by >> 1, k = log2(sets) - 2; rows, columns and neighbouring block rows
+  // spread over the sets. tex_cache_tags masks it to k bits. Reversing k bits = reversing SHW bits,
+  // then shifting down by SHW - k.
+  logic [tex_pkg::LOG2_SETS_W-1:0] set_k;
+  assign set_k = cfg_log2_sets - tex_pkg::LOG2_SETS_W'(2);
+  function automatic logic [SHW-1:0] set_high(input logic [XW-1:0] a, input logic [YW-1:0] b,
+                                              input logic [tex_pkg::LOG2_SETS_W-1:0] k);
+    logic [YW+SHW-1:0] yh;  // wide enough for any YW against SHW
+    logic [SHW-1:0]    xh, yl, rev;
+    xh = SHW'((XW+SHW)'(a) >> 1);
+    yh = (YW+SHW)'(b) >> 1;
+    yl = SHW'(yh);
+    for (int i = 0; i < SHW; i++) rev[i] = yl[SHW-1-i];
+    set_high = SHW'(xh) ^ (rev >> (SHW - int'(k))) ^ SHW'(yh >> k);
   endfunction
 
   logic [1:0] slot_needed;  // level d always; d1 when f != 0
@@ -199,7 +208,7 @@ module tex_cached_fetch #(
           end
         end
         assign look_line[s][p*LNW +: LNW]   = base_line[lev] + index;
-        assign look_set_hi[s][p*SHW +: SHW] = set_high(bx, by);
+        assign look_set_hi[s][p*SHW +: SHW] = set_high(bx, by, set_k);
       end
       for (b = 0; b < 4; b = b + 1) begin : g_bank
         // The texel bank b reads: the x tap of parity b[0], the y tap of parity b[1] (either

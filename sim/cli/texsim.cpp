@@ -529,6 +529,12 @@ int main(int argc, char** argv) {
   CLI::Option* frame_opt = render->add_option("--frame", frame, "animation frame to render (0-based)");
   render->add_option("--frames", frames, "frames of the animation; without --frame renders all to OUT_000.png ...")
       ->capture_default_str();
+  std::string order = "scanline";
+  int tile = 8;
+  render->add_option("--order", order, "scanline | tiled: the rasterizer's pixel walk (rows, or tiles row by row)")
+      ->capture_default_str();
+  CLI::Option* tile_opt =
+      render->add_option("--tile", tile, "tiled order: tile side in pixels, a power of two 2 to 256")->capture_default_str();
 
   FiguresOptions fig;
   CLI::App* figures = app.add_subcommand("figures", "render every scene's variants, reference, errors and flicker");
@@ -563,6 +569,9 @@ int main(int argc, char** argv) {
       so.height = height;
       so.frame = frame;
       so.frames = frames;
+      so.order = parse_pixel_order(order);
+      so.tile = tile;
+      if (tile_opt->count() && so.order != PixelOrder::Tiled) throw tex::Error("--tile applies to --order tiled");
       const bool wrap_given = render->count("--wrap") + render->count("--wrap-u") + render->count("--wrap-v") > 0;
       return cmd_render(render_opts, scene, so, frames > 1 && frame_opt->count() == 0,
                         render_opts.texture_opt->count() > 0, wrap_given, render_out);

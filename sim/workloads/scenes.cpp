@@ -13,10 +13,29 @@ const std::vector<std::string>& scene_names() {
   return names;
 }
 
+PixelOrder parse_pixel_order(const std::string& name) {
+  if (name == "scanline") return PixelOrder::Scanline;
+  if (name == "tiled") return PixelOrder::Tiled;
+  throw Error("unknown pixel order '" + name + "' (known: scanline, tiled)");
+}
+
 namespace {
 
 // Animation time of a frame in [0, 1] (0 for a single frame).
 double frame_time(const SceneOptions& o) { return o.frames > 1 ? double(o.frame) / (o.frames - 1) : 0.0; }
+
+// The pixels of the image in the order the rasterizer visits them.
+std::vector<std::pair<int, int>> pixel_walk(const SceneOptions& o) {
+  const int tile_w = o.order == PixelOrder::Tiled ? o.tile : o.width;
+  const int tile_h = o.order == PixelOrder::Tiled ? o.tile : 1;
+  std::vector<std::pair<int, int>> walk;
+  walk.reserve(size_t(o.width) * o.height);
+  for (int ty = 0; ty < o.height; ty += tile_h)
+    for (int tx = 0; tx < o.width; tx += tile_w)
+      for (int y = ty; y < std::min(ty + tile_h, o.height); ++y)
+        for (int x = tx; x < std::min(tx + tile_w, o.width); ++x) walk.emplace_back(x, y);
+  return walk;
+}
 
 // One query per pixel whose centre lands on the surface. Derivatives are central differences of
 // the mapping over one pixel, as a GPU quad computes them; where a neighbour has no (u, v) at all
@@ -27,28 +46,27 @@ SceneFrame sample_map(const SceneOptions& o, const UvMap& map, Texel background)
   f.height = o.height;
   f.background = background;
   f.map = map;
-  for (int y = 0; y < o.height; ++y)
-    for (int x = 0; x < o.width; ++x) {
-      const double cx = x + 0.5, cy = y + 0.5;
-      double u, v;
-      if (map(cx, cy, u, v) != Hit::Surface) continue;
-      auto diff = [&](double ax, double ay, double bx, double by, double& du, double& dv) {
-        double ua, va, ub, vb;
-        const bool a = map(ax, ay, ua, va) != Hit::None, b = map(bx, by, ub, vb) != Hit::None;
-        if (a && b) du = ub - ua, dv = vb - va;
-        else if (b) du = 2 * (ub - u), dv = 2 * (vb - v);
-        else if (a) du = 2 * (u - ua), dv = 2 * (v - va);
-        else du = dv = 0;
-      };
-      Query q;
-      q.u = u;
-      q.v = v;
-      q.explicit_lod = false;
-      diff(cx - 0.5, cy, cx + 0.5, cy, q.deriv.dudx, q.deriv.dvdx);
-      diff(cx, cy - 0.5, cx, cy + 0.5, q.deriv.dudy, q.deriv.dvdy);
-      f.pixel.push_back(y * o.width + x);
-      f.queries.push_back(q);
-    }
+  for (const auto& [x, y] : pixel_walk(o)) {
+    const double cx = x + 0.5, cy = y + 0.5;
+    double u, v;
+    if (map(cx, cy, u, v) != Hit::Surface) continue;
+    auto diff = [&](double ax, double ay, double bx, double by, double& du, double& dv) {
+      double ua, va, ub, vb;
+      const bool a = map(ax, ay, ua, va) != Hit::None, b = map(bx, by, ub, vb) != Hit::None;
+      if (a && b) du = ub - ua, dv = vb - va;
+      else if (b) du = 2 * (ub - u), dv = 2 * (vb - v);
+      else if (a) du = 2 * (u - ua), dv = 2 * (v - va);
+      else du = dv = 0;
+    };
+    Query q;
+    q.u = u;
+    q.v = v;
+    q.explicit_lod = false;
+    diff(cx - 0.5, cy, cx + 0.5, cy, q.deriv.dudx, q.deriv.dvdx);
+    diff(cx, cy - 0.5, cx, cy + 0.5, q.deriv.dudy, q.deriv.dvdy);
+    f.pixel.push_back(y * o.width + x);
+    f.queries.push_back(q);
+  }
   return f;
 }
 
@@ -361,6 +379,10 @@ SceneFrame make_scene(const std::string& name, const SceneOptions& o) {
   if (o.frames < 1 || o.frames > 100000 || o.frame < 0 || o.frame >= o.frames)
     throw Error("frame " + std::to_string(o.frame) + " of " + std::to_string(o.frames) +
                 " is not within 0 to frames-1 (frames from 1 to 100000)");
+  if (o.order == PixelOrder::Tiled && (o.tile < 2 || o.tile > 256 || (o.tile & (o.tile - 1)) != 0))
+    throw Error("tile size " + std::to_string(o.tile) + " is not a power of two from 2 to 256");
+  if (o.order == PixelOrder::Tiled && (name == "mesh" || name == "mesh16"))
+    throw Error("scene " + name + " samples per vertex, in vertex order: --order tiled does not apply");
   if (name == "magnify") return magnify(o);
   if (name == "minify") return minify(o);
   if (name == "plane") return plane(o);

@@ -29,9 +29,16 @@ enum class Hit { None, Extended, Surface };
 // (used for derivatives and the reference at silhouettes); None: no (u, v) at all.
 using UvMap = std::function<Hit(double sx, double sy, double& u, double& v)>;
 
+// The order in which a pixel scene issues its queries (a rasterizer's walk; mesh scenes keep vertex
+// order): rows top to bottom, or square tiles row by row with scanline order inside each tile.
+enum class PixelOrder { Scanline, Tiled };
+PixelOrder parse_pixel_order(const std::string& name);  // scanline | tiled; throws tex::Error
+
 struct SceneOptions {
   int width = 640, height = 480;
   int frame = 0, frames = 1;  // animation: frame `frame` of `frames` (0-based)
+  PixelOrder order = PixelOrder::Scanline;
+  int tile = 8;  // tiled order: tile side in pixels (power of two, 2 to 256)
 };
 
 struct SceneFrame {

@@ -80,19 +80,25 @@ TEST(TextureCache, ResetMakesEveryWayInvalidWithAgeEqualToItsNumber) {
       for (int w = 0; w < 4; ++w) expect_way(c, cache, s, w, false, 0, w);
 }
 
-TEST(TextureCache, SetIndexIsTheBlocksMortonCodeModuloTheSets) {
-  const TextureCache c = cache64(64 * 16, 1, kPoint);  // 16 sets
+TEST(TextureCache, SetIndexIsTheParitiesUnderAHashOfTheRest) {
+  // 16 sets: k = 2, set = {(xh ^ reverse2(yh mod 4) ^ (yh >> 2)) mod 4, by & 1, bx & 1}.
+  const TextureCache c = cache64(64 * 16, 1, kPoint);
   EXPECT_EQ(c.set_index(0, 0), 0);
   EXPECT_EQ(c.set_index(1, 0), 1);
   EXPECT_EQ(c.set_index(0, 1), 2);
-  EXPECT_EQ(c.set_index(3, 2), 0b1101);
-  EXPECT_EQ(c.set_index(4, 0), 0);   // bx bit 2 lands at bit 4, beyond 16 sets
-  EXPECT_EQ(c.set_index(5, 7), 0b1011);  // low bits: bx 01, by 11 -> 1011
+  EXPECT_EQ(c.set_index(4, 0), 0b1000);  // xh 2
+  EXPECT_EQ(c.set_index(0, 2), 0b1000);  // yh 01 reversed: 10
+  EXPECT_EQ(c.set_index(3, 2), 0b1101);  // xh 01 ^ 10
+  EXPECT_EQ(c.set_index(5, 7), 0b0111);  // xh 10 ^ yh 11 reversed 11 = 01; parities 11
+  EXPECT_EQ(c.set_index(0, 8), 0b0100);  // yh 100: its bit 2 folds onto bit 0 of the hash
+  EXPECT_EQ(c.set_index(8, 0), 0);       // xh 100: beyond 4 hash values
+  const TextureCache four = cache64(64 * 4, 1, kPoint);  // 4 sets: k = 0, the parities alone
+  EXPECT_EQ(four.set_index(6, 5), 0b10);
 }
 
 TEST(TextureCache, LruOnAFourWaySetWorkedByHand) {
   // 16 lines: 4 sets of 4 ways. Point sampling of level 0, row 0: blocks with even bx
-  // are all in set 0 (Morton code of (bx, 0) mod 4 = bx & 1).
+  // are all in set 0 (4 sets: the set is the parities alone).
   TextureCache c = cache64(1024, 4, kPoint);
   ASSERT_EQ(c.sets(), 4);
   Misses misses;
@@ -142,17 +148,24 @@ TEST(TextureCache, DirectMappedConflictsAndTheSquareWindowOfSets) {
     EXPECT_EQ(misses, (Misses{0, 128}));
   }
   {
-    // 16 sets of 1: a 4x4 window of blocks fits; a row of 16 blocks uses 4 sets only.
-    TextureCache c = cache64(1024, 1, kPoint);
-    Misses misses;
-    for (int pass = 0; pass < 2; ++pass)
-      for (int by = 4; by < 8; ++by)
-        for (int bx = 8; bx < 12; ++bx) c.lookup(at_texel(bx * 4 + 1, by * 4 + 1, 6, 6), &misses);
-    EXPECT_EQ(misses.size(), 16u);
-    misses.clear();
-    for (int pass = 0; pass < 2; ++pass)
-      for (int bx = 0; bx < 16; ++bx) c.lookup(at_texel(bx * 4 + 1, 1, 6, 6), &misses);
-    EXPECT_EQ(misses.size(), 32u);
+    // 16 sets of 1: a 4x4 window of blocks fits, and so does a row of 8 blocks or a column of 8
+    // aligned to 8 (a Morton index would give either only 4 sets); a row of 16 blocks does not.
+    auto misses_of_two_passes = [](const std::vector<std::pair<int, int>>& blocks) {
+      TextureCache c = cache64(1024, 1, kPoint);
+      Misses misses;
+      for (int pass = 0; pass < 2; ++pass)
+        for (const auto& [bx, by] : blocks) c.lookup(at_texel(bx * 4 + 1, by * 4 + 1, 6, 6), &misses);
+      return misses.size();
+    };
+    std::vector<std::pair<int, int>> window, row8, column8, row16;
+    for (int by = 4; by < 8; ++by)
+      for (int bx = 8; bx < 12; ++bx) window.emplace_back(bx, by);
+    for (int i = 0; i < 8; ++i) row8.emplace_back(i, 5), column8.emplace_back(3, i + 8);
+    for (int i = 0; i < 16; ++i) row16.emplace_back(i, 2);
+    EXPECT_EQ(misses_of_two_passes(window), 16u);
+    EXPECT_EQ(misses_of_two_passes(row8), 8u);
+    EXPECT_EQ(misses_of_two_passes(column8), 8u);
+    EXPECT_EQ(misses_of_two_passes(row16), 32u);
   }
 }
 
@@ -160,7 +173,7 @@ TEST(TextureCache, FootprintStraddlingABlockCornerUsesFourSetsInParityOrder) {
   TextureCache c = cache64(256, 1, kBilinear);  // 4 sets of 1
   Misses misses;
   // (8, 4): taps x 7, 8 and y 3, 4, weights 1/2: blocks (1,0) (2,0) (1,1) (2,1). Parities
-  // (2,0) 0, (1,0) 1, (2,1) 2, (1,1) 3; sets (Morton mod 4) 0, 1, 2, 3.
+  // (2,0) 0, (1,0) 1, (2,1) 2, (1,1) 3; sets (4 sets: the parities) 0, 1, 2, 3.
   const SampleLookup l = c.lookup(at_texel(8, 4, 6, 6), &misses);
   EXPECT_EQ(l.slot[0].level, 0);
   EXPECT_TRUE(l.slot[0].needed);
@@ -368,6 +381,18 @@ class Reference {
     return code;
   }
 
+  // docs/memory.md §2: parities in bits 1..0, above them k = log2(sets / 4) bits of
+  // x/2 XOR (y/2 with its low k bits in reverse order) XOR (y/2 shifted down by k).
+  int set_of(int bx, int by) const {
+    int k = 0;
+    while ((4 << k) < sets_) ++k;
+    const int xh = bx / 2, yh = by / 2;
+    int reversed = 0;
+    for (int i = 0; i < k; ++i) reversed = reversed * 2 + ((yh >> i) & 1);
+    const int hash = (xh ^ reversed ^ (yh >> k)) % (1 << k);
+    return hash * 4 + (by % 2) * 2 + bx % 2;
+  }
+
   // Returns false (with a message) if two distinct blocks of a footprint share a parity.
   bool lookup(const Request& r, Slot out[2], Misses& misses, std::string& why) {
     const int last = std::max(lw_, lh_);
@@ -404,7 +429,7 @@ class Reference {
         ++o.blocks;
         o.mask |= 1 << parity(b);
         const uint32_t a = address(k, b.first, b.second);
-        std::list<uint32_t>& set = sets_lru_[{k % 2, int(morton(b.first, b.second) % uint64_t(sets_))}];
+        std::list<uint32_t>& set = sets_lru_[{k % 2, set_of(b.first, b.second)}];
         const auto it = std::find(set.begin(), set.end(), a);
         if (it != set.end()) {
           set.splice(set.begin(), set, it);

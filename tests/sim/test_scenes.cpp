@@ -101,6 +101,53 @@ TEST(Scenes, RenderWritesEveryFrameOfAnAnimation) {
   fs::remove_all(dir);
 }
 
+TEST(Scenes, TiledOrderVisitsEachTileBeforeTheNextAndDrawsTheSamePicture) {
+  SceneOptions scan;
+  scan.width = 20;  // 3 tiles across, the last one 4 wide; 2 tile rows, the last one 4 high
+  scan.height = 12;
+  SceneOptions tiled = scan;
+  tiled.order = PixelOrder::Tiled;
+  const SceneFrame a = make_scene("magnify", scan), b = make_scene("magnify", tiled);  // every pixel covered
+  ASSERT_EQ(a.pixel.size(), 240u);
+  ASSERT_EQ(b.pixel.size(), 240u);
+  for (int i = 0; i < 240; ++i) EXPECT_EQ(a.pixel[size_t(i)], i);  // scanline: rows top to bottom
+  // Tiled: tile (tx, ty) holds its pixels in scanline order, tiles row by row.
+  std::vector<int> expected;
+  for (int ty = 0; ty < 12; ty += 8)
+    for (int tx = 0; tx < 20; tx += 8)
+      for (int y = ty; y < std::min(ty + 8, 12); ++y)
+        for (int x = tx; x < std::min(tx + 8, 20); ++x) expected.push_back(y * 20 + x);
+  EXPECT_EQ(b.pixel, expected);
+  // The same query for each pixel, whatever the order.
+  for (size_t i = 0; i < b.pixel.size(); ++i) {
+    const Query& q = b.queries[i];
+    const Query& r = a.queries[size_t(b.pixel[i])];
+    EXPECT_EQ(q.u, r.u);
+    EXPECT_EQ(q.v, r.v);
+    EXPECT_EQ(q.deriv.dudx, r.deriv.dudx);
+    EXPECT_EQ(q.deriv.dvdy, r.deriv.dvdy);
+  }
+  EXPECT_EQ(parse_pixel_order("tiled"), PixelOrder::Tiled);
+  EXPECT_THROW(parse_pixel_order("hilbert"), Error);
+  tiled.tile = 6;
+  EXPECT_THROW(make_scene("plane", tiled), Error);
+  tiled.tile = 4;
+  EXPECT_THROW(make_scene("mesh", tiled), Error);
+}
+
+TEST(Scenes, PixelOrderOptionsAreCheckedBeforeAnyWork) {
+  const fs::path out = fs::temp_directory_path() / "scenes_order.png";
+  fs::remove(out);
+  for (const char* bad : {"--order hilbert", "--order tiled --tile 12", "--tile 16", "--scene mesh --order tiled"}) {
+    const CliRun r = texsim(std::string("render --width 16 --height 16 ") + bad + " --out " + out.string());
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_EQ(line_count(r.err), 1) << bad << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << bad;
+  }
+  const CliRun r = texsim("render --width 16 --height 16 --order hilbert --out " + out.string());
+  EXPECT_NE(r.err.find("'hilbert' (known: scanline, tiled)"), std::string::npos) << r.err;
+}
+
 // The reference's box integral against values worked out by hand: columns 0, 255, 0, 255 (4x4).
 TEST(SceneReference, BoxFilterFollowsTheWrapModes) {
   Image stripes(4, 4);

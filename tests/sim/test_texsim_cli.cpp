@@ -406,3 +406,18 @@ TEST_F(TexsimCli, CachedMissTraceIsTheSameForModelAndRtl) {
   EXPECT_NE(text("ms.json").find("\"cache_misses\""), std::string::npos);
   expect_clean_failure("sample -t noise:64x8 -q q.csv -o x.csv --cache-kib 4", "x.csv", {"--cache-kib", "--memory cached"});
 }
+
+TEST_F(TexsimCli, TiledOrderDrawsTheSamePictureFromOtherCacheTraffic) {
+  const std::string common = "render --scene plane --width 96 --height 64 --texture testcard:256x256 --memory cached";
+  const Result a = run(common + " -o scan.png --miss-trace scan.txt");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const Result b = run(common + " --order tiled --tile 4 -o tiled.png --miss-trace tiled.txt");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  auto text = [&](const char* name) {
+    std::ifstream in(dir / name, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(text("scan.png"), text("tiled.png"));
+  EXPECT_NE(text("scan.txt"), text("tiled.txt"));
+  EXPECT_GT(text("scan.txt").size(), 100u);
+}
