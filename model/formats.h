@@ -11,7 +11,7 @@ namespace tex {
 constexpr int kCoordFracBits = 24;  // u, v: signed Q8.24, 1.0 = one texture width
 constexpr int kLodFracBits = 8;     // lambda: signed Q8.8 in levels
 constexpr int kWeightBits = 8;      // fx, fy, f: 0..255 = 0..255/256
-constexpr int kMaxLog2Size = 11;    // 2048 texels per side at most
+constexpr int kMaxLog2Size = 13;    // 8192 texels per side at most
 constexpr int kMaxLevels = kMaxLog2Size + 1;
 constexpr int kMaxChannelBits = 16;
 constexpr int kDefaultChannelBits = 8;

@@ -12,11 +12,12 @@ package tex_pkg;
   localparam int MAX_CW        = 16;  // bits per channel: CW = 1..MAX_CW
 
   // ---- sizes, levels, texel indices
-  localparam int MAX_LOG2_SIZE = 11;  // 2048 texels per side at most
-  localparam int LEVEL_W       = 4;   // a level index or a log2 size (0..11): cfg_log2_w, wr_level
-  localparam int COORD_W       = 11;  // bits of a wrapped texel index / write coordinate
-  localparam int INDEX_W       = 21;  // signed unwrapped texel index (|u| < 128 at 2048 texels)
-  localparam int SCALED_W      = 28;  // u >>> (15 - log2_w0): 32 - minimum shift of 4
+  localparam int MAX_LOG2_SIZE   = 13;  // 8192 texels per side at most (tex_unit_cached)
+  localparam int MAX_LOG2_ONCHIP = 11;  // tex_unit's per-level memories: 2048 per side at most
+  localparam int LEVEL_W       = 4;   // a level index or a log2 size (0..13): cfg_log2_w, wr_level
+  localparam int COORD_W       = 13;  // bits of a wrapped texel index / write coordinate
+  localparam int INDEX_W       = 23;  // signed unwrapped texel index (|u| < 128 at 8192 texels)
+  localparam int SCALED_W      = 30;  // u >>> (15 - log2_w0): 32 - minimum shift of 2
 
   // ---- cached memory (docs/memory.md)
   localparam int MEM_ADDR_W    = 32;  // byte address of a line in external memory

@@ -72,10 +72,10 @@ module tex_unit #(
   // ---------------------------------------------------------------- parameter checks
   // (The datapath is elaborated with the parameters clamped into range, so that a bad value stops
   // the tools with the message below, not with an error deep inside the datapath.)
-  localparam int MLW = (MAX_LOG2_W < 0) ? 0 : (MAX_LOG2_W > tex_pkg::MAX_LOG2_SIZE)
-                       ? tex_pkg::MAX_LOG2_SIZE : MAX_LOG2_W;
-  localparam int MLH = (MAX_LOG2_H < 0) ? 0 : (MAX_LOG2_H > tex_pkg::MAX_LOG2_SIZE)
-                       ? tex_pkg::MAX_LOG2_SIZE : MAX_LOG2_H;
+  localparam int MLW = (MAX_LOG2_W < 0) ? 0 : (MAX_LOG2_W > tex_pkg::MAX_LOG2_ONCHIP)
+                       ? tex_pkg::MAX_LOG2_ONCHIP : MAX_LOG2_W;
+  localparam int MLH = (MAX_LOG2_H < 0) ? 0 : (MAX_LOG2_H > tex_pkg::MAX_LOG2_ONCHIP)
+                       ? tex_pkg::MAX_LOG2_ONCHIP : MAX_LOG2_H;
   localparam int CWD = (CW < 1) ? 1 : (CW > tex_pkg::MAX_CW) ? tex_pkg::MAX_CW : CW;
   localparam int TGW = (TAG_W < 1) ? 1 : TAG_W;
   localparam int XW  = (MLW > 0) ? MLW : 1;  // wrapped index bits (level 0's)
@@ -86,11 +86,11 @@ module tex_unit #(
   `define TEX_PARAM_ERROR(msg) $error(msg);
 `endif
   generate
-    if (MAX_LOG2_W < 0 || MAX_LOG2_W > tex_pkg::MAX_LOG2_SIZE) begin : g_bad_max_log2_w
-      `TEX_PARAM_ERROR("tex_unit: parameter MAX_LOG2_W must be in 0..11 (tex_pkg::MAX_LOG2_SIZE)")
+    if (MAX_LOG2_W < 0 || MAX_LOG2_W > tex_pkg::MAX_LOG2_ONCHIP) begin : g_bad_max_log2_w
+      `TEX_PARAM_ERROR("tex_unit: parameter MAX_LOG2_W must be in 0..11 (tex_pkg::MAX_LOG2_ONCHIP)")
     end
-    if (MAX_LOG2_H < 0 || MAX_LOG2_H > tex_pkg::MAX_LOG2_SIZE) begin : g_bad_max_log2_h
-      `TEX_PARAM_ERROR("tex_unit: parameter MAX_LOG2_H must be in 0..11 (tex_pkg::MAX_LOG2_SIZE)")
+    if (MAX_LOG2_H < 0 || MAX_LOG2_H > tex_pkg::MAX_LOG2_ONCHIP) begin : g_bad_max_log2_h
+      `TEX_PARAM_ERROR("tex_unit: parameter MAX_LOG2_H must be in 0..11 (tex_pkg::MAX_LOG2_ONCHIP)")
     end
     if (CW < 1 || CW > tex_pkg::MAX_CW) begin : g_bad_cw
       `TEX_PARAM_ERROR("tex_unit: parameter CW must be in 1..16 (tex_pkg::MAX_CW)")

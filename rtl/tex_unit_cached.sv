@@ -22,7 +22,7 @@
 //   cfg_log2_sets, cfg_log2_ways, cfg_mem_base, cfg_block_morton and the texture in memory
 //   change only under reset (the caches are emptied by rst).
 module tex_unit_cached #(
-  parameter int MAX_LOG2_W = 10,   // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H, each 0..11
+  parameter int MAX_LOG2_W = 10,   // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H, each 0..13
   parameter int MAX_LOG2_H = 10,
   parameter int CW         = 8,    // bits per channel, 1..16
   parameter int TAG_W      = 16,   // >= 1
@@ -91,10 +91,10 @@ module tex_unit_cached #(
 `endif
   generate
     if (MAX_LOG2_W < 0 || MAX_LOG2_W > tex_pkg::MAX_LOG2_SIZE) begin : g_bad_max_log2_w
-      `TEX_PARAM_ERROR("tex_unit_cached: parameter MAX_LOG2_W must be in 0..11 (tex_pkg::MAX_LOG2_SIZE)")
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter MAX_LOG2_W must be in 0..13 (tex_pkg::MAX_LOG2_SIZE)")
     end
     if (MAX_LOG2_H < 0 || MAX_LOG2_H > tex_pkg::MAX_LOG2_SIZE) begin : g_bad_max_log2_h
-      `TEX_PARAM_ERROR("tex_unit_cached: parameter MAX_LOG2_H must be in 0..11 (tex_pkg::MAX_LOG2_SIZE)")
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter MAX_LOG2_H must be in 0..13 (tex_pkg::MAX_LOG2_SIZE)")
     end
     if (CW < 1 || CW > tex_pkg::MAX_CW) begin : g_bad_cw
       `TEX_PARAM_ERROR("tex_unit_cached: parameter CW must be in 1..16 (tex_pkg::MAX_CW)")

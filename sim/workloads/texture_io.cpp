@@ -55,9 +55,9 @@ bool parse_pattern_spec(const std::string& spec, std::string& name, int& w, int&
   const auto x = size.find('x');
   auto side = [&](const std::string& text, int& out) {
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-    if (ec == std::errc::result_out_of_range || (ec == std::errc() && end == text.data() + text.size() && out > 2048))
-      throw Error("pattern " + quote_clipped(spec) + ": size " + quote_clipped(size) +
-                  " is too large: at most 2048 per side");
+    if (ec == std::errc::result_out_of_range || (ec == std::errc() && end == text.data() + text.size() && out > (1 << kMaxLog2Size)))
+      throw Error("pattern " + quote_clipped(spec) + ": size " + quote_clipped(size) + " is too large: at most " +
+                  std::to_string(1 << kMaxLog2Size) + " per side");
     return ec == std::errc() && end == text.data() + text.size() && !text.empty();
   };
   if (x == std::string::npos || !side(size.substr(0, x), w) || !side(size.substr(x + 1), h))
@@ -121,7 +121,7 @@ Image load_texture(const std::string& spec, bool resize) {
   w = s.width;
   h = s.height;
   warn_if_clamped(src, spec);
-  if (!resize || (is_power_of_two(w) && is_power_of_two(h) && w <= 2048 && h <= 2048)) {
+  if (!resize || (is_power_of_two(w) && is_power_of_two(h) && w <= (1 << kMaxLog2Size) && h <= (1 << kMaxLog2Size))) {
     check_texture_size(w, h, spec, "use --resize to resample");
   } else {
     const int nw = nearest_power_of_two(w), nh = nearest_power_of_two(h);

@@ -280,7 +280,7 @@ TEST(MemoryLayout, BadGeometryIsAnErrorNamingTheValue) {
   EXPECT_NE(error_of(3, 3, 16, params(4, 4, BlockOrder::RowMajor, 64)).find("128-byte"), std::string::npos);
   EXPECT_NE(error_of(3, 3, 0, LayoutParams{}).find("0 bits"), std::string::npos);
   EXPECT_NE(error_of(3, 3, 17, LayoutParams{}).find("17 bits"), std::string::npos);
-  EXPECT_NE(error_of(12, 3, 8, LayoutParams{}).find("2^12"), std::string::npos);
+  EXPECT_NE(error_of(14, 3, 8, LayoutParams{}).find("2^14"), std::string::npos);
   // 8x8 in 4x4 blocks is 256 + 64 + 64 + 64 = 448 bytes: it may end at 2^32 exactly, not past it.
   EXPECT_EQ(error_of(3, 3, 8, params(4, 4, BlockOrder::RowMajor, 0xFFFFFE40u)), "(no error)");
   EXPECT_NE(error_of(3, 3, 8, params(4, 4, BlockOrder::RowMajor, 0xFFFFFE80u)).find("4294967360"), std::string::npos);

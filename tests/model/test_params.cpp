@@ -90,7 +90,7 @@ TEST(Params, RtlPackageAgreesWithModel) {
       {"MIP_NEAREST", int(MipMode::Nearest)},
       {"MIP_LINEAR", int(MipMode::Linear)},
       {"MAX_CW", kMaxChannelBits},
-      // u >> (15 - log2 w): the smallest shift (4, at 2048 texels) leaves 32 - 4 bits.
+      // u >> (15 - log2 w): the smallest shift (2, at 8192 texels) leaves 32 - 2 bits.
       {"SCALED_W", 32 - (15 - kMaxLog2Size)},
   };
   for (const auto& [name, value] : expected) {
@@ -105,7 +105,7 @@ TEST(Params, RtlPackageAgreesWithModel) {
   EXPECT_EQ(-(int64_t(1) << (p.at("LOD_W") - 1)), kLodMin) << "LOD_W";
   EXPECT_EQ((int64_t(1) << (p.at("LOD_W") - 1)) - 1, kLodMax) << "LOD_W";
   EXPECT_GE(int64_t(1) << p.at("LEVEL_W"), int64_t(kMaxLevels)) << "LEVEL_W cannot index every level";
-  EXPECT_GE(int64_t(1) << p.at("COORD_W"), int64_t(1) << kMaxLog2Size) << "COORD_W cannot index 2048 texels";
+  EXPECT_GE(int64_t(1) << p.at("COORD_W"), int64_t(1) << kMaxLog2Size) << "COORD_W cannot index 2^kMaxLog2Size texels";
   int32_t lo = 0, hi = 0;
   for (int32_t u : {INT32_MIN, INT32_MAX})
     for (TexelFilter f : {TexelFilter::Nearest, TexelFilter::Linear}) {

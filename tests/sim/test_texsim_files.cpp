@@ -298,7 +298,7 @@ TEST_F(TexsimCli, AHugeBadTokenIsQuotedOnceAndShort) {
 
 TEST_F(TexsimCli, SizesAreNamedRight) {
   queries("u,v,lod\n0.5,0.5,0\n");
-  expect_clean_failure("sample -t noise:8192x8192 -q q.csv -o r.csv", "r.csv", {"8192x8192", "too large", "2048"});
+  expect_clean_failure("sample -t noise:16384x16384 -q q.csv -o r.csv", "r.csv", {"16384x16384", "too large", "8192"});
   expect_clean_failure("sample -t testcard:99999999999999999999x2 -q q.csv -o r.csv", "r.csv",
                        {"99999999999999999999", "too large"});
   expect_clean_failure("sample -t noise:100x64 -q q.csv -o r.csv", "r.csv", {"100x64", "power of two"});
@@ -307,8 +307,8 @@ TEST_F(TexsimCli, SizesAreNamedRight) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.err.find("--resize"), std::string::npos) << r.err;
   // A file too large without --resize suggests it.
-  write_image(dir / "wide.png", 4096, 2, 3, [](int x, int, int) { return x & 255; });
-  expect_clean_failure("sample -t wide.png -q q.csv -o r.csv", "r.csv", {"4096x2", "too large", "--resize"});
+  write_image(dir / "wide.png", 16384, 2, 3, [](int x, int, int) { return x & 255; });
+  expect_clean_failure("sample -t wide.png -q q.csv -o r.csv", "r.csv", {"16384x2", "too large", "--resize"});
 }
 
 TEST_F(TexsimCli, NumericOptionsDoNotWrapAround) {
