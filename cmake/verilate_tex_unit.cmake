@@ -1,7 +1,7 @@
-# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [TRACE_FST] [CACHED BW BH LINES FIFO MEM_W]):
+# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [TRACE_FST] [CACHED BW BH LINES FIFO MEM_W MISS]):
 # tex_unit of rtl/ verilated into TARGET as class PREFIX, for textures up to 2^LOG2_W x 2^LOG2_H
 # with CW-bit channels (default 8); with CACHED, tex_unit_cached with those BLOCK_W, BLOCK_H,
-# LINES, FIFO_DEPTH and MEM_W.
+# LINES, FIFO_DEPTH, MEM_W and MISS_DEPTH.
 # One set of options for every build: -Wall (make lint keeps it at zero warnings), assertions on,
 # registers without reset start random (the design must not rely on zero initialisation),
 # single-threaded, C++ at -O2 (Verilator's default -Os is about 1.5x slower).
@@ -37,7 +37,9 @@ function(verilate_tex_unit target prefix log2_w log2_h)
     list(GET ARG_CACHED 2 lines)
     list(GET ARG_CACHED 3 fifo)
     list(GET ARG_CACHED 4 mem_w)
-    set(cache_params -GBLOCK_W=${bw} -GBLOCK_H=${bh} -GLINES=${lines} -GFIFO_DEPTH=${fifo} -GMEM_W=${mem_w})
+    list(GET ARG_CACHED 5 miss)
+    set(cache_params -GBLOCK_W=${bw} -GBLOCK_H=${bh} -GLINES=${lines} -GFIFO_DEPTH=${fifo} -GMEM_W=${mem_w}
+                     -GMISS_DEPTH=${miss})
   endif()
   verilate(${target} ${mode}
     PREFIX ${prefix}

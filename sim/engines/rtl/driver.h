@@ -31,6 +31,7 @@ struct RtlConfig {
   int lines = 0;                 // LINES: lines per cache at most
   int fifo_depth = 0;            // FIFO_DEPTH
   int mem_bits = 0;              // MEM_W: bits of a memory beat
+  int miss_depth = 0;            // MISS_DEPTH: lines requested and not yet received, at most
   int line_bytes() const { return block_w * block_h * (cw > 8 ? 8 : 4); }
   Memory memory() const { return cached ? Memory::Cached : Memory::OnChip; }
   bool fits(int log2_w, int log2_h) const { return log2_w <= max_log2_w && log2_h <= max_log2_h; }

@@ -211,8 +211,8 @@ class VerilatedTexUnit final : public Driver {
 }  // namespace
 
 const std::vector<RtlConfig>& compiled_configs() {
-#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w) \
-  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w},
+#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss) \
+  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss},
   static const std::vector<RtlConfig> configs = {TEX_RTL_CONFIGS(TEX_RTL_CONFIG_ENTRY)};
 #undef TEX_RTL_CONFIG_ENTRY
   return configs;
