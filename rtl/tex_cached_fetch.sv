@@ -27,6 +27,7 @@
 //   cfg_mem_base                    : byte address of level 0, a multiple of the line size
 //   cfg_block_morton                : 0 row-major, 1 Morton order of the blocks of a level
 //   cfg_log2_sets, cfg_log2_ways    : cache geometry (both caches), see tex_cache_tags
+//   cfg_fifo_limit                  : samples the FIFO holds at most (0 or > FIFO_DEPTH: FIFO_DEPTH)
 //   mem_req_addr                    : byte address of a line (MEM_ADDR_W bits, line aligned)
 //   mem_rsp_data                    : one beat, MEM_W bits: bytes [i*MEM_W/8 +: MEM_W/8] of the
 //                                     line in beat i; LINE_BITS / MEM_W beats per line, in order
@@ -69,6 +70,7 @@ module tex_cached_fetch #(
   input  logic                              cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways,
+  input  logic [$clog2(FIFO_DEPTH+1)-1:0]   cfg_fifo_limit,
 
   output logic                              mem_req_valid,
   input  logic                              mem_req_ready,
@@ -369,6 +371,9 @@ module tex_cached_fetch #(
     if (push) fifo[fifo_wr] <= {front_tag, w, f, c0, tap_parity[1], tap_parity[0], reads, fills};
   end
   assign fifo_next = fifo_count + FCW'(push) - FCW'(fifo_pop);
+  logic [FCW-1:0] fifo_limit;  // the FIFO's depth in use
+  assign fifo_limit = (cfg_fifo_limit == '0 || cfg_fifo_limit > FCW'(FIFO_DEPTH)) ? FCW'(FIFO_DEPTH)
+                                                                                 : cfg_fifo_limit;
   assign ring_next = ring_used + (push ? MCW'(fills) : '0) - MCW'(retire);
   always_ff @(posedge clk) begin
     if (rst) begin
@@ -381,7 +386,7 @@ module tex_cached_fetch #(
       fifo_rd    <= fifo_rd + FPW'(fifo_pop);
       fifo_count <= fifo_next;
       // Room after this clock for one more sample and its (at most 8) misses.
-      en_front   <= fifo_next < FCW'(FIFO_DEPTH) && ring_next <= MCW'(MISS_DEPTH - 8);
+      en_front   <= fifo_next < fifo_limit && ring_next <= MCW'(MISS_DEPTH - 8);
     end
   end
 

@@ -17,6 +17,8 @@
 //   cfg_mem_base     : byte address of level 0 in memory (MEM_ADDR_W bits, line aligned)
 //   cfg_block_morton : 0 row-major, 1 Morton order of a level's blocks
 //   cfg_log2_sets, cfg_log2_ways : geometry of each cache (sets >= 4, sets * ways <= LINES)
+//   cfg_fifo_limit   : samples the FIFO holds at most, 1..FIFO_DEPTH (0 or more: FIFO_DEPTH), to
+//                      measure a shallower FIFO without rebuilding; unsigned $clog2(FIFO_DEPTH+1) bits
 //   mem_req_addr     : byte address of a line; mem_rsp_data: one MEM_W-bit beat of it
 // cfg_* are registered every clock and must be static while requests are in flight;
 //   cfg_log2_sets, cfg_log2_ways, cfg_mem_base, cfg_block_morton and the texture in memory
@@ -51,6 +53,7 @@ module tex_unit_cached #(
   input  logic                                   cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]        cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]        cfg_log2_ways,
+  input  logic [$clog2(FIFO_DEPTH+1)-1:0]        cfg_fifo_limit,
 
   input  logic                                   req_valid,
   output logic                                   req_ready,
@@ -135,7 +138,9 @@ module tex_unit_cached #(
   logic                               cfg_block_morton_q;
   logic [tex_pkg::LOG2_SETS_W-1:0]    cfg_log2_sets_q;
   logic [tex_pkg::LOG2_WAYS_W-1:0]    cfg_log2_ways_q;
+  logic [$clog2(FIFO_DEPTH+1)-1:0]    cfg_fifo_limit_q;
   always_ff @(posedge clk) begin
+    cfg_fifo_limit_q   <= cfg_fifo_limit;
     cfg_mem_base_q     <= cfg_mem_base;
     cfg_block_morton_q <= cfg_block_morton;
     cfg_log2_sets_q    <= cfg_log2_sets;
@@ -188,7 +193,7 @@ module tex_unit_cached #(
     .log2_size(log2_size_s4), .x(x), .y(y),
     .cfg_log2_w(cfg_log2_w_q), .cfg_log2_h(cfg_log2_h_q), .cfg_mem_base(cfg_mem_base_q),
     .cfg_block_morton(cfg_block_morton_q), .cfg_log2_sets(cfg_log2_sets_q),
-    .cfg_log2_ways(cfg_log2_ways_q),
+    .cfg_log2_ways(cfg_log2_ways_q), .cfg_fifo_limit(cfg_fifo_limit_q),
     .mem_req_valid(mem_req_valid), .mem_req_ready(mem_req_ready), .mem_req_addr(mem_req_addr),
     .mem_rsp_valid(mem_rsp_valid), .mem_rsp_ready(mem_rsp_ready), .mem_rsp_data(mem_rsp_data),
     .out_valid(fetch_valid), .out_tag(fetch_tag), .taps(taps), .out_w(fetch_w),

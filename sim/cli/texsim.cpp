@@ -63,6 +63,7 @@ struct SamplingOptions {
   std::string memory = "onchip";
   std::string cache_kib = "8", ways = "2", block = "4x4", block_order = "row-major";
   std::string mem_latency = "100", mem_jitter = "0", mem_bytes_per_clock = "16", mem_outstanding = "64";
+  std::string fifo_depth;
   std::string miss_trace;
   CLI::Option *wrap_u_opt = nullptr, *wrap_v_opt = nullptr, *texture_opt = nullptr;
   std::vector<CLI::Option*> cached_opts;  // meaningful with --memory cached only
@@ -116,6 +117,9 @@ struct SamplingOptions {
         ->capture_default_str());
     cached_opts.push_back(cmd.add_option("--mem-outstanding", mem_outstanding, "cached, rtl: reads in flight at most")
         ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--fifo-depth", fifo_depth,
+                                         "cached, rtl: samples the FIFO holds at most, 1 to the configuration's "
+                                         "FIFO_DEPTH (default: all of it)"));
     cached_opts.push_back(cmd.add_option("--miss-trace", miss_trace,
                    "cached: write the line addresses read from memory, in order, one 0x%08x per line"));
   }
@@ -180,6 +184,7 @@ struct SamplingOptions {
       o.mem_jitter = bounded(mem_jitter, "--mem-jitter", 0, 100000);
       o.mem_bytes_per_clock = bounded(mem_bytes_per_clock, "--mem-bytes-per-clock", 1, 1024);
       o.mem_outstanding = bounded(mem_outstanding, "--mem-outstanding", 1, 4096);
+      if (!fifo_depth.empty()) o.fifo_depth = bounded(fifo_depth, "--fifo-depth", 1, 1u << 20);
       // The geometry must be one the caches can have (the texture's channel width sets the line
       // size; 8-bit lines are checked here, the engine checks again with the real texture).
       TextureCache(MemoryLayout(0, 0, 8, o.layout), o.cache, SamplerConfig{}, 0, 0);
@@ -306,7 +311,7 @@ void print_cache_stats(const EngineStats& stats) {
               (unsigned long long)k.lookups, k.lookups ? 100.0 * double(k.hits) / double(k.lookups) : 0.0,
               (unsigned long long)k.misses, stats.samples ? double(k.memory_read_bytes) / double(stats.samples) : 0.0);
   if (stats.cycle)
-    std::printf(", FIFO up to %u samples, %llu clocks waiting for memory", k.fifo_max_occupancy,
+    std::printf(", FIFO up to %u of %u samples, %llu clocks waiting for memory", k.fifo_max_occupancy, k.fifo_depth,
                 (unsigned long long)k.memory_stall_cycles);
   std::printf("\n");
 }

@@ -71,6 +71,7 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
       j["mem_jitter"] = options.mem_jitter;
       j["mem_bytes_per_clock"] = options.mem_bytes_per_clock;
       j["mem_outstanding"] = options.mem_outstanding;
+      j["fifo_depth"] = cache->fifo_depth;
       j["fifo_max_occupancy"] = cache->fifo_max_occupancy;
       j["memory_stall_cycles"] = cache->memory_stall_cycles;
     }
@@ -121,6 +122,7 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
       k.hits = j.at("cache_hits").get<uint64_t>();
       k.misses = j.at("cache_misses").get<uint64_t>();
       k.memory_read_bytes = j.at("memory_read_bytes").get<uint64_t>();
+      k.fifo_depth = j.at("fifo_depth").get<uint32_t>();
       k.fifo_max_occupancy = j.at("fifo_max_occupancy").get<uint32_t>();
       k.memory_stall_cycles = j.at("memory_stall_cycles").get<uint64_t>();
       s.cache = k;

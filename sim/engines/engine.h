@@ -57,6 +57,7 @@ struct EngineOptions {
   LayoutParams layout;
   CacheParams cache;
   uint32_t mem_latency = 100, mem_jitter = 0, mem_bytes_per_clock = 16, mem_outstanding = 64;
+  uint32_t fifo_depth = 0;  // rtl: samples the FIFO holds at most; 0 = the configuration's FIFO_DEPTH
   MissSink* miss_sink = nullptr;  // cached: the line addresses read from memory, in order
 };
 
@@ -64,6 +65,7 @@ struct EngineOptions {
 struct CacheCounters {
   uint64_t lookups = 0, hits = 0, misses = 0;
   uint64_t memory_read_bytes = 0;
+  uint32_t fifo_depth = 0;          // cycle-accurate engines only: the FIFO depth in use
   uint32_t fifo_max_occupancy = 0;  // cycle-accurate engines only
   uint64_t memory_stall_cycles = 0; // the FIFO's head waits for memory, the output ready (cycle engines)
 };

@@ -81,15 +81,16 @@ const rtl::RtlConfig& config_named(const std::string& name) {
 // One case: its result, or a failure description.
 struct CaseResult {
   uint64_t samples = 0, clocks = 0, reads = 0;
+  uint32_t fifo_max = 0;  // largest FIFO occupancy
   std::string failure;
 };
 
 CaseResult run_case(rtl::Driver& unit, const Pyramid& pyr, const SamplerConfig& cfg, const LayoutParams& layout,
                     const CacheParams& cache, const rtl::MemoryTiming& timing, const std::vector<Request>& requests,
                     const rtl::Timing& stim, uint64_t seed, CacheCoverage* coverage,
-                    const CacheParams* model_cache = nullptr, int poke_texel = -1) {
+                    const CacheParams* model_cache = nullptr, int poke_texel = -1, uint32_t fifo_depth = 0) {
   CaseResult r;
-  unit.set_memory(layout, cache, timing);
+  unit.set_memory(layout, cache, timing, fifo_depth);
   unit.load(pyr, LoadMethod::Backdoor);
   unit.configure(cfg, pyr);
   if (poke_texel >= 0) {  // planted bug: one byte of the image is wrong
@@ -115,8 +116,12 @@ CaseResult run_case(rtl::Driver& unit, const Pyramid& pyr, const SamplerConfig& 
     });
     r.samples = st.samples();
     r.clocks = st.cycles();
+    r.fifo_max = st.memory.fifo_max;
+    const uint32_t depth = fifo_depth ? fifo_depth : uint32_t(unit.config().fifo_depth);
+    if (st.memory.fifo_max > depth && r.failure.empty())
+      r.failure = "the FIFO held " + std::to_string(st.memory.fifo_max) + " samples, limit " + std::to_string(depth);
     if (coverage) {
-      if (st.memory.fifo_max == uint32_t(unit.config().fifo_depth)) coverage->hit("FIFO full");
+      if (st.memory.fifo_max == depth) coverage->hit("FIFO full");
       if (model.stats().evictions_of_previous) coverage->hit("a line evicted while the previous sample needs it");
       if (unit.memory()->repeats_in_flight()) coverage->hit("the same line read twice in flight");
     }
@@ -204,7 +209,10 @@ void run_suite(const CachedSuite& suite) {
     const rtl::MemoryTiming memory = random_memory(rng, rc, memory_name);
     const rtl::Timing stim = random_timing(rng, timing_name);
     const std::vector<Request> requests = random_requests(rng, lw, lh, suite.requests_per_case);
-    const CaseResult r = run_case(*unit, pyr, cfg, layout, cache, memory, requests, stim, rng(), &coverage);
+    // A quarter of the cases use a shallower FIFO (cfg_fifo_limit), down to 1 sample.
+    const uint32_t fifo_depth = rng() % 4 == 0 ? 1 + uint32_t(rng() % uint64_t(rc.fifo_depth)) : 0;
+    const CaseResult r =
+        run_case(*unit, pyr, cfg, layout, cache, memory, requests, stim, rng(), &coverage, nullptr, -1, fifo_depth);
     samples += r.samples;
     clocks += r.clocks;
     reads += r.reads;
@@ -213,7 +221,8 @@ void run_suite(const CachedSuite& suite) {
       ADD_FAILURE() << suite.config << " case " << ci << " (replay: TEX_SEED=" << seed << "): "
                     << (1 << lw) << "x" << (1 << lh) << ", " << describe(cfg) << ", "
                     << block_order_name(layout.order) << ", " << cache.size_bytes << " B x " << cache.ways
-                    << " ways, " << memory_name << ", stimulus " << timing_name << ": " << r.failure;
+                    << " ways, FIFO " << (fifo_depth ? std::to_string(fifo_depth) : "all") << ", " << memory_name
+                    << ", stimulus " << timing_name << ": " << r.failure;
       unit->reset();
       if (failures >= 3) break;
     }
@@ -270,3 +279,30 @@ TEST(RtlCached, CheckersCatchPlantedBugs) {
   EXPECT_EQ(data.failure.rfind("sample ", 0), 0u) << data.failure;  // a sample mismatch, not a protocol error
   EXPECT_NE(data.failure.find(": RTL "), std::string::npos) << data.failure;
 }
+
+// cfg_fifo_limit: a shallower FIFO holds at most that many samples and hides less latency;
+// the answers and the lines read stay the same.
+TEST(RtlCached, FifoLimitMakesAShallowerFifo) {
+  const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
+  auto unit = rtl::Driver::create(rc, {});
+  unit->reset();
+  const Pyramid pyr = build_pyramid(random_texture(64, 8, 8, 3), PyramidMode::Exact);
+  std::mt19937_64 rng(5);
+  const std::vector<Request> requests = random_requests(rng, 6, 3, 4000);
+  SamplerConfig cfg;
+  LayoutParams layout;
+  const CacheParams cache{2048, 2};
+  rtl::MemoryTiming memory;
+  memory.latency = 60;
+  const CaseResult full = run_case(*unit, pyr, cfg, layout, cache, memory, requests, {}, 1, nullptr);
+  ASSERT_EQ(full.failure, "");
+  EXPECT_EQ(full.fifo_max, uint32_t(rc.fifo_depth));
+  const CaseResult shallow = run_case(*unit, pyr, cfg, layout, cache, memory, requests, {}, 1, nullptr, nullptr, -1, 4);
+  ASSERT_EQ(shallow.failure, "");
+  EXPECT_EQ(shallow.fifo_max, 4u);
+  EXPECT_EQ(shallow.reads, full.reads);
+  EXPECT_GT(shallow.clocks, full.clocks + full.clocks / 4) << "4 samples cannot hide a 60-clock latency";
+  unit->set_memory(layout, cache, memory, uint32_t(rc.fifo_depth) + 1);
+  EXPECT_THROW(unit->load(pyr, LoadMethod::Backdoor), Error);
+}
+

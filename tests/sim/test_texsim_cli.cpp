@@ -405,6 +405,8 @@ TEST_F(TexsimCli, CachedMissTraceIsTheSameForModelAndRtl) {
   EXPECT_NE(text("rs.json").find("\"fifo_max_occupancy\""), std::string::npos);
   EXPECT_NE(text("ms.json").find("\"cache_misses\""), std::string::npos);
   expect_clean_failure("sample -t noise:64x8 -q q.csv -o x.csv --cache-kib 4", "x.csv", {"--cache-kib", "--memory cached"});
+  expect_clean_failure(common + " -e rtl --fifo-depth 100000 -o x.csv", "x.csv", {"100000 samples", "FIFO_DEPTH is"});
+  expect_clean_failure(common + " -e rtl --fifo-depth 0 -o x.csv", "x.csv", {"--fifo-depth 0"});
 }
 
 TEST_F(TexsimCli, TiledOrderDrawsTheSamePictureFromOtherCacheTraffic) {

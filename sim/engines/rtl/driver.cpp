@@ -65,7 +65,8 @@ void check_request(const Request& request, size_t index) {
                 "/256 is outside the 16-bit Q8.8 port of the RTL");
 }
 
-CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const CacheParams& cache) {
+CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const CacheParams& cache,
+                     uint32_t fifo_depth) {
   if (layout.block_w != config.block_w || layout.block_h != config.block_h)
     throw Error(config.name + " is built for " + std::to_string(config.block_w) + "x" + std::to_string(config.block_h) +
                 " blocks, not " + std::to_string(layout.block_w) + "x" + std::to_string(layout.block_h));
@@ -77,7 +78,11 @@ CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const 
                 std::to_string(lines) + " lines of " + std::to_string(line) + " bytes) does not fit " + config.name +
                 ": at most " + std::to_string(config.lines) + " lines (" +
                 std::to_string(config.lines * line / 1024) + " KiB) per cache");
+  if (fifo_depth > uint32_t(config.fifo_depth))
+    throw Error("a FIFO of " + std::to_string(fifo_depth) + " samples does not fit " + config.name + ": FIFO_DEPTH is " +
+                std::to_string(config.fifo_depth));
   CachePins p;
+  p.fifo_limit = fifo_depth ? fifo_depth : uint32_t(config.fifo_depth);
   p.mem_base = layout.base;
   p.block_morton = layout.order == BlockOrder::Morton;
   while ((1 << p.log2_sets) < sets) ++p.log2_sets;
@@ -197,7 +202,7 @@ void Driver::load(const Pyramid& pyramid, LoadMethod method) {
     if (method == LoadMethod::Port)
       throw Error(config_.name + " has no texture write port: a cached unit reads its texture from memory "
                   "(use --load backdoor)");
-    const CachePins pins = cache_pins(config_, options_.layout, options_.cache);
+    const CachePins pins = cache_pins(config_, options_.layout, options_.cache, options_.fifo_depth);
     const MemoryLayout layout(pyramid.log2_w0(), pyramid.log2_h0(), cw, options_.layout);
     memory_ = std::make_unique<MemoryModel>(build_memory_image(pyramid, layout), options_.layout.base,
                                             config_.line_bytes(), config_.mem_bits / 8, options_.memory);

@@ -56,8 +56,11 @@ struct CachePins {
   uint32_t mem_base = 0;
   bool block_morton = false;
   uint8_t log2_sets = 2, log2_ways = 0;
+  uint32_t fifo_limit = 0;  // samples the FIFO holds at most
 };
-CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const CacheParams& cache);
+// Throws tex::Error naming what does not fit the configuration. fifo_depth 0 = its FIFO_DEPTH.
+CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const CacheParams& cache,
+                     uint32_t fifo_depth);
 
 constexpr int kTagBits = 16;
 constexpr uint32_t kTagMask = (1u << kTagBits) - 1;
@@ -121,6 +124,7 @@ struct DriverOptions {
   LayoutParams layout;
   CacheParams cache;
   MemoryTiming memory;
+  uint32_t fifo_depth = 0;  // samples the FIFO holds at most; 0 = the configuration's FIFO_DEPTH
   static DriverOptions of(const EngineOptions& o) {
     DriverOptions d;
     d.seed = o.seed;
@@ -133,6 +137,7 @@ struct DriverOptions {
     d.memory.jitter = o.mem_jitter;
     d.memory.bytes_per_clock = o.mem_bytes_per_clock;
     d.memory.max_outstanding = o.mem_outstanding;
+    d.fifo_depth = o.fifo_depth;
     d.memory.seed = o.seed ^ 0x9E3779B97F4A7C15ULL;
     if (d.memory.latency + d.memory.jitter + 10000 > d.timeout_cycles)
       d.timeout_cycles = d.memory.latency + d.memory.jitter + 10000;
@@ -203,10 +208,12 @@ class Driver {
   Clock clock(const Request* offer, bool take_response);
 
   // tex_unit_cached: layout, cache geometry and memory timing of the next load().
-  void set_memory(const LayoutParams& layout, const CacheParams& cache, const MemoryTiming& timing) {
+  void set_memory(const LayoutParams& layout, const CacheParams& cache, const MemoryTiming& timing,
+                  uint32_t fifo_depth = 0) {
     options_.layout = layout;
     options_.cache = cache;
     options_.memory = timing;
+    options_.fifo_depth = fifo_depth;
   }
   // tex_unit_cached: the memory model (null for tex_unit) and its counters.
   MemoryModel* memory() { return memory_.get(); }

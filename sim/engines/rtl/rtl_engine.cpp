@@ -78,7 +78,7 @@ class RtlEngine final : public Engine {
     check_inputs(rc, pyramid);
     std::optional<TextureCache> cache;
     if (cached) {
-      cache_pins(rc, options_.layout, options_.cache);  // the geometry fits the configuration
+      cache_pins(rc, options_.layout, options_.cache, options_.fifo_depth);  // the geometry fits the configuration
       cache.emplace(MemoryLayout(pyramid.log2_w0(), pyramid.log2_h0(), rc.cw, options_.layout), options_.cache,
                     config, pyramid.log2_w0(), pyramid.log2_h0());
     }
@@ -128,6 +128,7 @@ class RtlEngine final : public Engine {
     if (cache) {
       CacheCounters k = cache_counters(*cache);
       k.fifo_max_occupancy = st.memory.fifo_max;
+      k.fifo_depth = options_.fifo_depth ? options_.fifo_depth : uint32_t(rc.fifo_depth);
       k.memory_stall_cycles = st.memory.head_wait_cycles;
       r.cache = k;
     }

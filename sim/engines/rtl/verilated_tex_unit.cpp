@@ -130,6 +130,7 @@ class VerilatedTexUnit final : public Driver {
       t.cfg_block_morton = p.block_morton;
       t.cfg_log2_sets = p.log2_sets;
       t.cfg_log2_ways = p.log2_ways;
+      t.cfg_fifo_limit = p.fifo_limit;
       t.eval();
     } else {
       throw Error(config_.name + " has no cache");
