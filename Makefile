@@ -4,7 +4,7 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test model-test bench clean lint formal xprop synth synth-latch rtl-soak figures
+.PHONY: help deps build demo test model-test bench clean lint formal xprop synth synth-latch rtl-soak figures memory-report
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
@@ -12,6 +12,7 @@ help:
 	@echo "make model-test - the golden model and its tests alone (no OpenImageIO, Verilator, SystemC)"
 	@echo "make bench  - samples/s of the model, OpenImageIO TextureSystem, every engine and the RTL per configuration"
 	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
+	@echo "make memory-report - cached memory through the RTL: throughput, hit rate, bytes, FIFO vs latency (docs/memory.md)"
 	@echo "make rtl-soak  - RTL vs model lockstep, 20x the random samples of make test, new seeds"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make xprop  - 4-state X-propagation run of the RTL in Icarus Verilog, with planted bugs"
@@ -48,6 +49,10 @@ model-test: deps
 
 bench: build
 	$(BUILD)/texunit_bench
+
+# The cached memory hierarchy through the RTL: the tables and plot of docs/memory.md §5 (about 3 minutes).
+memory-report: build
+	/usr/bin/python3 scripts/memory_report.py --texsim $(TEXSIM) --out $(OUT)/memory
 
 # The paper's scenes through an engine (FIG_ENGINE, default model) vs a real-valued reference (docs/scenes.md).
 FIG_ENGINE ?= model
