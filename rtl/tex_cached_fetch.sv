@@ -146,7 +146,7 @@ module tex_cached_fetch #(
     yh = (YW+SHW)'(b) >> 1;
     yl = SHW'(yh);
     for (int i = 0; i < SHW; i++) rev[i] = yl[SHW-1-i];
-    set_high = SHW'(xh) ^ (rev >> (SHW - int'(k))) ^ SHW'(yh >> k);
+    set_high = SHW'(xh) ^ (rev >> (32'(SHW) - 32'(k))) ^ SHW'(yh >> k);
   endfunction
 
   logic [1:0] slot_needed;  // level d always; d1 when f != 0
