@@ -1,10 +1,16 @@
 #!/usr/bin/env bash
-# Synthesis of tex_unit with Yosys (and nextpnr for iCE40).
-#   scripts/synth.sh latch [BUILD]  generic `synth` of a small configuration; fails on any latch;
+# Synthesis of tex_unit and tex_unit_cached with Yosys (and nextpnr for iCE40).
+#   scripts/synth.sh latch [BUILD]  generic `synth` of a small tex_unit; fails on any latch;
 #                                   prints the cell counts (run by `make test`)
-#   scripts/synth.sh [BUILD]        the latch check, then synth_ice40 + nextpnr-ice40 --hx8k:
-#                                   LUT/BRAM use and Fmax (run by `make synth`)
-# Configurations: MAX_LOG2_W MAX_LOG2_H CW. Logs and netlists go to BUILD/synth/.
+#   scripts/synth.sh [BUILD]        the latch check; generic `synth` of a small tex_unit_cached
+#                                   (no latches, cell counts); then synth_ice40 + nextpnr-ice40
+#                                   --hx8k of tex_unit and of tex_unit_cached, larger to smaller
+#                                   configurations until one fits: LUT/BRAM use and Fmax
+#                                   (run by `make synth`)
+# Configurations: MAX_LOG2_W MAX_LOG2_H CW (tex_unit); LOG2 CW LINES FIFO MISS MEM_W
+# (tex_unit_cached, square, 4x4 blocks, through rtl/synth/tex_ice40_cached_top.sv, whose
+# parameters are macros: Yosys 0.23 cannot chparam tex_unit_cached). Logs and netlists go to
+# BUILD/synth/.
 set -euo pipefail
 case "${1:-}" in -h|--help) sed -n '2,/^set -/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0;; esac
 cd "$(dirname "$0")/.."
@@ -77,4 +83,62 @@ for cfg in "${ice40_configs[@]}"; do
   echo "synth: SUMMARY nextpnr-ice40 --hx8k ct256, MAX_LOG2 $1x$2 CW=$3: Fmax $fmax (target $freq MHz), $util_lc, $util_ram"
   break
 done
-[ -n "$fit_cfg" ] || { echo "synth: FAILED: no configuration fits the HX8K" >&2; exit 1; }
+[ -n "$fit_cfg" ] || { echo "synth: FAILED: no tex_unit configuration fits the HX8K" >&2; exit 1; }
+
+# ---- tex_unit_cached: generic synth with the latch check, then iCE40 from larger to smaller.
+read_cached() {  # LOG2 CW LINES FIFO MISS MEM_W -> yosys commands
+  echo "read_verilog -sv -DTEX_SYN_LOG2=$1 -DTEX_SYN_CW=$2 -DTEX_SYN_LINES=$3 -DTEX_SYN_FIFO=$4 \
+        -DTEX_SYN_MISS=$5 -DTEX_SYN_MEM_W=$6 $files rtl/synth/tex_ice40_cached_top.sv; \
+        hierarchy -top tex_ice40_cached_top"
+}
+set -- 4 8 16 16 16 32
+log="$out/generic_cached.log"
+if ! yosys -p "$(read_cached "$@"); synth -top tex_ice40_cached_top -flatten; tee -o $out/generic_cached_stat.txt stat;
+               select -assert-none t:\$dlatch t:\$adlatch t:\$dlatchsr t:\$_DLATCH* t:\$_DLATCHSR*" \
+     > "$log" 2>&1; then
+  grep -i "latch\|error" "$log" | head -20 >&2
+  echo "synth: FAILED generic synth / latch check of tex_unit_cached ($*), see $log" >&2
+  exit 1
+fi
+cells=$(awk '/Number of cells:/{n=$4} END{print n}' "$out/generic_cached_stat.txt")
+echo "synth: generic synth of tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6: 0 latches, $cells cells"
+
+fit_cached=""
+cached_configs=("4 8 16 16 16 32" "3 2 16 2 16 16")  # 16x16 8-bit; 8x8 2-bit, FIFO 2: the smallest
+for cfg in "${cached_configs[@]}"; do
+  set -- $cfg
+  tag="cached_l$1_c$2_n$3_f$4"
+  yosys -p "$(read_cached "$@"); synth_ice40 -top tex_ice40_cached_top -json $out/ice40_$tag.json;
+            tee -o $out/ice40_$tag.stat stat" > "$out/ice40_$tag.log" 2>&1
+  luts=$(awk '/SB_LUT4/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
+  brams=$(awk '/SB_RAM40_4K/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
+  ffs=$(awk '/SB_DFF/{n+=$2} END{print n+0}' "$out/ice40_$tag.stat")
+  echo "synth: synth_ice40 tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6: $luts SB_LUT4, $ffs flip-flops, $brams SB_RAM40_4K"
+  if [ "$luts" -gt "$hx8k_luts" ]; then
+    echo "synth:   does not fit the HX8K ($luts > $hx8k_luts LUTs): skipping place and route"
+    continue
+  fi
+  pnr_log="$out/nextpnr_$tag.log"
+  set +e
+  nextpnr-ice40 --hx8k --package ct256 --json "$out/ice40_$tag.json" --asc "$out/ice40_$tag.asc" \
+    --freq "$freq" --seed 1 > "$pnr_log" 2>&1
+  rc=$?
+  set -e
+  fmax=$(grep -o "Max frequency for clock '[^']*': [0-9.]* MHz" "$pnr_log" | tail -1 | grep -o "[0-9.]* MHz" || true)
+  util_lc=$(grep -o "ICESTORM_LC: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
+  util_ram=$(grep -o "ICESTORM_RAM: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
+  if grep -q "Unable to place\|Unable to find a placement\|ICESTORM_LC: *[0-9]*/ *[0-9]* *1[0-9][0-9]%" "$pnr_log"; then
+    echo "synth:   nextpnr: does not fit the HX8K ($util_lc)"
+    continue
+  fi
+  if [ -z "$fmax" ]; then
+    tail -20 "$pnr_log" >&2
+    echo "synth: FAILED nextpnr-ice40 for tex_unit_cached (exit $rc), see $pnr_log" >&2
+    exit 1
+  fi
+  [ $rc -ne 0 ] && echo "synth:   (nextpnr exit $rc: target --freq $freq MHz missed)"
+  echo "synth: SUMMARY nextpnr-ice40 --hx8k ct256, tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4: Fmax $fmax (target $freq MHz), $util_lc, $util_ram"
+  fit_cached=$cfg
+  break
+done
+[ -n "$fit_cached" ] || echo "synth: no tex_unit_cached configuration fits the HX8K (largest first: ${cached_configs[*]})"

@@ -1,0 +1,110 @@
+// tex_ice40_cached_top: synthesis and place-and-route harness only (scripts/synth.sh), not part
+// of the design. tex_unit_cached's ports (about 400 with a 128-bit memory beat) exceed an HX8K
+// package's pins: every input is fed from one shift register loaded through pin `sin`, and the
+// outputs are folded to one pin by XOR, so no logic of tex_unit_cached is optimized away and its
+// timing is measured register to register.
+// Parameters come from macros (yosys read_verilog -D...), not chparam: Yosys 0.23 fails an
+// internal assertion (`modules_.count(module->name) == 0`) when it re-derives a parameterized
+// tex_unit_cached, whose ports' widths depend on its parameters.
+// Handshake: none of its own (a measurement wrapper). Latency: that of tex_unit_cached plus the
+//   shift-in. Ports: clk, rst, sin (serial input bit), req_ready, rsp_valid, sout (XOR of every
+//   other output).
+`ifndef TEX_SYN_LOG2
+`define TEX_SYN_LOG2 4
+`endif
+`ifndef TEX_SYN_CW
+`define TEX_SYN_CW 8
+`endif
+`ifndef TEX_SYN_LINES
+`define TEX_SYN_LINES 16
+`endif
+`ifndef TEX_SYN_FIFO
+`define TEX_SYN_FIFO 16
+`endif
+`ifndef TEX_SYN_MISS
+`define TEX_SYN_MISS 16
+`endif
+`ifndef TEX_SYN_MEM_W
+`define TEX_SYN_MEM_W 32
+`endif
+module tex_ice40_cached_top #(
+  parameter int MAX_LOG2_W = `TEX_SYN_LOG2,
+  parameter int MAX_LOG2_H = `TEX_SYN_LOG2,
+  parameter int CW         = `TEX_SYN_CW,
+  parameter int TAG_W      = 4,
+  parameter int LINES      = `TEX_SYN_LINES,
+  parameter int FIFO_DEPTH = `TEX_SYN_FIFO,
+  parameter int MISS_DEPTH = `TEX_SYN_MISS,
+  parameter int MEM_W      = `TEX_SYN_MEM_W
+) (
+  input  logic clk,
+  input  logic rst,
+  input  logic sin,
+  output logic req_ready,
+  output logic rsp_valid,
+  output logic sout
+);
+  localparam int VW = tex_pkg::LEVEL_W;
+  localparam int WW = tex_pkg::WRAP_W;
+  localparam int MW = tex_pkg::MIP_W;
+  localparam int LW = tex_pkg::LOD_W;
+  localparam int UW = tex_pkg::REQ_COORD_W;
+  localparam int AW = tex_pkg::MEM_ADDR_W;
+  localparam int SW = tex_pkg::LOG2_SETS_W;
+  localparam int YW = tex_pkg::LOG2_WAYS_W;
+  localparam int FW = $clog2(FIFO_DEPTH + 1);
+  // Field offsets in the input shift register, in port order.
+  localparam int O_LOG2_W  = 0;
+  localparam int O_LOG2_H  = O_LOG2_W + VW;
+  localparam int O_WRAP_U  = O_LOG2_H + VW;
+  localparam int O_WRAP_V  = O_WRAP_U + WW;
+  localparam int O_LINEAR  = O_WRAP_V + WW;
+  localparam int O_MIP     = O_LINEAR + 1;
+  localparam int O_BIAS    = O_MIP + MW;
+  localparam int O_MIN_LOD = O_BIAS + LW;
+  localparam int O_MAX_LOD = O_MIN_LOD + LW;
+  localparam int O_BASE    = O_MAX_LOD + LW;
+  localparam int O_MORTON  = O_BASE + AW;
+  localparam int O_SETS    = O_MORTON + 1;
+  localparam int O_WAYS    = O_SETS + SW;
+  localparam int O_FIFO    = O_WAYS + YW;
+  localparam int O_VALID   = O_FIFO + FW;
+  localparam int O_U       = O_VALID + 1;
+  localparam int O_V       = O_U + UW;
+  localparam int O_LOD     = O_V + UW;
+  localparam int O_TAG     = O_LOD + LW;
+  localparam int O_READY   = O_TAG + TAG_W;
+  localparam int O_MREADY  = O_READY + 1;
+  localparam int O_MVALID  = O_MREADY + 1;
+  localparam int O_MDATA   = O_MVALID + 1;
+  localparam int NIN       = O_MDATA + MEM_W;
+
+  logic [NIN-1:0] in_bits;
+  always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
+
+  logic [4*CW-1:0]  rsp_rgba;
+  logic [TAG_W-1:0] rsp_tag;
+  logic             mem_req_valid, mem_rsp_ready;
+  logic [AW-1:0]    mem_req_addr;
+  tex_unit_cached #(
+    .MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W), .LINES(LINES),
+    .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH), .MEM_W(MEM_W)
+  ) u_unit (
+    .clk(clk), .rst(rst),
+    .cfg_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_log2_h(in_bits[O_LOG2_H +: VW]),
+    .cfg_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_wrap_v(in_bits[O_WRAP_V +: WW]),
+    .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mip_mode(in_bits[O_MIP +: MW]),
+    .cfg_lod_bias(in_bits[O_BIAS +: LW]), .cfg_min_lod(in_bits[O_MIN_LOD +: LW]),
+    .cfg_max_lod(in_bits[O_MAX_LOD +: LW]),
+    .cfg_mem_base(in_bits[O_BASE +: AW]), .cfg_block_morton(in_bits[O_MORTON]),
+    .cfg_log2_sets(in_bits[O_SETS +: SW]), .cfg_log2_ways(in_bits[O_WAYS +: YW]),
+    .cfg_fifo_limit(in_bits[O_FIFO +: FW]),
+    .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
+    .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
+    .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag),
+    .mem_req_valid(mem_req_valid), .mem_req_ready(in_bits[O_MREADY]), .mem_req_addr(mem_req_addr),
+    .mem_rsp_valid(in_bits[O_MVALID]), .mem_rsp_ready(mem_rsp_ready),
+    .mem_rsp_data(in_bits[O_MDATA +: MEM_W])
+  );
+  always_ff @(posedge clk) sout <= ^{rsp_rgba, rsp_tag, mem_req_valid, mem_rsp_ready, mem_req_addr};
+endmodule
