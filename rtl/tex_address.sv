@@ -6,23 +6,26 @@
 // Handshake: stall-enable; the registers load when en is high.
 // Latency: 1 clock (tex_unit clock 4). Throughput: 1 per clock.
 // Ports:
-//   scaled : signed SCALED_W bits, floor(coord * 2^log2_size0 * 512) (from tex_scale)
+//   scaled : signed SW bits, floor(coord * 2^log2_size0 * 512) (from tex_scale)
 //   level  : integer 0..11, the mip level whose texel coordinates are wanted
 //   linear : 1 = linear texel filter, 0 = nearest
-//   i0     : signed INDEX_W bits, integer texel index of the first tap (unwrapped; the second
+//   i0     : signed IW bits, integer texel index of the first tap (unwrapped; the second
 //            tap is i0 + 1)
 //   w      : unsigned WEIGHT_BITS, weight of the second tap in 1/256
-module tex_address (
+module tex_address #(
+  parameter int SW = tex_pkg::SCALED_W,  // from tex_scale
+  parameter int IW = tex_pkg::INDEX_W    // SW - 7: |i0| < 2^(SW - 10), and i0 + 1
+) (
   input  logic                                 clk,
   input  logic                                 en,
-  input  logic signed [tex_pkg::SCALED_W-1:0]  scaled,
+  input  logic signed [SW-1:0]                 scaled,
   input  logic [tex_pkg::LEVEL_W-1:0]          level,
   input  logic                                 linear,
-  output logic signed [tex_pkg::INDEX_W-1:0]   i0,
+  output logic signed [IW-1:0]                 i0,
   output logic [tex_pkg::WEIGHT_BITS-1:0]      w
 );
   localparam int WB = tex_pkg::WEIGHT_BITS;
-  localparam int XW = tex_pkg::SCALED_W + 1;  // one more bit: t9 - 255 must not overflow
+  localparam int XW = SW + 1;  // one more bit: t9 - 255 must not overflow
   // p = t9 - 255 (linear) or t9 (nearest); then linear i0 = (p >>> 1) >>> 8 = p >>> 9 and
   // w = (p >>> 1) & 255 = p[8:1]; nearest i0 = t9 >>> 9. One arithmetic shift either way.
   logic signed [XW-1:0] wide, t9, p;
@@ -31,7 +34,7 @@ module tex_address (
   assign p    = linear ? t9 - XW'((1 << WB) - 1) : t9;
   always_ff @(posedge clk) begin
     if (en) begin
-      i0 <= tex_pkg::INDEX_W'(p >>> (WB + 1));
+      i0 <= IW'(p >>> (WB + 1));
       w  <= linear ? p[WB:1] : '0;
     end
   end

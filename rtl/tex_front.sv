@@ -49,7 +49,10 @@ module tex_front #(
 );
   localparam int VW = tex_pkg::LEVEL_W;
   localparam int WB = tex_pkg::WEIGHT_BITS;
-  localparam int SW = tex_pkg::SCALED_W;
+  // Widths for this unit's largest texture (tex_pkg's SCALED_W, INDEX_W are for 2^MAX_LOG2_SIZE).
+  localparam int ML = (XW > YW) ? XW : YW;   // >= the largest log2 size on either axis
+  localparam int SW = 17 + ML;               // tex_scale's result
+  localparam int IW = 10 + ML;               // tex_address's unwrapped index
 
   // ---------------------------------------------------------------- cfg registers
   logic [VW-1:0]                    cfg_log2_w_q, cfg_log2_h_q;
@@ -102,7 +105,7 @@ module tex_front #(
   genvar a, s;
   generate
     for (a = 0; a < 2; a = a + 1) begin : g_axis
-      tex_scale u_scale (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
+      tex_scale #(.MAX_LOG2(ML)) u_scale (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
                          .log2_size0(log2_size0[a*VW +: VW]), .scaled(scaled_s2[a*SW +: SW]));
     end
   endgenerate
@@ -121,10 +124,10 @@ module tex_front #(
     for (s = 0; s < 2; s = s + 1) begin : g_slot
       for (a = 0; a < 2; a = a + 1) begin : g_axis
         localparam int OW = (a == 0) ? XW : YW;
-        logic signed [tex_pkg::INDEX_W-1:0] i0_s4;
+        logic signed [IW-1:0] i0_s4;
         logic [VW-1:0]                      log2_size_s4;  // runtime size of the slot's level
         logic [OW-1:0]                      t0, t1;        // wrapped taps i0, i0 + 1
-        tex_address u_address (
+        tex_address #(.SW(SW), .IW(IW)) u_address (
           .clk(clk), .en(en), .scaled(scaled_s3[a*SW +: SW]), .level(level_s3[s*VW +: VW]),
           .linear(cfg_texel_linear_q), .i0(i0_s4), .w(w[(s*2 + a)*WB +: WB])
         );
@@ -134,9 +137,9 @@ module tex_front #(
         assign size_diff = {1'b0, log2_size0[a*VW +: VW]} - {1'b0, level_s3[s*VW +: VW]};
         always_ff @(posedge clk) if (en) log2_size_s4 <= size_diff[VW-1:0] & ~{VW{size_diff[VW]}};
         assign log2_size[(s*2 + a)*VW +: VW] = log2_size_s4;
-        tex_wrap #(.OUT_W(OW)) u_wrap0 (.i(i0_s4), .log2_n(log2_size_s4),
+        tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap0 (.i(i0_s4), .log2_n(log2_size_s4),
                                         .mode((a == 0) ? cfg_wrap_u_q : cfg_wrap_v_q), .o(t0));
-        tex_wrap #(.OUT_W(OW)) u_wrap1 (.i(i0_s4 + tex_pkg::INDEX_W'(1)), .log2_n(log2_size_s4),
+        tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap1 (.i(i0_s4 + IW'(1)), .log2_n(log2_size_s4),
                                         .mode((a == 0) ? cfg_wrap_u_q : cfg_wrap_v_q), .o(t1));
         if (a == 0) begin : g_x
           assign x[(s*2 + 0)*XW +: XW] = t0;

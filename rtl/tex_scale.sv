@@ -8,20 +8,24 @@
 // Latency: 1 clock (tex_unit clock 2). Throughput: 1 per clock.
 // Ports:
 //   coord      : signed Q8.24 (REQ_COORD_W bits, u or v), normalized
-//   log2_size0 : integer 0..11, level-0 size along this axis (values above 11 act as 11)
-//   scaled     : signed SCALED_W = 28 bits: floor(coord * 2^log2_size0 * 512), 9 fraction bits
-module tex_scale (
+//   log2_size0 : integer 0..MAX_LOG2, level-0 size along this axis (larger values act as MAX_LOG2)
+//   scaled     : signed SW = 17 + MAX_LOG2 bits: floor(coord * 2^log2_size0 * 512), 9 fraction
+//                bits (|coord| < 128: |scaled| < 2^(16 + MAX_LOG2))
+module tex_scale #(
+  parameter int MAX_LOG2 = tex_pkg::MAX_LOG2_SIZE,  // the unit's largest log2 size, 0..MAX_LOG2_SIZE
+  parameter int SW       = 17 + MAX_LOG2            // derived
+) (
   input  logic                                   clk,
   input  logic                                   en,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] coord,
   input  logic [tex_pkg::LEVEL_W-1:0]            log2_size0,
-  output logic signed [tex_pkg::SCALED_W-1:0]    scaled
+  output logic signed [SW-1:0]                   scaled
 );
   localparam int VW = tex_pkg::LEVEL_W;
   // 15 = COORD_FRAC - 9: the result keeps 9 fraction bits of a level-0 texel.
-  localparam logic [VW-1:0] MAX_LOG2 = VW'(tex_pkg::MAX_LOG2_SIZE);
-  localparam logic [VW-1:0] SHIFT0   = VW'(tex_pkg::COORD_FRAC - 9);
-  logic [VW-1:0] shift;  // 4..15
-  assign shift = SHIFT0 - ((log2_size0 > MAX_LOG2) ? MAX_LOG2 : log2_size0);
-  always_ff @(posedge clk) if (en) scaled <= tex_pkg::SCALED_W'(coord >>> shift);
+  localparam logic [VW-1:0] ML     = VW'(MAX_LOG2);
+  localparam logic [VW-1:0] SHIFT0 = VW'(tex_pkg::COORD_FRAC - 9);
+  logic [VW-1:0] shift;  // 15 - MAX_LOG2 .. 15
+  assign shift = SHIFT0 - ((log2_size0 > ML) ? ML : log2_size0);
+  always_ff @(posedge clk) if (en) scaled <= SW'(coord >>> shift);
 endmodule

@@ -4,19 +4,19 @@
 //   (mode 3 gives 0, as the model's switch does). n = 1 maps every index to 0.
 // Handshake: none (combinational; tex_unit clock 5). Latency: 0. Throughput: 1 per clock.
 // Ports:
-//   i      : signed INDEX_W bits, unwrapped integer texel index
+//   i      : signed IW bits, unwrapped integer texel index
 //   log2_n : integer 0..11, log2 of the level's size along this axis (must fit OUT_W bits)
 //   mode   : tex_pkg::WRAP_*
 //   o      : unsigned OUT_W bits, wrapped index in [0, n)
 module tex_wrap #(
-  parameter int OUT_W = tex_pkg::COORD_W
+  parameter int OUT_W = tex_pkg::COORD_W,
+  parameter int IW    = tex_pkg::INDEX_W   // from tex_address
 ) (
-  input  logic signed [tex_pkg::INDEX_W-1:0] i,
+  input  logic signed [IW-1:0]               i,
   input  logic [tex_pkg::LEVEL_W-1:0]        log2_n,
   input  logic [tex_pkg::WRAP_W-1:0]         mode,
   output logic [OUT_W-1:0]                   o
 );
-  localparam int IW = tex_pkg::INDEX_W;
   logic [IW-1:0]    n, mask;          // n = 2^log2_n, mask = n - 1
   logic [OUT_W-1:0] mask_o, low;      // n - 1 and i & (n - 1), in the output width
   logic             negative, beyond, odd_period;
