@@ -18,6 +18,8 @@ package tex_pkg;
   localparam int COORD_W       = 13;  // bits of a wrapped texel index / write coordinate
   localparam int INDEX_W       = 23;  // signed unwrapped texel index (|u| < 128 at 8192 texels)
   localparam int SCALED_W      = 30;  // u >>> (15 - log2_w0): 32 - minimum shift of 2
+  // (INDEX_W and SCALED_W are the widths at 2^MAX_LOG2_SIZE; tex_front narrows both to its
+  // unit's largest texture: 10 + ML and 17 + ML bits.)
 
   // ---- cached memory (docs/memory.md)
   localparam int MEM_ADDR_W    = 32;  // byte address of a line in external memory
