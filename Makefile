@@ -4,7 +4,7 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test model-test bench clean lint formal xprop synth synth-latch rtl-soak figures memory-report
+.PHONY: help deps build demo test model-test bench clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
@@ -13,6 +13,7 @@ help:
 	@echo "make bench  - samples/s of the model, OpenImageIO TextureSystem, every engine and the RTL per configuration"
 	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
 	@echo "make memory-report - cached memory through the RTL: throughput, hit rate, bytes, FIFO vs latency (docs/memory.md)"
+	@echo "make explore - sweep cache size, block shape, latency and pixel order over plane and panel: $(OUT)/explore/index.html"
 	@echo "make rtl-soak  - RTL vs model lockstep, 20x the random samples of make test, new seeds"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make xprop  - 4-state X-propagation run of the RTL in Icarus Verilog, with planted bugs"
@@ -53,6 +54,13 @@ bench: build
 # The cached memory hierarchy through the RTL: the tables and plot of docs/memory.md §5 (about 3 minutes).
 memory-report: build
 	/usr/bin/python3 scripts/memory_report.py --texsim $(TEXSIM) --out $(OUT)/memory
+
+# The default architecture sweep (docs/memory.md §6): plane and panel, 640x480, the 1024x1024 test
+# card, scanline and tiled order, caches 1..32 KiB, blocks 4x4 (through the RTL) and 2x2, 8x8 (model),
+# latencies 50..800 clocks, 16 B/clock; points in $(JOBS) processes.
+explore: build
+	$(TEXSIM) explore --scene plane,panel --cache-kib 1,2,4,8,16,32 --block 4x4,2x2,8x8 \
+	  --mem-latency 50,100,200,400,800 --jobs $(JOBS) --out $(OUT)/explore
 
 # The paper's scenes through an engine (FIG_ENGINE, default model) vs a real-valued reference (docs/scenes.md).
 FIG_ENGINE ?= model

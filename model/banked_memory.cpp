@@ -25,6 +25,10 @@ int BankedMipMemory::word_of(int level, int32_t x, int32_t y) const {
   return (y >> 1) * stride + (x >> 1);
 }
 
+void BankedMipMemory::write(int level, int32_t x, int32_t y, const Texel& t) {
+  levels_[size_t(level)].banks[size_t(stage::bank(x, y))][size_t(word_of(level, x, y))] = t;
+}
+
 std::array<Texel, 4> BankedMipMemory::fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1,
                                                      bool only_first) {
   const int32_t xs[4] = {x0, x1, x0, x1}, ys[4] = {y0, y0, y1, y1};

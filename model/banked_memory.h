@@ -29,6 +29,10 @@ class BankedMipMemory {
   // (bank, word) pairs. With only_first, just (x0, y0) is read (point sampling).
   std::array<Texel, 4> fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1, bool only_first);
 
+  // Replaces texel (x, y) of `level` (a unit that fills its memories from elsewhere: the SystemC
+  // model backend in cached mode, from the lines it reads over the bus).
+  void write(int level, int32_t x, int32_t y, const Texel& t);
+
   const BankStats& stats() const { return stats_; }
   void reset_stats();
 

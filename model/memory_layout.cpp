@@ -64,6 +64,51 @@ uint32_t MemoryLayout::block_index(int level, uint32_t bx, uint32_t by) const {
   return uint32_t(interleave_bits(bx & low, by & low)) | ((bx >> m) | (by >> m)) << (2 * m);
 }
 
+bool MemoryLayout::locate_line(uint32_t address, int& level, uint32_t& bx, uint32_t& by) const {
+  if (address < params_.base || (address - params_.base) % uint32_t(line_bytes_) != 0) return false;
+  for (level = levels() - 1; level >= 0 && address < levels_[size_t(level)].base; --level) {
+  }
+  if (level < 0) return false;
+  const Level& l = levels_[size_t(level)];
+  const uint32_t index = (address - l.base) / uint32_t(line_bytes_);
+  if (index >> (l.log2_bx + l.log2_by)) return false;  // beyond the last level
+  if (params_.order == BlockOrder::RowMajor) {
+    bx = index & ((1u << l.log2_bx) - 1);
+    by = index >> l.log2_bx;
+    return true;
+  }
+  // Inverse of block_index: the interleaved square part, then the longer side's bits above it.
+  const int m = std::min(l.log2_bx, l.log2_by);
+  bx = by = 0;
+  for (int i = 0; i < m; ++i) {
+    bx |= (index >> (2 * i) & 1u) << i;
+    by |= (index >> (2 * i + 1) & 1u) << i;
+  }
+  const uint32_t high = index >> (2 * m);
+  if (l.log2_bx > l.log2_by) bx |= high << m;
+  else by |= high << m;
+  return true;
+}
+
+bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
+                 const std::function<void(int level, int x, int y, const Texel& t)>& texel) {
+  int level = 0;
+  uint32_t bx = 0, by = 0;
+  if (!layout.locate_line(address, level, bx, by)) return false;
+  const int bw = layout.params().block_w, bh = layout.params().block_h, tb = layout.texel_bytes();
+  const uint32_t w = std::max(1u, (1u << layout.log2_w0()) >> level), h = std::max(1u, (1u << layout.log2_h0()) >> level);
+  for (int ty = 0; ty < bh; ++ty)
+    for (int tx = 0; tx < bw; ++tx) {
+      const uint32_t x = bx * uint32_t(bw) + uint32_t(tx), y = by * uint32_t(bh) + uint32_t(ty);
+      if (x >= w || y >= h) continue;
+      const uint8_t* at = line + layout.texel_offset(x, y);
+      Texel t{};
+      for (size_t c = 0; c < 4; ++c) t[c] = tb == 4 ? at[c] : uint16_t(at[2 * c] | at[2 * c + 1] << 8);
+      texel(level, int(x), int(y), t);
+    }
+  return true;
+}
+
 std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout) {
   if (pyramid.log2_w0() != layout.log2_w0() || pyramid.log2_h0() != layout.log2_h0() ||
       pyramid.levels[0].channel_bits != layout.channel_bits() || int(pyramid.levels.size()) != layout.levels())

@@ -3,6 +3,7 @@
 // base address. The model builds the memory image the cached RTL reads.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,8 @@ class MemoryLayout {
   uint32_t line_address(int level, uint32_t x, uint32_t y) const {
     return block_address(level, x >> log2_bw_, y >> log2_bh_);
   }
+  // The level and block of the line at `address`; false if no level's block starts there.
+  bool locate_line(uint32_t address, int& level, uint32_t& bx, uint32_t& by) const;
   // Byte offset of texel (x, y) inside its line.
   uint32_t texel_offset(uint32_t x, uint32_t y) const {
     return (((y & ((1u << log2_bh_) - 1)) << log2_bw_) | (x & ((1u << log2_bw_) - 1))) * uint32_t(texel_bytes_);
@@ -81,6 +84,12 @@ class MemoryLayout {
   std::vector<Level> levels_;
   uint64_t image_bytes_ = 0;
 };
+
+// Calls texel(level, x, y, value) for every texel of the level stored in the line at `address`
+// (`line`: its line_bytes() bytes as memory holds them); padding is skipped. False if the address
+// is not a line of the layout.
+bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
+                 const std::function<void(int level, int x, int y, const Texel& t)>& texel);
 
 // The bytes at addresses base .. base + image_bytes - 1 (padding texels 0). Throws tex::Error when
 // the pyramid is not the one the layout was made for (sizes, channel width).

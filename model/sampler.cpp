@@ -25,6 +25,13 @@ Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config)
     }
 }
 
+void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t) {
+  memory_.write(level, x, y, t);
+  if (channel_bits_ == 8)
+    packed_[size_t(level)][(size_t(y) << memory_.shape(level).log2_w) + size_t(x)] =
+        uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
+}
+
 // The stages in pipeline order, as the RTL runs them (model/stages.h, docs/architecture.md).
 Texel Sampler::sample(const Request& r) {
   const stage::LevelSelect sel =

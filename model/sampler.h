@@ -42,6 +42,9 @@ class Sampler {
   // Bit-identical to sample() (tests/test_sampler.cpp checks it).
   void sample_rgba8(const Request* requests, size_t n, uint32_t* out) const;
 
+  // Replaces one texel of the pyramid the sampler reads (both paths).
+  void write_texel(int level, int32_t x, int32_t y, const Texel& t);
+
   SamplerStats stats() const;
   void reset_stats();
   const SamplerConfig& config() const { return config_; }

@@ -12,6 +12,7 @@
 #include "model/error.h"
 #include "model/image.h"
 #include "model/pyramid.h"
+#include "reports/explore.h"
 #include "reports/figures.h"
 #include "workloads/query_trace.h"
 #include "workloads/scenes.h"
@@ -551,6 +552,45 @@ int main(int argc, char** argv) {
   figures->add_option("--reference-samples", fig.reference_samples, "reference sub-pixel positions per axis")
       ->capture_default_str();
 
+  ExploreArgs ex;
+  CLI::App* explore = app.add_subcommand(
+      "explore", "sweep caches, memory timing and rasterization order over scenes or a query trace (cached memory): "
+                 "explore.csv, plots, index.html");
+  CLI::Option* ex_scene = explore->add_option("--scene,-s", ex.scenes, "scenes, comma-separated: " + scene_list)
+                              ->capture_default_str();
+  CLI::Option* ex_queries =
+      explore->add_option("--queries,-q", ex.queries, "a query trace (CSV u,v,lod or u,v,dudx,...) instead of scenes");
+  explore->add_option("--texture,-t", ex.texture, "image file or pattern NAME[:WxH] (scenes with their own map keep it)")
+      ->capture_default_str();
+  explore->add_option("--filter,-f", ex.filter, "point | bilinear | mip_nearest | trilinear")->capture_default_str();
+  explore->add_option("--width", ex.width, "scene width")->capture_default_str();
+  explore->add_option("--height", ex.height, "scene height")->capture_default_str();
+  explore->add_option("--order", ex.orders, "rasterization orders: scanline,tiled")->capture_default_str();
+  explore->add_option("--tile", ex.tile, "tiled order: tile side in pixels")->capture_default_str();
+  explore->add_option("--cache-kib", ex.cache_kib, "sizes of each cache (even, odd levels) in KiB, 1..1024")
+      ->capture_default_str();
+  explore->add_option("--ways", ex.ways, "associativities: 1 | 2 | 4")->capture_default_str();
+  explore->add_option("--block", ex.blocks, "block shapes WxH (= cache lines), each side 2 | 4 | 8")->capture_default_str();
+  explore->add_option("--block-order", ex.block_orders, "row-major | morton")->capture_default_str();
+  explore->add_option("--mem-latency", ex.latencies, "memory latencies in clocks")->capture_default_str();
+  explore->add_option("--mem-bytes-per-clock", ex.bandwidths, "memory bandwidths in bytes per clock")
+      ->capture_default_str();
+  explore->add_option("--fifo-depth", ex.fifo_depths, "sample FIFO depths; max = the RTL configuration's FIFO_DEPTH")
+      ->capture_default_str();
+  explore->add_option("--timing", ex.timing,
+                      "rtl | none: samples/clock through the Verilated RTL at every point a compiled configuration "
+                      "holds (its block shape, cache size, FIFO), or hit rates and bytes from the model only")
+      ->capture_default_str();
+  explore->add_option("--out,-o", ex.out_dir, "output directory: explore.csv, *.png, index.html")->capture_default_str();
+  explore->add_option("--jobs,-j", ex.jobs, "points measured in this many processes at once")->capture_default_str();
+  explore->add_option("--emit-jobs", ex.emit_jobs_path,
+                      "write one command line per job (GNU parallel, a Slurm array) instead of running them; each "
+                      "writes OUT/points/jobNNNNNN.csv");
+  explore->add_option("--collect", ex.collect_dir, "merge DIR/points/*.csv of emitted jobs into DIR/explore.csv + plots");
+  explore->add_option("--rows", ex.rows_path, "measure here and write only the CSV rows to this file (what a job runs)");
+  bool no_plots = false;
+  explore->add_flag("--no-plots", no_plots, "write explore.csv only (no matplotlib needed)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -582,6 +622,11 @@ int main(int argc, char** argv) {
                         render_opts.texture_opt->count() > 0, wrap_given, render_out);
     }
     if (*figures) return make_figures(fig);
+    if (*explore) {
+      if (ex_scene->count() && ex_queries->count()) throw tex::Error("explore: give --scene or --queries, not both");
+      ex.plots = !no_plots;
+      return run_explore(ex, std::filesystem::read_symlink("/proc/self/exe").string());
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "texsim: error: %s\n", e.what());
     return 1;

@@ -54,8 +54,6 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions
   const EngineInfo& info = engine_info(name);
   if (!options.trace_path.empty() && !info.can_trace)
     throw Error("--trace: engine " + name + " cannot write waveforms (use --engine rtl)");
-  if (options.memory == Memory::Cached && name != "model" && name != "rtl")
-    throw Error("--memory cached: engine " + name + " has no memory socket yet (use --engine model or rtl)");
   return info.make(options);
 }
 

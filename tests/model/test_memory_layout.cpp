@@ -289,3 +289,33 @@ TEST(MemoryLayout, BadGeometryIsAnErrorNamingTheValue) {
   EXPECT_THROW(build_memory_image(build_pyramid(numbered(4, 8)), l), Error);
   EXPECT_THROW(build_memory_image(build_pyramid(numbered(8, 4, 16)), l), Error);
 }
+
+// decode_line is the inverse of the image: every line of every level, decoded, gives back each
+// texel of the pyramid exactly once, in both block orders, for wide, tall and 16-bit textures; an
+// address that is not a line start is refused.
+TEST(MemoryLayout, DecodingEveryLineGivesBackThePyramid) {
+  struct Case {
+    int w, h, bits, bw, bh;
+    BlockOrder order;
+    uint32_t base;
+  };
+  for (const Case& c : {Case{32, 8, 8, 4, 4, BlockOrder::Morton, 0}, Case{8, 32, 8, 2, 4, BlockOrder::Morton, 128},
+                        Case{16, 16, 16, 4, 2, BlockOrder::RowMajor, 4096}, Case{64, 4, 8, 8, 8, BlockOrder::RowMajor, 0}}) {
+    const Pyramid pyr = build_pyramid(numbered(c.w, c.h, c.bits), PyramidMode::Exact);
+    const MemoryLayout layout(pyr.log2_w0(), pyr.log2_h0(), c.bits, params(c.bw, c.bh, c.order, c.base));
+    const std::vector<uint8_t> image = build_memory_image(pyr, layout);
+    std::vector<std::vector<int>> seen(pyr.levels.size());
+    for (size_t k = 0; k < pyr.levels.size(); ++k) seen[k].assign(pyr.levels[k].texels.size(), 0);
+    for (uint64_t off = 0; off < image.size(); off += uint64_t(layout.line_bytes()))
+      ASSERT_TRUE(decode_line(layout, c.base + uint32_t(off), &image[off], [&](int level, int x, int y, const Texel& t) {
+        EXPECT_EQ(t, pyr.levels[size_t(level)].at(x, y)) << "level " << level << " (" << x << ", " << y << ")";
+        ++seen[size_t(level)][size_t(y * pyr.levels[size_t(level)].width + x)];
+      })) << off;
+    for (size_t k = 0; k < seen.size(); ++k)
+      EXPECT_TRUE(std::all_of(seen[k].begin(), seen[k].end(), [](int n) { return n == 1; })) << "level " << k;
+    const auto ignore = [](int, int, int, const Texel&) {};
+    EXPECT_FALSE(decode_line(layout, c.base + 4, image.data(), ignore));  // not a line start
+    EXPECT_FALSE(decode_line(layout, c.base + uint32_t(image.size()), image.data(), ignore));  // past the image
+    if (c.base) EXPECT_FALSE(decode_line(layout, 0, image.data(), ignore));  // below the base
+  }
+}

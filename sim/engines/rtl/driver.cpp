@@ -37,8 +37,9 @@ const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memo
   if (!largest) {
     std::string built;
     for (const RtlConfig& c : compiled_configs())
-      if (c.cached == cached && c.cw == cw)
-        built += (built.empty() ? "" : ", ") + std::to_string(c.block_w) + "x" + std::to_string(c.block_h);
+      if (const std::string shape = std::to_string(c.block_w) + "x" + std::to_string(c.block_h);
+          c.cached == cached && c.cw == cw && built.find(shape) == std::string::npos)
+        built += (built.empty() ? "" : ", ") + shape;
     if (cached && !built.empty())
       throw Error("no cached RTL configuration is built for " + std::to_string(block_w) + "x" +
                   std::to_string(block_h) + " blocks of " + std::to_string(cw) + "-bit texels (built: " + built + ")");
@@ -138,22 +139,22 @@ void Driver::close_trace() {
 PinsOut Driver::tick_full(const PinsIn& in) {
   // Past the window: close now, so the file is complete even if the run is killed later.
   if (tracing_ && options_.trace_end != 0 && cycle_ > options_.trace_end) close_trace();
-  if (!memory_) {
+  if (!port_) {
     const PinsOut out = tick_pins(in, tracing_ && cycle_ >= options_.trace_begin);
     if (out.finished) fail_finished();
     ++cycle_;
     return out;
   }
   PinsIn pins = in;
-  pins.mem_req_ready = memory_->request_ready();
-  pins.mem_rsp_valid = memory_->response_valid();
-  pins.mem_rsp_data = memory_->response_beat();
+  pins.mem_req_ready = port_->request_ready();
+  pins.mem_rsp_valid = port_->response_valid();
+  pins.mem_rsp_data = port_->response_beat();
   const PinsOut out = tick_pins(pins, tracing_ && cycle_ >= options_.trace_begin);
   if (out.finished) fail_finished();
   // (In reset the unit ignores its memory port, and the memory model is emptied by reset().)
   if (!pins.rst) {
     const bool request = out.mem_req_valid && pins.mem_req_ready;
-    memory_->clock(request, out.mem_req_addr, pins.mem_rsp_valid && out.mem_rsp_ready);
+    port_->clock(request, out.mem_req_addr, pins.mem_rsp_valid && out.mem_rsp_ready);
     memory_counters_.lines_read += request;
     memory_counters_.fifo_max = std::max(memory_counters_.fifo_max, out.fifo_count);
     memory_counters_.head_wait_cycles += out.head_waits;
@@ -174,7 +175,7 @@ void Driver::reset(int clocks) {
   in.rsp_ready = false;
   for (int i = 0; i < clocks; ++i) tick(in);
   tick(PinsIn{});
-  if (memory_) memory_->reset();
+  if (port_) port_->reset();
   issued_ = answered_ = 0;
   idle_ready_clocks_ = stall_run_ = 0;
   filled_ = false;
@@ -193,6 +194,15 @@ void Driver::reset_counters() {
   stall_run_ = 0;
 }
 
+// The word layout of tex_level_mem (as load() writes it): bank = parity, word (y >> 1) * stride + (x >> 1).
+Texel Driver::peek_texel(int level, int x, int y) const {
+  if (config_.cached) throw Error(config_.name + " has no level memories: its texels are in external memory");
+  const int xb = std::max(config_.max_log2_w - level, 0);
+  const uint32_t stride = xb > 1 ? 1u << (xb - 1) : 1u;
+  return unpack_rgba(backdoor_read(level, (y & 1) * 2 + (x & 1), uint32_t(y >> 1) * stride + uint32_t(x >> 1)),
+                     config_.cw);
+}
+
 void Driver::load(const Pyramid& pyramid, LoadMethod method) {
   check_inputs(config_, pyramid, {});
   const int cw = config_.cw;
@@ -204,8 +214,13 @@ void Driver::load(const Pyramid& pyramid, LoadMethod method) {
                   "(use --load backdoor)");
     const CachePins pins = cache_pins(config_, options_.layout, options_.cache, options_.fifo_depth);
     const MemoryLayout layout(pyramid.log2_w0(), pyramid.log2_h0(), cw, options_.layout);
-    memory_ = std::make_unique<MemoryModel>(build_memory_image(pyramid, layout), options_.layout.base,
-                                            config_.line_bytes(), config_.mem_bits / 8, options_.memory);
+    if (options_.memory_port) {
+      port_ = options_.memory_port;
+    } else {
+      memory_ = std::make_unique<MemoryModel>(build_memory_image(pyramid, layout), options_.layout.base,
+                                              config_.line_bytes(), config_.mem_bits / 8, options_.memory);
+      port_ = memory_.get();
+    }
     apply_cache_pins(pins);
     reset();
     return;

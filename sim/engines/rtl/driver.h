@@ -125,6 +125,9 @@ struct DriverOptions {
   CacheParams cache;
   MemoryTiming memory;
   uint32_t fifo_depth = 0;  // samples the FIFO holds at most; 0 = the configuration's FIFO_DEPTH
+  // tex_unit_cached: drives the memory port instead of the built-in MemoryModel (not owned; the
+  // memory image is then the port's business and `memory` is unused).
+  MemoryPort* memory_port = nullptr;
   static DriverOptions of(const EngineOptions& o) {
     DriverOptions d;
     d.seed = o.seed;
@@ -187,6 +190,9 @@ class Driver {
   // drives the write port, one texel per clock, then one idle clock. Throws tex::Error when the
   // pyramid does not fit the configuration.
   void load(const Pyramid& pyramid, LoadMethod method);
+  // tex_unit: texel (x, y) of `level` as the level memories hold it now (debug reads). Throws
+  // tex::Error for tex_unit_cached (its texels are in memory) or a texel outside the memories.
+  Texel peek_texel(int level, int x, int y) const;
   void configure(const CfgPins& cfg);
   void configure(const SamplerConfig& config, const Pyramid& pyramid) {
     configure(cfg_pins(config, pyramid.log2_w0(), pyramid.log2_h0()));
@@ -215,8 +221,10 @@ class Driver {
     options_.memory = timing;
     options_.fifo_depth = fifo_depth;
   }
-  // tex_unit_cached: the memory model (null for tex_unit) and its counters.
+  // tex_unit_cached: the built-in memory model (null for tex_unit or with an external memory port),
+  // the port in use (null for tex_unit), and the counters.
   MemoryModel* memory() { return memory_.get(); }
+  MemoryPort* memory_port() { return port_; }
   const MemoryCounters& memory_counters() const { return memory_counters_; }
 
   uint64_t in_flight() const { return issued_ - answered_; }
@@ -228,7 +236,7 @@ class Driver {
   // Closes the trace and throws tex::SimulationError when an RTL assertion fires.
   // For tex_unit_cached, the memory model drives the mem_* inputs.
   PinsOut tick(const PinsIn& in) {
-    if (tracing_ || memory_) return tick_full(in);  // the rare paths stay out of the per-clock code
+    if (tracing_ || port_) return tick_full(in);  // the rare paths stay out of the per-clock code
     const PinsOut out = tick_pins(in, false);
     if (out.finished) fail_finished();
     ++cycle_;
@@ -245,6 +253,7 @@ class Driver {
   virtual void apply_cache_pins(const CachePins& pins) = 0;  // tex_unit_cached only
   // Writes one word into the bank memory of `level` holding texels of parity `bank`.
   virtual void backdoor_write(int level, int bank, uint32_t word, uint64_t data) = 0;
+  virtual uint64_t backdoor_read(int level, int bank, uint32_t word) const = 0;
   virtual void close_trace_impl() = 0;
 
   RtlConfig config_;
@@ -268,6 +277,7 @@ class Driver {
   ProtocolCounters counters_;
   PinsIn pins_;
   std::unique_ptr<MemoryModel> memory_;
+  MemoryPort* port_ = nullptr;  // memory_ or options_.memory_port
   MemoryCounters memory_counters_;
   CfgPins cfg_;
 };

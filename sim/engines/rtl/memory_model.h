@@ -26,25 +26,42 @@ struct MemoryTiming {
 // "0x%08x": a line address in messages and in --miss-trace.
 std::string hex_address(uint32_t address);
 
-class MemoryModel {
+// What drives tex_unit_cached's memory port pins, clock by clock: the harness's MemoryModel below,
+// or a TLM-2.0 initiator socket (the SystemC wrapper, engines/systemc/tlm_memory_port.h).
+class MemoryPort {
+ public:
+  virtual ~MemoryPort() = default;
+  // Pins for the coming clock edge.
+  virtual bool request_ready() const = 0;
+  virtual bool response_valid() const = 0;
+  virtual const uint8_t* response_beat() const = 0;
+  // The clock edge: a read was taken (request_fire, its line address) and/or a beat was taken.
+  virtual void clock(bool request_fire, uint32_t address, bool response_fire) = 0;
+  // The unit was reset: forget every read in flight.
+  virtual void reset() = 0;
+  // Line addresses read since the last call, in order (the RTL's miss stream).
+  virtual std::vector<uint32_t> take_reads() = 0;
+};
+
+class MemoryModel final : public MemoryPort {
  public:
   // image: the bytes at addresses base .. base + image.size() - 1. Throws tex::Error when the
   // bandwidth or the beat do not fit the line.
   MemoryModel(std::vector<uint8_t> image, uint32_t base, int line_bytes, int beat_bytes, const MemoryTiming& timing);
 
   // Pins for the coming clock edge.
-  bool request_ready() const { return request_ready_; }
-  bool response_valid() const { return response_valid_; }
-  const uint8_t* response_beat() const { return beat_data_; }
+  bool request_ready() const override { return request_ready_; }
+  bool response_valid() const override { return response_valid_; }
+  const uint8_t* response_beat() const override { return beat_data_; }
   // The clock edge: a request was taken (req_fire, address) and/or a beat was taken (rsp_fire).
   // Throws tex::SimulationError on a read outside the image or a misaligned address.
-  void clock(bool request_fire, uint32_t address, bool response_fire);
+  void clock(bool request_fire, uint32_t address, bool response_fire) override;
 
   // Forgets every read in flight (the unit was reset); the bandwidth credit starts full.
-  void reset();
+  void reset() override;
 
   // Line addresses read since the last take_reads(), in order (the RTL's miss stream).
-  std::vector<uint32_t> take_reads() { return std::exchange(reads_, {}); }
+  std::vector<uint32_t> take_reads() override { return std::exchange(reads_, {}); }
   uint64_t repeats_in_flight() const { return repeats_; }  // reads of a line already in flight
   // Changes one byte of the image (tests plant a wrong texel with it).
   void poke(uint32_t address, uint8_t value) { image_.at(address - base_) = value; }

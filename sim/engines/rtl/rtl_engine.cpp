@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "engines/rtl/driver.h"
+#include "engines/rtl/miss_checker.h"
 
 namespace tex::rtl {
 
@@ -26,44 +27,19 @@ class CheckedSource final : public RequestSource {
   size_t count_ = 0;
 };
 
-// Cached mode: runs the golden model's caches on every request as it is read, and compares the
-// RTL's memory reads with the model's predicted misses, one for one (then hands them to the miss
-// sink). Any difference is a simulation error naming the read.
-class MissChecker final : public RequestSource {
+// Cached mode: the golden model's caches look every request up as it is read (MissChecker).
+class PredictingSource final : public RequestSource {
  public:
-  MissChecker(RequestSource& inner, TextureCache& cache, MissSink* sink) : inner_(inner), cache_(cache), sink_(sink) {}
+  PredictingSource(RequestSource& inner, MissChecker& checker) : inner_(inner), checker_(checker) {}
   size_t read(Request* out, size_t max) override {
     const size_t n = inner_.read(out, max);
-    for (size_t i = 0; i < n; ++i) cache_.lookup(out[i], &predicted_);
+    for (size_t i = 0; i < n; ++i) checker_.predict(out[i]);
     return n;
-  }
-  // The RTL's reads since the last call; at the end, every predicted miss must have been read.
-  void compare(const std::vector<uint32_t>& actual, bool at_end) {
-    for (uint32_t a : actual) {
-      if (matched_ == predicted_.size())
-        throw SimulationError("the RTL read line " + hex_address(a) + " from memory (read #" + std::to_string(done_) +
-                              ") that the model's caches do not miss");
-      if (predicted_[matched_] != a)
-        throw SimulationError("memory read #" + std::to_string(done_) + ": the RTL read line " + hex_address(a) +
-                              ", the model's caches miss line " + hex_address(predicted_[matched_]));
-      ++matched_;
-      ++done_;
-    }
-    if (sink_ && matched_) sink_->write(predicted_.data(), matched_);
-    predicted_.erase(predicted_.begin(), predicted_.begin() + long(matched_));
-    matched_ = 0;
-    if (at_end && !predicted_.empty())
-      throw SimulationError("the model's caches miss " + std::to_string(predicted_.size()) +
-                            " more lines than the RTL read (first: " + hex_address(predicted_.front()) + ")");
   }
 
  private:
   RequestSource& inner_;
-  TextureCache& cache_;
-  MissSink* sink_;
-  std::vector<uint32_t> predicted_;
-  size_t matched_ = 0;
-  uint64_t done_ = 0;
+  MissChecker& checker_;
 };
 
 class RtlEngine final : public Engine {
@@ -92,20 +68,21 @@ class RtlEngine final : public Engine {
 
     CheckedSource checked(source);
     std::optional<MissChecker> misses;
-    if (cached) misses.emplace(checked, *cache, options_.miss_sink);
-    RequestSource& requests = cached ? static_cast<RequestSource&>(*misses) : checked;
+    std::optional<PredictingSource> predicting;
+    if (cached) predicting.emplace(checked, misses.emplace(*cache, options_.miss_sink));
+    RequestSource& requests = cached ? static_cast<RequestSource&>(*predicting) : checked;
     TexelQueue texels(sink);
     const int cw = rc.cw;
     const bool show = options_.show_progress;
     auto progress = [&](size_t done) {
-      if (misses) misses->compare(unit->memory()->take_reads(), false);
+      if (misses) misses->compare(unit->memory_port()->take_reads(), false);
       if (show) std::fprintf(stderr, "\rrtl: %zu samples, clock %llu", done, (unsigned long long)unit->cycle());
     };
     const StreamStats st = stream(
         *unit, requests, Timing::of(options_.stalls), options_.seed ^ 0x5DEECE66DULL,
         [&](size_t, uint64_t rgba) { texels.push(unpack_rgba(rgba, cw)); }, progress);
     texels.flush();
-    if (misses) misses->compare(unit->memory()->take_reads(), true);
+    if (misses) misses->compare(unit->memory_port()->take_reads(), true);
     if (show) std::fprintf(stderr, "\r%60s\r", "");
     const auto t2 = std::chrono::steady_clock::now();
     unit->close_trace();

@@ -153,6 +153,20 @@ class VerilatedTexUnit final : public Driver {
     }
   }
 
+  uint64_t backdoor_read(int level, int bank, uint32_t word) const override {
+    const Bank& b = banks_[size_t(level)][size_t(bank)];
+    if (!b.data || word >= b.words)
+      throw Error(config_.name + ": backdoor read of level " + std::to_string(level) + " bank " +
+                  std::to_string(bank) + " word " + std::to_string(word) + " outside its memory");
+    switch (b.bytes) {
+      case 1: return static_cast<const uint8_t*>(b.data)[word];
+      case 2: return static_cast<const uint16_t*>(b.data)[word];
+      case 4: return static_cast<const uint32_t*>(b.data)[word];
+      case 8: return static_cast<const uint64_t*>(b.data)[word];
+      default: throw Error(config_.name + ": texel banks of " + std::to_string(b.bytes) + " bytes per word");
+    }
+  }
+
   void close_trace_impl() override {
     if (trace_) {
       trace_->close();

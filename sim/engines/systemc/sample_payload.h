@@ -25,4 +25,13 @@ struct SampleTransfer {
 };
 static_assert(sizeof(SampleTransfer) == 24, "SampleTransfer is the socket's wire format");
 
+// Debug transport (transport_dbg, TLM_READ_COMMAND) on the same socket reads texels of the unit's
+// memory view: texel (x, y) of `level` and the ones after it along x in the same row, 8 bytes each
+// (uint16_t R, G, B, A, host order); data_length a multiple of 8. Returns the bytes read (0 for an
+// address outside the pyramid).
+constexpr uint64_t kTexelDebugBase = uint64_t(1) << 48;
+constexpr uint64_t texel_debug_address(int level, uint32_t x, uint32_t y) {
+  return kTexelDebugBase | uint64_t(level) << 40 | uint64_t(y) << 20 | x;
+}
+
 }  // namespace tex::systemc

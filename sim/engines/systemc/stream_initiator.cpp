@@ -14,9 +14,9 @@ using tlm::tlm_phase;
 using tlm::tlm_sync_enum;
 
 namespace {
-// Enough transactions for the RTL's pipeline (about 11 clocks) many times over: the pool never
-// throttles the stream.
-constexpr size_t kSlots = 64;
+// More transactions than the deepest unit holds in flight (the cached unit's sample FIFO of up to
+// 2048 samples plus its pipeline): the pool never throttles the stream.
+constexpr size_t kSlots = 4096;
 
 inline double unit_random(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
 }  // namespace

@@ -16,6 +16,7 @@
 
 #include "engines/rtl/driver.h"
 #include "engines/systemc/stream_initiator.h"
+#include "engines/systemc/memory_target.h"
 #include "engines/systemc/tex_unit_tlm.h"
 #include "model/error.h"
 
@@ -47,16 +48,32 @@ InitiatorTiming initiator_timing(const EngineOptions& o) {
 
 // Runs in the child: elaborate, load, stream, check.
 EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
-                     TexelSink& sink, const SystemcOptions& o) {
+                     TexelSink& sink, MissSink& misses, const SystemcOptions& o) {
   const bool at = o.initiator == InitiatorStyle::At || (o.initiator == InitiatorStyle::Auto && backend == Backend::Rtl);
   const sc_time period(o.clock_ns, SC_NS);
   const auto wall0 = std::chrono::steady_clock::now();
-  TexUnitTlm unit("tex_unit_tlm", backend, pyramid, config, period, o.engine);
+  EngineOptions eo = o.engine;
+  eo.miss_sink = &misses;
+  TexUnitTlm unit("tex_unit_tlm", backend, pyramid, config, period, eo);
   StreamInitiator bench("testbench", source, sink, at, period, initiator_timing(o.engine));
   bench.socket.bind(unit.socket);
+  // Cached: the pyramid's memory image in a TLM memory target with the --mem-* timing.
+  std::unique_ptr<MemoryTarget> memory;
+  if (eo.memory == Memory::Cached) {
+    const MemoryLayout layout(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits, eo.layout);
+    MemoryTargetTiming timing;
+    timing.latency = eo.mem_latency;
+    timing.bytes_per_clock = eo.mem_bytes_per_clock;
+    timing.max_outstanding = eo.mem_outstanding;
+    memory = std::make_unique<MemoryTarget>("memory", build_memory_image(pyramid, layout), eo.layout.base, period,
+                                            timing);
+    unit.memory_socket.bind(memory->socket);
+  }
   const auto wall1 = std::chrono::steady_clock::now();
 
   run_stream(bench, period, o.timeout_cycles, o.engine.show_progress, [&unit] { return unit.error(); });
+  unit.finish();
+  if (!unit.error().empty()) throw SimulationError(unit.error());
   const auto wall2 = std::chrono::steady_clock::now();
   if (unit.in_flight() != 0) throw SimulationError("SystemC: requests still in flight after the last response");
 
@@ -77,6 +94,15 @@ EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfi
     c.backpressure_cycles = pc.backpressure_cycles;
     c.load_cycles = d->load_cycles();
     r.cycle = c;
+  }
+  if (const TextureCache* cache = unit.cache()) {
+    CacheCounters k = cache_counters(*cache);
+    if (const rtl::Driver* d = unit.driver()) {
+      k.fifo_depth = eo.fifo_depth ? eo.fifo_depth : uint32_t(d->config().fifo_depth);
+      k.fifo_max_occupancy = d->memory_counters().fifo_max;
+      k.memory_stall_cycles = d->memory_counters().head_wait_cycles;
+    }
+    r.cache = k;
   }
   return r;
 }
@@ -134,14 +160,27 @@ class PipeSink final : public TexelSink {
   int fd_;
 };
 
+// Line addresses to the parent, in frames of up to 4096.
+class PipeMissSink final : public MissSink {
+ public:
+  explicit PipeMissSink(int fd) : fd_(fd) {}
+  void write(const uint32_t* a, size_t n) override {
+    if (!send_frame(fd_, 'M', a, n * sizeof(uint32_t))) throw Error("SystemC: the parent process went away");
+  }
+
+ private:
+  int fd_;
+};
+
 [[noreturn]] void run_child(int request_fd, int result_fd, const Simulation& simulation) {
   ::setenv("SYSC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
   std::signal(SIGPIPE, SIG_IGN);
   PipeSource source(request_fd);
   PipeSink sink(result_fd);
+  PipeMissSink misses(result_fd);
   nlohmann::json outcome;
   try {
-    outcome["stats"] = simulation(source, sink).to_json(EngineOptions{});
+    outcome["stats"] = simulation(source, sink, misses).to_json(EngineOptions{});
   } catch (const SimulationError& e) {
     outcome = {{"error", e.what()}, {"simulation", true}};
   } catch (const std::exception& e) {
@@ -177,10 +216,18 @@ std::unique_ptr<Engine> make_systemc_engine(Backend backend, const EngineOptions
 EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
                         TexelSink& sink, const SystemcOptions& options) {
   // Input errors are reported here, before any simulation, as one line.
+  const EngineOptions& eo = options.engine;
+  const bool cached = eo.memory == Memory::Cached;
+  if (cached) {  // the layout and the caches can be built for this texture
+    const MemoryLayout layout(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits, eo.layout);
+    TextureCache(layout, eo.cache, config, pyramid.log2_w0(), pyramid.log2_h0());
+  }
   if (backend == Backend::Rtl) {
-    const rtl::RtlConfig& rc =
-        rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits);
+    const rtl::RtlConfig& rc = rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(),
+                                                        pyramid.levels[0].channel_bits, eo.memory,
+                                                        eo.layout.block_w, eo.layout.block_h);
     rtl::check_inputs(rc, pyramid);
+    if (cached) rtl::cache_pins(rc, eo.layout, eo.cache, eo.fifo_depth);
   } else if (!options.engine.trace_path.empty()) {
     throw Error("--trace: the model behind the SystemC socket has no waveforms (use --engine systemc)");
   }
@@ -192,9 +239,9 @@ EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerCo
       for (size_t i = 0; i < n; ++i) rtl::check_request(r[i], index + i);
     index += n;
   };
-  return run_forked(source, sink, [&](RequestSource& s, TexelSink& t) {
-    return simulate(backend, pyramid, config, s, t, options);
-  }, check);
+  return run_forked(source, sink, [&](RequestSource& s, TexelSink& t, MissSink& m) {
+    return simulate(backend, pyramid, config, s, t, m, options);
+  }, check, eo.miss_sink);
 }
 
 EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
@@ -205,7 +252,7 @@ EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerC
 }
 
 EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation& simulation,
-                       const std::function<void(const Request*, size_t)>& check) {
+                       const std::function<void(const Request*, size_t)>& check, MissSink* misses) {
   int to_child[2], from_child[2];
   if (::pipe(to_child) != 0) throw Error(std::string("pipe: ") + std::strerror(errno));
   if (::pipe(from_child) != 0) {
@@ -293,6 +340,9 @@ EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation&
         const char type = in[at];
         const char* body = in.data() + at + 9;
         if (type == 'T') sink.write(reinterpret_cast<const Texel*>(body), len / sizeof(Texel));
+        else if (type == 'M') {
+          if (misses) misses->write(reinterpret_cast<const uint32_t*>(body), len / sizeof(uint32_t));
+        }
         else outcome = nlohmann::json::parse(std::string(body, len));
         at += 9 + len;
       }
@@ -321,7 +371,7 @@ EngineResult run_forked(const std::function<EngineResult()>& simulation) {
   VectorSource none(nullptr, 0);
   VectorSink sink;
   EngineResult r;
-  r.stats = run_forked(none, sink, [&](RequestSource&, TexelSink& out) {
+  r.stats = run_forked(none, sink, [&](RequestSource&, TexelSink& out, MissSink&) {
     const EngineResult x = simulation();
     out.write(x.texels.data(), x.texels.size());
     return x.stats;

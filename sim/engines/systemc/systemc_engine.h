@@ -45,9 +45,12 @@ EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerC
 // `check` in the parent first) go to the child's source, texels from the child's sink to `sink`.
 // An exception in the child becomes a tex::Error (tex::SimulationError if it was one) with its
 // message in the parent; the child is killed if the parent fails (a bad request, a sink error).
-using Simulation = std::function<EngineStats(RequestSource& source, TexelSink& sink)>;
+// The child's `misses` sink (never null) carries line addresses back to `misses` in the parent
+// (dropped when that is null).
+using Simulation = std::function<EngineStats(RequestSource& source, TexelSink& sink, MissSink& misses)>;
 EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation& simulation,
-                       const std::function<void(const Request*, size_t)>& check = [](const Request*, size_t) {});
+                       const std::function<void(const Request*, size_t)>& check = [](const Request*, size_t) {},
+                       MissSink* misses = nullptr);
 // For tests that build their own platform: no requests in, the result's texels out.
 EngineResult run_forked(const std::function<EngineResult()>& simulation);
 

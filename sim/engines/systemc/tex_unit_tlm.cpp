@@ -1,5 +1,7 @@
 #include "engines/systemc/tex_unit_tlm.h"
 
+#include <algorithm>
+
 #include "model/error.h"
 
 namespace tex::systemc {
@@ -11,21 +13,52 @@ using tlm::tlm_sync_enum;
 
 TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
                        const sc_time& clock_period, const EngineOptions& options)
-    : sc_module(name), socket("socket"), backend_(backend), period_(clock_period) {
+    : sc_module(name), socket("socket"), memory_socket("memory_socket"), backend_(backend), period_(clock_period),
+      pyramid_(&pyramid), options_(options) {
+  socket.register_transport_dbg(this, &TexUnitTlm::transport_dbg);
+  const bool cached = options.memory == Memory::Cached;
+  const int cw = pyramid.levels[0].channel_bits;
+  if (cached) {
+    layout_.emplace(pyramid.log2_w0(), pyramid.log2_h0(), cw, options.layout);
+    cache_.emplace(*layout_, options.cache, config, pyramid.log2_w0(), pyramid.log2_h0());
+  }
   if (backend == Backend::Model) {
-    sampler_ = std::make_unique<Sampler>(pyramid, config);
+    if (cached) {
+      // The unit's memories start blank: only the lines it reads over the bus fill them.
+      Pyramid blank = pyramid;
+      for (Image& level : blank.levels) std::fill(level.texels.begin(), level.texels.end(), Texel{});
+      sampler_ = std::make_unique<Sampler>(blank, config);
+      line_data_.assign(size_t(layout_->line_bytes()), 0);
+    } else {
+      sampler_ = std::make_unique<Sampler>(pyramid, config);
+    }
     socket.register_b_transport(this, &TexUnitTlm::b_transport);
     return;
   }
-  const rtl::RtlConfig& rc =
-      rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits);
-  driver_ = rtl::Driver::create(rc, rtl::DriverOptions::of(options));
+  const rtl::RtlConfig& rc = rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), cw, options.memory,
+                                                      options.layout.block_w, options.layout.block_h);
+  rtl::DriverOptions d = rtl::DriverOptions::of(options);
+  if (cached) {
+    memory_port_ = std::make_unique<TlmMemoryPort>(memory_socket, rc.line_bytes(), rc.mem_bits / 8);
+    d.memory_port = memory_port_.get();
+    checker_.emplace(*cache_, options.miss_sink);
+  }
+  driver_ = rtl::Driver::create(rc, d);
   driver_->reset();
   driver_->load(pyramid, options.load);
   driver_->configure(config, pyramid);
   driver_->reset_counters();
   socket.register_nb_transport_fw(this, &TexUnitTlm::nb_transport_fw);
   SC_METHOD(on_clock);  // first edge at time 0, then one per period (next_trigger)
+}
+
+void TexUnitTlm::finish() {
+  if (!checker_ || !error_.empty()) return;
+  try {
+    checker_->compare(memory_port_->take_reads(), true);
+  } catch (const std::exception& e) {
+    fail(e.what());
+  }
 }
 
 TexUnitTlm::~TexUnitTlm() = default;
@@ -70,10 +103,74 @@ void TexUnitTlm::b_transport(tlm_generic_payload& trans, sc_time& delay) {
   q.u = s->u;
   q.v = s->v;
   q.lod = s->lod;
+  if (cache_) {  // the sample's missing lines come over the bus first
+    misses_.clear();
+    cache_->lookup(q, &misses_);
+    for (uint32_t a : misses_) read_line(a, delay);
+    if (options_.miss_sink && !misses_.empty()) options_.miss_sink->write(misses_.data(), misses_.size());
+    if (!error_.empty()) {
+      trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+      return;
+    }
+  }
   const Texel t = sampler_->sample(q);
   for (int c = 0; c < 4; ++c) s->rgba[c] = t[size_t(c)];
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
   delay += period_;  // pipelined: one sample per clock
+}
+
+void TexUnitTlm::read_line(uint32_t address, sc_time& delay) {
+  tlm_generic_payload& t = line_trans_;
+  t.set_command(tlm::TLM_READ_COMMAND);
+  t.set_address(address);
+  t.set_data_ptr(line_data_.data());
+  t.set_data_length(unsigned(line_data_.size()));
+  t.set_streaming_width(unsigned(line_data_.size()));
+  t.set_byte_enable_ptr(nullptr);
+  t.set_dmi_allowed(false);
+  t.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  memory_socket->b_transport(t, delay);
+  if (t.get_response_status() != tlm::TLM_OK_RESPONSE)
+    return fail("memory socket: the read of line " + rtl::hex_address(address) + " was answered with " +
+                t.get_response_string());
+  decode_line(*layout_, address, line_data_.data(),
+              [&](int level, int x, int y, const Texel& texel) { sampler_->write_texel(level, x, y, texel); });
+}
+
+// Texels of the memory view, 8 bytes each along a row (sample_payload.h).
+unsigned int TexUnitTlm::transport_dbg(tlm_generic_payload& trans) {
+  const uint64_t a = trans.get_address();
+  const unsigned n = trans.get_data_length() / 8;
+  if (trans.get_command() != tlm::TLM_READ_COMMAND || (a & ~((uint64_t(1) << 48) - 1)) != kTexelDebugBase ||
+      !trans.get_data_ptr() || n == 0)
+    return 0;
+  const int level = int(a >> 40 & 0xFF);
+  const uint32_t y = uint32_t(a >> 20 & 0xFFFFF), x0 = uint32_t(a & 0xFFFFF);
+  if (level >= int(pyramid_->levels.size())) return 0;
+  const Image& shape = pyramid_->levels[size_t(level)];
+  if (y >= uint32_t(shape.height) || x0 + n > uint32_t(shape.width)) return 0;
+  auto* out = reinterpret_cast<uint16_t*>(trans.get_data_ptr());
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t x = x0 + i;
+    Texel t{};
+    if (layout_) {  // through the memory target's own debug transport
+      std::vector<uint8_t> bytes(size_t(layout_->texel_bytes()));
+      tlm_generic_payload d;
+      d.set_command(tlm::TLM_READ_COMMAND);
+      d.set_address(layout_->line_address(level, x, y) + layout_->texel_offset(x, y));
+      d.set_data_ptr(bytes.data());
+      d.set_data_length(unsigned(bytes.size()));
+      if (memory_socket.size() == 0 || memory_socket->transport_dbg(d) != bytes.size()) return i * 8;
+      for (size_t c = 0; c < 4; ++c)
+        t[c] = bytes.size() == 4 ? bytes[c] : uint16_t(bytes[2 * c] | bytes[2 * c + 1] << 8);
+    } else if (driver_) {
+      t = driver_->peek_texel(level, int(x), int(y));
+    } else {
+      t = shape.at(int(x), int(y));
+    }
+    for (int c = 0; c < 4; ++c) out[4 * i + uint32_t(c)] = t[size_t(c)];
+  }
+  return n * 8;
 }
 
 // ------------------------------------------------------------------------------ RTL backend
@@ -85,7 +182,8 @@ tlm_sync_enum TexUnitTlm::nb_transport_fw(tlm_generic_payload& trans, tlm_phase&
     const SampleTransfer* s = decode(trans);
     if (!s) return tlm::TLM_COMPLETED;
     if (pending_) fail("TLM protocol: BEGIN_REQ before END_REQ of the previous request (request exclusion rule)");
-    pending_ = &trans;  // offered on the request pins from the next edge until the RTL takes it
+    pending_ = &trans;
+    if (checker_) checker_->predict(Request{s->u, s->v, s->lod, 0});  // offered on the request pins from the next edge until the RTL takes it
     pending_request_.u = s->u;
     pending_request_.v = s->v;
     pending_request_.lod = s->lod;
@@ -109,7 +207,11 @@ void TexUnitTlm::on_clock() {
   rtl::Driver::Clock c;
   try {
     c = driver_->clock(pending_ ? &pending_request_ : nullptr, take);
-  } catch (const std::exception& e) {  // scoreboard, time-out or RTL assertion
+    if (memory_port_) {
+      if (!memory_port_->error().empty()) return fail(memory_port_->error());
+      checker_->compare(memory_port_->take_reads(), false);
+    }
+  } catch (const std::exception& e) {  // scoreboard, time-out, RTL assertion, a read not predicted
     fail(e.what());
     return;
   }

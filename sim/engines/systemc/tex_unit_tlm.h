@@ -12,6 +12,16 @@
 //                   per clock is accepted while earlier ones are still in flight.
 // The texture is loaded at construction, before simulated time starts (backdoor: 0 clocks; write
 // port: load_cycles() clocks of the RTL).
+// Cached memory (options.memory == Memory::Cached): the unit holds no texels; it reads cache lines
+// through `memory_socket`, a TLM-2.0 initiator socket, from whatever target is bound to it (the
+// pyramid's memory image, docs/memory.md §1, at options.layout.base). The RTL backend drives its
+// memory port through it approximately timed (tlm_memory_port.h), so memory latency and bandwidth
+// are the target's; the model backend's caches read each missed line with b_transport (loosely
+// timed: the sample waits for its lines) and fill the sampler's memories from the bytes read. In
+// both, the golden model's caches predict every read: the RTL's are checked against them.
+// Debug transport on `socket` (transport_dbg) reads texels of the unit's memory view
+// (texel_debug_address, sample_payload.h): the level memories (on-chip), or the memory behind
+// `memory_socket` through its own debug transport (cached).
 // The socket is a simple_target_socket with only one of b_transport / nb_transport_fw registered:
 // its built-in adapters serve the other style (at a cost, see docs/systemc.md).
 #pragma once
@@ -22,20 +32,26 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "engines/engine.h"
 #include "engines/rtl/driver.h"
+#include "engines/rtl/miss_checker.h"
+#include "engines/systemc/tlm_memory_port.h"
 #include "engines/systemc/systemc_engine.h"
 #include "engines/systemc/sample_payload.h"
+#include "model/memory_layout.h"
 #include "model/pyramid.h"
 #include "model/sampler.h"
+#include "model/texture_cache.h"
 
 namespace tex::systemc {
 
 class TexUnitTlm : public sc_core::sc_module {
  public:
   tlm_utils::simple_target_socket<TexUnitTlm> socket;
+  MemorySocket memory_socket;  // cached memory only (may stay unbound otherwise)
 
   // Throws tex::Error for a texture or option the backend cannot take.
   TexUnitTlm(sc_core::sc_module_name name, Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
@@ -50,6 +66,10 @@ class TexUnitTlm : public sc_core::sc_module {
   size_t in_flight() const { return in_flight_.size(); }
   // The first protocol or RTL error seen (empty if none); the module stops working after one.
   const std::string& error() const { return error_; }
+  // Cached memory: the golden model's caches (hits, misses), and the end-of-run check that the RTL
+  // read every line they miss (sets error()).
+  const TextureCache* cache() const { return cache_ ? &*cache_ : nullptr; }
+  void finish();
 
  private:
   // Decode and check one payload; sets an error response status when it is malformed.
@@ -58,6 +78,9 @@ class TexUnitTlm : public sc_core::sc_module {
 
   // Model backend.
   void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay);
+  void read_line(uint32_t address, sc_core::sc_time& delay);  // cached: one missed line over the bus
+
+  unsigned int transport_dbg(tlm::tlm_generic_payload& trans);
 
   // RTL backend.
   tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload& trans, tlm::tlm_phase& phase, sc_core::sc_time& delay);
@@ -66,6 +89,15 @@ class TexUnitTlm : public sc_core::sc_module {
 
   Backend backend_;
   sc_core::sc_time period_;
+  const Pyramid* pyramid_;  // shape, and the texels of the on-chip model backend's debug reads
+  EngineOptions options_;
+  std::optional<MemoryLayout> layout_;      // cached
+  std::optional<TextureCache> cache_;       // cached: the golden model's caches
+  std::optional<rtl::MissChecker> checker_;  // cached RTL: predicted against actual reads
+  std::unique_ptr<TlmMemoryPort> memory_port_;  // cached RTL
+  std::vector<uint32_t> misses_;            // cached model: lines one sample misses
+  tlm::tlm_generic_payload line_trans_;     // cached model: the read of one line
+  std::vector<uint8_t> line_data_;
   std::unique_ptr<Sampler> sampler_;     // model backend
   std::unique_ptr<rtl::Driver> driver_;  // RTL backend
   std::string error_;

@@ -1,0 +1,693 @@
+#include "reports/explore.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <csignal>
+#include <cstring>
+#include <tuple>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "engines/engine.h"
+#include "engines/rtl/driver.h"
+#include "model/error.h"
+#include "model/pyramid.h"
+#include "workloads/output_files.h"
+#include "workloads/query_trace.h"
+#include "workloads/scenes.h"
+#include "workloads/texture_io.h"
+
+extern char** environ;
+
+namespace tex {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// ------------------------------------------------------------------------------ the sweep
+
+std::vector<std::string> split_list(const std::string& text, const std::string& option) {
+  std::vector<std::string> items;
+  std::string item;
+  std::istringstream in(text);
+  while (std::getline(in, item, ','))
+    if (item.empty()) throw Error(option + " " + quote_clipped(text) + " has an empty item (a list is A,B,C)");
+    else items.push_back(item);
+  if (items.empty()) throw Error(option + " is empty (a list is A,B,C)");
+  return items;
+}
+
+uint32_t parse_bounded(const std::string& text, const std::string& option, uint32_t lo, uint32_t hi) {
+  uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || v < lo || v > hi)
+    throw Error(option + " " + quote_clipped(text) + " is not a whole number from " + std::to_string(lo) + " to " +
+                std::to_string(hi));
+  return uint32_t(v);
+}
+
+std::vector<uint32_t> parse_numbers(const std::string& text, const std::string& option, uint32_t lo, uint32_t hi) {
+  std::vector<uint32_t> out;
+  for (const std::string& s : split_list(text, option)) out.push_back(parse_bounded(s, option, lo, hi));
+  return out;
+}
+
+struct Block {
+  int w = 4, h = 4;
+  std::string name() const { return std::to_string(w) + "x" + std::to_string(h); }
+};
+
+Block parse_block_shape(const std::string& text) {
+  const auto x = text.find('x');
+  Block b;
+  if (x != std::string::npos) {
+    const std::string w = text.substr(0, x), h = text.substr(x + 1);
+    b.w = w == "2" ? 2 : w == "4" ? 4 : w == "8" ? 8 : 0;
+    b.h = h == "2" ? 2 : h == "4" ? 4 : h == "8" ? 8 : 0;
+  }
+  if (x == std::string::npos || !b.w || !b.h)
+    throw Error("--block " + quote_clipped(text) + " is not WxH with W and H each 2, 4 or 8");
+  return b;
+}
+
+// One measured point.
+struct Point {
+  size_t workload = 0;  // index into Sweep::workloads
+  int cache_kib = 8, ways = 2;
+  Block block;
+  BlockOrder block_order = BlockOrder::RowMajor;
+  uint32_t latency = 200, bandwidth = 16;
+  uint32_t fifo = 0;  // 0 = the RTL configuration's FIFO_DEPTH ("max")
+};
+
+// A scene in one rasterization order, or a query trace: the requests and the pyramid they sample.
+struct Workload {
+  std::string name;   // scene name or trace path
+  std::string order;  // scanline | tiled | trace
+  std::string texture;
+  Pyramid pyramid;
+  SamplerConfig config;
+  std::vector<Request> requests;
+};
+
+struct Sweep {
+  ExploreArgs args;
+  bool trace = false;
+  std::vector<std::string> workload_names, order_names;
+  std::vector<int> cache_kib, ways;
+  std::vector<Block> blocks;
+  std::vector<BlockOrder> block_orders;
+  std::vector<uint32_t> latencies, bandwidths, fifos;
+  bool timing = true;
+  std::vector<Workload> workloads;
+  std::vector<Point> points;  // in CSV order
+};
+
+// Everything about the lists, before any texture is built.
+Sweep parse_sweep(const ExploreArgs& a) {
+  Sweep s;
+  s.args = a;
+  s.trace = !a.queries.empty();
+  if (s.trace) {
+    s.workload_names = {a.queries};
+    s.order_names = {"trace"};
+  } else {
+    s.workload_names = split_list(a.scenes, "--scene");
+    for (const std::string& n : s.workload_names) {
+      bool known = n == "mesh16";
+      for (const std::string& k : scene_names()) known = known || k == n;
+      if (!known) make_scene(n, SceneOptions{});  // throws naming the known scenes
+    }
+    s.order_names = split_list(a.orders, "--order");
+    for (const std::string& o : s.order_names) parse_pixel_order(o);
+  }
+  for (uint32_t k : parse_numbers(a.cache_kib, "--cache-kib", 1, 1024)) s.cache_kib.push_back(int(k));
+  for (const std::string& w : split_list(a.ways, "--ways")) {
+    if (w != "1" && w != "2" && w != "4") throw Error("--ways " + quote_clipped(w) + " is not 1, 2 or 4");
+    s.ways.push_back(std::stoi(w));
+  }
+  for (const std::string& b : split_list(a.blocks, "--block")) s.blocks.push_back(parse_block_shape(b));
+  for (const std::string& o : split_list(a.block_orders, "--block-order")) {
+    BlockOrder bo;
+    if (!parse_block_order(o, bo)) throw Error("unknown --block-order " + quote_clipped(o) + " (row-major, morton)");
+    s.block_orders.push_back(bo);
+  }
+  s.latencies = parse_numbers(a.latencies, "--mem-latency", 1, 100000);
+  s.bandwidths = parse_numbers(a.bandwidths, "--mem-bytes-per-clock", 1, 1024);
+  for (const std::string& f : split_list(a.fifo_depths, "--fifo-depth"))
+    s.fifos.push_back(f == "max" ? 0 : parse_bounded(f, "--fifo-depth", 1, 1u << 20));
+  if (a.timing != "rtl" && a.timing != "none") throw Error("--timing " + quote_clipped(a.timing) + " is not rtl or none");
+  s.timing = a.timing == "rtl";
+  if (a.jobs < 1 || a.jobs > 256) throw Error("--jobs " + std::to_string(a.jobs) + " is outside 1..256");
+  return s;
+}
+
+void load_workloads(Sweep& s) {
+  SamplerConfig config;
+  if (!parse_filter(s.args.filter, config.filter)) throw Error("unknown --filter " + quote_clipped(s.args.filter));
+  if (s.trace) {
+    Workload w;
+    w.name = s.args.queries;
+    w.order = "trace";
+    w.texture = s.args.texture;
+    w.pyramid = build_pyramid(load_texture(s.args.texture), PyramidMode::Exact);
+    w.config = config;
+    QueryReader reader(s.args.queries);
+    QuerySource source(reader, w.pyramid.log2_w0(), w.pyramid.log2_h0());
+    std::vector<Request> chunk(4096);
+    while (const size_t n = source.read(chunk.data(), chunk.size()))
+      w.requests.insert(w.requests.end(), chunk.begin(), chunk.begin() + long(n));
+    if (w.requests.empty()) throw Error(s.args.queries + " has no queries");
+    s.workloads.push_back(std::move(w));
+    return;
+  }
+  for (const std::string& name : s.workload_names)
+    for (const std::string& order : s.order_names) {
+      SceneOptions so;
+      so.width = s.args.width;
+      so.height = s.args.height;
+      so.order = parse_pixel_order(order);
+      so.tile = s.args.tile;
+      const SceneFrame frame = make_scene(name, so);
+      Workload w;
+      w.name = name;
+      w.order = order;
+      w.texture = frame.own_texture ? "own map" : s.args.texture;
+      w.pyramid = build_pyramid(scene_texture(frame, s.args.texture), PyramidMode::Exact);
+      w.config = config;
+      if (frame.clamp_edges) w.config.wrap_u = w.config.wrap_v = Wrap::Clamp;
+      w.requests = to_requests(frame.queries, w.pyramid.log2_w0(), w.pyramid.log2_h0(), "scene " + name);
+      s.workloads.push_back(std::move(w));
+    }
+}
+
+LayoutParams layout_of(const Point& p) {
+  LayoutParams l;
+  l.block_w = p.block.w;
+  l.block_h = p.block.h;
+  l.order = p.block_order;
+  return l;
+}
+CacheParams cache_of(const Point& p) {
+  CacheParams c;
+  c.size_bytes = p.cache_kib * 1024;
+  c.ways = p.ways;
+  return c;
+}
+
+// The cartesian product, in CSV order. A cache geometry the hardware cannot have (fewer than 4
+// sets, ...) is left out, and said once on stderr.
+void expand_points(Sweep& s) {
+  std::set<std::string> said;
+  std::vector<std::string> notes;
+  for (size_t w = 0; w < s.workloads.size(); ++w) {
+    const Pyramid& pyr = s.workloads[w].pyramid;
+    for (int kib : s.cache_kib)
+      for (int ways : s.ways)
+        for (const Block& block : s.blocks)
+          for (BlockOrder bo : s.block_orders) {
+            Point p;
+            p.workload = w;
+            p.cache_kib = kib;
+            p.ways = ways;
+            p.block = block;
+            p.block_order = bo;
+            try {
+              TextureCache(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, layout_of(p)),
+                           cache_of(p), s.workloads[w].config, pyr.log2_w0(), pyr.log2_h0());
+            } catch (const Error& e) {
+              const std::string what = std::to_string(kib) + " KiB, " + std::to_string(ways) + " ways, " +
+                                       block.name() + " blocks";
+              if (said.insert(what).second) notes.push_back("left out " + what + ": " + e.what());
+              continue;
+            }
+            for (uint32_t lat : s.latencies)
+              for (uint32_t bw : s.bandwidths)
+                for (uint32_t fifo : s.fifos) {
+                  p.latency = lat;
+                  p.bandwidth = bw;
+                  p.fifo = fifo;
+                  s.points.push_back(p);
+                }
+          }
+  }
+  if (s.points.empty())
+    throw Error("explore: no point of the sweep has a cache geometry the hardware can have (" + notes.front() + ")");
+  for (const std::string& n : notes) std::fprintf(stderr, "explore: %s\n", n.c_str());
+}
+
+EngineOptions engine_options(const Point& p) {
+  EngineOptions o;
+  o.memory = Memory::Cached;
+  o.layout = layout_of(p);
+  o.cache = cache_of(p);
+  o.mem_latency = p.latency;
+  o.mem_bytes_per_clock = p.bandwidth;
+  o.fifo_depth = p.fifo;
+  return o;
+}
+
+// Why the RTL cannot measure this point (empty: it can).
+std::string rtl_unavailable(const Sweep& s, const Point& p) {
+  if (!s.timing) return "--timing none";
+  const Workload& w = s.workloads[p.workload];
+  try {
+    const rtl::RtlConfig& rc = rtl::smallest_config_for(w.pyramid.log2_w0(), w.pyramid.log2_h0(),
+                                                        w.pyramid.levels[0].channel_bits, Memory::Cached, p.block.w,
+                                                        p.block.h);
+    rtl::cache_pins(rc, layout_of(p), cache_of(p), p.fifo);
+    if (p.bandwidth > uint32_t(rc.line_bytes())) throw Error("the bandwidth is more than a line per clock");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// ------------------------------------------------------------------------------ measuring
+
+struct Row {
+  Point point;
+  uint64_t samples = 0;
+  CacheCounters cache;
+  bool timed = false;  // through the RTL
+  double samples_per_clock = 0;
+  uint64_t cycles = 0;
+  uint32_t fifo_depth = 0;  // in use (timed rows; else the one asked for, 0 = max)
+  double seconds = 0;
+};
+
+class NullSink final : public TexelSink {
+ public:
+  void write(const Texel*, size_t) override {}
+};
+
+// Points of one cache geometry share the model's counters: it has no notion of time.
+using ModelKey = std::tuple<size_t, int, int, int, int, int>;
+ModelKey model_key(const Point& p) {
+  return {p.workload, p.cache_kib, p.ways, p.block.w, p.block.h, int(p.block_order)};
+}
+
+Row measure(const Sweep& s, const Point& p, std::map<ModelKey, CacheCounters>& model_memo) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Workload& w = s.workloads[p.workload];
+  Row r;
+  r.point = p;
+  r.samples = w.requests.size();
+  r.fifo_depth = p.fifo;
+  if (rtl_unavailable(s, p).empty()) {
+    // The RTL engine runs the model's caches beside the RTL and fails on any read they do not predict.
+    VectorSource source(w.requests);
+    NullSink sink;
+    const EngineStats st = make_engine("rtl", engine_options(p))->run(w.pyramid, w.config, source, sink);
+    r.timed = true;
+    r.cache = *st.cache;
+    r.samples_per_clock = st.samples_per_clock();
+    r.cycles = st.cycle->cycles;
+    r.fifo_depth = st.cache->fifo_depth;
+  } else {
+    auto [it, fresh] = model_memo.try_emplace(model_key(p));
+    if (fresh) {
+      const Pyramid& pyr = w.pyramid;
+      TextureCache cache(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, layout_of(p)),
+                         cache_of(p), w.config, pyr.log2_w0(), pyr.log2_h0());
+      for (const Request& q : w.requests) cache.lookup(q, nullptr);
+      it->second = cache_counters(cache);
+    }
+    r.cache = it->second;
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+// ------------------------------------------------------------------------------ CSV
+
+const char* kCsvHeader =
+    "workload,order,texture,width,height,filter,cache_kib,ways,block,block_order,mem_latency,mem_bytes_per_clock,"
+    "fifo_depth,samples,cache_lookups,cache_hits,cache_misses,hit_rate,memory_read_bytes,bytes_per_sample,"
+    "timing_engine,samples_per_clock,cycles,memory_stall_cycles,fifo_max_occupancy,seconds";
+
+// A CSV field: quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string q = "\"";
+  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string csv_row(const Sweep& s, const Row& r) {
+  const Workload& w = s.workloads[r.point.workload];
+  const Point& p = r.point;
+  const CacheCounters& k = r.cache;
+  char buf[512];
+  std::string line = csv_field(w.name) + "," + w.order + "," + csv_field(w.texture) + ",";
+  if (s.trace) line += ",,";
+  else line += std::to_string(s.args.width) + "," + std::to_string(s.args.height) + ",";
+  std::snprintf(buf, sizeof buf, "%s,%d,%d,%s,%s,%u,%u,", filter_name(w.config.filter).c_str(), p.cache_kib, p.ways,
+                p.block.name().c_str(), block_order_name(p.block_order).c_str(), p.latency, p.bandwidth);
+  line += buf;
+  line += r.fifo_depth ? std::to_string(r.fifo_depth) : "";
+  std::snprintf(buf, sizeof buf, ",%llu,%llu,%llu,%llu,%.6f,%llu,%.4f,", (unsigned long long)r.samples,
+                (unsigned long long)k.lookups, (unsigned long long)k.hits, (unsigned long long)k.misses,
+                k.lookups ? double(k.hits) / double(k.lookups) : 0.0, (unsigned long long)k.memory_read_bytes,
+                r.samples ? double(k.memory_read_bytes) / double(r.samples) : 0.0);
+  line += buf;
+  if (r.timed)
+    std::snprintf(buf, sizeof buf, "rtl,%.5f,%llu,%llu,%u,%.3f", r.samples_per_clock, (unsigned long long)r.cycles,
+                  (unsigned long long)k.memory_stall_cycles, k.fifo_max_occupancy, r.seconds);
+  else
+    std::snprintf(buf, sizeof buf, ",,,,,%.3f", r.seconds);
+  return line + buf + "\n";
+}
+
+// ------------------------------------------------------------------------------ jobs
+
+// Points of one cache geometry form a job: one process measures its latencies, bandwidths and
+// FIFO depths with one texture, one scene and one run of the model's caches.
+struct Job {
+  size_t first = 0, count = 0;  // range of Sweep::points
+};
+
+std::vector<Job> jobs_of(const Sweep& s) {
+  std::vector<Job> jobs;
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    if (jobs.empty() || model_key(s.points[i]) != model_key(s.points[jobs.back().first])) jobs.push_back({i, 0});
+    ++jobs.back().count;
+  }
+  return jobs;
+}
+
+// A path as a command line of another machine or directory sees it: absolute if it exists here.
+std::string portable_path(const std::string& path) {
+  std::error_code ec;
+  return fs::exists(path, ec) ? fs::absolute(path).string() : path;
+}
+
+std::string join_numbers(const std::vector<uint32_t>& v, bool max_for_zero = false) {
+  std::string s;
+  for (uint32_t x : v) s += (s.empty() ? "" : ",") + (max_for_zero && x == 0 ? std::string("max") : std::to_string(x));
+  return s;
+}
+
+// The command line of one job (argv), writing its rows to `rows`.
+std::vector<std::string> job_command(const Sweep& s, const Job& job, const std::string& self, const std::string& rows) {
+  const Point& p = s.points[job.first];
+  const Workload& w = s.workloads[p.workload];
+  std::vector<std::string> c = {self, "explore"};
+  if (s.trace) c.insert(c.end(), {"--queries", portable_path(w.name)});
+  else c.insert(c.end(), {"--scene", w.name, "--order", w.order, "--width", std::to_string(s.args.width), "--height",
+                          std::to_string(s.args.height), "--tile", std::to_string(s.args.tile)});
+  c.insert(c.end(), {"--texture", portable_path(s.args.texture), "--filter", s.args.filter, "--cache-kib",
+                     std::to_string(p.cache_kib), "--ways", std::to_string(p.ways), "--block", p.block.name(),
+                     "--block-order", block_order_name(p.block_order), "--mem-latency", join_numbers(s.latencies),
+                     "--mem-bytes-per-clock", join_numbers(s.bandwidths), "--fifo-depth", join_numbers(s.fifos, true),
+                     "--timing", s.args.timing, "--rows", rows});
+  return c;
+}
+
+std::string shell_quote(const std::string& word) {
+  if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./:=,+@%") ==
+                           std::string::npos)
+    return word;
+  std::string q = "'";
+  for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot read " + path.string());
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Starts argv with stdout to /dev/null and stderr to `err_path`; returns the pid.
+pid_t spawn(const std::vector<std::string>& argv, const std::string& err_path) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, args[0], &fa, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) throw Error("cannot start " + argv[0] + ": " + std::strerror(rc));
+  return pid;
+}
+
+// The last non-empty line of a child's stderr (its one-line error).
+std::string last_line(const std::string& text) {
+  size_t end = text.find_last_not_of("\r\n");
+  if (end == std::string::npos) return "(no message)";
+  const size_t begin = text.find_last_of("\r\n", end);
+  return text.substr(begin == std::string::npos ? 0 : begin + 1, end - (begin == std::string::npos ? 0 : begin + 1) + 1);
+}
+
+// Removes a directory tree when it goes out of scope.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::string t = (fs::temp_directory_path() / "texsim-explore-XXXXXX").string();
+    if (!mkdtemp(t.data())) throw Error("cannot create a temporary directory in " + fs::temp_directory_path().string());
+    path = t;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+// Runs every job in up to `parallel` child processes; returns the rows (no header) in sweep order.
+std::string run_jobs(const Sweep& s, const std::string& self, int parallel, bool progress) {
+  const std::vector<Job> jobs = jobs_of(s);
+  TempDir tmp;
+  std::map<pid_t, size_t> running;
+  size_t next = 0, done = 0;
+  auto stop_all = [&] {
+    for (const auto& [pid, j] : running) kill(pid, SIGTERM);
+    for (const auto& [pid, j] : running) waitpid(pid, nullptr, 0);
+    running.clear();
+  };
+  auto name = [&](size_t j, const char* ext) { return (tmp.path / ("job" + std::to_string(j) + ext)).string(); };
+  try {
+    while (done < jobs.size()) {
+      while (next < jobs.size() && running.size() < size_t(parallel)) {
+        running[spawn(job_command(s, jobs[next], self, name(next, ".csv")), name(next, ".err"))] = next;
+        ++next;
+      }
+      int status = 0;
+      const pid_t pid = waitpid(-1, &status, 0);
+      if (pid < 0) throw Error(std::string("waiting for the jobs: ") + std::strerror(errno));
+      const auto it = running.find(pid);
+      if (it == running.end()) continue;
+      const size_t j = it->second;
+      running.erase(it);
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::string cmd;
+        for (const std::string& a : job_command(s, jobs[j], self, name(j, ".csv"))) cmd += " " + shell_quote(a);
+        throw Error("explore: job " + std::to_string(j + 1) + " failed: " + last_line(read_file(name(j, ".err"))) +
+                    " (command:" + cmd + ")");
+      }
+      ++done;
+      if (progress) std::fprintf(stderr, "\rexplore: %zu/%zu jobs", done, jobs.size());
+    }
+  } catch (...) {
+    stop_all();
+    if (progress) std::fprintf(stderr, "\n");
+    throw;
+  }
+  if (progress) std::fprintf(stderr, "\r%40s\r", "");
+  std::string rows;
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    const std::string text = read_file(name(j, ".csv"));
+    const size_t nl = text.find('\n');
+    rows += text.substr(nl == std::string::npos ? text.size() : nl + 1);
+  }
+  return rows;
+}
+
+// ------------------------------------------------------------------------------ outputs
+
+fs::path scripts_dir() {
+  if (const char* env = std::getenv("TEXSIM_SCRIPTS_DIR")) return env;
+  return TEXSIM_SCRIPTS_DIR;
+}
+
+void run_plots(const std::string& out_dir) {
+  const std::string script = (scripts_dir() / "explore_plots.py").string();
+  const std::vector<std::string> argv = {"/usr/bin/python3", script, out_dir};
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  std::fflush(stdout);
+  pid_t pid = 0;
+  int status = 0;
+  if (posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0 || waitpid(pid, &status, 0) != pid ||
+      !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw Error("explore: the plots failed (" + script + ", with /usr/bin/python3 and matplotlib); " + out_dir +
+                "/explore.csv is complete");
+}
+
+// Writes OUT/explore.csv (all or nothing), then the plots and index.html.
+void write_results(const std::string& out_dir, const std::string& rows, const std::vector<std::string>& inputs,
+                   bool plots) {
+  OutputSet outputs;
+  for (const std::string& in : inputs) outputs.add_input(in, "--texture/--queries");
+  outputs.make_directory(out_dir, "--out");
+  OutputFile& csv = outputs.declare((fs::path(out_dir) / "explore.csv").string(), "--out");
+  std::FILE* f = csv.open();
+  std::fputs(kCsvHeader, f);
+  std::fputs("\n", f);
+  std::fputs(rows.c_str(), f);
+  csv.close();
+  outputs.commit();
+  if (plots) run_plots(out_dir);
+}
+
+size_t count_lines(const std::string& text) {
+  size_t n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+// --collect DIR: the row files of an --emit-jobs sweep, in job order, into DIR/explore.csv.
+int collect(const ExploreArgs& a) {
+  const fs::path points = fs::path(a.collect_dir) / "points";
+  const fs::path expected_path = points / "jobs";
+  std::error_code ec;
+  if (!fs::is_regular_file(expected_path, ec))
+    throw Error("--collect: " + expected_path.string() + " does not exist (write the jobs with --emit-jobs --out " +
+                a.collect_dir + " first)");
+  const std::string count_text = last_line(read_file(expected_path));
+  const uint32_t count = parse_bounded(count_text, "--collect: " + expected_path.string() + ": job count", 1, 1u << 30);
+  std::string rows;
+  size_t missing = 0;
+  std::string first_missing;
+  for (uint32_t j = 0; j < count; ++j) {
+    char name[32];
+    std::snprintf(name, sizeof name, "job%06u.csv", j + 1);
+    const fs::path p = points / name;
+    if (!fs::is_regular_file(p, ec)) {
+      if (!missing++) first_missing = p.string();
+      continue;
+    }
+    const std::string text = read_file(p);
+    const size_t nl = text.find('\n');
+    if (text.substr(0, nl) != kCsvHeader)
+      throw Error("--collect: " + p.string() + " line 1 is not the header of texsim explore's rows");
+    if (text.back() != '\n') throw Error("--collect: " + p.string() + " ends in the middle of a line");
+    rows += text.substr(nl + 1);
+  }
+  if (missing)
+    throw Error("--collect: " + std::to_string(missing) + " of " + std::to_string(count) +
+                " jobs have no rows yet (first: " + first_missing + "); run their command lines first");
+  write_results(a.collect_dir, rows, {}, a.plots);
+  std::printf("texsim explore: collected %zu points of %u jobs into %s/explore.csv%s\n", count_lines(rows), count,
+              a.collect_dir.c_str(), a.plots ? (", index in " + a.collect_dir + "/index.html").c_str() : "");
+  return 0;
+}
+
+// --emit-jobs FILE: one command line per job, each writing OUT/points/jobNNNNNN.csv.
+int emit_jobs(const Sweep& s, const std::string& self) {
+  const std::vector<Job> jobs = jobs_of(s);
+  OutputSet outputs;
+  outputs.add_input(s.args.texture, "--texture");
+  if (s.trace) outputs.add_input(s.args.queries, "--queries");
+  const fs::path points = fs::path(s.args.out_dir) / "points";
+  outputs.make_directory(points.string(), "--out");
+  OutputFile& file = outputs.declare(s.args.emit_jobs_path, "--emit-jobs");
+  OutputFile& count = outputs.declare((points / "jobs").string(), "--out");
+  std::FILE* f = file.open();
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    char name[32];
+    std::snprintf(name, sizeof name, "job%06zu.csv", j + 1);
+    std::string line;
+    for (const std::string& w : job_command(s, jobs[j], self, fs::absolute(points / name).string()))
+      line += (line.empty() ? "" : " ") + shell_quote(w);
+    std::fprintf(f, "%s\n", line.c_str());
+  }
+  file.close();
+  std::fprintf(count.open(), "%zu\n", jobs.size());
+  count.close();
+  outputs.commit();
+  std::printf("texsim explore: %zu points in %zu jobs -> %s (one command line each, e.g. `parallel < %s`); then "
+              "texsim explore --collect %s\n",
+              s.points.size(), jobs.size(), s.args.emit_jobs_path.c_str(), s.args.emit_jobs_path.c_str(),
+              s.args.out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int run_explore(const ExploreArgs& a, const std::string& self) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!a.collect_dir.empty()) return collect(a);
+  if (!a.rows_path.empty() && !a.emit_jobs_path.empty()) throw Error("explore: --rows and --emit-jobs exclude each other");
+  Sweep s = parse_sweep(a);
+  // Check the outputs before the work.
+  std::optional<OutputSet> row_outputs;
+  OutputFile* rows_file = nullptr;
+  if (!a.rows_path.empty()) {
+    row_outputs.emplace();
+    row_outputs->add_input(a.texture, "--texture");
+    if (s.trace) row_outputs->add_input(a.queries, "--queries");
+    rows_file = &row_outputs->declare(a.rows_path, "--rows");
+  }
+  load_workloads(s);
+  expand_points(s);
+  if (!a.emit_jobs_path.empty()) return emit_jobs(s, self);
+
+  std::map<std::string, size_t> model_only;  // why the RTL did not time a point -> points
+  for (const Point& p : s.points)
+    if (const std::string why = rtl_unavailable(s, p); !why.empty()) ++model_only[why];
+
+  const bool progress = rows_file == nullptr && isatty(STDERR_FILENO);
+  std::string rows;
+  if (a.jobs > 1 && rows_file == nullptr) {
+    rows = run_jobs(s, self, a.jobs, progress);
+  } else {
+    std::map<ModelKey, CacheCounters> memo;
+    for (size_t i = 0; i < s.points.size(); ++i) {
+      rows += csv_row(s, measure(s, s.points[i], memo));
+      if (progress) std::fprintf(stderr, "\rexplore: %zu/%zu points", i + 1, s.points.size());
+    }
+    if (progress) std::fprintf(stderr, "\r%40s\r", "");
+  }
+  if (rows_file) {
+    std::FILE* f = rows_file->open();
+    std::fprintf(f, "%s\n%s", kCsvHeader, rows.c_str());
+    rows_file->close();
+    row_outputs->commit();
+    return 0;
+  }
+  std::vector<std::string> inputs = {a.texture};
+  if (s.trace) inputs.push_back(a.queries);
+  write_results(a.out_dir, rows, inputs, a.plots);
+  size_t timed = s.points.size();
+  for (const auto& [why, n] : model_only) {
+    timed -= n;
+    std::printf("  model only (no samples/clock): %zu points: %s\n", n, why.c_str());
+  }
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("texsim explore: %zu points (%zu through the RTL), %zu workloads, %.1f s -> %s/explore.csv%s\n",
+              s.points.size(), timed, s.workloads.size(), secs, a.out_dir.c_str(),
+              a.plots ? (", index in " + a.out_dir + "/index.html").c_str() : "");
+  return 0;
+}
+
+}  // namespace tex
