@@ -244,7 +244,7 @@ TEST_F(TexsimCli, EveryCommandHasHelp) {
     }
     if (in_list && line.size() > 2 && line[0] == ' ') commands.push_back(line.substr(2, line.find(' ', 2) - 2));
   }
-  for (const char* required : {"sample", "mip", "render"})
+  for (const char* required : {"sample", "mip", "render", "figures", "explore"})
     EXPECT_NE(std::find(commands.begin(), commands.end(), required), commands.end()) << required;
   for (const auto& c : commands) {
     const Result r = run(c + " --help");
@@ -400,6 +400,13 @@ TEST_F(TexsimCli, CachedMissTraceIsTheSameForModelAndRtl) {
   EXPECT_EQ(text("m.csv"), text("r.csv"));
   const std::string misses = text("m.txt");
   EXPECT_EQ(misses, text("r.txt"));
+  // The SystemC engines read the same lines through their TLM-2.0 memory socket.
+  for (const char* e : {"systemc", "systemc-model"}) {
+    const Result sc = run(common + " -e " + e + " --mem-latency 30 -o s.csv --miss-trace s.txt");
+    ASSERT_EQ(sc.exit_code, 0) << e << ": " << sc.err;
+    EXPECT_EQ(text("s.csv"), text("m.csv")) << e;
+    EXPECT_EQ(text("s.txt"), misses) << e;
+  }
   ASSERT_GE(misses.size(), 11u);
   EXPECT_EQ(misses.substr(0, 2), "0x");
   EXPECT_NE(text("rs.json").find("\"fifo_max_occupancy\""), std::string::npos);
