@@ -1,5 +1,6 @@
 // LOD stage 1b (docs/numerics.md): fixed_log2_q10 and lod_from_derivatives against log2 in
-// long double. The measured maxima are printed and recorded in docs/accuracy.md.
+// long double; stage 1c, the LOD unit tex_lod. The measured maxima are printed and recorded in
+// docs/accuracy.md and docs/numerics.md.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -140,4 +141,68 @@ TEST(Lod, RealToFixedConversion) {
   EXPECT_EQ(x, kLodMin);
   EXPECT_FALSE(to_lod_fixed(128.0, x));
   EXPECT_FALSE(to_lod_fixed(-NAN, x));
+}
+
+// ------------------------------------------------------------------ tex_lod (the LOD unit)
+
+// Hand-worked values: rho = 1024 texels is lambda 10 exactly; the diagonal (0.5, 0.5) of a 1024^2
+// texture is rho = 512 sqrt 2, lambda 9.5; signs do not matter; the larger axis wins.
+TEST(TexLod, HandWorkedValues) {
+  constexpr int32_t one = 1 << 24, half = 1 << 23;
+  EXPECT_EQ(tex_lod({one, 0, 0, 0}, 10, 10), 10 * 256);
+  EXPECT_EQ(tex_lod({-one, 0, 0, 0}, 10, 10), 10 * 256);
+  EXPECT_EQ(tex_lod({0, 0, 0, -one}, 3, 10), 10 * 256);  // dv/dy: the height counts
+  EXPECT_EQ(tex_lod({half, half, 0, 0}, 10, 10), 9 * 256 + 128);
+  EXPECT_EQ(tex_lod({0, 0, half, -half}, 10, 10), 9 * 256 + 128);
+  EXPECT_EQ(tex_lod({one, 0, 0, half}, 10, 10), 10 * 256);  // max over the axes
+  EXPECT_EQ(tex_lod({1 << 8, 0, 0, 0}, 0, 0), -16 * 256);   // 1/65536 of a 1-texel texture
+  EXPECT_EQ(tex_lod({0, 0, 0, 0}, 13, 13), kLodMin);        // no footprint: magnify past any clamp
+  // The largest derivative of the format at 8192 texels: 2^7 * 2^13 texels, lambda 20, past every
+  // level (the filter clamps it to the last one; never an error).
+  EXPECT_EQ(tex_lod({INT32_MAX, INT32_MIN + 1, 0, 0}, 13, 13), 20 * 256 + 128);
+}
+
+// 10 M random derivative sets over the range (1/65536 to 1 texture width per pixel,
+// textures 1 to 8192 texels a side, any direction, anisotropy up to 1:256): |lambda - log2 rho|
+// against the exact value from the same Q8.24 inputs. Bound: 1/512 rounding to Q8.8, + the
+// interpolated table's error (2^-10 / (8 ln 2) in log2 p, halved), + the block normalization's
+// truncation (< 2^-15 of rho^2): < 0.0022 levels; the assertion is the 1/64.
+TEST(TexLod, ErrorOverTenMillionDerivativeSets) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> expo(-16.0, 0.0), angle(0, 2 * M_PI), aniso(0, 8.0);
+  double max_err = 0, sum_err = 0, max_err_real = 0;
+  const int n = 10'000'000;
+  for (int i = 0; i < n; ++i) {
+    const int lw = int(rng() % 14), lh = int(rng() % 14);
+    const double rx = std::exp2(expo(rng)), ry = rx * std::exp2(-aniso(rng));
+    const double ax = angle(rng), ay = angle(rng);
+    double dn[4] = {rx * std::cos(ax), rx * std::sin(ax), ry * std::cos(ay), ry * std::sin(ay)};
+    if (rng() & 1) {
+      std::swap(dn[0], dn[2]);
+      std::swap(dn[1], dn[3]);
+    }
+    LodDerivatives d;
+    int32_t* q[4] = {&d.dudx, &d.dvdx, &d.dudy, &d.dvdy};
+    for (int k = 0; k < 4; ++k) ASSERT_TRUE(to_coord_fixed(dn[k], *q[k]));
+    const long double W = std::ldexp(1.0L, lw - 24), H = std::ldexp(1.0L, lh - 24);
+    auto sq = [](long double x) { return x * x; };
+    const long double px = sq(d.dudx * W) + sq(d.dvdx * H), py = sq(d.dudy * W) + sq(d.dvdy * H);
+    const double exact = double(0.5L * std::log2(std::max(px, py)));
+    const double lambda = tex_lod(d, lw, lh) / 256.0;
+    const double err = std::fabs(lambda - exact);
+    max_err = std::max(max_err, err);
+    sum_err += err;
+    const double real = 0.5 * std::log2(std::max(sq(dn[0] * std::ldexp(1.0, lw)) + sq(dn[1] * std::ldexp(1.0, lh)),
+                                                 sq(dn[2] * std::ldexp(1.0, lw)) + sq(dn[3] * std::ldexp(1.0, lh))));
+    // Against the derivatives before Q8.24: the format's step is 2^-24 of the texture, 2^-11 texels
+    // at 8192, so deep in magnification (lambda < -4) a rounded minor component can dominate; from
+    // -4 up the format costs less than the unit.
+    if (real >= -4) max_err_real = std::max(max_err_real, std::fabs(lambda - real));
+    if (err > 1.0 / 64) FAIL() << "lambda " << lambda << " exact " << exact << " (set " << i << ")";
+  }
+  std::printf("tex_lod: %d derivative sets: max |lambda - log2 rho| = %.5f levels (1/%.0f), mean %.5f; against the "
+              "derivatives before Q8.24, lambda >= -4: max %.5f\n",
+              n, max_err, 1.0 / max_err, sum_err / n, max_err_real);
+  EXPECT_LE(max_err, 1.0 / 64);
+  EXPECT_LE(max_err_real, 1.0 / 64);
 }
