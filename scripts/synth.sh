@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Synthesis of tex_unit and tex_unit_cached with Yosys (and nextpnr for iCE40).
-#   scripts/synth.sh latch [BUILD]  generic `synth` of a small tex_unit; fails on any latch;
+#   scripts/synth.sh latch [BUILD]  generic `synth` of a small tex_unit and of tex_lambda; fails on any latch;
 #                                   prints the cell counts (run by `make test`)
 #   scripts/synth.sh [BUILD]        the latch check; generic `synth` of a small tex_unit_cached
 #                                   (no latches, cell counts); then synth_ice40 + nextpnr-ice40
@@ -40,6 +40,16 @@ fi
 cells=$(awk '/Number of cells:/{n=$4} END{print n}' "$out/generic_stat.txt")
 echo "synth: generic synth of MAX_LOG2 $1x$2 CW=$3: 0 latches, $cells cells:"
 awk '/^ +\$/{printf "  %s %s\n", $1, $2}' "$out/generic_stat.txt" | sort -k2 -n -r | head -12
+# The LOD unit on its own (not yet in tex_unit): no latches either.
+log="$out/generic_tex_lambda.log"
+if ! yosys -p "read_verilog -sv rtl/tex_pkg.sv rtl/tex_lambda.sv; synth -top tex_lambda -flatten;
+               tee -o $out/lambda_stat.txt stat;
+               select -assert-none t:\$dlatch t:\$adlatch t:\$dlatchsr t:\$_DLATCH* t:\$_DLATCHSR*" > "$log" 2>&1; then
+  grep -i "latch\|error" "$log" | head -20 >&2
+  echo "synth: FAILED generic synth / latch check of tex_lambda, see $log" >&2
+  exit 1
+fi
+echo "synth: generic synth of tex_lambda (the LOD unit): 0 latches, $(awk '/Number of cells:/{n=$4} END{print n}' "$out/lambda_stat.txt") cells"
 [ "$mode" = latch ] && exit 0
 
 # ---- iCE40 HX8K: synth_ice40 + nextpnr of tex_ice40_top (tex_unit behind a serial pin wrapper,
