@@ -188,8 +188,8 @@ int make_figures(const FiguresOptions& o) {
       md << "Vertex space: the distance |P - P_ref| between each sampled vertex position (X, Y, Z) and the "
          << "reference's (the box-filtered 16-bit map at the vertex's (u, v) and footprint), in level-0 texels "
          << "(1 texel = 1/" << texels_per_unit << " of the map's full scale); RMS and max over all vertices ("
-         << vertex_counts << "), the interior ones, and those on a face's border (where the pyramid's clamp-to-edge "
-         << "pulls the vertex 2^(lambda-1) texels inwards; docs/scenes.md).\n\n"
+         << vertex_counts << "), the interior ones, and those on a face's border (vertices at cell centres: "
+         << "docs/scenes.md).\n\n"
          << "| variant | RMS all | max all | RMS interior | max interior | RMS border | max border |\n"
          << "|---|---|---|---|---|---|---|\n"
          << vertex_md.str() << "\n";

@@ -208,7 +208,7 @@ FlickerStats flicker(const std::vector<RgbaImage>& frames, const std::vector<Rgb
 
 namespace {
 
-// A mesh frame's faces: consecutive blocks of (q+1)^2 vertices, q = 1 / (the block's u step).
+// A mesh frame's faces: consecutive blocks of n^2 vertices, n = q + 1 = 1 / (the block's u step).
 struct FaceBlock {
   size_t first;
   int quads;
@@ -216,8 +216,8 @@ struct FaceBlock {
 std::vector<FaceBlock> face_blocks(const SceneFrame& frame) {
   std::vector<FaceBlock> faces;
   for (size_t i = 0; i < frame.queries.size();) {
-    const int q = int(std::lround(1 / frame.queries[i].deriv.dudx));
-    if (q < 1) throw Error("mesh: a face's vertex step is not 1/q");
+    const int q = int(std::lround(1 / frame.queries[i].deriv.dudx)) - 1;
+    if (q < 1) throw Error("mesh: a face's vertex step is not 1/n");
     faces.push_back({i, q});
     i += size_t(q + 1) * (q + 1);
     if (i > frame.queries.size()) throw Error("mesh: the vertices do not form whole faces");

@@ -210,10 +210,14 @@ SceneFrame mesh(const SceneOptions& o, int map_bits) {
     for (int j = 0; j <= q; ++j)
       for (int i = 0; i <= q; ++i) {
         Query query;
-        query.u = double(i) / q;
-        query.v = double(j) / q;
+        // n = q + 1 vertices per side at the centres of n equal cells of the map: at lambda =
+        // log2(W / n) they are the texel centres of that level, where the pyramid holds its
+        // box-filtered samples (and an edge vertex is the edge texel's centre, not the map's edge).
+        const int n = q + 1;
+        query.u = (i + 0.5) / n;
+        query.v = (j + 0.5) / n;
         query.explicit_lod = false;
-        query.deriv = {1.0 / q, 0, 0, 1.0 / q};
+        query.deriv = {1.0 / n, 0, 0, 1.0 / n};
         f.pixel.push_back(int(f.queries.size()));
         f.queries.push_back(query);
       }

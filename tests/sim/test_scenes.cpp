@@ -236,8 +236,8 @@ TEST(SceneReference, VertexErrorsAreDistancesInTexels) {
   for (int k = 0; k < 9; ++k) {
     Query q;
     q.explicit_lod = false;
-    q.u = 0.5 * (k % 3), q.v = 0.5 * (k / 3);
-    q.deriv = {0.5, 0, 0, 0.5};
+    q.u = (k % 3 + 0.5) / 3, q.v = (k / 3 + 0.5) / 3;  // the scene's grid: n = 3 vertices at cell centres
+    q.deriv = {1.0 / 3, 0, 0, 1.0 / 3};
     f.queries.push_back(q);
   }
   const std::vector<Rgba> reference(9, Rgba{0.5, 0.5, 0.1, 1});
@@ -264,8 +264,8 @@ TEST(SceneReference, MeshJitterIsTheSurfaceMotionTheReferenceLacks) {
   for (int k = 0; k < 4; ++k) {
     Query q;
     q.explicit_lod = false;
-    q.u = k % 2, q.v = k / 2;
-    q.deriv = {1.0, 0, 0, 1.0};  // q = 1: a 2 x 2 vertex grid
+    q.u = (k % 2 + 0.5) / 2, q.v = (k / 2 + 0.5) / 2;
+    q.deriv = {0.5, 0, 0, 0.5};  // q = 1: a 2 x 2 vertex grid (n = 2)
     f.queries.push_back(q);
   }
   f.draw = [](const std::vector<Rgba>&) { return RgbaImage{}; };
@@ -279,14 +279,13 @@ TEST(SceneReference, MeshJitterIsTheSurfaceMotionTheReferenceLacks) {
   EXPECT_NEAR(s.mean_excess, 0.0, 1e-12);
 }
 
-// Section 5's point, in vertex space at the size `make figures` uses for stills: on the interior
-// vertices, sampling the X, Y, Z pyramid with trilinear interpolation at the mesh's own density is
-// closer to the ideal prefiltered surface than point sampling level 0, with the 8-bit map too (whose
-// shaded picture scores below point's). Measured, not assumed: over ALL vertices trilinear is worse,
-// because on a face's border the pyramid's clamp-to-edge pulls the vertex 2^(lambda-1) texels inwards
-// (checked below); and on faces coarser than this size's smallest (lambda > 6) trilinear's kernel,
-// about 1.7 times as wide as the reference's box, loses the interior too (docs/scenes.md).
-TEST(SceneReference, MeshTrilinearInteriorVerticesAreCloserThanPoint) {
+// Section 5's point, in vertex space at the size `make figures` uses for stills: sampling the X, Y, Z
+// pyramid with trilinear interpolation at the mesh's own density is closer to the ideal prefiltered
+// surface than point sampling level 0, over all vertices, the border ones and the interior ones, with
+// the 8-bit map too (whose shaded picture scores below point's). The vertices sit at the centres of
+// n equal cells (docs/scenes.md): at lambda = log2(W / n) those are the level's texel centres, so an
+// edge vertex reads the edge texel where the pyramid put it instead of clamping past it.
+TEST(SceneReference, MeshTrilinearVerticesAreCloserThanPoint) {
   const SceneOptions o = small(320, 240);
   const std::vector<Rgba> reference = reference_query_values("mesh", o);
   auto errors = [&](const char* scene, const char* filter) {
@@ -295,19 +294,20 @@ TEST(SceneReference, MeshTrilinearInteriorVerticesAreCloserThanPoint) {
   };
   const VertexErrorStats point = errors("mesh", "point"), tri = errors("mesh", "trilinear");
   const VertexErrorStats point16 = errors("mesh16", "point"), tri16 = errors("mesh16", "trilinear");
-  EXPECT_LT(tri.interior.rms_texels, point.interior.rms_texels)
-      << "trilinear " << tri.interior.rms_texels << " vs point " << point.interior.rms_texels;
-  EXPECT_LT(tri16.interior.rms_texels, point16.interior.rms_texels)
-      << "trilinear " << tri16.interior.rms_texels << " vs point " << point16.interior.rms_texels;
-  // The border bias: trilinear's border vertices are off by far more than point sampling's.
-  EXPECT_GT(tri16.border.rms_texels, 2 * point16.border.rms_texels)
-      << tri16.border.rms_texels << " vs " << point16.border.rms_texels;
+  for (const auto& [t, p] : {std::pair{tri, point}, {tri16, point16}}) {
+    EXPECT_LT(t.all.rms_texels, p.all.rms_texels) << "trilinear " << t.all.rms_texels << " vs point " << p.all.rms_texels;
+    EXPECT_LT(t.interior.rms_texels, p.interior.rms_texels)
+        << "trilinear " << t.interior.rms_texels << " vs point " << p.interior.rms_texels;
+    // No border bias: trilinear's border vertices are closer than point sampling's, too.
+    EXPECT_LT(t.border.rms_texels, p.border.rms_texels)
+        << "trilinear " << t.border.rms_texels << " vs point " << p.border.rms_texels;
+  }
 }
 
-// The mesh animation in vertex space: away from the border vertices, the trilinear surface moves
-// less beyond the reference's own change than the point-sampled one (popping as grids change).
-TEST(SceneReference, MeshTrilinearInteriorJittersLessThanPoint) {
-  const int frames = 12;
+// The mesh animation in vertex space: the trilinear surface moves less beyond the reference's own
+// change than the point-sampled one (popping as grids change), over all points and the interior.
+TEST(SceneReference, MeshTrilinearJittersLessThanPoint) {
+  const int frames = 24;  // the animation of `make figures`
   std::vector<SceneFrame> layout;
   std::vector<std::vector<Rgba>> point, tri, reference;
   for (int f = 0; f < frames; ++f) {
@@ -323,5 +323,6 @@ TEST(SceneReference, MeshTrilinearInteriorJittersLessThanPoint) {
   ASSERT_EQ(p.excess.size(), size_t(frames - 1));
   EXPECT_GT(p.mean_reference_change, 0);  // the grids do change resolution in these frames
   EXPECT_LT(t.mean_interior_excess, p.mean_interior_excess) << t.mean_interior_excess << " vs " << p.mean_interior_excess;
+  EXPECT_LT(t.mean_excess, p.mean_excess) << t.mean_excess << " vs " << p.mean_excess;
   EXPECT_EQ(mesh_jitter(layout, reference, reference, 256).mean_excess, 0.0);
 }
