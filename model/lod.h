@@ -29,7 +29,5 @@ int32_t tex_lambda(const LodDerivatives& d, int log2_w, int log2_h);
 // Real derivatives to Q8.24, rounded to nearest; beyond +-128 texture widths per pixel they
 // saturate (lambda is then past every level). False when one is not finite.
 bool to_lod_derivatives(const Derivatives& d, LodDerivatives& out);
-// log2(p) in Q.16 for p > 0 by the leading one and the interpolated table (the unit's log stage).
-int64_t tex_lambda_log2_q16(uint64_t p);
 
 }  // namespace tex

@@ -22,6 +22,18 @@ bool parse_block_order(const std::string& name, BlockOrder& out) {
 }
 std::string block_order_name(BlockOrder o) { return o == BlockOrder::Morton ? "morton" : "row-major"; }
 
+bool parse_block_size(const std::string& text, LayoutParams& out) {
+  const auto x = text.find('x');
+  auto side = [](const std::string& t) { return t == "2" ? 2 : t == "4" ? 4 : t == "8" ? 8 : 0; };
+  const int w = x == std::string::npos ? 0 : side(text.substr(0, x));
+  const int h = x == std::string::npos ? 0 : side(text.substr(x + 1));
+  if (!w || !h) return false;
+  out.block_w = w;
+  out.block_h = h;
+  return true;
+}
+std::string block_size_name(const LayoutParams& p) { return std::to_string(p.block_w) + "x" + std::to_string(p.block_h); }
+
 MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params)
     : params_(params), log2_w0_(log2_w0), log2_h0_(log2_h0), channel_bits_(channel_bits) {
   for (const int s : {log2_w0, log2_h0})

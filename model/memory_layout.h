@@ -20,6 +20,9 @@ struct LayoutParams {
   BlockOrder order = BlockOrder::RowMajor;
   uint32_t base = 0;  // byte address of level 0, a multiple of the line size
 };
+// "WxH" with W and H each 2, 4 or 8 into block_w, block_h; false for anything else.
+bool parse_block_size(const std::string& text, LayoutParams& out);
+std::string block_size_name(const LayoutParams& p);  // "4x4"
 
 // Morton code: a bit i at bit 2i, b bit i at bit 2i + 1.
 inline uint64_t interleave_bits(uint32_t a, uint32_t b) {

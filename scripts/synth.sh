@@ -28,49 +28,47 @@ read_cfg() {  # $1 $2 $3 [top] -> yosys commands that read and parameterize the 
 }
 
 # ---- latch check: generic synth, no latches allowed
+# generic_check NAME TOP "YOSYS READ COMMANDS" LABEL: synth -flatten, fail on any latch, print cells.
+generic_check() {
+  local log="$out/generic_$1.log" stat="$out/generic_$1_stat.txt"
+  if ! yosys -p "$3; synth -top $2 -flatten; tee -o $stat stat;
+                 select -assert-none t:\$dlatch t:\$adlatch t:\$dlatchsr t:\$_DLATCH* t:\$_DLATCHSR*" \
+       > "$log" 2>&1; then
+    grep -i "latch\|error" "$log" | head -20 >&2
+    echo "synth: FAILED generic synth / latch check of $4, see $log" >&2
+    exit 1
+  fi
+  echo "synth: generic synth of $4: 0 latches, $(awk '/Number of cells:/{n=$4} END{print n}' "$stat") cells"
+}
 set -- 4 4 8
-log="$out/generic_w$1_h$2_c$3.log"
-if ! yosys -p "$(read_cfg "$@"); synth -top tex_unit -flatten; tee -o $out/generic_stat.txt stat;
-               select -assert-none t:\$dlatch t:\$adlatch t:\$dlatchsr t:\$_DLATCH* t:\$_DLATCHSR*" \
-     > "$log" 2>&1; then
-  grep -i "latch\|error" "$log" | head -20 >&2
-  echo "synth: FAILED generic synth / latch check (MAX $1x$2 CW=$3), see $log" >&2
-  exit 1
-fi
-cells=$(awk '/Number of cells:/{n=$4} END{print n}' "$out/generic_stat.txt")
-echo "synth: generic synth of MAX_LOG2 $1x$2 CW=$3: 0 latches, $cells cells:"
-awk '/^ +\$/{printf "  %s %s\n", $1, $2}' "$out/generic_stat.txt" | sort -k2 -n -r | head -12
+generic_check "w$1_h$2_c$3" tex_unit "$(read_cfg "$@")" "tex_unit MAX_LOG2 $1x$2 CW=$3"
+awk '/^ +\$/{printf "  %s %s\n", $1, $2}' "$out/generic_w$1_h$2_c$3_stat.txt" | sort -k2 -n -r | head -12
 # The LOD unit on its own (not yet in tex_unit): no latches either.
-log="$out/generic_tex_lambda.log"
-if ! yosys -p "read_verilog -sv rtl/tex_pkg.sv rtl/tex_lambda.sv; synth -top tex_lambda -flatten;
-               tee -o $out/lambda_stat.txt stat;
-               select -assert-none t:\$dlatch t:\$adlatch t:\$dlatchsr t:\$_DLATCH* t:\$_DLATCHSR*" > "$log" 2>&1; then
-  grep -i "latch\|error" "$log" | head -20 >&2
-  echo "synth: FAILED generic synth / latch check of tex_lambda, see $log" >&2
-  exit 1
-fi
-echo "synth: generic synth of tex_lambda (the LOD unit): 0 latches, $(awk '/Number of cells:/{n=$4} END{print n}' "$out/lambda_stat.txt") cells"
+generic_check tex_lambda tex_lambda "read_verilog -sv rtl/tex_pkg.sv rtl/tex_lambda.sv" "tex_lambda (the LOD unit)"
 [ "$mode" = latch ] && exit 0
 
-# ---- iCE40 HX8K: synth_ice40 + nextpnr of tex_ice40_top (tex_unit behind a serial pin wrapper,
-# as its ~240 ports exceed the package). 16x16 texels, CW=8 first; smaller until one fits.
-fit_cfg=""
-ice40_configs=("4 4 8" "4 4 4" "3 3 4" "3 3 2")
-for cfg in "${ice40_configs[@]}"; do
-  set -- $cfg
-  tag="w$1_h$2_c$3"
-  yosys -p "$(read_cfg "$@" tex_ice40_top); synth_ice40 -top tex_ice40_top -json $out/ice40_$tag.json; tee -o $out/ice40_$tag.stat stat" \
-    > "$out/ice40_$tag.log" 2>&1
+# ---- iCE40 HX8K
+# ice40_fit TAG TOP "YOSYS READ COMMANDS" LABEL: synth_ice40, then nextpnr-ice40 --hx8k when the
+# LUTs fit; prints the result; returns 0 when it fits (exits on a tool failure).
+ice40_fit() {
+  local tag=$1 top=$2 label=$4
+  # (errexit is off in a function called from `if`: every failure is checked here.)
+  if ! yosys -p "$3; synth_ice40 -top $top -json $out/ice40_$tag.json; tee -o $out/ice40_$tag.stat stat" \
+       > "$out/ice40_$tag.log" 2>&1; then
+    tail -20 "$out/ice40_$tag.log" >&2
+    echo "synth: FAILED synth_ice40 of $label, see $out/ice40_$tag.log" >&2
+    exit 1
+  fi
+  local luts brams ffs
   luts=$(awk '/SB_LUT4/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
   brams=$(awk '/SB_RAM40_4K/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
   ffs=$(awk '/SB_DFF/{n+=$2} END{print n+0}' "$out/ice40_$tag.stat")
-  echo "synth: synth_ice40 MAX_LOG2 $1x$2 CW=$3: $luts SB_LUT4, $ffs flip-flops, $brams SB_RAM40_4K"
+  echo "synth: synth_ice40 $label: $luts SB_LUT4, $ffs flip-flops, $brams SB_RAM40_4K"
   if [ "$luts" -gt "$hx8k_luts" ]; then
     echo "synth:   does not fit the HX8K ($luts > $hx8k_luts LUTs): skipping place and route"
-    continue
+    return 1
   fi
-  fit_cfg=$cfg
-  pnr_log="$out/nextpnr_$tag.log"
+  local pnr_log="$out/nextpnr_$tag.log" rc fmax util_lc util_ram
   set +e
   nextpnr-ice40 --hx8k --package ct256 --json "$out/ice40_$tag.json" --asc "$out/ice40_$tag.asc" \
     --freq "$freq" --seed 1 > "$pnr_log" 2>&1
@@ -81,17 +79,27 @@ for cfg in "${ice40_configs[@]}"; do
   util_ram=$(grep -o "ICESTORM_RAM: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
   if grep -q "Unable to place\|Unable to find a placement\|ICESTORM_LC: *[0-9]*/ *[0-9]* *1[0-9][0-9]%" "$pnr_log"; then
     echo "synth:   nextpnr: does not fit the HX8K ($util_lc)"
-    fit_cfg=""
-    continue
+    return 1
   fi
   if [ -z "$fmax" ]; then
     tail -20 "$pnr_log" >&2
-    echo "synth: FAILED nextpnr-ice40 (exit $rc), see $pnr_log" >&2
+    echo "synth: FAILED nextpnr-ice40 for $label (exit $rc), see $pnr_log" >&2
     exit 1
   fi
   [ $rc -ne 0 ] && echo "synth:   (nextpnr exit $rc: target --freq $freq MHz missed)"
-  echo "synth: SUMMARY nextpnr-ice40 --hx8k ct256, MAX_LOG2 $1x$2 CW=$3: Fmax $fmax (target $freq MHz), $util_lc, $util_ram"
-  break
+  echo "synth: SUMMARY nextpnr-ice40 --hx8k ct256, $label: Fmax $fmax (target $freq MHz), $util_lc, $util_ram"
+}
+
+# tex_ice40_top: tex_unit behind a serial pin wrapper (its ~240 ports exceed the package).
+# 16x16 texels, CW=8 first; smaller until one fits.
+fit_cfg=""
+ice40_configs=("4 4 8" "4 4 4" "3 3 4" "3 3 2")
+for cfg in "${ice40_configs[@]}"; do
+  set -- $cfg
+  if ice40_fit "w$1_h$2_c$3" tex_ice40_top "$(read_cfg "$@" tex_ice40_top)" "MAX_LOG2 $1x$2 CW=$3"; then
+    fit_cfg=$cfg
+    break
+  fi
 done
 [ -n "$fit_cfg" ] || { echo "synth: FAILED: no tex_unit configuration fits the HX8K" >&2; exit 1; }
 
@@ -102,53 +110,17 @@ read_cached() {  # LOG2 CW LINES FIFO MISS MEM_W -> yosys commands
         hierarchy -top tex_ice40_cached_top"
 }
 set -- 4 8 16 16 16 32
-log="$out/generic_cached.log"
-if ! yosys -p "$(read_cached "$@"); synth -top tex_ice40_cached_top -flatten; tee -o $out/generic_cached_stat.txt stat;
-               select -assert-none t:\$dlatch t:\$adlatch t:\$dlatchsr t:\$_DLATCH* t:\$_DLATCHSR*" \
-     > "$log" 2>&1; then
-  grep -i "latch\|error" "$log" | head -20 >&2
-  echo "synth: FAILED generic synth / latch check of tex_unit_cached ($*), see $log" >&2
-  exit 1
-fi
-cells=$(awk '/Number of cells:/{n=$4} END{print n}' "$out/generic_cached_stat.txt")
-echo "synth: generic synth of tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6: 0 latches, $cells cells"
+generic_check cached tex_ice40_cached_top "$(read_cached "$@")" \
+  "tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6"
 
 fit_cached=""
 cached_configs=("4 8 16 16 16 32" "3 2 16 2 16 16")  # 16x16 8-bit; 8x8 2-bit, FIFO 2: the smallest
 for cfg in "${cached_configs[@]}"; do
   set -- $cfg
-  tag="cached_l$1_c$2_n$3_f$4"
-  yosys -p "$(read_cached "$@"); synth_ice40 -top tex_ice40_cached_top -json $out/ice40_$tag.json;
-            tee -o $out/ice40_$tag.stat stat" > "$out/ice40_$tag.log" 2>&1
-  luts=$(awk '/SB_LUT4/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
-  brams=$(awk '/SB_RAM40_4K/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
-  ffs=$(awk '/SB_DFF/{n+=$2} END{print n+0}' "$out/ice40_$tag.stat")
-  echo "synth: synth_ice40 tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6: $luts SB_LUT4, $ffs flip-flops, $brams SB_RAM40_4K"
-  if [ "$luts" -gt "$hx8k_luts" ]; then
-    echo "synth:   does not fit the HX8K ($luts > $hx8k_luts LUTs): skipping place and route"
-    continue
+  if ice40_fit "cached_l$1_c$2_n$3_f$4" tex_ice40_cached_top "$(read_cached "$@")" \
+               "tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6"; then
+    fit_cached=$cfg
+    break
   fi
-  pnr_log="$out/nextpnr_$tag.log"
-  set +e
-  nextpnr-ice40 --hx8k --package ct256 --json "$out/ice40_$tag.json" --asc "$out/ice40_$tag.asc" \
-    --freq "$freq" --seed 1 > "$pnr_log" 2>&1
-  rc=$?
-  set -e
-  fmax=$(grep -o "Max frequency for clock '[^']*': [0-9.]* MHz" "$pnr_log" | tail -1 | grep -o "[0-9.]* MHz" || true)
-  util_lc=$(grep -o "ICESTORM_LC: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
-  util_ram=$(grep -o "ICESTORM_RAM: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
-  if grep -q "Unable to place\|Unable to find a placement\|ICESTORM_LC: *[0-9]*/ *[0-9]* *1[0-9][0-9]%" "$pnr_log"; then
-    echo "synth:   nextpnr: does not fit the HX8K ($util_lc)"
-    continue
-  fi
-  if [ -z "$fmax" ]; then
-    tail -20 "$pnr_log" >&2
-    echo "synth: FAILED nextpnr-ice40 for tex_unit_cached (exit $rc), see $pnr_log" >&2
-    exit 1
-  fi
-  [ $rc -ne 0 ] && echo "synth:   (nextpnr exit $rc: target --freq $freq MHz missed)"
-  echo "synth: SUMMARY nextpnr-ice40 --hx8k ct256, tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4: Fmax $fmax (target $freq MHz), $util_lc, $util_ram"
-  fit_cached=$cfg
-  break
 done
 [ -n "$fit_cached" ] || echo "synth: no tex_unit_cached configuration fits the HX8K (largest first: ${cached_configs[*]})"

@@ -34,13 +34,8 @@ uint64_t parse_unsigned(const std::string& text, const std::string& option) {
 
 // --block WxH: texels per block (= cache line), each side 2, 4 or 8.
 void parse_block(const std::string& text, LayoutParams& out) {
-  const auto x = text.find('x');
-  const uint64_t w = x == std::string::npos ? 0 : parse_unsigned(text.substr(0, x), "--block W");
-  const uint64_t h = x == std::string::npos ? 0 : parse_unsigned(text.substr(x + 1), "--block H");
-  if ((w != 2 && w != 4 && w != 8) || (h != 2 && h != 4 && h != 8))
+  if (!parse_block_size(text, out))
     throw Error("--block " + quote_clipped(text) + " is not WxH with W and H each 2, 4 or 8");
-  out.block_w = int(w);
-  out.block_h = int(h);
 }
 
 // Options shared by every command that samples a texture.

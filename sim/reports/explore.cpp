@@ -65,30 +65,11 @@ std::vector<uint32_t> parse_numbers(const std::string& text, const std::string& 
   return out;
 }
 
-struct Block {
-  int w = 4, h = 4;
-  std::string name() const { return std::to_string(w) + "x" + std::to_string(h); }
-};
-
-Block parse_block_shape(const std::string& text) {
-  const auto x = text.find('x');
-  Block b;
-  if (x != std::string::npos) {
-    const std::string w = text.substr(0, x), h = text.substr(x + 1);
-    b.w = w == "2" ? 2 : w == "4" ? 4 : w == "8" ? 8 : 0;
-    b.h = h == "2" ? 2 : h == "4" ? 4 : h == "8" ? 8 : 0;
-  }
-  if (x == std::string::npos || !b.w || !b.h)
-    throw Error("--block " + quote_clipped(text) + " is not WxH with W and H each 2, 4 or 8");
-  return b;
-}
-
 // One measured point.
 struct Point {
   size_t workload = 0;  // index into Sweep::workloads
   int cache_kib = 8, ways = 2;
-  Block block;
-  BlockOrder block_order = BlockOrder::RowMajor;
+  LayoutParams layout;  // block shape and order (base 0)
   uint32_t latency = 200, bandwidth = 16;
   uint32_t fifo = 0;  // 0 = the RTL configuration's FIFO_DEPTH ("max")
 };
@@ -108,7 +89,7 @@ struct Sweep {
   bool trace = false;
   std::vector<std::string> workload_names, order_names;
   std::vector<int> cache_kib, ways;
-  std::vector<Block> blocks;
+  std::vector<LayoutParams> blocks;  // shapes
   std::vector<BlockOrder> block_orders;
   std::vector<uint32_t> latencies, bandwidths, fifos;
   bool timing = true;
@@ -139,7 +120,11 @@ Sweep parse_sweep(const ExploreArgs& a) {
     if (w != "1" && w != "2" && w != "4") throw Error("--ways " + quote_clipped(w) + " is not 1, 2 or 4");
     s.ways.push_back(std::stoi(w));
   }
-  for (const std::string& b : split_list(a.blocks, "--block")) s.blocks.push_back(parse_block_shape(b));
+  for (const std::string& b : split_list(a.blocks, "--block")) {
+    LayoutParams l;
+    if (!parse_block_size(b, l)) throw Error("--block " + quote_clipped(b) + " is not WxH with W and H each 2, 4 or 8");
+    s.blocks.push_back(l);
+  }
   for (const std::string& o : split_list(a.block_orders, "--block-order")) {
     BlockOrder bo;
     if (!parse_block_order(o, bo)) throw Error("unknown --block-order " + quote_clipped(o) + " (row-major, morton)");
@@ -194,13 +179,6 @@ void load_workloads(Sweep& s) {
     }
 }
 
-LayoutParams layout_of(const Point& p) {
-  LayoutParams l;
-  l.block_w = p.block.w;
-  l.block_h = p.block.h;
-  l.order = p.block_order;
-  return l;
-}
 CacheParams cache_of(const Point& p) {
   CacheParams c;
   c.size_bytes = p.cache_kib * 1024;
@@ -217,20 +195,20 @@ void expand_points(Sweep& s) {
     const Pyramid& pyr = s.workloads[w].pyramid;
     for (int kib : s.cache_kib)
       for (int ways : s.ways)
-        for (const Block& block : s.blocks)
+        for (const LayoutParams& block : s.blocks)
           for (BlockOrder bo : s.block_orders) {
             Point p;
             p.workload = w;
             p.cache_kib = kib;
             p.ways = ways;
-            p.block = block;
-            p.block_order = bo;
+            p.layout = block;
+            p.layout.order = bo;
             try {
-              TextureCache(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, layout_of(p)),
+              TextureCache(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, p.layout),
                            cache_of(p), s.workloads[w].config, pyr.log2_w0(), pyr.log2_h0());
             } catch (const Error& e) {
               const std::string what = std::to_string(kib) + " KiB, " + std::to_string(ways) + " ways, " +
-                                       block.name() + " blocks";
+                                       block_size_name(block) + " blocks";
               if (said.insert(what).second) notes.push_back("left out " + what + ": " + e.what());
               continue;
             }
@@ -252,7 +230,7 @@ void expand_points(Sweep& s) {
 EngineOptions engine_options(const Point& p) {
   EngineOptions o;
   o.memory = Memory::Cached;
-  o.layout = layout_of(p);
+  o.layout = p.layout;
   o.cache = cache_of(p);
   o.mem_latency = p.latency;
   o.mem_bytes_per_clock = p.bandwidth;
@@ -266,9 +244,9 @@ std::string rtl_unavailable(const Sweep& s, const Point& p) {
   const Workload& w = s.workloads[p.workload];
   try {
     const rtl::RtlConfig& rc = rtl::smallest_config_for(w.pyramid.log2_w0(), w.pyramid.log2_h0(),
-                                                        w.pyramid.levels[0].channel_bits, Memory::Cached, p.block.w,
-                                                        p.block.h);
-    rtl::cache_pins(rc, layout_of(p), cache_of(p), p.fifo);
+                                                        w.pyramid.levels[0].channel_bits, Memory::Cached, p.layout.block_w,
+                                                        p.layout.block_h);
+    rtl::cache_pins(rc, p.layout, cache_of(p), p.fifo);
     if (p.bandwidth > uint32_t(rc.line_bytes())) throw Error("the bandwidth is more than a line per clock");
   } catch (const Error& e) {
     return e.what();
@@ -297,7 +275,7 @@ class NullSink final : public TexelSink {
 // Points of one cache geometry share the model's counters: it has no notion of time.
 using ModelKey = std::tuple<size_t, int, int, int, int, int>;
 ModelKey model_key(const Point& p) {
-  return {p.workload, p.cache_kib, p.ways, p.block.w, p.block.h, int(p.block_order)};
+  return {p.workload, p.cache_kib, p.ways, p.layout.block_w, p.layout.block_h, int(p.layout.order)};
 }
 
 Row measure(const Sweep& s, const Point& p, std::map<ModelKey, CacheCounters>& model_memo) {
@@ -321,7 +299,7 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, CacheCounters>& m
     auto [it, fresh] = model_memo.try_emplace(model_key(p));
     if (fresh) {
       const Pyramid& pyr = w.pyramid;
-      TextureCache cache(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, layout_of(p)),
+      TextureCache cache(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, p.layout),
                          cache_of(p), w.config, pyr.log2_w0(), pyr.log2_h0());
       for (const Request& q : w.requests) cache.lookup(q, nullptr);
       it->second = cache_counters(cache);
@@ -356,7 +334,7 @@ std::string csv_row(const Sweep& s, const Row& r) {
   if (s.trace) line += ",,";
   else line += std::to_string(s.args.width) + "," + std::to_string(s.args.height) + ",";
   std::snprintf(buf, sizeof buf, "%s,%d,%d,%s,%s,%u,%u,", filter_name(w.config.filter).c_str(), p.cache_kib, p.ways,
-                p.block.name().c_str(), block_order_name(p.block_order).c_str(), p.latency, p.bandwidth);
+                block_size_name(p.layout).c_str(), block_order_name(p.layout.order).c_str(), p.latency, p.bandwidth);
   line += buf;
   line += r.fifo_depth ? std::to_string(r.fifo_depth) : "";
   std::snprintf(buf, sizeof buf, ",%llu,%llu,%llu,%llu,%.6f,%llu,%.4f,", (unsigned long long)r.samples,
@@ -410,8 +388,8 @@ std::vector<std::string> job_command(const Sweep& s, const Job& job, const std::
   else c.insert(c.end(), {"--scene", w.name, "--order", w.order, "--width", std::to_string(s.args.width), "--height",
                           std::to_string(s.args.height), "--tile", std::to_string(s.args.tile)});
   c.insert(c.end(), {"--texture", portable_path(s.args.texture), "--filter", s.args.filter, "--cache-kib",
-                     std::to_string(p.cache_kib), "--ways", std::to_string(p.ways), "--block", p.block.name(),
-                     "--block-order", block_order_name(p.block_order), "--mem-latency", join_numbers(s.latencies),
+                     std::to_string(p.cache_kib), "--ways", std::to_string(p.ways), "--block", block_size_name(p.layout),
+                     "--block-order", block_order_name(p.layout.order), "--mem-latency", join_numbers(s.latencies),
                      "--mem-bytes-per-clock", join_numbers(s.bandwidths), "--fifo-depth", join_numbers(s.fifos, true),
                      "--timing", s.args.timing, "--rows", rows});
   return c;
@@ -434,12 +412,15 @@ std::string read_file(const fs::path& path) {
   return ss.str();
 }
 
-// Starts argv with stdout to /dev/null and stderr to `err_path`; returns the pid.
+// Starts argv; with an `err_path`, stdout goes to /dev/null and stderr to that file (a job),
+// else both are this process's. Returns the pid.
 pid_t spawn(const std::vector<std::string>& argv, const std::string& err_path) {
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (!err_path.empty()) {
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  }
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
@@ -530,15 +511,10 @@ fs::path scripts_dir() {
 
 void run_plots(const std::string& out_dir) {
   const std::string script = (scripts_dir() / "explore_plots.py").string();
-  const std::vector<std::string> argv = {"/usr/bin/python3", script, out_dir};
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
   std::fflush(stdout);
-  pid_t pid = 0;
   int status = 0;
-  if (posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0 || waitpid(pid, &status, 0) != pid ||
-      !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  const pid_t pid = spawn({"/usr/bin/python3", script, out_dir}, "");
+  if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw Error("explore: the plots failed (" + script + ", with /usr/bin/python3 and matplotlib); " + out_dir +
                 "/explore.csv is complete");
 }

@@ -316,6 +316,8 @@ TEST(MemoryLayout, DecodingEveryLineGivesBackThePyramid) {
     const auto ignore = [](int, int, int, const Texel&) {};
     EXPECT_FALSE(decode_line(layout, c.base + 4, image.data(), ignore));  // not a line start
     EXPECT_FALSE(decode_line(layout, c.base + uint32_t(image.size()), image.data(), ignore));  // past the image
-    if (c.base) EXPECT_FALSE(decode_line(layout, 0, image.data(), ignore));  // below the base
+    if (c.base) {
+      EXPECT_FALSE(decode_line(layout, 0, image.data(), ignore));  // below the base
+    }
   }
 }

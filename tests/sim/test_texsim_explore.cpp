@@ -65,7 +65,7 @@ TEST_F(TexsimCli, ExploreSweepsEveryPointAndPlotsIt) {
       const double spc = std::stod(row.at("samples_per_clock"));
       EXPECT_GT(spc, 0.0);
       EXPECT_LE(spc, 1.0);
-      EXPECT_EQ(row.at("fifo_depth"), row.at("fifo_depth") == "64" ? "64" : "2048");
+      EXPECT_TRUE(row.at("fifo_depth") == "64" || row.at("fifo_depth") == "2048") << row.at("fifo_depth");  // max = 2048
     }
     EXPECT_EQ(std::stoull(row.at("cache_hits")) + std::stoull(row.at("cache_misses")), std::stoull(row.at("cache_lookups")));
   }

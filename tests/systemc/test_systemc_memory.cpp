@@ -121,8 +121,9 @@ TEST(SystemcMemory, RtlBehindTheSocketRunsAtTheVerilatorHarnesssSpeed) {
     // While the target's outstanding-read limit does not bind, the same clocks to within one (a
     // response and a clock edge at the same time may run in either order); with it, a read held
     // before END_REQ is already taken from the RTL's point of view: within the 1 %.
-    if (latency < 64 * 4)
+    if (latency < 64 * 4) {
       EXPECT_LE(std::llabs(int64_t(sc.stats.cycle->cycles) - int64_t(harness.stats.cycle->cycles)), 1);
+    }
     ASSERT_TRUE(sc.stats.cache);
     EXPECT_EQ(sc.stats.cache->misses, model_misses.lines.size());
   }

@@ -65,7 +65,6 @@ tlm_sync_enum MemoryTarget::nb_transport_fw(tlm_generic_payload& t, tlm_phase& p
 }
 
 void MemoryTarget::respond(tlm_generic_payload& t, const tlm_phase&) {
-  ++reads_;
   const sc_time transfer = (double(t.get_data_length()) / double(timing_.bytes_per_clock)) * period_;
   closing_.push_back(sc_time_stamp() + transfer);
   if (closing_.size() == 1) release_event_.notify(transfer);
@@ -92,7 +91,6 @@ void MemoryTarget::release() {
 }
 
 void MemoryTarget::b_transport(tlm_generic_payload& t, sc_time& delay) {
-  ++reads_;
   if (check(t))
     delay += timing_.latency * period_ + (double(t.get_data_length()) / double(timing_.bytes_per_clock)) * period_;
 }

@@ -25,7 +25,7 @@ namespace tex::systemc {
 struct MemoryTargetTiming {
   uint32_t latency = 100;         // clocks from accepting a read to its BEGIN_RESP
   uint32_t bytes_per_clock = 16;  // bandwidth
-  uint32_t max_outstanding = 64;  // reads accepted and not yet answered
+  uint32_t max_outstanding = 64;  // reads open at once (until their data has crossed the channel)
 };
 
 class MemoryTarget : public sc_core::sc_module {
@@ -35,9 +35,7 @@ class MemoryTarget : public sc_core::sc_module {
   MemoryTarget(sc_core::sc_module_name name, std::vector<uint8_t> image, uint64_t base,
                const sc_core::sc_time& clock_period, const MemoryTargetTiming& timing);
 
-  uint64_t reads() const { return reads_; }  // reads answered, all transports but debug
   SC_HAS_PROCESS(MemoryTarget);
-  const std::vector<uint8_t>& image() const { return image_; }
 
  private:
   bool check(tlm::tlm_generic_payload& t);  // sets the response status; true for a good read
@@ -58,7 +56,6 @@ class MemoryTarget : public sc_core::sc_module {
   std::deque<sc_core::sc_time> closing_;                     // when the open reads close, in order
   sc_core::sc_event release_event_;
   uint32_t open_ = 0;
-  uint64_t reads_ = 0;
 };
 
 }  // namespace tex::systemc

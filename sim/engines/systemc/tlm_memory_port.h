@@ -37,7 +37,6 @@ class TlmMemoryPort final : public rtl::MemoryPort {
 
   // The first protocol or response error (a read answered with an error status), empty if none.
   const std::string& error() const { return error_; }
-  size_t in_flight() const { return lines_.size(); }
 
  private:
   struct Line {
