@@ -56,7 +56,7 @@ int32_t to_coord(double u) {
 
 // OpenImageIO gets the quantized u, v and lambda, so both sample the same point at the same LOD.
 void add_query(QuerySet& set, int32_t u, int32_t v, int32_t lod) {
-  set.requests.push_back({u, v, lod, uint32_t(set.requests.size())});
+  set.requests.push_back(tex::lambda_request(u, v, lod, uint32_t(set.requests.size())));
   const float size = float(1 << kLog2Size);
   set.ts.push_back({float(std::ldexp(u, -24)), float(std::ldexp(v, -24)),
                     float(std::exp2(lod / 256.0) / size)});

@@ -14,6 +14,7 @@ constexpr FilterName kFilterNames[] = {
     {"bilinear", {TexelFilter::Linear, MipMode::None}},
     {"mip_nearest", {TexelFilter::Linear, MipMode::Nearest}},
     {"trilinear", {TexelFilter::Linear, MipMode::Linear}},
+    {"anisotropic", {TexelFilter::Linear, MipMode::Linear, true}},
     {"nearest", {TexelFilter::Nearest, MipMode::None}},
     {"linear", {TexelFilter::Linear, MipMode::None}},
     {"nearest_mipmap_nearest", {TexelFilter::Nearest, MipMode::Nearest}},

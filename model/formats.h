@@ -17,6 +17,7 @@ constexpr int kMaxChannelBits = 16;
 constexpr int kDefaultChannelBits = 8;
 constexpr int kLodMin = -(1 << 15);  // Q8.8 range of lambda, bias and clamps
 constexpr int kLodMax = (1 << 15) - 1;
+constexpr int kMaxAniso = 16;       // anisotropic filtering: at most 16 probes per sample
 
 enum class Wrap : uint8_t { Repeat = 0, Clamp = 1, Mirror = 2 };
 enum class TexelFilter : uint8_t { Nearest = 0, Linear = 1 };
@@ -25,16 +26,19 @@ enum class PyramidMode : uint8_t { Exact = 0, Cascade = 1 };
 
 // A filter as the user names it: a texel filter within a level and a mip mode between levels.
 // GL's six minification filters are the six combinations; magnification uses the same texel filter.
+// `anisotropic` (EXT_texture_filter_anisotropic): up to SamplerConfig::max_aniso trilinear probes
+// along the footprint's major axis for requests that carry derivatives (docs/numerics.md stage 1c).
 struct Filter {
   TexelFilter texel = TexelFilter::Linear;
   MipMode mip = MipMode::Linear;
+  bool anisotropic = false;
   // Written out (not `= default`) so this header also compiles as C++17 (the SystemC library).
-  bool operator==(const Filter& o) const { return texel == o.texel && mip == o.mip; }
+  bool operator==(const Filter& o) const { return texel == o.texel && mip == o.mip && anisotropic == o.anisotropic; }
   bool operator!=(const Filter& o) const { return !(*this == o); }
 };
 
-// Names: point, bilinear, trilinear, mip_nearest (bilinear in the nearest level),
-// and the six GL names (nearest, linear, nearest_mipmap_nearest, ...).
+// Names: point, bilinear, trilinear, mip_nearest (bilinear in the nearest level), anisotropic
+// (trilinear probes), and the six GL names (nearest, linear, nearest_mipmap_nearest, ...).
 bool parse_filter(const std::string& name, Filter& out);
 std::string filter_name(Filter f);
 bool parse_wrap(const std::string& name, Wrap& out);

@@ -26,6 +26,26 @@ struct LodDerivatives {
   int32_t dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;  // Q8.24 texture widths / heights per pixel
 };
 int32_t tex_lambda(const LodDerivatives& d, int log2_w, int log2_h);
+
+// ------------------------------------------------------------------ tex_aniso (docs/numerics.md, stage 1c)
+// EXT_texture_filter_anisotropic from the same normalized squares as tex_lambda:
+// Px^2, Py^2 = |d(u,v)/dx|^2, |d(u,v)/dy|^2; N = min(ceil(Pmax / Pmin), max_aniso), found as the
+// least n with n^2 * Pmin^2 >= Pmax^2 - floor(Pmax^2 / 64) (a footprint up to 1/128 longer than
+// n * Pmin takes n probes; Pmin = 0: the cap); with `pow2` the least such power of two, capped at
+// the largest power of two <= max_aniso. lambda' = tex_lambda - round(256 log2 N), in Q8.8.
+// The N probes are spread evenly along the major axis (the x derivatives when Px^2 >= Py^2):
+// step = floor(axis * round(2^16 / N) / 2^16) per component, Q8.24; probe i sits at
+// coord + floor((2i + 1 - N) * step / 2), saturated to the Q8.24 range (aniso_probe_coord).
+struct AnisoSetup {
+  int n = 1;               // probes, 1..16
+  int32_t lambda = 0;      // Q8.8, lambda' (before bias and clamp)
+  int32_t step_u = 0, step_v = 0;  // Q8.24, spacing of the probes
+};
+AnisoSetup tex_aniso(const LodDerivatives& d, int log2_w, int log2_h, int max_aniso, bool pow2);
+int32_t aniso_probe_coord(int32_t coord, int32_t step, int i, int n);
+// The tables the RTL holds as constants (tests/model/test_lod.cpp checks them against their definitions).
+int aniso_log2_q8(int n);     // round(256 * log2 n), n = 1..16
+int aniso_reciprocal(int n);  // round(2^16 / n), n = 1..16
 // Real derivatives to Q8.24, rounded to nearest; beyond +-128 texture widths per pixel they
 // saturate (lambda is then past every level). False when one is not finite.
 bool to_lod_derivatives(const Derivatives& d, LodDerivatives& out);

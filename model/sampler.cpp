@@ -32,8 +32,37 @@ void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t) {
         uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
 }
 
+Probes tex_probe(const Request& r, const SamplerConfig& config, int log2_w0, int log2_h0) {
+  Probes p;
+  p.at[0] = r;
+  p.at[0].has_derivatives = false;
+  if (!r.has_derivatives) return p;
+  const AnisoSetup a = tex_aniso(r.deriv, log2_w0, log2_h0, config.probe_cap(), config.aniso_pow2);
+  p.n = a.n;
+  for (int i = 0; i < a.n; ++i) {
+    Request& q = p.at[size_t(i)];
+    q = p.at[0];
+    q.u = aniso_probe_coord(r.u, a.step_u, i, a.n);
+    q.v = aniso_probe_coord(r.v, a.step_v, i, a.n);
+    q.lod = a.lambda;
+  }
+  return p;
+}
+
 // The stages in pipeline order, as the RTL runs them (model/stages.h, docs/architecture.md).
 Texel Sampler::sample(const Request& r) {
+  const Probes p = tex_probe(r, config_, log2_w0_, log2_h0_);
+  stage::Unrounded sum{};
+  for (int i = 0; i < p.n; ++i) {
+    const stage::Unrounded t = sample_probe(p.at[size_t(i)]);
+    for (size_t c = 0; c < 4; ++c) sum[c] += t[c];
+  }
+  ++samples_;
+  ++probes_[size_t(p.n)];
+  return stage::average_and_round(sum, p.n);
+}
+
+stage::Unrounded Sampler::sample_probe(const Request& r) {
   const stage::LevelSelect sel =
       stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
   const int32_t su = stage::scale(r.u, log2_w0_), sv = stage::scale(r.v, log2_h0_);
@@ -57,8 +86,7 @@ Texel Sampler::sample(const Request& r) {
     if (linear) multiplies_ += 3;
   }
   if (sel.two_levels) multiplies_ += 1;
-  ++samples_;
-  return stage::filter(slot[0], slot[sel.two_levels ? 1 : 0], sel.f);
+  return stage::filter_unrounded(slot[0], slot[sel.two_levels ? 1 : 0], sel.f);
 }
 
 namespace {
@@ -126,39 +154,59 @@ inline Packed2x2 filter_level(const FastLevel& lv, int32_t u, int32_t v) {
   }
 }
 
+// One probe: the trilinear (or nearest-level) value before rounding, CW.24 per channel.
 template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
-void sample_batch(const FastLevel* levels, int last, const SamplerConfig& cfg, const Request* requests, size_t n,
-                  uint32_t* out) {
+inline Packed2x2 probe_packed(const FastLevel* levels, int last, const SamplerConfig& cfg, int32_t u, int32_t v,
+                              int32_t lambda) {
+  const int32_t lod = stage::lod_clamp(lambda, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
+  if constexpr (MM == MipMode::Linear) {
+    // stage::lod_select without branches: lod <= 0 gives d = 0, f = 0; past the last level
+    // f = 0. Both levels are always filtered (d1 = d when d is last): with f = 0 the blend
+    // returns level d exactly, as in sample().
+    const int32_t l = lod > 0 ? lod : 0;
+    const bool past_last = (l >> kLodFracBits) >= last;
+    const int d = past_last ? last : l >> kLodFracBits;
+    const uint32_t f = past_last ? 0u : uint32_t(l & 255);
+    const int d1 = d < last ? d + 1 : last;
+    const Packed2x2 b0 = filter_level<TF, WU, WV>(levels[d], u, v);
+    const Packed2x2 b1 = filter_level<TF, WU, WV>(levels[d1], u, v);
+    return {lerp2(b0.rb, b1.rb, f), lerp2(b0.ga, b1.ga, f)};
+  } else {
+    int d = 0;
+    if constexpr (MM == MipMode::Nearest) d = lod > 0 ? std::min((lod + 127) >> kLodFracBits, last) : 0;
+    const Packed2x2 b0 = filter_level<TF, WU, WV>(levels[d], u, v);
+    return {b0.rb << 8, b0.ga << 8};
+  }
+}
+
+template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
+void sample_batch(const FastLevel* levels, int last, int log2_w0, int log2_h0, const SamplerConfig& cfg,
+                  const Request* requests, size_t n, uint32_t* out) {
   constexpr uint64_t kHalf = (uint64_t(1) << 23) | (uint64_t(1) << 55);  // rounding of both channels
   for (size_t i = 0; i < n; ++i) {
     const Request& r = requests[i];
-    const int32_t lod = stage::lod_clamp(r.lod, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
-    uint64_t tri_rb, tri_ga;  // CW.24 per channel
-    if constexpr (MM == MipMode::Linear) {
-      // stage::lod_select without branches: lod <= 0 gives d = 0, f = 0; past the last level
-      // f = 0. Both levels are always filtered (d1 = d when d is last): with f = 0 the blend
-      // returns level d exactly, as in sample().
-      const int32_t l = lod > 0 ? lod : 0;
-      const bool past_last = (l >> kLodFracBits) >= last;
-      const int d = past_last ? last : l >> kLodFracBits;
-      const uint32_t f = past_last ? 0u : uint32_t(l & 255);
-      const int d1 = d < last ? d + 1 : last;
-      const Packed2x2 b0 = filter_level<TF, WU, WV>(levels[d], r.u, r.v);
-      const Packed2x2 b1 = filter_level<TF, WU, WV>(levels[d1], r.u, r.v);
-      tri_rb = lerp2(b0.rb, b1.rb, f);
-      tri_ga = lerp2(b0.ga, b1.ga, f);
-    } else {
-      int d = 0;
-      if constexpr (MM == MipMode::Nearest) d = lod > 0 ? std::min((lod + 127) >> kLodFracBits, last) : 0;
-      const Packed2x2 b0 = filter_level<TF, WU, WV>(levels[d], r.u, r.v);
-      tri_rb = b0.rb << 8;
-      tri_ga = b0.ga << 8;
+    if (r.has_derivatives) {
+      // The probes of tex_probe, summed per channel (16 probes of CW.24 need 36 bits: unpacked).
+      const Probes p = tex_probe(r, cfg, log2_w0, log2_h0);
+      stage::Unrounded sum{};
+      for (int k = 0; k < p.n; ++k) {
+        const Request& q = p.at[size_t(k)];
+        const Packed2x2 t = probe_packed<TF, MM, WU, WV>(levels, last, cfg, q.u, q.v, q.lod);
+        sum[0] += int64_t(t.rb & 0xFFFFFFFFu);
+        sum[1] += int64_t(t.ga & 0xFFFFFFFFu);
+        sum[2] += int64_t(t.rb >> 32);
+        sum[3] += int64_t(t.ga >> 32);
+      }
+      const Texel t = stage::average_and_round(sum, p.n);
+      out[i] = uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
+      continue;
     }
+    Packed2x2 tri = probe_packed<TF, MM, WU, WV>(levels, last, cfg, r.u, r.v, r.lod);
     // The one rounding, half up, of all four channels; then back to packed RGBA8.
-    tri_rb = (tri_rb + kHalf) >> 24;
-    tri_ga = (tri_ga + kHalf) >> 24;
-    out[i] = uint32_t(tri_rb & 0xFF) | uint32_t(tri_ga & 0xFF) << 8 | uint32_t(tri_rb >> 16 & 0xFF0000) |
-             uint32_t(tri_ga >> 8 & 0xFF000000u);
+    tri.rb = (tri.rb + kHalf) >> 24;
+    tri.ga = (tri.ga + kHalf) >> 24;
+    out[i] = uint32_t(tri.rb & 0xFF) | uint32_t(tri.ga & 0xFF) << 8 | uint32_t(tri.rb >> 16 & 0xFF0000) |
+             uint32_t(tri.ga >> 8 & 0xFF000000u);
   }
 }
 
@@ -204,17 +252,18 @@ void Sampler::sample_rgba8(const Request* requests, size_t n, uint32_t* out) con
       with_wrap(cfg.wrap_u, [&](auto wu) {
         with_wrap(cfg.wrap_v, [&](auto wv) {
           sample_batch<decltype(tf)::value, decltype(mm)::value, decltype(wu)::value, decltype(wv)::value>(
-              levels, last, cfg, requests, n, out);
+              levels, last, log2_w0_, log2_h0_, cfg, requests, n, out);
         });
       });
     });
   });
 }
 
-SamplerStats Sampler::stats() const { return {samples_, multiplies_, memory_.stats()}; }
+SamplerStats Sampler::stats() const { return {samples_, multiplies_, memory_.stats(), probes_}; }
 
 void Sampler::reset_stats() {
   samples_ = multiplies_ = 0;
+  probes_ = {};
   memory_.reset_stats();
 }
 

@@ -1,11 +1,14 @@
 // The texture sampler: LOD, address generation, wrap, banked fetch and filter, bit-exact.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "banked_memory.h"
 #include "formats.h"
+#include "lod.h"
 #include "pyramid.h"
+#include "stages.h"
 
 namespace tex {
 
@@ -16,19 +19,44 @@ struct SamplerConfig {
   int32_t lod_bias = 0;        // Q8.8
   int32_t min_lod = kLodMin;   // Q8.8
   int32_t max_lod = kLodMax;   // Q8.8
+  int max_aniso = kMaxAniso;   // anisotropic filter: probes per sample at most, 1..16
+  bool aniso_pow2 = false;     // anisotropic filter: probe counts rounded up to powers of two
+  // The cap tex_aniso applies: max_aniso for the anisotropic filter, else 1 (one probe).
+  int probe_cap() const { return filter.anisotropic ? max_aniso : 1; }
 };
 
-// One request in the hardware's formats (docs/numerics.md).
+// One request in the hardware's formats (docs/numerics.md). It carries either lambda or the four
+// derivatives (then the LOD unit computes lambda, and with the anisotropic filter the probes).
 struct Request {
   int32_t u = 0, v = 0;  // Q8.24
-  int32_t lod = 0;       // Q8.8, before bias and clamp
+  int32_t lod = 0;       // Q8.8, before bias and clamp (requests without derivatives)
   uint32_t tag = 0;
+  bool has_derivatives = false;
+  LodDerivatives deriv;  // Q8.24 texture widths per pixel (requests with derivatives)
 };
+inline Request lambda_request(int32_t u, int32_t v, int32_t lod, uint32_t tag = 0) {
+  Request r;
+  r.u = u;
+  r.v = v;
+  r.lod = lod;
+  r.tag = tag;
+  return r;
+}
+
+// The trilinear probes of one request (tex_probe): a request without derivatives is one probe at its
+// own (u, v, lod); one with derivatives takes lambda' and N from tex_aniso (with the filter's cap,
+// SamplerConfig::probe_cap) and N probes along the major axis. Probes carry no derivatives.
+struct Probes {
+  int n = 1;
+  std::array<Request, kMaxAniso> at;
+};
+Probes tex_probe(const Request& r, const SamplerConfig& config, int log2_w0, int log2_h0);
 
 struct SamplerStats {
   uint64_t samples = 0;
   uint64_t multiplies_per_channel = 0;  // lerps that do work: 3 per bilinear level, +1 for the blend
   BankStats memory;                     // texel words read, per level and bank
+  std::array<uint64_t, kMaxAniso + 1> probes{};  // samples by probe count (index 1..16)
 };
 
 class Sampler {
@@ -37,6 +65,8 @@ class Sampler {
 
   // Reference path: every stage in order, counting reads and multiplies.
   Texel sample(const Request& r);
+  // One probe's trilinear value before rounding (CW.24 per channel); counts reads and multiplies.
+  stage::Unrounded sample_probe(const Request& probe);
 
   // Fast path for 8-bit channels: packed RGBA8 (R in the low byte), no counters.
   // Bit-identical to sample() (tests/test_sampler.cpp checks it).
@@ -57,6 +87,7 @@ class Sampler {
   int channel_bits_;
   int log2_w0_, log2_h0_;
   uint64_t samples_ = 0, multiplies_ = 0;
+  std::array<uint64_t, kMaxAniso + 1> probes_{};
   std::vector<std::vector<uint32_t>> packed_;  // per level, row-major RGBA8 (fast path only)
 };
 

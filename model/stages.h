@@ -111,20 +111,34 @@ inline uint32_t blend_and_round(int64_t bil_d, int64_t bil_d1, int f) {
   return uint32_t((lerp(bil_d, bil_d1, f) + (int64_t(1) << 23)) >> 24);
 }
 
-// The whole filter, all four channels: taps {a, b, c, e} = T(x0,y0), T(x1,y0), T(x0,y1), T(x1,y1)
-// of levels d (slot 0) and d1 (slot 1), their weights, and the level blend f.
+// The whole filter, all four channels, before the rounding: taps {a, b, c, e} = T(x0,y0), T(x1,y0),
+// T(x0,y1), T(x1,y1) of levels d (slot 0) and d1 (slot 1), their weights, and the level blend f.
+// Each channel is CW.24, exact.
 struct Footprint {
   std::array<Texel, 4> taps;
   int fx = 0, fy = 0;
 };
-inline Texel filter(const Footprint& d, const Footprint& d1, int f) {
-  Texel out;
+using Unrounded = std::array<int64_t, 4>;
+inline Unrounded filter_unrounded(const Footprint& d, const Footprint& d1, int f) {
+  Unrounded out;
   for (size_t c = 0; c < 4; ++c) {
     const int64_t b0 = bilerp(d.taps[0][c], d.taps[1][c], d.taps[2][c], d.taps[3][c], d.fx, d.fy);
     const int64_t b1 = bilerp(d1.taps[0][c], d1.taps[1][c], d1.taps[2][c], d1.taps[3][c], d1.fx, d1.fy);
-    out[c] = uint16_t(blend_and_round(b0, b1, f));
+    out[c] = lerp(b0, b1, f);
   }
   return out;
 }
+
+// The mean of n probes (the sum of their CW.24 values) and the one rounding, half up, to CW bits:
+// round(sum / (n * 2^24)). With n = 1 this is blend_and_round. (tex_accum; the RTL divides by n
+// with a reciprocal multiply, docs/numerics.md stage 6, equal for every sum it can see.)
+inline Texel average_and_round(const Unrounded& sum, int n) {
+  Texel out;
+  for (size_t c = 0; c < 4; ++c)
+    out[c] = uint16_t((sum[c] + (int64_t(n) << 23)) / (int64_t(n) << 24));
+  return out;
+}
+
+inline Texel filter(const Footprint& d, const Footprint& d1, int f) { return average_and_round(filter_unrounded(d, d1, f), 1); }
 
 }  // namespace tex::stage

@@ -61,7 +61,13 @@ bool TextureCache::access(int cache, int set, uint32_t address) {
   return false;
 }
 
+void TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>* misses) {
+  const Probes p = tex_probe(r, config_, log2_w0_, log2_h0_);
+  for (int i = 0; i < p.n; ++i) lookup(p.at[size_t(i)], misses);
+}
+
 SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misses) {
+  if (r.has_derivatives) throw Error("texture cache: lookup() takes a probe; use lookup_sample() for a request");
   const stage::LevelSelect sel =
       stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level_);
   const int32_t su = stage::scale(r.u, log2_w0_), sv = stage::scale(r.v, log2_h0_);

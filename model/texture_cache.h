@@ -47,9 +47,12 @@ class TextureCache {
   TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config, int log2_w0,
                int log2_h0);
 
-  // One sample: looks its needed blocks up in request order, updates the LRU state, and appends the
-  // line address of every miss to `misses` (if not null), in the order docs/memory.md gives.
-  SampleLookup lookup(const Request& r, std::vector<uint32_t>* misses);
+  // One probe (a request without derivatives, as tex_probe gives them): looks its needed blocks up
+  // in request order, updates the LRU state, and appends the line address of every miss to
+  // `misses` (if not null), in the order docs/memory.md gives.
+  SampleLookup lookup(const Request& probe, std::vector<uint32_t>* misses);
+  // A whole request: its probes (tex_probe) one after another, as the RTL's FIFO holds them.
+  void lookup_sample(const Request& r, std::vector<uint32_t>* misses);
 
   const CacheStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }

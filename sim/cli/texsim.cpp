@@ -42,6 +42,9 @@ void parse_block(const std::string& text, LayoutParams& out) {
 struct SamplingOptions {
   std::string texture = "testcard";
   std::string filter = "trilinear";
+  int max_aniso = kMaxAniso;
+  bool aniso_pow2 = false;
+  CLI::Option* max_aniso_opt = nullptr;
   std::string wrap = "repeat";
   std::string wrap_u, wrap_v;
   std::string pyramid = "exact";
@@ -68,8 +71,12 @@ struct SamplingOptions {
     texture_opt = cmd.add_option("--texture,-t", texture, "image file (any OpenImageIO format) or pattern NAME[:WxH]")
                       ->capture_default_str();
     cmd.add_option("--filter,-f", filter,
-                   "point | bilinear | mip_nearest | trilinear, or a GL name (nearest_mipmap_linear, ...)")
+                   "point | bilinear | mip_nearest | trilinear | anisotropic (trilinear probes along the "
+                   "footprint, for requests with derivatives), or a GL name (nearest_mipmap_linear, ...)")
         ->capture_default_str();
+    max_aniso_opt = cmd.add_option("--max-aniso", max_aniso, "anisotropic: probes per sample at most, 1..16")
+                        ->capture_default_str();
+    cmd.add_flag("--aniso-pow2", aniso_pow2, "anisotropic: round probe counts up to a power of two");
     cmd.add_option("--wrap,-w", wrap, "repeat | clamp | mirror, both axes")->capture_default_str();
     wrap_u_opt = cmd.add_option("--wrap-u", wrap_u, "wrap mode of u only (overrides --wrap)");
     wrap_v_opt = cmd.add_option("--wrap-v", wrap_v, "wrap mode of v only (overrides --wrap)");
@@ -123,6 +130,12 @@ struct SamplingOptions {
   SamplerConfig config() const {
     SamplerConfig c;
     if (!parse_filter(filter, c.filter)) throw Error("unknown filter " + quote_clipped(filter));
+    if (max_aniso < 1 || max_aniso > kMaxAniso)
+      throw Error("--max-aniso " + std::to_string(max_aniso) + " is outside 1..16");
+    if ((max_aniso_opt->count() || aniso_pow2) && !c.filter.anisotropic)
+      throw Error("--max-aniso and --aniso-pow2 apply to --filter anisotropic, not " + quote_clipped(filter));
+    c.max_aniso = max_aniso;
+    c.aniso_pow2 = aniso_pow2;
     Wrap w;
     if (!parse_wrap(wrap, w)) throw Error("unknown wrap mode " + quote_clipped(wrap) + " (repeat, clamp, mirror)");
     c.wrap_u = c.wrap_v = w;

@@ -74,7 +74,7 @@ EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, Reque
     sink.write(texels.data(), n);
     if (cache) {
       misses.clear();
-      for (size_t i = 0; i < n; ++i) cache->lookup(requests[i], options.miss_sink ? &misses : nullptr);
+      for (size_t i = 0; i < n; ++i) cache->lookup_sample(requests[i], options.miss_sink ? &misses : nullptr);
       if (options.miss_sink && !misses.empty()) options.miss_sink->write(misses.data(), misses.size());
     }
   }

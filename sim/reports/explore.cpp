@@ -301,7 +301,7 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, CacheCounters>& m
       const Pyramid& pyr = w.pyramid;
       TextureCache cache(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, p.layout),
                          cache_of(p), w.config, pyr.log2_w0(), pyr.log2_h0());
-      for (const Request& q : w.requests) cache.lookup(q, nullptr);
+      for (const Request& q : w.requests) cache.lookup_sample(q, nullptr);
       it->second = cache_counters(cache);
     }
     r.cache = it->second;

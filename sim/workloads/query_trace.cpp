@@ -138,8 +138,10 @@ Request to_request(const Query& q, int log2_w0, int log2_h0, const std::string& 
   if (!to_coord_fixed(q.v, r.v)) throw Error(at() + "v = " + std::to_string(q.v) + " is outside [-128, 128)");
   if (q.explicit_lod) {
     if (!to_lod_fixed(q.lod, r.lod)) throw Error(at() + "lod = " + std::to_string(q.lod) + " is outside [-128, 128)");
-  } else if (!lod_from_derivatives(q.deriv, log2_w0, log2_h0, r.lod)) {
-    throw Error(at() + "a derivative is not a finite number");
+  } else {
+    if (!to_lod_derivatives(q.deriv, r.deriv)) throw Error(at() + "a derivative is not a finite number");
+    r.has_derivatives = true;
+    r.lod = tex_lambda(r.deriv, log2_w0, log2_h0);  // (for engines without the derivative port)
   }
   return r;
 }

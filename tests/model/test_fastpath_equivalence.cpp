@@ -96,7 +96,7 @@ TEST(FastPathEquivalence, SixGlFiltersEveryWrapAndLodRange) {
         ++configs;
 
         std::vector<Request> reqs(kRequestsPerConfig);
-        for (Request& r : reqs) r = {random_coord(rng), random_coord(rng), random_lod(rng, pyr.last_level()), 0};
+        for (Request& r : reqs) r = lambda_request(random_coord(rng), random_coord(rng), random_lod(rng, pyr.last_level()));
         Sampler sampler(pyr, cfg);
         std::vector<uint32_t> fast(reqs.size());
         sampler.sample_rgba8(reqs.data(), reqs.size(), fast.data());
@@ -120,7 +120,7 @@ TEST(FastPathEquivalence, BatchSplitsDoNotMatter) {
   SamplerConfig cfg;
   cfg.filter = {TexelFilter::Linear, MipMode::Linear};
   std::vector<Request> reqs(1000);
-  for (Request& r : reqs) r = {random_coord(rng), random_coord(rng), random_lod(rng, pyr.last_level()), 0};
+  for (Request& r : reqs) r = lambda_request(random_coord(rng), random_coord(rng), random_lod(rng, pyr.last_level()));
   const Sampler sampler(pyr, cfg);
   std::vector<uint32_t> whole(reqs.size()), split(reqs.size(), 0xdeadbeef);
   sampler.sample_rgba8(reqs.data(), reqs.size(), whole.data());

@@ -37,7 +37,7 @@ struct Fixture {
   }
 };
 
-Request req(int32_t u, int32_t v, int32_t lod) { return Request{u, v, lod, 0}; }
+Request req(int32_t u, int32_t v, int32_t lod) { return lambda_request(u, v, lod); }
 
 }  // namespace
 

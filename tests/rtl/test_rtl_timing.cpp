@@ -323,7 +323,7 @@ TEST(RtlScoreboard, DetectsOneWrongTexelInOneLevel) {
   SamplerConfig cfg;  // trilinear
   std::vector<Request> reqs;
   for (int i = 0; i < 4; ++i)  // centres of level 2 (4x4), lambda 2.0: level 2 only
-    for (int j = 0; j < 4; ++j) reqs.push_back({(2 * i + 1) << 21, (2 * j + 1) << 21, 512, 0});
+    for (int j = 0; j < 4; ++j) reqs.push_back(lambda_request((2 * i + 1) << 21, (2 * j + 1) << 21, 512));
   const LockstepResult r = lockstep(*unit, wrong, cfg, reqs, rtl::Timing{}, 1);
   EXPECT_EQ(r.mismatches, 1u) << r.report;
   EXPECT_NE(r.report.find("request #6 "), std::string::npos) << r.report;

@@ -262,7 +262,7 @@ class FaultyTarget : public sc_core::sc_module {
       return tlm::TLM_COMPLETED;
     }
     auto* s = reinterpret_cast<SampleTransfer*>(t.get_data_ptr());
-    const Texel texel = sampler_.sample(Request{s->u, s->v, s->lod, 0});
+    const Texel texel = sampler_.sample(lambda_request(s->u, s->v, s->lod));
     for (int c = 0; c < 4; ++c) s->rgba[c] = texel[size_t(c)];
     t.set_response_status(tlm::TLM_OK_RESPONSE);
     const uint64_t i = count_++;

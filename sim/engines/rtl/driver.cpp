@@ -95,6 +95,7 @@ CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const 
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
+  if (config.filter.anisotropic) throw Error("the RTL has no anisotropic filter yet (use --engine model)");
   CfgPins c;
   c.log2_w = uint8_t(log2_w);
   c.log2_h = uint8_t(log2_h);

@@ -15,7 +15,7 @@ namespace tex::rtl {
 class MissChecker {
  public:
   MissChecker(TextureCache& cache, MissSink* sink) : cache_(cache), sink_(sink) {}
-  void predict(const Request& r) { cache_.lookup(r, &predicted_); }
+  void predict(const Request& r) { cache_.lookup_sample(r, &predicted_); }
   // The RTL's reads since the last call; at the end, every predicted miss must have been read.
   void compare(const std::vector<uint32_t>& actual, bool at_end);
 

@@ -105,7 +105,7 @@ void TexUnitTlm::b_transport(tlm_generic_payload& trans, sc_time& delay) {
   q.lod = s->lod;
   if (cache_) {  // the sample's missing lines come over the bus first
     misses_.clear();
-    cache_->lookup(q, &misses_);
+    cache_->lookup_sample(q, &misses_);
     for (uint32_t a : misses_) read_line(a, delay);
     if (options_.miss_sink && !misses_.empty()) options_.miss_sink->write(misses_.data(), misses_.size());
     if (!error_.empty()) {
@@ -183,7 +183,7 @@ tlm_sync_enum TexUnitTlm::nb_transport_fw(tlm_generic_payload& trans, tlm_phase&
     if (!s) return tlm::TLM_COMPLETED;
     if (pending_) fail("TLM protocol: BEGIN_REQ before END_REQ of the previous request (request exclusion rule)");
     pending_ = &trans;
-    if (checker_) checker_->predict(Request{s->u, s->v, s->lod, 0});  // offered on the request pins from the next edge until the RTL takes it
+    if (checker_) checker_->predict(lambda_request(s->u, s->v, s->lod));  // offered on the request pins from the next edge until the RTL takes it
     pending_request_.u = s->u;
     pending_request_.v = s->v;
     pending_request_.lod = s->lod;
