@@ -49,14 +49,14 @@ def comparison(out_dir, scene, full_scale):
 
 def flicker_plot(out_dir, flicker):
     scenes = sorted({f["scene"] for f in flicker}, key=[f["scene"] for f in flicker].index)
-    fig, axes = plt.subplots(1, len(scenes), figsize=(3.6 * len(scenes), 3.2), squeeze=False)
+    fig, axes = plt.subplots(1, len(scenes), figsize=(4.2 * len(scenes), 3.4), squeeze=False)
     for ax, scene in zip(axes[0], scenes):
         for f in (f for f in flicker if f["scene"] == scene):
-            ax.plot(f["excess"], label=f"{f['filter']} (mean {f['mean_excess']:.1f})")
+            ax.plot(f["excess"], label=f"{f.get('label', f['filter'])} (mean {f['mean_excess']:.1f})")
         ax.set_title(f"{scene}: change the reference lacks", fontsize=9)
         ax.set_xlabel("frame step")
         ax.set_ylabel("mean |dF - dR| (LSB)")
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(out_dir, "flicker.png"), dpi=110)
     plt.close(fig)
@@ -79,8 +79,11 @@ def main():
         "td,th{border:1px solid #aaa;padding:3px 8px;text-align:right}img{max-width:100%}</style></head><body>",
         "<h1>The paper's experiments through the simulator</h1>",
         f"<p>Engine <b>{e(m['engine'])}</b>, stills {m['width']}x{m['height']}. The reference is real-valued "
-        f"filtering of level 0 in double precision ({m['reference_samples_per_axis']}<sup>2</sup> sub-pixel "
-        "positions, each averaging its own footprint widened by one texel; see docs/scenes.md). PSNR over R, G, B "
+        f"filtering of level 0 in double precision (at least {m['reference_samples_per_axis']}<sup>2</sup> "
+        "sub-pixel positions through the exact mapping, more where a pixel's footprint is longer so that a "
+        "sub-pixel spans at most one texel per axis, up to "
+        f"{m.get('reference_max_samples_per_axis', m['reference_samples_per_axis'])}<sup>2</sup>; each averages "
+        "its own footprint widened by one texel; see docs/scenes.md). PSNR over R, G, B "
         "of the pixels on the surface; errors in 8-bit steps (LSB). Plain tables and single images: "
         "<a href='index.md'>index.md</a>.</p>",
     ]
@@ -88,6 +91,17 @@ def main():
         parts.append("<h2>Figure 1: the memory layout of a colour mip map</h2><p>R, G and B planes in three "
                      "quadrants, each level's planes in the upper-left quadrant of its parent "
                      "(<code>texsim mip --layout</code>).</p><p><img src='fig1_layout.png' alt='mip map layout'></p>")
+    if m.get("filters"):
+        parts.append("<h2>Filters compared: plane and panel</h2><p>Stills against the reference; flicker excess over "
+                     "the animation (below). Variants rendered by another engine than the figures' name it.</p>")
+        parts.append("<table><tr><th>scene</th><th>variant</th><th>engine</th><th>PSNR (dB)</th><th>max error (LSB)"
+                     "</th><th>mean error (LSB)</th><th>flicker excess (LSB)</th></tr>")
+        for r in m["filters"]:
+            flick = f"{r['flicker_excess']:.2f}" if r["flicker_excess"] >= 0 else ""
+            parts.append(f"<tr><td>{e(r['scene'])}</td><td>{e(r['label'])}</td><td>{e(r['engine'])}</td>"
+                         f"<td>{r['psnr_db']:.2f}</td><td>{r['max_error_lsb']:.1f}</td>"
+                         f"<td>{r['mean_error_lsb']:.2f}</td><td>{flick}</td></tr>")
+        parts.append("</table>")
     for scene in m["scenes"]:
         name = comparison(out_dir, scene, m["heat_map_full_scale_lsb"])
         parts.append(f"<h2>{e(scene['scene'])}</h2><p>{e(scene['caption'])}</p>")
@@ -120,7 +134,7 @@ def main():
     parts.append("<table><tr><th>animation</th><th>variant</th><th>mean change</th><th>reference change</th>"
                  "<th>excess (flicker)</th></tr>")
     for f in m["flicker"]:
-        parts.append(f"<tr><td>{e(f['scene'])}</td><td>{e(f['filter'])}</td><td>{f['mean_change']:.2f}</td>"
+        parts.append(f"<tr><td>{e(f['scene'])}</td><td>{e(f.get('label', f['filter']))}</td><td>{f['mean_change']:.2f}</td>"
                      f"<td>{f['mean_reference_change']:.2f}</td><td>{f['mean_excess']:.2f}</td></tr>")
     parts.append(f"</table><p><img src='{flicker_plot(out_dir, m['flicker'])}' alt='flicker per frame'></p>")
     if m.get("mesh_vertex_jitter"):
@@ -138,9 +152,12 @@ def main():
                 "mean_interior_reference_change", "mean_interior_excess"))
             parts.append(f"<tr><td>{e(j['label'])}</td>{cells}</tr>")
         parts.append("</table>")
-    parts.append("<h3>The rotating panel (fig. 8-11): point sampling, trilinear, reference</h3>")
-    for v in ("point", "trilinear", "reference"):
-        parts.append(f"<p><img src='panel_frames_{v}.png' alt='panel frames, {v}'></p>")
+    strips = m.get("panel_strips") or [{"name": n, "label": n, "image": f"panel_frames_{n}.png"}
+                                       for n in ("point", "trilinear")]
+    strips = strips + [{"name": "reference", "label": "reference", "image": "panel_frames_reference.png"}]
+    parts.append("<h3>The rotating panel (fig. 8-11): " + e("; ".join(s["label"] for s in strips)) + "</h3>")
+    for s in strips:
+        parts.append(f"<p>{e(s['label'])}<br><img src='{e(s['image'])}' alt='panel frames, {e(s['name'])}'></p>")
     parts.append(f"<p>Generated in {m['seconds']:.1f} s by <code>make figures</code>.</p></body></html>")
     tmp = os.path.join(out_dir, "index.html.partial")
     with open(tmp, "w") as f:

@@ -557,7 +557,9 @@ int main(int argc, char** argv) {
   figures->add_option("--width", fig.width, "still image width")->capture_default_str();
   figures->add_option("--height", fig.height, "still image height")->capture_default_str();
   figures->add_option("--frames", fig.frames, "animation frames (flicker)")->capture_default_str();
-  figures->add_option("--reference-samples", fig.reference_samples, "reference sub-pixel positions per axis")
+  figures
+      ->add_option("--reference-samples", fig.reference_samples,
+                   "reference sub-pixel positions per axis, at least (more where a pixel spans more texels)")
       ->capture_default_str();
 
   ExploreArgs ex;

@@ -18,8 +18,9 @@ struct VariantRender {
   int channel_bits = 8;
   RgbaImage image;
 };
+// `max_aniso`: the anisotropic filter's probe cap (SamplerConfig::max_aniso), 1..16.
 VariantRender render_variant(const std::string& scene, const SceneOptions& options, const std::string& filter,
-                             const std::string& engine);
+                             const std::string& engine, int max_aniso = kMaxAniso);
 // The real-valued reference value of every query of a scene frame (reference_values of the scene's
 // level 0; the mesh's reference is the 16-bit map), and the picture drawn from them.
 std::vector<Rgba> reference_query_values(const std::string& scene, const SceneOptions& options,
@@ -32,7 +33,7 @@ struct FiguresOptions {
   int width = 256, height = 192;             // still figures
   int anim_width = 160, anim_height = 120;   // animations (flicker)
   int frames = 24;
-  int reference_samples = 4;                 // sub-pixel positions per axis of the reference
+  int reference_samples = 4;                 // reference sub-pixel positions per axis, at least (reference_values)
 };
 
 // Returns 0; throws tex::Error on bad options or a failed write.

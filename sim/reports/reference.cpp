@@ -104,35 +104,47 @@ Rgba footprint_mean(const BoxIntegrator& box, int w, int h, double u, double v, 
 
 }  // namespace
 
+int reference_sub_positions(double step_texels, int samples_per_axis) {
+  const int s = std::max(1, samples_per_axis), most = std::max(s, kReferenceMaxSubPositions);
+  return int(std::clamp(std::ceil(step_texels), double(s), double(most)));
+}
+
 std::vector<Rgba> reference_values(const SceneFrame& frame, const Image& level0, Wrap wrap_u, Wrap wrap_v,
                                    int samples_per_axis) {
   const BoxIntegrator box(level0, wrap_u, wrap_v);
-  const int w = level0.width, h = level0.height, s = std::max(1, samples_per_axis);
+  const int w = level0.width, h = level0.height;
   std::vector<Rgba> out(frame.queries.size());
   for (size_t i = 0; i < frame.queries.size(); ++i) {
     const Query& q = frame.queries[i];
-    // Extents of the footprint's bounding box, in texels.
-    const double eu = (std::fabs(q.deriv.dudx) + std::fabs(q.deriv.dudy)) * w;
-    const double ev = (std::fabs(q.deriv.dvdx) + std::fabs(q.deriv.dvdy)) * h;
+    // The pixel's steps in texels: (au, av) along screen x, (bu, bv) along screen y.
+    const double au = std::fabs(q.deriv.dudx) * w, av = std::fabs(q.deriv.dvdx) * h;
+    const double bu = std::fabs(q.deriv.dudy) * w, bv = std::fabs(q.deriv.dvdy) * h;
     if (frame.is_mesh() || !frame.map) {
-      out[i] = footprint_mean(box, w, h, q.u, q.v, eu, ev);
+      out[i] = footprint_mean(box, w, h, q.u, q.v, au + bu, av + bv);  // the footprint's bounding box
       continue;
     }
-    // Stratified sub-pixel positions through the exact mapping; each averages its own share of the
-    // footprint (which keeps far-away perspective pixels from aliasing in the reference itself).
+    // Stratified sub-pixel positions through the exact mapping, nx across and ny down: at least
+    // samples_per_axis, and enough that one sub-pixel step moves (u, v) by at most one texel (up to
+    // kReferenceMaxSubPositions). Each averages its own share of the footprint, the bounding box of
+    // the sub-pixel's parallelogram (below the cap at most 2 texels a side): a long, thin, oblique
+    // footprint (the plane's sides near the horizon) is not widened across its minor axis by the
+    // bounding box of a large share, and far-away perspective pixels do not alias in the reference.
+    const int nx = reference_sub_positions(std::max(au, av), samples_per_axis);
+    const int ny = reference_sub_positions(std::max(bu, bv), samples_per_axis);
+    const double eu = au / nx + bu / ny, ev = av / nx + bv / ny;
     const int px = frame.pixel[i] % frame.width, py = frame.pixel[i] / frame.width;
     Rgba sum{0, 0, 0, 0};
     int n = 0;
-    for (int sy = 0; sy < s; ++sy)
-      for (int sx = 0; sx < s; ++sx) {
+    for (int sy = 0; sy < ny; ++sy)
+      for (int sx = 0; sx < nx; ++sx) {
         double u, v;
-        if (frame.map(px + (sx + 0.5) / s, py + (sy + 0.5) / s, u, v) == Hit::None) continue;
-        const Rgba m = footprint_mean(box, w, h, u, v, eu / s, ev / s);
+        if (frame.map(px + (sx + 0.5) / nx, py + (sy + 0.5) / ny, u, v) == Hit::None) continue;
+        const Rgba m = footprint_mean(box, w, h, u, v, eu, ev);
         for (int c = 0; c < 4; ++c) sum[c] += m[c];
         ++n;
       }
     if (n == 0) {
-      out[i] = footprint_mean(box, w, h, q.u, q.v, eu, ev);
+      out[i] = footprint_mean(box, w, h, q.u, q.v, au + bu, av + bv);
     } else {
       for (int c = 0; c < 4; ++c) out[i][c] = sum[c] / n;
     }

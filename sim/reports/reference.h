@@ -9,12 +9,18 @@
 namespace tex {
 
 // The real-valued reference of every query, in double precision from level 0 only:
-// pixel scenes: `samples_per_axis`^2 stratified sub-pixel positions through the exact mapping, each
-// averaging the level-0 texels (as a piecewise-constant image, with the wrap modes) over the
-// sub-pixel's footprint widened by one texel (which makes a point footprint exactly bilinear);
+// pixel scenes: stratified sub-pixel positions through the exact mapping, nx across and ny down
+// (reference_sub_positions: at least `samples_per_axis`, and enough that a sub-pixel step moves
+// (u, v) by at most one texel, up to kReferenceMaxSubPositions), each averaging the level-0 texels
+// (as a piecewise-constant image, with the wrap modes) over the bounding box of the sub-pixel's
+// footprint widened by one texel (which makes a point footprint exactly bilinear);
 // mesh scenes: the same average over the vertex's footprint (its spacing to the next vertex).
 std::vector<Rgba> reference_values(const SceneFrame& frame, const Image& level0, Wrap wrap_u, Wrap wrap_v,
                                    int samples_per_axis = 4);
+constexpr int kReferenceMaxSubPositions = 64;
+// Sub-pixel positions along one screen axis whose pixel step is `step_texels` (the larger of its
+// u and v steps, in level-0 texels): ceil(step_texels) within [samples_per_axis, max(that, 64)].
+int reference_sub_positions(double step_texels, int samples_per_axis);
 
 struct ErrorStats {
   double psnr_db = 0;         // over R, G, B of the covered pixels, peak 1.0 (infinite: 999)
