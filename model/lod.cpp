@@ -74,18 +74,22 @@ constexpr std::array<int, kMaxAniso + 1> kAnisoReciprocal = {0,    65536, 32768,
 int aniso_log2_q8(int n) { return kAnisoLog2Q8.at(size_t(n)); }
 int aniso_reciprocal(int n) { return kAnisoReciprocal.at(size_t(n)); }
 
-int32_t tex_lambda(const LodDerivatives& d, int log2_w, int log2_h) {
-  const NormalizedSquares q = normalized_squares(d, log2_w, log2_h);
+// lambda from the first clock's squares (tex_lambda's second clock).
+static int32_t lambda_of(const NormalizedSquares& q) {
   if (q.px == 0 && q.py == 0) return kLodMin;
   // lambda = log2(rho) = log2(max(px, py)) / 2 + s - 24, in Q.16, then rounded to Q8.8.
   const int64_t lambda_q16 = log2_q16(std::max(q.px, q.py)) / 2 + (int64_t(q.shift) - 24) * 65536;
   return int32_t((lambda_q16 + 128) >> 8);
 }
 
+int32_t tex_lambda(const LodDerivatives& d, int log2_w, int log2_h) {
+  return lambda_of(normalized_squares(d, log2_w, log2_h));
+}
+
 AnisoSetup tex_aniso(const LodDerivatives& d, int log2_w, int log2_h, int max_aniso, bool pow2) {
   AnisoSetup a;
-  a.lambda = tex_lambda(d, log2_w, log2_h);
   const NormalizedSquares q = normalized_squares(d, log2_w, log2_h);
+  a.lambda = lambda_of(q);
   const uint64_t pmax = std::max(q.px, q.py), pmin = std::min(q.px, q.py);
   int cap = std::clamp(max_aniso, 1, kMaxAniso);
   if (pow2) cap = int(std::bit_floor(unsigned(cap)));

@@ -37,6 +37,10 @@ Probes tex_probe(const Request& r, const SamplerConfig& config, int log2_w0, int
   p.at[0] = r;
   p.at[0].has_derivatives = false;
   if (!r.has_derivatives) return p;
+  if (config.probe_cap() == 1) {  // one probe at tex_lambda (what tex_aniso gives with a cap of 1)
+    p.at[0].lod = tex_lambda(r.deriv, log2_w0, log2_h0);
+    return p;
+  }
   const AnisoSetup a = tex_aniso(r.deriv, log2_w0, log2_h0, config.probe_cap(), config.aniso_pow2);
   p.n = a.n;
   for (int i = 0; i < a.n; ++i) {
