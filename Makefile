@@ -37,7 +37,9 @@ demo: build
 	@mkdir -p $(OUT)
 	$(TEXSIM) render --scene plane --texture checker --filter point --engine rtl --verify --out $(OUT)/plane_point.png
 	$(TEXSIM) render --scene plane --texture checker --filter trilinear --engine rtl --verify --out $(OUT)/plane_trilinear.png
-	@echo "demo: $(OUT)/plane_point.png aliases near the horizon; $(OUT)/plane_trilinear.png does not"
+	$(TEXSIM) render --scene plane --texture checker --filter anisotropic --engine rtl --verify --out $(OUT)/plane_anisotropic.png
+	@echo "demo: $(OUT)/plane_point.png aliases near the horizon, $(OUT)/plane_trilinear.png blurs it grey," \
+	      "$(OUT)/plane_anisotropic.png keeps its checks"
 
 test: build lint formal xprop synth-latch model-test
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -6,6 +6,10 @@ rtl/tex_scale.sv
 rtl/tex_address.sv
 rtl/tex_wrap.sv
 rtl/tex_front.sv
+rtl/tex_lambda.sv
+rtl/tex_aniso.sv
+rtl/tex_probe.sv
+rtl/tex_accum.sv
 rtl/tex_bank.sv
 rtl/tex_level_mem.sv
 rtl/tex_fetch.sv

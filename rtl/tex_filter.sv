@@ -1,19 +1,19 @@
-// tex_filter: the model's `filter` stage (docs/numerics.md stage 5), all 4 channels: a bilinear
-// in each slot (level d, level d1) and the level blend, 7 one-multiply tex_lerps per channel,
-// exact until the single final rounding.
-//   clock 7: top = lerp(a, b, fx), bot = lerp(c, e, fx)   per slot            CW.8
-//   clock 8: bil = lerp(top, bot, fy)                      per slot            CW.16
-//   clock 9: tri = lerp(bil[0], bil[1], f); rgba = (tri + 2^23) >> 24          CW.24 -> CW
-// Point sampling is the same datapath with fx = fy = 0 and f = 0 (rgba = a of slot 0).
+// tex_filter: the model's `filter_unrounded` stage (docs/numerics.md stage 5), all 4 channels: a
+// bilinear in each slot (level d, level d1) and the level blend, 7 one-multiply tex_lerps per
+// channel, exact (the one rounding is tex_accum's, after the probes of a sample are summed).
+//   clock 1: top = lerp(a, b, fx), bot = lerp(c, e, fx)   per slot            CW.8
+//   clock 2: bil = lerp(top, bot, fy)                      per slot            CW.16
+//   clock 3: blend = lerp(bil[0], bil[1], f)                                   CW.24
+// Point sampling is the same datapath with fx = fy = 0 and f = 0 (blend = a of slot 0, * 2^24).
 // Handshake: stall-enable; every register loads when en is high.
-// Latency: 3 clocks (tex_unit clocks 7, 8, 9). Throughput: 1 per clock.
+// Latency: 3 clocks. Throughput: 1 per clock.
 // Ports:
 //   taps : slot s tap t (0 a, 1 b, 2 c, 3 e) at [(s*4 + t)*4*CW +: 4*CW], each {A, B, G, R} of
 //          CW-bit unsigned channels
 //   w    : slot s axis a (0 fx, 1 fy) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS], unsigned, the
 //          weight of the +1 tap in 1/256
 //   f    : unsigned WEIGHT_BITS, weight of slot 1 (level d1) in 1/256
-//   rgba : {A, B, G, R}, CW-bit unsigned channels, rounded half up
+//   blend: channel c at [c*(CW+24) +: CW+24] (R, G, B, A), unsigned CW.24, exact
 module tex_filter #(
   parameter int CW = 8
 ) (
@@ -22,7 +22,7 @@ module tex_filter #(
   input  logic [32*CW-1:0]                    taps,
   input  logic [4*tex_pkg::WEIGHT_BITS-1:0]   w,
   input  logic [tex_pkg::WEIGHT_BITS-1:0]     f,
-  output logic [4*CW-1:0]                     rgba
+  output logic [4*(CW+24)-1:0]                blend
 );
   localparam int WB = tex_pkg::WEIGHT_BITS;
 
@@ -62,18 +62,19 @@ module tex_filter #(
       end
 
       logic [CW+3*WB-1:0] tri_next;                              // CW.24
-      logic [CW-1:0]      rgba_next;
-      logic [3*WB-2:0]    tri_fraction_unused;  // below the rounding bit
       tex_lerp #(.IN_W(CW+2*WB)) u_tri (.a(g_slot[0].bil_s8), .b(g_slot[1].bil_s8), .w(f_s8),
                                         .y(tri_next));
-      // (tri + 2^23) >> 24 == tri[CW+23:24] + tri[23]; cannot overflow CW bits (tri <= (2^CW-1)*2^24).
-      assign rgba_next = tri_next[CW+3*WB-1:3*WB] + CW'(tri_next[3*WB-1]);
-      assign tri_fraction_unused = tri_next[3*WB-2:0];
+      always_ff @(posedge clk) if (en) blend[c*(CW+3*WB) +: CW+3*WB] <= tri_next;
     end
   endgenerate
 
-  always_ff @(posedge clk) begin
-    if (en) rgba <= {g_channel[3].rgba_next, g_channel[2].rgba_next, g_channel[1].rgba_next,
-                     g_channel[0].rgba_next};
-  end
+  generate
+    if (3 * WB != 24) begin : g_bad_weights
+`ifdef __ICARUS__
+      initial $fatal(1, "tex_filter: blend is CW.24 (tex_pkg::WEIGHT_BITS = 8)");  // Icarus 11: no elaboration-time $error
+`else
+      $error("tex_filter: blend is CW.24 (tex_pkg::WEIGHT_BITS = 8)");
+`endif
+    end
+  endgenerate
 endmodule

@@ -2,13 +2,14 @@
 // bit the model's tex_lambda (model/lod.cpp, docs/numerics.md stage 1b): block normalization of
 // the texel-space magnitudes to 16 bits, exact squares, rho^2 = max(|d/dx|^2, |d/dy|^2), log2 by
 // the leading one and a 33-entry table with linear interpolation, rounded to Q8.8.
-// (Not yet on tex_unit's request port: it is verified on its own, tests/rtl/test_rtl_lambda.cpp.)
+// Part of tex_aniso (the request's LOD and probe setup), which also takes the clock-1 squares.
 // Handshake: stall-enable; every register loads when en is high (no valid bits inside).
 // Latency: 2 clocks (clock 1: normalize and square; clock 2: log2 and round). Throughput: 1 per clock.
 // Ports:
 //   dudx, dvdx, dudy, dvdy : signed Q8.24 texture widths (heights) per pixel (REQ_COORD_W bits)
 //   log2_w, log2_h         : log2 of the level-0 size, integers 0..MAX_LOG2_SIZE (LEVEL_W bits)
 //   lambda                 : signed Q8.8 (LOD_W bits); all derivatives 0 gives -128.0
+//   px_s1, py_s1           : the clock-1 squared lengths (33 bits, unsigned, the block's scale)
 module tex_lambda (
   input  logic                                  clk,
   input  logic                                  en,
@@ -18,7 +19,9 @@ module tex_lambda (
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] dvdy,
   input  logic [tex_pkg::LEVEL_W-1:0]            log2_w,
   input  logic [tex_pkg::LEVEL_W-1:0]            log2_h,
-  output logic signed [tex_pkg::LOD_W-1:0]       lambda
+  output logic signed [tex_pkg::LOD_W-1:0]       lambda,
+  output logic [2*16:0]                          px_s1,   // clock 1: |d(u,v)/dx|^2, normalized
+  output logic [2*16:0]                          py_s1    //          |d(u,v)/dy|^2 (same scale)
 );
   localparam int DW = tex_pkg::REQ_COORD_W;             // 32
   localparam int TW = DW + tex_pkg::MAX_LOG2_SIZE;      // texel-space magnitude: < 2^44, 45 bits
@@ -64,10 +67,12 @@ module tex_lambda (
   end
 
   logic [PW-1:0] p_s1;
+  assign p_s1 = px_s1 > py_s1 ? px_s1 : py_s1;
   logic [SW-1:0] shift_s1;
   always_ff @(posedge clk) begin
     if (en) begin
-      p_s1     <= px > py ? px : py;
+      px_s1    <= px;
+      py_s1    <= py;
       shift_s1 <= shift;
     end
   end
@@ -116,5 +121,13 @@ module tex_lambda (
     if (en) lambda <= p_s1 == '0 ? {1'b1, {(tex_pkg::LOD_W - 1){1'b0}}} : 16'((lambda_q16 + 25'sd128) >>> 8);
   end
 
-  if (tex_pkg::LOD_W != 16) $error("tex_lambda: lambda is built for a 16-bit Q8.8 port (tex_pkg::LOD_W)");
+  generate
+    if (tex_pkg::LOD_W != 16) begin : g_bad_lod_w
+`ifdef __ICARUS__
+      initial $fatal(1, "tex_lambda: lambda is built for a 16-bit Q8.8 port (tex_pkg::LOD_W)");  // Icarus 11: no elaboration-time $error
+`else
+      $error("tex_lambda: lambda is built for a 16-bit Q8.8 port (tex_pkg::LOD_W)");
+`endif
+    end
+  endgenerate
 endmodule

@@ -4,29 +4,35 @@
 // Handshake: req and rsp are valid/ready. req_ready is a register output (the skid buffer's
 //   !full): it never depends combinationally on rsp_ready or req_valid. Responses come in request
 //   order with their tag; nothing is lost or duplicated. Writes (wr_*) are always accepted.
-// Latency: LATENCY = 10 clocks (10 registers): a request accepted in cycle t (req_valid &&
-//   req_ready at the rising edge ending cycle t) has rsp_valid high in cycle t + 10 if the output
-//   was not stalled. Stall-enable pipeline: every stage advances together when the skid buffer
-//   can take an item; only the valid bits are reset.
-// Throughput: 1 sample per clock sustained (8 texel reads per clock: a 2x2 footprint in each of
-//   levels d and d1); under backpressure the unit adds no bubbles of its own.
+// Latency: LATENCY = 16 clocks (16 registers): a request accepted in cycle t (req_valid &&
+//   req_ready at the rising edge ending cycle t) has rsp_valid high in cycle t + 16 if the output
+//   was not stalled and the request has one probe; each further probe adds a clock. Stall-enable
+//   pipeline: every stage advances together when the skid buffer can take an item (clocks 1-4
+//   also wait while tex_probe issues a request's probes); only the valid bits are reset.
+// Throughput: 1 probe per clock sustained (8 texel reads per clock: a 2x2 footprint in each of
+//   levels d and d1): 1 sample per clock for lambda requests and isotropic footprints, 1 per N
+//   clocks for an anisotropic sample of N probes; under backpressure the unit adds no bubbles.
 // Ports (see docs/rtl-interface.md): req_u, req_v signed Q8.24; req_lod, cfg_lod_bias,
-//   cfg_min_lod, cfg_max_lod signed Q8.8; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
+//   cfg_min_lod, cfg_max_lod signed Q8.8; req_deriv selects req_lod (0) or the derivatives
+//   req_dudx, req_dvdx, req_dudy, req_dvdy (1, signed Q8.24 texture widths per pixel);
+//   cfg_max_aniso_m1 the probes per sample at most less one (0..15; 0 = trilinear),
+//   cfg_aniso_pow2 probe counts rounded up to powers of two; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   cfg_log2_w/h integer <= MAX_LOG2_W/H; wr_level, wr_x, wr_y unsigned integers.
 // Inputs are only ever registered: no logic depends combinationally on an input pin.
-//   cfg_* are registered every clock (in tex_front); a request accepted in cycle t uses the
-//   cfg_* pins of cycles t to t + 3 (clock 2: bias, clamp, sizes; clock 3: mip mode, last level; clock 4:
-//   texel filter, level sizes; clock 5: wrap modes), which the contract keeps static anyway.
+//   cfg_* are registered every clock (in tex_probe and tex_front) and must be static while
+//   requests are in flight.
 //   wr_* are registered (wr_*_q) and written one clock later: a texel on the write pins in cycle
-//   t is in its memory from cycle t + 2 on, and is seen by every request accepted in cycle t - 2
-//   or later (the memories are read in a request's clock 5).
+//   t is in its memory from cycle t + 2 on, and is seen by every request accepted in cycle t - 6
+//   or later (the memories are read in a probe's clock 5, the request's clock 9 for its first).
 //
-// Pipeline (register at the end of each clock; names carry _s<clock>, docs/rtl.md):
-//   1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_scale  3 tex_lod level select (slots:
-//   0 = level d, 1 = level d1)  4 tex_address per slot and axis  5 tex_wrap (combinational);
-//   tex_fetch: the memories of levels d and d1 read (4 banks each; the others hold)
-//   6 tex_fetch: bank words -> 8 taps  7 top/bot lerps  8 bilinear lerps  9 level blend + round
-//   10 tex_skid (output register)
+// Pipeline (register at the end of each clock; names carry _s<clock> counted from a probe's
+// capture in tex_front, docs/rtl.md):
+//   request 1-4 tex_probe (capture, tex_aniso: lambda, N, steps; the sequencer issues probes)
+//   probe   1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_scale  3 tex_lod level select
+//   (slots: 0 = level d, 1 = level d1)  4 tex_address per slot and axis  5 tex_wrap
+//   (combinational); tex_fetch: the memories of levels d and d1 read (4 banks each)
+//   6 tex_fetch: bank words -> 8 taps  7 top/bot lerps  8 bilinear lerps  9 level blend
+//   10 tex_accum: sum of the probes  11 mean and rounding  12 tex_skid (output register)
 module tex_unit #(
   parameter int MAX_LOG2_W = 10,  // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H, each 0..11
   parameter int MAX_LOG2_H = 10,
@@ -45,6 +51,8 @@ module tex_unit #(
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
+  input  logic [3:0]                             cfg_max_aniso_m1,
+  input  logic                                   cfg_aniso_pow2,
 
   input  logic                                   wr_en,
   input  logic [tex_pkg::LEVEL_W-1:0]            wr_level,
@@ -57,6 +65,11 @@ module tex_unit #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic                                   req_deriv,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -64,8 +77,10 @@ module tex_unit #(
   output logic [4*CW-1:0]                        rsp_rgba,
   output logic [TAG_W-1:0]                       rsp_tag
 );
-  localparam int LATENCY = 10;     // request handshake edge to response handshake edge
-  localparam int NSTAGE  = LATENCY - 1;  // pipeline registers before the skid buffer
+  localparam int LATENCY = 16;     // request handshake edge to response (one probe)
+  localparam int NSTAGE  = 9;      // probe pipeline registers from tex_front to tex_filter
+  localparam int PRE     = 4;      // tex_probe's request registers
+  localparam int POST    = 2;      // tex_accum's registers
   localparam int VW = tex_pkg::LEVEL_W;
   localparam int WB = tex_pkg::WEIGHT_BITS;
 
@@ -98,27 +113,57 @@ module tex_unit #(
     if (TAG_W < 1) begin : g_bad_tag_w
       `TEX_PARAM_ERROR("tex_unit: parameter TAG_W must be at least 1")
     end
+    if (LATENCY != PRE + NSTAGE + POST + 1) begin : g_bad_latency  // (the header's figure)
+      `TEX_PARAM_ERROR("tex_unit: LATENCY is not the registers a one-probe request passes")
+    end
   endgenerate
 `undef TEX_PARAM_ERROR
 
   // ---------------------------------------------------------------- control: valid bits, enable
   logic en;                        // every stage advances (the skid buffer has room)
-  logic [NSTAGE:1] valid;          // valid[n]: the clock-n register holds a request
+  logic [NSTAGE:1] valid;          // valid[n]: the clock-n register holds a probe
 
-  assign req_ready = en;
+  // ---------------------------------------------------------------- requests 1-4: tex_probe
+  logic                                   probe_valid, probe_first, probe_last;
+  logic [4:0]                             probe_n;
+  logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u, probe_v;
+  logic signed [tex_pkg::LOD_W-1:0]       probe_lod;
+  logic [TGW-1:0]                         probe_tag;
+  logic [2:0]                             probe_held;  // requests in tex_probe
+`ifdef FORMAL
+  logic [4:1]                             f_probe_valid;
+  logic [4*TGW-1:0]                       f_probe_tags;
+`endif
+  tex_probe #(.TAG_W(TGW)) u_probe (
+    .clk(clk), .rst(rst), .en(en), .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h),
+    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
+    .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
+    .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
+    .req_dvdy(req_dvdy), .req_tag(req_tag),
+    .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod),
+    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag(probe_tag),
+    .held(probe_held)
+`ifdef FORMAL
+    , .f_valid(f_probe_valid), .f_tags(f_probe_tags)
+`endif
+  );
 
   always_ff @(posedge clk) begin
     if (rst) valid <= '0;
-    else if (en) valid <= {valid[NSTAGE-1:1], req_valid};
+    else if (en) valid <= {valid[NSTAGE-1:1], probe_valid};
   end
 
-  // g_tag[n].tag: the tag of the request in the clock-n register (it rides along, not reset).
+  // g_tag[n].tag: the tag of the probe in the clock-n register, with its place in the sample
+  // {n, last, first} (it rides along, not reset).
+  localparam int SW = TGW + 7;
+  logic [NSTAGE:1] last;           // last[n]: the clock-n probe is its sample's last
   genvar n;
   generate
     for (n = 1; n <= NSTAGE; n = n + 1) begin : g_tag
-      logic [TGW-1:0] tag;
+      logic [SW-1:0] tag;
+      assign last[n] = tag[TGW+1];
       if (n == 1) begin : g_capture
-        always_ff @(posedge clk) if (en) tag <= req_tag;
+        always_ff @(posedge clk) if (en) tag <= {probe_n, probe_last, probe_first, probe_tag};
       end else begin : g_shift
         always_ff @(posedge clk) if (en) tag <= g_tag[n-1].tag;
       end
@@ -152,7 +197,7 @@ module tex_unit #(
   logic [4*XW-1:0] x;                  // wrapped x taps: slot s tap j at [(s*2 + j)*XW +: XW]
   logic [4*YW-1:0] y;
   tex_front #(.XW(XW), .YW(YW)) u_front (
-    .clk(clk), .en(en), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
+    .clk(clk), .en(en), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
     .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h), .cfg_wrap_u(cfg_wrap_u),
     .cfg_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
@@ -179,18 +224,37 @@ module tex_unit #(
   );
 
   // ---------------------------------------------------------------- clocks 7-9: filter
-  logic [4*CWD-1:0] rgba_s9;
+  logic [4*(CWD+24)-1:0] blend_s9;
   tex_filter #(.CW(CWD)) u_filter (
-    .clk(clk), .en(en), .taps(taps_s6), .w(w_s6), .f(f_s6), .rgba(rgba_s9)
+    .clk(clk), .en(en), .taps(taps_s6), .w(w_s6), .f(f_s6), .blend(blend_s9)
   );
 
-  // ---------------------------------------------------------------- clock 10: skid buffer
+  // ---------------------------------------------------------------- clocks 10-11: tex_accum
+  logic             sample_valid;
+  logic [4*CWD-1:0] rgba_s11;
+  logic [TGW-1:0]   tag_s11;
+  logic             accum_held;  // tex_accum's clock 1 holds a sample's last probe
+`ifdef FORMAL
+  logic             f_accum_valid;
+  logic [TGW-1:0]   f_accum_tag;
+`endif
+  tex_accum #(.CW(CWD), .SIDE_W(TGW)) u_accum (
+    .clk(clk), .rst(rst), .en(en), .in_valid(valid[NSTAGE]),
+    .in_first(g_tag[NSTAGE].tag[TGW]), .in_last(g_tag[NSTAGE].tag[TGW+1]),
+    .in_n(g_tag[NSTAGE].tag[TGW+2 +: 5]), .blend(blend_s9), .in_side(g_tag[NSTAGE].tag[TGW-1:0]),
+    .out_valid(sample_valid), .rgba(rgba_s11), .out_side(tag_s11), .held(accum_held)
+`ifdef FORMAL
+    , .f_valid_s1(f_accum_valid), .f_side_s1(f_accum_tag)
+`endif
+  );
+
+  // ---------------------------------------------------------------- clock 12: skid buffer
 `ifdef FORMAL
   logic [TGW+4*CWD-1:0] f_skid_data;  // the skid entry {tag, rgba} (formal properties, below)
 `endif
   tex_skid #(.W(TGW + 4*CWD)) u_skid (
     .clk(clk), .rst(rst),
-    .in_valid(valid[NSTAGE]), .in_ready(en), .in_data({g_tag[NSTAGE].tag, rgba_s9}),
+    .in_valid(sample_valid), .in_ready(en), .in_data({tag_s11, rgba_s11}),
     .out_valid(rsp_valid), .out_ready(rsp_ready), .out_data({rsp_tag, rsp_rgba})
 `ifdef FORMAL
     , .f_skid_data(f_skid_data)
@@ -202,13 +266,22 @@ module tex_unit #(
   // (Verilator --assert; a failure stops the simulation.)
   // Requests in flight = accepted minus answered (reset empties the unit). rsp_valid is low
   // whenever nothing is in flight, so the count never goes below 0 (no response without a
-  // request); it never exceeds the 9 pipeline registers plus the 2 skid entries; and it always
-  // equals the items the unit holds (valid bits, output register, skid entry = !en): nothing is
-  // lost or duplicated.
-  localparam int CAPACITY = NSTAGE + 2;
+  // request); it never exceeds the 4 request registers, 9 + 2 probe registers and 2 skid
+  // entries; and it always equals the requests the unit holds (tex_probe's valid bits, the probe
+  // registers holding a sample's last probe, output register, skid entry = !en): nothing is lost
+  // or duplicated.
+  localparam int CAPACITY = PRE + NSTAGE + POST + 2;
   localparam int FW = $clog2(CAPACITY + 2);
   // (Everything below reads the input pins only at the clock edge: no combinational logic on them.)
-  logic [FW-1:0] in_flight;
+  logic [FW-1:0] in_flight, held;
+  logic [NSTAGE:1] chain_last;  // the probe registers holding a sample's last probe
+  assign chain_last = valid & last;
+  always_comb begin
+    // (a loop, not $countones: Icarus 11 leaves a system function's arguments out of an
+    // always_comb's sensitivity, and `held` went stale)
+    held = FW'(probe_held) + FW'(accum_held) + FW'(sample_valid) + FW'(rsp_valid) + FW'(!en);
+    for (int i = 1; i <= NSTAGE; i++) held = held + FW'(chain_last[i]);
+  end
   always_ff @(posedge clk) begin
     if (rst) begin
       in_flight <= '0;
@@ -217,8 +290,8 @@ module tex_unit #(
         else $error("tex_unit: rsp_valid high with no request in flight");
       assert (in_flight <= FW'(CAPACITY))
         else $error("tex_unit: more requests in flight than the pipeline and skid buffer hold");
-      assert (in_flight == FW'($countones(valid)) + FW'(rsp_valid) + FW'(!en))
-        else $error("tex_unit: requests in flight differ from the items the pipeline holds");
+      assert (in_flight == held)
+        else $error("tex_unit: requests in flight differ from the requests the pipeline holds");
       in_flight <= in_flight + FW'(req_valid && req_ready) - FW'(rsp_valid && rsp_ready);
     end
   end
@@ -228,6 +301,7 @@ module tex_unit #(
   logic                                   req_stalled_q, rsp_stalled_q;
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_u_q, req_v_q;
   logic signed [tex_pkg::LOD_W-1:0]       req_lod_q;
+  logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
   // (The payload copies are taken only in a stalled cycle, the only time they are compared.)
@@ -239,6 +313,7 @@ module tex_unit #(
       req_v_q   <= req_v;
       req_lod_q <= req_lod;
       req_tag_q <= req_tag;
+      req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
     end
     if (rsp_valid && !rsp_ready) begin
       rsp_tag_q  <= rsp_tag;
@@ -246,7 +321,9 @@ module tex_unit #(
     end
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q
-              && req_tag == req_tag_q)
+              && req_tag == req_tag_q
+              // (=== : a lambda request's derivative pins are don't-care, X in the 4-state run)
+              && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} === req_deriv_q)
         else $error("tex_unit: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin
@@ -264,10 +341,10 @@ module tex_unit #(
   // Items in flight, oldest first: the output register (rsp_valid), the skid entry (!en), then
   // the pipeline registers valid[NSTAGE] down to valid[1]. The tracked request: the f_pick-th
   // accepted (mod 32; f_pick any constant), its tag taken when it is accepted.
-  localparam int F_CAPACITY = LATENCY + 1;  // LATENCY - 1 pipeline registers + 2 skid entries
+  localparam int F_CAPACITY = LATENCY + 1;  // 4 + 9 + 2 registers + the 2 skid entries
   localparam int FN = 5;                    // counter bits: 2^FN > F_CAPACITY + 1
 
-  function automatic logic [FN-1:0] f_count(input logic [NSTAGE:1] v);  // valid bits set
+  function automatic logic [FN-1:0] f_count(input logic [NSTAGE:1] v);  // bits set
     f_count = '0;
     for (int i = 1; i <= NSTAGE; i++) f_count = f_count + FN'(v[i]);
   endfunction
@@ -282,10 +359,14 @@ module tex_unit #(
   logic [TGW-1:0] f_tag_q;
   logic [4*CW-1:0] f_rgba_q;
   logic          f_in_take, f_out_take;
+  logic [FN-1:0] f_after_accum;        // requests ahead of tex_accum's clock-1 register
+  logic [FN-1:0] f_after_chain;        // requests ahead of tex_probe's clock-4 register
 
   assign f_in_take  = req_valid && req_ready;
   assign f_out_take = rsp_valid && rsp_ready;
   assign f_pos      = f_pick - f_emitted;
+  assign f_after_accum = FN'(rsp_valid) + FN'(!en) + FN'(sample_valid);
+  assign f_after_chain = f_after_accum + FN'(accum_held) + f_count(valid & last);
   always_ff @(posedge clk) begin
     f_stalled_q <= !rst && rsp_valid && !rsp_ready;
     f_tag_q     <= rsp_tag;
@@ -304,25 +385,67 @@ module tex_unit #(
 
   always_comb begin
     if (f_reset_done) begin
-      // capacity: in flight = the items the unit holds, at most F_CAPACITY
-      assert (f_held == f_count(valid) + FN'(rsp_valid) + FN'(!en));
+      // capacity: in flight = the requests the unit holds, at most F_CAPACITY
+      assert (f_held == f_after_chain + FN'(probe_held));
       assert (en || rsp_valid);
       assert (f_held <= FN'(F_CAPACITY));
       // order: the tracked request is answered as the f_pick-th response, with its tag (none
       // lost, duplicated or reordered); until then its tag is in the register at place f_pos
+      // (every probe of a request carries its tag)
       if (rsp_valid && f_pos == FN'(0)) assert (rsp_tag == f_pick_tag);
       if (!en && f_pos == FN'(1)) assert (f_skid_data[4*CWD +: TGW] == f_pick_tag);
+      if (sample_valid && f_pos == FN'(rsp_valid) + FN'(!en)) assert (tag_s11 == f_pick_tag);
+      if (f_accum_valid && f_pos == f_after_accum) assert (f_accum_tag == f_pick_tag);
+      // (the probes after a partial sum, and after the sequencer's first probe: see g_f_stage)
+      if (f_accum_valid && !accum_held)
+        assert (valid[NSTAGE] && !g_tag[NSTAGE].tag[TGW] && g_tag[NSTAGE].tag[TGW-1:0] == f_accum_tag);
+      if (probe_valid && !probe_first)
+        assert (valid[1] && !last[1] && g_tag[1].tag[TGW-1:0] == probe_tag);
       // hold: a stalled response stays valid with the same tag and texel
       if (f_stalled_q) assert (rsp_valid && rsp_tag == f_tag_q && rsp_rgba == f_rgba_q);
     end
   end
   generate
     for (n = 1; n <= NSTAGE; n = n + 1) begin : g_f_stage
-      // requests ahead of the one in the clock-n register: output, skid entry, later registers
+      // requests ahead of the probe in the clock-n register: tex_accum on, later registers'
+      // last probes (a request's earlier probes belong to it)
       logic [FN-1:0] ahead;
-      assign ahead = FN'(rsp_valid) + FN'(!en) + f_count(valid >> n);
+      assign ahead = f_after_accum + FN'(accum_held) + f_count((valid & last) >> n);
       always_comb
-        if (f_reset_done && valid[n] && f_pos == ahead) assert (g_tag[n].tag == f_pick_tag);
+        if (f_reset_done && valid[n] && f_pos == ahead) assert (g_tag[n].tag[TGW-1:0] == f_pick_tag);
+      // a sample's probes are contiguous: one that is not its sample's last has the next probe
+      // of the same request one register behind it, one that is not its first the previous one
+      // ahead of it (in tex_accum's clock-1 register after the last stage)
+      logic           behind_valid, behind_first, ahead_valid, ahead_last;
+      logic [TGW-1:0] behind_tag, ahead_tag;
+      if (n == 1) begin : g_behind_probe
+        assign {behind_valid, behind_first, behind_tag} = {probe_valid, probe_first, probe_tag};
+      end else begin : g_behind_stage
+        assign {behind_valid, behind_first, behind_tag} =
+          {valid[n-1], g_tag[n-1].tag[TGW], g_tag[n-1].tag[TGW-1:0]};
+      end
+      if (n == NSTAGE) begin : g_ahead_accum
+        assign {ahead_valid, ahead_last, ahead_tag} = {f_accum_valid, accum_held, f_accum_tag};
+      end else begin : g_ahead_stage
+        assign {ahead_valid, ahead_last, ahead_tag} =
+          {valid[n+1], last[n+1], g_tag[n+1].tag[TGW-1:0]};
+      end
+      always_comb
+        if (f_reset_done && valid[n]) begin
+          if (!last[n])
+            assert (behind_valid && !behind_first && behind_tag == g_tag[n].tag[TGW-1:0]);
+          if (!g_tag[n].tag[TGW])
+            assert (ahead_valid && !ahead_last && ahead_tag == g_tag[n].tag[TGW-1:0]);
+        end
+    end
+    for (n = 1; n <= PRE; n = n + 1) begin : g_f_request
+      logic [FN-1:0] ahead;
+      logic [PRE:1] later;  // the valid bits of the clock-k registers, k > n
+      assign later = f_probe_valid >> n;
+      assign ahead = f_after_chain + FN'(later[1]) + FN'(later[2]) + FN'(later[3]);
+      always_comb
+        if (f_reset_done && f_probe_valid[n] && f_pos == ahead)
+          assert (f_probe_tags[(n-1)*TGW +: TGW] == f_pick_tag);
     end
   endgenerate
 `endif

@@ -6,14 +6,17 @@
 // Handshake: req, rsp, mem_req and mem_rsp are valid/ready. req_ready is a register output
 //   (tex_cached_fetch's en_front: room in the sample FIFO and the miss ring). Responses come in
 //   request order with their tag, with full backpressure; mem_rsp beats come in mem_req order.
-// Latency: 13 clocks from the request handshake edge to rsp_valid when every line hits
-//   and the output is not stalled (clocks 1-4 tex_front, 5 tag stage and FIFO push, 6 head,
-//   7 data read, 8 taps, 9-11 tex_filter, 12 tex_skid); a miss adds the memory's latency.
-// Throughput: 1 sample per clock while lines hit; the FIFO (FIFO_DEPTH samples) keeps requests
-//   flowing while misses are outstanding. Memory traffic is a function of the requests and the
+// Latency: 19 clocks from the request handshake edge to rsp_valid when every line hits, the
+//   request has one probe and the output is not stalled (requests 1-4 tex_probe; probes 1-4
+//   tex_front, 5 tag stage and FIFO push, 6 head, 7 data read, 8 taps, 9-11 tex_filter, 12-13
+//   tex_accum, 14 tex_skid); a miss adds the memory's latency, each further probe a clock.
+// Throughput: 1 probe per clock while lines hit (1 sample per clock for lambda requests and
+//   isotropic footprints); the FIFO (FIFO_DEPTH probes) keeps requests flowing while misses are
+//   outstanding. Memory traffic is a function of the requests and the
 //   cache configuration alone (docs/memory.md §2).
 // Ports: as tex_unit (req_u, req_v signed Q8.24; req_lod, cfg_lod_bias, cfg_min_lod,
-//   cfg_max_lod signed Q8.8; rsp_rgba {A, B, G, R} CW-bit unsigned), plus
+//   cfg_max_lod signed Q8.8; req_deriv, req_dudx .. req_dvdy, cfg_max_aniso_m1, cfg_aniso_pow2;
+//   rsp_rgba {A, B, G, R} CW-bit unsigned), plus
 //   cfg_mem_base     : byte address of level 0 in memory (MEM_ADDR_W bits, line aligned)
 //   cfg_block_morton : 0 row-major, 1 Morton order of a level's blocks
 //   cfg_log2_sets, cfg_log2_ways : geometry of each cache (sets >= 4, sets * ways <= LINES)
@@ -49,6 +52,8 @@ module tex_unit_cached #(
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
+  input  logic [3:0]                             cfg_max_aniso_m1,
+  input  logic                                   cfg_aniso_pow2,
   input  logic [tex_pkg::MEM_ADDR_W-1:0]         cfg_mem_base,
   input  logic                                   cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]        cfg_log2_sets,
@@ -60,6 +65,11 @@ module tex_unit_cached #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic                                   req_deriv,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -147,16 +157,42 @@ module tex_unit_cached #(
     cfg_log2_ways_q    <= cfg_log2_ways;
   end
 
-  // ---------------------------------------------------------------- front: clocks 1-4
+  // ---------------------------------------------------------------- requests 1-4: tex_probe
   logic en_front, en_back;
-  logic [4:1] valid_f;             // the front's clock-n register holds a request
-  logic [TGW-1:0] tag_f [4:1];
-  assign req_ready = en_front;
+  logic                                   probe_valid, probe_first, probe_last;
+  logic [4:0]                             probe_n;
+  logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u, probe_v;
+  logic signed [tex_pkg::LOD_W-1:0]       probe_lod;
+  logic [TGW-1:0]                         probe_tag;
+  logic [2:0]                             probe_held;  // requests in tex_probe
+`ifdef FORMAL
+  logic [4:1]                             f_probe_valid;
+  logic [4*TGW-1:0]                       f_probe_tags;
+`endif
+  tex_probe #(.TAG_W(TGW)) u_probe (
+    .clk(clk), .rst(rst), .en(en_front), .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h),
+    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
+    .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
+    .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
+    .req_dvdy(req_dvdy), .req_tag(req_tag),
+    .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod),
+    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag(probe_tag),
+    .held(probe_held)
+`ifdef FORMAL
+    , .f_valid(f_probe_valid), .f_tags(f_probe_tags)
+`endif
+  );
+
+  // ---------------------------------------------------------------- front: probe clocks 1-4
+  // A probe's tag carries its place in the sample, {n, last, first, tag}, through the FIFO.
+  localparam int SW = TGW + 7;
+  logic [4:1] valid_f;             // the front's clock-n register holds a probe
+  logic [SW-1:0] tag_f [4:1];
   always_ff @(posedge clk) begin
     if (rst) valid_f <= '0;
-    else if (en_front) valid_f <= {valid_f[3:1], req_valid};
+    else if (en_front) valid_f <= {valid_f[3:1], probe_valid};
     if (en_front) begin
-      tag_f[1] <= req_tag;
+      tag_f[1] <= {probe_n, probe_last, probe_first, probe_tag};
       for (int n = 2; n <= 4; n++) tag_f[n] <= tag_f[n-1];
     end
   end
@@ -169,7 +205,7 @@ module tex_unit_cached #(
   logic [4*YW-1:0] y;
   logic [VW-1:0]   cfg_log2_w_q, cfg_log2_h_q;
   tex_front #(.XW(XW), .YW(YW)) u_front (
-    .clk(clk), .en(en_front), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
+    .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
     .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h), .cfg_wrap_u(cfg_wrap_u),
     .cfg_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
@@ -179,12 +215,12 @@ module tex_unit_cached #(
 
   // ---------------------------------------------------------------- cached fetch: clocks 5-8
   logic              fetch_valid;
-  logic [TGW-1:0]    fetch_tag;
+  logic [SW-1:0]     fetch_tag;
   logic [32*CWD-1:0] taps;
   logic [4*WB-1:0]   fetch_w;
   logic [WB-1:0]     fetch_f;
   tex_cached_fetch #(
-    .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .CW(CWD), .TAG_W(TGW), .BW(BLOCK_W), .BH(BLOCK_H),
+    .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .CW(CWD), .TAG_W(SW), .BW(BLOCK_W), .BH(BLOCK_H),
     .LINES(LINES), .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH),
     .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W)
   ) u_fetch (
@@ -201,12 +237,12 @@ module tex_unit_cached #(
   );
 
   // ---------------------------------------------------------------- filter: clocks 9-11
-  logic [4*CWD-1:0] rgba;
+  logic [4*(CWD+24)-1:0] blend;
   tex_filter #(.CW(CWD)) u_filter (
-    .clk(clk), .en(en_back), .taps(taps), .w(fetch_w), .f(fetch_f), .rgba(rgba)
+    .clk(clk), .en(en_back), .taps(taps), .w(fetch_w), .f(fetch_f), .blend(blend)
   );
-  logic [3:1]     valid_b;
-  logic [TGW-1:0] tag_b [3:1];
+  logic [3:1]    valid_b;
+  logic [SW-1:0] tag_b [3:1];
   always_ff @(posedge clk) begin
     if (rst) valid_b <= '0;
     else if (en_back) valid_b <= {valid_b[2:1], fetch_valid};
@@ -217,10 +253,24 @@ module tex_unit_cached #(
     end
   end
 
-  // ---------------------------------------------------------------- clock 12: skid buffer
+  // ---------------------------------------------------------------- clocks 12-13: tex_accum
+  logic             sample_valid;
+  logic [4*CWD-1:0] rgba;
+  logic [TGW-1:0]   sample_tag;
+  logic             accum_held_unused;  // (in-flight accounting: tex_unit's checks)
+  logic [2:0]       probe_held_unused;
+  assign probe_held_unused = probe_held;
+  tex_accum #(.CW(CWD), .SIDE_W(TGW)) u_accum (
+    .clk(clk), .rst(rst), .en(en_back), .in_valid(valid_b[3]), .in_first(tag_b[3][TGW]),
+    .in_last(tag_b[3][TGW+1]), .in_n(tag_b[3][TGW+2 +: 5]), .blend(blend),
+    .in_side(tag_b[3][TGW-1:0]), .out_valid(sample_valid), .rgba(rgba), .out_side(sample_tag),
+    .held(accum_held_unused)
+  );
+
+  // ---------------------------------------------------------------- clock 14: skid buffer
   tex_skid #(.W(TGW + 4*CWD)) u_skid (
     .clk(clk), .rst(rst),
-    .in_valid(valid_b[3]), .in_ready(en_back), .in_data({tag_b[3], rgba}),
+    .in_valid(sample_valid), .in_ready(en_back), .in_data({sample_tag, rgba}),
     .out_valid(rsp_valid), .out_ready(rsp_ready), .out_data({rsp_tag, rsp_rgba})
   );
 
@@ -233,6 +283,7 @@ module tex_unit_cached #(
   logic        req_stalled_q, rsp_stalled_q, mreq_stalled_q;
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_u_q, req_v_q;
   logic signed [tex_pkg::LOD_W-1:0]       req_lod_q;
+  logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
   logic [tex_pkg::MEM_ADDR_W-1:0]         mreq_addr_q;
@@ -252,6 +303,7 @@ module tex_unit_cached #(
       req_v_q   <= req_v;
       req_lod_q <= req_lod;
       req_tag_q <= req_tag;
+      req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
     end
     if (rsp_valid && !rsp_ready) begin
       rsp_tag_q  <= rsp_tag;
@@ -260,7 +312,7 @@ module tex_unit_cached #(
     if (mem_req_valid && !mem_req_ready) mreq_addr_q <= mem_req_addr;
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q
-              && req_tag == req_tag_q)
+              && req_tag == req_tag_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin

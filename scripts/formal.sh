@@ -8,7 +8,9 @@
 #       order    - the n-th response is the n-th accepted item, with its data / tag (none lost,
 #                  duplicated or reordered): a tracked item (any constant ordinal) is followed;
 #       hold     - a stalled valid stays high, with its data / tag and texel unchanged;
-#       capacity - in flight (accepted - emitted) = the valid bits held <= 2 (skid) / 11 (unit).
+#       probes   - (unit) a request's probes (N = 1..16, any N: tex_aniso's comparisons are cut)
+#                  follow each other through the pipeline with its tag, first to last;
+#       capacity - in flight (accepted - emitted) = the requests held <= 2 (skid) / 17 (unit).
 #  2. Structure (the real RTL, no FORMAL): no combinational path from out_ready to in_ready,
 #     rsp_ready to req_ready, or any input to any output of tex_unit.
 #  3. Planted bugs: each is a sed on a copy of the RTL and must make a named check fail (BMC
@@ -36,7 +38,7 @@ SKID_PARAMS="-set W 2"
 UNIT_PARAMS="-set MAX_LOG2_W 1 -set MAX_LOG2_H 1 -set CW 1 -set TAG_W 2"
 UNIT_CFG="2x2 texels, CW=1, TAG_W=2"
 COMB_PARAMS="-chparam MAX_LOG2_W 2 -chparam MAX_LOG2_H 1 -chparam CW 2"  # structural: 4x2, CW=2
-SKID_BMC=10; UNIT_BMC=14   # BMC depth (steps from reset): the unit fills up (11 items) in 12
+SKID_BMC=10; UNIT_BMC=20   # BMC depth (steps from reset): the unit fills up (17 items) in 18
 INDUCT=4                   # k-induction length (both close at k = 1)
 
 # sources DIR: the RTL file list with DIR/ in front
@@ -44,22 +46,28 @@ sources() { sed "s|^|$1/|" "$root/rtl/tex_files.f" | tr '\n' ' '; }
 
 # model NAME DIR TOP PARAMS: DIR/rtl (+ DIR/rtl/formal) -> $work/NAME.smt2. The simulation checks
 # of tex_unit (`ifndef SYNTHESIS, not parsed by Yosys) are left out by -DSYNTHESIS. In tex_unit,
-# the texel datapath's result rgba_s9 is a cut point (a free value each clock, an
-# over-approximation), which leaves the control, tags and skid buffer to the solver.
+# the texel datapath's result rgba_s11 and tex_aniso's comparisons `reaches` (k^2 Pmin^2 >= the
+# target) are cut points (free values each clock, an over-approximation): a derivative request
+# issues any number of probes 1..16, and the solver sees the control, tags, probe sequencer and
+# skid buffer without the multipliers. The model is bit-blasted (abc -g AND): z3 takes seconds on
+# it, minutes or more on the word-level model.
 model() {
   local name=$1 dir=$2 top=$3 params=$4 cut=""
-  [ "$top" = tex_unit_formal ] && cut="cutpoint w:dut.rgba_s9; opt_clean;"
+  [ "$top" = tex_unit_formal ] &&
+    cut="cutpoint w:dut.rgba_s11 w:dut.u_probe.u_aniso.reaches; opt_clean;"
   yosys -q -l "$work/$name.yosys.log" -p "
     read_verilog -formal -DSYNTHESIS -sv $(sources "$dir") $dir/rtl/formal/$top.sv
     chparam $params $top; prep -flatten -top $top; $cut
-    memory_map; opt -fast; async2sync; dffunmap; write_smt2 -wires $work/$name.smt2" \
+    memory_map; opt -fast; async2sync; dffunmap; techmap; opt -fast; abc -g AND; opt_clean;
+    dffunmap; write_smt2 -wires $work/$name.smt2" \
     > /dev/null 2>&1 ||
     { echo "formal: yosys failed on $name, see $work/$name.yosys.log" >&2; return 2; }
   grep -q 'yosys-smt2-assert' "$work/$name.smt2" ||
     { echo "formal: no assertion in $name (FORMAL blocks missing?)" >&2; return 2; }
 }
 
-# failed_props LOG: the properties (order, hold, capacity) of the assertions that failed in LOG.
+# failed_props LOG: the properties (order, hold, probes, capacity) of the assertions that failed
+# in LOG, told apart by the text of the assertion's line.
 failed_props() {
   grep -o '\$assert\$[^$]*:[0-9]*\$' "$1" | sed 's/^\$assert\$//; s/\$$//' | sort -u |
     while IFS=: read -r file line; do
@@ -67,6 +75,7 @@ failed_props() {
       case "$text" in
         *f_stalled_q*) echo hold ;;
         *f_pick*) echo order ;;
+        *index*|*aniso_n*|*'!last['*|*'.tag[TGW])'*|*'!accum_held)'*|*'!probe_first)'*) echo probes ;;
         *) echo capacity ;;
       esac
     done | sort -u | tr '\n' ' '
@@ -122,7 +131,8 @@ structural "tex_skid: no combinational path out_ready -> in_ready" tex_skid "$SK
 proof unit tex_unit_formal "$UNIT_PARAMS" "tex_unit $UNIT_CFG" $UNIT_BMC \
   "order (rsp_tag of the n-th response = req_tag of the n-th request)" \
   "hold (rsp_valid, rsp_tag, rsp_rgba until rsp_ready)" \
-  "capacity (in flight = valid bits held <= 9 + 2)"
+  "probes (a request's 1..16 probes contiguous, first to last, with its tag)" \
+  "capacity (in flight = requests held <= 4 + 9 + 2 + 2)"
 structural "tex_unit 4x2 CW=2: no combinational path rsp_ready -> req_ready" tex_unit "$UNIT_COMB"
 structural "tex_unit 4x2 CW=2: no combinational path from any input to any output" \
   tex_unit "$UNIT_ANY"
@@ -149,7 +159,7 @@ mutant() {
     comb-unit) comb_clean "$dir" tex_unit "$UNIT_COMB" || got=$want ;;
     *)
       local top=tex_skid_formal params=$SKID_PARAMS depth=$SKID_BMC
-      if [ "$file" = tex_unit.sv ]; then
+      if [ "$file" != tex_skid.sv ]; then
         top=tex_unit_formal params=$UNIT_PARAMS depth=$UNIT_BMC
       fi
       model "$name" "$dir" $top "$params" || { fail=1; return; }
@@ -182,8 +192,10 @@ mutant unit_comb "the same skid bug inside tex_unit (rsp_ready -> req_ready)" \
   comb-unit tex_skid.sv 's/in_ready = !skid_valid;/in_ready = !skid_valid || out_ready;/'
 mutant unit_tags "tex_unit tags shift while the pipeline is stalled (tag/request mismatch)" \
   order tex_unit.sv 's/if (en) tag <= g_tag\[n-1\].tag;/tag <= g_tag[n-1].tag;/'
-mutant unit_stage "tex_unit with an extra pipeline register (NSTAGE = LATENCY: 12 in flight)" \
-  capacity tex_unit.sv 's/localparam int NSTAGE  = LATENCY - 1;/localparam int NSTAGE  = LATENCY;/'
+mutant unit_index "tex_probe's index advances while the unit is stalled (probes skipped)" \
+  probes tex_probe.sv 's/else if (en) index <= index + 4.d1;/else index <= index + 4'"'"'d1;/'
+mutant unit_accum "tex_accum's output register loads while the unit is stalled (a sample lost)" \
+  capacity tex_accum.sv 's/else if (en) out_valid <= valid_s1 \&\& last_s1;/else out_valid <= valid_s1 \&\& last_s1;/'
 mutant unit_reset "tex_unit reset ignored in a stall (valid bits kept: responses, no requests)" \
   capacity tex_unit.sv 's/if (rst) valid <= '"'"'0;/if (rst \&\& en) valid <= '"'"'0;/'
 

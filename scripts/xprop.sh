@@ -118,6 +118,6 @@ mutant "tex_skid's output register always loads the skid entry (unwritten: X in 
   rtl/tex_skid.sv 's/out_data <= skid_valid ? skid_data : in_data;/out_data <= skid_data;/'
 mutant "tex_skid loses the item it should park under a stall (a lost response)" "protocol" rtl/tex_skid.sv \
   "s/skid_valid <= 1'b1;  \/\/ output stalled/skid_valid <= 1'b0;  \/\/ output stalled/"
-mutant "tex_filter rounds with the wrong bit (2^22 instead of 2^23)" "value" rtl/tex_filter.sv \
-  "s/CW'(tri_next\[3\*WB-1\])/CW'(tri_next[3*WB-2])/"
+mutant "tex_accum rounds with the wrong bit (n * 2^22 instead of n * 2^23)" "value" rtl/tex_accum.sv \
+  "s/n_s1} << 23)/n_s1} << 22)/"
 echo "xprop: 4-state runs clean (seed $seed), $mutants planted bugs caught ($((SECONDS - start)) s)"

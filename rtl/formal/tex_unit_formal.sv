@@ -1,6 +1,7 @@
 // Formal environment of tex_unit (scripts/formal.sh): a reset in the first clock, then every
-// input free in every clock: requests (valid, tag, coordinates, lod), rsp_ready, configuration,
-// texel writes, and further resets. The properties are tex_unit's own, under `ifdef FORMAL in
+// input free in every clock: requests (valid, tag, coordinates, lambda or derivatives),
+// rsp_ready, configuration, texel writes, and further resets. scripts/formal.sh cuts the probe
+// count N out of tex_aniso (a free value), so a derivative request issues any number of probes. The properties are tex_unit's own, under `ifdef FORMAL in
 // rtl/tex_unit.sv (and tex_skid's, in rtl/tex_skid.sv). Parameters from scripts/formal.sh.
 module tex_unit_formal #(
   parameter int MAX_LOG2_W = 1,
@@ -28,6 +29,13 @@ module tex_unit_formal #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic                                   req_deriv,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
+  input  logic [3:0]                             cfg_max_aniso_m1,
+  input  logic                                   cfg_aniso_pow2,
   input  logic [TAG_W-1:0]                       req_tag,
   input  logic                                   rsp_ready
 );

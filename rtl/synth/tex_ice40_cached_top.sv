@@ -101,6 +101,10 @@ module tex_ice40_cached_top #(
     .cfg_fifo_limit(in_bits[O_FIFO +: FW]),
     .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
+    // Lambda requests only (the LOD / anisotropy unit is tied off and optimized away: a fit
+    // of the probe datapath on the HX8K is not measured here).
+    .req_deriv(1'b0), .req_dudx('0), .req_dvdx('0), .req_dudy('0), .req_dvdy('0),
+    .cfg_max_aniso_m1(4'd0), .cfg_aniso_pow2(1'b0),
     .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag),
     .mem_req_valid(mem_req_valid), .mem_req_ready(in_bits[O_MREADY]), .mem_req_addr(mem_req_addr),
     .mem_rsp_valid(in_bits[O_MVALID]), .mem_rsp_ready(mem_rsp_ready),

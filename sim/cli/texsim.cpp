@@ -287,12 +287,21 @@ class Verifier {
 EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
                        const Pyramid& pyr, const SamplerConfig& cfg, RequestSource& source, TexelSink& sink) {
   const auto engine = make_engine(o.engine, eo);
+  // The anisotropic filter: count each request's probes on the way in.
+  std::optional<ProbeCounter> counter;
+  if (cfg.filter.anisotropic) counter.emplace(source, cfg, pyr.log2_w0(), pyr.log2_h0());
+  RequestSource& requests = counter ? *counter : source;
   try {
-    if (!o.verify) return engine->run(pyr, cfg, source, sink);
-    Verifier verifier(pyr, cfg, source, sink, o.engine);
-    const EngineStats stats = engine->run(pyr, cfg, verifier.source(), verifier.sink());
-    std::printf("verify: %zu samples of engine %s are bit-identical to the golden model\n", verifier.checked(),
-                o.engine.c_str());
+    EngineStats stats;
+    if (!o.verify) {
+      stats = engine->run(pyr, cfg, requests, sink);
+    } else {
+      Verifier verifier(pyr, cfg, requests, sink, o.engine);
+      stats = engine->run(pyr, cfg, verifier.source(), verifier.sink());
+      std::printf("verify: %zu samples of engine %s are bit-identical to the golden model\n", verifier.checked(),
+                  o.engine.c_str());
+    }
+    if (counter) stats.probes = counter->histogram();
     return stats;
   } catch (const SimulationError& e) {
     if (trace && outputs.keep(*trace)) throw Error(std::string(e.what()) + "; waveform kept: " + trace->path());
@@ -310,6 +319,23 @@ void print_cycle_stats(const EngineStats& stats, const EngineOptions& options) {
               (unsigned long long)c.cycles, stats.samples_per_clock(), (unsigned long long)c.latency_cycles,
               stalls_name(options.stalls).c_str(), (unsigned long long)c.output_stall_cycles,
               load_method_name(options.load).c_str(), (unsigned long long)c.load_cycles);
+}
+
+// Anisotropic filter: probes per sample (mean and histogram) and, for cycle engines, per clock.
+void print_probe_stats(const EngineStats& stats) {
+  if (!stats.probes) return;
+  const auto& h = *stats.probes;
+  uint64_t total = 0;
+  std::string histogram;
+  for (size_t n = 1; n < h.size(); ++n) {
+    total += n * h[n];
+    if (h[n]) histogram += " " + std::to_string(n) + ":" + std::to_string(h[n]);
+  }
+  std::printf("  probes: %llu = %.3f per sample (N:samples%s)", (unsigned long long)total,
+              stats.samples ? double(total) / double(stats.samples) : 0.0, histogram.c_str());
+  if (stats.cycle && stats.cycle->cycles > stats.cycle->latency_cycles)
+    std::printf(", %.4f probes/clock", double(total) / double(stats.cycle->cycles - stats.cycle->latency_cycles));
+  std::printf("\n");
 }
 
 // Cached mode: hits, bytes and (cycle engines) the FIFO and memory stalls, one line.
@@ -348,7 +374,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
   QueryReader reader(queries_path);
   if (reader.rewindable()) {  // a file: check every query now; a pipe is checked as it streams
-    QuerySource check(reader, pyr.log2_w0(), pyr.log2_h0());
+    QuerySource check(reader);
     std::vector<Request> scratch(4096);
     while (check.read(scratch.data(), scratch.size())) {
     }
@@ -359,7 +385,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   std::optional<MissTraceWriter> misses;
   if (miss_out) eo.miss_sink = &misses.emplace(*miss_out);
 
-  QuerySource source(reader, pyr.log2_w0(), pyr.log2_h0());
+  QuerySource source(reader);
   CsvTexelWriter writer(result.open());
   const EngineStats stats = run_engine(o, eo, outputs, trace, pyr, cfg, source, writer);
   if (misses) misses->close();
@@ -374,6 +400,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (report == stdout) {
     print_cycle_stats(stats, eo);
     print_cache_stats(stats);
+    print_probe_stats(stats);
   }
   std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
                source.count(), filter_name(cfg.filter).c_str(), wrap_name(cfg.wrap_u).c_str(),
@@ -476,7 +503,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     const SceneFrame frame = make_scene(scene, so);
     const Pyramid pyr = build_pyramid(scene_texture(frame, texture_given ? o.texture : "", o.resize), o.pyramid_mode());
     if (frame.clamp_edges && !wrap_given) cfg.wrap_u = cfg.wrap_v = Wrap::Clamp;
-    const auto requests = to_requests(frame.queries, pyr.log2_w0(), pyr.log2_h0(), "scene " + scene);
+    const auto requests = to_requests(frame.queries, "scene " + scene);
     VectorSource source(requests);
     VectorSink texels;
     last_stats = run_engine(o, eo, outputs, trace, pyr, cfg, source, texels);
@@ -489,6 +516,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
   outputs.commit();
   print_cycle_stats(last_stats, eo);
   print_cache_stats(last_stats);
+  print_probe_stats(last_stats);
   std::printf("texsim render: scene %s, %dx%d, frame%s %d..%d of %d, %zu samples, %s, engine %s -> %s (%.2f s)\n",
               scene.c_str(), so.width, so.height, all_frames ? "s" : "", first, last, so.frames, samples,
               filter_name(cfg.filter).c_str(), o.engine.c_str(), out.c_str(), secs);

@@ -55,6 +55,14 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
                       {"sample_seconds", sample_seconds},
                       {"samples_per_second", sample_seconds > 0 ? double(samples) / sample_seconds : 0.0}};
   j["memory"] = memory_name(options.memory);
+  if (probes) {
+    const std::vector<uint64_t> by_n(probes->begin() + 1, probes->end());  // [N - 1]: samples of N probes
+    uint64_t total = 0;
+    for (size_t n = 1; n < probes->size(); ++n) total += n * (*probes)[n];
+    j["probes_per_sample"] = by_n;
+    j["probes"] = total;
+    j["mean_probes_per_sample"] = samples ? double(total) / double(samples) : 0.0;
+  }
   if (cache) {
     j["cache_kib"] = options.cache.size_bytes / 1024.0;
     j["ways"] = options.cache.ways;
@@ -133,6 +141,12 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
     s.bank_reads = j.at("bank_reads").get<std::vector<std::array<uint64_t, 4>>>();
   }
   return s;
+}
+
+size_t ProbeCounter::read(Request* out, size_t max) {
+  const size_t n = source_.read(out, max);
+  for (size_t i = 0; i < n; ++i) ++histogram_[size_t(tex_probe(out[i], config_, log2_w0_, log2_h0_).n)];
+  return n;
 }
 
 size_t VectorSource::read(Request* out, size_t max) {

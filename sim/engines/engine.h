@@ -94,6 +94,9 @@ struct EngineStats {
   uint64_t texel_reads = 0, multiplies_per_channel = 0;
   std::vector<std::array<uint64_t, 4>> bank_reads;  // [level][bank]
   std::optional<CacheCounters> cache;               // cached mode only
+  // Anisotropic filter only (ProbeCounter): samples by probe count N, index 1..16; the RTL takes
+  // N clocks for a sample of N probes.
+  std::optional<std::array<uint64_t, kMaxAniso + 1>> probes;
 
   // Throughput: samples per clock once the pipeline has filled, samples / (cycles - latency), so
   // that a short run of a unit that takes one sample per clock reports 1.0 (cycles has the total).
@@ -117,6 +120,22 @@ class RequestSource {
   virtual ~RequestSource() = default;
   // Up to `max` next requests into `out`; 0 at the end. Throws tex::Error on bad input.
   virtual size_t read(Request* out, size_t max) = 0;
+};
+
+// Passes a source's requests through and counts the probes of each (tex_probe, the function the
+// RTL's tex_probe implements): the probes-per-sample histogram of EngineStats.
+class ProbeCounter final : public RequestSource {
+ public:
+  ProbeCounter(RequestSource& source, const SamplerConfig& config, int log2_w0, int log2_h0)
+      : source_(source), config_(config), log2_w0_(log2_w0), log2_h0_(log2_h0) {}
+  size_t read(Request* out, size_t max) override;
+  const std::array<uint64_t, kMaxAniso + 1>& histogram() const { return histogram_; }
+
+ private:
+  RequestSource& source_;
+  SamplerConfig config_;
+  int log2_w0_, log2_h0_;
+  std::array<uint64_t, kMaxAniso + 1> histogram_{};
 };
 
 // Texels in request order, delivered a chunk at a time.

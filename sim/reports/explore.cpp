@@ -151,7 +151,7 @@ void load_workloads(Sweep& s) {
     w.pyramid = build_pyramid(load_texture(s.args.texture), PyramidMode::Exact);
     w.config = config;
     QueryReader reader(s.args.queries);
-    QuerySource source(reader, w.pyramid.log2_w0(), w.pyramid.log2_h0());
+    QuerySource source(reader);
     std::vector<Request> chunk(4096);
     while (const size_t n = source.read(chunk.data(), chunk.size()))
       w.requests.insert(w.requests.end(), chunk.begin(), chunk.begin() + long(n));
@@ -174,7 +174,7 @@ void load_workloads(Sweep& s) {
       w.pyramid = build_pyramid(scene_texture(frame, s.args.texture), PyramidMode::Exact);
       w.config = config;
       if (frame.clamp_edges) w.config.wrap_u = w.config.wrap_v = Wrap::Clamp;
-      w.requests = to_requests(frame.queries, w.pyramid.log2_w0(), w.pyramid.log2_h0(), "scene " + name);
+      w.requests = to_requests(frame.queries, "scene " + name);
       s.workloads.push_back(std::move(w));
     }
 }

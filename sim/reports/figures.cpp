@@ -22,7 +22,7 @@ VariantRender render_variant(const std::string& scene, const SceneOptions& optio
   cfg.max_aniso = max_aniso;
   cfg.wrap_u = cfg.wrap_v = r.frame.clamp_edges ? Wrap::Clamp : Wrap::Repeat;
   const Pyramid pyr = build_pyramid(texture, PyramidMode::Exact);
-  const auto requests = to_requests(r.frame.queries, pyr.log2_w0(), pyr.log2_h0(), "scene " + scene);
+  const auto requests = to_requests(r.frame.queries, "scene " + scene);
   r.texels = make_engine(engine, EngineOptions{})->run(pyr, cfg, requests).texels;
   r.channel_bits = texture.channel_bits;
   r.image = render_values(r.frame, texels_to_values(r.texels, r.channel_bits));
@@ -66,12 +66,8 @@ std::vector<Variant> variants_of(const std::string& scene) {
   std::vector<Variant> v = {{"point", "point sampling", scene, "point"},
                             {"trilinear", "trilinear mip-map", scene, "trilinear"}};
   if (scene == "mesh") v.push_back({"trilinear16", "trilinear, 16-bit X,Y,Z map (model)", "mesh16", "trilinear", true});
-  if (scene == "plane" || scene == "panel") {
+  if (scene == "plane" || scene == "panel")
     v.push_back({"anisotropic", "anisotropic, up to " + std::to_string(kMaxAniso) + " probes", scene, "anisotropic"});
-    // The RTL and SystemC engines refuse --filter anisotropic until their ports carry derivatives:
-    // the model renders it meanwhile. Delete this line to render it through the figures' engine.
-    v.back().model_only = true;
-  }
   return v;
 }
 

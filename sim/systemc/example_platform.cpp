@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     const Pyramid pyramid = build_pyramid(scene_texture(frame, texture), PyramidMode::Exact);
     SamplerConfig config;
     config.wrap_u = config.wrap_v = frame.clamp_edges ? Wrap::Clamp : Wrap::Repeat;
-    const std::vector<Request> requests = to_requests(frame.queries, pyramid.log2_w0(), pyramid.log2_h0(), scene);
+    const std::vector<Request> requests = to_requests(frame.queries, scene);
 
     // SystemC elaborates once per process: the platform runs in a child process (run_forked),
     // which also keeps a failure inside the simulation from taking this process down.

@@ -130,7 +130,7 @@ bool QueryReader::next(Query& q) {
   return false;
 }
 
-Request to_request(const Query& q, int log2_w0, int log2_h0, const std::string& name, uint32_t tag) {
+Request to_request(const Query& q, const std::string& name, uint32_t tag) {
   Request r;
   r.tag = tag;
   auto at = [&] { return name + ":" + std::to_string(q.line) + ": "; };
@@ -141,16 +141,14 @@ Request to_request(const Query& q, int log2_w0, int log2_h0, const std::string& 
   } else {
     if (!to_lod_derivatives(q.deriv, r.deriv)) throw Error(at() + "a derivative is not a finite number");
     r.has_derivatives = true;
-    r.lod = tex_lambda(r.deriv, log2_w0, log2_h0);  // (for engines without the derivative port)
   }
   return r;
 }
 
-std::vector<Request> to_requests(const std::vector<Query>& queries, int log2_w0, int log2_h0,
-                                 const std::string& name) {
+std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name) {
   std::vector<Request> out;
   out.reserve(queries.size());
-  for (size_t i = 0; i < queries.size(); ++i) out.push_back(to_request(queries[i], log2_w0, log2_h0, name, uint32_t(i)));
+  for (size_t i = 0; i < queries.size(); ++i) out.push_back(to_request(queries[i], name, uint32_t(i)));
   return out;
 }
 
@@ -158,7 +156,7 @@ size_t QuerySource::read(Request* out, size_t max) {
   size_t n = 0;
   Query q;
   while (n < max && reader_.next(q)) {
-    out[n] = to_request(q, log2_w0_, log2_h0_, reader_.name(), uint32_t(count_));
+    out[n] = to_request(q, reader_.name(), uint32_t(count_));
     ++n;
     ++count_;
   }

@@ -51,19 +51,17 @@ class QueryReader {
 // Throws tex::Error for a value out of the fixed-point range, naming the line.
 class QuerySource final : public RequestSource {
  public:
-  QuerySource(QueryReader& reader, int log2_w0, int log2_h0) : reader_(reader), log2_w0_(log2_w0), log2_h0_(log2_h0) {}
+  explicit QuerySource(QueryReader& reader) : reader_(reader) {}
   size_t read(Request* out, size_t max) override;
   size_t count() const { return count_; }
 
  private:
   QueryReader& reader_;
-  int log2_w0_, log2_h0_;
   size_t count_ = 0;
 };
 
-Request to_request(const Query& q, int log2_w0, int log2_h0, const std::string& name, uint32_t tag);
-std::vector<Request> to_requests(const std::vector<Query>& queries, int log2_w0, int log2_h0,
-                                 const std::string& name);
+Request to_request(const Query& q, const std::string& name, uint32_t tag);
+std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name);
 
 // Writes `r,g,b,a` then one line per texel.
 class CsvTexelWriter final : public TexelSink {

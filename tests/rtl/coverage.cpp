@@ -1,6 +1,7 @@
 #include "coverage.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "lockstep.h"
@@ -114,12 +115,38 @@ Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log
   g_pyramid_ = make("pyramid mode");
   group(g_pyramid_).add("exact");
   group(g_pyramid_).add("cascade");
+
+  g_deriv_ = make("requests with derivatives x filter");
+  for (const Filter& f : filters) group(g_deriv_).add(filter_name(f));
+  group(g_deriv_).add("anisotropic");
+
+  g_aniso_ = make("anisotropic: probes N x major axis");
+  for (int n = 1; n <= kMaxAniso; ++n)
+    for (const char* axis : {"along u", "along v", "diagonal"}) group(g_aniso_).add("N = " + std::to_string(n) + " " + axis);
 }
 
 void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Request& q) {
   const size_t fi = fi_of(cfg.filter);
   ++group(g_filter_wrap_).hits[(fi * 3 + size_t(cfg.wrap_u)) * 3 + size_t(cfg.wrap_v)];
   ++group(g_pyramid_).hits[size_t(pyr.mode)];
+  const Probes p = tex_probe(q, cfg, pyr.log2_w0(), pyr.log2_h0());
+  if (q.has_derivatives) {
+    ++group(g_deriv_).hits[cfg.filter.anisotropic ? group(g_deriv_).bins.size() - 1 : fi];
+    if (cfg.filter.anisotropic) {
+      // The major axis in level-0 texels: along u or v when the other component is under 1/4 of it.
+      const double w = std::ldexp(1.0, pyr.log2_w0()), h = std::ldexp(1.0, pyr.log2_h0());
+      const double xu = q.deriv.dudx * w, xv = q.deriv.dvdx * h, yu = q.deriv.dudy * w, yv = q.deriv.dvdy * h;
+      const bool x_major = xu * xu + xv * xv >= yu * yu + yv * yv;
+      const double mu = std::abs(x_major ? xu : yu), mv = std::abs(x_major ? xv : yv);
+      const size_t axis = mv < mu / 4 ? 0 : mu < mv / 4 ? 1 : 2;
+      ++group(g_aniso_).hits[size_t(p.n - 1) * 3 + axis];
+    }
+  }
+  for (int i = 0; i < p.n; ++i) sample_probe(pyr, cfg, p.at[size_t(i)]);
+}
+
+void Coverage::sample_probe(const Pyramid& pyr, const SamplerConfig& cfg, const Request& q) {
+  const size_t fi = fi_of(cfg.filter);
 
   const int last = pyr.last_level();
   const int32_t lod = stage::lod_clamp(q.lod, cfg.lod_bias, cfg.min_lod, cfg.max_lod);

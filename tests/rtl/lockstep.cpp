@@ -1,5 +1,7 @@
 #include "lockstep.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <cstdlib>
 #include <sstream>
@@ -33,8 +35,11 @@ std::string describe(const SamplerConfig& c) {
 
 std::string describe(const Request& r) {
   std::ostringstream o;
-  o << "u=" << r.u << " (" << r.u / 16777216.0 << ") v=" << r.v << " (" << r.v / 16777216.0 << ") lod=" << r.lod
-    << " (" << r.lod / 256.0 << ")";
+  o << "u=" << r.u << " (" << r.u / 16777216.0 << ") v=" << r.v << " (" << r.v / 16777216.0 << ")";
+  if (r.has_derivatives)
+    o << " dudx=" << r.deriv.dudx << " dvdx=" << r.deriv.dvdx << " dudy=" << r.deriv.dudy << " dvdy=" << r.deriv.dvdy;
+  else
+    o << " lod=" << r.lod << " (" << r.lod / 256.0 << ")";
   return o.str();
 }
 
@@ -127,12 +132,46 @@ std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_
   const int last = std::max(lw, lh);
   std::vector<Request> r(n);
   for (size_t i = 0; i < n; ++i) {
+    if (rng() % 4 == 0) r[i] = random_footprint(rng, lw, lh, int(rng() % 16) + 1, int(rng() % 3));
     r[i].u = coordinate(rng, lw, last);
     r[i].v = coordinate(rng, lh, last);
     r[i].lod = lod_value(rng, last);
     r[i].tag = uint32_t(i);
   }
   return r;
+}
+
+Request random_footprint(std::mt19937_64& rng, int lw, int lh, int probes, int axis) {
+  Request r;
+  r.has_derivatives = true;
+  if (rng() % 16 == 0) {
+    r.deriv = {int32_t(uint32_t(rng())), int32_t(uint32_t(rng())), int32_t(uint32_t(rng())), int32_t(uint32_t(rng()))};
+    return r;
+  }
+  // Lengths in level-0 texels: the major one from 1/8 texel to 4x the texture, the minor one so
+  // that major / minor lies in (probes - 1, probes] (1: equal lengths).
+  std::uniform_real_distribution<double> unit(0, 1);
+  const double major = std::exp2(-3 + unit(rng) * (std::max(lw, lh) + 5));
+  const double ratio = probes == 1 ? 1.0 : probes - 0.9 * unit(rng);
+  const double minor = major / ratio;
+  const double a = axis == 0 ? 0.0 : axis == 1 ? M_PI / 2 : M_PI / 4 + (unit(rng) - 0.5) * 0.5;
+  const double flip = rng() % 2 ? M_PI : 0.0;
+  const double ax = a + flip, ay = a + M_PI / 2;  // the minor axis is perpendicular
+  const double w = std::ldexp(1.0, lw), h = std::ldexp(1.0, lh);
+  auto q = [](double x) { return int32_t(std::clamp(std::lround(x * 16777216.0), -2147483647L, 2147483647L)); };
+  Request f;
+  f.has_derivatives = true;
+  const bool x_major = rng() % 2;  // which screen axis is the long one
+  const double lx = x_major ? major : minor, ly = x_major ? minor : major;
+  const double thx = x_major ? ax : ay, thy = x_major ? ay : ax;
+  f.deriv = {q(lx * std::cos(thx) / w), q(lx * std::sin(thx) / h), q(ly * std::cos(thy) / w), q(ly * std::sin(thy) / h)};
+  return f;
+}
+
+void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c) {
+  c.filter = {TexelFilter::Linear, MipMode::Linear, true};
+  c.max_aniso = rng() % 2 ? kMaxAniso : int(rng() % kMaxAniso) + 1;
+  c.aniso_pow2 = rng() % 4 == 0;
 }
 
 void randomize_lod_controls(std::mt19937_64& rng, SamplerConfig& c) {

@@ -12,9 +12,9 @@
 
 namespace tex::rtltest {
 
-// The documented latency of tex_unit (rtl/tex_unit.sv header: "LATENCY = 10 clocks"), in clocks
+// The documented latency of tex_unit (rtl/tex_unit.sv header: "LATENCY = 16 clocks"), in clocks
 // from the request handshake edge to the response handshake edge with rsp_ready high.
-constexpr uint64_t kDocumentedLatency = 10;
+constexpr uint64_t kDocumentedLatency = 16;
 
 uint64_t mix64(uint64_t x);  // splitmix64 finalizer: independent seeds from (base, indices)
 
@@ -43,7 +43,15 @@ std::string describe(const Texel& t);
 // Constrained-random requests for a 2^lw x 2^lh texture: coordinates in [-100, 100), near texel
 // edges and centres of every level, in [0, 1), and any 32-bit value; lambda from -2 to past the
 // last level, on level and rounding boundaries, and any 16-bit value.
+// A quarter of them carry derivatives instead (random_footprint: lambda from the LOD unit).
 std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_t n);
+// A request with derivatives whose footprint takes `probes` probes (1..16) under a cap of 16, its
+// major axis along u (axis 0), v (1) or diagonal (2), from magnification to past the last level;
+// 1 in 16 has raw 32-bit derivatives (the format's saturating ends).
+Request random_footprint(std::mt19937_64& rng, int lw, int lh, int probes, int axis);
+// Anisotropic filter cases: cap 16 half of the time, else 1..16; probe counts rounded to powers of
+// two in a quarter of the cases.
+void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c);
 // Random bias and clamps (half of the cases keep the full range).
 void randomize_lod_controls(std::mt19937_64& rng, SamplerConfig& c);
 // One of: ideal, light, heavy (about 30% of clocks without a gap), long stalls (hundreds of clocks).

@@ -102,8 +102,11 @@ CaseResult run_case(rtl::Driver& unit, const Pyramid& pyr, const SamplerConfig& 
                      model_cache ? *model_cache : cache, cfg, pyr.log2_w0(), pyr.log2_h0());
   std::vector<uint32_t> predicted;
   for (const Request& q : requests) {
-    const SampleLookup l = model.lookup(q, &predicted);
-    if (coverage) coverage->sample(l);
+    const Probes p = tex_probe(q, cfg, pyr.log2_w0(), pyr.log2_h0());
+    for (int i = 0; i < p.n; ++i) {
+      const SampleLookup l = model.lookup(p.at[size_t(i)], &predicted);
+      if (coverage) coverage->sample(l);
+    }
   }
   uint64_t mismatches = 0;
   try {
@@ -196,6 +199,7 @@ void run_suite(const CachedSuite& suite) {
     SamplerConfig cfg;
     cfg.filter = filters[rng() % filters.size()];
     if (ci % 3 != 2) cfg.filter = Filter{TexelFilter::Linear, MipMode::Linear};  // most cases trilinear
+    if (ci % 5 == 4) randomize_aniso(rng, cfg);  // a fifth anisotropic (the probes go through the caches)
     cfg.wrap_u = Wrap(rng() % 3);
     cfg.wrap_v = Wrap(rng() % 3);
     randomize_lod_controls(rng, cfg);

@@ -53,6 +53,44 @@ TEST(RtlTiming, FixedLatencyAndOneSamplePerClock) {
   }
 }
 
+// Anisotropic samples: one probe per clock. A stream of requests of N probes each (N from the
+// model's tex_probe) takes exactly the sum of the probe counts plus LATENCY clocks; the first
+// response comes LATENCY + N - 1 clocks after its handshake and every later one N clocks after
+// the one before (N - 1 clocks with no response). tex_probe's 4 request registers take 4 requests
+// before the sequencer holds req_ready low, N - 1 clocks for each later one; a request waits at
+// most for the 3 ahead of it there and its own N probes.
+TEST(RtlTiming, AnisotropicSampleTakesOneClockPerProbe) {
+  const Shape s{10, 10};
+  auto unit = make_unit(s.w, s.h);
+  const Pyramid pyr = noise_pyramid(s.w, s.h);
+  unit->load(pyr, LoadMethod::Backdoor);
+  std::mt19937_64 rng(mix64(seed_base() + 12));
+  SamplerConfig cfg;
+  cfg.filter = {TexelFilter::Linear, MipMode::Linear, true};  // anisotropic, up to 16 probes
+  for (int n = 1; n <= kMaxAniso; ++n) {
+    std::vector<Request> reqs;
+    uint64_t probes = 0;
+    while (reqs.size() < 200) {  // footprints whose probe count is exactly n
+      Request r = random_footprint(rng, s.w, s.h, n, int(rng() % 3));
+      r.u = int32_t(rng());
+      r.v = int32_t(rng());
+      if (tex_probe(r, cfg, s.w, s.h).n != n) continue;
+      r.tag = uint32_t(reqs.size());
+      reqs.push_back(r);
+      probes += uint64_t(n);
+    }
+    const LockstepResult r = lockstep(*unit, pyr, cfg, reqs, rtl::Timing{}, 1);
+    ASSERT_TRUE(r.ok()) << r.report;
+    const rtl::ProtocolCounters& pc = r.stats.protocol;
+    const uint64_t extra = uint64_t(n - 1);  // clocks per request beyond one
+    EXPECT_EQ(r.stats.cycles(), probes + kDocumentedLatency) << "N = " << n;
+    EXPECT_EQ(pc.latency_min, kDocumentedLatency + extra) << "N = " << n;
+    EXPECT_LE(pc.latency_max, kDocumentedLatency + 4 * uint64_t(n)) << "N = " << n;
+    EXPECT_EQ(pc.bubbles_after_fill, (reqs.size() - 1) * extra) << "N = " << n;
+    EXPECT_EQ(pc.backpressure_cycles, (reqs.size() - 4) * extra) << "N = " << n;
+  }
+}
+
 // Raw pins, independent of the driver's clock() and stream(): requests always offered, rsp_ready random with
 // stalls of 1..8 and some of hundreds of clocks. After the first response, every clock with
 // rsp_ready high must deliver a response until the last one: samples == ready clocks.
@@ -86,9 +124,7 @@ TEST(RtlTiming, NoBubblesUnderRandomOutputStalls) {
       if (stall_left) --stall_left;
       in.req_valid = accepted < reqs.size();
       if (in.req_valid) {
-        in.req_u = reqs[accepted].u;
-        in.req_v = reqs[accepted].v;
-        in.req_lod = int16_t(reqs[accepted].lod);
+        rtl::set_request_pins(in, reqs[accepted]);
         in.req_tag = uint16_t(accepted);
       }
       const rtl::PinsOut out = unit->tick(in);
@@ -131,9 +167,7 @@ TEST(RtlTiming, ResetInTheMiddleOfTraffic) {
       const int clocks = 5 + int(rng() % 60);
       for (int c = 0; c < clocks; ++c) {
         in.req_valid = true;
-        in.req_u = junk[accepted % junk.size()].u;
-        in.req_v = junk[accepted % junk.size()].v;
-        in.req_lod = int16_t(junk[accepted % junk.size()].lod);
+        rtl::set_request_pins(in, junk[accepted % junk.size()]);
         in.req_tag = uint16_t(0xF000 + accepted);
         in.rsp_ready = (trial % 2) ? false : (rng() % 2 == 0);
         if (unit->tick(in).req_ready) ++accepted;

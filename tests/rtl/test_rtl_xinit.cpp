@@ -53,9 +53,7 @@ Trace run_with_seed(uint64_t verilator_seed) {
       for (int clock = 0; clock < 1200; ++clock) {
         if (!in.req_valid && next < reqs.size() && rng() % 4 != 0) {  // offered until taken
           in.req_valid = true;
-          in.req_u = reqs[next].u;
-          in.req_v = reqs[next].v;
-          in.req_lod = int16_t(reqs[next].lod);
+          rtl::set_request_pins(in, reqs[next]);
           in.req_tag = uint16_t(next);
         }
         in.rsp_ready = rng() % 3 != 0;

@@ -41,7 +41,7 @@ Workload plane(int width, int height, const std::string& texture, PixelOrder ord
   const SceneFrame frame = make_scene("plane", so);
   Workload w;
   w.pyramid = build_pyramid(load_texture(texture), PyramidMode::Exact);
-  w.requests = to_requests(frame.queries, w.pyramid.log2_w0(), w.pyramid.log2_h0(), "plane");
+  w.requests = to_requests(frame.queries, "plane");
   return w;
 }
 

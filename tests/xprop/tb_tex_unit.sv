@@ -46,6 +46,12 @@ module tb_tex_unit #(
   logic                                   req_ready;
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_u = 'x, req_v = 'x;
   logic signed [tex_pkg::LOD_W-1:0]       req_lod = 'x;
+  // Lambda requests: req_deriv = 0 with every derivative pin X (don't-care), also the anisotropy
+  // configuration (used by derivative requests only).
+  logic                                   req_deriv = 'x;
+  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx = 'x, req_dvdx = 'x, req_dudy = 'x, req_dvdy = 'x;
+  logic [3:0]                             cfg_max_aniso_m1 = 'x;
+  logic                                   cfg_aniso_pow2 = 'x;
   logic [TAG_W-1:0]                       req_tag = 'x;
   logic                                   rsp_valid;
   logic                                   rsp_ready = 1'b0;
@@ -183,6 +189,7 @@ module tb_tex_unit #(
     req_u = 'x;
     req_v = 'x;
     req_lod = 'x;
+    req_deriv = 'x;
     req_tag = 'x;
   endtask
 
@@ -257,6 +264,7 @@ module tb_tex_unit #(
     req_u = u;
     req_v = v;
     req_lod = lod;
+    req_deriv = 1'b0;
     req_tag = tag;
     step();
     idle_write_pins();

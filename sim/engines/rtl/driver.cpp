@@ -61,7 +61,7 @@ void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::ve
 }
 
 void check_request(const Request& request, size_t index) {
-  if (request.lod < kLodMin || request.lod > kLodMax)
+  if (!request.has_derivatives && (request.lod < kLodMin || request.lod > kLodMax))
     throw Error("request " + std::to_string(index) + ": lod " + std::to_string(request.lod) +
                 "/256 is outside the 16-bit Q8.8 port of the RTL");
 }
@@ -94,8 +94,18 @@ CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const 
   return p;
 }
 
+void set_request_pins(PinsIn& in, const Request& r) {
+  in.req_u = r.u;
+  in.req_v = r.v;
+  in.req_lod = int16_t(r.lod);
+  in.req_deriv = r.has_derivatives;
+  in.req_dudx = r.deriv.dudx;
+  in.req_dvdx = r.deriv.dvdx;
+  in.req_dudy = r.deriv.dudy;
+  in.req_dvdy = r.deriv.dvdy;
+}
+
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
-  if (config.filter.anisotropic) throw Error("the RTL has no anisotropic filter yet (use --engine model)");
   CfgPins c;
   c.log2_w = uint8_t(log2_w);
   c.log2_h = uint8_t(log2_h);
@@ -106,6 +116,8 @@ CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
   c.lod_bias = int16_t(config.lod_bias);
   c.min_lod = int16_t(config.min_lod);
   c.max_lod = int16_t(config.max_lod);
+  c.max_aniso_m1 = uint8_t(config.probe_cap() - 1);
+  c.aniso_pow2 = config.aniso_pow2;
   return c;
 }
 
@@ -263,9 +275,7 @@ Driver::Clock Driver::clock(const Request* offer, bool take_response) {
   PinsIn& in = pins_;
   in.req_valid = offer != nullptr;
   if (offer) {
-    in.req_u = offer->u;
-    in.req_v = offer->v;
-    in.req_lod = int16_t(offer->lod);
+    set_request_pins(in, *offer);
     in.req_tag = uint16_t(issued_ & kTagMask);
     if (!counters_.any_offer) {
       counters_.any_offer = true;

@@ -76,6 +76,8 @@ struct PinsIn {
   bool req_valid = false;
   int32_t req_u = 0, req_v = 0;  // Q8.24
   int16_t req_lod = 0;           // Q8.8
+  bool req_deriv = false;        // the derivatives below instead of req_lod
+  int32_t req_dudx = 0, req_dvdx = 0, req_dudy = 0, req_dvdy = 0;  // Q8.24
   uint16_t req_tag = 0;
   bool rsp_ready = true;
   // Memory port of tex_unit_cached: driven by the driver's memory model (ignored otherwise).
@@ -83,6 +85,9 @@ struct PinsIn {
   bool mem_rsp_valid = false;
   const uint8_t* mem_rsp_data = nullptr;  // MEM_W / 8 bytes of the beat
 };
+
+// The request pins for one request (u, v and lod, or the derivatives); req_valid and req_tag are the caller's.
+void set_request_pins(PinsIn& in, const Request& r);
 
 // Output pins as seen just before the rising edge: a handshake fires at that edge when
 // valid && ready.
@@ -107,6 +112,8 @@ struct CfgPins {
   bool texel_linear = true;
   uint8_t mip_mode = 2;
   int16_t lod_bias = 0, min_lod = 0, max_lod = 0;
+  uint8_t max_aniso_m1 = 0;  // probes per sample at most, less one (0: trilinear)
+  bool aniso_pow2 = false;
 };
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h);
 

@@ -82,6 +82,11 @@ class VerilatedTexUnit final : public Driver {
     t.req_u = uint32_t(in.req_u);
     t.req_v = uint32_t(in.req_v);
     t.req_lod = uint16_t(in.req_lod);
+    t.req_deriv = in.req_deriv;
+    t.req_dudx = uint32_t(in.req_dudx);
+    t.req_dvdx = uint32_t(in.req_dvdx);
+    t.req_dudy = uint32_t(in.req_dudy);
+    t.req_dvdy = uint32_t(in.req_dvdy);
     t.req_tag = in.req_tag;
     t.rsp_ready = in.rsp_ready;
     t.clk = 0;
@@ -120,6 +125,8 @@ class VerilatedTexUnit final : public Driver {
     t.cfg_lod_bias = uint16_t(c.lod_bias);
     t.cfg_min_lod = uint16_t(c.min_lod);
     t.cfg_max_lod = uint16_t(c.max_lod);
+    t.cfg_max_aniso_m1 = c.max_aniso_m1;
+    t.cfg_aniso_pow2 = c.aniso_pow2;
     t.eval();
   }
 

@@ -70,6 +70,11 @@ StreamInitiator::Slot* StreamInitiator::take_slot(const Request& q, size_t index
   s->data.v = q.v;
   s->data.lod = q.lod;
   s->data.tag = uint32_t(index);
+  s->data.has_derivatives = q.has_derivatives;
+  s->data.dudx = q.deriv.dudx;
+  s->data.dvdx = q.deriv.dvdx;
+  s->data.dudy = q.deriv.dudy;
+  s->data.dvdy = q.deriv.dvdy;
   s->set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   ++issued_;
   return s;

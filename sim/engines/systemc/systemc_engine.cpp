@@ -217,8 +217,6 @@ EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerCo
                         TexelSink& sink, const SystemcOptions& options) {
   // Input errors are reported here, before any simulation, as one line.
   const EngineOptions& eo = options.engine;
-  if (config.filter.anisotropic)
-    throw Error("the SystemC socket carries no derivatives yet: no anisotropic filter (use --engine model)");
   const bool cached = eo.memory == Memory::Cached;
   if (cached) {  // the layout and the caches can be built for this texture
     const MemoryLayout layout(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits, eo.layout);

@@ -67,6 +67,16 @@ void TexUnitTlm::fail(const std::string& message) {
   if (error_.empty()) error_ = message;
 }
 
+namespace {
+// The request a transfer carries, in the model's terms.
+Request request_of(const SampleTransfer& s) {
+  Request q = lambda_request(s.u, s.v, s.lod);
+  q.has_derivatives = s.has_derivatives != 0;
+  q.deriv = {s.dudx, s.dvdx, s.dudy, s.dvdy};
+  return q;
+}
+}  // namespace
+
 SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
   trans.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   if (trans.get_command() != tlm::TLM_READ_COMMAND) {
@@ -87,7 +97,7 @@ SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
     return nullptr;
   }
   auto* s = reinterpret_cast<SampleTransfer*>(trans.get_data_ptr());
-  if (backend_ == Backend::Rtl && (s->lod < kLodMin || s->lod > kLodMax)) {  // the 16-bit req_lod port
+  if (backend_ == Backend::Rtl && !s->has_derivatives && (s->lod < kLodMin || s->lod > kLodMax)) {  // the 16-bit req_lod port
     trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return nullptr;
   }
@@ -99,10 +109,7 @@ SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
 void TexUnitTlm::b_transport(tlm_generic_payload& trans, sc_time& delay) {
   SampleTransfer* s = decode(trans);
   if (!s) return;
-  Request q;
-  q.u = s->u;
-  q.v = s->v;
-  q.lod = s->lod;
+  const Request q = request_of(*s);
   if (cache_) {  // the sample's missing lines come over the bus first
     misses_.clear();
     cache_->lookup_sample(q, &misses_);
@@ -183,10 +190,8 @@ tlm_sync_enum TexUnitTlm::nb_transport_fw(tlm_generic_payload& trans, tlm_phase&
     if (!s) return tlm::TLM_COMPLETED;
     if (pending_) fail("TLM protocol: BEGIN_REQ before END_REQ of the previous request (request exclusion rule)");
     pending_ = &trans;
-    if (checker_) checker_->predict(lambda_request(s->u, s->v, s->lod));  // offered on the request pins from the next edge until the RTL takes it
-    pending_request_.u = s->u;
-    pending_request_.v = s->v;
-    pending_request_.lod = s->lod;
+    pending_request_ = request_of(*s);  // offered on the request pins from the next edge until the RTL takes it
+    if (checker_) checker_->predict(pending_request_);
     return tlm::TLM_ACCEPTED;
   }
   if (phase == tlm::END_RESP) {

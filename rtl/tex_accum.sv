@@ -1,0 +1,110 @@
+// tex_accum: the mean of a sample's probes and its one rounding, bit for bit the model's
+// average_and_round (docs/numerics.md stage 6): round half up of sum / (N * 2^24), computed as
+// floor(X * ceil(2^25 / N) / 2^25) with X = floor((sum + N * 2^23) / 2^24) (exact for every X
+// below 2^21, tests/model/test_aniso.cpp). With N = 1 it is the trilinear rounding.
+//   clock 1: acc = first ? blend : acc + blend          per channel, CW.24 (+ 4 bits for 16 probes)
+//   clock 2: rgba = the rounded mean of acc; out_valid only for the sample's last probe
+// Handshake: stall-enable; every register loads when en is high; the valid bits are reset.
+// Latency: 2 clocks. Throughput: 1 probe per clock (a sample leaves with its last probe).
+// Ports:
+//   blend        : channel c at [c*(CW+24) +: CW+24], unsigned CW.24 (tex_filter's)
+//   in_first, in_last, in_n : the probe's place in its sample and the sample's probes (1..16)
+//   in_side    : SIDE_W bits carried along (the tag)
+//   rgba       : {A, B, G, R}, CW-bit unsigned channels
+module tex_accum #(
+  parameter int CW     = 8,
+  parameter int SIDE_W = 1
+) (
+  input  logic                  clk,
+  input  logic                  rst,
+  input  logic                  en,
+  input  logic                  in_valid,
+  input  logic                  in_first,
+  input  logic                  in_last,
+  input  logic [4:0]            in_n,
+  input  logic [4*(CW+24)-1:0]  blend,
+  input  logic [SIDE_W-1:0]     in_side,
+  output logic                  out_valid,
+  output logic [4*CW-1:0]       rgba,
+  output logic [SIDE_W-1:0]     out_side,
+  output logic                  held      // clock 1 holds a sample's last probe
+`ifdef FORMAL
+  , output logic                f_valid_s1
+  , output logic [SIDE_W-1:0]   f_side_s1
+`endif
+);
+  localparam int TW = CW + 24;  // one probe's channel
+  localparam int AW = TW + 4;   // the sum of up to 16
+
+  // ---------------------------------------------------------------- clock 1: accumulate
+  logic              valid_s1, last_s1;
+  logic [4:0]        n_s1;
+  logic [SIDE_W-1:0] side_s1;
+  logic [AW-1:0]     acc [4];
+  always_ff @(posedge clk) begin
+    if (rst) valid_s1 <= 1'b0;
+    else if (en) valid_s1 <= in_valid;
+    if (en) begin
+      last_s1 <= in_last;
+      n_s1    <= in_n;
+      side_s1 <= in_side;
+      if (in_valid)
+        for (int c = 0; c < 4; c++)
+          acc[c] <= (in_first ? '0 : acc[c]) + {4'd0, blend[c*TW +: TW]};
+    end
+  end
+
+  // ---------------------------------------------------------------- clock 2: mean, round
+  // ceil(2^25 / n), n = 1..16.
+  function automatic logic [25:0] reciprocal(input logic [4:0] n);
+    case (n)
+      5'd2: reciprocal = 26'd16777216;  5'd3: reciprocal = 26'd11184811;  5'd4: reciprocal = 26'd8388608;
+      5'd5: reciprocal = 26'd6710887;   5'd6: reciprocal = 26'd5592406;   5'd7: reciprocal = 26'd4793491;
+      5'd8: reciprocal = 26'd4194304;   5'd9: reciprocal = 26'd3728271;   5'd10: reciprocal = 26'd3355444;
+      5'd11: reciprocal = 26'd3050403;  5'd12: reciprocal = 26'd2796203;  5'd13: reciprocal = 26'd2581111;
+      5'd14: reciprocal = 26'd2396746;  5'd15: reciprocal = 26'd2236963;  5'd16: reciprocal = 26'd2097152;
+      default: reciprocal = 26'd33554432;
+    endcase
+  endfunction
+  logic [4*CW-1:0] mean;
+  genvar c;
+  generate
+    for (c = 0; c < 4; c = c + 1) begin : g_channel
+      logic [AW:0]    rounded;   // acc + n * 2^23
+      logic [CW+4:0]  x;         // its integer part (< 2^21)
+      logic [CW+30:0] product;   // x * ceil(2^25 / n) (< 2^(CW+30))
+      logic [23:0]    fraction_unused;
+      logic [30:0]    product_unused;
+      assign rounded = {1'b0, acc[c]} + ({{(AW - 4){1'b0}}, n_s1} << 23);
+      assign x = rounded[AW:24];
+      assign fraction_unused = rounded[23:0];
+      assign product = {{(CW + 31 - (CW + 5)){1'b0}}, x} * {{(CW + 31 - 26){1'b0}}, reciprocal(n_s1)};
+      assign mean[c*CW +: CW] = product[25 +: CW];  // floor(x / n) < 2^CW
+      assign product_unused = {product[CW+30 -: 6], product[24:0]};
+    end
+  endgenerate
+  always_ff @(posedge clk) begin
+    if (rst) out_valid <= 1'b0;
+    else if (en) out_valid <= valid_s1 && last_s1;
+    if (en) begin
+      rgba     <= mean;
+      out_side <= side_s1;
+    end
+  end
+
+  assign held = valid_s1 && last_s1;
+`ifdef FORMAL
+  assign f_valid_s1 = valid_s1;
+  assign f_side_s1  = side_s1;
+`endif
+
+  generate
+    if (CW < 1 || CW > tex_pkg::MAX_CW) begin : g_bad_cw
+`ifdef __ICARUS__
+      initial $fatal(1, "tex_accum: CW must be in 1..16");  // Icarus 11: no elaboration-time $error
+`else
+      $error("tex_accum: CW must be in 1..16");
+`endif
+    end
+  endgenerate
+endmodule

@@ -1,0 +1,139 @@
+// tex_aniso: a request's LOD and probe setup from its four derivatives, bit for bit the model's
+// tex_aniso (model/lod.cpp, docs/numerics.md stage 1c): tex_lambda's lambda and squared lengths
+// Px^2, Py^2; the probe count N = least n (1..cap) with n^2 Pmin^2 >= Pmax^2 - Pmax^2/64 (powers of
+// two only when pow2), else the cap; lambda' = lambda - round(256 log2 N); the probe spacing
+// along the major axis (the x derivatives when Px^2 >= Py^2), axis * round(2^16 / N) / 2^16.
+// Handshake: stall-enable; every register loads when en is high (no valid bits inside).
+// Latency: 3 clocks (1: tex_lambda's squares; 2: tex_lambda's log2, N, major axis; 3: lambda',
+//   steps). Throughput: 1 per clock.
+// Ports:
+//   dudx, dvdx, dudy, dvdy : signed Q8.24 texture widths (heights) per pixel; must be registers
+//                            (tex_lambda's first clock is combinational on them)
+//   log2_w, log2_h         : log2 of the level-0 size, integers 0..MAX_LOG2_SIZE
+//   max_aniso_m1           : the cap less one, unsigned 0..15 (cap 1..16)
+//   pow2                   : probe counts are powers of two (the cap rounds down to one)
+//   n                      : probes, unsigned 1..16 (5 bits)
+//   lambda                 : lambda' in signed Q8.8 (LOD_W bits), before bias and clamp
+//   step_u, step_v         : signed Q8.24 (REQ_COORD_W bits), the spacing of the probes
+module tex_aniso (
+  input  logic                                   clk,
+  input  logic                                   en,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] dudx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] dvdx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] dudy,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] dvdy,
+  input  logic [tex_pkg::LEVEL_W-1:0]            log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]            log2_h,
+  input  logic [3:0]                             max_aniso_m1,
+  input  logic                                   pow2,
+  output logic [4:0]                             n,
+  output logic signed [tex_pkg::LOD_W-1:0]       lambda,
+  output logic signed [tex_pkg::REQ_COORD_W-1:0] step_u,
+  output logic signed [tex_pkg::REQ_COORD_W-1:0] step_v
+`ifdef FORMAL
+  , output logic [4:0]                           f_n_s2  // the clock-2 probe count
+`endif
+);
+  localparam int DW = tex_pkg::REQ_COORD_W;
+  localparam int PW = 33;  // tex_lambda's squared lengths
+
+  // ---------------------------------------------------------------- clock 1 (tex_lambda's squares)
+  logic signed [tex_pkg::LOD_W-1:0] lambda_s2;
+  logic [PW-1:0] px_s1, py_s1;
+  tex_lambda u_lambda (
+    .clk(clk), .en(en), .dudx(dudx), .dvdx(dvdx), .dudy(dudy), .dvdy(dvdy), .log2_w(log2_w),
+    .log2_h(log2_h), .lambda(lambda_s2), .px_s1(px_s1), .py_s1(py_s1)
+  );
+  logic signed [DW-1:0] d_s1 [4];
+  logic [3:0]           cap_m1_s1;
+  logic                 pow2_s1;
+  always_ff @(posedge clk) begin
+    if (en) begin
+      d_s1[0]   <= dudx;
+      d_s1[1]   <= dvdx;
+      d_s1[2]   <= dudy;
+      d_s1[3]   <= dvdy;
+      cap_m1_s1 <= max_aniso_m1;
+      pow2_s1   <= pow2;
+    end
+  end
+
+  // ---------------------------------------------------------------- clock 2: N, the major axis
+  logic [PW-1:0] pmax, pmin, target;
+  logic [15:1]   reaches;  // reaches[k]: k^2 Pmin^2 >= the target (scripts/formal.sh cuts it)
+  logic [4:0]    cap, count;
+  logic          major_x;
+  always_comb begin
+    major_x = px_s1 >= py_s1;
+    pmax = major_x ? px_s1 : py_s1;
+    pmin = major_x ? py_s1 : px_s1;
+    target = pmax - (pmax >> 6);
+    for (int k = 1; k <= 15; k++) reaches[k] = 41'(k * k) * 41'(pmin) >= 41'(target);
+  end
+  always_comb begin
+    cap = {1'b0, cap_m1_s1} + 5'd1;
+    if (pow2_s1) cap = cap[4] ? 5'd16 : cap[3] ? 5'd8 : cap[2] ? 5'd4 : cap[1] ? 5'd2 : 5'd1;
+    count = cap;  // the least k that reaches the target wins (searched from the top down)
+    for (int k = 15; k >= 1; k--)
+      if (5'(k) < cap && (!pow2_s1 || (k & (k - 1)) == 0) && reaches[k]) count = 5'(k);
+  end
+  logic [4:0]           n_s2;
+  logic signed [DW-1:0] axis_u_s2, axis_v_s2;
+  always_ff @(posedge clk) begin
+    if (en) begin
+      n_s2      <= count;
+      axis_u_s2 <= major_x ? d_s1[0] : d_s1[2];
+      axis_v_s2 <= major_x ? d_s1[1] : d_s1[3];
+    end
+  end
+
+  // ---------------------------------------------------------------- clock 3: lambda', steps
+  // round(256 log2 k) and round(2^16 / k), k = 1..16 (the model's aniso_log2_q8, aniso_reciprocal).
+  function automatic logic [10:0] log2_q8(input logic [4:0] k);
+    case (k)
+      5'd2: log2_q8 = 11'd256;   5'd3: log2_q8 = 11'd406;   5'd4: log2_q8 = 11'd512;
+      5'd5: log2_q8 = 11'd594;   5'd6: log2_q8 = 11'd662;   5'd7: log2_q8 = 11'd719;
+      5'd8: log2_q8 = 11'd768;   5'd9: log2_q8 = 11'd812;   5'd10: log2_q8 = 11'd850;
+      5'd11: log2_q8 = 11'd886;  5'd12: log2_q8 = 11'd918;  5'd13: log2_q8 = 11'd947;
+      5'd14: log2_q8 = 11'd975;  5'd15: log2_q8 = 11'd1000; 5'd16: log2_q8 = 11'd1024;
+      default: log2_q8 = 11'd0;
+    endcase
+  endfunction
+  function automatic logic [16:0] reciprocal(input logic [4:0] k);
+    case (k)
+      5'd2: reciprocal = 17'd32768;  5'd3: reciprocal = 17'd21845;  5'd4: reciprocal = 17'd16384;
+      5'd5: reciprocal = 17'd13107;  5'd6: reciprocal = 17'd10923;  5'd7: reciprocal = 17'd9362;
+      5'd8: reciprocal = 17'd8192;   5'd9: reciprocal = 17'd7282;   5'd10: reciprocal = 17'd6554;
+      5'd11: reciprocal = 17'd5958;  5'd12: reciprocal = 17'd5461;  5'd13: reciprocal = 17'd5041;
+      5'd14: reciprocal = 17'd4681;  5'd15: reciprocal = 17'd4369;  5'd16: reciprocal = 17'd4096;
+      default: reciprocal = 17'd65536;
+    endcase
+  endfunction
+  logic signed [DW+17:0] prod_u, prod_v;  // axis * reciprocal: 32 x 17 bits, signed
+  always_comb begin
+    prod_u = 50'(axis_u_s2) * $signed({1'b0, reciprocal(n_s2)});
+    prod_v = 50'(axis_v_s2) * $signed({1'b0, reciprocal(n_s2)});
+  end
+  always_ff @(posedge clk) begin
+    if (en) begin
+      n      <= n_s2;
+      lambda <= lambda_s2 - $signed({5'd0, log2_q8(n_s2)});
+      step_u <= 32'(prod_u >>> 16);  // |step| <= |axis|: fits
+      step_v <= 32'(prod_v >>> 16);
+    end
+  end
+
+`ifdef FORMAL
+  assign f_n_s2 = n_s2;
+`endif
+
+  generate
+    if (tex_pkg::LOD_W != 16 || tex_pkg::REQ_COORD_W != 32) begin : g_bad_formats
+`ifdef __ICARUS__
+      initial $fatal(1, "tex_aniso: built for 16-bit Q8.8 lambda and 32-bit Q8.24 derivatives (tex_pkg)");  // Icarus 11: no elaboration-time $error
+`else
+      $error("tex_aniso: built for 16-bit Q8.8 lambda and 32-bit Q8.24 derivatives (tex_pkg)");
+`endif
+    end
+  endgenerate
+endmodule

@@ -1,0 +1,175 @@
+// tex_probe: the request port and the probe sequencer, bit for bit the model's tex_probe
+// (model/sampler.cpp, docs/numerics.md stage 1c). A request carries lambda (req_deriv = 0: one
+// probe at (u, v, lambda)) or four derivatives (req_deriv = 1: tex_aniso gives lambda', N and the
+// spacing; N probes along the major axis, probe i at coord + floor((2i + 1 - N) * step / 2),
+// saturated to Q8.24). It issues one probe per clock; a request with N probes holds the request
+// port for N - 1 extra clocks, an isotropic one (N = 1) takes 1.
+//   clock 1 capture   2-4 tex_aniso (clock 4: the sequencer register, which holds while it issues)
+// Handshake: req_valid/req_ready (valid/ready); req_ready = en && !hold is a function of registers
+//   only. Downstream stall-enable: the probe on the outputs is taken at every clock edge with en
+//   high (probe_valid says whether there is one).
+// Latency: 4 clocks from the request handshake edge to its first probe on the outputs (the
+//   outputs are combinational on the clock-4 registers). Throughput: 1 probe per clock.
+// Ports:
+//   req_u, req_v     : signed Q8.24; req_lod: signed Q8.8 (req_deriv = 0)
+//   req_dudx .. dvdy : signed Q8.24 texture widths (heights) per pixel (req_deriv = 1)
+//   cfg_log2_w/h     : level 0's size; cfg_max_aniso_m1: probes at most less one (0..15);
+//   cfg_aniso_pow2   : probe counts rounded up to powers of two. Registered every clock.
+//   probe_u, probe_v : signed Q8.24; probe_lod: signed Q8.8 (lambda', before bias and clamp)
+//   probe_first, probe_last : the request's first / last probe; probe_n: its probes, 1..16
+module tex_probe #(
+  parameter int TAG_W = 16
+) (
+  input  logic                                   clk,
+  input  logic                                   rst,
+  input  logic                                   en,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_h,
+  input  logic [3:0]                             cfg_max_aniso_m1,
+  input  logic                                   cfg_aniso_pow2,
+  input  logic                                   req_valid,
+  output logic                                   req_ready,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic                                   req_deriv,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
+  input  logic [TAG_W-1:0]                       req_tag,
+  output logic                                   probe_valid,
+  output logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u,
+  output logic signed [tex_pkg::REQ_COORD_W-1:0] probe_v,
+  output logic signed [tex_pkg::LOD_W-1:0]       probe_lod,
+  output logic                                   probe_first,
+  output logic                                   probe_last,
+  output logic [4:0]                             probe_n,
+  output logic [TAG_W-1:0]                       probe_tag,
+  output logic [2:0]                             held       // requests in clocks 1-4 (0..4)
+`ifdef FORMAL
+  , output logic [4:1]         f_valid                     // the clock-k registers' valid bits
+  , output logic [4*TAG_W-1:0] f_tags                      // clock k's tag at [(k-1)*TAG_W +: TAG_W]
+`endif
+);
+  localparam int DW = tex_pkg::REQ_COORD_W;
+
+  logic en_up;  // clocks 1-4 advance: the sequencer issues its request's last probe (or is empty)
+  logic hold;   // the sequencer register has probes after this one
+  assign en_up = en && !hold;
+  assign req_ready = en_up;
+
+  // ---------------------------------------------------------------- cfg registers
+  logic [tex_pkg::LEVEL_W-1:0] log2_w_q, log2_h_q;
+  logic [3:0]                  max_aniso_m1_q;
+  logic                        pow2_q;
+  always_ff @(posedge clk) begin
+    log2_w_q       <= cfg_log2_w;
+    log2_h_q       <= cfg_log2_h;
+    max_aniso_m1_q <= cfg_max_aniso_m1;
+    pow2_q         <= cfg_aniso_pow2;
+  end
+
+  // ---------------------------------------------------------------- clocks 1-4: request registers
+  // Clock 1 captures the pins; u, v, lod, the mode and the tag ride along while tex_aniso works.
+  logic [4:1]                       valid;
+  logic signed [DW-1:0]             u_q [4:1];
+  logic signed [DW-1:0]             v_q [4:1];
+  logic signed [tex_pkg::LOD_W-1:0] lod_q [4:1];
+  logic [4:1]                       deriv_q;
+  logic [TAG_W-1:0]                 tag_q [4:1];
+  logic signed [DW-1:0]             dudx_s1, dvdx_s1, dudy_s1, dvdy_s1;
+  always_ff @(posedge clk) begin
+    if (rst) valid <= '0;
+    else if (en_up) valid <= {valid[3:1], req_valid};
+    if (en_up) begin
+      u_q[1]     <= req_u;
+      v_q[1]     <= req_v;
+      lod_q[1]   <= req_lod;
+      deriv_q[1] <= req_deriv;
+      tag_q[1]   <= req_tag;
+      dudx_s1    <= req_dudx;
+      dvdx_s1    <= req_dvdx;
+      dudy_s1    <= req_dudy;
+      dvdy_s1    <= req_dvdy;
+      for (int k = 2; k <= 4; k++) begin
+        u_q[k]     <= u_q[k-1];
+        v_q[k]     <= v_q[k-1];
+        lod_q[k]   <= lod_q[k-1];
+        deriv_q[k] <= deriv_q[k-1];
+        tag_q[k]   <= tag_q[k-1];
+      end
+    end
+  end
+
+  logic [4:0]           aniso_n;
+`ifdef FORMAL
+  logic [4:0]           f_aniso_n_s2;
+`endif
+  logic signed [15:0]   aniso_lambda;
+  logic signed [DW-1:0] step_u, step_v;
+  tex_aniso u_aniso (
+    .clk(clk), .en(en_up), .dudx(dudx_s1), .dvdx(dvdx_s1), .dudy(dudy_s1), .dvdy(dvdy_s1),
+    .log2_w(log2_w_q), .log2_h(log2_h_q), .max_aniso_m1(max_aniso_m1_q), .pow2(pow2_q),
+    .n(aniso_n), .lambda(aniso_lambda), .step_u(step_u), .step_v(step_v)
+`ifdef FORMAL
+    , .f_n_s2(f_aniso_n_s2)
+`endif
+  );
+
+  // ---------------------------------------------------------------- the sequencer (clock 4)
+  logic [3:0] index;  // the probe on the outputs, 0..n - 1
+  logic [4:0] n;
+  assign n = deriv_q[4] ? aniso_n : 5'd1;
+  assign hold = valid[4] && {1'b0, index} != n - 5'd1;
+  always_ff @(posedge clk) begin
+    if (rst) index <= '0;
+    else if (en_up) index <= '0;
+    else if (en) index <= index + 4'd1;
+  end
+
+  // Probe index: coord + floor((2i + 1 - n) * step / 2), saturated to the Q8.24 range.
+  logic signed [5:0]    position;  // 2i + 1 - n: -15..15
+  logic signed [DW+5:0] offset_u, offset_v;
+  logic signed [DW+6:0] sum_u, sum_v;
+  function automatic logic signed [DW-1:0] saturate(input logic signed [DW+6:0] x);
+    if (x > 39'sh007FFFFFFF) saturate = 32'sh7FFFFFFF;
+    else if (x < -39'sh0080000000) saturate = -32'sh80000000;
+    else saturate = x[DW-1:0];
+  endfunction
+  logic signed [DW-1:0] step_u_used, step_v_used;  // 0 for lambda requests (whose derivative pins are don't-care)
+  assign step_u_used = deriv_q[4] ? step_u : '0;
+  assign step_v_used = deriv_q[4] ? step_v : '0;
+  always_comb begin
+    position = $signed({1'b0, index, 1'b1}) - $signed({1'b0, n});
+    offset_u = (38'(position) * 38'(step_u_used)) >>> 1;
+    offset_v = (38'(position) * 38'(step_v_used)) >>> 1;
+    sum_u = 39'(u_q[4]) + 39'(offset_u);
+    sum_v = 39'(v_q[4]) + 39'(offset_v);
+  end
+  assign probe_valid = valid[4];
+  assign probe_u     = saturate(sum_u);
+  assign probe_v     = saturate(sum_v);
+  assign probe_lod   = deriv_q[4] ? aniso_lambda : lod_q[4];
+  assign probe_first = index == 4'd0;
+  assign probe_last  = !hold;
+  assign probe_n     = n;
+  always_comb probe_tag = tag_q[4];  // (not `assign`: Icarus 11 leaves an assign from this array X)
+  assign held        = 3'(valid[1]) + 3'(valid[2]) + 3'(valid[3]) + 3'(valid[4]);
+
+`ifdef FORMAL
+  assign f_valid = valid;
+  assign f_tags  = {tag_q[4], tag_q[3], tag_q[2], tag_q[1]};
+  // The probe index is 0 except while a request with derivatives issues its probes.
+  logic f_reset_done = 1'b0;
+  always_ff @(posedge clk) if (rst) f_reset_done <= 1'b1;
+  // A derivative request's probe count is 1..16 from tex_aniso's clock 2 on, and the sequencer's
+  // index stays below it (the sequencer neither wraps nor restarts a request).
+  always_comb
+    if (f_reset_done) begin
+      assert (index == 4'd0 || (valid[4] && deriv_q[4]));
+      if (valid[3] && deriv_q[3]) assert (f_aniso_n_s2 >= 5'd1 && f_aniso_n_s2 <= 5'd16);
+      if (valid[4] && deriv_q[4]) assert (aniso_n >= 5'd1 && aniso_n <= 5'd16 && 5'(index) < aniso_n);
+    end
+`endif
+endmodule
