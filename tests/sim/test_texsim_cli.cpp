@@ -310,6 +310,38 @@ TEST_F(TexsimCli, EveryEngineGivesTheModelsTexels) {
       }
 }
 
+// --filter anisotropic: --stats counts the samples by probe count (every engine), and the RTL takes
+// one clock per probe. Footprints of 1, 4 and 16 texels by 1 on a 64x64 texture: N = 1, 4, 16 by
+// the definition (ceil(Pmax / Pmin)), 1 + 2*4 + 2*16 = 41 probes.
+TEST_F(TexsimCli, AnisotropicStatsCountTheProbes) {
+  write_text(dir / "q.csv", "u,v,dudx,dvdx,dudy,dvdy\n"
+                            "0.5,0.5,0.03125,0,0,0.03125\n"      // 2 x 2 texels: N = 1
+                            "0.25,0.5,0.0625,0,0,0.015625\n"     // 4 x 1 along u: N = 4
+                            "0.5,0.25,0,0.015625,0,0.0625\n"     // 1 x 4, the long axis along v: N = 4
+                            "0.75,0.5,0.25,0,0,0.015625\n"       // 16 x 1: N = 16
+                            "0.5,0.75,0.176777,0.176777,-0.0110485,0.0110485\n");  // 16 x 1 diagonal: N = 16
+  std::vector<uint64_t> expected(16, 0);
+  expected[0] = 1;
+  expected[3] = 2;
+  expected[15] = 2;
+  for (const char* engine : {"model", "rtl"}) {
+    const Result r = run(std::string("sample -t noise:64x64 -q q.csv -o r.csv --filter anisotropic --stats s.json -e ") + engine);
+    ASSERT_EQ(r.exit_code, 0) << engine << ": " << r.err;
+    const auto stats = nlohmann::json::parse(read_text(dir / "s.json"));
+    EXPECT_EQ(stats.at("probes_per_sample").get<std::vector<uint64_t>>(), expected) << engine << ": " << stats.dump();
+    EXPECT_EQ(stats.at("probes").get<uint64_t>(), 41u) << engine;
+    EXPECT_DOUBLE_EQ(stats.at("mean_probes_per_sample").get<double>(), 41.0 / 5.0) << engine;
+    EXPECT_NE(r.out.find("probes: 41 = 8.200 per sample (N:samples 1:1 4:2 16:2)"), std::string::npos) << r.out;
+    if (std::string(engine) == "rtl") {
+      EXPECT_EQ(stats.at("cycles").get<uint64_t>(), 41 + stats.at("latency_cycles").get<uint64_t>()) << stats.dump();
+    }
+  }
+  // Other filters write no probe counts.
+  const Result t = run("sample -t noise:64x64 -q q.csv -o r.csv --stats s.json");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_FALSE(nlohmann::json::parse(read_text(dir / "s.json")).contains("probes_per_sample"));
+}
+
 // A new user's first cycle-accurate run measures the design: ideal timing, backdoor load, one
 // sample per clock once the pipeline has filled; the summary line says which timing ran.
 TEST_F(TexsimCli, DefaultsMeasureTheDesign) {
