@@ -31,51 +31,42 @@ module tex_lambda (
   localparam int FRAC = tex_pkg::COORD_FRAC;            // 24
 
   // ------------------------------------------------------------ clock 1: normalize, square
-  logic [TW-1:0] mag [4];
-  logic [TW-1:0] largest;
-  logic [SW-1:0] shift;
-  logic [TW-1:0] scaled [4];
-  logic [NW-1:0] norm [4];
-  logic [PW-1:0] square [4];
-  logic [PW-1:0] px, py;
-
-  logic signed [DW-1:0] deriv [4];
-  logic [tex_pkg::LEVEL_W-1:0] log2_size [4];
-  logic [DW-1:0] absolute [4];
-
-  always_comb begin
-    deriv[0] = dudx; log2_size[0] = log2_w;
-    deriv[1] = dvdx; log2_size[1] = log2_h;
-    deriv[2] = dudy; log2_size[2] = log2_w;
-    deriv[3] = dvdy; log2_size[3] = log2_h;
+  // Each clock's logic is a function called inside its register enable: the hardware is the same
+  // as combinational logic in front of enabled registers, and Verilator evaluates it only in a
+  // clock with en high (tex_aniso's en is low unless a derivative request is in it).
+  localparam int LW = tex_pkg::LEVEL_W;
+  // {px, py, s}: the texel-space magnitudes |d| << log2 size, shifted right by s so that the
+  // largest keeps 16 bits, squared and summed per screen axis.
+  function automatic logic [2*PW+SW-1:0] lengths(input logic [4*DW-1:0] d,
+                                                 input logic [4*LW-1:0] log2_size);
+    logic [4*TW-1:0] mag;
+    logic [4*PW-1:0] square;
+    logic [TW-1:0]   largest;
+    logic [NW-1:0]   norm;
+    logic [DW-1:0]   value;
+    logic [SW-1:0]   shift;
     for (int i = 0; i < 4; i++) begin
-      absolute[i] = deriv[i][DW-1] ? -deriv[i] : deriv[i];  // |INT32_MIN| = 2^31 fits unsigned
-      mag[i] = {{(TW - DW){1'b0}}, absolute[i]} << log2_size[i];
+      value = d[i*DW +: DW];
+      if (value[DW-1]) value = -value;  // |INT32_MIN| = 2^31 fits unsigned
+      mag[i*TW +: TW] = {{(TW - DW){1'b0}}, value} << log2_size[i*LW +: LW];
     end
-    largest = mag[0];
-    for (int i = 1; i < 4; i++) if (mag[i] > largest) largest = mag[i];
+    largest = mag[0 +: TW];
+    for (int i = 1; i < 4; i++) if (mag[i*TW +: TW] > largest) largest = mag[i*TW +: TW];
     // s = max(0, msb(largest) - 15): the largest keeps 16 bits.
     shift = '0;
     for (int b = NW; b < TW; b++) if (largest[b]) shift = 6'(b - NW + 1);
     for (int i = 0; i < 4; i++) begin
-      scaled[i] = mag[i] >> shift;  // the top bits are zero: the largest now has 16
-      norm[i] = scaled[i][NW-1:0];
-      square[i] = {{(PW - NW){1'b0}}, norm[i]} * {{(PW - NW){1'b0}}, norm[i]};
+      norm = 16'(mag[i*TW +: TW] >> shift);  // the bits above are zero: the largest now has 16
+      square[i*PW +: PW] = {{(PW - NW){1'b0}}, norm} * {{(PW - NW){1'b0}}, norm};
     end
-    px = square[0] + square[1];
-    py = square[2] + square[3];
-  end
+    lengths = {square[0 +: PW] + square[PW +: PW], square[2*PW +: PW] + square[3*PW +: PW], shift};
+  endfunction
 
   logic [PW-1:0] p_s1;
   assign p_s1 = px_s1 > py_s1 ? px_s1 : py_s1;
   logic [SW-1:0] shift_s1;
-  always_ff @(posedge clk) begin
-    if (en) begin
-      px_s1    <= px;
-      py_s1    <= py;
-      shift_s1 <= shift;
-    end
-  end
+  always_ff @(posedge clk)
+    if (en) {px_s1, py_s1, shift_s1} <= lengths({dvdy, dudy, dvdx, dudx}, {log2_h, log2_w, log2_h, log2_w});
 
   // ------------------------------------------------------------ clock 2: log2, round
   // log2(1 + j/32) in Q.16, rounded (the model's kLog2Table).
@@ -94,32 +85,29 @@ module tex_lambda (
     endcase
   endfunction
 
-  logic [5:0]  lead;       // k: position of the leading one of p (0..32)
-  logic [20:0] mantissa;   // bits 31..11 of the 32 below it: 5 index the table, 16 interpolate
-  logic [16:0] lo, hi, step;
-  logic [15:0] t;
-  logic [22:0] log2_p;     // Q6.16, k <= 32
-  logic signed [24:0] lambda_q16;
-
-  always_comb begin
+  // lambda = log2(p) / 2 + s - 24, rounded half up to Q8.8 (|lambda| < 24 levels: 16 bits hold
+  // it); p = 0 (no footprint) gives -128.0.
+  function automatic logic signed [tex_pkg::LOD_W-1:0] lambda_of(input logic [PW-1:0] p,
+                                                                 input logic [SW-1:0] s);
+    logic [5:0]  lead;       // k: position of the leading one of p (0..32)
+    logic [20:0] mantissa;   // bits 31..11 of the 32 below it: 5 index the table, 16 interpolate
+    logic [16:0] lo, hi, step;
+    logic [22:0] log2_p;     // Q6.16, k <= 32
+    logic signed [24:0] lambda_q16;
     lead = '0;
-    for (int b = 1; b < PW; b++) if (p_s1[b]) lead = 6'(b);
+    for (int b = 1; b < PW; b++) if (p[b]) lead = 6'(b);
     // p < 2^33, so k <= 32 and the bits below the leading one are a left shift by 32 - k.
-    mantissa = 21'(({31'd0, p_s1} << (6'd32 - lead)) >> 11);
+    mantissa = 21'(({31'd0, p} << (6'd32 - lead)) >> 11);
     lo = log2_table({1'b0, mantissa[20:16]});
     hi = log2_table({1'b0, mantissa[20:16]} + 6'd1);
-    t = mantissa[15:0];
     step = hi - lo;
-    log2_p = {lead[5:0], 16'd0} + 23'(lo) + 23'((33'(step) * 33'(t)) >> 16);
-    // lambda = log2(p) / 2 + s - 24 (Q.16), then round half up to Q8.8.
-    lambda_q16 = 25'($signed({2'b0, log2_p} >>> 1)) + ($signed({13'd0, shift_s1, 6'd0} <<< 10)) -
+    log2_p = {lead[5:0], 16'd0} + 23'(lo) + 23'((33'(step) * 33'(mantissa[15:0])) >> 16);
+    lambda_q16 = 25'($signed({2'b0, log2_p} >>> 1)) + ($signed({13'd0, s, 6'd0} <<< 10)) -
                  25'(FRAC <<< 16);
-  end
+    lambda_of = p == '0 ? {1'b1, {(tex_pkg::LOD_W - 1){1'b0}}} : 16'((lambda_q16 + 25'sd128) >>> 8);
+  endfunction
 
-  always_ff @(posedge clk) begin
-    // Round half up to Q8.8 (|lambda| < 24 levels: the 16-bit result holds it).
-    if (en) lambda <= p_s1 == '0 ? {1'b1, {(tex_pkg::LOD_W - 1){1'b0}}} : 16'((lambda_q16 + 25'sd128) >>> 8);
-  end
+  always_ff @(posedge clk) if (en) lambda <= lambda_of(p_s1, shift_s1);
 
   generate
     if (tex_pkg::LOD_W != 16) begin : g_bad_lod_w

@@ -103,13 +103,15 @@ module tex_probe #(
   end
 
   logic [4:0]           aniso_n;
+  logic                 aniso_en;  // tex_aniso advances only with a derivative request in it: its
+  assign aniso_en = en_up && (deriv_q[1] || deriv_q[2] || deriv_q[3]);  // logic then rests
 `ifdef FORMAL
   logic [4:0]           f_aniso_n_s2;
 `endif
   logic signed [15:0]   aniso_lambda;
   logic signed [DW-1:0] step_u, step_v;
   tex_aniso u_aniso (
-    .clk(clk), .en(en_up), .dudx(dudx_s1), .dvdx(dvdx_s1), .dudy(dudy_s1), .dvdy(dvdy_s1),
+    .clk(clk), .en(aniso_en), .dudx(dudx_s1), .dvdx(dvdx_s1), .dudy(dudy_s1), .dvdy(dvdy_s1),
     .log2_w(log2_w_q), .log2_h(log2_h_q), .max_aniso_m1(max_aniso_m1_q), .pow2(pow2_q),
     .n(aniso_n), .lambda(aniso_lambda), .step_u(step_u), .step_v(step_v)
 `ifdef FORMAL
