@@ -44,46 +44,59 @@ module tex_aniso (
     .clk(clk), .en(en), .dudx(dudx), .dvdx(dvdx), .dudy(dudy), .dvdy(dvdy), .log2_w(log2_w),
     .log2_h(log2_h), .lambda(lambda_s2), .px_s1(px_s1), .py_s1(py_s1)
   );
-  logic signed [DW-1:0] d_s1 [4];
+  logic signed [DW-1:0] dudx_s1, dvdx_s1, dudy_s1, dvdy_s1;
   logic [3:0]           cap_m1_s1;
   logic                 pow2_s1;
   always_ff @(posedge clk) begin
     if (en) begin
-      d_s1[0]   <= dudx;
-      d_s1[1]   <= dvdx;
-      d_s1[2]   <= dudy;
-      d_s1[3]   <= dvdy;
+      dudx_s1   <= dudx;
+      dvdx_s1   <= dvdx;
+      dudy_s1   <= dudy;
+      dvdy_s1   <= dvdy;
       cap_m1_s1 <= max_aniso_m1;
       pow2_s1   <= pow2;
     end
   end
 
   // ---------------------------------------------------------------- clock 2: N, the major axis
-  logic [PW-1:0] pmax, pmin, target;
-  logic [15:1]   reaches;  // reaches[k]: k^2 Pmin^2 >= the target (scripts/formal.sh cuts it)
-  logic [4:0]    cap, count;
-  logic          major_x;
-  always_comb begin
-    major_x = px_s1 >= py_s1;
-    pmax = major_x ? px_s1 : py_s1;
-    pmin = major_x ? py_s1 : px_s1;
+  // reaches[k]: k^2 Pmin^2 >= Pmax^2 - Pmax^2/64, k = 1..15 (Pmax, Pmin: px_s1, py_s1 sorted)
+  function automatic logic [15:1] reaches_of(input logic [PW-1:0] px, input logic [PW-1:0] py);
+    logic [PW-1:0] pmax, pmin, target;
+    pmax = px >= py ? px : py;
+    pmin = px >= py ? py : px;
     target = pmax - (pmax >> 6);
-    for (int k = 1; k <= 15; k++) reaches[k] = 41'(k * k) * 41'(pmin) >= 41'(target);
-  end
-  always_comb begin
-    cap = {1'b0, cap_m1_s1} + 5'd1;
-    if (pow2_s1) cap = cap[4] ? 5'd16 : cap[3] ? 5'd8 : cap[2] ? 5'd4 : cap[1] ? 5'd2 : 5'd1;
-    count = cap;  // the least k that reaches the target wins (searched from the top down)
+    for (int k = 1; k <= 15; k++) reaches_of[k] = 41'(k * k) * 41'(pmin) >= 41'(target);
+  endfunction
+  // N: the least k below the cap (powers of two only when pow2) that reaches the target, else the
+  // cap (rounded down to a power of two when pow2)
+  function automatic logic [4:0] count_of(input logic [15:1] reaches, input logic [3:0] cap_m1,
+                                          input logic pow2_only);
+    logic [4:0] cap;
+    cap = {1'b0, cap_m1} + 5'd1;
+    if (pow2_only) cap = cap[4] ? 5'd16 : cap[3] ? 5'd8 : cap[2] ? 5'd4 : cap[1] ? 5'd2 : 5'd1;
+    count_of = cap;  // searched from the top down: the least k wins
     for (int k = 15; k >= 1; k--)
-      if (5'(k) < cap && (!pow2_s1 || (k & (k - 1)) == 0) && reaches[k]) count = 5'(k);
-  end
+      if (5'(k) < cap && (!pow2_only || (k & (k - 1)) == 0) && reaches[k]) count_of = 5'(k);
+  endfunction
+  // The comparisons are a named signal only for the formal proof, which cuts it
+  // (scripts/formal.sh); elsewhere they are evaluated inside the enable, like the rest.
+`ifdef FORMAL
+  logic [15:1] reaches;
+  always_comb reaches = reaches_of(px_s1, py_s1);
+`endif
+  logic                 major_x;
   logic [4:0]           n_s2;
   logic signed [DW-1:0] axis_u_s2, axis_v_s2;
+  assign major_x = px_s1 >= py_s1;
   always_ff @(posedge clk) begin
     if (en) begin
-      n_s2      <= count;
-      axis_u_s2 <= major_x ? d_s1[0] : d_s1[2];
-      axis_v_s2 <= major_x ? d_s1[1] : d_s1[3];
+`ifdef FORMAL
+      n_s2      <= count_of(reaches, cap_m1_s1, pow2_s1);
+`else
+      n_s2      <= count_of(reaches_of(px_s1, py_s1), cap_m1_s1, pow2_s1);
+`endif
+      axis_u_s2 <= major_x ? dudx_s1 : dudy_s1;
+      axis_v_s2 <= major_x ? dvdx_s1 : dvdy_s1;
     end
   end
 
@@ -109,17 +122,20 @@ module tex_aniso (
       default: reciprocal = 17'd65536;
     endcase
   endfunction
-  logic signed [DW+17:0] prod_u, prod_v;  // axis * reciprocal: 32 x 17 bits, signed
-  always_comb begin
-    prod_u = 50'(axis_u_s2) * $signed({1'b0, reciprocal(n_s2)});
-    prod_v = 50'(axis_v_s2) * $signed({1'b0, reciprocal(n_s2)});
-  end
+  // axis * round(2^16 / k) / 2^16 (a function called inside the enable, like tex_lambda's: a
+  // simulator evaluates it only when a derivative request moves)
+  function automatic logic signed [DW-1:0] step_of(input logic signed [DW-1:0] axis,
+                                                  input logic [4:0] k);
+    logic signed [DW+17:0] product;  // 32 x 17 bits, signed
+    product = 50'(axis) * $signed({1'b0, reciprocal(k)});
+    step_of = 32'(product >>> 16);   // |step| <= |axis|: fits
+  endfunction
   always_ff @(posedge clk) begin
     if (en) begin
       n      <= n_s2;
       lambda <= lambda_s2 - $signed({5'd0, log2_q8(n_s2)});
-      step_u <= 32'(prod_u >>> 16);  // |step| <= |axis|: fits
-      step_v <= 32'(prod_v >>> 16);
+      step_u <= step_of(axis_u_s2, n_s2);
+      step_v <= step_of(axis_v_s2, n_s2);
     end
   end
 

@@ -73,32 +73,27 @@ module tex_probe #(
   // ---------------------------------------------------------------- clocks 1-4: request registers
   // Clock 1 captures the pins; u, v, lod, the mode and the tag ride along while tex_aniso works.
   logic [4:1]                       valid;
-  logic signed [DW-1:0]             u_q [4:1];
-  logic signed [DW-1:0]             v_q [4:1];
-  logic signed [tex_pkg::LOD_W-1:0] lod_q [4:1];
+  // Packed shift registers, clock k's value at [(k-1)*width +: width] (an unpacked array would
+  // cost Verilator a delayed-write shadow per element and clock).
+  localparam int LW = tex_pkg::LOD_W;
+  logic [4*DW-1:0]                  u_q, v_q;
+  logic [4*LW-1:0]                  lod_q;
   logic [4:1]                       deriv_q;
-  logic [TAG_W-1:0]                 tag_q [4:1];
+  logic [4*TAG_W-1:0]               tag_q;
   logic signed [DW-1:0]             dudx_s1, dvdx_s1, dudy_s1, dvdy_s1;
   always_ff @(posedge clk) begin
     if (rst) valid <= '0;
     else if (en_up) valid <= {valid[3:1], req_valid};
     if (en_up) begin
-      u_q[1]     <= req_u;
-      v_q[1]     <= req_v;
-      lod_q[1]   <= req_lod;
-      deriv_q[1] <= req_deriv;
-      tag_q[1]   <= req_tag;
+      u_q        <= {u_q[0 +: 3*DW], req_u};
+      v_q        <= {v_q[0 +: 3*DW], req_v};
+      lod_q      <= {lod_q[0 +: 3*LW], req_lod};
+      deriv_q    <= {deriv_q[3:1], req_deriv};
+      tag_q      <= {tag_q[0 +: 3*TAG_W], req_tag};
       dudx_s1    <= req_dudx;
       dvdx_s1    <= req_dvdx;
       dudy_s1    <= req_dudy;
       dvdy_s1    <= req_dvdy;
-      for (int k = 2; k <= 4; k++) begin
-        u_q[k]     <= u_q[k-1];
-        v_q[k]     <= v_q[k-1];
-        lod_q[k]   <= lod_q[k-1];
-        deriv_q[k] <= deriv_q[k-1];
-        tag_q[k]   <= tag_q[k-1];
-      end
     end
   end
 
@@ -146,22 +141,22 @@ module tex_probe #(
     position = $signed({1'b0, index, 1'b1}) - $signed({1'b0, n});
     offset_u = (38'(position) * 38'(step_u_used)) >>> 1;
     offset_v = (38'(position) * 38'(step_v_used)) >>> 1;
-    sum_u = 39'(u_q[4]) + 39'(offset_u);
-    sum_v = 39'(v_q[4]) + 39'(offset_v);
+    sum_u = 39'($signed(u_q[3*DW +: DW])) + 39'(offset_u);
+    sum_v = 39'($signed(v_q[3*DW +: DW])) + 39'(offset_v);
   end
   assign probe_valid = valid[4];
   assign probe_u     = saturate(sum_u);
   assign probe_v     = saturate(sum_v);
-  assign probe_lod   = deriv_q[4] ? aniso_lambda : lod_q[4];
+  assign probe_lod   = deriv_q[4] ? aniso_lambda : lod_q[3*LW +: LW];
   assign probe_first = index == 4'd0;
   assign probe_last  = !hold;
   assign probe_n     = n;
-  always_comb probe_tag = tag_q[4];  // (not `assign`: Icarus 11 leaves an assign from this array X)
+  assign probe_tag   = tag_q[3*TAG_W +: TAG_W];
   assign held        = 3'(valid[1]) + 3'(valid[2]) + 3'(valid[3]) + 3'(valid[4]);
 
 `ifdef FORMAL
   assign f_valid = valid;
-  assign f_tags  = {tag_q[4], tag_q[3], tag_q[2], tag_q[1]};
+  assign f_tags  = tag_q;
   // The probe index is 0 except while a request with derivatives issues its probes.
   logic f_reset_done = 1'b0;
   always_ff @(posedge clk) if (rst) f_reset_done <= 1'b1;
