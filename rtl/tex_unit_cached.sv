@@ -165,10 +165,6 @@ module tex_unit_cached #(
   logic signed [tex_pkg::LOD_W-1:0]       probe_lod;
   logic [TGW-1:0]                         probe_tag;
   logic [2:0]                             probe_held;  // requests in tex_probe
-`ifdef FORMAL
-  logic [4:1]                             f_probe_valid;
-  logic [4*TGW-1:0]                       f_probe_tags;
-`endif
   tex_probe #(.TAG_W(TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front), .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h),
     .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
@@ -177,10 +173,7 @@ module tex_unit_cached #(
     .req_dvdy(req_dvdy), .req_tag(req_tag),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag(probe_tag),
-    .held(probe_held)
-`ifdef FORMAL
-    , .f_valid(f_probe_valid), .f_tags(f_probe_tags)
-`endif
+    .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
   );
 
   // ---------------------------------------------------------------- front: probe clocks 1-4

@@ -325,12 +325,10 @@ void print_cycle_stats(const EngineStats& stats, const EngineOptions& options) {
 void print_probe_stats(const EngineStats& stats) {
   if (!stats.probes) return;
   const auto& h = *stats.probes;
-  uint64_t total = 0;
+  const uint64_t total = stats.probe_total();
   std::string histogram;
-  for (size_t n = 1; n < h.size(); ++n) {
-    total += n * h[n];
+  for (size_t n = 1; n < h.size(); ++n)
     if (h[n]) histogram += " " + std::to_string(n) + ":" + std::to_string(h[n]);
-  }
   std::printf("  probes: %llu = %.3f per sample (N:samples%s)", (unsigned long long)total,
               stats.samples ? double(total) / double(stats.samples) : 0.0, histogram.c_str());
   if (stats.cycle && stats.cycle->cycles > stats.cycle->latency_cycles)

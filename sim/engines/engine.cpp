@@ -57,11 +57,9 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
   j["memory"] = memory_name(options.memory);
   if (probes) {
     const std::vector<uint64_t> by_n(probes->begin() + 1, probes->end());  // [N - 1]: samples of N probes
-    uint64_t total = 0;
-    for (size_t n = 1; n < probes->size(); ++n) total += n * (*probes)[n];
     j["probes_per_sample"] = by_n;
-    j["probes"] = total;
-    j["mean_probes_per_sample"] = samples ? double(total) / double(samples) : 0.0;
+    j["probes"] = probe_total();
+    j["mean_probes_per_sample"] = samples ? double(probe_total()) / double(samples) : 0.0;
   }
   if (cache) {
     j["cache_kib"] = options.cache.size_bytes / 1024.0;
@@ -105,6 +103,13 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
     j["bank_reads"] = bank_reads;
   }
   return j;
+}
+
+uint64_t EngineStats::probe_total() const {
+  uint64_t total = 0;
+  if (probes)
+    for (size_t n = 1; n < probes->size(); ++n) total += n * (*probes)[n];
+  return total;
 }
 
 EngineStats EngineStats::from_json(const nlohmann::json& j) {

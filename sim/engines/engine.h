@@ -97,6 +97,7 @@ struct EngineStats {
   // Anisotropic filter only (ProbeCounter): samples by probe count N, index 1..16; the RTL takes
   // N clocks for a sample of N probes.
   std::optional<std::array<uint64_t, kMaxAniso + 1>> probes;
+  uint64_t probe_total() const;  // the sum of N over the samples (0 without the histogram)
 
   // Throughput: samples per clock once the pipeline has filled, samples / (cycles - latency), so
   // that a short run of a unit that takes one sample per clock reports 1.0 (cycles has the total).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <functional>
 #include <cstdio>
 
 #include "coverage.h"
@@ -53,91 +54,78 @@ void run_suite(const RandomSuite& suite) {
   Coverage coverage(suite.max_log2_w, suite.max_log2_h);
   uint64_t failures = 0;
 
+  // One case: its seed draws the sampler configuration (after `configure`), the timing and the
+  // requests; anisotropic cases take a quarter of the requests, each with a footprint of 1..16
+  // probes along u, v or a diagonal. Returns false once enough failures are reported.
+  auto run_case = [&](const TextureSpec& ts, std::optional<Pyramid>& pyr, bool port_load, uint64_t seed, bool aniso,
+                      const std::function<void(std::mt19937_64&, SamplerConfig&)>& configure) {
+    if (only && *only != seed) return true;
+    if (!pyr) {  // loaded lazily: a replay of one seed loads only its texture
+      pyr = build_pyramid(make_texture(ts), ts.mode);
+      unit->load(*pyr, port_load ? LoadMethod::Port : LoadMethod::Backdoor);
+    }
+    std::mt19937_64 rng(seed);
+    SamplerConfig cfg;
+    configure(rng, cfg);
+    randomize_lod_controls(rng, cfg);
+    std::string timing_name;
+    const rtl::Timing timing = random_timing(rng, timing_name);
+    const int lw = pyr->log2_w0(), lh = pyr->log2_h0();
+    auto reqs = random_requests(rng, lw, lh, suite.requests_per_case * scale() / (aniso ? 4 : 1));
+    if (aniso)
+      for (Request& q : reqs) {
+        q.has_derivatives = true;
+        q.deriv = random_footprint(rng, lw, lh, int(rng() % 16) + 1, int(rng() % 3)).deriv;
+      }
+    const LockstepResult r = lockstep(*unit, *pyr, cfg, reqs, timing, rng());
+
+    ++totals.rounds;
+    totals.samples += r.compared;
+    totals.clocks += r.stats.cycles();
+    totals.stall_clocks += r.stats.protocol.output_stall_cycles;
+    totals.gap_clocks += r.stats.gap_cycles;
+    totals.longest_latency = std::max(totals.longest_latency, r.stats.protocol.latency_max);
+    coverage.timing(r.stats);
+    if (r.compared == reqs.size())
+      for (const Request& q : reqs) coverage.sample(*pyr, cfg, q);
+    if (r.ok()) return true;
+    ++failures;
+    ADD_FAILURE() << suite.name << ": texture " << ts.pattern << ":" << ts.width << "x" << ts.height << " "
+                  << (ts.mode == PyramidMode::Exact ? "exact" : "cascade") << ", " << describe(cfg)
+                  << (aniso ? " max_aniso " + std::to_string(cfg.max_aniso) + (cfg.aniso_pow2 ? " pow2" : "") : "")
+                  << ", timing " << timing_name << ", " << reqs.size() << " requests\n"
+                  << r.report << "replay: TEX_SEED=" << seed
+                  << (seed_base() != 20240601 ? " TEX_SEED_BASE=" + std::to_string(seed_base()) : "")
+                  << " texunit_rtl_tests --gtest_filter=" << testing::UnitTest::GetInstance()->current_test_info()->test_suite_name()
+                  << "." << testing::UnitTest::GetInstance()->current_test_info()->name();
+    return failures < 3;  // enough to debug; keep the log short
+  };
+
   for (size_t ti = 0; ti < suite.textures.size(); ++ti) {
     const TextureSpec& ts = suite.textures[ti];
-    std::optional<Pyramid> pyr;  // loaded lazily: a replay of one seed loads only its texture
-    for (size_t fi = 0; fi < filters.size(); ++fi)
-      for (int wu = 0; wu < 3; ++wu)
-        for (int wv = 0; wv < 3; ++wv) {
-          const uint64_t seed = mix64(base + ((ti * 6 + fi) * 3 + wu) * 3 + wv);
-          if (only && *only != seed) continue;
-          if (!pyr) {
-            pyr = build_pyramid(make_texture(ts), ts.mode);
-            // Half the textures through the write port, half by the backdoor: both must give the same samples.
-            unit->load(*pyr, ti % 2 ? LoadMethod::Port : LoadMethod::Backdoor);
-          }
-          std::mt19937_64 rng(seed);
-          SamplerConfig cfg;
-          cfg.filter = filters[fi];
-          cfg.wrap_u = Wrap(wu);
-          cfg.wrap_v = Wrap(wv);
-          randomize_lod_controls(rng, cfg);
-          std::string timing_name;
-          const rtl::Timing timing = random_timing(rng, timing_name);
-          const auto reqs = random_requests(rng, pyr->log2_w0(), pyr->log2_h0(), suite.requests_per_case * scale());
-          const LockstepResult r = lockstep(*unit, *pyr, cfg, reqs, timing, rng());
-
-          ++totals.rounds;
-          totals.samples += r.compared;
-          totals.clocks += r.stats.cycles();
-          totals.stall_clocks += r.stats.protocol.output_stall_cycles;
-          totals.gap_clocks += r.stats.gap_cycles;
-          totals.longest_latency = std::max(totals.longest_latency, r.stats.protocol.latency_max);
-          coverage.timing(r.stats);
-          if (r.compared == reqs.size())
-            for (const Request& q : reqs) coverage.sample(*pyr, cfg, q);
-          if (!r.ok()) {
-            ++failures;
-            ADD_FAILURE() << suite.name << ": texture " << ts.pattern << ":" << ts.width << "x" << ts.height << " "
-                          << (ts.mode == PyramidMode::Exact ? "exact" : "cascade") << ", " << describe(cfg)
-                          << ", timing " << timing_name << ", " << reqs.size() << " requests\n"
-                          << r.report << "replay: TEX_SEED=" << seed
-                          << (seed_base() != 20240601 ? " TEX_SEED_BASE=" + std::to_string(seed_base()) : "")
-                          << " texunit_rtl_tests --gtest_filter=" << testing::UnitTest::GetInstance()->current_test_info()->test_suite_name()
-                          << "." << testing::UnitTest::GetInstance()->current_test_info()->name();
-            if (failures >= 3) return;  // enough to debug; keep the log short
-          }
-        }
-    // Anisotropic filter cases: every wrap pair, requests with derivatives only, footprints of
-    // 1..16 probes along u, v and diagonals.
+    const bool port_load = ti % 2;  // half through the write port, half by the backdoor: the same samples
+    std::optional<Pyramid> pyr;
     for (int wu = 0; wu < 3; ++wu)
       for (int wv = 0; wv < 3; ++wv) {
+        auto wraps = [&](SamplerConfig& cfg) {
+          cfg.wrap_u = Wrap(wu);
+          cfg.wrap_v = Wrap(wv);
+        };
+        for (size_t fi = 0; fi < filters.size(); ++fi) {
+          const uint64_t seed = mix64(base + ((ti * 6 + fi) * 3 + wu) * 3 + wv);
+          if (!run_case(ts, pyr, port_load, seed, false, [&](std::mt19937_64&, SamplerConfig& cfg) {
+                cfg.filter = filters[fi];
+                wraps(cfg);
+              }))
+            return;
+        }
+        // the anisotropic filter, once per wrap pair
         const uint64_t seed = mix64(base + 0xA5A5 + (ti * 3 + wu) * 3 + wv);
-        if (only && *only != seed) continue;
-        if (!pyr) {
-          pyr = build_pyramid(make_texture(ts), ts.mode);
-          unit->load(*pyr, ti % 2 ? LoadMethod::Port : LoadMethod::Backdoor);
-        }
-        std::mt19937_64 rng(seed);
-        SamplerConfig cfg;
-        cfg.wrap_u = Wrap(wu);
-        cfg.wrap_v = Wrap(wv);
-        randomize_aniso(rng, cfg);
-        randomize_lod_controls(rng, cfg);
-        std::string timing_name;
-        const rtl::Timing timing = random_timing(rng, timing_name);
-        auto reqs = random_requests(rng, pyr->log2_w0(), pyr->log2_h0(), suite.requests_per_case * scale() / 4);
-        for (Request& q : reqs) {
-          const Request f = random_footprint(rng, pyr->log2_w0(), pyr->log2_h0(), int(rng() % 16) + 1, int(rng() % 3));
-          q.has_derivatives = true;
-          q.deriv = f.deriv;
-        }
-        const LockstepResult r = lockstep(*unit, *pyr, cfg, reqs, timing, rng());
-        ++totals.rounds;
-        totals.samples += r.compared;
-        totals.clocks += r.stats.cycles();
-        totals.longest_latency = std::max(totals.longest_latency, r.stats.protocol.latency_max);
-        coverage.timing(r.stats);
-        if (r.compared == reqs.size())
-          for (const Request& q : reqs) coverage.sample(*pyr, cfg, q);
-        if (!r.ok()) {
-          ++failures;
-          ADD_FAILURE() << suite.name << ": texture " << ts.pattern << ":" << ts.width << "x" << ts.height << ", "
-                        << describe(cfg) << " max_aniso " << cfg.max_aniso << (cfg.aniso_pow2 ? " pow2" : "")
-                        << ", timing " << timing_name << ", " << reqs.size() << " requests\n"
-                        << r.report << "replay: TEX_SEED=" << seed;
-          if (failures >= 3) return;
-        }
+        if (!run_case(ts, pyr, port_load, seed, true, [&](std::mt19937_64& rng, SamplerConfig& cfg) {
+              wraps(cfg);
+              randomize_aniso(rng, cfg);
+            }))
+          return;
       }
   }
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
