@@ -5,6 +5,10 @@
 # One set of options for every build: -Wall (make lint keeps it at zero warnings), assertions on,
 # registers without reset start random (the design must not rely on zero initialisation),
 # single-threaded, C++ at -O2 (Verilator's default -Os is about 1.5x slower).
+# TEX_VERILATOR_EXTRA_ARGS (a cache variable, empty by default) adds options to every configuration,
+# e.g. -DTEX_VERILATOR_EXTRA_ARGS=--prof-cfuncs in a separate build tree to see which always
+# block the simulation time goes to (docs/performance.md, "Profiling the Verilated RTL").
+set(TEX_VERILATOR_EXTRA_ARGS "" CACHE STRING "extra Verilator options for every tex_unit configuration")
 find_package(verilator 5 REQUIRED HINTS /usr/share/verilator $ENV{VERILATOR_ROOT})
 
 function(verilate_tex_unit target prefix log2_w log2_h)
@@ -47,7 +51,7 @@ function(verilate_tex_unit target prefix log2_w log2_h)
     SOURCES ${waivers} ${sources}
     VERILATOR_ARGS -Wall --assert -GMAX_LOG2_W=${log2_w} -GMAX_LOG2_H=${log2_h} -GCW=${ARG_CW} -GTAG_W=16
                    ${cache_params}
-                   --x-assign unique --x-initial unique
+                   --x-assign unique --x-initial unique ${TEX_VERILATOR_EXTRA_ARGS}
     OPT_FAST -O2
     OPT_GLOBAL -O2
     OPT_SLOW -O1)

@@ -4,7 +4,9 @@
 // below 2^21, tests/model/test_aniso.cpp). With N = 1 it is the trilinear rounding.
 //   clock 1: acc = first ? blend : acc + blend          per channel, CW.24 (+ 4 bits for 16 probes)
 //   clock 2: rgba = the rounded mean of acc; out_valid only for the sample's last probe
-// Handshake: stall-enable; every register loads when en is high; the valid bits are reset.
+// Handshake: stall-enable; the registers load when en is high, the data registers only with a
+//   valid probe (clock 1) or a sample's last probe (clock 2): rgba and out_side hold the last
+//   sample while out_valid is low. The valid bits are reset.
 // Latency: 2 clocks. Throughput: 1 probe per clock (a sample leaves with its last probe).
 // Ports:
 //   blend        : channel c at [c*(CW+24) +: CW+24], unsigned CW.24 (tex_filter's)
@@ -40,17 +42,16 @@ module tex_accum #(
   logic              valid_s1, last_s1;
   logic [4:0]        n_s1;
   logic [SIDE_W-1:0] side_s1;
-  logic [AW-1:0]     acc [4];
+  logic [4*AW-1:0]   acc;             // channel c at [c*AW +: AW] (packed: one register)
   always_ff @(posedge clk) begin
     if (rst) valid_s1 <= 1'b0;
     else if (en) valid_s1 <= in_valid;
-    if (en) begin
+    if (en && in_valid) begin
       last_s1 <= in_last;
       n_s1    <= in_n;
       side_s1 <= in_side;
-      if (in_valid)
-        for (int c = 0; c < 4; c++)
-          acc[c] <= (in_first ? '0 : acc[c]) + {4'd0, blend[c*TW +: TW]};
+      for (int c = 0; c < 4; c++)
+        acc[c*AW +: AW] <= (in_first ? '0 : acc[c*AW +: AW]) + {4'd0, blend[c*TW +: TW]};
     end
   end
 
@@ -66,28 +67,18 @@ module tex_accum #(
       default: reciprocal = 26'd33554432;
     endcase
   endfunction
-  logic [4*CW-1:0] mean;
-  genvar c;
-  generate
-    for (c = 0; c < 4; c = c + 1) begin : g_channel
-      logic [AW:0]    rounded;   // acc + n * 2^23
-      logic [CW+4:0]  x;         // its integer part (< 2^21)
-      logic [CW+30:0] product;   // x * ceil(2^25 / n) (< 2^(CW+30))
-      logic [23:0]    fraction_unused;
-      logic [30:0]    product_unused;
-      assign rounded = {1'b0, acc[c]} + ({{(AW - 4){1'b0}}, n_s1} << 23);
-      assign x = rounded[AW:24];
-      assign fraction_unused = rounded[23:0];
-      assign product = {{(CW + 31 - (CW + 5)){1'b0}}, x} * {{(CW + 31 - 26){1'b0}}, reciprocal(n_s1)};
-      assign mean[c*CW +: CW] = product[25 +: CW];  // floor(x / n) < 2^CW
-      assign product_unused = {product[CW+30 -: 6], product[24:0]};
-    end
-  endgenerate
+  // floor(X * ceil(2^25 / n) / 2^25) with X = floor((sum + n * 2^23) / 2^24) < 2^21; the product
+  // is below 2^(CW+30). A function called inside the enable: evaluated only for a last probe.
+  function automatic logic [CW-1:0] mean_of(input logic [AW-1:0] sum, input logic [4:0] n);
+    logic [CW+4:0] x;
+    x = (CW+5)'(({1'b0, sum} + ((AW+1)'(n) << 23)) >> 24);
+    mean_of = CW'(((CW+31)'(x) * (CW+31)'(reciprocal(n))) >> 25);
+  endfunction
   always_ff @(posedge clk) begin
     if (rst) out_valid <= 1'b0;
     else if (en) out_valid <= valid_s1 && last_s1;
-    if (en) begin
-      rgba     <= mean;
+    if (en && valid_s1 && last_s1) begin
+      for (int c = 0; c < 4; c++) rgba[c*CW +: CW] <= mean_of(acc[c*AW +: AW], n_s1);
       out_side <= side_s1;
     end
   end

@@ -31,16 +31,9 @@ module tex_cache_data #(
   output logic [4*DW-1:0]        rd_texel
 );
   localparam int TPW = BW * BH / 4;  // texels per word
-  genvar b, o;
+  genvar b;
   generate
     for (b = 0; b < 4; b = b + 1) begin : g_bank
-      // The line's texels of parity b, in word order.
-      logic [TPW*DW-1:0] wr_word;
-      for (o = 0; o < TPW; o = o + 1) begin : g_texel
-        localparam int TX = 2 * (o % (BW / 2)) + (b % 2);
-        localparam int TY = 2 * (o / (BW / 2)) + (b / 2);
-        assign wr_word[o*DW +: DW] = wr_line[(TY*BW + TX)*DW +: DW];
-      end
       logic [TPW*DW-1:0] mem [LINES];
       logic [TPW*DW-1:0] word;    // the read register (RAM style), then the texel mux
       logic [OFW-1:0]    offset;
@@ -49,7 +42,14 @@ module tex_cache_data #(
           word   <= mem[rd_slot[b*SLW +: SLW]];  // the old data if written at this edge
           offset <= rd_offset[b*OFW +: OFW];
         end
-        if (wr_en) mem[wr_slot] <= wr_word;
+        if (wr_en) begin
+          // The line's texels of parity b, in word order (inside the write: a simulator skips
+          // the reordering in clocks without a write).
+          logic [TPW*DW-1:0] wr_word;
+          for (int o = 0; o < TPW; o++)
+            wr_word[o*DW +: DW] = wr_line[((2*(o / (BW/2)) + b/2)*BW + 2*(o % (BW/2)) + b%2)*DW +: DW];
+          mem[wr_slot] <= wr_word;
+        end
       end
       assign rd_texel[b*DW +: DW] = word[offset*DW +: DW];
     end

@@ -15,8 +15,9 @@
 //   look_valid[p] : bank p looks up a line in this clock (its block has parities p)
 //   look_set_hi   : bank p's set >> 2 at [p*SHW +: SHW]
 //   look_line     : bank p's line number (line address / line bytes) at [p*LNW +: LNW]
-//   hit[p]        : the line is in the cache
-//   slot          : bank p's line slot at [p*SLW +: SLW] (the hit way or the victim way)
+//   hit[p]        : the line is in the cache (0 when bank p does not look up)
+//   slot          : bank p's line slot at [p*SLW +: SLW] (the hit way or the victim way; 0 when
+//                   bank p does not look up)
 module tex_cache_tags #(
   parameter int LINES    = 128,  // lines per cache (power of two, >= 4)
   parameter int MAX_WAYS = 4,    // 1, 2 or 4
@@ -63,25 +64,35 @@ module tex_cache_tags #(
       logic           found;
       logic [1:0]     way;          // the hit way, else the victim (age = ways - 1)
       logic [AGW-1:0] way_age;
-      assign base = (EW'(look_set_hi[p*SHW +: SHW]) & set_mask) << cfg_log2_ways;
-      assign line = look_line[p*LNW +: LNW];
+      logic [SLW-1:0] slot_p;
+      // Only when bank p looks up (all 0 otherwise: nothing uses them then), so that a simulator
+      // skips the comparisons in the clocks without a lookup.
       always_comb begin
-        found = 1'b0;
-        way   = '0;
-        for (int w = MAX_WAYS - 1; w >= 0; w--) begin  // the victim: one way has that age
-          if (3'(w) < ways && age[{base | EW'(w), 1'b0} +: AGW] == AGW'(ways - 3'd1)) way = 2'(w);
-        end
-        for (int w = MAX_WAYS - 1; w >= 0; w--) begin
-          if (3'(w) < ways && valid[base | EW'(w)] && tag[base | EW'(w)] == line) begin
-            found = 1'b1;
-            way   = 2'(w);
+        base    = '0;
+        line    = '0;
+        found   = 1'b0;
+        way     = '0;
+        way_age = '0;
+        slot_p  = '0;
+        if (look_valid[p]) begin
+          base = (EW'(look_set_hi[p*SHW +: SHW]) & set_mask) << cfg_log2_ways;
+          line = look_line[p*LNW +: LNW];
+          for (int w = MAX_WAYS - 1; w >= 0; w--) begin  // the victim: one way has that age
+            if (3'(w) < ways && age[{base | EW'(w), 1'b0} +: AGW] == AGW'(ways - 3'd1)) way = 2'(w);
           end
+          for (int w = MAX_WAYS - 1; w >= 0; w--) begin
+            if (3'(w) < ways && valid[base | EW'(w)] && tag[base | EW'(w)] == line) begin
+              found = 1'b1;
+              way   = 2'(w);
+            end
+          end
+          way_age = age[{base | EW'(way), 1'b0} +: AGW];
+          slot_p  = (SLW'({EW'(look_set_hi[p*SHW +: SHW]) & set_mask, 2'(p)}) << cfg_log2_ways)
+                  | SLW'(way);
         end
-        way_age = age[{base | EW'(way), 1'b0} +: AGW];
       end
       assign hit[p] = found;
-      assign slot[p*SLW +: SLW] = (SLW'({EW'(look_set_hi[p*SHW +: SHW]) & set_mask, 2'(p)})
-                                   << cfg_log2_ways) | SLW'(way);
+      assign slot[p*SLW +: SLW] = slot_p;
 
       always_ff @(posedge clk) begin
         if (rst) begin

@@ -15,6 +15,8 @@
 //   miss ring for 8 more misses after this clock. The back (H, R, T, taps, and the filter after
 //   it) advances when en_back is high (the top's skid buffer has room). Fills are written only
 //   when en_back is high: a sample in R reads the banks at that same edge, before the write.
+//   A stage's data registers load only when a sample moves into it (out_tag, taps, out_w, out_f
+//   hold their last sample while out_valid is low): a simulator skips the empty stages.
 //   mem_req / mem_rsp are valid/ready; mem_req_valid, mem_req_addr and mem_rsp_ready are
 //   functions of registers only.
 // Latency: front_valid at clock 4 -> out_valid 5 clocks later when every line hits (FIFO push,
@@ -107,20 +109,26 @@ module tex_cached_fetch #(
 
   // ---------------------------------------------------------------- level bases in memory
   // base[k] = cfg_mem_base + the lines of levels 0..k-1 (docs/memory.md §1), as line numbers.
-  // Recomputed every clock from the static configuration (registered). All 2^LEVEL_W entries,
-  // so that any level index is in range (those past the last level are never used).
+  // The configuration is static between resets (docs/rtl-interface.md) and reaches these inputs
+  // through the top's registers one clock after the pins, so the table is computed in the clock
+  // after rst and held. All 2^LEVEL_W entries, so that any level index is in range (those past
+  // the last level are never used).
+  logic           rst_q;
   logic [LNW-1:0] base_line [1 << VW];
   always_ff @(posedge clk) begin
-    logic [LNW-1:0] acc;
-    acc = LNW'(cfg_mem_base >> LOG2_LB);
-    for (int k = 0; k < (1 << VW); k++) begin
-      logic [VW:0] lw, lh, lbx, lby;
-      base_line[k] <= acc;
-      lw  = ({1'b0, cfg_log2_w} > (VW+1)'(k)) ? {1'b0, cfg_log2_w} - (VW+1)'(k) : '0;
-      lh  = ({1'b0, cfg_log2_h} > (VW+1)'(k)) ? {1'b0, cfg_log2_h} - (VW+1)'(k) : '0;
-      lbx = (lw > (VW+1)'(LBW)) ? lw - (VW+1)'(LBW) : '0;
-      lby = (lh > (VW+1)'(LBH)) ? lh - (VW+1)'(LBH) : '0;
-      acc = acc + (LNW'(1) << (lbx + lby));
+    rst_q <= rst;
+    if (rst_q) begin
+      logic [LNW-1:0] acc;
+      acc = LNW'(cfg_mem_base >> LOG2_LB);
+      for (int k = 0; k < (1 << VW); k++) begin
+        logic [VW:0] lw, lh, lbx, lby;
+        base_line[k] <= acc;
+        lw  = ({1'b0, cfg_log2_w} > (VW+1)'(k)) ? {1'b0, cfg_log2_w} - (VW+1)'(k) : '0;
+        lh  = ({1'b0, cfg_log2_h} > (VW+1)'(k)) ? {1'b0, cfg_log2_h} - (VW+1)'(k) : '0;
+        lbx = (lw > (VW+1)'(LBW)) ? lw - (VW+1)'(LBW) : '0;
+        lby = (lh > (VW+1)'(LBH)) ? lh - (VW+1)'(LBH) : '0;
+        acc = acc + (LNW'(1) << (lbx + lby));
+      end
     end
   end
 
@@ -149,8 +157,12 @@ module tex_cached_fetch #(
     set_high = SHW'(xh) ^ (rev >> (32'(SHW) - 32'(k))) ^ SHW'(yh >> k);
   endfunction
 
-  logic [1:0] slot_needed;  // level d always; d1 when f != 0
-  assign slot_needed = {f != '0, 1'b1};
+  // A sample enters the tag stage (and the FIFO) in this clock. Everything the tag stage computes
+  // is used only then, so it is computed only then and is 0 otherwise: the same registers result,
+  // and a simulator skips the stage in the clocks in which the front waits (Verilator evaluates
+  // every continuous assignment in every clock, but not the inside of an `if`).
+  logic push;
+  assign push = en_front && front_valid;
   logic c0;                 // the cache of slot 0 (level d's parity); slot 1 uses the other
   assign c0 = level[0];
 
@@ -161,69 +173,75 @@ module tex_cached_fetch #(
   logic [7:0]       bank_block [2];  // texel bank b: the parity of its tap's block at [b*2 +: 2]
   logic [4*OFW-1:0] bank_offset [2];
   logic [3:0]       tap_parity [2];  // {y1, y0, x1, x0} & 1
-  genvar s, p, b;
+  genvar s, b;
   generate
     for (s = 0; s < 2; s = s + 1) begin : g_slot
-      logic [VW-1:0] lev, lw, lh, lnbx, lnby, m;
-      logic [XW-1:0] x0, x1, bx0, bx1;
-      logic [YW-1:0] y0, y1, by0, by1;
-      logic          nx1, ny1;       // the second tap along x (y) is needed: its weight != 0
-      assign lev  = level[s*VW +: VW];
-      assign lw   = log2_size[(s*2 + 0)*VW +: VW];
-      assign lh   = log2_size[(s*2 + 1)*VW +: VW];
-      assign lnbx = (lw > VW'(LBW)) ? lw - VW'(LBW) : '0;
-      assign lnby = (lh > VW'(LBH)) ? lh - VW'(LBH) : '0;
-      assign m    = (lnbx < lnby) ? lnbx : lnby;
-      assign x0   = x[(s*2 + 0)*XW +: XW];
-      assign x1   = x[(s*2 + 1)*XW +: XW];
-      assign y0   = y[(s*2 + 0)*YW +: YW];
-      assign y1   = y[(s*2 + 1)*YW +: YW];
-      assign bx0  = x0 >> LBW;
-      assign bx1  = x1 >> LBW;
-      assign by0  = y0 >> LBH;
-      assign by1  = y1 >> LBH;
-      assign nx1  = w[(s*2 + 0)*WB +: WB] != '0;
-      assign ny1  = w[(s*2 + 1)*WB +: WB] != '0;
-      assign tap_parity[s] = {y1[0], y0[0], x1[0], x0[0]};
-      for (p = 0; p < 4; p = p + 1) begin : g_block
-        // The needed x taps whose block has x parity p[0] (likewise y): bx0 if its parity
-        // matches, else bx1 (two distinct blocks of a footprint differ in parity).
+      always_comb begin : p_lookups
+        logic [VW-1:0] lev, lw, lh, lnbx, lnby, m;
+        logic [XW-1:0] x0, x1, bx0, bx1, bx;
+        logic [YW-1:0] y0, y1, by0, by1, by;
+        logic          nx1, ny1;     // the second tap along x (y) is needed: its weight != 0
         logic          has_x, has_y;
-        logic [XW-1:0] bx;
-        logic [YW-1:0] by;
-        logic [LNW-1:0] index;  // the block's number in its level
-        logic [XW-1:0]  bx_high;
-        logic [YW-1:0]  by_high;
-        assign bx_high = bx >> m;
-        assign by_high = by >> m;
-        assign has_x = (bx0[0] == p[0]) || (nx1 && bx1[0] == p[0]);
-        assign has_y = (by0[0] == p[1]) || (ny1 && by1[0] == p[1]);
-        assign bx    = (bx0[0] == p[0]) ? bx0 : bx1;
-        assign by    = (by0[0] == p[1]) ? by0 : by1;
-        assign look[s][p] = front_valid && slot_needed[s] && has_x && has_y;
-        always_comb begin
-          if (!cfg_block_morton) begin
-            index = (LNW'(by) << lnbx) | LNW'(bx);
-          end else begin
-            index = LNW'(interleave(bx & XW'((1 << m) - 1), by & YW'((1 << m) - 1)))
-                  | ((LNW'(bx_high) | LNW'(by_high)) << (2 * m));
-          end
-        end
-        assign look_line[s][p*LNW +: LNW]   = base_line[lev] + index;
-        assign look_set_hi[s][p*SHW +: SHW] = set_high(bx, by, set_k);
-      end
-      for (b = 0; b < 4; b = b + 1) begin : g_bank
-        // The texel bank b reads: the x tap of parity b[0], the y tap of parity b[1] (either
-        // one if both are equal; as masks: Verilator's C++ would branch on data), the parity of
-        // its block (which tag bank has its line slot) and its offset in the bank word.
+        logic [LNW-1:0] index;       // a block's number in its level
         logic [XW-1:0] xs;
         logic [YW-1:0] ys;
-        assign xs = x0 ^ ({XW{x0[0] ^ b[0]}} & (x0 ^ x1));
-        assign ys = y0 ^ ({YW{y0[0] ^ b[1]}} & (y0 ^ y1));
-        assign bank_block[s][b*2 +: 2] = {(y0[0] == b[1]) ? by0[0] : by1[0],
-                                          (x0[0] == b[0]) ? bx0[0] : bx1[0]};
-        assign bank_offset[s][b*OFW +: OFW] =
-            OFW'((((32'(ys) & (BH - 1)) >> 1) * (BW / 2)) + ((32'(xs) & (BW - 1)) >> 1));
+        // (temporaries too: a value on every path, no latch)
+        {lev, lw, lh, lnbx, lnby, m, x0, x1, bx0, bx1, bx, y0, y1, by0, by1, by} = '0;
+        {nx1, ny1, has_x, has_y, index, xs, ys} = '0;
+        look[s]        = '0;
+        look_line[s]   = '0;
+        look_set_hi[s] = '0;
+        bank_block[s]  = '0;
+        bank_offset[s] = '0;
+        tap_parity[s]  = '0;
+        // level d always; d1 when f != 0
+        if (push && (s == 0 || f != '0)) begin
+          lev  = level[s*VW +: VW];
+          lw   = log2_size[(s*2 + 0)*VW +: VW];
+          lh   = log2_size[(s*2 + 1)*VW +: VW];
+          lnbx = (lw > VW'(LBW)) ? lw - VW'(LBW) : '0;
+          lnby = (lh > VW'(LBH)) ? lh - VW'(LBH) : '0;
+          m    = (lnbx < lnby) ? lnbx : lnby;
+          x0   = x[(s*2 + 0)*XW +: XW];
+          x1   = x[(s*2 + 1)*XW +: XW];
+          y0   = y[(s*2 + 0)*YW +: YW];
+          y1   = y[(s*2 + 1)*YW +: YW];
+          bx0  = x0 >> LBW;
+          bx1  = x1 >> LBW;
+          by0  = y0 >> LBH;
+          by1  = y1 >> LBH;
+          nx1  = w[(s*2 + 0)*WB +: WB] != '0;
+          ny1  = w[(s*2 + 1)*WB +: WB] != '0;
+          tap_parity[s] = {y1[0], y0[0], x1[0], x0[0]};
+          for (int q = 0; q < 4; q++) begin
+            // The needed x taps whose block has x parity q[0] (likewise y): bx0 if its parity
+            // matches, else bx1 (two distinct blocks of a footprint differ in parity).
+            has_x = (bx0[0] == q[0]) || (nx1 && bx1[0] == q[0]);
+            has_y = (by0[0] == q[1]) || (ny1 && by1[0] == q[1]);
+            bx    = (bx0[0] == q[0]) ? bx0 : bx1;
+            by    = (by0[0] == q[1]) ? by0 : by1;
+            look[s][q] = has_x && has_y;
+            if (!cfg_block_morton) begin
+              index = (LNW'(by) << lnbx) | LNW'(bx);
+            end else begin
+              index = LNW'(interleave(bx & XW'((1 << m) - 1), by & YW'((1 << m) - 1)))
+                    | (((LNW'(bx) >> m) | (LNW'(by) >> m)) << (2 * m));
+            end
+            look_line[s][q*LNW +: LNW]   = base_line[lev] + index;
+            look_set_hi[s][q*SHW +: SHW] = set_high(bx, by, set_k);
+          end
+          for (int k = 0; k < 4; k++) begin
+            // The texel bank k reads: the x tap of parity k[0], the y tap of parity k[1] (either
+            // one if both are equal; as masks: Verilator's C++ would branch on data), the parity
+            // of its block (which tag bank has its line slot) and its offset in the bank word.
+            xs = x0 ^ ({XW{x0[0] ^ k[0]}} & (x0 ^ x1));
+            ys = y0 ^ ({YW{y0[0] ^ k[1]}} & (y0 ^ y1));
+            bank_block[s][k*2 +: 2] = {(y0[0] == k[1]) ? by0[0] : by1[0],
+                                       (x0[0] == k[0]) ? bx0[0] : bx1[0]};
+            bank_offset[s][k*OFW +: OFW] =
+                OFW'((((32'(ys) & (BH - 1)) >> 1) * (BW / 2)) + ((32'(xs) & (BW - 1)) >> 1));
+          end
+        end
       end
     end
   endgenerate
@@ -247,34 +265,38 @@ module tex_cached_fetch #(
   endgenerate
 
   // Per slot: its cache's answers; the misses in order (slot 0, then slot 1; block parity 0..3).
+  // Only in a clock with a push, as the lookups.
   localparam int MEW = AW + 1 + SLW;  // a miss: {line address, cache, line slot}
   logic [7:0]       miss;
   logic [8*MEW-1:0] miss_entry;
   logic [8*RD-1:0]  reads;           // slot s bank b at [(s*4 + b)*RD +: RD]: {line slot, offset}
-  generate
-    for (s = 0; s < 2; s = s + 1) begin : g_result
-      logic [3:0]       hit_s;
-      logic [4*SLW-1:0] slot_s;
-      logic             cache_s;
-      assign cache_s = c0 ^ 1'(s);
-      assign hit_s   = hit_c[cache_s];
-      assign slot_s  = slot_c[cache_s];
-      for (p = 0; p < 4; p = p + 1) begin : g_miss
-        assign miss[s*4 + p] = look[s][p] && !hit_s[p];
-        assign miss_entry[(s*4 + p)*MEW +: MEW] =
-            {AW'(look_line[s][p*LNW +: LNW]) << LOG2_LB, cache_s, slot_s[p*SLW +: SLW]};
-      end
-      for (b = 0; b < 4; b = b + 1) begin : g_read
-        assign reads[(s*4 + b)*RD +: RD] =
-            {slot_s[bank_block[s][b*2 +: 2]*SLW +: SLW], bank_offset[s][b*OFW +: OFW]};
+  logic [3:0]       fills;           // misses of this sample: 0..8
+  always_comb begin
+    logic [3:0]       hit_s;
+    logic [4*SLW-1:0] slot_s;
+    logic             cache_s;
+    {hit_s, slot_s, cache_s} = '0;
+    miss       = '0;
+    miss_entry = '0;
+    reads      = '0;
+    fills      = '0;
+    if (push) begin
+      for (int sl = 0; sl < 2; sl++) begin
+        cache_s = c0 ^ 1'(sl);
+        hit_s   = hit_c[cache_s];
+        slot_s  = slot_c[cache_s];
+        for (int q = 0; q < 4; q++) begin
+          miss[sl*4 + q] = look[sl][q] && !hit_s[q];
+          miss_entry[(sl*4 + q)*MEW +: MEW] =
+              {AW'(look_line[sl][q*LNW +: LNW]) << LOG2_LB, cache_s, slot_s[q*SLW +: SLW]};
+          fills = fills + 4'(miss[sl*4 + q]);
+        end
+        for (int k = 0; k < 4; k++) begin
+          reads[(sl*4 + k)*RD +: RD] =
+              {slot_s[bank_block[sl][k*2 +: 2]*SLW +: SLW], bank_offset[sl][k*OFW +: OFW]};
+        end
       end
     end
-  endgenerate
-
-  logic [3:0] fills;  // misses of this sample: 0..8
-  always_comb begin
-    fills = '0;
-    for (int i = 0; i < 8; i++) fills = fills + 4'(miss[i]);
   end
 
   // ---------------------------------------------------------------- miss ring
@@ -284,8 +306,7 @@ module tex_cached_fetch #(
   logic [MEW-1:0] ring [MISS_DEPTH];
   logic [MPW-1:0] ring_wr, ring_iss, ring_ret;
   logic [MCW-1:0] ring_used, ring_unissued;
-  logic           push, issue, retire;
-  assign push  = en_front && front_valid;
+  logic           issue, retire;
   assign issue = mem_req_valid && mem_req_ready;
   assign mem_req_valid = ring_unissued != '0;
   assign mem_req_addr  = ring[ring_iss][MEW-1 -: AW];
@@ -344,18 +365,6 @@ module tex_cached_fetch #(
       fill_count <= fill_count + LCW'(line_done) - LCW'(retire);
     end
   end
-
-  // The line at the head of the fill FIFO in the cache's format: texel j, channel k at
-  // [(j*4 + k)*CW +: CW] from memory bytes [j*TB + k*TB/4 +: TB/4].
-  logic [BW*BH*DW-1:0] fill_line;
-  generate
-    genvar j, k;
-    for (j = 0; j < BW * BH; j = j + 1) begin : g_fill_texel
-      for (k = 0; k < 4; k = k + 1) begin : g_fill_channel
-        assign fill_line[(j*4 + k)*CW +: CW] = fill_mem[fill_rd][(j*TB + k*TB/4)*8 +: CW];
-      end
-    end
-  endgenerate
 
   // ---------------------------------------------------------------- sample FIFO
   // An entry: {tag, w, f, c0, tap parities (slot 1, slot 0), bank reads, fills}.
@@ -416,6 +425,18 @@ module tex_cached_fetch #(
     end
   end
 
+  // The line at the head of the fill FIFO in the cache's format: texel j, channel k at
+  // [(j*4 + k)*CW +: CW] from memory bytes [j*TB + k*TB/4 +: TB/4]. Only in a clock that writes
+  // it (0 otherwise), as the tag stage.
+  logic [BW*BH*DW-1:0] fill_line;
+  always_comb begin
+    fill_line = '0;
+    if (fill_write)
+      for (int j = 0; j < BW * BH; j++)
+        for (int k = 0; k < 4; k++)
+          fill_line[(j*4 + k)*CW +: CW] = fill_mem[fill_rd][(j*TB + k*TB/4)*8 +: CW];
+  end
+
   // The fill's destination: the oldest miss in the ring.
   logic             fill_cache;
   logic [SLW-1:0]   fill_slot;
@@ -427,7 +448,7 @@ module tex_cached_fetch #(
   always_ff @(posedge clk) begin
     if (rst) r_valid <= 1'b0;
     else if (en_back) r_valid <= h_go;
-    if (en_back) r_entry <= h_entry;
+    if (en_back && h_go) r_entry <= h_entry;
   end
   logic [8*RD-1:0] r_reads;
   logic            r_c0;
@@ -446,7 +467,7 @@ module tex_cached_fetch #(
       end
       tex_cache_data #(.LINES(LINES), .BW(BW), .BH(BH), .DW(DW)) u_data (
         .clk(clk), .wr_en(fill_write && fill_cache == 1'(c)), .wr_slot(fill_slot),
-        .wr_line(fill_line), .re(en_back), .rd_slot(rd_slot), .rd_offset(rd_offset),
+        .wr_line(fill_line), .re(en_back && r_valid), .rd_slot(rd_slot), .rd_offset(rd_offset),
         .rd_texel(bank_texel[c])
       );
     end
@@ -458,7 +479,7 @@ module tex_cached_fetch #(
   always_ff @(posedge clk) begin
     if (rst) t_valid <= 1'b0;
     else if (en_back) t_valid <= r_valid;
-    if (en_back) t_entry <= r_entry;
+    if (en_back && r_valid) t_entry <= r_entry;
   end
   logic       t_c0;
   logic [7:0] t_parity;  // slot s at [s*4 +: 4]: {y1, y0, x1, x0} & 1
@@ -467,7 +488,7 @@ module tex_cached_fetch #(
   always_ff @(posedge clk) begin
     if (rst) out_valid <= 1'b0;
     else if (en_back) out_valid <= t_valid;
-    if (en_back) begin
+    if (en_back && t_valid) begin
       {out_tag, out_w, out_f} <= t_entry[EW-1 -: TAG_W + 5*WB];
       for (int sl = 0; sl < 2; sl++) begin
         for (int t = 0; t < 4; t++) begin  // t: the tap, bit 0 = tx, bit 1 = ty

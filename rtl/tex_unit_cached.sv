@@ -180,14 +180,11 @@ module tex_unit_cached #(
   // A probe's tag carries its place in the sample, {n, last, first, tag}, through the FIFO.
   localparam int SW = TGW + 7;
   logic [4:1] valid_f;             // the front's clock-n register holds a probe
-  logic [SW-1:0] tag_f [4:1];
+  logic [4*SW-1:0] tag_f;          // clock n's probe at [(n-1)*SW +: SW] (packed: see tex_probe)
   always_ff @(posedge clk) begin
     if (rst) valid_f <= '0;
     else if (en_front) valid_f <= {valid_f[3:1], probe_valid};
-    if (en_front) begin
-      tag_f[1] <= {probe_n, probe_last, probe_first, probe_tag};
-      for (int n = 2; n <= 4; n++) tag_f[n] <= tag_f[n-1];
-    end
+    if (en_front) tag_f <= {tag_f[0 +: 3*SW], probe_n, probe_last, probe_first, probe_tag};
   end
 
   logic [2*VW-1:0] level_s4;
@@ -218,7 +215,7 @@ module tex_unit_cached #(
     .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W)
   ) u_fetch (
     .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
-    .front_valid(valid_f[4]), .front_tag(tag_f[4]), .level(level_s4), .f(f_s4), .w(w_s4),
+    .front_valid(valid_f[4]), .front_tag(tag_f[3*SW +: SW]), .level(level_s4), .f(f_s4), .w(w_s4),
     .log2_size(log2_size_s4), .x(x), .y(y),
     .cfg_log2_w(cfg_log2_w_q), .cfg_log2_h(cfg_log2_h_q), .cfg_mem_base(cfg_mem_base_q),
     .cfg_block_morton(cfg_block_morton_q), .cfg_log2_sets(cfg_log2_sets_q),
@@ -230,21 +227,22 @@ module tex_unit_cached #(
   );
 
   // ---------------------------------------------------------------- filter: clocks 9-11
-  logic [4*(CWD+24)-1:0] blend;
-  tex_filter #(.CW(CWD)) u_filter (
-    .clk(clk), .en(en_back), .taps(taps), .w(fetch_w), .f(fetch_f), .blend(blend)
-  );
-  logic [3:1]    valid_b;
-  logic [SW-1:0] tag_b [3:1];
+  // The filter's registers load only while a sample is in its clocks (its data registers then
+  // hold their last values): a simulator skips the filter while the unit waits for memory.
+  logic [3:1]      valid_b;
+  logic [3*SW-1:0] tag_b;          // the filter's clock n at [(n-1)*SW +: SW]
   always_ff @(posedge clk) begin
     if (rst) valid_b <= '0;
     else if (en_back) valid_b <= {valid_b[2:1], fetch_valid};
-    if (en_back) begin
-      tag_b[1] <= fetch_tag;
-      tag_b[2] <= tag_b[1];
-      tag_b[3] <= tag_b[2];
-    end
+    if (en_back && (fetch_valid || valid_b[1] || valid_b[2])) tag_b <= {tag_b[0 +: 2*SW], fetch_tag};
   end
+  logic [4*(CWD+24)-1:0] blend;
+  tex_filter #(.CW(CWD)) u_filter (
+    .clk(clk), .en(en_back && (fetch_valid || valid_b[1] || valid_b[2])), .taps(taps),
+    .w(fetch_w), .f(fetch_f), .blend(blend)
+  );
+  logic [SW-1:0] tag_b3;
+  assign tag_b3 = tag_b[2*SW +: SW];
 
   // ---------------------------------------------------------------- clocks 12-13: tex_accum
   logic             sample_valid;
@@ -254,9 +252,9 @@ module tex_unit_cached #(
   logic [2:0]       probe_held_unused;
   assign probe_held_unused = probe_held;
   tex_accum #(.CW(CWD), .SIDE_W(TGW)) u_accum (
-    .clk(clk), .rst(rst), .en(en_back), .in_valid(valid_b[3]), .in_first(tag_b[3][TGW]),
-    .in_last(tag_b[3][TGW+1]), .in_n(tag_b[3][TGW+2 +: 5]), .blend(blend),
-    .in_side(tag_b[3][TGW-1:0]), .out_valid(sample_valid), .rgba(rgba), .out_side(sample_tag),
+    .clk(clk), .rst(rst), .en(en_back), .in_valid(valid_b[3]), .in_first(tag_b3[TGW]),
+    .in_last(tag_b3[TGW+1]), .in_n(tag_b3[TGW+2 +: 5]), .blend(blend),
+    .in_side(tag_b3[TGW-1:0]), .out_valid(sample_valid), .rgba(rgba), .out_side(sample_tag),
     .held(accum_held_unused)
   );
 

@@ -119,5 +119,5 @@ mutant "tex_skid's output register always loads the skid entry (unwritten: X in 
 mutant "tex_skid loses the item it should park under a stall (a lost response)" "protocol" rtl/tex_skid.sv \
   "s/skid_valid <= 1'b1;  \/\/ output stalled/skid_valid <= 1'b0;  \/\/ output stalled/"
 mutant "tex_accum rounds with the wrong bit (n * 2^22 instead of n * 2^23)" "value" rtl/tex_accum.sv \
-  "s/n_s1} << 23)/n_s1} << 22)/"
+  "s/(n) << 23)/(n) << 22)/"
 echo "xprop: 4-state runs clean (seed $seed), $mutants planted bugs caught ($((SECONDS - start)) s)"
