@@ -43,7 +43,7 @@ generic_check() {
 set -- 4 4 8
 generic_check "w$1_h$2_c$3" tex_unit "$(read_cfg "$@")" "tex_unit MAX_LOG2 $1x$2 CW=$3"
 awk '/^ +\$/{printf "  %s %s\n", $1, $2}' "$out/generic_w$1_h$2_c$3_stat.txt" | sort -k2 -n -r | head -12
-# The LOD unit on its own (not yet in tex_unit): no latches either.
+# The LOD unit on its own (also inside tex_unit above): no latches either.
 generic_check tex_lambda tex_lambda "read_verilog -sv rtl/tex_pkg.sv rtl/tex_lambda.sv" "tex_lambda (the LOD unit)"
 [ "$mode" = latch ] && exit 0
 
