@@ -231,15 +231,16 @@ module tex_unit_cached #(
   // hold their last values): a simulator skips the filter while the unit waits for memory.
   logic [3:1]      valid_b;
   logic [3*SW-1:0] tag_b;          // the filter's clock n at [(n-1)*SW +: SW]
+  logic            filter_en;      // a sample enters one of the filter's clocks
+  assign filter_en = en_back && (fetch_valid || valid_b[1] || valid_b[2]);
   always_ff @(posedge clk) begin
     if (rst) valid_b <= '0;
     else if (en_back) valid_b <= {valid_b[2:1], fetch_valid};
-    if (en_back && (fetch_valid || valid_b[1] || valid_b[2])) tag_b <= {tag_b[0 +: 2*SW], fetch_tag};
+    if (filter_en) tag_b <= {tag_b[0 +: 2*SW], fetch_tag};
   end
   logic [4*(CWD+24)-1:0] blend;
   tex_filter #(.CW(CWD)) u_filter (
-    .clk(clk), .en(en_back && (fetch_valid || valid_b[1] || valid_b[2])), .taps(taps),
-    .w(fetch_w), .f(fetch_f), .blend(blend)
+    .clk(clk), .en(filter_en), .taps(taps), .w(fetch_w), .f(fetch_f), .blend(blend)
   );
   logic [SW-1:0] tag_b3;
   assign tag_b3 = tag_b[2*SW +: SW];
