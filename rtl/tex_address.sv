@@ -28,12 +28,12 @@ module tex_address #(
   localparam int XW = SW + 1;  // one more bit: t9 - 255 must not overflow
   // p = t9 - 255 (linear) or t9 (nearest); then linear i0 = (p >>> 1) >>> 8 = p >>> 9 and
   // w = (p >>> 1) & 255 = p[8:1]; nearest i0 = t9 >>> 9. One arithmetic shift either way.
-  logic signed [XW-1:0] wide, t9, p;
-  assign wide = XW'(scaled);  // a size cast of a signed value sign-extends
-  assign t9   = wide >>> level;
-  assign p    = linear ? t9 - XW'((1 << WB) - 1) : t9;
+  // Inside the enable: a simulator skips the shifts in the clocks in which the stage holds.
   always_ff @(posedge clk) begin
     if (en) begin
+      logic signed [XW-1:0] t9, p;
+      t9 = XW'(scaled) >>> level;  // a size cast of a signed value sign-extends
+      p  = linear ? t9 - XW'((1 << WB) - 1) : t9;
       i0 <= IW'(p >>> (WB + 1));
       w  <= linear ? p[WB:1] : '0;
     end

@@ -37,6 +37,10 @@ module tex_cache_data #(
       logic [TPW*DW-1:0] mem [LINES];
       logic [TPW*DW-1:0] word;    // the read register (RAM style), then the texel mux
       logic [OFW-1:0]    offset;
+      // The read comes first and the write is blocking: a read of the word written at the same
+      // edge gets the old data, as with a non-blocking write, since `mem` is private to this
+      // process; Verilator then keeps no delayed-write shadow (flag, slot, word) per bank, which
+      // it would clear on every clock (waiver in rtl/tex_unit.vlt).
       always_ff @(posedge clk) begin
         if (re) begin
           word   <= mem[rd_slot[b*SLW +: SLW]];  // the old data if written at this edge
@@ -48,7 +52,7 @@ module tex_cache_data #(
           logic [TPW*DW-1:0] wr_word;
           for (int o = 0; o < TPW; o++)
             wr_word[o*DW +: DW] = wr_line[((2*(o / (BW/2)) + b/2)*BW + 2*(o % (BW/2)) + b%2)*DW +: DW];
-          mem[wr_slot] <= wr_word;
+          mem[wr_slot] = wr_word;  // blocking, after the read: see below
         end
       end
       assign rd_texel[b*DW +: DW] = word[offset*DW +: DW];

@@ -31,42 +31,39 @@ module tex_lambda (
   localparam int FRAC = tex_pkg::COORD_FRAC;            // 24
 
   // ------------------------------------------------------------ clock 1: normalize, square
-  // Each clock's logic is a function called inside its register enable: the hardware is the same
-  // as combinational logic in front of enabled registers, and Verilator evaluates it only in a
-  // clock with en high (tex_aniso's en is low unless a derivative request is in it).
-  localparam int LW = tex_pkg::LEVEL_W;
+  // Each clock's logic sits inside its register enable: the hardware is the same as combinational
+  // logic in front of enabled registers, and Verilator evaluates it only in a clock with en high
+  // (tex_aniso's en is low unless a derivative request is in it).
   // {px, py, s}: the texel-space magnitudes |d| << log2 size, shifted right by s so that the
-  // largest keeps 16 bits, squared and summed per screen axis.
-  function automatic logic [2*PW+SW-1:0] lengths(input logic [4*DW-1:0] d,
-                                                 input logic [4*LW-1:0] log2_size);
-    logic [4*TW-1:0] mag;
-    logic [4*PW-1:0] square;
-    logic [TW-1:0]   largest;
-    logic [NW-1:0]   norm;
-    logic [DW-1:0]   value;
-    logic [SW-1:0]   shift;
-    for (int i = 0; i < 4; i++) begin
-      value = d[i*DW +: DW];
-      if (value[DW-1]) value = -value;  // |INT32_MIN| = 2^31 fits unsigned
-      mag[i*TW +: TW] = {{(TW - DW){1'b0}}, value} << log2_size[i*LW +: LW];
-    end
-    largest = mag[0 +: TW];
-    for (int i = 1; i < 4; i++) if (mag[i*TW +: TW] > largest) largest = mag[i*TW +: TW];
-    // s = max(0, msb(largest) - 15): the largest keeps 16 bits.
-    shift = '0;
-    for (int b = NW; b < TW; b++) if (largest[b]) shift = 6'(b - NW + 1);
-    for (int i = 0; i < 4; i++) begin
-      norm = 16'(mag[i*TW +: TW] >> shift);  // the bits above are zero: the largest now has 16
-      square[i*PW +: PW] = {{(PW - NW){1'b0}}, norm} * {{(PW - NW){1'b0}}, norm};
-    end
-    lengths = {square[0 +: PW] + square[PW +: PW], square[2*PW +: PW] + square[3*PW +: PW], shift};
-  endfunction
-
+  // largest keeps 16 bits, squared and summed per screen axis. Written out, not a function: an
+  // inlined function's wide temporaries are cleared in every clock by Verilator, called or not.
   logic [PW-1:0] p_s1;
   assign p_s1 = px_s1 > py_s1 ? px_s1 : py_s1;
   logic [SW-1:0] shift_s1;
-  always_ff @(posedge clk)
-    if (en) {px_s1, py_s1, shift_s1} <= lengths({dvdy, dudy, dvdx, dudx}, {log2_h, log2_w, log2_h, log2_w});
+  always_ff @(posedge clk) begin
+    if (en) begin
+      logic [4*TW-1:0] mag;
+      logic [4*PW-1:0] square;
+      logic [TW-1:0]   largest;
+      logic [DW-1:0]   value;
+      logic [SW-1:0]   shift;
+      for (int i = 0; i < 4; i++) begin
+        value = (i == 0) ? dudx : (i == 1) ? dvdx : (i == 2) ? dudy : dvdy;
+        if (value[DW-1]) value = -value;  // |INT32_MIN| = 2^31 fits unsigned
+        mag[i*TW +: TW] = {{(TW - DW){1'b0}}, value} << ((i % 2 == 0) ? log2_w : log2_h);
+      end
+      largest = mag[0 +: TW];
+      for (int i = 1; i < 4; i++) if (mag[i*TW +: TW] > largest) largest = mag[i*TW +: TW];
+      // s = max(0, msb(largest) - 15): the largest keeps 16 bits.
+      shift = '0;
+      for (int b = NW; b < TW; b++) if (largest[b]) shift = 6'(b - NW + 1);
+      for (int i = 0; i < 4; i++)  // the largest now has 16 bits, the bits above are zero
+        square[i*PW +: PW] = PW'(NW'(mag[i*TW +: TW] >> shift)) * PW'(NW'(mag[i*TW +: TW] >> shift));
+      px_s1    <= square[0 +: PW] + square[PW +: PW];
+      py_s1    <= square[2*PW +: PW] + square[3*PW +: PW];
+      shift_s1 <= shift;
+    end
+  end
 
   // ------------------------------------------------------------ clock 2: log2, round
   // log2(1 + j/32) in Q.16, rounded (the model's kLog2Table).

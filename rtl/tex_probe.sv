@@ -134,19 +134,23 @@ module tex_probe #(
     else if (x < -39'sh0080000000) saturate = -32'sh80000000;
     else saturate = x[DW-1:0];
   endfunction
-  logic signed [DW-1:0] step_u_used, step_v_used;  // 0 for lambda requests (whose derivative pins are don't-care)
-  assign step_u_used = deriv_q[4] ? step_u : '0;
-  assign step_v_used = deriv_q[4] ? step_v : '0;
+  // Only a derivative request has offsets (a lambda request's probe is its coordinates; its
+  // derivative pins, and so the steps, are don't-care): a simulator skips the multiplies otherwise.
   always_comb begin
-    position = $signed({1'b0, index, 1'b1}) - $signed({1'b0, n});
-    offset_u = (38'(position) * 38'(step_u_used)) >>> 1;
-    offset_v = (38'(position) * 38'(step_v_used)) >>> 1;
-    sum_u = 39'($signed(u_q[3*DW +: DW])) + 39'(offset_u);
-    sum_v = 39'($signed(v_q[3*DW +: DW])) + 39'(offset_v);
+    {position, offset_u, offset_v, sum_u, sum_v} = '0;
+    probe_u = u_q[3*DW +: DW];
+    probe_v = v_q[3*DW +: DW];
+    if (deriv_q[4]) begin
+      position = $signed({1'b0, index, 1'b1}) - $signed({1'b0, n});
+      offset_u = (38'(position) * 38'(step_u)) >>> 1;
+      offset_v = (38'(position) * 38'(step_v)) >>> 1;
+      sum_u    = 39'($signed(u_q[3*DW +: DW])) + 39'(offset_u);
+      sum_v    = 39'($signed(v_q[3*DW +: DW])) + 39'(offset_v);
+      probe_u  = saturate(sum_u);
+      probe_v  = saturate(sum_v);
+    end
   end
   assign probe_valid = valid[4];
-  assign probe_u     = saturate(sum_u);
-  assign probe_v     = saturate(sum_v);
   assign probe_lod   = deriv_q[4] ? aniso_lambda : lod_q[3*LW +: LW];
   assign probe_first = index == 4'd0;
   assign probe_last  = !hold;
