@@ -42,7 +42,6 @@ module tex_accum #(
   logic              valid_s1, last_s1;
   logic [4:0]        n_s1;
   logic [SIDE_W-1:0] side_s1;
-  logic [4*AW-1:0]   acc;             // channel c at [c*AW +: AW] (packed: one register)
   always_ff @(posedge clk) begin
     if (rst) valid_s1 <= 1'b0;
     else if (en) valid_s1 <= in_valid;
@@ -50,10 +49,9 @@ module tex_accum #(
       last_s1 <= in_last;
       n_s1    <= in_n;
       side_s1 <= in_side;
-      for (int c = 0; c < 4; c++)
-        acc[c*AW +: AW] <= (in_first ? '0 : acc[c*AW +: AW]) + {4'd0, blend[c*TW +: TW]};
     end
   end
+  // The channels' sums and means: g_channel below (one register per channel).
 
   // ---------------------------------------------------------------- clock 2: mean, round
   // ceil(2^25 / n), n = 1..16.
@@ -77,11 +75,21 @@ module tex_accum #(
   always_ff @(posedge clk) begin
     if (rst) out_valid <= 1'b0;
     else if (en) out_valid <= valid_s1 && last_s1;
-    if (en && valid_s1 && last_s1) begin
-      for (int c = 0; c < 4; c++) rgba[c*CW +: CW] <= mean_of(acc[c*AW +: AW], n_s1);
-      out_side <= side_s1;
-    end
+    if (en && valid_s1 && last_s1) out_side <= side_s1;
   end
+
+  // Per channel: clock 1's sum, clock 2's mean. A register per channel, not one wide vector,
+  // which Verilator would copy into a delayed-write shadow in every clock.
+  genvar c;
+  generate
+    for (c = 0; c < 4; c = c + 1) begin : g_channel
+      logic [AW-1:0] acc;
+      always_ff @(posedge clk) begin
+        if (en && in_valid) acc <= (in_first ? '0 : acc) + {4'd0, blend[c*TW +: TW]};
+        if (en && valid_s1 && last_s1) rgba[c*CW +: CW] <= mean_of(acc, n_s1);
+      end
+    end
+  endgenerate
 
   assign held = valid_s1 && last_s1;
 `ifdef FORMAL

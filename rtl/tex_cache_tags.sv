@@ -7,8 +7,9 @@
 //   slot = (set << log2_ways) | way.
 // Handshake: none. Lookup: combinational from look_*; the update (on a hit: LRU; on a miss: the
 //   victim's tag, valid and LRU) happens at the clock edge when en && look_valid[p]. Reset (rst)
-//   invalidates every line and sets each way's age to its way number; cfg_log2_* must then be
-//   the values used until the next reset.
+//   invalidates every line and sets each way's age to its way number (in one clock, by marking
+//   every row of valid bits and ages as not yet written); cfg_log2_* must then be the values
+//   used until the next reset.
 // Latency: 0 (lookup) / 1 (update). Throughput: 4 lookups per clock, one per bank.
 // Ports:
 //   cfg_log2_sets, cfg_log2_ways : integers; 4 <= sets, sets * ways <= LINES, ways <= MAX_WAYS
@@ -36,59 +37,88 @@ module tex_cache_tags #(
   output logic [3:0]                          hit,
   output logic [4*SLW-1:0]                    slot
 );
+  /*verilator inline_module*/  // (else too large for Verilator's default: a C++ call per instance)
   localparam int BANK = LINES / 4;           // entries per bank
   localparam int EW   = (SLW > 2) ? SLW - 2 : 1;  // bits of a bank entry index
-  localparam int AGW  = 2;                   // age bits (MAX_WAYS <= 4); entry e's at {e, 1'b0}
+  localparam int AGW  = 2;                   // age bits (MAX_WAYS <= 4)
+  // A bank's valid bits and LRU ages are kept per row of MAX_WAYS entries (a set's ways are in
+  // one row: its base is a multiple of ways, which divides MAX_WAYS): one array word per row,
+  // {ages, valid bits}, rewritten by a lookup. A row never written since reset reads as reset
+  // (row_ok clear): invalid, each way's age its way number. Per-row words rather than packed
+  // vectors of all the bank's bits: Verilator copies a wide register into a delayed-write
+  // shadow in every clock, and writes one array word through three small temporaries.
+  localparam int LMW  = $clog2(MAX_WAYS);    // log2 entries per row
+  localparam int ROWS = BANK / MAX_WAYS;
+  localparam int RW   = (ROWS > 1) ? $clog2(ROWS) : 1;  // bits of a row index
+  localparam int MW   = MAX_WAYS * (1 + AGW);          // a row word: ages at [MAX_WAYS + pos*AGW]
 
   logic [2:0] ways;  // 1, 2 or 4
   assign ways = 3'(1) << cfg_log2_ways;
   logic [EW-1:0] set_mask;  // (sets >> 2) - 1: the set bits a bank uses
   assign set_mask = EW'((1 << (cfg_log2_sets - 2)) - 1);
-
-  // Reset ages (age = way number), for 2 and 4 ways; 1 way has age 0.
-  function automatic logic [BANK*AGW-1:0] ages_at_reset(input int n);
-    for (int e = 0; e < BANK; e++) ages_at_reset[e*AGW +: AGW] = AGW'(e % n);
-  endfunction
-  localparam logic [BANK*AGW-1:0] AGES2 = ages_at_reset(2);
-  localparam logic [BANK*AGW-1:0] AGES4 = ages_at_reset(4);
+  // A row at reset: no valid bit, ages = way number (entry position mod ways).
+  logic [MW-1:0] row_at_reset;
+  always_comb begin
+    row_at_reset = '0;
+    for (int e = 0; e < MAX_WAYS; e++)
+      row_at_reset[MAX_WAYS + e*AGW +: AGW] = AGW'(3'(e) & (ways - 3'd1));
+  end
 
   genvar p;
   generate
     for (p = 0; p < 4; p = p + 1) begin : g_bank
-      logic [LNW-1:0]      tag [BANK];
-      logic [BANK-1:0]     valid;   // (packed: reset in one assignment)
-      logic [BANK*AGW-1:0] age;
+      logic [LNW-1:0]  tag [BANK];
+      logic [MW-1:0]   meta [ROWS];
+      logic [ROWS-1:0] row_ok;      // the row has been written since reset
 
       logic [EW-1:0]  base;         // entry of way 0 of the looked-up set
+      logic [RW-1:0]  row;
       logic [LNW-1:0] line;
       logic           found;
       logic [1:0]     way;          // the hit way, else the victim (age = ways - 1)
-      logic [AGW-1:0] way_age;
+      logic [MW-1:0]  row_next;     // the row after this lookup
       logic [SLW-1:0] slot_p;
       // Only when bank p looks up (all 0 otherwise: nothing uses them then), so that a simulator
       // skips the comparisons in the clocks without a lookup.
       always_comb begin
-        base    = '0;
-        line    = '0;
-        found   = 1'b0;
-        way     = '0;
-        way_age = '0;
-        slot_p  = '0;
+        logic [MW-1:0]  cur;
+        logic [LMW:0]   off;        // position of way 0 in the row
+        logic [AGW-1:0] way_age;
+        {cur, off, way_age} = '0;
+        base     = '0;
+        row      = '0;
+        line     = '0;
+        found    = 1'b0;
+        way      = '0;
+        row_next = '0;
+        slot_p   = '0;
         if (look_valid[p]) begin
           base = (EW'(look_set_hi[p*SHW +: SHW]) & set_mask) << cfg_log2_ways;
+          row  = RW'(base >> LMW);
+          off  = (LMW+1)'(base & EW'(MAX_WAYS - 1));
+          cur  = row_ok[row] ? meta[row] : row_at_reset;
           line = look_line[p*LNW +: LNW];
           for (int w = MAX_WAYS - 1; w >= 0; w--) begin  // the victim: one way has that age
-            if (3'(w) < ways && age[{base | EW'(w), 1'b0} +: AGW] == AGW'(ways - 3'd1)) way = 2'(w);
+            if (3'(w) < ways && cur[MAX_WAYS + (32'(off) + w)*AGW +: AGW] == AGW'(ways - 3'd1)) way = 2'(w);
           end
           for (int w = MAX_WAYS - 1; w >= 0; w--) begin
-            if (3'(w) < ways && valid[base | EW'(w)] && tag[base | EW'(w)] == line) begin
+            if (3'(w) < ways && cur[32'(off) + w] && tag[base | EW'(w)] == line) begin
               found = 1'b1;
               way   = 2'(w);
             end
           end
-          way_age = age[{base | EW'(way), 1'b0} +: AGW];
-          slot_p  = (SLW'({EW'(look_set_hi[p*SHW +: SHW]) & set_mask, 2'(p)}) << cfg_log2_ways)
-                  | SLW'(way);
+          way_age  = cur[MAX_WAYS + (32'(off) + 32'(way))*AGW +: AGW];
+          row_next = cur;
+          for (int w = 0; w < MAX_WAYS; w++) begin  // LRU: the way used becomes 0, younger ones age
+            if (3'(w) < ways) begin
+              if (2'(w) == way) row_next[MAX_WAYS + (32'(off) + w)*AGW +: AGW] = '0;
+              else if (cur[MAX_WAYS + (32'(off) + w)*AGW +: AGW] < way_age)
+                row_next[MAX_WAYS + (32'(off) + w)*AGW +: AGW] = cur[MAX_WAYS + (32'(off) + w)*AGW +: AGW] + 1'b1;
+            end
+          end
+          row_next[32'(off) + 32'(way)] = 1'b1;  // a miss fills the victim way
+          slot_p = (SLW'({EW'(look_set_hi[p*SHW +: SHW]) & set_mask, 2'(p)}) << cfg_log2_ways)
+                 | SLW'(way);
         end
       end
       assign hit[p] = found;
@@ -96,20 +126,11 @@ module tex_cache_tags #(
 
       always_ff @(posedge clk) begin
         if (rst) begin
-          valid <= '0;
-          age   <= (ways == 3'd4) ? AGES4 : (ways == 3'd2) ? AGES2 : '0;
+          row_ok <= '0;
         end else if (en && look_valid[p]) begin
-          for (int w = 0; w < MAX_WAYS; w++) begin
-            if (3'(w) < ways) begin
-              if (2'(w) == way) age[{base | EW'(w), 1'b0} +: AGW] <= '0;
-              else if (age[{base | EW'(w), 1'b0} +: AGW] < way_age)
-                age[{base | EW'(w), 1'b0} +: AGW] <= age[{base | EW'(w), 1'b0} +: AGW] + 1'b1;
-            end
-          end
-          if (!found) begin
-            tag[base | EW'(way)]   <= line;
-            valid[base | EW'(way)] <= 1'b1;
-          end
+          meta[row]   <= row_next;
+          row_ok[row] <= 1'b1;
+          if (!found) tag[base | EW'(way)] <= line;
         end
       end
     end

@@ -179,12 +179,19 @@ module tex_unit_cached #(
   // ---------------------------------------------------------------- front: probe clocks 1-4
   // A probe's tag carries its place in the sample, {n, last, first, tag}, through the FIFO.
   localparam int SW = TGW + 7;
+  // The tags are one register per clock: an unpacked array or a wide packed vector would cost a
+  // delayed-write shadow copy in every clock in Verilator, a narrow register does not.
   logic [4:1] valid_f;             // the front's clock-n register holds a probe
-  logic [4*SW-1:0] tag_f;          // clock n's probe at [(n-1)*SW +: SW] (packed: see tex_probe)
+  logic [SW-1:0] tag_f1, tag_f2, tag_f3, tag_f4;  // clock n's probe
   always_ff @(posedge clk) begin
     if (rst) valid_f <= '0;
     else if (en_front) valid_f <= {valid_f[3:1], probe_valid};
-    if (en_front) tag_f <= {tag_f[0 +: 3*SW], probe_n, probe_last, probe_first, probe_tag};
+    if (en_front) begin
+      tag_f1 <= {probe_n, probe_last, probe_first, probe_tag};
+      tag_f2 <= tag_f1;
+      tag_f3 <= tag_f2;
+      tag_f4 <= tag_f3;
+    end
   end
 
   logic [2*VW-1:0] level_s4;
@@ -215,7 +222,7 @@ module tex_unit_cached #(
     .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W)
   ) u_fetch (
     .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
-    .front_valid(valid_f[4]), .front_tag(tag_f[3*SW +: SW]), .level(level_s4), .f(f_s4), .w(w_s4),
+    .front_valid(valid_f[4]), .front_tag(tag_f4), .level(level_s4), .f(f_s4), .w(w_s4),
     .log2_size(log2_size_s4), .x(x), .y(y),
     .cfg_log2_w(cfg_log2_w_q), .cfg_log2_h(cfg_log2_h_q), .cfg_mem_base(cfg_mem_base_q),
     .cfg_block_morton(cfg_block_morton_q), .cfg_log2_sets(cfg_log2_sets_q),
@@ -230,20 +237,22 @@ module tex_unit_cached #(
   // The filter's registers load only while a sample is in its clocks (its data registers then
   // hold their last values): a simulator skips the filter while the unit waits for memory.
   logic [3:1]      valid_b;
-  logic [3*SW-1:0] tag_b;          // the filter's clock n at [(n-1)*SW +: SW]
+  logic [SW-1:0]   tag_b1, tag_b2, tag_b3;  // the filter's clock n (one register each, as tag_f)
   logic            filter_en;      // a sample enters one of the filter's clocks
   assign filter_en = en_back && (fetch_valid || valid_b[1] || valid_b[2]);
   always_ff @(posedge clk) begin
     if (rst) valid_b <= '0;
     else if (en_back) valid_b <= {valid_b[2:1], fetch_valid};
-    if (filter_en) tag_b <= {tag_b[0 +: 2*SW], fetch_tag};
+    if (filter_en) begin
+      tag_b1 <= fetch_tag;
+      tag_b2 <= tag_b1;
+      tag_b3 <= tag_b2;
+    end
   end
   logic [4*(CWD+24)-1:0] blend;
   tex_filter #(.CW(CWD)) u_filter (
     .clk(clk), .en(filter_en), .taps(taps), .w(fetch_w), .f(fetch_f), .blend(blend)
   );
-  logic [SW-1:0] tag_b3;
-  assign tag_b3 = tag_b[2*SW +: SW];
 
   // ---------------------------------------------------------------- clocks 12-13: tex_accum
   logic             sample_valid;
