@@ -4,13 +4,14 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test model-test bench clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore
+.PHONY: help deps build demo test model-test bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
 	@echo "make test   - build, then run every test suite"
 	@echo "make model-test - the golden model and its tests alone (no OpenImageIO, Verilator, SystemC)"
 	@echo "make bench  - samples/s of the model, OpenImageIO TextureSystem, every engine and the RTL per configuration"
+	@echo "make bench-ir - the RTL's instructions per clock per configuration (callgrind: independent of the machine's load)"
 	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
 	@echo "make memory-report - cached memory through the RTL: throughput, hit rate, bytes, FIFO vs latency (docs/memory.md)"
 	@echo "make explore - sweep cache size, block shape, latency and pixel order over plane and panel: $(OUT)/explore/index.html"
@@ -52,6 +53,10 @@ model-test: deps
 
 bench: build
 	$(BUILD)/texunit_bench
+
+# The Verilated RTL's instructions per clock under callgrind (machine-independent; about 2 minutes).
+bench-ir: build
+	scripts/rtl_instructions.sh $(BUILD) $(OUT)/bench-ir
 
 # The cached memory hierarchy through the RTL: the tables and plot of docs/memory.md §5 (about 3 minutes).
 memory-report: build

@@ -1,9 +1,22 @@
 // The Verilated RTL's sampling rate per compiled configuration (bench_rtl.cpp), for `make bench`.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "engines/rtl/driver.h"
+
 namespace bench {
+
+// One configuration's speed workload: the driver after reset, its largest texture (at most
+// 1024x1024, noise) loaded through the backdoor and configured (trilinear, repeat; cached: the
+// default caches where they fit, 16 B/clock), and 65536 random trilinear requests (u, v uniform
+// in [-2, 2), lambda uniform over the levels).
+struct RtlWorkload {
+  std::unique_ptr<tex::rtl::Driver> unit;
+  std::vector<tex::Request> requests;
+};
+RtlWorkload make_rtl_workload(const tex::rtl::RtlConfig& config);
 
 // Registers one benchmark per configuration: "rtl_sampling/<configuration>". Each streams random
 // trilinear requests through rtl::Driver with ideal timing after a backdoor load: the sampling

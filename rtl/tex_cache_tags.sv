@@ -20,7 +20,7 @@
 //   slot          : bank p's line slot at [p*SLW +: SLW] (the hit way or the victim way; 0 when
 //                   bank p does not look up)
 module tex_cache_tags #(
-  parameter int LINES    = 128,  // lines per cache (power of two, >= 4)
+  parameter int LINES    = 128,  // lines per cache (power of two, >= 4 * MAX_WAYS)
   parameter int MAX_WAYS = 4,    // 1, 2 or 4
   parameter int LNW      = 26,   // bits of a line number
   parameter int SLW      = $clog2(LINES),             // derived: bits of a line slot
@@ -51,6 +51,16 @@ module tex_cache_tags #(
   localparam int ROWS = BANK / MAX_WAYS;
   localparam int RW   = (ROWS > 1) ? $clog2(ROWS) : 1;  // bits of a row index
   localparam int MW   = MAX_WAYS * (1 + AGW);          // a row word: ages at [MAX_WAYS + pos*AGW]
+
+  generate
+    if (LINES < 4 * MAX_WAYS || (LINES & (LINES - 1)) != 0) begin : g_bad_lines
+`ifdef __ICARUS__
+      initial $fatal(1, "tex_cache_tags: LINES must be a power of two, at least 4 * MAX_WAYS");
+`else
+      $error("tex_cache_tags: LINES must be a power of two, at least 4 * MAX_WAYS");
+`endif
+    end
+  endgenerate
 
   logic [2:0] ways;  // 1, 2 or 4
   assign ways = 3'(1) << cfg_log2_ways;
@@ -83,8 +93,10 @@ module tex_cache_tags #(
       always_comb begin
         logic [MW-1:0]  cur;
         logic [LMW:0]   off;        // position of way 0 in the row
+        logic [31:0]    q_way;      // position of the hit or victim way in the row
         logic [AGW-1:0] way_age;
-        {cur, off, way_age} = '0;
+        logic           in_set;
+        {cur, off, q_way, way_age, in_set} = '0;
         base     = '0;
         row      = '0;
         line     = '0;
@@ -95,28 +107,38 @@ module tex_cache_tags #(
         if (look_valid[p]) begin
           base = (EW'(look_set_hi[p*SHW +: SHW]) & set_mask) << cfg_log2_ways;
           row  = RW'(base >> LMW);
-          off  = (LMW+1)'(base & EW'(MAX_WAYS - 1));
+          off  = (LMW+1)'(base) & (LMW+1)'(MAX_WAYS - 1);
           cur  = row_ok[row] ? meta[row] : row_at_reset;
           line = look_line[p*LNW +: LNW];
-          for (int w = MAX_WAYS - 1; w >= 0; w--) begin  // the victim: one way has that age
-            if (3'(w) < ways && cur[MAX_WAYS + (32'(off) + w)*AGW +: AGW] == AGW'(ways - 3'd1)) way = 2'(w);
+          // Every entry q of the row, those of the looked-up set (q & ~(ways - 1) = off) only:
+          // constant selects, no shifter. Way w of the set is entry q = off | w. The lowest way
+          // wins (as the model's scan): the victim (the one way with age ways - 1), then a hit.
+          way_age = AGW'(ways - 3'd1);
+          for (int q = MAX_WAYS - 1; q >= 0; q--) begin
+            in_set = (32'(q) & ~(32'(ways) - 1)) == 32'(off);
+            if (in_set && cur[MAX_WAYS + q*AGW +: AGW] == AGW'(ways - 3'd1)) q_way = 32'(q);
           end
-          for (int w = MAX_WAYS - 1; w >= 0; w--) begin
-            if (3'(w) < ways && cur[32'(off) + w] && tag[base | EW'(w)] == line) begin
-              found = 1'b1;
-              way   = 2'(w);
+          for (int q = MAX_WAYS - 1; q >= 0; q--) begin
+            in_set = (32'(q) & ~(32'(ways) - 1)) == 32'(off);
+            if (in_set && cur[q] && tag[(base & ~EW'(MAX_WAYS - 1)) | EW'(q)] == line) begin
+              found   = 1'b1;
+              q_way   = 32'(q);
+              way_age = cur[MAX_WAYS + q*AGW +: AGW];
             end
           end
-          way_age  = cur[MAX_WAYS + (32'(off) + 32'(way))*AGW +: AGW];
+          way      = 2'(q_way) & 2'(ways - 3'd1);
           row_next = cur;
-          for (int w = 0; w < MAX_WAYS; w++) begin  // LRU: the way used becomes 0, younger ones age
-            if (3'(w) < ways) begin
-              if (2'(w) == way) row_next[MAX_WAYS + (32'(off) + w)*AGW +: AGW] = '0;
-              else if (cur[MAX_WAYS + (32'(off) + w)*AGW +: AGW] < way_age)
-                row_next[MAX_WAYS + (32'(off) + w)*AGW +: AGW] = cur[MAX_WAYS + (32'(off) + w)*AGW +: AGW] + 1'b1;
+          for (int q = 0; q < MAX_WAYS; q++) begin  // LRU: the way used becomes 0, younger ones age
+            in_set = (32'(q) & ~(32'(ways) - 1)) == 32'(off);
+            if (in_set) begin
+              if (32'(q) == q_way) begin
+                row_next[MAX_WAYS + q*AGW +: AGW] = '0;
+                row_next[q] = 1'b1;  // a miss fills the victim way
+              end else if (cur[MAX_WAYS + q*AGW +: AGW] < way_age) begin
+                row_next[MAX_WAYS + q*AGW +: AGW] = cur[MAX_WAYS + q*AGW +: AGW] + 1'b1;
+              end
             end
           end
-          row_next[32'(off) + 32'(way)] = 1'b1;  // a miss fills the victim way
           slot_p = (SLW'({EW'(look_set_hi[p*SHW +: SHW]) & set_mask, 2'(p)}) << cfg_log2_ways)
                  | SLW'(way);
         end

@@ -13,6 +13,7 @@ packages=(
   yosys nextpnr-ice40 fpga-icestorm      # synthesis and place-and-route
   z3                                     # yosys-smtbmc's solver (make formal)
   iverilog                               # 4-state simulation (make xprop)
+  valgrind                               # instructions per clock (make bench-ir)
   python3 python3-matplotlib python3-numpy  # reports and plots (/usr/bin/python3)
 )
 missing=()
