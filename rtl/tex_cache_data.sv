@@ -52,7 +52,7 @@ module tex_cache_data #(
           logic [TPW*DW-1:0] wr_word;
           for (int o = 0; o < TPW; o++)
             wr_word[o*DW +: DW] = wr_line[((2*(o / (BW/2)) + b/2)*BW + 2*(o % (BW/2)) + b%2)*DW +: DW];
-          mem[wr_slot] = wr_word;  // blocking, after the read: see below
+          mem[wr_slot] = wr_word;  // blocking, after the read: see above
         end
       end
       assign rd_texel[b*DW +: DW] = word[offset*DW +: DW];
