@@ -95,7 +95,7 @@ module tex_cache_tags #(
         logic [LMW:0]   off;        // position of way 0 in the row
         logic [31:0]    q_way;      // position of the hit or victim way in the row
         logic [AGW-1:0] way_age;
-        logic           in_set;
+        logic [MAX_WAYS-1:0] in_set;  // the row's entries that belong to the looked-up set
         {cur, off, q_way, way_age, in_set} = '0;
         base     = '0;
         row      = '0;
@@ -113,14 +113,13 @@ module tex_cache_tags #(
           // Every entry q of the row, those of the looked-up set (q & ~(ways - 1) = off) only:
           // constant selects, no shifter. Way w of the set is entry q = off | w. The lowest way
           // wins (as the model's scan): the victim (the one way with age ways - 1), then a hit.
+          for (int q = 0; q < MAX_WAYS; q++) in_set[q] = (32'(q) & ~(32'(ways) - 1)) == 32'(off);
           way_age = AGW'(ways - 3'd1);
           for (int q = MAX_WAYS - 1; q >= 0; q--) begin
-            in_set = (32'(q) & ~(32'(ways) - 1)) == 32'(off);
-            if (in_set && cur[MAX_WAYS + q*AGW +: AGW] == AGW'(ways - 3'd1)) q_way = 32'(q);
+            if (in_set[q] && cur[MAX_WAYS + q*AGW +: AGW] == AGW'(ways - 3'd1)) q_way = 32'(q);
           end
           for (int q = MAX_WAYS - 1; q >= 0; q--) begin
-            in_set = (32'(q) & ~(32'(ways) - 1)) == 32'(off);
-            if (in_set && cur[q] && tag[(base & ~EW'(MAX_WAYS - 1)) | EW'(q)] == line) begin
+            if (in_set[q] && cur[q] && tag[(base & ~EW'(MAX_WAYS - 1)) | EW'(q)] == line) begin
               found   = 1'b1;
               q_way   = 32'(q);
               way_age = cur[MAX_WAYS + q*AGW +: AGW];
@@ -129,8 +128,7 @@ module tex_cache_tags #(
           way      = 2'(q_way) & 2'(ways - 3'd1);
           row_next = cur;
           for (int q = 0; q < MAX_WAYS; q++) begin  // LRU: the way used becomes 0, younger ones age
-            in_set = (32'(q) & ~(32'(ways) - 1)) == 32'(off);
-            if (in_set) begin
+            if (in_set[q]) begin
               if (32'(q) == q_way) begin
                 row_next[MAX_WAYS + q*AGW +: AGW] = '0;
                 row_next[q] = 1'b1;  // a miss fills the victim way

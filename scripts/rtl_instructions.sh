@@ -3,7 +3,7 @@
 # (make bench-ir), a measure of the simulator's speed that does not move with the machine's load:
 # callgrind counts the instructions while texunit_rtl_clocks streams make bench's random trilinear
 # workload (bench/bench_rtl.h) through each configuration (default: every compiled one), divided
-# by the clocks it took. About 2 minutes for all seven.
+# by the clocks it took. About 30 seconds for all seven.
 set -euo pipefail
 case "${1:-}" in -h|--help|"") sed -n '2,/^set -/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0;; esac
 build=$1; out=$2; shift 2
