@@ -18,6 +18,7 @@ constexpr int kDefaultChannelBits = 8;
 constexpr int kLodMin = -(1 << 15);  // Q8.8 range of lambda, bias and clamps
 constexpr int kLodMax = (1 << 15) - 1;
 constexpr int kMaxAniso = 16;       // anisotropic filtering: at most 16 probes per sample
+constexpr int kMaxTextures = 16;    // entries of the cached unit's texture descriptor table
 
 enum class Wrap : uint8_t { Repeat = 0, Clamp = 1, Mirror = 2 };
 enum class TexelFilter : uint8_t { Nearest = 0, Linear = 1 };

@@ -31,6 +31,7 @@ struct Request {
   int32_t u = 0, v = 0;  // Q8.24
   int32_t lod = 0;       // Q8.8, before bias and clamp (requests without derivatives)
   uint32_t tag = 0;
+  uint8_t texture = 0;   // cached unit: the descriptor-table entry sampled (0..kMaxTextures-1)
   bool has_derivatives = false;
   LodDerivatives deriv;  // Q8.24 texture widths per pixel (requests with derivatives)
 };

@@ -5,17 +5,45 @@
 
 namespace tex {
 
+std::vector<MemoryLayout> pack_layouts(const std::vector<std::pair<int, int>>& sizes, int channel_bits,
+                                       const LayoutParams& params) {
+  std::vector<MemoryLayout> out;
+  LayoutParams p = params;
+  uint64_t next = params.base;
+  for (const auto& [log2_w, log2_h] : sizes) {
+    if (next > 0xFFFFFFFFull)
+      throw Error("textures: " + std::to_string(sizes.size()) + " pyramids do not fit the 32-bit address space");
+    p.base = uint32_t(next);
+    out.emplace_back(log2_w, log2_h, channel_bits, p);  // throws when it ends beyond 2^32
+    next += out.back().image_bytes();                   // a whole number of lines
+  }
+  return out;
+}
+
 TextureCache::TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config,
                            int log2_w0, int log2_h0)
-    : layout_(layout), config_(config), log2_w0_(log2_w0), log2_h0_(log2_h0),
-      last_level_(level_count(log2_w0, log2_h0) - 1), ways_(params.ways) {
+    : TextureCache({TextureDescriptor{layout, config.wrap_u, config.wrap_v}}, params, config) {
   if (log2_w0 != layout.log2_w0() || log2_h0 != layout.log2_h0())
     throw Error("texture cache: the texture is 2^" + std::to_string(log2_w0) + " x 2^" + std::to_string(log2_h0) +
                 " texels, its memory layout 2^" + std::to_string(layout.log2_w0()) + " x 2^" +
                 std::to_string(layout.log2_h0()));
+}
+
+TextureCache::TextureCache(std::vector<TextureDescriptor> textures, const CacheParams& params,
+                           const SamplerConfig& config)
+    : textures_(std::move(textures)), config_(config), ways_(params.ways) {
+  if (textures_.empty() || textures_.size() > size_t(kMaxTextures))
+    throw Error("texture cache: " + std::to_string(textures_.size()) + " textures; the descriptor table holds 1 to " +
+                std::to_string(kMaxTextures));
+  const MemoryLayout& layout0 = textures_[0].layout;
+  line_bytes_ = layout0.line_bytes();
+  for (const TextureDescriptor& t : textures_)
+    if (t.layout.line_bytes() != line_bytes_ || t.layout.params().block_w != layout0.params().block_w ||
+        t.layout.params().block_h != layout0.params().block_h)
+      throw Error("texture cache: every texture must have the same block shape and texel size");
   if (ways_ != 1 && ways_ != 2 && ways_ != 4)
     throw Error("cache ways " + std::to_string(ways_) + ": must be 1, 2 or 4");
-  const int line = layout.line_bytes();
+  const int line = line_bytes_;
   if (params.size_bytes <= 0 || params.size_bytes % line != 0)
     throw Error("cache size " + std::to_string(params.size_bytes) + " bytes is not a whole number of " +
                 std::to_string(line) + "-byte lines");
@@ -61,16 +89,27 @@ bool TextureCache::access(int cache, int set, uint32_t address) {
   return false;
 }
 
+const TextureDescriptor& TextureCache::texture(const Request& r) const {
+  if (r.texture >= textures_.size())
+    throw Error("texture cache: request names texture " + std::to_string(r.texture) + "; the table holds " +
+                std::to_string(textures_.size()));
+  return textures_[r.texture];
+}
+
 void TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>* misses) {
-  const Probes p = tex_probe(r, config_, log2_w0_, log2_h0_);
+  const MemoryLayout& layout = texture(r).layout;
+  const Probes p = tex_probe(r, config_, layout.log2_w0(), layout.log2_h0());
   for (int i = 0; i < p.n; ++i) lookup(p.at[size_t(i)], misses);
 }
 
 SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misses) {
   if (r.has_derivatives) throw Error("texture cache: lookup() takes a probe; use lookup_sample() for a request");
+  const TextureDescriptor& t = texture(r);
+  const MemoryLayout& layout = t.layout;
+  const int log2_w0 = layout.log2_w0(), log2_h0 = layout.log2_h0();
   const stage::LevelSelect sel =
-      stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level_);
-  const int32_t su = stage::scale(r.u, log2_w0_), sv = stage::scale(r.v, log2_h0_);
+      stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, layout.levels() - 1);
+  const int32_t su = stage::scale(r.u, log2_w0), sv = stage::scale(r.v, log2_h0);
   SampleLookup out;
   for (int s = 0; s < 2; ++s) {
     SlotLookup& sl = out.slot[size_t(s)];
@@ -78,20 +117,20 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     sl.needed = s == 0 || sel.f != 0;
     if (!sl.needed) continue;
     const int k = sl.level;
-    const LevelShape shape = level_shape(log2_w0_, log2_h0_, k);
+    const LevelShape shape = level_shape(log2_w0, log2_h0, k);
     const stage::AxisTaps tu = stage::address(su, k, config_.filter.texel);
     const stage::AxisTaps tv = stage::address(sv, k, config_.filter.texel);
     // The taps whose weight is not 0: (x0, y0) always, x1 / y1 when their weight is not 0.
-    const uint32_t x[2] = {uint32_t(stage::wrap(tu.i0, shape.log2_w, config_.wrap_u)),
-                           uint32_t(stage::wrap(tu.i1, shape.log2_w, config_.wrap_u))};
-    const uint32_t y[2] = {uint32_t(stage::wrap(tv.i0, shape.log2_h, config_.wrap_v)),
-                           uint32_t(stage::wrap(tv.i1, shape.log2_h, config_.wrap_v))};
+    const uint32_t x[2] = {uint32_t(stage::wrap(tu.i0, shape.log2_w, t.wrap_u)),
+                           uint32_t(stage::wrap(tu.i1, shape.log2_w, t.wrap_u))};
+    const uint32_t y[2] = {uint32_t(stage::wrap(tv.i0, shape.log2_h, t.wrap_v)),
+                           uint32_t(stage::wrap(tv.i1, shape.log2_h, t.wrap_v))};
     const int nx = tu.w != 0 ? 2 : 1, ny = tv.w != 0 ? 2 : 1;
     // Distinct blocks by parity (two distinct blocks of a footprint differ in a parity).
     uint32_t bx_of[4] = {}, by_of[4] = {};
     for (int j = 0; j < nx; ++j)
       for (int i = 0; i < ny; ++i) {
-        const uint32_t bx = x[j] >> layout_.log2_block_w(), by = y[i] >> layout_.log2_block_h();
+        const uint32_t bx = x[j] >> layout.log2_block_w(), by = y[i] >> layout.log2_block_h();
         const int p = int((by & 1) << 1 | (bx & 1));
         sl.block_mask |= uint8_t(1 << p);
         bx_of[p] = bx;
@@ -101,7 +140,7 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     for (int p = 0; p < 4; ++p) {
       if (!(sl.block_mask >> p & 1)) continue;
       ++sl.blocks;
-      const uint32_t address = layout_.block_address(k, bx_of[p], by_of[p]);
+      const uint32_t address = layout.block_address(k, bx_of[p], by_of[p]);
       if (!access(cache, set_index(bx_of[p], by_of[p]), address)) {
         ++sl.misses;
         if (misses) misses->push_back(address);

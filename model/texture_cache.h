@@ -40,10 +40,26 @@ struct CacheStats {
   uint64_t evictions_of_previous = 0;
 };
 
+// One entry of the cached unit's texture descriptor table (docs/memory.md §1): the texture's
+// pyramid in memory (its layout: base address, log2 sizes, levels) and its wrap modes.
+struct TextureDescriptor {
+  MemoryLayout layout;
+  Wrap wrap_u = Wrap::Repeat, wrap_v = Wrap::Repeat;
+};
+
+// Layouts of several pyramids of `channel_bits` texels packed one after another from params.base
+// (each starts on a line); sizes are {log2 w0, log2 h0}. Throws tex::Error when they do not fit
+// the 32-bit address space.
+std::vector<MemoryLayout> pack_layouts(const std::vector<std::pair<int, int>>& sizes, int channel_bits,
+                                       const LayoutParams& params);
+
 class TextureCache {
  public:
   // Throws tex::Error naming a geometry the hardware cannot have (ways not 1/2/4, sets not a
-  // power of two >= 4, size not a whole number of lines), or a texture size that is not the layout's.
+  // power of two >= 4, size not a whole number of lines), more than kMaxTextures textures, or
+  // layouts of different line sizes. Requests name a texture by Request::texture.
+  TextureCache(std::vector<TextureDescriptor> textures, const CacheParams& params, const SamplerConfig& config);
+  // One texture with the configuration's wrap modes (the size must be the layout's).
   TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config, int log2_w0,
                int log2_h0);
 
@@ -56,7 +72,7 @@ class TextureCache {
 
   const CacheStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }
-  uint64_t memory_read_bytes() const { return stats_.total_misses() * uint64_t(layout_.line_bytes()); }
+  uint64_t memory_read_bytes() const { return stats_.total_misses() * uint64_t(line_bytes_); }
   int sets() const { return sets_; }
   int ways() const { return ways_; }
   // The set of block (bx, by) of any level (docs/memory.md §2): {hash, by & 1, bx & 1} with
@@ -82,9 +98,11 @@ class TextureCache {
   // Looks the line up in its set; on a miss allocates the LRU way. Returns true on a hit.
   bool access(int cache, int set, uint32_t address);
 
-  MemoryLayout layout_;
+  const TextureDescriptor& texture(const Request& r) const;
+
+  std::vector<TextureDescriptor> textures_;
   SamplerConfig config_;
-  int log2_w0_, log2_h0_, last_level_;
+  int line_bytes_;
   int sets_, ways_;
   int log2_sets_hi_ = 0;             // k = log2(SETS / 4)
   std::vector<uint32_t> reversed_;   // reversed_[i]: the k bits of i in reverse order

@@ -1,13 +1,13 @@
 // texsim: the command-line tool. Sample query traces, build and dump pyramids, render scenes.
 #include <CLI/CLI.hpp>
-#include <charconv>
 #include <chrono>
-#include <deque>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
-#include <unistd.h>
+#include <sstream>
 
+#include "cli/render_model.h"
+#include "cli/sampling.h"
 #include "engines/engine.h"
 #include "model/error.h"
 #include "model/image.h"
@@ -23,353 +23,78 @@ namespace {
 
 using namespace tex;
 
-// Unsigned decimal of an option: no sign, no wrap-around. Throws tex::Error naming the option.
-uint64_t parse_unsigned(const std::string& text, const std::string& option) {
-  uint64_t v = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size())
-    throw Error(option + " " + quote_clipped(text) + " is not a whole number from 0 to 18446744073709551615");
-  return v;
-}
-
-// --block WxH: texels per block (= cache line), each side 2, 4 or 8.
-void parse_block(const std::string& text, LayoutParams& out) {
-  if (!parse_block_size(text, out))
-    throw Error("--block " + quote_clipped(text) + " is not WxH with W and H each 2, 4 or 8");
-}
-
-// Options shared by every command that samples a texture.
-struct SamplingOptions {
-  std::string texture = "testcard";
-  std::string filter = "trilinear";
-  int max_aniso = kMaxAniso;
-  bool aniso_pow2 = false;
-  CLI::Option* max_aniso_opt = nullptr;
-  std::string wrap = "repeat";
-  std::string wrap_u, wrap_v;
-  std::string pyramid = "exact";
-  std::string engine = "model";
-  double lod_bias = 0, min_lod = -128, max_lod = 127.99;
-  bool resize = false;
-  std::string stalls = "none";
-  std::string seed = "1";
-  std::string load = "backdoor";
-  std::string stats_path;
-  std::string trace_path;
-  std::string trace_window;
-  bool verify = false;
-  // Memory hierarchy (docs/memory.md).
-  std::string memory = "onchip";
-  std::string cache_kib = "8", ways = "2", block = "4x4", block_order = "row-major";
-  std::string mem_latency = "100", mem_jitter = "0", mem_bytes_per_clock = "16", mem_outstanding = "64";
-  std::string fifo_depth;
-  std::string miss_trace;
-  CLI::Option *wrap_u_opt = nullptr, *wrap_v_opt = nullptr, *texture_opt = nullptr;
-  std::vector<CLI::Option*> cached_opts;  // meaningful with --memory cached only
-
-  void add_to(CLI::App& cmd) {
-    texture_opt = cmd.add_option("--texture,-t", texture, "image file (any OpenImageIO format) or pattern NAME[:WxH]")
-                      ->capture_default_str();
-    cmd.add_option("--filter,-f", filter,
-                   "point | bilinear | mip_nearest | trilinear | anisotropic (trilinear probes along the "
-                   "footprint, for requests with derivatives), or a GL name (nearest_mipmap_linear, ...)")
-        ->capture_default_str();
-    max_aniso_opt = cmd.add_option("--max-aniso", max_aniso, "anisotropic: probes per sample at most, 1..16")
-                        ->capture_default_str();
-    cmd.add_flag("--aniso-pow2", aniso_pow2, "anisotropic: round probe counts up to a power of two");
-    cmd.add_option("--wrap,-w", wrap, "repeat | clamp | mirror, both axes")->capture_default_str();
-    wrap_u_opt = cmd.add_option("--wrap-u", wrap_u, "wrap mode of u only (overrides --wrap)");
-    wrap_v_opt = cmd.add_option("--wrap-v", wrap_v, "wrap mode of v only (overrides --wrap)");
-    cmd.add_option("--pyramid", pyramid, "exact (mean of the level-0 footprint) | cascade")->capture_default_str();
-    cmd.add_option("--engine,-e", engine, engine_list())->capture_default_str();
-    cmd.add_option("--lod-bias", lod_bias, "added to lambda before the clamp, in levels")->capture_default_str();
-    cmd.add_option("--min-lod", min_lod, "lambda clamp, in levels")->capture_default_str();
-    cmd.add_option("--max-lod", max_lod, "lambda clamp, in levels")->capture_default_str();
-    cmd.add_flag("--resize", resize, "resample a texture whose sides are not powers of two");
-    cmd.add_option("--stalls", stalls,
-                   "none | random | heavy: input gaps and output stalls of cycle-accurate engines (none = ideal "
-                   "timing, what the hardware sustains)")
-        ->capture_default_str();
-    cmd.add_option("--seed", seed, "seed of --stalls random|heavy and of the RTL's unreset registers (0 and up)")
-        ->capture_default_str();
-    cmd.add_option("--load", load,
-                   "backdoor | port: fill the RTL's texture memories directly (0 clocks) or through the write "
-                   "port (one texel per clock)")
-        ->capture_default_str();
-    cmd.add_option("--stats", stats_path, "write counters to this JSON file (- = standard output)");
-    cmd.add_option("--trace", trace_path,
-                   "write an FST waveform (engines rtl, systemc); kept when the simulation fails");
-    cmd.add_option("--trace-window", trace_window, "clocks FIRST:LAST to trace (default: all)");
-    cmd.add_flag("--verify", verify, "also run the golden model and fail unless every sample is bit-identical");
-    cmd.add_option("--memory", memory,
-                   "onchip | cached: per-level memories, or the pyramid in external memory behind two caches "
-                   "(engines model, rtl; docs/memory.md)")
-        ->capture_default_str();
-    cached_opts.push_back(cmd.add_option("--cache-kib", cache_kib, "cached: size of each cache (even levels, odd levels) in KiB")
-        ->capture_default_str());
-    cached_opts.push_back(cmd.add_option("--ways", ways, "cached: associativity, 1 | 2 | 4")->capture_default_str());
-    cached_opts.push_back(cmd.add_option("--block", block, "cached: texels per block (= cache line) WxH, each 2 | 4 | 8")
-        ->capture_default_str());
-    cached_opts.push_back(cmd.add_option("--block-order", block_order, "cached: row-major | morton order of a level's blocks")
-        ->capture_default_str());
-    cached_opts.push_back(cmd.add_option("--mem-latency", mem_latency, "cached, rtl: clocks from a memory read to its first beat")
-        ->capture_default_str());
-    cached_opts.push_back(cmd.add_option("--mem-jitter", mem_jitter, "cached, rtl: + a random 0..N clocks per read (order kept)")
-        ->capture_default_str());
-    cached_opts.push_back(cmd.add_option("--mem-bytes-per-clock", mem_bytes_per_clock, "cached, rtl: memory bandwidth")
-        ->capture_default_str());
-    cached_opts.push_back(cmd.add_option("--mem-outstanding", mem_outstanding, "cached, rtl: reads in flight at most")
-        ->capture_default_str());
-    cached_opts.push_back(cmd.add_option("--fifo-depth", fifo_depth,
-                                         "cached, rtl: samples the FIFO holds at most, 1 to the configuration's "
-                                         "FIFO_DEPTH (default: all of it)"));
-    cached_opts.push_back(cmd.add_option("--miss-trace", miss_trace,
-                   "cached: write the line addresses read from memory, in order, one 0x%08x per line"));
-  }
-
-  SamplerConfig config() const {
-    SamplerConfig c;
-    if (!parse_filter(filter, c.filter)) throw Error("unknown filter " + quote_clipped(filter));
-    if (max_aniso < 1 || max_aniso > kMaxAniso)
-      throw Error("--max-aniso " + std::to_string(max_aniso) + " is outside 1..16");
-    if ((max_aniso_opt->count() || aniso_pow2) && !c.filter.anisotropic)
-      throw Error("--max-aniso and --aniso-pow2 apply to --filter anisotropic, not " + quote_clipped(filter));
-    c.max_aniso = max_aniso;
-    c.aniso_pow2 = aniso_pow2;
-    Wrap w;
-    if (!parse_wrap(wrap, w)) throw Error("unknown wrap mode " + quote_clipped(wrap) + " (repeat, clamp, mirror)");
-    c.wrap_u = c.wrap_v = w;
-    if (wrap_u_opt->count() && !parse_wrap(wrap_u, c.wrap_u))
-      throw Error("--wrap-u: unknown wrap mode " + quote_clipped(wrap_u) + " (repeat, clamp, mirror)");
-    if (wrap_v_opt->count() && !parse_wrap(wrap_v, c.wrap_v))
-      throw Error("--wrap-v: unknown wrap mode " + quote_clipped(wrap_v) + " (repeat, clamp, mirror)");
-    if (!to_lod_fixed(lod_bias, c.lod_bias)) throw Error("--lod-bias " + std::to_string(lod_bias) + " is outside [-128, 128)");
-    if (!to_lod_fixed(min_lod, c.min_lod)) throw Error("--min-lod " + std::to_string(min_lod) + " is outside [-128, 128)");
-    if (!to_lod_fixed(max_lod, c.max_lod)) throw Error("--max-lod " + std::to_string(max_lod) + " is outside [-128, 128)");
-    if (c.min_lod > c.max_lod) throw Error("--min-lod is greater than --max-lod");
-    return c;
-  }
-
-  PyramidMode pyramid_mode() const {
-    PyramidMode m;
-    if (!parse_pyramid_mode(pyramid, m)) throw Error("unknown pyramid mode " + quote_clipped(pyramid) + " (exact, cascade)");
-    return m;
-  }
-
-  // Also checks that the engine exists and can honour the options (before any work).
-  EngineOptions engine_options() const {
-    EngineOptions o;
-    if (!parse_stalls(stalls, o.stalls)) throw Error("unknown --stalls " + quote_clipped(stalls) + " (none, random, heavy)");
-    if (!parse_load_method(load, o.load)) throw Error("unknown --load " + quote_clipped(load) + " (backdoor, port)");
-    o.seed = parse_unsigned(seed, "--seed");
-    o.show_progress = isatty(STDERR_FILENO);
-    o.trace_path = trace_path;
-    if (!trace_window.empty()) {
-      const auto colon = trace_window.find(':');
-      if (colon == std::string::npos)
-        throw Error("--trace-window " + quote_clipped(trace_window) + " is not FIRST:LAST (clocks)");
-      o.trace_begin = parse_unsigned(trace_window.substr(0, colon), "--trace-window FIRST");
-      o.trace_end = parse_unsigned(trace_window.substr(colon + 1), "--trace-window LAST");
-      if (o.trace_end < o.trace_begin) throw Error("--trace-window " + quote_clipped(trace_window) + ": LAST < FIRST");
-    }
-    if (!parse_memory(memory, o.memory)) throw Error("unknown --memory " + quote_clipped(memory) + " (onchip, cached)");
-    if (o.memory == Memory::Cached) {
-      const uint64_t kib = parse_unsigned(cache_kib, "--cache-kib");
-      if (kib == 0 || kib > 1024) throw Error("--cache-kib " + cache_kib + " is outside 1..1024");
-      o.cache.size_bytes = int(kib * 1024);
-      const uint64_t w = parse_unsigned(ways, "--ways");
-      if (w != 1 && w != 2 && w != 4) throw Error("--ways " + quote_clipped(ways) + " is not 1, 2 or 4");
-      o.cache.ways = int(w);
-      parse_block(block, o.layout);
-      if (!parse_block_order(block_order, o.layout.order))
-        throw Error("unknown --block-order " + quote_clipped(block_order) + " (row-major, morton)");
-      auto bounded = [](const std::string& text, const char* option, uint64_t lo, uint64_t hi) {
-        const uint64_t v = parse_unsigned(text, option);
-        if (v < lo || v > hi)
-          throw Error(std::string(option) + " " + text + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
-        return uint32_t(v);
-      };
-      o.mem_latency = bounded(mem_latency, "--mem-latency", 1, 100000);
-      o.mem_jitter = bounded(mem_jitter, "--mem-jitter", 0, 100000);
-      o.mem_bytes_per_clock = bounded(mem_bytes_per_clock, "--mem-bytes-per-clock", 1, 1024);
-      o.mem_outstanding = bounded(mem_outstanding, "--mem-outstanding", 1, 4096);
-      if (!fifo_depth.empty()) o.fifo_depth = bounded(fifo_depth, "--fifo-depth", 1, 1u << 20);
-      // The geometry must be one the caches can have (the texture's channel width sets the line
-      // size; 8-bit lines are checked here, the engine checks again with the real texture).
-      TextureCache(MemoryLayout(0, 0, 8, o.layout), o.cache, SamplerConfig{}, 0, 0);
-    } else {
-      for (const CLI::Option* opt : cached_opts)
-        if (opt->count()) throw Error(opt->get_name() + " needs --memory cached (the on-chip memories have no cache)");
-    }
-    make_engine(engine, o);  // unknown engine, --trace with an engine that cannot trace
-    return o;
-  }
-
-  // The inputs of the command, for OutputSet's input-versus-output check.
-  void add_inputs(OutputSet& outputs) const { outputs.add_input(texture, "--texture"); }
-  // --stats and --trace, declared with the command's other outputs.
-  OutputFile* stats_output(OutputSet& outputs) const {
-    return stats_path.empty() ? nullptr : &outputs.declare(stats_path, "--stats");
-  }
-  OutputFile* trace_output(OutputSet& outputs) const {
-    return trace_path.empty() ? nullptr : &outputs.declare(trace_path, "--trace", OutputSet::Kind::File);
-  }
-  OutputFile* miss_trace_output(OutputSet& outputs) const {
-    return miss_trace.empty() ? nullptr : &outputs.declare(miss_trace, "--miss-trace");
-  }
+// --textures FILE: one `id path [wrap_u [wrap_v]]` per line (ids 0, 1, ... in order; paths relative to
+// the file; wrap modes default to --wrap*), the descriptor table of a frame's trace.
+struct TextureListEntry {
+  std::string path;
+  Wrap wrap_u, wrap_v;
 };
-
-// --miss-trace: one line address per line, 0x%08x.
-class MissTraceWriter final : public MissSink {
- public:
-  explicit MissTraceWriter(OutputFile& out) : out_(out), file_(out.open()) {}
-  void write(const uint32_t* a, size_t n) override {
-    for (size_t i = 0; i < n; ++i) std::fprintf(file_, "0x%08x\n", a[i]);
+std::vector<TextureListEntry> read_texture_list(const std::string& path, const SamplerConfig& cfg) {
+  std::FILE* f = std::fopen(path.c_str(), "r");
+  if (!f) throw Error(path + ": cannot open texture list");
+  std::vector<TextureListEntry> out;
+  char buf[4096];
+  int line_no = 0;
+  while (std::fgets(buf, sizeof buf, f)) {
+    ++line_no;
+    std::istringstream line(buf);
+    std::string id, file, wu, wv, extra;
+    line >> id;
+    if (id.empty() || id[0] == '#') continue;
+    line >> file >> wu >> wv >> extra;
+    const std::string at = path + ":" + std::to_string(line_no) + ": ";
+    if (id != std::to_string(out.size()))
+      throw Error(at + "texture id " + quote_clipped(id) + ": expected " + std::to_string(out.size()) + " (ids 0, 1, ... in order)");
+    if (file.empty()) throw Error(at + "expected `id path [wrap_u [wrap_v]]`");
+    if (!extra.empty()) throw Error(at + "unexpected " + quote_clipped(extra) + " after the wrap modes");
+    TextureListEntry e{file, cfg.wrap_u, cfg.wrap_v};
+    if (std::filesystem::path(file).is_relative()) e.path = (std::filesystem::path(path).parent_path() / file).string();
+    if (!wu.empty() && !parse_wrap(wu, e.wrap_u)) throw Error(at + "unknown wrap mode " + quote_clipped(wu) + " (repeat, clamp, mirror)");
+    if (!wv.empty() && !parse_wrap(wv, e.wrap_v)) throw Error(at + "unknown wrap mode " + quote_clipped(wv) + " (repeat, clamp, mirror)");
+    if (wv.empty()) e.wrap_v = wu.empty() ? e.wrap_v : e.wrap_u;
+    if (out.size() == size_t(kMaxTextures))
+      throw Error(at + "more than " + std::to_string(kMaxTextures) + " textures: the descriptor table holds " +
+                  std::to_string(kMaxTextures));
+    out.push_back(e);
   }
-  void close() { out_.close(); }
-
- private:
-  OutputFile& out_;
-  std::FILE* file_;
-};
-
-// --verify: the golden model samples every request as the engine takes it, and every texel the
-// engine returns must equal the model's.
-class Verifier {
- public:
-  Verifier(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
-           std::string engine)
-      : sampler_(pyramid, config), source_(*this, source), sink_(*this, sink), engine_(std::move(engine)) {}
-  RequestSource& source() { return source_; }
-  TexelSink& sink() { return sink_; }
-  size_t checked() const { return checked_; }
-
- private:
-  struct Source final : RequestSource {
-    Source(Verifier& v, RequestSource& inner) : v(v), inner(inner) {}
-    size_t read(Request* out, size_t max) override {
-      const size_t n = inner.read(out, max);
-      for (size_t i = 0; i < n; ++i) v.expected_.push_back(v.sampler_.sample(out[i]));
-      return n;
-    }
-    Verifier& v;
-    RequestSource& inner;
-  };
-  struct Sink final : TexelSink {
-    Sink(Verifier& v, TexelSink& inner) : v(v), inner(inner) {}
-    void write(const Texel* t, size_t n) override {
-      for (size_t i = 0; i < n; ++i, ++v.checked_) {
-        if (v.expected_.empty()) throw SimulationError("verify: engine " + v.engine_ + " returned more samples than requests");
-        const Texel b = v.expected_.front();
-        v.expected_.pop_front();
-        if (t[i] != b)
-          throw SimulationError("verify: sample " + std::to_string(v.checked_) + " differs: engine " + v.engine_ +
-                                " gives " + texel_text(t[i]) + ", model gives " + texel_text(b));
-      }
-      inner.write(t, n);
-    }
-    static std::string texel_text(const Texel& t) {
-      return std::to_string(t[0]) + "," + std::to_string(t[1]) + "," + std::to_string(t[2]) + "," + std::to_string(t[3]);
-    }
-    Verifier& v;
-    TexelSink& inner;
-  };
-  Sampler sampler_;
-  Source source_;
-  Sink sink_;
-  std::string engine_;
-  std::deque<Texel> expected_;
-  size_t checked_ = 0;
-};
-
-// Runs the engine (with --verify through the golden model too). A failure inside the simulation
-// keeps the waveform, the one output of a failed command: it shows what went wrong.
-EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
-                       const Pyramid& pyr, const SamplerConfig& cfg, RequestSource& source, TexelSink& sink) {
-  const auto engine = make_engine(o.engine, eo);
-  // The anisotropic filter: count each request's probes on the way in.
-  std::optional<ProbeCounter> counter;
-  if (cfg.filter.anisotropic) counter.emplace(source, cfg, pyr.log2_w0(), pyr.log2_h0());
-  RequestSource& requests = counter ? *counter : source;
-  try {
-    EngineStats stats;
-    if (!o.verify) {
-      stats = engine->run(pyr, cfg, requests, sink);
-    } else {
-      Verifier verifier(pyr, cfg, requests, sink, o.engine);
-      stats = engine->run(pyr, cfg, verifier.source(), verifier.sink());
-      std::printf("verify: %zu samples of engine %s are bit-identical to the golden model\n", verifier.checked(),
-                  o.engine.c_str());
-    }
-    if (counter) stats.probes = counter->histogram();
-    return stats;
-  } catch (const SimulationError& e) {
-    if (trace && outputs.keep(*trace)) throw Error(std::string(e.what()) + "; waveform kept: " + trace->path());
-    throw;
-  }
+  std::fclose(f);
+  if (out.empty()) throw Error(path + ": no textures listed (one `id path [wrap_u [wrap_v]]` per line)");
+  return out;
 }
 
-// Cycle counters of a cycle-accurate engine, one line (the model has none).
-void print_cycle_stats(const EngineStats& stats, const EngineOptions& options) {
-  if (!stats.cycle) return;
-  const CycleStats& c = *stats.cycle;
-  std::printf("  %s (%s): %llu samples in %llu clocks = %.4f samples/clock after the %llu-clock pipeline fill, "
-              "stalls %s, %llu output-stall clocks, texture load %s (%llu clocks)\n",
-              stats.engine.c_str(), c.configuration.c_str(), (unsigned long long)stats.samples,
-              (unsigned long long)c.cycles, stats.samples_per_clock(), (unsigned long long)c.latency_cycles,
-              stalls_name(options.stalls).c_str(), (unsigned long long)c.output_stall_cycles,
-              load_method_name(options.load).c_str(), (unsigned long long)c.load_cycles);
-}
-
-// Anisotropic filter: probes per sample (mean and histogram) and, for cycle engines, per clock.
-void print_probe_stats(const EngineStats& stats) {
-  if (!stats.probes) return;
-  const auto& h = *stats.probes;
-  const uint64_t total = stats.probe_total();
-  std::string histogram;
-  for (size_t n = 1; n < h.size(); ++n)
-    if (h[n]) histogram += " " + std::to_string(n) + ":" + std::to_string(h[n]);
-  std::printf("  probes: %llu = %.3f per sample (N:samples%s)", (unsigned long long)total,
-              stats.samples ? double(total) / double(stats.samples) : 0.0, histogram.c_str());
-  if (stats.cycle && stats.cycle->cycles > stats.cycle->latency_cycles)
-    std::printf(", %.4f probes/clock", double(total) / double(stats.cycle->cycles - stats.cycle->latency_cycles));
-  std::printf("\n");
-}
-
-// Cached mode: hits, bytes and (cycle engines) the FIFO and memory stalls, one line.
-void print_cache_stats(const EngineStats& stats) {
-  if (!stats.cache) return;
-  const CacheCounters& k = *stats.cache;
-  std::printf("  caches: %llu lookups, %.2f%% hits, %llu lines read = %.2f bytes/sample",
-              (unsigned long long)k.lookups, k.lookups ? 100.0 * double(k.hits) / double(k.lookups) : 0.0,
-              (unsigned long long)k.misses, stats.samples ? double(k.memory_read_bytes) / double(stats.samples) : 0.0);
-  if (stats.cycle)
-    std::printf(", FIFO up to %u of %u samples, %llu clocks waiting for memory", k.fifo_max_occupancy, k.fifo_depth,
-                (unsigned long long)k.memory_stall_cycles);
-  std::printf("\n");
-}
-
-void write_stats(OutputFile* out, const EngineStats& stats, const EngineOptions& options, double seconds) {
-  if (!out) return;
-  nlohmann::json j = stats.to_json(options);
-  j["wall_seconds"] = seconds;
-  std::fputs((j.dump(2) + "\n").c_str(), out->open());
-  out->close();
-}
-
-int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& out_path) {
+int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& textures_path,
+               const std::string& out_path) {
   const auto t0 = std::chrono::steady_clock::now();
   // Everything is checked before the work: options, engine, outputs, texture, every query.
   const SamplerConfig cfg = o.config();
   EngineOptions eo = o.engine_options();
   OutputSet outputs;
-  o.add_inputs(outputs);
+  std::vector<TextureListEntry> list;
+  if (!textures_path.empty()) {
+    if (o.texture_opt->count()) throw Error("sample: give --texture or --textures, not both");
+    list = read_texture_list(textures_path, cfg);
+    outputs.add_input(textures_path, "--textures");
+    for (const TextureListEntry& e : list) outputs.add_input(e.path, "--textures");
+  } else {
+    o.add_inputs(outputs);
+    list.push_back({o.texture, cfg.wrap_u, cfg.wrap_v});
+  }
   outputs.add_input(queries_path, "--queries");
   OutputFile& result = outputs.declare(out_path, "--out");
   OutputFile* stats_out = o.stats_output(outputs);
   OutputFile* trace = o.trace_output(outputs);
   OutputFile* miss_out = o.miss_trace_output(outputs);
-  const Pyramid pyr = build_pyramid(load_texture(o.texture, o.resize), o.pyramid_mode());
+  if (list.size() > 1 && eo.memory != Memory::Cached)
+    throw Error(textures_path + ": " + std::to_string(list.size()) +
+                " textures; the on-chip unit holds one (the paper's design): use --memory cached");
+  std::vector<Pyramid> pyramids;
+  pyramids.reserve(list.size());
+  TextureTable table;
+  for (const TextureListEntry& e : list) {
+    pyramids.push_back(build_pyramid(load_texture(e.path, o.resize), o.pyramid_mode()));
+    table.push_back({&pyramids.back(), e.wrap_u, e.wrap_v});
+  }
+  const Pyramid& pyr = pyramids[0];
   QueryReader reader(queries_path);
   if (reader.rewindable()) {  // a file: check every query now; a pipe is checked as it streams
     QuerySource check(reader);
@@ -381,17 +106,25 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (trace) eo.trace_path = trace->write_path();
 
   std::optional<MissTraceWriter> misses;
-  if (miss_out) eo.miss_sink = &misses.emplace(*miss_out);
+  if (miss_out) misses.emplace(*miss_out);
+  LineSet lines(misses ? &*misses : nullptr);  // texture bytes touched
+  if (eo.memory == Memory::Cached) eo.miss_sink = &lines;
 
   QuerySource source(reader);
   CsvTexelWriter writer(result.open());
-  const EngineStats stats = run_engine(o, eo, outputs, trace, pyr, cfg, source, writer);
+  const EngineStats stats = run_engine(o, eo, outputs, trace, table, cfg, source, writer);
   if (misses) misses->close();
   if (source.count() == 0)
     std::fprintf(stderr, "texsim: %s has no queries (only a header): the result has only its header\n",
                  reader.name().c_str());
+  // A frame's trace (--textures): the figures texsim render gives for the frame.
+  std::optional<FrameFigures> frame;
+  if (!textures_path.empty())
+    frame = frame_figures(source.counts(), stats, texture_bytes_resident(table, eo),
+                          uint64_t(lines.lines().size()) * uint64_t(eo.layout.block_w * eo.layout.block_h) *
+                              uint64_t(pyr.levels[0].channel_bits > 8 ? 8 : 4));
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_stats(stats_out, stats, eo, secs);
+  write_stats(stats_out, stats, eo, secs, frame ? frame->to_json() : nlohmann::json::object());
   outputs.commit();
   // The summary goes to stderr when the result itself is on standard output.
   std::FILE* report = result.path() == "-" || result.path() == "/dev/stdout" ? stderr : stdout;
@@ -400,10 +133,15 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
     print_cache_stats(stats);
     print_probe_stats(stats);
   }
-  std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
-               source.count(), filter_name(cfg.filter).c_str(), wrap_name(cfg.wrap_u).c_str(),
-               wrap_name(cfg.wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
-               out_path.c_str(), secs);
+  if (frame) std::fprintf(report, "  %s\n", frame->summary().c_str());
+  if (table.size() > 1)
+    std::fprintf(report, "texsim sample: %zu queries, %s, %zu textures, engine %s -> %s (%.2f s)\n", source.count(),
+                 filter_name(cfg.filter).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
+  else
+    std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
+                 source.count(), filter_name(cfg.filter).c_str(), wrap_name(table[0].wrap_u).c_str(),
+                 wrap_name(table[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
+                 out_path.c_str(), secs);
   return 0;
 }
 
@@ -504,7 +242,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     const auto requests = to_requests(frame.queries, "scene " + scene);
     VectorSource source(requests);
     VectorSink texels;
-    last_stats = run_engine(o, eo, outputs, trace, pyr, cfg, source, texels);
+    last_stats = run_engine(o, eo, outputs, trace, {{&pyr, cfg.wrap_u, cfg.wrap_v}}, cfg, source, texels);
     save_image(compose(frame, texels.texels, pyr.levels[0].channel_bits), *images[size_t(f - first)]);
     samples += requests.size();
   }
@@ -533,9 +271,15 @@ int main(int argc, char** argv) {
   std::string queries, out;
   CLI::App* sample = app.add_subcommand("sample", "sample a query trace (CSV) and write one RGBA line per query");
   sample_opts.add_to(*sample);
-  sample->add_option("--queries,-q", queries, "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy (- = standard input)")
+  sample->add_option("--queries,-q", queries,
+                     "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy, either with a leading tex column, or "
+                     "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper (- = standard input)")
       ->required();
   sample->add_option("--out,-o", out, "result CSV: header r,g,b,a (- = standard output)")->required();
+  std::string textures_list;
+  sample->add_option("--textures", textures_list,
+                     "a descriptor table instead of --texture: one `id path [wrap_u [wrap_v]]` per line, ids 0, 1, ... "
+                     "(what render --trace-queries writes); the trace's tex column names the entry");
 
   std::string mip_texture = "testcard", mip_mode = "exact", dump_dir, layout;
   bool mip_resize = false;
@@ -556,12 +300,30 @@ int main(int argc, char** argv) {
   SamplingOptions render_opts;
   std::string scene = "plane", render_out;
   int width = 640, height = 480;
-  CLI::App* render = app.add_subcommand("render", "render a scene of the paper through an engine");
+  CLI::App* render = app.add_subcommand(
+      "render", "render a scene of the paper, or frames of a textured 3D model (--model, --scene-file), through an engine");
   render_opts.add_to(*render);
+  ModelRenderArgs model_args;
+  CLI::Option* scene_opt = nullptr;
+  CLI::Option* model_opt = render->add_option(
+      "--model", model_args.model,
+      "a textured 3D model Assimp reads (glTF/GLB, OBJ+MTL, COLLADA, MD2, MS3D, IQM, 3DS, X, ...) instead of a scene");
+  CLI::Option* scene_file_opt = render->add_option(
+      "--scene-file", model_args.scene_file,
+      "JSON placing several models: {\"models\": [{\"file\", \"translation\", \"rotation\", \"scale\"}, ...]}");
+  CLI::Option* camera_opt = render->add_option(
+      "--camera", model_args.camera, "models: one view ex,ey,ez,tx,ty,tz,fovy (eye, target, degrees; up = +y)");
+  CLI::Option* camera_path_opt = render->add_option(
+      "--camera-path", model_args.camera_path,
+      "models: JSON {\"keyframes\": [{\"eye\", \"target\", \"fovy\"}, ...]} interpolated over --frames");
+  CLI::Option* trace_queries_opt = render->add_option(
+      "--trace-queries", model_args.trace_queries,
+      "models: write the frames' requests (tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper) to this CSV, and its "
+      "textures next to it (STEM.textures.txt, STEM.texNN.png) for texsim sample --textures");
   std::string scene_list;
   for (const std::string& n : scene_names()) scene_list += n + " | ";
   scene_list += "mesh16 (the mesh with 16-bit X, Y, Z; model engines)";
-  render->add_option("--scene,-s", scene, scene_list)->capture_default_str();
+  scene_opt = render->add_option("--scene,-s", scene, scene_list)->capture_default_str();
   render->add_option("--width", width, "image width")->capture_default_str();
   render->add_option("--height", height, "image height")->capture_default_str();
   render->add_option("--out,-o", render_out, "output image (PNG, TIFF, EXR, ...)")->required();
@@ -569,9 +331,10 @@ int main(int argc, char** argv) {
   CLI::Option* frame_opt = render->add_option("--frame", frame, "animation frame to render (0-based)");
   render->add_option("--frames", frames, "frames of the animation; without --frame renders all to OUT_000.png ...")
       ->capture_default_str();
-  std::string order = "scanline";
+  std::string order = "tiled";
   int tile = 8;
-  render->add_option("--order", order, "scanline | tiled: the rasterizer's pixel walk (rows, or tiles row by row)")
+  CLI::Option* order_opt = render->add_option("--order", order,
+                     "tiled | scanline: the rasterizer's pixel walk (tiles row by row, as GPUs walk; or rows)")
       ->capture_default_str();
   CLI::Option* tile_opt =
       render->add_option("--tile", tile, "tiled order: tile side in pixels, a power of two 2 to 256")->capture_default_str();
@@ -642,7 +405,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (*sample) return cmd_sample(sample_opts, queries, out);
+    if (*sample) return cmd_sample(sample_opts, queries, textures_list, out);
     if (*mip) return cmd_mip(mip_texture, mip_mode, mip_resize, dump_dir, layout, image);
     if (*render) {
       SceneOptions so;
@@ -651,9 +414,27 @@ int main(int argc, char** argv) {
       so.frame = frame;
       so.frames = frames;
       so.order = parse_pixel_order(order);
+      // The mesh scene samples its vertices in order: the default walk does not apply to it.
+      if (!order_opt->count() && scene_samples_vertices(scene)) so.order = PixelOrder::Scanline;
       so.tile = tile;
       if (tile_opt->count() && so.order != PixelOrder::Tiled) throw tex::Error("--tile applies to --order tiled");
       const bool wrap_given = render->count("--wrap") + render->count("--wrap-u") + render->count("--wrap-v") > 0;
+      if (model_opt->count() || scene_file_opt->count()) {
+        if (scene_opt->count()) throw tex::Error("render: give --scene or --model/--scene-file, not both");
+        if (render_opts.texture_opt->count()) throw tex::Error("render: a model samples its own textures (no --texture)");
+        model_args.out = render_out;
+        model_args.width = width;
+        model_args.height = height;
+        model_args.frame = frame;
+        model_args.frames = frames;
+        model_args.all_frames = frames > 1 && frame_opt->count() == 0;
+        model_args.wrap_given = wrap_given;
+        model_args.order = so.order;
+        model_args.tile = tile;
+        return cmd_render_model(render_opts, model_args);
+      }
+      for (const CLI::Option* opt : {camera_opt, camera_path_opt, trace_queries_opt})
+        if (opt->count()) throw tex::Error(opt->get_name() + " applies to --model and --scene-file");
       return cmd_render(render_opts, scene, so, frames > 1 && frame_opt->count() == 0,
                         render_opts.texture_opt->count() > 0, wrap_given, render_out);
     }

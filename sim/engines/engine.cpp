@@ -44,6 +44,8 @@ CacheCounters cache_counters(const TextureCache& cache) {
   k.lookups = cache.stats().total_lookups();
   k.hits = cache.stats().total_hits();
   k.misses = cache.stats().total_misses();
+  k.cache_lookups = cache.stats().lookups;
+  k.cache_hits = cache.stats().hits;
   k.memory_read_bytes = cache.memory_read_bytes();
   return k;
 }
@@ -68,8 +70,13 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
     j["block_order"] = block_order_name(options.layout.order);
     j["cache_lookups"] = cache->lookups;
     j["cache_hits"] = cache->hits;
+    j["cache_lookups_per_cache"] = cache->cache_lookups;
+    j["cache_hits_per_cache"] = cache->cache_hits;
     j["cache_misses"] = cache->misses;
     j["hit_rate"] = cache->lookups ? double(cache->hits) / double(cache->lookups) : 0.0;
+    for (int c = 0; c < 2; ++c)
+      j[c == 0 ? "hit_rate_even_levels" : "hit_rate_odd_levels"] =
+          cache->cache_lookups[c] ? double(cache->cache_hits[c]) / double(cache->cache_lookups[c]) : 0.0;
     j["memory_read_bytes"] = cache->memory_read_bytes;
     j["bytes_per_sample"] = samples ? double(cache->memory_read_bytes) / double(samples) : 0.0;
     if (cycle) {
@@ -133,6 +140,8 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
       CacheCounters k;
       k.lookups = j.at("cache_lookups").get<uint64_t>();
       k.hits = j.at("cache_hits").get<uint64_t>();
+      k.cache_lookups = j.at("cache_lookups_per_cache").get<std::array<uint64_t, 2>>();
+      k.cache_hits = j.at("cache_hits_per_cache").get<std::array<uint64_t, 2>>();
       k.misses = j.at("cache_misses").get<uint64_t>();
       k.memory_read_bytes = j.at("memory_read_bytes").get<uint64_t>();
       k.fifo_depth = j.at("fifo_depth").get<uint32_t>();
@@ -150,7 +159,10 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
 
 size_t ProbeCounter::read(Request* out, size_t max) {
   const size_t n = source_.read(out, max);
-  for (size_t i = 0; i < n; ++i) ++histogram_[size_t(tex_probe(out[i], config_, log2_w0_, log2_h0_).n)];
+  for (size_t i = 0; i < n; ++i) {
+    const auto& [log2_w0, log2_h0] = sizes_.at(out[i].texture);
+    ++histogram_[size_t(tex_probe(out[i], config_, log2_w0, log2_h0).n)];
+  }
   return n;
 }
 
@@ -176,6 +188,35 @@ EngineResult run_collected(const std::vector<Request>& requests,
   r.stats = run(source, sink);
   r.texels = std::move(sink.texels);
   return r;
+}
+
+EngineStats Engine::run(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+                        TexelSink& sink) {
+  if (textures.size() != 1)
+    throw Error("this engine samples one texture per frame (the RTL's descriptor table is not built yet); the frame has " +
+                std::to_string(textures.size()) + ": use --engine model");
+  SamplerConfig c = config;
+  c.wrap_u = textures[0].wrap_u;
+  c.wrap_v = textures[0].wrap_v;
+  return run(*textures[0].pyramid, c, source, sink);
+}
+
+std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures, const EngineOptions& options) {
+  if (textures.empty() || textures.size() > size_t(kMaxTextures))
+    throw Error(std::to_string(textures.size()) + " textures: the descriptor table holds 1 to " +
+                std::to_string(kMaxTextures));
+  std::vector<std::pair<int, int>> sizes;
+  const int bits = textures[0].pyramid->levels[0].channel_bits;
+  for (const BoundTexture& t : textures) {
+    if (t.pyramid->levels[0].channel_bits != bits)
+      throw Error("textures of one frame must have the same channel width (" + std::to_string(bits) + " and " +
+                  std::to_string(t.pyramid->levels[0].channel_bits) + " bits)");
+    sizes.emplace_back(t.pyramid->log2_w0(), t.pyramid->log2_h0());
+  }
+  const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout);
+  std::vector<TextureDescriptor> out;
+  for (size_t i = 0; i < textures.size(); ++i) out.push_back({layouts[i], textures[i].wrap_u, textures[i].wrap_v});
+  return out;
 }
 
 EngineResult Engine::run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) {

@@ -64,6 +64,7 @@ struct EngineOptions {
 // Cached mode: what the caches and the memory did (every engine; timing ones from cycle engines).
 struct CacheCounters {
   uint64_t lookups = 0, hits = 0, misses = 0;
+  std::array<uint64_t, 2> cache_lookups{}, cache_hits{};  // per cache: 0 even levels, 1 odd levels
   uint64_t memory_read_bytes = 0;
   uint32_t fifo_depth = 0;          // cycle-accurate engines only: the FIFO depth in use
   uint32_t fifo_max_occupancy = 0;  // cycle-accurate engines only
@@ -127,15 +128,16 @@ class RequestSource {
 // RTL's tex_probe implements): the probes-per-sample histogram of EngineStats.
 class ProbeCounter final : public RequestSource {
  public:
-  ProbeCounter(RequestSource& source, const SamplerConfig& config, int log2_w0, int log2_h0)
-      : source_(source), config_(config), log2_w0_(log2_w0), log2_h0_(log2_h0) {}
+  // sizes[t]: {log2 w0, log2 h0} of texture t (the LOD unit takes the requested texture's).
+  ProbeCounter(RequestSource& source, const SamplerConfig& config, std::vector<std::pair<int, int>> sizes)
+      : source_(source), config_(config), sizes_(std::move(sizes)) {}
   size_t read(Request* out, size_t max) override;
   const std::array<uint64_t, kMaxAniso + 1>& histogram() const { return histogram_; }
 
  private:
   RequestSource& source_;
   SamplerConfig config_;
-  int log2_w0_, log2_h0_;
+  std::vector<std::pair<int, int>> sizes_;
   std::array<uint64_t, kMaxAniso + 1> histogram_{};
 };
 
@@ -209,6 +211,14 @@ class TexelQueue {
   std::vector<Texel> buffer_;
 };
 
+// One texture of a frame's descriptor table (real frames, docs/scenes.md): its pyramid and wrap
+// modes; requests name an entry by Request::texture.
+struct BoundTexture {
+  const Pyramid* pyramid = nullptr;
+  Wrap wrap_u = Wrap::Repeat, wrap_v = Wrap::Repeat;
+};
+using TextureTable = std::vector<BoundTexture>;
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -218,6 +228,11 @@ class Engine {
                           TexelSink& sink) = 0;
   // The same for requests in memory.
   EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
+  // Several textures through the cached unit's descriptor table (the table's wrap modes replace
+  // the configuration's). This default takes a table of one texture and refuses more, for engines
+  // whose hardware has no descriptor table yet.
+  virtual EngineStats run(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+                          TexelSink& sink);
 };
 
 struct EngineInfo {
@@ -241,5 +256,11 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions
 EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
                       const EngineOptions& options = {});
 EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
+EngineStats run_model(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+                      TexelSink& sink, const EngineOptions& options = {});
+
+// The descriptor table of a texture table in cached mode: layouts packed one after another from
+// options.layout.base. Throws tex::Error (too many textures, different channel widths, memory).
+std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures, const EngineOptions& options);
 
 }  // namespace tex

@@ -17,6 +17,10 @@ class ModelEngine final : public Engine {
                   TexelSink& sink) override {
     return run_model(pyramid, config, source, sink, options_);
   }
+  EngineStats run(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+                  TexelSink& sink) override {
+    return run_model(textures, config, source, sink, options_);
+  }
 
  private:
   EngineOptions options_;
@@ -59,18 +63,38 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions
 
 EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
                       const EngineOptions& options) {
+  return run_model(TextureTable{{&pyramid, config.wrap_u, config.wrap_v}}, config, source, sink, options);
+}
+
+EngineStats run_model(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+                      TexelSink& sink, const EngineOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
-  Sampler sampler(pyramid, config);
+  if (textures.empty() || textures.size() > size_t(kMaxTextures))
+    throw Error(std::to_string(textures.size()) + " textures: the descriptor table holds 1 to " +
+                std::to_string(kMaxTextures));
+  if (textures.size() > 1 && options.memory != Memory::Cached)
+    throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one texture (the paper's design); "
+                "use --memory cached, whose descriptor table holds up to " + std::to_string(kMaxTextures));
+  std::vector<Sampler> samplers;  // one per descriptor-table entry, with its wrap modes
+  for (const BoundTexture& t : textures) {
+    SamplerConfig c = config;
+    c.wrap_u = t.wrap_u;
+    c.wrap_v = t.wrap_v;
+    samplers.emplace_back(*t.pyramid, c);
+  }
   std::optional<TextureCache> cache;
-  if (options.memory == Memory::Cached)
-    cache.emplace(MemoryLayout(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits, options.layout),
-                  options.cache, config, pyramid.log2_w0(), pyramid.log2_h0());
+  if (options.memory == Memory::Cached) cache.emplace(texture_descriptors(textures, options), options.cache, config);
   const auto t1 = std::chrono::steady_clock::now();
   std::vector<Request> requests(4096);
   std::vector<Texel> texels(requests.size());
   std::vector<uint32_t> misses;
   while (const size_t n = source.read(requests.data(), requests.size())) {
-    for (size_t i = 0; i < n; ++i) texels[i] = sampler.sample(requests[i]);
+    for (size_t i = 0; i < n; ++i) {
+      if (requests[i].texture >= samplers.size())
+        throw Error("request " + std::to_string(requests[i].tag) + " names texture " +
+                    std::to_string(requests[i].texture) + "; the table holds " + std::to_string(samplers.size()));
+      texels[i] = samplers[requests[i].texture].sample(requests[i]);
+    }
     sink.write(texels.data(), n);
     if (cache) {
       misses.clear();
@@ -79,15 +103,19 @@ EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, Reque
     }
   }
   const auto t2 = std::chrono::steady_clock::now();
-  const SamplerStats s = sampler.stats();
   EngineStats stats;
   stats.engine = "model";
-  stats.samples = s.samples;
   stats.load_seconds = std::chrono::duration<double>(t1 - t0).count();
   stats.sample_seconds = std::chrono::duration<double>(t2 - t1).count();
-  stats.texel_reads = s.memory.reads;
-  stats.multiplies_per_channel = s.multiplies_per_channel;
-  stats.bank_reads = s.memory.bank_reads;
+  for (const Sampler& sampler : samplers) {
+    const SamplerStats s = sampler.stats();
+    stats.samples += s.samples;
+    stats.texel_reads += s.memory.reads;
+    stats.multiplies_per_channel += s.multiplies_per_channel;
+    if (stats.bank_reads.size() < s.memory.bank_reads.size()) stats.bank_reads.resize(s.memory.bank_reads.size());
+    for (size_t k = 0; k < s.memory.bank_reads.size(); ++k)
+      for (size_t b = 0; b < 4; ++b) stats.bank_reads[k][b] += s.memory.bank_reads[k][b];
+  }
   if (cache) stats.cache = cache_counters(*cache);
   return stats;
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <algorithm>
 
 #include "model/error.h"
 
@@ -33,12 +34,6 @@ int split(std::string_view line, std::string_view* fields, int max) {
 }
 
 }  // namespace
-
-std::string quote_clipped(std::string_view text) {
-  constexpr size_t kMax = 80;
-  if (text.size() <= kMax) return "\"" + std::string(text) + "\"";
-  return "\"" + std::string(text.substr(0, kMax - 3)) + "...\" (" + std::to_string(text.size()) + " characters)";
-}
 
 QueryReader::QueryReader(const std::string& path) : name_(path == "-" ? "standard input" : path) {
   if (path == "-") {
@@ -86,26 +81,55 @@ bool QueryReader::next_line(std::string_view& line) {
   return true;
 }
 
+namespace {
+
+// The headers a trace may have: the columns, in order.
+struct TraceFormat {
+  const char* header;
+  bool texture, lod, quad;  // a tex column; u,v,lod (else the four derivatives); quad,x,y,helper
+};
+constexpr TraceFormat kFormats[] = {
+    {"u,v,lod", false, true, false},
+    {"u,v,dudx,dvdx,dudy,dvdy", false, false, false},
+    {"tex,u,v,lod", true, true, false},
+    {"tex,u,v,dudx,dvdx,dudy,dvdy", true, false, false},
+    {kFrameTraceHeader, true, false, true},
+};
+constexpr int kMaxColumns = 11;
+
+std::string known_headers() {
+  std::string s;
+  for (const TraceFormat& f : kFormats) s += (s.empty() ? "" : " or ") + std::string(f.header);
+  return s;
+}
+
+}  // namespace
+
 bool QueryReader::next(Query& q) {
   std::string_view raw;
   while (next_line(raw)) {
     const std::string_view line = trim(raw);
     if (line.empty() || line[0] == '#') continue;
     const std::string at = name_ + ":" + std::to_string(line_no_) + ": ";
-    std::string_view f[7];
-    const int n = split(line, f, 6);
+    std::string_view f[kMaxColumns + 1];
+    const int n = split(line, f, kMaxColumns);
     if (columns_ == 0) {
       std::string header;
-      for (int i = 0; i < std::min(n, 6); ++i) header += (i ? "," : "") + std::string(f[i]);
-      if (header == "u,v,lod") columns_ = 3;
-      else if (header == "u,v,dudx,dvdx,dudy,dvdy" && n == 6) columns_ = 6;
-      else throw Error(at + "unknown header " + quote_clipped(line) + " (expected u,v,lod or u,v,dudx,dvdx,dudy,dvdy)");
+      for (int i = 0; i < std::min(n, kMaxColumns); ++i) header += (i ? "," : "") + std::string(f[i]);
+      for (const TraceFormat& format : kFormats)
+        if (header == format.header && n <= kMaxColumns) {
+          columns_ = int(std::count(header.begin(), header.end(), ',')) + 1;
+          texture_ = format.texture;
+          lod_ = format.lod;
+          quad_ = format.quad;
+        }
+      if (columns_ == 0) throw Error(at + "unknown header " + quote_clipped(line) + " (expected " + known_headers() + ")");
       continue;
     }
     if (n != columns_)
-      throw Error(at + "expected " + std::to_string(columns_) + " values, got " + (n > 6 ? "more" : std::to_string(n)) +
-                  ": " + quote_clipped(line));
-    double v[6];
+      throw Error(at + "expected " + std::to_string(columns_) + " values, got " +
+                  (n > kMaxColumns ? "more" : std::to_string(n)) + ": " + quote_clipped(line));
+    double v[kMaxColumns];
     for (int i = 0; i < columns_; ++i) {
       std::string_view s = f[i];
       if (!s.empty() && s[0] == '+') s.remove_prefix(1);
@@ -117,16 +141,35 @@ bool QueryReader::next(Query& q) {
       if (ec == std::errc::result_out_of_range || !std::isfinite(v[i]))
         throw Error(at + "value " + std::to_string(i + 1) + " is not finite: " + shown);
     }
+    // Whole-number columns: the texture id, the quad number and pixel, the helper flag.
+    auto whole = [&](int i, double lo, double hi, const char* what) {
+      if (v[i] != std::floor(v[i]) || v[i] < lo || v[i] > hi)
+        throw Error(at + what + " " + quote_clipped(f[i]) + " is not a whole number from " + std::to_string(int64_t(lo)) +
+                    " to " + std::to_string(int64_t(hi)));
+      return int64_t(v[i]);
+    };
     q = Query{};
     q.line = line_no_;
-    q.u = v[0];
-    q.v = v[1];
-    q.explicit_lod = columns_ == 3;
-    if (q.explicit_lod) q.lod = v[2];
-    else q.deriv = {v[2], v[3], v[4], v[5]};
+    int c = 0;
+    if (texture_) q.texture = int(whole(c++, 0, kMaxTextures - 1, "texture"));
+    q.u = v[c++];
+    q.v = v[c++];
+    q.explicit_lod = lod_;
+    if (lod_) {
+      q.lod = v[c++];
+    } else {
+      q.deriv = {v[c], v[c + 1], v[c + 2], v[c + 3]};
+      c += 4;
+    }
+    if (quad_) {
+      q.quad = uint32_t(whole(c++, 0, 4294967295.0, "quad"));
+      q.x = int(whole(c++, 0, 65535, "x"));
+      q.y = int(whole(c++, 0, 65535, "y"));
+      q.helper = whole(c++, 0, 1, "helper") != 0;
+    }
     return true;
   }
-  if (columns_ == 0) throw Error(name_ + ": no header line (expected u,v,lod or u,v,dudx,dvdx,dudy,dvdy)");
+  if (columns_ == 0) throw Error(name_ + ": no header line (expected " + known_headers() + ")");
   return false;
 }
 
@@ -134,6 +177,9 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag) {
   Request r;
   r.tag = tag;
   auto at = [&] { return name + ":" + std::to_string(q.line) + ": "; };
+  if (q.texture < 0 || q.texture >= kMaxTextures)
+    throw Error(at() + "texture " + std::to_string(q.texture) + " is outside 0.." + std::to_string(kMaxTextures - 1));
+  r.texture = uint8_t(q.texture);
   if (!to_coord_fixed(q.u, r.u)) throw Error(at() + "u = " + std::to_string(q.u) + " is outside [-128, 128)");
   if (!to_coord_fixed(q.v, r.v)) throw Error(at() + "v = " + std::to_string(q.v) + " is outside [-128, 128)");
   if (q.explicit_lod) {
@@ -157,10 +203,48 @@ size_t QuerySource::read(Request* out, size_t max) {
   Query q;
   while (n < max && reader_.next(q)) {
     out[n] = to_request(q, reader_.name(), uint32_t(count_));
+    counts_.add(q);
     ++n;
     ++count_;
   }
   return n;
+}
+
+void QueryCounts::add(const Query& q) {
+  ++samples;
+  helper_samples += q.helper;
+  if (samples == 1 || q.quad != last_quad_) ++quads;
+  last_quad_ = q.quad;
+  textures_used |= 1u << q.texture;
+}
+
+QueryTraceWriter::QueryTraceWriter(std::FILE* out) : out_(out) {
+  std::fputs(kFrameTraceHeader, out_);
+  std::fputc('\n', out_);
+}
+
+void QueryTraceWriter::comment(const std::string& text) { std::fprintf(out_, "# %s\n", text.c_str()); }
+
+void QueryTraceWriter::write(const Query& q) {
+  // Shortest round-trip decimal of every double: the replay reads back the same bits.
+  std::string line;
+  auto num = [&](auto value, char sep) {
+    char digits[32];  // a double's shortest form has at most 24 characters
+    line.append(digits, std::to_chars(digits, digits + sizeof digits, value).ptr);
+    line.push_back(sep);
+  };
+  num(q.texture, ',');
+  num(q.u, ',');
+  num(q.v, ',');
+  num(q.deriv.dudx, ',');
+  num(q.deriv.dvdx, ',');
+  num(q.deriv.dudy, ',');
+  num(q.deriv.dvdy, ',');
+  num(q.quad, ',');
+  num(q.x, ',');
+  num(q.y, ',');
+  num(int(q.helper), '\n');
+  std::fwrite(line.data(), 1, line.size(), out_);
 }
 
 CsvTexelWriter::CsvTexelWriter(std::FILE* out) : out_(out) { std::fputs("r,g,b,a\n", out_); }

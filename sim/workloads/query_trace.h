@@ -8,6 +8,7 @@
 #include "engines/engine.h"
 #include "model/lod.h"
 #include "model/sampler.h"
+#include "workloads/text.h"
 
 namespace tex {
 
@@ -17,9 +18,21 @@ struct Query {
   double lod = 0;     // levels, when explicit_lod
   Derivatives deriv;  // otherwise
   int line = 0;       // line number in the file, for error messages
+  // Real frames (docs/scenes.md): the descriptor-table entry sampled, the 2x2 quad the query
+  // belongs to (numbered in issue order), its pixel, and whether it is a helper lane (sampled
+  // for the quad's derivatives, its result not drawn).
+  int texture = 0;
+  uint32_t quad = 0;
+  int x = -1, y = -1;
+  bool helper = false;
 };
 
-// Reads a query trace line by line. Header `u,v,lod` or `u,v,dudx,dvdx,dudy,dvdy`; `#` lines are
+// The trace of a rendered frame (texsim render --trace-queries): texture id, u, v, the quad's four
+// derivatives, the quad number, the pixel and the helper flag (0 or 1) of every request.
+constexpr const char* kFrameTraceHeader = "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper";
+
+// Reads a query trace line by line. Header `u,v,lod` or `u,v,dudx,dvdx,dudy,dvdy`, either with a
+// leading `tex` column (the descriptor-table entry, 0..15), or kFrameTraceHeader; `#` lines are
 // comments, blank lines are skipped; a UTF-8 byte-order mark is skipped. A file with only the
 // header has no queries (not an error). Throws tex::Error naming the file, the line number and
 // the text of a bad line (quoted once, at most 80 characters): no header, a NUL byte (a binary
@@ -45,6 +58,17 @@ class QueryReader {
   char* buf_ = nullptr;
   size_t cap_ = 0;
   int line_no_ = 0, columns_ = 0;
+  bool texture_ = false, lod_ = false, quad_ = false;  // the header's columns
+};
+
+// What a frame's queries ask for (texsim's frame figures): quads are runs of one quad number.
+struct QueryCounts {
+  uint64_t samples = 0, quads = 0, helper_samples = 0;
+  uint32_t textures_used = 0;  // bit t: texture t was sampled
+  void add(const Query& q);
+
+ private:
+  uint32_t last_quad_ = 0;
 };
 
 // The queries of a reader as the hardware's fixed-point requests (tag = index), for the engines.
@@ -54,14 +78,27 @@ class QuerySource final : public RequestSource {
   explicit QuerySource(QueryReader& reader) : reader_(reader) {}
   size_t read(Request* out, size_t max) override;
   size_t count() const { return count_; }
+  const QueryCounts& counts() const { return counts_; }
 
  private:
   QueryReader& reader_;
   size_t count_ = 0;
+  QueryCounts counts_;
 };
 
 Request to_request(const Query& q, const std::string& name, uint32_t tag);
 std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name);
+
+// Writes kFrameTraceHeader, then one line per query (doubles in their shortest exact form).
+class QueryTraceWriter {
+ public:
+  explicit QueryTraceWriter(std::FILE* out);
+  void write(const Query& q);
+  void comment(const std::string& text);  // a `# text` line
+
+ private:
+  std::FILE* out_;
+};
 
 // Writes `r,g,b,a` then one line per texel.
 class CsvTexelWriter final : public TexelSink {
@@ -72,8 +109,5 @@ class CsvTexelWriter final : public TexelSink {
  private:
   std::FILE* out_;
 };
-
-// At most ~80 characters of `text`, quoted, for error messages.
-std::string quote_clipped(std::string_view text);
 
 }  // namespace tex

@@ -13,6 +13,8 @@ const std::vector<std::string>& scene_names() {
   return names;
 }
 
+bool scene_samples_vertices(const std::string& name) { return name == "mesh" || name == "mesh16"; }
+
 PixelOrder parse_pixel_order(const std::string& name) {
   if (name == "scanline") return PixelOrder::Scanline;
   if (name == "tiled") return PixelOrder::Tiled;
@@ -385,7 +387,7 @@ SceneFrame make_scene(const std::string& name, const SceneOptions& o) {
                 " is not within 0 to frames-1 (frames from 1 to 100000)");
   if (o.order == PixelOrder::Tiled && (o.tile < 2 || o.tile > 256 || (o.tile & (o.tile - 1)) != 0))
     throw Error("tile size " + std::to_string(o.tile) + " is not a power of two from 2 to 256");
-  if (o.order == PixelOrder::Tiled && (name == "mesh" || name == "mesh16"))
+  if (o.order == PixelOrder::Tiled && scene_samples_vertices(name))
     throw Error("scene " + name + " samples per vertex, in vertex order: --order tiled does not apply");
   if (name == "magnify") return magnify(o);
   if (name == "minify") return minify(o);

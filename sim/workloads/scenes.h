@@ -58,6 +58,8 @@ struct SceneFrame {
 };
 
 const std::vector<std::string>& scene_names();
+// Scenes that sample once per mesh vertex, in vertex order (no pixel walk).
+bool scene_samples_vertices(const std::string& name);
 
 // Throws tex::Error for an unknown scene, a bad size or a bad frame number.
 SceneFrame make_scene(const std::string& name, const SceneOptions& options);

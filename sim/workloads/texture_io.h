@@ -1,5 +1,6 @@
 // Texture files and pictures through OpenImageIO (the model itself does no file I/O).
 #pragma once
+#include <cstddef>
 #include <string>
 
 #include "model/image.h"
@@ -13,6 +14,23 @@ namespace tex {
 // resampled (OpenImageIO, to the nearest power of two, at most 8192). Values of float images
 // outside 0..1 are clamped, with one note on stderr. Throws tex::Error.
 Image load_texture(const std::string& spec, bool resize = false);
+
+// A texture of a 3D model (workloads/mesh_scene.h): RGBA8 as above, but sides that are not powers
+// of two are resampled UP to the next power of two (at most 8192) with OpenImageIO's resize, and
+// nothing is printed: the caller reports `resized`. Throws tex::Error naming `name`.
+struct ModelTexture {
+  Image image;
+  int file_width = 0, file_height = 0;  // as stored
+  bool resized = false;
+};
+// From an image file.
+ModelTexture load_texture_pow2(const std::string& path);
+// From an encoded image in memory (PNG, JPEG, ... bytes, e.g. embedded in a GLB); the format is
+// recognised from the bytes (PNG, JPEG) or else taken from `format_hint`, a file extension.
+ModelTexture decode_texture_pow2(const std::string& name, const void* data, size_t size,
+                                 const std::string& format_hint);
+// From 8-bit RGBA texels already decoded (e.g. Assimp's uncompressed embedded textures).
+ModelTexture texture_pow2(const std::string& name, Image rgba8);
 
 // Throws tex::Error unless OpenImageIO has a writer for the extension of `path` (check it before
 // the work).

@@ -138,7 +138,8 @@ TEST(Scenes, TiledOrderVisitsEachTileBeforeTheNextAndDrawsTheSamePicture) {
 TEST(Scenes, PixelOrderOptionsAreCheckedBeforeAnyWork) {
   const fs::path out = fs::temp_directory_path() / "scenes_order.png";
   fs::remove(out);
-  for (const char* bad : {"--order hilbert", "--order tiled --tile 12", "--tile 16", "--scene mesh --order tiled"}) {
+  for (const char* bad : {"--order hilbert", "--order tiled --tile 12", "--order scanline --tile 16",
+                          "--scene mesh --order tiled"}) {
     const CliRun r = texsim(std::string("render --width 16 --height 16 ") + bad + " --out " + out.string());
     EXPECT_NE(r.exit_code, 0) << bad;
     EXPECT_EQ(line_count(r.err), 1) << bad << ": " << r.err;

@@ -1,0 +1,165 @@
+#include "cli/render_model.h"
+
+#include <chrono>
+#include <filesystem>
+
+#include "model/pyramid.h"
+#include "workloads/camera.h"
+#include "workloads/mesh_scene.h"
+#include "workloads/rasterizer.h"
+#include "workloads/texture_io.h"
+
+namespace tex {
+
+namespace {
+
+// OUT_000.png ... for every frame of an animation, else OUT itself.
+std::string frame_path(const std::string& out, int frame, bool numbered) {
+  if (!numbered) return out;
+  const std::filesystem::path p(out);
+  char num[16];
+  std::snprintf(num, sizeof num, "_%03d", frame);
+  return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
+}
+
+}  // namespace
+
+int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // Everything is checked before the work: options, engine, cameras, outputs, the model and its textures.
+  const SamplerConfig cfg = o.config();
+  EngineOptions eo = o.engine_options();
+  if (a.model.empty() == a.scene_file.empty()) throw Error("render: give --model FILE or --scene-file FILE (one of them)");
+  if (!a.camera.empty() && !a.camera_path.empty()) throw Error("render: give --camera or --camera-path, not both");
+  if (a.frames < 1) throw Error("--frames " + std::to_string(a.frames) + " must be at least 1");
+  if (!a.all_frames && (a.frame < 0 || a.frame >= a.frames))
+    throw Error("--frame " + std::to_string(a.frame) + " is outside 0.." + std::to_string(a.frames - 1));
+  std::optional<Camera> fixed_camera;
+  if (!a.camera.empty()) fixed_camera = parse_camera(a.camera);
+  std::vector<Camera> path;
+  if (!a.camera_path.empty()) path = read_camera_path(a.camera_path);
+  check_image_path(a.out);
+  if (a.trace_queries == "-") throw Error("--trace-queries needs a file (its textures are written next to it)");
+
+  OutputSet outputs;
+  outputs.add_input(a.model.empty() ? a.scene_file : a.model, a.model.empty() ? "--scene-file" : "--model");
+  if (!a.camera_path.empty()) outputs.add_input(a.camera_path, "--camera-path");
+  const int first = a.all_frames ? 0 : a.frame, last = a.all_frames ? a.frames - 1 : a.frame;
+  std::vector<OutputFile*> images;
+  for (int f = first; f <= last; ++f)
+    images.push_back(&outputs.declare(frame_path(a.out, f, a.all_frames), "--out", OutputSet::Kind::File));
+  OutputFile* stats_out = o.stats_output(outputs);
+  OutputFile* trace = o.trace_output(outputs);
+  if (trace) eo.trace_path = trace->write_path();
+  OutputFile* queries_out = a.trace_queries.empty() ? nullptr : &outputs.declare(a.trace_queries, "--trace-queries");
+
+  // The model: its meshes and textures, each texture a descriptor-table entry.
+  const MeshScene scene = a.model.empty() ? load_models(read_scene_file(a.scene_file)) : load_model(a.model);
+  if (scene.textures.size() > size_t(kMaxTextures))
+    throw Error("the scene has " + std::to_string(scene.textures.size()) + " textures; the descriptor table holds " +
+                std::to_string(kMaxTextures));
+  if (scene.textures.size() > 1 && eo.memory != Memory::Cached)
+    throw Error("the scene has " + std::to_string(scene.textures.size()) +
+                " textures; the on-chip unit holds one (the paper's design): use --memory cached");
+  std::vector<Pyramid> pyramids;
+  pyramids.reserve(scene.textures.size());
+  TextureTable table;
+  for (const SceneTexture& t : scene.textures) {
+    pyramids.push_back(build_pyramid(t.image, o.pyramid_mode()));
+    table.push_back({&pyramids.back(), a.wrap_given ? cfg.wrap_u : t.wrap_u, a.wrap_given ? cfg.wrap_v : t.wrap_v});
+  }
+  const uint64_t resident = texture_bytes_resident(table, eo);  // also checks the table fits the memory
+
+  // --trace-queries: the frame's requests, and the textures they name (as loaded: powers of two,
+  // RGBA8) with their wrap modes, so that `texsim sample --textures` replays the frame exactly.
+  std::vector<OutputFile*> texture_files;
+  OutputFile* list_out = nullptr;
+  std::optional<QueryTraceWriter> query_writer;
+  if (queries_out) {
+    const std::filesystem::path q(a.trace_queries);
+    const std::string stem = (q.parent_path() / q.stem()).string();
+    for (size_t t = 0; t < scene.textures.size(); ++t) {
+      char name[32];
+      std::snprintf(name, sizeof name, ".tex%02zu.png", t);
+      texture_files.push_back(&outputs.declare(stem + name, "--trace-queries", OutputSet::Kind::File));
+    }
+    list_out = &outputs.declare(stem + ".textures.txt", "--trace-queries");
+    query_writer.emplace(queries_out->open());
+  }
+
+  std::optional<MissTraceWriter> misses;
+  if (OutputFile* miss_out = o.miss_trace_output(outputs)) misses.emplace(*miss_out);
+  // Every input is checked: the notes on what was skipped or resampled, then the work.
+  for (const std::string& note : scene.notes) std::fprintf(stderr, "texsim: note: %s\n", note.c_str());
+  LineSet all_lines(misses ? &*misses : nullptr);
+
+  FrameFigures total;
+  EngineStats last_stats;
+  nlohmann::json per_frame = nlohmann::json::array();
+  const double aspect = double(a.width) / a.height;
+  RasterOptions ro;
+  ro.width = a.width;
+  ro.height = a.height;
+  ro.order = a.order;
+  ro.tile = a.tile;
+  for (int f = first; f <= last; ++f) {
+    const Camera cam = fixed_camera ? *fixed_camera
+                       : !path.empty() ? camera_on_path(path, f, a.frames)
+                                       : orbit_camera(scene.bounds_min, scene.bounds_max, aspect, f, a.frames);
+    const RasterFrame frame = rasterize(scene, cam, ro);
+    const std::string name = "frame " + std::to_string(f);
+    const std::vector<Request> requests = to_requests(frame.queries, name);
+    QueryCounts counts;
+    for (const Query& q : frame.queries) counts.add(q);
+    if (query_writer) {
+      query_writer->comment(name);
+      for (const Query& q : frame.queries) query_writer->write(q);
+    }
+    LineSet lines(&all_lines);
+    if (eo.memory == Memory::Cached) eo.miss_sink = &lines;
+    VectorSource source(requests);
+    VectorSink texels;
+    last_stats = run_engine(o, eo, outputs, trace, table, cfg, source, texels);
+    save_image(compose_frame(frame, texels.texels, 8, Texel{48, 48, 56, 255}), *images[size_t(f - first)]);
+    const FrameFigures fig =
+        frame_figures(counts, last_stats, resident, uint64_t(lines.lines().size()) * uint64_t(eo.layout.block_w) *
+                                                        uint64_t(eo.layout.block_h) * 4);
+    total.add(fig);
+    nlohmann::json j = fig.to_json();
+    j["frame"] = f;
+    per_frame.push_back(j);
+    if (first != last) std::printf("  frame %d: %s\n", f, fig.summary().c_str());
+  }
+  total.texture_bytes_touched =
+      uint64_t(all_lines.lines().size()) * uint64_t(eo.layout.block_w) * uint64_t(eo.layout.block_h) * 4;
+  if (misses) misses->close();
+  if (query_writer) queries_out->close();
+  if (list_out) {
+    std::FILE* list = list_out->open();
+    std::fprintf(list, "# texture list of %s: id file wrap_u wrap_v (texsim sample --textures)\n", a.trace_queries.c_str());
+    for (size_t t = 0; t < scene.textures.size(); ++t) {
+      save_image(scene.textures[t].image, *texture_files[t]);
+      std::fprintf(list, "%zu %s %s %s\n", t, std::filesystem::path(texture_files[t]->path()).filename().c_str(),
+                   wrap_name(table[t].wrap_u).c_str(), wrap_name(table[t].wrap_v).c_str());
+    }
+    list_out->close();
+  }
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  nlohmann::json extra = total.to_json();
+  extra["frames"] = per_frame;
+  extra["textures"] = scene.textures.size();
+  write_stats(stats_out, last_stats, eo, secs, extra);  // engine counters of the last frame; figures of all
+  outputs.commit();
+  print_cycle_stats(last_stats, eo);
+  print_probe_stats(last_stats);
+  std::printf("  %s%s\n", first == last ? "" : "total: ", total.summary().c_str());
+  std::printf("texsim render: %s, %zu meshes, %zu textures, %dx%d, frame%s %d..%d of %d, %s, %s order, engine %s, "
+              "%s memory -> %s (%.2f s)\n",
+              a.model.empty() ? a.scene_file.c_str() : a.model.c_str(), scene.meshes.size(), scene.textures.size(),
+              a.width, a.height, first == last ? "" : "s", first, last, a.frames, filter_name(cfg.filter).c_str(),
+              a.order == PixelOrder::Tiled ? "tiled" : "scanline", o.engine.c_str(), memory_name(eo.memory).c_str(),
+              a.out.c_str(), secs);
+  return 0;
+}
+
+}  // namespace tex

@@ -1,0 +1,24 @@
+// texsim render --model / --scene-file: real frames of textured 3D models (docs/scenes.md).
+#pragma once
+#include <string>
+
+#include "cli/sampling.h"
+#include "workloads/scenes.h"
+
+namespace tex {
+
+struct ModelRenderArgs {
+  std::string model, scene_file;      // exactly one of them
+  std::string camera, camera_path;    // at most one; neither: the orbit
+  std::string out, trace_queries;
+  int width = 640, height = 480;
+  int frame = 0, frames = 1;
+  bool all_frames = false;            // --frames M without --frame: every frame to OUT_000.png ...
+  bool wrap_given = false;            // --wrap* replace the model's wrap modes
+  PixelOrder order = PixelOrder::Tiled;
+  int tile = 8;
+};
+
+int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a);
+
+}  // namespace tex

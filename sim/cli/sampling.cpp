@@ -1,0 +1,233 @@
+#include "cli/sampling.h"
+
+#include <bit>
+#include <deque>
+#include <optional>
+
+namespace tex {
+
+namespace {
+
+// --verify: the golden model samples every request as the engine takes it, and every texel the
+// engine returns must equal the model's.
+class Verifier {
+ public:
+  Verifier(const TextureTable& textures, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
+           std::string engine)
+      : source_(*this, source), sink_(*this, sink), engine_(std::move(engine)) {
+    for (const BoundTexture& t : textures) {
+      SamplerConfig c = config;
+      c.wrap_u = t.wrap_u;
+      c.wrap_v = t.wrap_v;
+      samplers_.emplace_back(*t.pyramid, c);
+    }
+  }
+  RequestSource& source() { return source_; }
+  TexelSink& sink() { return sink_; }
+  size_t checked() const { return checked_; }
+
+ private:
+  struct Source final : RequestSource {
+    Source(Verifier& v, RequestSource& inner) : v(v), inner(inner) {}
+    size_t read(Request* out, size_t max) override {
+      const size_t n = inner.read(out, max);
+      for (size_t i = 0; i < n; ++i) v.expected_.push_back(v.samplers_.at(out[i].texture).sample(out[i]));
+      return n;
+    }
+    Verifier& v;
+    RequestSource& inner;
+  };
+  struct Sink final : TexelSink {
+    Sink(Verifier& v, TexelSink& inner) : v(v), inner(inner) {}
+    void write(const Texel* t, size_t n) override {
+      for (size_t i = 0; i < n; ++i, ++v.checked_) {
+        if (v.expected_.empty()) throw SimulationError("verify: engine " + v.engine_ + " returned more samples than requests");
+        const Texel b = v.expected_.front();
+        v.expected_.pop_front();
+        if (t[i] != b)
+          throw SimulationError("verify: sample " + std::to_string(v.checked_) + " differs: engine " + v.engine_ +
+                                " gives " + texel_text(t[i]) + ", model gives " + texel_text(b));
+      }
+      inner.write(t, n);
+    }
+    static std::string texel_text(const Texel& t) {
+      return std::to_string(t[0]) + "," + std::to_string(t[1]) + "," + std::to_string(t[2]) + "," + std::to_string(t[3]);
+    }
+    Verifier& v;
+    TexelSink& inner;
+  };
+  std::vector<Sampler> samplers_;  // one per texture of the table
+  Source source_;
+  Sink sink_;
+  std::string engine_;
+  std::deque<Texel> expected_;
+  size_t checked_ = 0;
+};
+
+}  // namespace
+
+EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
+                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& source, TexelSink& sink) {
+  const auto engine = make_engine(o.engine, eo);
+  // The anisotropic filter: count each request's probes on the way in.
+  std::optional<ProbeCounter> counter;
+  if (cfg.filter.anisotropic) {
+    std::vector<std::pair<int, int>> sizes;
+    for (const BoundTexture& t : textures) sizes.emplace_back(t.pyramid->log2_w0(), t.pyramid->log2_h0());
+    counter.emplace(source, cfg, sizes);
+  }
+  RequestSource& requests = counter ? *counter : source;
+  try {
+    EngineStats stats;
+    if (!o.verify) {
+      stats = engine->run(textures, cfg, requests, sink);
+    } else {
+      Verifier verifier(textures, cfg, requests, sink, o.engine);
+      stats = engine->run(textures, cfg, verifier.source(), verifier.sink());
+      std::printf("verify: %zu samples of engine %s are bit-identical to the golden model\n", verifier.checked(),
+                  o.engine.c_str());
+    }
+    if (counter) stats.probes = counter->histogram();
+    return stats;
+  } catch (const SimulationError& e) {
+    if (trace && outputs.keep(*trace)) throw Error(std::string(e.what()) + "; waveform kept: " + trace->path());
+    throw;
+  }
+}
+
+// Cycle counters of a cycle-accurate engine, one line (the model has none).
+void print_cycle_stats(const EngineStats& stats, const EngineOptions& options) {
+  if (!stats.cycle) return;
+  const CycleStats& c = *stats.cycle;
+  std::printf("  %s (%s): %llu samples in %llu clocks = %.4f samples/clock after the %llu-clock pipeline fill, "
+              "stalls %s, %llu output-stall clocks, texture load %s (%llu clocks)\n",
+              stats.engine.c_str(), c.configuration.c_str(), (unsigned long long)stats.samples,
+              (unsigned long long)c.cycles, stats.samples_per_clock(), (unsigned long long)c.latency_cycles,
+              stalls_name(options.stalls).c_str(), (unsigned long long)c.output_stall_cycles,
+              load_method_name(options.load).c_str(), (unsigned long long)c.load_cycles);
+}
+
+// Anisotropic filter: probes per sample (mean and histogram) and, for cycle engines, per clock.
+void print_probe_stats(const EngineStats& stats) {
+  if (!stats.probes) return;
+  const auto& h = *stats.probes;
+  const uint64_t total = stats.probe_total();
+  std::string histogram;
+  for (size_t n = 1; n < h.size(); ++n)
+    if (h[n]) histogram += " " + std::to_string(n) + ":" + std::to_string(h[n]);
+  std::printf("  probes: %llu = %.3f per sample (N:samples%s)", (unsigned long long)total,
+              stats.samples ? double(total) / double(stats.samples) : 0.0, histogram.c_str());
+  if (stats.cycle && stats.cycle->cycles > stats.cycle->latency_cycles)
+    std::printf(", %.4f probes/clock", double(total) / double(stats.cycle->cycles - stats.cycle->latency_cycles));
+  std::printf("\n");
+}
+
+// Cached mode: hits, bytes and (cycle engines) the FIFO and memory stalls, one line.
+void print_cache_stats(const EngineStats& stats) {
+  if (!stats.cache) return;
+  const CacheCounters& k = *stats.cache;
+  std::printf("  caches: %llu lookups, %.2f%% hits, %llu lines read = %.2f bytes/sample",
+              (unsigned long long)k.lookups, k.lookups ? 100.0 * double(k.hits) / double(k.lookups) : 0.0,
+              (unsigned long long)k.misses, stats.samples ? double(k.memory_read_bytes) / double(stats.samples) : 0.0);
+  if (stats.cycle)
+    std::printf(", FIFO up to %u of %u samples, %llu clocks waiting for memory", k.fifo_max_occupancy, k.fifo_depth,
+                (unsigned long long)k.memory_stall_cycles);
+  std::printf("\n");
+}
+
+void write_stats(OutputFile* out, const EngineStats& stats, const EngineOptions& options, double seconds,
+                 const nlohmann::json& extra) {
+  if (!out) return;
+  nlohmann::json j = stats.to_json(options);
+  j["wall_seconds"] = seconds;
+  j.update(extra);
+  std::fputs((j.dump(2) + "\n").c_str(), out->open());
+  out->close();
+}
+void LineSet::write(const uint32_t* addresses, size_t n) {
+  lines_.insert(addresses, addresses + n);
+  if (next_) next_->write(addresses, n);
+}
+
+void FrameFigures::add(const FrameFigures& f) {
+  samples += f.samples;
+  quads += f.quads;
+  helper_samples += f.helper_samples;
+  textures_used |= f.textures_used;
+  texture_bytes_resident = std::max(texture_bytes_resident, f.texture_bytes_resident);
+  if (f.cache) {
+    CacheCounters& k = cache ? *cache : cache.emplace();
+    k.lookups += f.cache->lookups;
+    k.hits += f.cache->hits;
+    k.misses += f.cache->misses;
+    k.memory_read_bytes += f.cache->memory_read_bytes;
+    for (int c = 0; c < 2; ++c) {
+      k.cache_lookups[c] += f.cache->cache_lookups[c];
+      k.cache_hits[c] += f.cache->cache_hits[c];
+    }
+    k.memory_stall_cycles += f.cache->memory_stall_cycles;
+  }
+  if (f.clocks) clocks = clocks.value_or(0) + *f.clocks;
+}
+
+namespace {
+double ratio(uint64_t a, uint64_t b) { return b ? double(a) / double(b) : 0.0; }
+}  // namespace
+
+nlohmann::json FrameFigures::to_json() const {
+  nlohmann::json j = {{"samples", samples},
+                      {"quads", quads},
+                      {"helper_samples", helper_samples},
+                      {"textures_used", std::popcount(textures_used)},
+                      {"texture_bytes_resident", texture_bytes_resident}};
+  if (cache) {
+    j["texture_bytes_touched"] = texture_bytes_touched;
+    j["hit_rate_even_levels"] = ratio(cache->cache_hits[0], cache->cache_lookups[0]);
+    j["hit_rate_odd_levels"] = ratio(cache->cache_hits[1], cache->cache_lookups[1]);
+    j["hit_rate"] = ratio(cache->hits, cache->lookups);
+    j["bytes_per_sample"] = ratio(cache->memory_read_bytes, samples);
+  }
+  if (clocks) j["samples_per_clock"] = ratio(samples, *clocks);
+  return j;
+}
+
+std::string FrameFigures::summary() const {
+  char buf[512];
+  int n = std::snprintf(buf, sizeof buf, "%llu samples in %llu quads (%llu helpers), %d textures of %.2f MiB",
+                        (unsigned long long)samples, (unsigned long long)quads, (unsigned long long)helper_samples,
+                        std::popcount(textures_used), double(texture_bytes_resident) / 1048576.0);
+  if (cache)
+    n += std::snprintf(buf + n, sizeof buf - size_t(n),
+                       ", %.2f MiB touched, hits %.2f%% even / %.2f%% odd levels, %.2f bytes/sample",
+                       double(texture_bytes_touched) / 1048576.0, 100 * ratio(cache->cache_hits[0], cache->cache_lookups[0]),
+                       100 * ratio(cache->cache_hits[1], cache->cache_lookups[1]), ratio(cache->memory_read_bytes, samples));
+  if (clocks) std::snprintf(buf + n, sizeof buf - size_t(n), ", %.4f samples/clock", ratio(samples, *clocks));
+  return buf;
+}
+
+FrameFigures frame_figures(const QueryCounts& counts, const EngineStats& stats, uint64_t resident, uint64_t touched) {
+  FrameFigures f;
+  f.samples = counts.samples;
+  f.quads = counts.quads;
+  f.helper_samples = counts.helper_samples;
+  f.textures_used = counts.textures_used;
+  f.texture_bytes_resident = resident;
+  f.texture_bytes_touched = touched;
+  f.cache = stats.cache;
+  if (stats.cycle) f.clocks = stats.cycle->cycles - std::min(stats.cycle->cycles, stats.cycle->latency_cycles);
+  return f;
+}
+
+uint64_t texture_bytes_resident(const TextureTable& textures, const EngineOptions& options) {
+  uint64_t bytes = 0;
+  if (options.memory == Memory::Cached) {
+    for (const TextureDescriptor& d : texture_descriptors(textures, options)) bytes += d.layout.image_bytes();
+    return bytes;
+  }
+  for (const BoundTexture& t : textures)
+    for (const Image& level : t.pyramid->levels)
+      bytes += uint64_t(level.width) * uint64_t(level.height) * (level.channel_bits > 8 ? 8 : 4);
+  return bytes;
+}
+
+}  // namespace tex

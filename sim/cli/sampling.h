@@ -1,0 +1,275 @@
+// Options and helpers shared by the texsim commands that sample (sample, render): the sampling
+// options, the engine run with --verify, the summary lines and the --stats file.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <unistd.h>
+#include <unordered_set>
+#include <vector>
+
+#include "engines/engine.h"
+#include "model/error.h"
+#include "model/pyramid.h"
+#include "workloads/output_files.h"
+#include "workloads/query_trace.h"
+#include "workloads/text.h"
+
+namespace tex {
+
+// Unsigned decimal of an option: no sign, no wrap-around. Throws tex::Error naming the option.
+inline uint64_t parse_unsigned(const std::string& text, const std::string& option) {
+  uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size())
+    throw Error(option + " " + quote_clipped(text) + " is not a whole number from 0 to 18446744073709551615");
+  return v;
+}
+
+// --block WxH: texels per block (= cache line), each side 2, 4 or 8.
+inline void parse_block(const std::string& text, LayoutParams& out) {
+  if (!parse_block_size(text, out))
+    throw Error("--block " + quote_clipped(text) + " is not WxH with W and H each 2, 4 or 8");
+}
+
+
+// Options shared by every command that samples a texture.
+struct SamplingOptions {
+  std::string texture = "testcard";
+  std::string filter = "trilinear";
+  int max_aniso = kMaxAniso;
+  bool aniso_pow2 = false;
+  CLI::Option* max_aniso_opt = nullptr;
+  std::string wrap = "repeat";
+  std::string wrap_u, wrap_v;
+  std::string pyramid = "exact";
+  std::string engine = "model";
+  double lod_bias = 0, min_lod = -128, max_lod = 127.99;
+  bool resize = false;
+  std::string stalls = "none";
+  std::string seed = "1";
+  std::string load = "backdoor";
+  std::string stats_path;
+  std::string trace_path;
+  std::string trace_window;
+  bool verify = false;
+  // Memory hierarchy (docs/memory.md).
+  std::string memory = "onchip";
+  std::string cache_kib = "8", ways = "2", block = "4x4", block_order = "row-major";
+  std::string mem_latency = "100", mem_jitter = "0", mem_bytes_per_clock = "16", mem_outstanding = "64";
+  std::string fifo_depth;
+  std::string miss_trace;
+  CLI::Option *wrap_u_opt = nullptr, *wrap_v_opt = nullptr, *texture_opt = nullptr;
+  std::vector<CLI::Option*> cached_opts;  // meaningful with --memory cached only
+
+  void add_to(CLI::App& cmd) {
+    texture_opt = cmd.add_option("--texture,-t", texture, "image file (any OpenImageIO format) or pattern NAME[:WxH]")
+                      ->capture_default_str();
+    cmd.add_option("--filter,-f", filter,
+                   "point | bilinear | mip_nearest | trilinear | anisotropic (trilinear probes along the "
+                   "footprint, for requests with derivatives), or a GL name (nearest_mipmap_linear, ...)")
+        ->capture_default_str();
+    max_aniso_opt = cmd.add_option("--max-aniso", max_aniso, "anisotropic: probes per sample at most, 1..16")
+                        ->capture_default_str();
+    cmd.add_flag("--aniso-pow2", aniso_pow2, "anisotropic: round probe counts up to a power of two");
+    cmd.add_option("--wrap,-w", wrap, "repeat | clamp | mirror, both axes")->capture_default_str();
+    wrap_u_opt = cmd.add_option("--wrap-u", wrap_u, "wrap mode of u only (overrides --wrap)");
+    wrap_v_opt = cmd.add_option("--wrap-v", wrap_v, "wrap mode of v only (overrides --wrap)");
+    cmd.add_option("--pyramid", pyramid, "exact (mean of the level-0 footprint) | cascade")->capture_default_str();
+    cmd.add_option("--engine,-e", engine, engine_list())->capture_default_str();
+    cmd.add_option("--lod-bias", lod_bias, "added to lambda before the clamp, in levels")->capture_default_str();
+    cmd.add_option("--min-lod", min_lod, "lambda clamp, in levels")->capture_default_str();
+    cmd.add_option("--max-lod", max_lod, "lambda clamp, in levels")->capture_default_str();
+    cmd.add_flag("--resize", resize, "resample a texture whose sides are not powers of two");
+    cmd.add_option("--stalls", stalls,
+                   "none | random | heavy: input gaps and output stalls of cycle-accurate engines (none = ideal "
+                   "timing, what the hardware sustains)")
+        ->capture_default_str();
+    cmd.add_option("--seed", seed, "seed of --stalls random|heavy and of the RTL's unreset registers (0 and up)")
+        ->capture_default_str();
+    cmd.add_option("--load", load,
+                   "backdoor | port: fill the RTL's texture memories directly (0 clocks) or through the write "
+                   "port (one texel per clock)")
+        ->capture_default_str();
+    cmd.add_option("--stats", stats_path, "write counters to this JSON file (- = standard output)");
+    cmd.add_option("--trace", trace_path,
+                   "write an FST waveform (engines rtl, systemc); kept when the simulation fails");
+    cmd.add_option("--trace-window", trace_window, "clocks FIRST:LAST to trace (default: all)");
+    cmd.add_flag("--verify", verify, "also run the golden model and fail unless every sample is bit-identical");
+    cmd.add_option("--memory", memory,
+                   "onchip | cached: per-level memories, or the pyramid in external memory behind two caches "
+                   "(engines model, rtl; docs/memory.md)")
+        ->capture_default_str();
+    cached_opts.push_back(cmd.add_option("--cache-kib", cache_kib, "cached: size of each cache (even levels, odd levels) in KiB")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--ways", ways, "cached: associativity, 1 | 2 | 4")->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--block", block, "cached: texels per block (= cache line) WxH, each 2 | 4 | 8")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--block-order", block_order, "cached: row-major | morton order of a level's blocks")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--mem-latency", mem_latency, "cached, rtl: clocks from a memory read to its first beat")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--mem-jitter", mem_jitter, "cached, rtl: + a random 0..N clocks per read (order kept)")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--mem-bytes-per-clock", mem_bytes_per_clock, "cached, rtl: memory bandwidth")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--mem-outstanding", mem_outstanding, "cached, rtl: reads in flight at most")
+        ->capture_default_str());
+    cached_opts.push_back(cmd.add_option("--fifo-depth", fifo_depth,
+                                         "cached, rtl: samples the FIFO holds at most, 1 to the configuration's "
+                                         "FIFO_DEPTH (default: all of it)"));
+    cached_opts.push_back(cmd.add_option("--miss-trace", miss_trace,
+                   "cached: write the line addresses read from memory, in order, one 0x%08x per line"));
+  }
+
+  SamplerConfig config() const {
+    SamplerConfig c;
+    if (!parse_filter(filter, c.filter)) throw Error("unknown filter " + quote_clipped(filter));
+    if (max_aniso < 1 || max_aniso > kMaxAniso)
+      throw Error("--max-aniso " + std::to_string(max_aniso) + " is outside 1..16");
+    if ((max_aniso_opt->count() || aniso_pow2) && !c.filter.anisotropic)
+      throw Error("--max-aniso and --aniso-pow2 apply to --filter anisotropic, not " + quote_clipped(filter));
+    c.max_aniso = max_aniso;
+    c.aniso_pow2 = aniso_pow2;
+    Wrap w;
+    if (!parse_wrap(wrap, w)) throw Error("unknown wrap mode " + quote_clipped(wrap) + " (repeat, clamp, mirror)");
+    c.wrap_u = c.wrap_v = w;
+    if (wrap_u_opt->count() && !parse_wrap(wrap_u, c.wrap_u))
+      throw Error("--wrap-u: unknown wrap mode " + quote_clipped(wrap_u) + " (repeat, clamp, mirror)");
+    if (wrap_v_opt->count() && !parse_wrap(wrap_v, c.wrap_v))
+      throw Error("--wrap-v: unknown wrap mode " + quote_clipped(wrap_v) + " (repeat, clamp, mirror)");
+    if (!to_lod_fixed(lod_bias, c.lod_bias)) throw Error("--lod-bias " + std::to_string(lod_bias) + " is outside [-128, 128)");
+    if (!to_lod_fixed(min_lod, c.min_lod)) throw Error("--min-lod " + std::to_string(min_lod) + " is outside [-128, 128)");
+    if (!to_lod_fixed(max_lod, c.max_lod)) throw Error("--max-lod " + std::to_string(max_lod) + " is outside [-128, 128)");
+    if (c.min_lod > c.max_lod) throw Error("--min-lod is greater than --max-lod");
+    return c;
+  }
+
+  PyramidMode pyramid_mode() const {
+    PyramidMode m;
+    if (!parse_pyramid_mode(pyramid, m)) throw Error("unknown pyramid mode " + quote_clipped(pyramid) + " (exact, cascade)");
+    return m;
+  }
+
+  // Also checks that the engine exists and can honour the options (before any work).
+  EngineOptions engine_options() const {
+    EngineOptions o;
+    if (!parse_stalls(stalls, o.stalls)) throw Error("unknown --stalls " + quote_clipped(stalls) + " (none, random, heavy)");
+    if (!parse_load_method(load, o.load)) throw Error("unknown --load " + quote_clipped(load) + " (backdoor, port)");
+    o.seed = parse_unsigned(seed, "--seed");
+    o.show_progress = isatty(STDERR_FILENO);
+    o.trace_path = trace_path;
+    if (!trace_window.empty()) {
+      const auto colon = trace_window.find(':');
+      if (colon == std::string::npos)
+        throw Error("--trace-window " + quote_clipped(trace_window) + " is not FIRST:LAST (clocks)");
+      o.trace_begin = parse_unsigned(trace_window.substr(0, colon), "--trace-window FIRST");
+      o.trace_end = parse_unsigned(trace_window.substr(colon + 1), "--trace-window LAST");
+      if (o.trace_end < o.trace_begin) throw Error("--trace-window " + quote_clipped(trace_window) + ": LAST < FIRST");
+    }
+    if (!parse_memory(memory, o.memory)) throw Error("unknown --memory " + quote_clipped(memory) + " (onchip, cached)");
+    if (o.memory == Memory::Cached) {
+      const uint64_t kib = parse_unsigned(cache_kib, "--cache-kib");
+      if (kib == 0 || kib > 1024) throw Error("--cache-kib " + cache_kib + " is outside 1..1024");
+      o.cache.size_bytes = int(kib * 1024);
+      const uint64_t w = parse_unsigned(ways, "--ways");
+      if (w != 1 && w != 2 && w != 4) throw Error("--ways " + quote_clipped(ways) + " is not 1, 2 or 4");
+      o.cache.ways = int(w);
+      parse_block(block, o.layout);
+      if (!parse_block_order(block_order, o.layout.order))
+        throw Error("unknown --block-order " + quote_clipped(block_order) + " (row-major, morton)");
+      auto bounded = [](const std::string& text, const char* option, uint64_t lo, uint64_t hi) {
+        const uint64_t v = parse_unsigned(text, option);
+        if (v < lo || v > hi)
+          throw Error(std::string(option) + " " + text + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
+        return uint32_t(v);
+      };
+      o.mem_latency = bounded(mem_latency, "--mem-latency", 1, 100000);
+      o.mem_jitter = bounded(mem_jitter, "--mem-jitter", 0, 100000);
+      o.mem_bytes_per_clock = bounded(mem_bytes_per_clock, "--mem-bytes-per-clock", 1, 1024);
+      o.mem_outstanding = bounded(mem_outstanding, "--mem-outstanding", 1, 4096);
+      if (!fifo_depth.empty()) o.fifo_depth = bounded(fifo_depth, "--fifo-depth", 1, 1u << 20);
+      // The geometry must be one the caches can have (the texture's channel width sets the line
+      // size; 8-bit lines are checked here, the engine checks again with the real texture).
+      TextureCache(MemoryLayout(0, 0, 8, o.layout), o.cache, SamplerConfig{}, 0, 0);
+    } else {
+      for (const CLI::Option* opt : cached_opts)
+        if (opt->count()) throw Error(opt->get_name() + " needs --memory cached (the on-chip memories have no cache)");
+    }
+    make_engine(engine, o);  // unknown engine, --trace with an engine that cannot trace
+    return o;
+  }
+
+  // The inputs of the command, for OutputSet's input-versus-output check.
+  void add_inputs(OutputSet& outputs) const { outputs.add_input(texture, "--texture"); }
+  // --stats and --trace, declared with the command's other outputs.
+  OutputFile* stats_output(OutputSet& outputs) const {
+    return stats_path.empty() ? nullptr : &outputs.declare(stats_path, "--stats");
+  }
+  OutputFile* trace_output(OutputSet& outputs) const {
+    return trace_path.empty() ? nullptr : &outputs.declare(trace_path, "--trace", OutputSet::Kind::File);
+  }
+  OutputFile* miss_trace_output(OutputSet& outputs) const {
+    return miss_trace.empty() ? nullptr : &outputs.declare(miss_trace, "--miss-trace");
+  }
+};
+
+// --miss-trace: one line address per line, 0x%08x.
+class MissTraceWriter final : public MissSink {
+ public:
+  explicit MissTraceWriter(OutputFile& out) : out_(out), file_(out.open()) {}
+  void write(const uint32_t* a, size_t n) override {
+    for (size_t i = 0; i < n; ++i) std::fprintf(file_, "0x%08x\n", a[i]);
+  }
+  void close() { out_.close(); }
+
+ private:
+  OutputFile& out_;
+  std::FILE* file_;
+};
+
+// Runs the engine (with --verify through the golden model too) over a table of textures (one for
+// a query trace or a paper scene). A failure inside the simulation keeps the waveform, the one
+// output of a failed command: it shows what went wrong.
+EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
+                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& source, TexelSink& sink);
+
+// The summary lines: cycle counters of a cycle-accurate engine, caches, anisotropic probes.
+void print_cycle_stats(const EngineStats& stats, const EngineOptions& options);
+void print_probe_stats(const EngineStats& stats);
+void print_cache_stats(const EngineStats& stats);
+// --stats: the engine's counters as JSON, plus `extra` keys (the command's own).
+void write_stats(OutputFile* out, const EngineStats& stats, const EngineOptions& options, double seconds,
+                 const nlohmann::json& extra = nlohmann::json::object());
+
+// The lines a cached engine reads, as a set (texture bytes touched), passed on to `next` if any.
+class LineSet final : public MissSink {
+ public:
+  explicit LineSet(MissSink* next = nullptr) : next_(next) {}
+  void write(const uint32_t* addresses, size_t n) override;
+  const std::unordered_set<uint32_t>& lines() const { return lines_; }
+
+ private:
+  MissSink* next_;
+  std::unordered_set<uint32_t> lines_;
+};
+
+// The figures of a frame of real content (docs/scenes.md), and their totals over frames.
+struct FrameFigures {
+  uint64_t samples = 0, quads = 0, helper_samples = 0;
+  uint32_t textures_used = 0;             // bit t: texture t sampled
+  uint64_t texture_bytes_resident = 0;    // every texture of the table, as memory holds it
+  uint64_t texture_bytes_touched = 0;     // cached: distinct lines read x line bytes
+  std::optional<CacheCounters> cache;     // cached mode
+  std::optional<uint64_t> clocks;         // cycle-accurate engines: cycles - pipeline fill
+  void add(const FrameFigures& f);        // totals (touched: the caller sets the union)
+  nlohmann::json to_json() const;
+  std::string summary() const;            // one line
+};
+FrameFigures frame_figures(const QueryCounts& counts, const EngineStats& stats, uint64_t resident, uint64_t touched);
+// Bytes of every texture of the table in memory: the cached layout's image, or the on-chip levels.
+uint64_t texture_bytes_resident(const TextureTable& textures, const EngineOptions& options);
+
+}  // namespace tex

@@ -1,0 +1,471 @@
+// Textured 3D models: geometry and materials through Assimp, textures through texture_io
+// (OpenImageIO). Everything the rasterizer needs is copied out of Assimp's scene here.
+#include "workloads/mesh_scene.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <tuple>
+
+#include "model/error.h"
+#include "workloads/texture_io.h"
+
+namespace tex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string one_line(std::string s) {
+  std::replace_if(s.begin(), s.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
+
+// Throws unless `path` is a regular file (a directory or a FIFO would hang or confuse the readers).
+void check_regular_file(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (!fs::exists(st)) throw Error(path + ": cannot read " + what + ": no such file");
+  if (!fs::is_regular_file(st)) throw Error(path + ": cannot read " + what + ": not a regular file");
+}
+
+Wrap to_wrap(int mode) {
+  switch (mode) {
+    case aiTextureMapMode_Clamp:
+    case aiTextureMapMode_Decal: return Wrap::Clamp;  // decal: no texel outside [0, 1]; clamp is closest
+    case aiTextureMapMode_Mirror: return Wrap::Mirror;
+    default: return Wrap::Repeat;
+  }
+}
+
+glm::dmat4 to_glm(const aiMatrix4x4& m) {
+  glm::dmat4 r;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) r[col][row] = m[row][col];  // Assimp is row-major, GLM column-major
+  return r;
+}
+
+// A texture name as the model writes it -> the file: relative to the model's directory, Windows
+// separators (spider.mtl: ".\SpiderTex.jpg") as '/', and URI escapes (glTF: "my%20tex.png") decoded
+// when the name as written does not exist.
+fs::path resolve_texture(const fs::path& dir, std::string name) {
+  std::replace(name.begin(), name.end(), '\\', '/');
+  const fs::path literal = (dir / name).lexically_normal();
+  if (fs::exists(literal) || name.find('%') == std::string::npos) return literal;
+  auto hex = [&](size_t i) { return i < name.size() && std::isxdigit(static_cast<unsigned char>(name[i])); };
+  std::string decoded;
+  for (size_t i = 0; i < name.size(); ++i) {
+    if (name[i] == '%' && hex(i + 1) && hex(i + 2)) {
+      decoded += char(std::stoi(name.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      decoded += name[i];
+    }
+  }
+  return (dir / decoded).lexically_normal();
+}
+
+// Textures of a scene, each image once per pair of wrap modes (the same file with other wrap
+// modes is another descriptor), in first-use order.
+class SceneTextureSet {
+ public:
+  explicit SceneTextureSet(MeshScene& scene) : scene_(scene) {}
+
+  // The index of the entry for (source, wrap modes), or -1.
+  int find(const std::string& source, Wrap u, Wrap v) const {
+    const auto it = ids_.find({key(source), u, v});
+    return it == ids_.end() ? -1 : it->second;
+  }
+  // An image already decoded for `source` (with other wrap modes), or null.
+  const SceneTexture* any(const std::string& source) const {
+    const std::string k = key(source);
+    for (const auto& [entry, id] : ids_)
+      if (std::get<0>(entry) == k) return &scene_.textures[size_t(id)];
+    return nullptr;
+  }
+  int add(SceneTexture t) {
+    const int id = int(scene_.textures.size());
+    ids_[{key(t.source), t.wrap_u, t.wrap_v}] = id;
+    scene_.textures.push_back(std::move(t));
+    return id;
+  }
+
+ private:
+  // Two models may name one file by different relative paths.
+  static std::string key(const std::string& source) {
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(source, ec);
+    return ec ? source : p.string();
+  }
+  MeshScene& scene_;
+  std::map<std::tuple<std::string, Wrap, Wrap>, int> ids_;
+};
+
+// Assimp 5.2's glTF 1.0 importer composes a node's translation, rotation and scale as R·S·T (the
+// translation turned by the rotation: CesiumMilkTruck's front and rear wheels end up 0.49 apart
+// in height); glTF says T·R·S. For such files the nodes' matrices are rebuilt from the JSON, walked alongside
+// Assimp's node tree (same shape: scene nodes under the root, then "children" in order).
+using NodeTransforms = std::map<const aiNode*, glm::dmat4>;
+
+void gltf1_transforms(const nlohmann::json& nodes, const std::string& id, const aiNode& ai, NodeTransforms& out) {
+  const nlohmann::json& n = nodes.at(id);
+  if (id != ai.mName.C_Str() && n.value("name", id) != ai.mName.C_Str()) return;  // not the tree we expected
+  if (!n.contains("matrix") && (n.contains("translation") || n.contains("rotation") || n.contains("scale"))) {
+    const auto v = [&](const char* key, std::vector<double> fallback) { return n.value(key, fallback); };
+    const std::vector<double> t = v("translation", {0, 0, 0}), r = v("rotation", {0, 0, 0, 1}), s = v("scale", {1, 1, 1});
+    if (t.size() == 3 && r.size() == 4 && s.size() == 3)
+      out[&ai] = glm::translate(glm::dmat4(1.0), glm::dvec3(t[0], t[1], t[2])) *
+                 glm::mat4_cast(glm::dquat(r[3], r[0], r[1], r[2])) *  // glTF writes x, y, z, w
+                 glm::scale(glm::dmat4(1.0), glm::dvec3(s[0], s[1], s[2]));
+  }
+  const std::vector<std::string> children = n.value("children", std::vector<std::string>{});
+  if (children.size() == ai.mNumChildren)
+    for (size_t i = 0; i < children.size(); ++i) gltf1_transforms(nodes, children[i], *ai.mChildren[i], out);
+}
+
+NodeTransforms gltf1_transforms(const aiScene& ai, const std::string& path) {
+  aiString format;
+  if (!ai.mMetaData || !ai.mMetaData->Get("SourceAsset_Format", format) || std::string(format.C_Str()) != "glTF Importer")
+    return {};
+  NodeTransforms out;
+  try {
+    std::ifstream in(path);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    const nlohmann::json& nodes = j.at("nodes");
+    const auto roots = j.at("scenes").at(j.at("scene").get<std::string>()).at("nodes").get<std::vector<std::string>>();
+    if (roots.size() == 1) gltf1_transforms(nodes, roots[0], *ai.mRootNode, out);  // the root itself
+    else if (roots.size() == ai.mRootNode->mNumChildren)
+      for (size_t i = 0; i < roots.size(); ++i) gltf1_transforms(nodes, roots[i], *ai.mRootNode->mChildren[i], out);
+  } catch (const nlohmann::json::exception&) {
+    return {};  // Assimp read it; a shape this walk does not know keeps Assimp's matrices
+  }
+  return out;
+}
+
+void compute_bounds(MeshScene& scene) {
+  bool first = true;
+  for (const DrawMesh& m : scene.meshes)
+    for (const glm::dvec3& p : m.positions) {
+      scene.bounds_min = first ? p : glm::min(scene.bounds_min, p);
+      scene.bounds_max = first ? p : glm::max(scene.bounds_max, p);
+      first = false;
+    }
+}
+
+class ModelLoader {
+ public:
+  ModelLoader(const aiScene& ai, const std::string& path, MeshScene& out)
+      : ai_(ai), path_(path), dir_(fs::path(path).parent_path()), out_(out), textures_(out),
+        material_texture_(ai.mNumMaterials, kUnknown), mesh_noted_(ai.mNumMeshes, false),
+        fixed_transforms_(gltf1_transforms(ai, path)) {}
+
+  // Draw order: the node tree depth first, each node's meshes in its list order, then its
+  // children in order (a mesh that several nodes reference is drawn once per node, as placed).
+  void walk(const aiNode& node, const glm::dmat4& parent) {
+    const auto fixed = fixed_transforms_.find(&node);
+    const glm::dmat4 world = parent * (fixed != fixed_transforms_.end() ? fixed->second : to_glm(node.mTransformation));
+    for (unsigned i = 0; i < node.mNumMeshes; ++i)
+      if (node.mMeshes[i] < ai_.mNumMeshes) add_mesh(node.mMeshes[i], world);
+    for (unsigned i = 0; i < node.mNumChildren; ++i)
+      if (node.mChildren[i]) walk(*node.mChildren[i], world);
+  }
+
+ private:
+  static constexpr int kUnknown = -2, kNone = -1;
+
+  void skip(unsigned index, const std::string& name, const std::string& why) {
+    if (!mesh_noted_[index]) out_.notes.push_back(path_ + ": mesh " + in_quotes(name) + " skipped: " + why);
+    mesh_noted_[index] = true;
+  }
+
+  void add_mesh(unsigned index, const glm::dmat4& world) {
+    const aiMesh& m = *ai_.mMeshes[index];
+    DrawMesh d;
+    d.name = m.mName.length ? m.mName.C_Str() : "mesh " + std::to_string(index);
+    if (!m.HasTextureCoords(0)) return skip(index, d.name, "no texture coordinates");
+    if (m.mMaterialIndex >= ai_.mNumMaterials) return skip(index, d.name, "no material");
+    d.texture = texture_of(m.mMaterialIndex);
+    if (d.texture == kNone)
+      return skip(index, d.name, "material " + in_quotes(material_name(m.mMaterialIndex)) +
+                                     " has no base-colour or diffuse texture");
+    int two_sided = 0;
+    ai_.mMaterials[m.mMaterialIndex]->Get(AI_MATKEY_TWOSIDED, two_sided);
+    d.double_sided = two_sided != 0;
+
+    d.positions.reserve(m.mNumVertices);
+    d.uvs.reserve(m.mNumVertices);
+    for (unsigned i = 0; i < m.mNumVertices; ++i) {
+      const aiVector3D& p = m.mVertices[i];
+      const aiVector3D& t = m.mTextureCoords[0][i];
+      const glm::dvec3 w(world * glm::dvec4(p.x, p.y, p.z, 1.0));
+      if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
+        throw Error(path_ + ": mesh " + in_quotes(d.name) + ": vertex " + std::to_string(i) + " has a non-finite position");
+      if (!std::isfinite(t.x) || !std::isfinite(t.y))
+        throw Error(path_ + ": mesh " + in_quotes(d.name) + ": vertex " + std::to_string(i) +
+                    " has non-finite texture coordinates");
+      d.positions.push_back(w);
+      d.uvs.emplace_back(t.x, t.y);  // FlipUVs made v = 0 the image's top row
+    }
+    // A mirroring transform turns counter-clockwise (front) triangles clockwise: swap two corners.
+    const bool mirrored = glm::determinant(glm::dmat3(world)) < 0;
+    for (unsigned f = 0; f < m.mNumFaces; ++f) {
+      const aiFace& face = m.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines the sort step left in a mixed mesh
+      const unsigned* i = face.mIndices;
+      if (std::max({i[0], i[1], i[2]}) >= m.mNumVertices) continue;
+      d.indices.insert(d.indices.end(), {i[0], mirrored ? i[2] : i[1], mirrored ? i[1] : i[2]});
+    }
+    if (d.indices.empty()) return skip(index, d.name, "no triangles");
+    out_.meshes.push_back(std::move(d));
+  }
+
+  std::string material_name(unsigned index) const {
+    const aiString name = ai_.mMaterials[index]->GetName();
+    return name.length ? name.C_Str() : "material " + std::to_string(index);
+  }
+
+  // The material's base-colour texture (glTF 2), else its diffuse one (glTF 1, OBJ, COLLADA, ...;
+  // Assimp 5.2 also lists glTF 2's base colour as diffuse): its index in the table, or kNone.
+  int texture_of(unsigned material) {
+    int& id = material_texture_[material];
+    if (id != kUnknown) return id;
+    const aiMaterial& mat = *ai_.mMaterials[material];
+    id = kNone;
+    for (aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}) {
+      aiString name;
+      if (mat.GetTextureCount(type) == 0 || mat.GetTexture(type, 0, &name) != AI_SUCCESS || name.length == 0) continue;
+      int u = aiTextureMapMode_Wrap, v = aiTextureMapMode_Wrap;  // formats without sampler modes repeat
+      mat.Get(AI_MATKEY_MAPPINGMODE_U(type, 0), u);
+      mat.Get(AI_MATKEY_MAPPINGMODE_V(type, 0), v);
+      int uv_set = 0;
+      if (mat.Get(AI_MATKEY_UVWSRC(type, 0), uv_set) == AI_SUCCESS && uv_set != 0)
+        out_.notes.push_back(path_ + ": material " + in_quotes(material_name(material)) + " names texture coordinate set " +
+                             std::to_string(uv_set) + "; set 0 is used");
+      id = texture(material, name.C_Str(), to_wrap(u), to_wrap(v));
+      break;
+    }
+    return id;
+  }
+
+  int texture(unsigned material, const std::string& name, Wrap wrap_u, Wrap wrap_v) {
+    SceneTexture t;
+    t.material = material_name(material);
+    t.wrap_u = wrap_u;
+    t.wrap_v = wrap_v;
+    const auto [embedded, embedded_index] = ai_.GetEmbeddedTextureAndIndex(name.c_str());
+    if (embedded) {
+      t.source = path_ + "#embedded:" + std::to_string(embedded_index);
+    } else if (name[0] == '*') {
+      throw Error(path_ + ": material " + in_quotes(t.material) + ": embedded texture " + name + " does not exist");
+    } else {
+      t.source = resolve_texture(dir_, name).string();
+      if (!fs::exists(t.source))
+        throw Error(path_ + ": material " + in_quotes(t.material) + ": texture file not found: " + t.source);
+    }
+    if (const int id = textures_.find(t.source, wrap_u, wrap_v); id >= 0) return id;
+
+    if (const SceneTexture* same = textures_.any(t.source)) {  // decoded already, other wrap modes
+      t.image = same->image;
+      t.file_width = same->file_width;
+      t.file_height = same->file_height;
+      t.resized = same->resized;
+      return textures_.add(std::move(t));
+    }
+    ModelTexture loaded;
+    try {
+      if (!embedded) {
+        check_regular_file(t.source, "texture");
+        loaded = load_texture_pow2(t.source);
+      } else if (embedded->mHeight == 0) {  // compressed: mWidth bytes of a PNG, JPEG, ...
+        loaded = decode_texture_pow2(t.source, embedded->pcData, embedded->mWidth, embedded->achFormatHint);
+      } else {  // mWidth x mHeight texels, ARGB8888
+        Image img(int(embedded->mWidth), int(embedded->mHeight));
+        for (size_t i = 0; i < img.texels.size(); ++i) {
+          const aiTexel& p = embedded->pcData[i];
+          img.texels[i] = {p.r, p.g, p.b, p.a};
+        }
+        loaded = texture_pow2(t.source, std::move(img));
+      }
+    } catch (const Error& e) {
+      throw Error(path_ + ": material " + in_quotes(t.material) + ": " + e.what());
+    }
+    t.image = std::move(loaded.image);
+    t.file_width = loaded.file_width;
+    t.file_height = loaded.file_height;
+    t.resized = loaded.resized;
+    if (t.resized)
+      out_.notes.push_back("texture " + t.source + " (" + t.material + "): " + std::to_string(t.file_width) + "x" +
+                           std::to_string(t.file_height) + " resampled to " + std::to_string(t.image.width) + "x" +
+                           std::to_string(t.image.height));
+    return textures_.add(std::move(t));
+  }
+
+  const aiScene& ai_;
+  const std::string& path_;
+  fs::path dir_;
+  MeshScene& out_;
+  SceneTextureSet textures_;
+  std::vector<int> material_texture_;  // per material: texture index, kNone or kUnknown (not asked yet)
+  std::vector<bool> mesh_noted_;       // per Assimp mesh: skip note written
+  NodeTransforms fixed_transforms_;    // glTF 1.0: node matrices as the file means them
+};
+
+glm::dmat4 placement_matrix(const ModelPlacement& p) {
+  // Column vectors: the rightmost factor applies first (scale, rotation x, y, z, translation).
+  glm::dmat4 m = glm::translate(glm::dmat4(1.0), p.translation);
+  m = glm::rotate(m, glm::radians(p.rotation_deg.z), glm::dvec3(0, 0, 1));
+  m = glm::rotate(m, glm::radians(p.rotation_deg.y), glm::dvec3(0, 1, 0));
+  m = glm::rotate(m, glm::radians(p.rotation_deg.x), glm::dvec3(1, 0, 0));
+  return glm::scale(m, glm::dvec3(p.scale));
+}
+
+}  // namespace
+
+MeshScene load_model(const std::string& path) {
+  check_regular_file(path, "model");
+  // No Assimp DefaultLogger is created: Assimp stays silent, the one error line is ours.
+  Assimp::Importer importer;
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                         aiProcess_ValidateDataStructure |  // bad indices etc. fail the import, not us
+                         aiProcess_FlipUVs;  // Assimp's v = 0 is the image's bottom (GL); ours is its top
+  const aiScene* ai = nullptr;
+  try {
+    ai = importer.ReadFile(path, flags);
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot read model: " + one_line(e.what()));
+  }
+  if (!ai || !ai->mRootNode) {
+    const std::string why = one_line(importer.GetErrorString());
+    throw Error(path + ": cannot read model: " + (why.empty() ? "no scene" : why));
+  }
+  MeshScene scene;
+  ModelLoader(*ai, path, scene).walk(*ai->mRootNode, glm::dmat4(1.0));
+  if (scene.meshes.empty()) {  // say why, from the first skip note ("<path>: mesh 'x' skipped: ...")
+    std::string why = "no meshes";
+    for (const std::string& note : scene.notes)
+      if (note.rfind(path + ": mesh ", 0) == 0) {
+        why = note.substr(path.size() + 2);
+        break;
+      }
+    throw Error(path + ": nothing to draw: " + why + " (" + std::to_string(ai->mNumMeshes) + " meshes in the file)");
+  }
+  compute_bounds(scene);
+  return scene;
+}
+
+MeshScene load_models(const std::vector<ModelPlacement>& models) {
+  if (models.empty()) throw Error("no models to load");
+  MeshScene out;
+  SceneTextureSet table(out);
+  std::map<std::string, MeshScene> cache;  // a model placed twice is read once
+  for (const ModelPlacement& p : models) {
+    const glm::dvec3 tr = p.translation, rot = p.rotation_deg;
+    for (double x : {tr.x, tr.y, tr.z, rot.x, rot.y, rot.z, p.scale})
+      if (!std::isfinite(x)) throw Error(p.path + ": placement has a non-finite number");
+    if (!(p.scale > 0)) throw Error(p.path + ": placement scale must be greater than 0");
+
+    std::error_code ec;
+    const fs::path canonical = fs::weakly_canonical(p.path, ec);
+    auto [it, inserted] = cache.try_emplace(ec ? p.path : canonical.string());
+    if (inserted) {
+      it->second = load_model(p.path);
+      out.notes.insert(out.notes.end(), it->second.notes.begin(), it->second.notes.end());
+    }
+    const MeshScene& model = it->second;
+    std::vector<int> ids;  // the model's texture index -> the merged scene's
+    for (const SceneTexture& t : model.textures) {
+      const int id = table.find(t.source, t.wrap_u, t.wrap_v);
+      ids.push_back(id >= 0 ? id : table.add(t));
+    }
+    const glm::dmat4 m = placement_matrix(p);
+    for (DrawMesh d : model.meshes) {
+      for (glm::dvec3& v : d.positions) v = glm::dvec3(m * glm::dvec4(v, 1.0));
+      d.texture = ids[size_t(d.texture)];
+      out.meshes.push_back(std::move(d));
+    }
+  }
+  compute_bounds(out);
+  return out;
+}
+
+std::vector<ModelPlacement> read_scene_file(const std::string& path) {
+  check_regular_file(path, "scene file");
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open scene file");
+  nlohmann::json j;
+  std::string last_key;  // where a syntax error or a number too large for a double (1e999) is
+  try {
+    j = nlohmann::json::parse(in, [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+      if (event == nlohmann::json::parse_event_t::key) last_key = parsed.get<std::string>();
+      return true;
+    });
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": not a valid JSON scene file" + (last_key.empty() ? "" : " (after key \"" + last_key + "\")") +
+                ": " + one_line(e.what()));
+  }
+  auto fail = [&](const std::string& where, const std::string& what) { throw Error(path + ": " + where + ": " + what); };
+  auto number = [&](const nlohmann::json& v, const std::string& where) {
+    if (!v.is_number()) fail(where, "must be a number, not " + one_line(v.dump()));
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(where, "must be a finite number");
+    return x;
+  };
+  auto vec3 = [&](const nlohmann::json& v, const std::string& where) {
+    if (!v.is_array() || v.size() != 3) fail(where, "must be a list of 3 numbers, not " + one_line(v.dump()));
+    return glm::dvec3(number(v[0], where + "[0]"), number(v[1], where + "[1]"), number(v[2], where + "[2]"));
+  };
+
+  if (!j.is_object()) fail("top level", "must be an object {\"models\": [...]}");
+  for (const auto& [key, value] : j.items())
+    if (key != "models") fail(in_quotes(key), "unknown key (the scene file has \"models\")");
+  if (!j.contains("models")) fail("\"models\"", "missing");
+  const nlohmann::json& list = j["models"];
+  if (!list.is_array()) fail("models", "must be a list of models");
+  if (list.empty()) fail("models", "is empty: give at least one model");
+
+  const fs::path dir = fs::path(path).parent_path();
+  std::vector<ModelPlacement> out;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string where = "models[" + std::to_string(i) + "]";
+    const nlohmann::json& m = list[i];
+    if (!m.is_object()) fail(where, "must be an object {\"file\": ...}");
+    ModelPlacement p;
+    for (const auto& [key, value] : m.items()) {
+      const std::string at = where + "." + key;
+      if (key == "file") {
+        if (!value.is_string() || value.get<std::string>().empty()) fail(at, "must be a file name");
+        const fs::path file = value.get<std::string>();
+        p.path = (file.is_relative() ? dir / file : file).string();  // relative to the scene file
+      } else if (key == "translation") {
+        p.translation = vec3(value, at);
+      } else if (key == "rotation") {
+        p.rotation_deg = vec3(value, at);
+      } else if (key == "scale") {
+        p.scale = number(value, at);
+        if (p.scale <= 0) fail(at, "must be greater than 0, not " + value.dump());
+      } else {
+        fail(at, "unknown key (a model has file, translation, rotation, scale)");
+      }
+    }
+    if (p.path.empty()) fail(where + ".file", "missing");
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+}  // namespace tex

@@ -1,0 +1,69 @@
+// Textured 3D models as the rasterizer takes them (docs/scenes.md, "Real frames"): triangles in
+// world space with texture coordinate set 0, one texture per material, loaded through Assimp
+// (geometry) and OpenImageIO (textures, from files next to the model or embedded in glTF/GLB).
+#pragma once
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <string>
+#include <vector>
+
+#include "model/formats.h"
+#include "model/image.h"
+
+namespace tex {
+
+// A texture of the scene: one descriptor-table entry of the hardware (its index is the texture id).
+struct SceneTexture {
+  std::string material;     // the material that names it (first one, for messages)
+  std::string source;       // its file path, or "<model>#embedded:N" for an image inside the model
+  Image image;              // RGBA8, sides powers of two (resampled up if the file's were not)
+  int file_width = 0, file_height = 0;  // as stored in the file
+  bool resized = false;     // file_width/height were not powers of two
+  Wrap wrap_u = Wrap::Repeat, wrap_v = Wrap::Repeat;  // glTF sampler modes; repeat where the format has none
+};
+
+// One drawable mesh: triangles (three indices each) with world-space positions and texture
+// coordinates; v = 0 is the top row of the texture image (the rasterizer's and the sampler's
+// convention: docs/scenes.md says how each format's coordinates are turned into it).
+struct DrawMesh {
+  std::string name;             // mesh name in the file (or "mesh N"), for messages
+  std::vector<glm::dvec3> positions;
+  std::vector<glm::dvec2> uvs;  // one per position
+  std::vector<uint32_t> indices;
+  int texture = 0;              // index into MeshScene::textures
+  bool double_sided = false;    // material: no back-face culling
+};
+
+struct MeshScene {
+  std::vector<DrawMesh> meshes;        // in draw order (the file's order, then the scene file's)
+  std::vector<SceneTexture> textures;  // distinct textures, in first-use order
+  glm::dvec3 bounds_min{0.0}, bounds_max{0.0};  // world-space bounding box of every drawn vertex
+  std::vector<std::string> notes;      // one line each: skipped meshes, resampled textures
+};
+
+// One model placed in the world (scene files): uniform scale, then rotation (Euler angles in
+// degrees, applied about x, then y, then z), then translation.
+struct ModelPlacement {
+  std::string path;
+  glm::dvec3 translation{0.0};
+  glm::dvec3 rotation_deg{0.0};
+  double scale = 1.0;
+};
+
+// Loads one model (any format Assimp reads) with its node transforms applied. Throws tex::Error
+// with one line: a file Assimp cannot read (its message and the file name), a missing or unreadable
+// texture (material and path), NaN or infinite vertex data (mesh name), nothing textured left.
+// Meshes without texture coordinates (or whose material has no base-colour/diffuse texture) are
+// skipped with a note.
+MeshScene load_model(const std::string& path);
+
+// Several models in one world: the placements in order, their textures merged (the same file
+// used twice is one texture).
+MeshScene load_models(const std::vector<ModelPlacement>& models);
+
+// A scene file (JSON): {"models": [{"file": "a.gltf", "translation": [x, y, z],
+// "rotation": [rx, ry, rz], "scale": s}, ...]}; relative files are relative to the scene file.
+// Throws tex::Error naming the file and the bad key or value.
+std::vector<ModelPlacement> read_scene_file(const std::string& path);
+
+}  // namespace tex

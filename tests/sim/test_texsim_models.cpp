@@ -1,0 +1,181 @@
+// texsim render --model / --scene-file (real frames, docs/scenes.md) and the replay of a frame's
+// trace through texsim sample --textures.
+#include <nlohmann/json.hpp>
+
+#include "cli_fixture.h"
+
+namespace {
+
+const std::string kModels = "/usr/share/assimp/models/";
+const std::string kTruck = kModels + "glTF/CesiumMilkTruck/CesiumMilkTruck.gltf";
+const std::string kBox = kModels + "glTF2/BoxTextured-glTF/BoxTextured.gltf";
+const std::string kDuck = kModels + "Collada/duck.dae";
+const std::string kSpider = kModels + "OBJ/spider.obj";
+
+nlohmann::json read_json(const fs::path& p) { return nlohmann::json::parse(read_text(p)); }
+
+class TexsimModels : public TexsimCli {
+ protected:
+  // An OBJ quad (two triangles facing +z) with its own texture, in `name`.obj / .mtl / .png.
+  void textured_quad(const std::string& name, int texel) {
+    write_image(dir / (name + ".png"), 4, 4, 3, [&](int x, int y, int c) { return (texel * 37 + x * 11 + y * 5 + c) & 255; });
+    write_text(dir / (name + ".mtl"), "newmtl m\nmap_Kd " + name + ".png\n");
+    write_text(dir / (name + ".obj"), "mtllib " + name +
+                                          ".mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                          "usemtl m\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+  }
+};
+
+}  // namespace
+
+// Every test model renders with the golden model in cached mode, with the frame figures in the
+// summary and in --stats; the spider has more than 4 textures in one frame (the descriptor table).
+TEST_F(TexsimModels, TestModelsRenderWithTheirTextures) {
+  struct Case {
+    std::string file;
+    int min_textures;
+  } cases[] = {{kTruck, 1}, {kBox, 1}, {kDuck, 1}, {kSpider, 4}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    // Frame 5 of 8 of the orbit sees all of the spider's textures at this size.
+    const Result r = run("render --model " + c.file + " --memory cached --width 160 --height 120 --frames 8 --frame 5 "
+                         "--out f.png --stats s.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json s = read_json(dir / "s.json");
+    EXPECT_GE(s.at("textures_used").get<int>(), c.min_textures);
+    EXPECT_GT(s.at("quads").get<uint64_t>(), 100u);
+    EXPECT_EQ(s.at("samples").get<uint64_t>(), 4 * s.at("quads").get<uint64_t>());
+    EXPECT_GT(s.at("helper_samples").get<uint64_t>(), 0u);
+    EXPECT_GT(s.at("texture_bytes_touched").get<uint64_t>(), 0u);
+    EXPECT_LE(s.at("texture_bytes_touched").get<uint64_t>(), s.at("texture_bytes_resident").get<uint64_t>());
+    EXPECT_GT(s.at("hit_rate_even_levels").get<double>(), 0.5);
+    EXPECT_NE(r.out.find("texsim render: " + c.file), std::string::npos) << r.out;
+    int w = 0, h = 0;
+    EXPECT_FALSE(read_image(dir / "f.png", w, h).empty());
+    EXPECT_EQ(w, 160);
+  }
+}
+
+// The frame's trace and textures, replayed through texsim sample, give the same figures, and the
+// visible lanes' results are the rendered picture's pixels.
+TEST_F(TexsimModels, TraceQueriesReplayTheFrame) {
+  Result r = run("render --model " + kSpider + " --memory cached --width 160 --height 120 --frames 8 --frame 4 "
+                 "--out f.png --stats render.json --trace-queries trace/q.csv");
+  ASSERT_NE(r.exit_code, 0);  // the directory does not exist
+  fs::create_directories(dir / "trace");
+  r = run("render --model " + kSpider + " --memory cached --width 160 --height 120 --frames 8 --frame 4 "
+          "--out f.png --stats render.json --trace-queries trace/q.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "trace/q.textures.txt"));
+  EXPECT_TRUE(fs::exists(dir / "trace/q.tex03.png"));
+  r = run("sample --textures trace/q.textures.txt --queries trace/q.csv --memory cached --out r.csv --stats sample.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json a = read_json(dir / "render.json"), b = read_json(dir / "sample.json");
+  for (const char* key : {"samples", "quads", "helper_samples", "textures_used", "texture_bytes_resident",
+                          "texture_bytes_touched", "cache_misses", "hit_rate_even_levels", "hit_rate_odd_levels",
+                          "bytes_per_sample"})
+    EXPECT_EQ(a.at(key), b.at(key)) << key;
+
+  // Pixels: each visible lane of the trace (x, y, helper) with its result (r, g, b, a).
+  std::string qh, rh;
+  std::istringstream trace(read_text(dir / "trace/q.csv"));
+  std::string line;
+  std::getline(trace, qh);
+  EXPECT_EQ(qh, "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper");
+  const auto results = read_csv_rows(dir / "r.csv", rh);
+  int w = 0, h = 0;
+  const std::vector<uint8_t> px = read_image(dir / "f.png", w, h);
+  ASSERT_EQ(w, 160);
+  size_t i = 0, visible = 0;
+  while (std::getline(trace, line)) {
+    if (line[0] == '#') continue;
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
+    ASSERT_EQ(f.size(), 11u);
+    ASSERT_LT(i, results.size());
+    if (f[10] == "0") {
+      const int x = std::stoi(f[8]), y = std::stoi(f[9]);
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(int(px[(size_t(y) * w + x) * 4 + c]), results[i][size_t(c)]) << x << "," << y;
+      ++visible;
+    }
+    ++i;
+  }
+  EXPECT_EQ(i, results.size());
+  EXPECT_EQ(visible, a.at("samples").get<size_t>() - a.at("helper_samples").get<size_t>());
+}
+
+// Several models placed by a scene file share the descriptor table: the same file twice is one
+// texture; the frame samples each.
+TEST_F(TexsimModels, SceneFilePlacesSeveralModels) {
+  textured_quad("a", 1);
+  textured_quad("b", 2);
+  write_text(dir / "scene.json", R"({"models": [
+    {"file": "a.obj", "translation": [-1.5, 0, 0]},
+    {"file": "b.obj", "translation": [0.5, 0, 0], "rotation": [0, 0, 10], "scale": 1.2},
+    {"file": "a.obj", "translation": [-0.5, -1.5, 0]}]})");
+  const Result r = run("render --scene-file scene.json --memory cached --camera 0,0,6,0,0,0,40 --width 96 "
+                       "--height 64 --out f.png --stats s.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json s = read_json(dir / "s.json");
+  EXPECT_EQ(s.at("textures").get<int>(), 2);
+  EXPECT_EQ(s.at("textures_used").get<int>(), 2);
+  EXPECT_NE(r.out.find("3 meshes, 2 textures"), std::string::npos) << r.out;
+}
+
+// More textures than the descriptor table holds: an error with both numbers, before any work.
+TEST_F(TexsimModels, TooManyTexturesForTheTable) {
+  std::string models;
+  for (int i = 0; i < 17; ++i) {
+    textured_quad("q" + std::to_string(i), i);
+    models += std::string(i ? "," : "") + R"({"file": "q)" + std::to_string(i) + R"(.obj", "translation": [)" +
+              std::to_string(i) + ", 0, 0]}";
+  }
+  write_text(dir / "scene.json", R"({"models": [)" + models + "]}");
+  expect_clean_failure("render --scene-file scene.json --memory cached --out f.png", "f.png",
+                       {"17 textures", "descriptor table holds 16"});
+}
+
+TEST_F(TexsimModels, BadInputsFailCleanly) {
+  textured_quad("a", 1);
+  textured_quad("b", 2);
+  write_text(dir / "two.json", R"({"models": [{"file": "a.obj"}, {"file": "b.obj", "translation": [2, 0, 0]}]})");
+  // Several textures need the cached unit's descriptor table.
+  expect_clean_failure("render --scene-file two.json --out f.png", "f.png", {"2 textures", "--memory cached"});
+  expect_clean_failure("render --model missing.obj --out f.png", "f.png", {"missing.obj"});
+  write_text(dir / "garbage.obj", "this is not a model\x01\x02\n");
+  expect_clean_failure("render --model garbage.obj --out f.png", "f.png", {"garbage.obj"});
+  expect_clean_failure("render --model a.obj --texture checker --out f.png", "f.png", {"--texture"});
+  expect_clean_failure("render --model a.obj --scene plane --out f.png", "f.png", {"--scene"});
+  expect_clean_failure("render --model a.obj --camera 1,2,3 --out f.png", "f.png", {"--camera", "7 values"});
+  expect_clean_failure("render --scene plane --camera 0,0,1,0,0,0,45 --out f.png", "f.png", {"--camera", "--model"});
+  write_text(dir / "path.json", R"({"keyframes": [{"eye": [0, 0, 1], "target": [0, 0, "x"]}]})");
+  expect_clean_failure("render --model a.obj --camera-path path.json --out f.png", "f.png",
+                       {"path.json", "keyframe 0", "target"});
+  // Texture lists of sample.
+  queries("tex,u,v,lod\n1,0.5,0.5,0\n");
+  write_text(dir / "list.txt", "0 a.png\n2 b.png\n");
+  expect_clean_failure("sample --textures list.txt --queries q.csv --memory cached --out r.csv", "r.csv",
+                       {"list.txt:2", "expected 1"});
+  write_text(dir / "list.txt", "0 a.png sideways\n");
+  expect_clean_failure("sample --textures list.txt --queries q.csv --memory cached --out r.csv", "r.csv",
+                       {"list.txt:1", "sideways"});
+  write_text(dir / "list.txt", "0 a.png\n");
+  expect_clean_failure("sample --textures list.txt --queries q.csv --memory cached --out r.csv", "r.csv",
+                       {"texture 1", "holds 1"});
+  queries("tex,u,v,lod\n16,0.5,0.5,0\n");
+  expect_clean_failure("sample --textures list.txt --queries q.csv --memory cached --out r.csv", "r.csv",
+                       {"q.csv:2", "texture", "16"});
+}
+
+// The same model through the on-chip and the cached golden model: the pictures are the same
+// (only the memory differs), and the cached run adds the memory figures.
+TEST_F(TexsimModels, OnChipAndCachedGiveTheSamePicture) {
+  ASSERT_EQ(run("render --model " + kDuck + " --width 96 --height 72 --out a.png --stats a.json").exit_code, 0);
+  ASSERT_EQ(run("render --model " + kDuck + " --width 96 --height 72 --memory cached --out b.png --stats b.json").exit_code,
+            0);
+  int w, h;
+  EXPECT_EQ(read_image(dir / "a.png", w, h), read_image(dir / "b.png", w, h));
+  EXPECT_FALSE(read_json(dir / "a.json").contains("texture_bytes_touched"));
+  EXPECT_TRUE(read_json(dir / "b.json").contains("texture_bytes_touched"));
+}
