@@ -4,7 +4,7 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test model-test bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore
+.PHONY: help deps build demo test model-test bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
@@ -14,6 +14,7 @@ help:
 	@echo "make bench-ir - the RTL's instructions per clock per configuration (callgrind: independent of the machine's load)"
 	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
 	@echo "make memory-report - cached memory through the RTL: throughput, hit rate, bytes, FIFO vs latency (docs/memory.md)"
+	@echo "make scenes - real frames: the assimp test models through the cached RTL at latency 200: $(OUT)/scenes/index.html"
 	@echo "make explore - sweep cache size, block shape, latency and pixel order over plane and panel: $(OUT)/explore/index.html"
 	@echo "make rtl-soak  - RTL vs model lockstep, 20x the random samples of make test, new seeds"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
@@ -61,6 +62,11 @@ bench-ir: build
 # The cached memory hierarchy through the RTL: the tables and plot of docs/memory.md §5 (about 3 minutes).
 memory-report: build
 	/usr/bin/python3 scripts/memory_report.py --texsim $(TEXSIM) --out $(OUT)/memory
+
+# Real frames (docs/scenes.md): the assimp test models through the cached RTL, latency 200, verified
+# against the model; frames, contact sheet and table in $(OUT)/scenes/ (about a minute).
+scenes: build
+	/usr/bin/python3 scripts/scenes_report.py --texsim $(TEXSIM) --out $(OUT)/scenes
 
 # The default architecture sweep (docs/memory.md §6): plane and panel, 640x480, the 1024x1024 test
 # card, scanline and tiled order, caches 1..32 KiB, blocks 4x4 (through the RTL) and 2x2, 8x8 (model),

@@ -25,8 +25,11 @@
 // Ports (formats as tex_front's; XW, YW wrapped index bits):
 //   front_valid, front_tag          : the clock-4 register holds a request, and its tag
 //   level, f, w, log2_size, x, y    : tex_front's outputs
-//   cfg_log2_w, cfg_log2_h          : level 0's size (the level bases in memory depend on it)
-//   cfg_mem_base                    : byte address of level 0, a multiple of the line size
+//   front_tex                       : the sample's texture descriptor-table entry (clock 4)
+//   desc_we, desc_index, desc_base, desc_log2_w, desc_log2_h : a descriptor write: entry
+//                                     desc_index's level 0 is at byte address desc_base (a
+//                                     multiple of the line size) and has 2^desc_log2_w x
+//                                     2^desc_log2_h texels; its level bases are computed here
 //   cfg_block_morton                : 0 row-major, 1 Morton order of the blocks of a level
 //   cfg_log2_sets, cfg_log2_ways    : cache geometry (both caches), see tex_cache_tags
 //   cfg_fifo_limit                  : samples the FIFO holds at most (0 or > FIFO_DEPTH: FIFO_DEPTH)
@@ -49,8 +52,10 @@ module tex_cached_fetch #(
   parameter int MISS_DEPTH = 64,   // misses not yet written into the cache (power of two, >= 8)
   parameter int FILL_DEPTH = 4,    // lines received, not yet written (power of two)
   parameter int MEM_W      = 128,  // bits of a memory response beat
+  parameter int TEXTURES   = 16,   // descriptor-table entries (power of two, 1..16)
   parameter int XW         = (MAX_LOG2_W > 0) ? MAX_LOG2_W : 1,  // derived, do not override
-  parameter int YW         = (MAX_LOG2_H > 0) ? MAX_LOG2_H : 1
+  parameter int YW         = (MAX_LOG2_H > 0) ? MAX_LOG2_H : 1,
+  parameter int TXW        = (TEXTURES > 1) ? $clog2(TEXTURES) : 1
 ) (
   input  logic                              clk,
   input  logic                              rst,
@@ -59,6 +64,7 @@ module tex_cached_fetch #(
 
   input  logic                              front_valid,
   input  logic [TAG_W-1:0]                  front_tag,
+  input  logic [TXW-1:0]                    front_tex,
   input  logic [2*tex_pkg::LEVEL_W-1:0]     level,
   input  logic [tex_pkg::WEIGHT_BITS-1:0]   f,
   input  logic [4*tex_pkg::WEIGHT_BITS-1:0] w,
@@ -66,9 +72,11 @@ module tex_cached_fetch #(
   input  logic [4*XW-1:0]                   x,
   input  logic [4*YW-1:0]                   y,
 
-  input  logic [tex_pkg::LEVEL_W-1:0]       cfg_log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]       cfg_log2_h,
-  input  logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_mem_base,
+  input  logic                              desc_we,
+  input  logic [TXW-1:0]                    desc_index,
+  input  logic [tex_pkg::MEM_ADDR_W-1:0]    desc_base,
+  input  logic [tex_pkg::LEVEL_W-1:0]       desc_log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]       desc_log2_h,
   input  logic                              cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways,
@@ -108,23 +116,20 @@ module tex_cached_fetch #(
   localparam int RD   = SLW + OFW;                  // a bank read: {slot, offset}
 
   // ---------------------------------------------------------------- level bases in memory
-  // base[k] = cfg_mem_base + the lines of levels 0..k-1 (docs/memory.md §1), as line numbers.
-  // The configuration is static between resets (docs/rtl-interface.md) and reaches these inputs
-  // through the top's registers one clock after the pins, so the table is computed in the clock
-  // after rst and held. All 2^LEVEL_W entries, so that any level index is in range (those past
-  // the last level are never used).
-  logic           rst_q;
-  logic [LNW-1:0] base_line [1 << VW];
+  // base_line[t * 2^LEVEL_W + k] = texture t's level 0 + the lines of its levels 0..k-1
+  // (docs/memory.md §1), as line numbers, written for all of a texture's levels when its
+  // descriptor is written. All 2^LEVEL_W entries per texture, so that any level index is in range
+  // (those past the last level are never used).
+  logic [LNW-1:0] base_line [TEXTURES << VW];
   always_ff @(posedge clk) begin
-    rst_q <= rst;
-    if (rst_q) begin
+    if (desc_we) begin
       logic [LNW-1:0] acc;
-      acc = LNW'(cfg_mem_base >> LOG2_LB);
+      acc = LNW'(desc_base >> LOG2_LB);
       for (int k = 0; k < (1 << VW); k++) begin
         logic [VW:0] lw, lh, lbx, lby;
-        base_line[k] <= acc;
-        lw  = ({1'b0, cfg_log2_w} > (VW+1)'(k)) ? {1'b0, cfg_log2_w} - (VW+1)'(k) : '0;
-        lh  = ({1'b0, cfg_log2_h} > (VW+1)'(k)) ? {1'b0, cfg_log2_h} - (VW+1)'(k) : '0;
+        base_line[(32'(desc_index) << VW) + k] <= acc;
+        lw  = ({1'b0, desc_log2_w} > (VW+1)'(k)) ? {1'b0, desc_log2_w} - (VW+1)'(k) : '0;
+        lh  = ({1'b0, desc_log2_h} > (VW+1)'(k)) ? {1'b0, desc_log2_h} - (VW+1)'(k) : '0;
         lbx = (lw > (VW+1)'(LBW)) ? lw - (VW+1)'(LBW) : '0;
         lby = (lh > (VW+1)'(LBH)) ? lh - (VW+1)'(LBH) : '0;
         acc = acc + (LNW'(1) << (lbx + lby));
@@ -227,7 +232,7 @@ module tex_cached_fetch #(
               index = LNW'(interleave(bx & XW'((1 << m) - 1), by & YW'((1 << m) - 1)))
                     | (((LNW'(bx) >> m) | (LNW'(by) >> m)) << (2 * m));
             end
-            look_line[s][q*LNW +: LNW]   = base_line[lev] + index;
+            look_line[s][q*LNW +: LNW]   = base_line[(32'(front_tex) << VW) + 32'(lev)] + index;
             look_set_hi[s][q*SHW +: SHW] = set_high(bx, by, set_k);
           end
           for (int k = 0; k < 4; k++) begin

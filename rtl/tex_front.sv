@@ -4,14 +4,16 @@
 //   clock 1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_scale  3 tex_lod level select
 //   4 tex_address per slot and axis; then tex_wrap, combinational on the clock-4 registers
 // Handshake: stall-enable; every register loads when en is high (the valid bits and tags are
-//   the top's). The cfg_* pins are registered here every clock, without enable (cfg_*_q); the
-//   datapath reads only those copies, so no logic depends combinationally on a pin.
+//   the top's). The texture's size and wrap modes (req_log2_*, req_wrap_*) are the request's,
+//   taken with it at clock 1 and carried along; the cfg_* pins are registered here every clock,
+//   without enable (cfg_*_q). The datapath reads only registers: no logic depends
+//   combinationally on a pin.
 // Latency: 4 clocks from the request pins to the clock-4 registers; x, y are combinational on
 //   them. Throughput: 1 per clock.
 // Ports:
 //   req_u, req_v          : signed Q8.24; req_lod: signed Q8.8 (before bias and clamp)
-//   cfg_log2_w, cfg_log2_h: integers, level 0's size; cfg_* else as tex_unit's pins
-//   log2_w0, log2_h0      : the registered cfg_log2_w, cfg_log2_h (for the cached fetch)
+//   req_log2_w, req_log2_h: integers, level 0's size of the request's texture
+//   req_wrap_u, req_wrap_v: its wrap modes (tex_pkg::WRAP_*); cfg_* as tex_unit's pins
 //   level                 : slot s at [s*LEVEL_W +: LEVEL_W], integer level (clock 4)
 //   f                     : unsigned WEIGHT_BITS, weight of slot 1 in 1/256 (clock 4)
 //   w                     : slot s axis a (0 x, 1 y) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS],
@@ -29,17 +31,15 @@ module tex_front #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_h,
-  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u,
-  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_v,
+  input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_h,
+  input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_u,
+  input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_v,
   input  logic                                   cfg_texel_linear,
   input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
-  output logic [tex_pkg::LEVEL_W-1:0]            log2_w0,
-  output logic [tex_pkg::LEVEL_W-1:0]            log2_h0,
   output logic [2*tex_pkg::LEVEL_W-1:0]          level,
   output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
@@ -55,39 +55,45 @@ module tex_front #(
   localparam int IW = 10 + ML;               // tex_address's unwrapped index
 
   // ---------------------------------------------------------------- cfg registers
-  logic [VW-1:0]                    cfg_log2_w_q, cfg_log2_h_q;
-  logic [tex_pkg::WRAP_W-1:0]       cfg_wrap_u_q, cfg_wrap_v_q;
   logic [tex_pkg::MIP_W-1:0]        cfg_mip_mode_q;
   logic                             cfg_texel_linear_q;
   logic signed [tex_pkg::LOD_W-1:0] cfg_lod_bias_q, cfg_min_lod_q, cfg_max_lod_q;
   always_ff @(posedge clk) begin
-    cfg_log2_w_q       <= cfg_log2_w;
-    cfg_log2_h_q       <= cfg_log2_h;
-    cfg_wrap_u_q       <= cfg_wrap_u;
-    cfg_wrap_v_q       <= cfg_wrap_v;
     cfg_texel_linear_q <= cfg_texel_linear;
     cfg_mip_mode_q     <= cfg_mip_mode;
     cfg_lod_bias_q     <= cfg_lod_bias;
     cfg_min_lod_q      <= cfg_min_lod;
     cfg_max_lod_q      <= cfg_max_lod;
   end
-  assign log2_w0 = cfg_log2_w_q;
-  assign log2_h0 = cfg_log2_h_q;
 
   // ---------------------------------------------------------------- clock 1: capture
+  // The texture's {log2 h, log2 w} and {wrap v, wrap u} ride along, clock k's at
+  // [(k-1)*width +: width]: tex_scale reads clock 1's size, tex_lod's level select clock 2's,
+  // the level sizes clock 3's; tex_wrap clock 4's wrap modes.
+  localparam int ZW = 2 * VW, MW = 2 * tex_pkg::WRAP_W;
   logic signed [tex_pkg::REQ_COORD_W-1:0] u_s1, v_s1;
   logic signed [tex_pkg::LOD_W-1:0]       lod_s1;
+  logic [3*ZW-1:0]                        size_q;
+  logic [4*MW-1:0]                        wrap_q;
   always_ff @(posedge clk) begin
     if (en) begin
       u_s1   <= req_u;
       v_s1   <= req_v;
       lod_s1 <= req_lod;
+      size_q <= {size_q[0 +: 2*ZW], req_log2_h, req_log2_w};
+      wrap_q <= {wrap_q[0 +: 3*MW], req_wrap_v, req_wrap_u};
     end
   end
+  logic [ZW-1:0]              size_s1, size_s2, size_s3;  // {log2 h0, log2 w0} at clock k
+  logic [tex_pkg::WRAP_W-1:0] wrap_u_s4, wrap_v_s4;
+  assign size_s1 = size_q[0*ZW +: ZW];
+  assign size_s2 = size_q[1*ZW +: ZW];
+  assign size_s3 = size_q[2*ZW +: ZW];
+  assign {wrap_v_s4, wrap_u_s4} = wrap_q[3*MW +: MW];
 
   // ---------------------------------------------------------------- clocks 2-3: lod, scale
-  logic [VW-1:0] last_level;
-  assign last_level = (cfg_log2_w_q > cfg_log2_h_q) ? cfg_log2_w_q : cfg_log2_h_q;
+  logic [VW-1:0] last_level;  // clock 2's texture: tex_lod selects the levels in clock 3
+  assign last_level = (size_s2[0 +: VW] > size_s2[VW +: VW]) ? size_s2[0 +: VW] : size_s2[VW +: VW];
 
   logic [2*VW-1:0] level_s3;       // slot s at [s*VW +: VW]: slot 0 = d, slot 1 = d1
   logic [WB-1:0]   f_s3;
@@ -100,13 +106,11 @@ module tex_front #(
   // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the scaled
   // coordinate, held one clock while tex_lod selects the levels.
   logic [2*SW-1:0] scaled_s2, scaled_s3;
-  logic [2*VW-1:0] log2_size0;     // {cfg_log2_h_q, cfg_log2_w_q}
-  assign log2_size0 = {cfg_log2_h_q, cfg_log2_w_q};
   genvar a, s;
   generate
     for (a = 0; a < 2; a = a + 1) begin : g_axis
       tex_scale #(.MAX_LOG2(ML)) u_scale (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
-                         .log2_size0(log2_size0[a*VW +: VW]), .scaled(scaled_s2[a*SW +: SW]));
+                         .log2_size0(size_s1[a*VW +: VW]), .scaled(scaled_s2[a*SW +: SW]));
     end
   endgenerate
   always_ff @(posedge clk) if (en) scaled_s3 <= scaled_s2;
@@ -134,13 +138,13 @@ module tex_front #(
         // max(log2_size0 - level, 0): a side that reaches 1 texel stays 1. (The borrow masks the
         // difference: no data-dependent branch in Verilator's C++.)
         logic [VW:0] size_diff;
-        assign size_diff = {1'b0, log2_size0[a*VW +: VW]} - {1'b0, level_s3[s*VW +: VW]};
+        assign size_diff = {1'b0, size_s3[a*VW +: VW]} - {1'b0, level_s3[s*VW +: VW]};
         always_ff @(posedge clk) if (en) log2_size_s4 <= size_diff[VW-1:0] & ~{VW{size_diff[VW]}};
         assign log2_size[(s*2 + a)*VW +: VW] = log2_size_s4;
         tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap0 (.i(i0_s4), .log2_n(log2_size_s4),
-                                        .mode((a == 0) ? cfg_wrap_u_q : cfg_wrap_v_q), .o(t0));
+                                        .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t0));
         tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap1 (.i(i0_s4 + IW'(1)), .log2_n(log2_size_s4),
-                                        .mode((a == 0) ? cfg_wrap_u_q : cfg_wrap_v_q), .o(t1));
+                                        .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t1));
         if (a == 0) begin : g_x
           assign x[(s*2 + 0)*XW +: XW] = t0;
           assign x[(s*2 + 1)*XW +: XW] = t1;

@@ -25,6 +25,7 @@ package tex_pkg;
   localparam int MEM_ADDR_W    = 32;  // byte address of a line in external memory
   localparam int LOG2_SETS_W   = 5;   // cfg_log2_sets: sets per cache, 4 .. 2^(2^5 - 1)
   localparam int LOG2_WAYS_W   = 2;   // cfg_log2_ways: 0, 1, 2 = 1, 2, 4 ways
+  localparam int TEX_ID_W      = 4;   // req_tex: a texture descriptor-table entry, 0..15
 
   // ---- cfg_wrap_u / cfg_wrap_v
   localparam int WRAP_W = 2;

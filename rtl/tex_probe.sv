@@ -13,8 +13,9 @@
 // Ports:
 //   req_u, req_v     : signed Q8.24; req_lod: signed Q8.8 (req_deriv = 0)
 //   req_dudx .. dvdy : signed Q8.24 texture widths (heights) per pixel (req_deriv = 1)
-//   cfg_log2_w/h     : level 0's size; cfg_max_aniso_m1: probes at most less one (0..15);
-//   cfg_aniso_pow2   : probe counts rounded up to powers of two. Registered every clock.
+//   req_log2_w/h     : the request's texture's level-0 size (integers), taken with the request
+//   cfg_max_aniso_m1 : probes at most less one (0..15); cfg_aniso_pow2: probe counts rounded up
+//                      to powers of two. Registered every clock.
 //   probe_u, probe_v : signed Q8.24; probe_lod: signed Q8.8 (lambda', before bias and clamp)
 //   probe_first, probe_last : the request's first / last probe; probe_n: its probes, 1..16
 module tex_probe #(
@@ -23,8 +24,6 @@ module tex_probe #(
   input  logic                                   clk,
   input  logic                                   rst,
   input  logic                                   en,
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_h,
   input  logic [3:0]                             cfg_max_aniso_m1,
   input  logic                                   cfg_aniso_pow2,
   input  logic                                   req_valid,
@@ -37,6 +36,8 @@ module tex_probe #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
+  input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_h,
   input  logic [TAG_W-1:0]                       req_tag,
   output logic                                   probe_valid,
   output logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u,
@@ -60,12 +61,9 @@ module tex_probe #(
   assign req_ready = en_up;
 
   // ---------------------------------------------------------------- cfg registers
-  logic [tex_pkg::LEVEL_W-1:0] log2_w_q, log2_h_q;
   logic [3:0]                  max_aniso_m1_q;
   logic                        pow2_q;
   always_ff @(posedge clk) begin
-    log2_w_q       <= cfg_log2_w;
-    log2_h_q       <= cfg_log2_h;
     max_aniso_m1_q <= cfg_max_aniso_m1;
     pow2_q         <= cfg_aniso_pow2;
   end
@@ -81,6 +79,7 @@ module tex_probe #(
   logic [4:1]                       deriv_q;
   logic [4*TAG_W-1:0]               tag_q;
   logic signed [DW-1:0]             dudx_s1, dvdx_s1, dudy_s1, dvdy_s1;
+  logic [tex_pkg::LEVEL_W-1:0]      log2_w_s1, log2_h_s1;  // the texture's size, for tex_aniso's clock 1
   always_ff @(posedge clk) begin
     if (rst) valid <= '0;
     else if (en_up) valid <= {valid[3:1], req_valid};
@@ -94,6 +93,8 @@ module tex_probe #(
       dvdx_s1    <= req_dvdx;
       dudy_s1    <= req_dudy;
       dvdy_s1    <= req_dvdy;
+      log2_w_s1  <= req_log2_w;
+      log2_h_s1  <= req_log2_h;
     end
   end
 
@@ -107,7 +108,7 @@ module tex_probe #(
   logic signed [DW-1:0] step_u, step_v;
   tex_aniso u_aniso (
     .clk(clk), .en(aniso_en), .dudx(dudx_s1), .dvdx(dvdx_s1), .dudy(dudy_s1), .dvdy(dvdy_s1),
-    .log2_w(log2_w_q), .log2_h(log2_h_q), .max_aniso_m1(max_aniso_m1_q), .pow2(pow2_q),
+    .log2_w(log2_w_s1), .log2_h(log2_h_s1), .max_aniso_m1(max_aniso_m1_q), .pow2(pow2_q),
     .n(aniso_n), .lambda(aniso_lambda), .step_u(step_u), .step_v(step_v)
 `ifdef FORMAL
     , .f_n_s2(f_aniso_n_s2)

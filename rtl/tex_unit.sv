@@ -135,11 +135,11 @@ module tex_unit #(
   logic [4*TGW-1:0]                       f_probe_tags;
 `endif
   tex_probe #(.TAG_W(TGW)) u_probe (
-    .clk(clk), .rst(rst), .en(en), .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h),
+    .clk(clk), .rst(rst), .en(en),
     .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
-    .req_dvdy(req_dvdy), .req_tag(req_tag),
+    .req_dvdy(req_dvdy), .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h), .req_tag(req_tag),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag(probe_tag),
     .held(probe_held)
@@ -193,15 +193,14 @@ module tex_unit #(
   logic [WB-1:0]   f_s4, f_s5, f_s6;
   logic [4*WB-1:0] w_s4, w_s5, w_s6;   // slot s axis a weight at [(s*2 + a)*WB +: WB]
   logic [4*VW-1:0] log2_size_s4;       // (the level memories have fixed sizes: unused)
-  logic [VW-1:0]   log2_w0_unused, log2_h0_unused;
   logic [4*XW-1:0] x;                  // wrapped x taps: slot s tap j at [(s*2 + j)*XW +: XW]
   logic [4*YW-1:0] y;
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
-    .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h), .cfg_wrap_u(cfg_wrap_u),
-    .cfg_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
+    .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h), .req_wrap_u(cfg_wrap_u),
+    .req_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
-    .log2_w0(log2_w0_unused), .log2_h0(log2_h0_unused), .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
+    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
   );
   logic [4*VW-1:0] log2_size_unused;
   assign log2_size_unused = log2_size_s4;  // (log2_*_unused: likewise)

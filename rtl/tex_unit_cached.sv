@@ -16,16 +16,23 @@
 //   cache configuration alone (docs/memory.md §2).
 // Ports: as tex_unit (req_u, req_v signed Q8.24; req_lod, cfg_lod_bias, cfg_min_lod,
 //   cfg_max_lod signed Q8.8; req_deriv, req_dudx .. req_dvdy, cfg_max_aniso_m1, cfg_aniso_pow2;
-//   rsp_rgba {A, B, G, R} CW-bit unsigned), plus
-//   cfg_mem_base     : byte address of level 0 in memory (MEM_ADDR_W bits, line aligned)
+//   rsp_rgba {A, B, G, R} CW-bit unsigned) but for the texture, which a request names, plus
+//   req_tex          : the request's texture descriptor-table entry, 0..TEXTURES-1
+//   cfg_desc_*       : a descriptor write (cfg_desc_we high for one clock): entry cfg_desc_index
+//                      is the pyramid at byte address cfg_desc_base (MEM_ADDR_W bits, line
+//                      aligned) of 2^cfg_desc_log2_w x 2^cfg_desc_log2_h texels (a full chain of
+//                      levels, docs/memory.md §1) with wrap modes cfg_desc_wrap_u, cfg_desc_wrap_v.
+//                      Written before the requests that name the entry (and rewritten between
+//                      frames, with no request of that entry in flight); the caches need no flush
+//                      (they are tagged by address).
 //   cfg_block_morton : 0 row-major, 1 Morton order of a level's blocks
 //   cfg_log2_sets, cfg_log2_ways : geometry of each cache (sets >= 4, sets * ways <= LINES)
 //   cfg_fifo_limit   : samples the FIFO holds at most, 1..FIFO_DEPTH (0 or more: FIFO_DEPTH), to
 //                      measure a shallower FIFO without rebuilding; unsigned $clog2(FIFO_DEPTH+1) bits
 //   mem_req_addr     : byte address of a line; mem_rsp_data: one MEM_W-bit beat of it
 // cfg_* are registered every clock and must be static while requests are in flight;
-//   cfg_log2_sets, cfg_log2_ways, cfg_mem_base, cfg_block_morton and the texture in memory
-//   change only under reset (the caches are emptied by rst).
+//   cfg_log2_sets, cfg_log2_ways, cfg_block_morton change only under reset (the caches are
+//   emptied by rst), a texture in memory only with its descriptor (and no request of it in flight).
 module tex_unit_cached #(
   parameter int MAX_LOG2_W = 10,   // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H, each 0..13
   parameter int MAX_LOG2_H = 10,
@@ -38,15 +45,19 @@ module tex_unit_cached #(
   parameter int FIFO_DEPTH = 256,  // samples waiting for memory (power of two, >= 2)
   parameter int MISS_DEPTH = 64,   // misses in flight (power of two, >= 16)
   parameter int FILL_DEPTH = 4,    // received lines not yet written (power of two)
-  parameter int MEM_W      = 128   // bits of a memory beat (power of two, divides the line)
+  parameter int MEM_W      = 128,  // bits of a memory beat (power of two, divides the line)
+  parameter int TEXTURES   = 16    // texture descriptor-table entries (power of two, 1..16)
 ) (
   input  logic                                   clk,
   input  logic                                   rst,
 
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_h,
-  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u,
-  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_v,
+  input  logic                                   cfg_desc_we,
+  input  logic [tex_pkg::TEX_ID_W-1:0]           cfg_desc_index,
+  input  logic [tex_pkg::MEM_ADDR_W-1:0]         cfg_desc_base,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_desc_log2_w,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_desc_log2_h,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_desc_wrap_u,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_desc_wrap_v,
   input  logic                                   cfg_texel_linear,
   input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
@@ -54,7 +65,6 @@ module tex_unit_cached #(
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
   input  logic [3:0]                             cfg_max_aniso_m1,
   input  logic                                   cfg_aniso_pow2,
-  input  logic [tex_pkg::MEM_ADDR_W-1:0]         cfg_mem_base,
   input  logic                                   cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]        cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]        cfg_log2_ways,
@@ -70,6 +80,7 @@ module tex_unit_cached #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
+  input  logic [tex_pkg::TEX_ID_W-1:0]           req_tex,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -139,23 +150,51 @@ module tex_unit_cached #(
     if (MEM_W < 8 || (MEM_W & (MEM_W - 1)) != 0 || MEM_W > LINE_BITS) begin : g_bad_mem_w
       `TEX_PARAM_ERROR("tex_unit_cached: parameter MEM_W must be a power of two from 8 to the line's bits")
     end
+    if (TEXTURES < 1 || TEXTURES > (1 << tex_pkg::TEX_ID_W) || (TEXTURES & (TEXTURES - 1)) != 0) begin : g_bad_textures
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter TEXTURES must be a power of two from 1 to 16 (tex_pkg::TEX_ID_W)")
+    end
   endgenerate
 `undef TEX_PARAM_ERROR
 
   // ---------------------------------------------------------------- input registers
-  // (the sampling cfg_* pins are registered in tex_front; these four here)
-  logic [tex_pkg::MEM_ADDR_W-1:0]     cfg_mem_base_q;
+  // (the sampling cfg_* pins are registered in tex_front; these here)
   logic                               cfg_block_morton_q;
   logic [tex_pkg::LOG2_SETS_W-1:0]    cfg_log2_sets_q;
   logic [tex_pkg::LOG2_WAYS_W-1:0]    cfg_log2_ways_q;
   logic [$clog2(FIFO_DEPTH+1)-1:0]    cfg_fifo_limit_q;
   always_ff @(posedge clk) begin
     cfg_fifo_limit_q   <= cfg_fifo_limit;
-    cfg_mem_base_q     <= cfg_mem_base;
     cfg_block_morton_q <= cfg_block_morton;
     cfg_log2_sets_q    <= cfg_log2_sets;
     cfg_log2_ways_q    <= cfg_log2_ways;
   end
+
+  // ---------------------------------------------------------------- texture descriptors
+  // A descriptor write is registered, then written: the size and wrap modes here (read by the
+  // request port and by the front), the level bases in tex_cached_fetch.
+  localparam int TXW = (TEXTURES > 1) ? $clog2(TEXTURES) : 1;
+  localparam int ZW = 2*VW, MW = 2*tex_pkg::WRAP_W;
+  logic                           desc_we_q;
+  logic [TXW-1:0]                 desc_index_q;
+  logic [tex_pkg::MEM_ADDR_W-1:0] desc_base_q;
+  logic [ZW-1:0]                  desc_size_q;             // {log2 h, log2 w}
+  logic [MW-1:0]                  desc_wrap_q;             // {wrap v, wrap u}
+  logic [ZW-1:0]                  desc_size [TEXTURES];
+  logic [MW-1:0]                  desc_wrap [TEXTURES];
+  always_ff @(posedge clk) begin
+    desc_we_q    <= !rst && cfg_desc_we;
+    desc_index_q <= TXW'(cfg_desc_index);
+    desc_base_q  <= cfg_desc_base;
+    desc_size_q  <= {cfg_desc_log2_h, cfg_desc_log2_w};
+    desc_wrap_q  <= {cfg_desc_wrap_v, cfg_desc_wrap_u};
+    if (desc_we_q) begin
+      desc_size[desc_index_q] <= desc_size_q;
+      desc_wrap[desc_index_q] <= desc_wrap_q;
+    end
+  end
+  // The request's entry: its texture's size for tex_probe's LOD unit (taken with the request).
+  logic [ZW-1:0] req_size;
+  assign req_size = desc_size[TXW'(req_tex)];
 
   // ---------------------------------------------------------------- requests 1-4: tex_probe
   logic en_front, en_back;
@@ -164,17 +203,25 @@ module tex_unit_cached #(
   logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u, probe_v;
   logic signed [tex_pkg::LOD_W-1:0]       probe_lod;
   logic [TGW-1:0]                         probe_tag;
+  logic [TXW-1:0]                         probe_tex;   // the probe's texture (with the tag)
   logic [2:0]                             probe_held;  // requests in tex_probe
-  tex_probe #(.TAG_W(TGW)) u_probe (
-    .clk(clk), .rst(rst), .en(en_front), .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h),
+  tex_probe #(.TAG_W(TXW + TGW)) u_probe (
+    .clk(clk), .rst(rst), .en(en_front),
     .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
-    .req_dvdy(req_dvdy), .req_tag(req_tag),
+    .req_dvdy(req_dvdy), .req_log2_w(req_size[0 +: VW]), .req_log2_h(req_size[VW +: VW]),
+    .req_tag({TXW'(req_tex), req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod),
-    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag(probe_tag),
+    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n),
+    .probe_tag({probe_tex, probe_tag}),
     .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
   );
+  // The probe's entry: its texture's size and wrap modes for the front (taken at its clock 1).
+  logic [ZW-1:0] probe_size;
+  logic [MW-1:0] probe_wrap;
+  assign probe_size = desc_size[probe_tex];
+  assign probe_wrap = desc_wrap[probe_tex];
 
   // ---------------------------------------------------------------- front: probe clocks 1-4
   // A probe's tag carries its place in the sample, {n, last, first, tag}, through the FIFO.
@@ -183,6 +230,7 @@ module tex_unit_cached #(
   // delayed-write shadow copy in every clock in Verilator, a narrow register does not.
   logic [4:1] valid_f;             // the front's clock-n register holds a probe
   logic [SW-1:0] tag_f1, tag_f2, tag_f3, tag_f4;  // clock n's probe
+  logic [4*TXW-1:0] tex_f;         // clock n's texture at [(n-1)*TXW +: TXW] (for the level bases)
   always_ff @(posedge clk) begin
     if (rst) valid_f <= '0;
     else if (en_front) valid_f <= {valid_f[3:1], probe_valid};
@@ -191,6 +239,7 @@ module tex_unit_cached #(
       tag_f2 <= tag_f1;
       tag_f3 <= tag_f2;
       tag_f4 <= tag_f3;
+      tex_f  <= {tex_f[0 +: 3*TXW], probe_tex};
     end
   end
 
@@ -200,14 +249,13 @@ module tex_unit_cached #(
   logic [4*VW-1:0] log2_size_s4;
   logic [4*XW-1:0] x;
   logic [4*YW-1:0] y;
-  logic [VW-1:0]   cfg_log2_w_q, cfg_log2_h_q;
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
-    .cfg_log2_w(cfg_log2_w), .cfg_log2_h(cfg_log2_h), .cfg_wrap_u(cfg_wrap_u),
-    .cfg_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
+    .req_log2_w(probe_size[0 +: VW]), .req_log2_h(probe_size[VW +: VW]),
+    .req_wrap_u(probe_wrap[0 +: tex_pkg::WRAP_W]), .req_wrap_v(probe_wrap[tex_pkg::WRAP_W +: tex_pkg::WRAP_W]),
+    .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
-    .log2_w0(cfg_log2_w_q), .log2_h0(cfg_log2_h_q), .level(level_s4), .f(f_s4), .w(w_s4),
-    .log2_size(log2_size_s4), .x(x), .y(y)
+    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
   );
 
   // ---------------------------------------------------------------- cached fetch: clocks 5-8
@@ -219,12 +267,13 @@ module tex_unit_cached #(
   tex_cached_fetch #(
     .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .CW(CWD), .TAG_W(SW), .BW(BLOCK_W), .BH(BLOCK_H),
     .LINES(LINES), .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH),
-    .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W)
+    .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES)
   ) u_fetch (
     .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
-    .front_valid(valid_f[4]), .front_tag(tag_f4), .level(level_s4), .f(f_s4), .w(w_s4),
-    .log2_size(log2_size_s4), .x(x), .y(y),
-    .cfg_log2_w(cfg_log2_w_q), .cfg_log2_h(cfg_log2_h_q), .cfg_mem_base(cfg_mem_base_q),
+    .front_valid(valid_f[4]), .front_tag(tag_f4), .front_tex(tex_f[3*TXW +: TXW]), .level(level_s4),
+    .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
+    .desc_we(desc_we_q), .desc_index(desc_index_q), .desc_base(desc_base_q),
+    .desc_log2_w(desc_size_q[0 +: VW]), .desc_log2_h(desc_size_q[VW +: VW]),
     .cfg_block_morton(cfg_block_morton_q), .cfg_log2_sets(cfg_log2_sets_q),
     .cfg_log2_ways(cfg_log2_ways_q), .cfg_fifo_limit(cfg_fifo_limit_q),
     .mem_req_valid(mem_req_valid), .mem_req_ready(mem_req_ready), .mem_req_addr(mem_req_addr),
@@ -286,6 +335,7 @@ module tex_unit_cached #(
   logic signed [tex_pkg::LOD_W-1:0]       req_lod_q;
   logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
+  logic [tex_pkg::TEX_ID_W-1:0]           req_tex_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
   logic [tex_pkg::MEM_ADDR_W-1:0]         mreq_addr_q;
   always_ff @(posedge clk) begin
@@ -304,6 +354,7 @@ module tex_unit_cached #(
       req_v_q   <= req_v;
       req_lod_q <= req_lod;
       req_tag_q <= req_tag;
+      req_tex_q <= req_tex;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
     end
     if (rsp_valid && !rsp_ready) begin
@@ -311,9 +362,16 @@ module tex_unit_cached #(
       rsp_rgba_q <= rsp_rgba;
     end
     if (mem_req_valid && !mem_req_ready) mreq_addr_q <= mem_req_addr;
+    if (!rst && cfg_desc_we)
+      assert (32'(cfg_desc_index) < TEXTURES)
+        else $error("tex_unit_cached: cfg_desc_index %0d is beyond the descriptor table (TEXTURES = %0d)",
+                    cfg_desc_index, TEXTURES);
+    if (!rst && req_valid)
+      assert (32'(req_tex) < TEXTURES)
+        else $error("tex_unit_cached: req_tex %0d is beyond the descriptor table (TEXTURES = %0d)", req_tex, TEXTURES);
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q
-              && req_tag == req_tag_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
+              && req_tag == req_tag_q && req_tex == req_tex_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin

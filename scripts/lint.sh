@@ -33,7 +33,7 @@ lint_cached() { verilator --lint-only -Wall rtl/tex_unit.vlt -f rtl/tex_files.f 
 cached=("-GMAX_LOG2_W=6 -GMAX_LOG2_H=3" "-GCW=16 -GMAX_LOG2_W=5 -GMAX_LOG2_H=4 -GBLOCK_W=2 -GMEM_W=64"
         "-GMAX_LOG2_W=0 -GMAX_LOG2_H=0" "-GBLOCK_W=8 -GBLOCK_H=2 -GMAX_WAYS=1 -GLINES=16 -GFILL_DEPTH=1"
         "-GMAX_LOG2_W=13 -GMAX_LOG2_H=13 -GLINES=1024 -GFIFO_DEPTH=1024 -GMEM_W=512"
-        "-GMAX_LOG2_W=13 -GMAX_LOG2_H=0 -GCW=16")
+        "-GMAX_LOG2_W=13 -GMAX_LOG2_H=0 -GCW=16 -GTEXTURES=1" "-GTEXTURES=2")
 for cfg in "${cached[@]}"; do
   if ! out=$(lint_cached $cfg) || [ -n "$out" ]; then
     echo "$out" >&2
@@ -41,7 +41,8 @@ for cfg in "${cached[@]}"; do
     exit 1
   fi
 done
-bad_cached=("MAX_LOG2_W=14" "BLOCK_W=3" "BLOCK_H=16" "MAX_WAYS=3" "LINES=24" "FIFO_DEPTH=3" "MISS_DEPTH=8" "MEM_W=1024")
+bad_cached=("MAX_LOG2_W=14" "BLOCK_W=3" "BLOCK_H=16" "MAX_WAYS=3" "LINES=24" "FIFO_DEPTH=3" "MISS_DEPTH=8" "MEM_W=1024"
+            "TEXTURES=3" "TEXTURES=32")
 for p in "${bad_cached[@]}"; do
   if out=$(lint_cached -G"$p") || ! grep -q "tex_unit_cached: parameter ${p%%=*} must" <<< "$out"; then
     echo "$out" >&2

@@ -72,7 +72,7 @@ def main():
              "the needed texels would cost read one by one (4 B each) / the bytes read as lines.", "", header]
 
     for order in ["scanline", "tiled"]:
-        extra = ["--order", order] if order == "tiled" else []
+        extra = ["--order", order]
         onchip = texsim(SCENE + extra + ["-e", "rtl"], exe, a.out)
         texel_bytes = 4 * texsim(SCENE + extra, exe, a.out)["texel_reads"] / onchip["samples"]
         for kib in [8, 16, 32]:

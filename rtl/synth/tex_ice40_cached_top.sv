@@ -27,6 +27,9 @@
 `ifndef TEX_SYN_MEM_W
 `define TEX_SYN_MEM_W 32
 `endif
+`ifndef TEX_SYN_TEXTURES
+`define TEX_SYN_TEXTURES 16
+`endif
 module tex_ice40_cached_top #(
   parameter int MAX_LOG2_W = `TEX_SYN_LOG2,
   parameter int MAX_LOG2_H = `TEX_SYN_LOG2,
@@ -35,7 +38,8 @@ module tex_ice40_cached_top #(
   parameter int LINES      = `TEX_SYN_LINES,
   parameter int FIFO_DEPTH = `TEX_SYN_FIFO,
   parameter int MISS_DEPTH = `TEX_SYN_MISS,
-  parameter int MEM_W      = `TEX_SYN_MEM_W
+  parameter int MEM_W      = `TEX_SYN_MEM_W,
+  parameter int TEXTURES   = `TEX_SYN_TEXTURES
 ) (
   input  logic clk,
   input  logic rst,
@@ -53,8 +57,11 @@ module tex_ice40_cached_top #(
   localparam int SW = tex_pkg::LOG2_SETS_W;
   localparam int YW = tex_pkg::LOG2_WAYS_W;
   localparam int FW = $clog2(FIFO_DEPTH + 1);
+  localparam int XW = tex_pkg::TEX_ID_W;
   // Field offsets in the input shift register, in port order.
-  localparam int O_LOG2_W  = 0;
+  localparam int O_DWE     = 0;
+  localparam int O_DINDEX  = O_DWE + 1;
+  localparam int O_LOG2_W  = O_DINDEX + XW;
   localparam int O_LOG2_H  = O_LOG2_W + VW;
   localparam int O_WRAP_U  = O_LOG2_H + VW;
   localparam int O_WRAP_V  = O_WRAP_U + WW;
@@ -65,7 +72,8 @@ module tex_ice40_cached_top #(
   localparam int O_MAX_LOD = O_MIN_LOD + LW;
   localparam int O_BASE    = O_MAX_LOD + LW;
   localparam int O_MORTON  = O_BASE + AW;
-  localparam int O_SETS    = O_MORTON + 1;
+  localparam int O_TEX     = O_MORTON + 1;
+  localparam int O_SETS    = O_TEX + XW;
   localparam int O_WAYS    = O_SETS + SW;
   localparam int O_FIFO    = O_WAYS + YW;
   localparam int O_VALID   = O_FIFO + FW;
@@ -88,15 +96,17 @@ module tex_ice40_cached_top #(
   logic [AW-1:0]    mem_req_addr;
   tex_unit_cached #(
     .MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W), .LINES(LINES),
-    .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH), .MEM_W(MEM_W)
+    .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES)
   ) u_unit (
     .clk(clk), .rst(rst),
-    .cfg_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_log2_h(in_bits[O_LOG2_H +: VW]),
-    .cfg_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_wrap_v(in_bits[O_WRAP_V +: WW]),
+    .cfg_desc_we(in_bits[O_DWE]), .cfg_desc_index(in_bits[O_DINDEX +: XW]),
+    .cfg_desc_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_desc_log2_h(in_bits[O_LOG2_H +: VW]),
+    .cfg_desc_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_desc_wrap_v(in_bits[O_WRAP_V +: WW]),
+    .cfg_desc_base(in_bits[O_BASE +: AW]), .req_tex(in_bits[O_TEX +: XW]),
     .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mip_mode(in_bits[O_MIP +: MW]),
     .cfg_lod_bias(in_bits[O_BIAS +: LW]), .cfg_min_lod(in_bits[O_MIN_LOD +: LW]),
     .cfg_max_lod(in_bits[O_MAX_LOD +: LW]),
-    .cfg_mem_base(in_bits[O_BASE +: AW]), .cfg_block_morton(in_bits[O_MORTON]),
+    .cfg_block_morton(in_bits[O_MORTON]),
     .cfg_log2_sets(in_bits[O_SETS +: SW]), .cfg_log2_ways(in_bits[O_WAYS +: YW]),
     .cfg_fifo_limit(in_bits[O_FIFO +: FW]),
     .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),

@@ -1,6 +1,8 @@
 // The shared parameter list: rtl/tex_pkg.sv must agree with model/formats.h (and stages.h).
 #include <gtest/gtest.h>
 
+#include <bit>
+
 #include <algorithm>
 #include <cctype>
 #include <fstream>
@@ -90,6 +92,7 @@ TEST(Params, RtlPackageAgreesWithModel) {
       {"MIP_NEAREST", int(MipMode::Nearest)},
       {"MIP_LINEAR", int(MipMode::Linear)},
       {"MAX_CW", kMaxChannelBits},
+      {"TEX_ID_W", std::bit_width(unsigned(kMaxTextures - 1))},
       // u >> (15 - log2 w): the smallest shift (2, at 8192 texels) leaves 32 - 2 bits.
       {"SCALED_W", 32 - (15 - kMaxLog2Size)},
   };

@@ -85,24 +85,38 @@ struct CaseResult {
   std::string failure;
 };
 
-CaseResult run_case(rtl::Driver& unit, const Pyramid& pyr, const SamplerConfig& cfg, const LayoutParams& layout,
+// One case over a descriptor table (requests name its textures): every response against the
+// model's sampler of that texture, every line read against the model's caches.
+CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerConfig& cfg, const LayoutParams& layout,
                     const CacheParams& cache, const rtl::MemoryTiming& timing, const std::vector<Request>& requests,
                     const rtl::Timing& stim, uint64_t seed, CacheCoverage* coverage,
-                    const CacheParams* model_cache = nullptr, int poke_texel = -1, uint32_t fifo_depth = 0) {
+                    const CacheParams* model_cache = nullptr, int poke_texel = -1, uint32_t fifo_depth = 0,
+                    const TextureTable* model_table = nullptr) {
   CaseResult r;
+  const Pyramid& pyr = *table[0].pyramid;
   unit.set_memory(layout, cache, timing, fifo_depth);
-  unit.load(pyr, LoadMethod::Backdoor);
+  unit.load_textures(table);
   unit.configure(cfg, pyr);
   if (poke_texel >= 0) {  // planted bug: one byte of the image is wrong
     const MemoryLayout ml(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, layout);
     unit.memory()->poke(ml.line_address(0, 0, 0) + uint32_t(poke_texel), 0x5A ^ uint8_t(pyr.levels[0].at(0, 0)[0]));
   }
-  Sampler sampler(pyr, cfg);
-  TextureCache model(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, layout),
-                     model_cache ? *model_cache : cache, cfg, pyr.log2_w0(), pyr.log2_h0());
+  // The model's table: the RTL's, unless a test plants another.
+  const TextureTable& mt = model_table ? *model_table : table;
+  std::vector<Sampler> samplers;
+  for (const BoundTexture& t : mt) {
+    SamplerConfig c = cfg;
+    c.wrap_u = t.wrap_u;
+    c.wrap_v = t.wrap_v;
+    samplers.emplace_back(*t.pyramid, c);
+  }
+  EngineOptions eo;
+  eo.layout = layout;
+  TextureCache model(texture_descriptors(mt, eo), model_cache ? *model_cache : cache, cfg);
   std::vector<uint32_t> predicted;
   for (const Request& q : requests) {
-    const Probes p = tex_probe(q, cfg, pyr.log2_w0(), pyr.log2_h0());
+    const Pyramid& t = *mt.at(q.texture).pyramid;
+    const Probes p = tex_probe(q, cfg, t.log2_w0(), t.log2_h0());
     for (int i = 0; i < p.n; ++i) {
       const SampleLookup l = model.lookup(p.at[size_t(i)], &predicted);
       if (coverage) coverage->sample(l);
@@ -111,7 +125,7 @@ CaseResult run_case(rtl::Driver& unit, const Pyramid& pyr, const SamplerConfig& 
   uint64_t mismatches = 0;
   try {
     const rtl::StreamStats st = rtl::stream(unit, requests.data(), requests.size(), stim, seed, [&](size_t i, uint64_t rgba) {
-      const Texel want = sampler.sample(requests[i]);
+      const Texel want = samplers[requests[i].texture].sample(requests[i]);
       const Texel got = rtl::unpack_rgba(rgba, pyr.levels[0].channel_bits);
       if (got != want && mismatches++ == 0)
         r.failure = "sample " + std::to_string(i) + " " + describe(requests[i]) + ": RTL " + describe(got) +
@@ -144,6 +158,15 @@ CaseResult run_case(rtl::Driver& unit, const Pyramid& pyr, const SamplerConfig& 
     r.failure = text;
   }
   return r;
+}
+
+// One texture with the configuration's wrap modes.
+CaseResult run_case(rtl::Driver& unit, const Pyramid& pyr, const SamplerConfig& cfg, const LayoutParams& layout,
+                    const CacheParams& cache, const rtl::MemoryTiming& timing, const std::vector<Request>& requests,
+                    const rtl::Timing& stim, uint64_t seed, CacheCoverage* coverage,
+                    const CacheParams* model_cache = nullptr, int poke_texel = -1, uint32_t fifo_depth = 0) {
+  return run_case(unit, TextureTable{{&pyr, cfg.wrap_u, cfg.wrap_v}}, cfg, layout, cache, timing, requests, stim, seed,
+                  coverage, model_cache, poke_texel, fifo_depth);
 }
 
 // A random cache geometry the configuration holds.
@@ -260,6 +283,92 @@ TEST(RtlCached, Channels16Blocks2x4) {
 // cover the bins.
 TEST(RtlCached, LargestTextures) {
   run_suite({"Vtex_cached_13x13", {{13, 2}, {1, 13}, {13, 13}}, 3, 20000, false});
+}
+
+// The descriptor table: 2 to 16 textures of random sizes and wrap modes in memory at once, a
+// random texture in every request (consecutive requests interleave textures at 1 sample per
+// clock, no flush), under random caches, memory timing and stalls; samples and miss streams
+// against the model. A table whose entries the model swaps is caught.
+TEST(RtlCached, DescriptorTableInterleavesTextures) {
+  const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
+  const uint64_t base = mix64(seed_base() ^ 0xDE5C);
+  const std::optional<uint64_t> only = env_u64("TEX_SEED");
+  auto unit = rtl::Driver::create(rc, {});
+  unit->reset();
+  const std::vector<Filter> filters = all_filters();
+  uint64_t samples = 0, switches = 0, reads = 0;
+  int full_tables = 0, failures = 0;
+  for (int ci = 0; ci < 40 * scale(); ++ci) {
+    const uint64_t seed = mix64(base + uint64_t(ci));
+    if (only && *only != seed) continue;
+    std::mt19937_64 rng(seed);
+    const int n = ci % 4 == 0 ? kMaxTextures : 2 + int(rng() % (kMaxTextures - 1));
+    full_tables += n == kMaxTextures;
+    std::vector<Pyramid> pyramids;
+    pyramids.reserve(size_t(n));
+    TextureTable table;
+    for (int t = 0; t < n; ++t) {
+      const int lw = int(rng() % 7), lh = int(rng() % 4);  // up to the configuration's 64x8
+      pyramids.push_back(build_pyramid(random_texture(1 << lw, 1 << lh, rc.cw, rng()), PyramidMode::Exact));
+      table.push_back({&pyramids.back(), Wrap(rng() % 3), Wrap(rng() % 3)});
+    }
+    SamplerConfig cfg;
+    cfg.filter = ci % 3 == 2 ? filters[rng() % filters.size()] : Filter{TexelFilter::Linear, MipMode::Linear};
+    if (ci % 5 == 4) randomize_aniso(rng, cfg);
+    randomize_lod_controls(rng, cfg);
+    LayoutParams layout;
+    layout.block_w = rc.block_w;
+    layout.block_h = rc.block_h;
+    layout.order = BlockOrder(rng() % 2);
+    layout.base = uint32_t(rng() % 4) * 4096u;
+    const CacheParams cache = random_cache(rng, rc);
+    std::string memory_name, timing_name;
+    const rtl::MemoryTiming memory = random_memory(rng, rc, memory_name);
+    const rtl::Timing stim = random_timing(rng, timing_name);
+    std::vector<Request> requests = random_requests(rng, 6, 3, 4000);
+    for (size_t i = 0; i < requests.size(); ++i) {
+      requests[i].texture = uint8_t(rng() % uint64_t(n));
+      switches += i > 0 && requests[i].texture != requests[i - 1].texture;
+    }
+    const CaseResult r = run_case(*unit, table, cfg, layout, cache, memory, requests, stim, rng(), nullptr);
+    samples += r.samples;
+    reads += r.reads;
+    if (!r.failure.empty()) {
+      ADD_FAILURE() << "case " << ci << " (replay: TEX_SEED=" << seed << "): " << n << " textures, " << describe(cfg)
+                    << ", " << cache.size_bytes << " B x " << cache.ways << " ways, " << memory_name << ", stimulus "
+                    << timing_name << ": " << r.failure;
+      unit->reset();
+      if (++failures >= 3) break;
+    }
+  }
+  std::printf("[ cached   ] descriptor table: %llu samples, %llu texture switches between consecutive requests, "
+              "%llu lines read, %d full tables of %d\n",
+              (unsigned long long)samples, (unsigned long long)switches, (unsigned long long)reads, full_tables,
+              kMaxTextures);
+  if (only) return;
+  EXPECT_GT(full_tables, 0);
+  EXPECT_GT(switches, samples / 2);
+
+  // Planted bugs: a model whose table has the entries' wrap modes swapped, or its entries in the
+  // other order (each request then names the other texture), sees other samples.
+  std::mt19937_64 rng(3);
+  const Pyramid a = build_pyramid(random_texture(64, 8, 8, 1), PyramidMode::Exact);
+  const Pyramid b = build_pyramid(random_texture(32, 4, 8, 2), PyramidMode::Exact);
+  std::vector<Request> requests = random_requests(rng, 6, 3, 2000);
+  for (Request& q : requests) q.texture = uint8_t(rng() % 2);
+  const TextureTable table = {{&a, Wrap::Repeat, Wrap::Clamp}, {&b, Wrap::Mirror, Wrap::Repeat}};
+  const TextureTable rewrapped = {{&a, Wrap::Mirror, Wrap::Repeat}, {&b, Wrap::Repeat, Wrap::Clamp}};
+  const CacheParams cache{2048, 2};
+  const CaseResult good = run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr);
+  EXPECT_EQ(good.failure, "");
+  const CaseResult wrap =
+      run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr, -1, 0, &rewrapped);
+  EXPECT_EQ(wrap.failure.rfind("sample ", 0), 0u) << wrap.failure;
+  unit->reset();
+  const TextureTable reordered = {table[1], table[0]};
+  const CaseResult order =
+      run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr, -1, 0, &reordered);
+  EXPECT_EQ(order.failure.rfind("sample ", 0), 0u) << order.failure;
 }
 
 TEST(RtlCached, CheckersCatchPlantedBugs) {

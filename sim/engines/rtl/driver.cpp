@@ -84,7 +84,6 @@ CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const 
                 std::to_string(config.fifo_depth));
   CachePins p;
   p.fifo_limit = fifo_depth ? fifo_depth : uint32_t(config.fifo_depth);
-  p.mem_base = layout.base;
   p.block_morton = layout.order == BlockOrder::Morton;
   while ((1 << p.log2_sets) < sets) ++p.log2_sets;
   while ((1 << p.log2_ways) < cache.ways) ++p.log2_ways;
@@ -103,6 +102,7 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_dvdx = r.deriv.dvdx;
   in.req_dudy = r.deriv.dudy;
   in.req_dvdy = r.deriv.dvdy;
+  in.req_tex = r.texture;
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
@@ -197,7 +197,59 @@ void Driver::reset(int clocks) {
 void Driver::configure(const CfgPins& cfg) {
   cfg_ = cfg;
   apply_cfg(cfg);
-  if (config_.cached) reset();  // the caches start empty under the new configuration
+  if (!config_.cached) return;
+  reset();  // the caches start empty under the new configuration
+  write_descriptors();
+}
+
+void Driver::write_descriptors() {
+  for (DescriptorPins d : descriptors_) {
+    if (wrap_from_cfg_) {
+      d.wrap_u = cfg_.wrap_u;
+      d.wrap_v = cfg_.wrap_v;
+    }
+    apply_descriptor(d, true);
+    tick(PinsIn{});
+    apply_descriptor(d, false);
+  }
+  tick(PinsIn{});  // the last write lands in the table; requests may follow
+}
+
+void Driver::load_textures(const TextureTable& textures) {
+  if (!config_.cached) {
+    if (textures.size() != 1)
+      throw Error(config_.name + " holds one texture (the on-chip unit); the table has " + std::to_string(textures.size()));
+    load(*textures[0].pyramid, LoadMethod::Backdoor);
+    return;
+  }
+  if (textures.size() > size_t(config_.textures))
+    throw Error(std::to_string(textures.size()) + " textures: " + config_.name + "'s descriptor table holds " +
+                std::to_string(config_.textures));
+  for (const BoundTexture& t : textures) check_inputs(config_, *t.pyramid, {});
+  const CachePins pins = cache_pins(config_, options_.layout, options_.cache, options_.fifo_depth);
+  EngineOptions eo;
+  eo.layout = options_.layout;
+  const std::vector<TextureDescriptor> table = texture_descriptors(textures, eo);
+  std::vector<uint8_t> image;
+  descriptors_.clear();
+  for (size_t i = 0; i < textures.size(); ++i) {
+    const MemoryLayout& layout = table[i].layout;
+    const std::vector<uint8_t> bytes = build_memory_image(*textures[i].pyramid, layout);
+    image.insert(image.end(), bytes.begin(), bytes.end());  // packed: each starts where the last ended
+    descriptors_.push_back({uint8_t(i), layout.params().base, uint8_t(layout.log2_w0()), uint8_t(layout.log2_h0()),
+                            uint8_t(table[i].wrap_u), uint8_t(table[i].wrap_v)});
+  }
+  wrap_from_cfg_ = false;
+  if (options_.memory_port) {
+    port_ = options_.memory_port;
+  } else {
+    memory_ = std::make_unique<MemoryModel>(std::move(image), options_.layout.base, config_.line_bytes(),
+                                            config_.mem_bits / 8, options_.memory);
+    port_ = memory_.get();
+  }
+  apply_cache_pins(pins);
+  reset();
+  write_descriptors();
 }
 
 void Driver::reset_counters() {
@@ -225,17 +277,8 @@ void Driver::load(const Pyramid& pyramid, LoadMethod method) {
     if (method == LoadMethod::Port)
       throw Error(config_.name + " has no texture write port: a cached unit reads its texture from memory "
                   "(use --load backdoor)");
-    const CachePins pins = cache_pins(config_, options_.layout, options_.cache, options_.fifo_depth);
-    const MemoryLayout layout(pyramid.log2_w0(), pyramid.log2_h0(), cw, options_.layout);
-    if (options_.memory_port) {
-      port_ = options_.memory_port;
-    } else {
-      memory_ = std::make_unique<MemoryModel>(build_memory_image(pyramid, layout), options_.layout.base,
-                                              config_.line_bytes(), config_.mem_bits / 8, options_.memory);
-      port_ = memory_.get();
-    }
-    apply_cache_pins(pins);
-    reset();
+    load_textures({{&pyramid, Wrap(cfg_.wrap_u), Wrap(cfg_.wrap_v)}});
+    wrap_from_cfg_ = true;  // configure() sets them
     return;
   }
   if (method == LoadMethod::Backdoor) {

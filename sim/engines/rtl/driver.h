@@ -32,6 +32,7 @@ struct RtlConfig {
   int fifo_depth = 0;            // FIFO_DEPTH
   int mem_bits = 0;              // MEM_W: bits of a memory beat
   int miss_depth = 0;            // MISS_DEPTH: lines requested and not yet received, at most
+  int textures = 1;              // TEXTURES: descriptor-table entries (tex_unit: 1)
   int line_bytes() const { return block_w * block_h * (cw > 8 ? 8 : 4); }
   Memory memory() const { return cached ? Memory::Cached : Memory::OnChip; }
   bool fits(int log2_w, int log2_h) const { return log2_w <= max_log2_w && log2_h <= max_log2_h; }
@@ -53,7 +54,6 @@ void check_request(const Request& request, size_t index);  // the lod fits the 1
 // The cache pins of tex_unit_cached for a cache geometry (throws tex::Error when the
 // configuration cannot hold it).
 struct CachePins {
-  uint32_t mem_base = 0;
   bool block_morton = false;
   uint8_t log2_sets = 2, log2_ways = 0;
   uint32_t fifo_limit = 0;  // samples the FIFO holds at most
@@ -79,6 +79,7 @@ struct PinsIn {
   bool req_deriv = false;        // the derivatives below instead of req_lod
   int32_t req_dudx = 0, req_dvdx = 0, req_dudy = 0, req_dvdy = 0;  // Q8.24
   uint16_t req_tag = 0;
+  uint8_t req_tex = 0;           // tex_unit_cached: the descriptor-table entry
   bool rsp_ready = true;
   // Memory port of tex_unit_cached: driven by the driver's memory model (ignored otherwise).
   bool mem_req_ready = false;
@@ -103,6 +104,14 @@ struct PinsOut {
   bool mem_rsp_ready = false;
   uint32_t fifo_count = 0;
   bool head_waits = false;
+};
+
+// tex_unit_cached: one texture descriptor (the cfg_desc_* pins of a write).
+struct DescriptorPins {
+  uint8_t index = 0;
+  uint32_t base = 0;  // byte address of level 0
+  uint8_t log2_w = 0, log2_h = 0;
+  uint8_t wrap_u = 0, wrap_v = 0;
 };
 
 // Static configuration pins.
@@ -200,6 +209,12 @@ class Driver {
   // tex_unit: texel (x, y) of `level` as the level memories hold it now (debug reads). Throws
   // tex::Error for tex_unit_cached (its texels are in memory) or a texel outside the memories.
   Texel peek_texel(int level, int x, int y) const;
+  // tex_unit_cached: several textures in memory (packed from the layout's base, as
+  // texture_descriptors() does) and in the descriptor table, each with its wrap modes; requests
+  // name them by Request::texture. (load() of one pyramid is a table of one whose wrap modes are
+  // the cfg pins'.) Throws tex::Error when a texture does not fit the configuration or the table.
+  void load_textures(const TextureTable& textures);
+  // The cfg pins; a cached unit then starts empty (a reset) and its descriptors are written again.
   void configure(const CfgPins& cfg);
   void configure(const SamplerConfig& config, const Pyramid& pyramid) {
     configure(cfg_pins(config, pyramid.log2_w0(), pyramid.log2_h0()));
@@ -258,6 +273,8 @@ class Driver {
   virtual PinsOut tick_pins(const PinsIn& in, bool dump_trace) = 0;
   virtual void apply_cfg(const CfgPins& cfg) = 0;
   virtual void apply_cache_pins(const CachePins& pins) = 0;  // tex_unit_cached only
+  // tex_unit_cached: the cfg_desc_* pins, cfg_desc_we = `write` (set for one clock, then cleared).
+  virtual void apply_descriptor(const DescriptorPins& pins, bool write) = 0;
   // Writes one word into the bank memory of `level` holding texels of parity `bank`.
   virtual void backdoor_write(int level, int bank, uint32_t word, uint64_t data) = 0;
   virtual uint64_t backdoor_read(int level, int bank, uint32_t word) const = 0;
@@ -270,7 +287,8 @@ class Driver {
  private:
   PinsOut tick_full(const PinsIn& in);
   [[noreturn]] void fail_finished();
-  void apply_cache_config();  // cached: pins from options_, then a reset (empties the caches)
+  void write_descriptors();   // cached: descriptors_ into the table (the wrap modes of a
+                              // single load()ed texture from cfg_), then an idle clock
 
   uint64_t cycle_ = 0;
   uint64_t load_cycles_ = 0;
@@ -287,6 +305,8 @@ class Driver {
   MemoryPort* port_ = nullptr;  // memory_ or options_.memory_port
   MemoryCounters memory_counters_;
   CfgPins cfg_;
+  std::vector<DescriptorPins> descriptors_;  // cached: the table as loaded
+  bool wrap_from_cfg_ = false;               // cached: one texture from load(): its wrap modes are cfg_'s
 };
 
 // ---------------------------------------------------------------- stimulus

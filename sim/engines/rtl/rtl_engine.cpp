@@ -1,5 +1,6 @@
 #include "engines/rtl/rtl_engine.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -48,21 +49,42 @@ class RtlEngine final : public Engine {
 
   EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
                   TexelSink& sink) override {
+    return run(TextureTable{{&pyramid, config.wrap_u, config.wrap_v}}, config, source, sink);
+  }
+
+  EngineStats run(const TextureTable& textures, const SamplerConfig& sampling, RequestSource& source,
+                  TexelSink& sink) override {
     const bool cached = options_.memory == Memory::Cached;
-    const RtlConfig& rc = smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits,
-                                              options_.memory, options_.layout.block_w, options_.layout.block_h);
-    check_inputs(rc, pyramid);
+    if (textures.empty()) throw Error("engine rtl: no texture");
+    if (!cached && textures.size() > 1)
+      throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one (the paper's design); "
+                  "use --memory cached");
+    const Pyramid& pyramid = *textures[0].pyramid;
+    SamplerConfig config = sampling;  // the on-chip unit's wrap pins: its one texture's
+    config.wrap_u = textures[0].wrap_u;
+    config.wrap_v = textures[0].wrap_v;
+    int log2_w = 0, log2_h = 0;  // the configuration must hold the largest side of every texture
+    for (const BoundTexture& t : textures) {
+      log2_w = std::max(log2_w, t.pyramid->log2_w0());
+      log2_h = std::max(log2_h, t.pyramid->log2_h0());
+    }
+    const RtlConfig& rc = smallest_config_for(log2_w, log2_h, pyramid.levels[0].channel_bits, options_.memory,
+                                              options_.layout.block_w, options_.layout.block_h);
+    for (const BoundTexture& t : textures) check_inputs(rc, *t.pyramid);
     std::optional<TextureCache> cache;
     if (cached) {
       cache_pins(rc, options_.layout, options_.cache, options_.fifo_depth);  // the geometry fits the configuration
-      cache.emplace(MemoryLayout(pyramid.log2_w0(), pyramid.log2_h0(), rc.cw, options_.layout), options_.cache,
-                    config, pyramid.log2_w0(), pyramid.log2_h0());
+      cache.emplace(texture_descriptors(textures, options_), options_.cache, config);
     }
 
     const auto t0 = std::chrono::steady_clock::now();
     auto unit = Driver::create(rc, DriverOptions::of(options_));
     unit->reset();
-    unit->load(pyramid, options_.load);
+    if (cached && options_.load == LoadMethod::Port)
+      throw Error(rc.name + " has no texture write port: a cached unit reads its texture from memory "
+                  "(use --load backdoor)");
+    if (cached) unit->load_textures(textures);
+    else unit->load(pyramid, options_.load);
     unit->configure(config, pyramid);
     const auto t1 = std::chrono::steady_clock::now();
 

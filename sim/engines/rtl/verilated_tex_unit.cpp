@@ -71,6 +71,7 @@ class VerilatedTexUnit final : public Driver {
       t.mem_req_ready = in.mem_req_ready;
       t.mem_rsp_valid = in.mem_rsp_valid;
       set_beat(t.mem_rsp_data, in.mem_rsp_data);
+      t.req_tex = in.req_tex;
     } else {
       t.wr_en = in.wr_en;
       t.wr_level = in.wr_level;
@@ -116,10 +117,12 @@ class VerilatedTexUnit final : public Driver {
 
   void apply_cfg(const CfgPins& c) override {
     Top& t = *top_;
-    t.cfg_log2_w = c.log2_w;
-    t.cfg_log2_h = c.log2_h;
-    t.cfg_wrap_u = c.wrap_u;
-    t.cfg_wrap_v = c.wrap_v;
+    if constexpr (!kCached) {  // the cached unit's texture sizes and wrap modes are its descriptors'
+      t.cfg_log2_w = c.log2_w;
+      t.cfg_log2_h = c.log2_h;
+      t.cfg_wrap_u = c.wrap_u;
+      t.cfg_wrap_v = c.wrap_v;
+    }
     t.cfg_texel_linear = c.texel_linear;
     t.cfg_mip_mode = c.mip_mode;
     t.cfg_lod_bias = uint16_t(c.lod_bias);
@@ -130,10 +133,25 @@ class VerilatedTexUnit final : public Driver {
     t.eval();
   }
 
+  void apply_descriptor(const DescriptorPins& d, bool write) override {
+    if constexpr (kCached) {
+      Top& t = *top_;
+      t.cfg_desc_we = write;
+      t.cfg_desc_index = d.index;
+      t.cfg_desc_base = d.base;
+      t.cfg_desc_log2_w = d.log2_w;
+      t.cfg_desc_log2_h = d.log2_h;
+      t.cfg_desc_wrap_u = d.wrap_u;
+      t.cfg_desc_wrap_v = d.wrap_v;
+      t.eval();
+    } else {
+      throw Error(config_.name + " has no texture descriptors");
+    }
+  }
+
   void apply_cache_pins(const CachePins& p) override {
     if constexpr (kCached) {
       Top& t = *top_;
-      t.cfg_mem_base = p.mem_base;
       t.cfg_block_morton = p.block_morton;
       t.cfg_log2_sets = p.log2_sets;
       t.cfg_log2_ways = p.log2_ways;
@@ -234,7 +252,7 @@ class VerilatedTexUnit final : public Driver {
 
 const std::vector<RtlConfig>& compiled_configs() {
 #define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss) \
-  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss},
+  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, cached ? kMaxTextures : 1},
   static const std::vector<RtlConfig> configs = {TEX_RTL_CONFIGS(TEX_RTL_CONFIG_ENTRY)};
 #undef TEX_RTL_CONFIG_ENTRY
   return configs;
