@@ -8,7 +8,9 @@ Renders each test model of Debian's assimp-testmodels with `texsim render --mode
 --memory cached` (default caches, tiled order, trilinear, --verify: every sample against the golden
 model, every line read against its miss stream) and writes OUT/FRAME.png, OUT/contact_sheet.png,
 OUT/report.md (the table of docs/scenes.md) and OUT/index.html. Lost clocks are the clocks after the
-pipeline fill beyond one per sample; the RTL counts those in which the FIFO's head waits for memory.
+pipeline fill beyond one per sample; the RTL counts the clocks in which the FIFO's head waits for
+memory (the first fill's included) and those in which the FIFO is full (req_ready low). Compulsory
+bytes per sample: the distinct lines the frame touches, per sample (no cache can read fewer).
 Needs matplotlib (Debian's python3-matplotlib, in /usr/bin/python3).
 """
 import argparse
@@ -67,7 +69,8 @@ def main():
               f"{s['bytes_per_sample']:.2f} B/sample", file=sys.stderr)
 
     header = ("| model | samples | quads | helper lanes | textures used | texture MiB resident / touched | "
-              "hit rate even / odd levels | bytes/sample | samples/clock | lost clocks | of them waiting for memory |")
+              "hit rate even / odd levels | bytes/sample (compulsory) | samples/clock | lost clocks | "
+              "head waiting for memory | FIFO full |")
     lines = [f"Engine rtl (`{rows[0]['configuration']}`), cached, default caches ({rows[0]['cache_kib']:g} KiB x 2, "
              f"{rows[0]['ways']} ways, {rows[0]['block']} blocks), tiled order, trilinear, {a.width}x{a.height}, memory "
              f"latency {a.latency} clocks, {rows[0]['mem_bytes_per_clock']} B/clock, stalls {a.stalls}; every sample "
@@ -79,7 +82,8 @@ def main():
             f"| {s['name']} | {s['samples']} | {s['quads']} | {s['helper_samples']} | {s['textures_used']} of "
             f"{s['textures']} | {s['texture_bytes_resident'] / 2**20:.2f} / {s['texture_bytes_touched'] / 2**20:.2f} | "
             f"{100 * s['hit_rate_even_levels']:.1f} % / {100 * s['hit_rate_odd_levels']:.1f} % | "
-            f"{s['bytes_per_sample']:.2f} | **{s['samples_per_clock']:.3f}** | {lost} | {s['memory_stall_cycles']} |")
+            f"{s['bytes_per_sample']:.2f} ({s['texture_bytes_touched'] / s['samples']:.2f}) | "
+            f"**{s['samples_per_clock']:.3f}** | {lost} | {s['memory_stall_cycles']} | {s['backpressure_cycles']} |")
     report = "\n".join(lines) + "\n"
     with open(os.path.join(a.out, "report.md"), "w") as f:
         f.write(report)

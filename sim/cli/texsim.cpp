@@ -359,6 +359,11 @@ int main(int argc, char** argv) {
                               ->capture_default_str();
   CLI::Option* ex_queries =
       explore->add_option("--queries,-q", ex.queries, "a query trace (CSV u,v,lod or u,v,dudx,...) instead of scenes");
+  CLI::Option* ex_model = explore->add_option(
+      "--model", ex.model, "a textured 3D model (render --model) instead of scenes: its first frame, all its textures");
+  CLI::Option* ex_scene_file =
+      explore->add_option("--scene-file", ex.scene_file, "several models (render --scene-file) instead of scenes");
+  explore->add_option("--camera", ex.camera, "models: the view ex,ey,ez,tx,ty,tz,fovy (default: the orbit's first)");
   explore->add_option("--texture,-t", ex.texture, "image file or pattern NAME[:WxH] (scenes with their own map keep it)")
       ->capture_default_str();
   explore->add_option("--filter,-f", ex.filter, "point | bilinear | mip_nearest | trilinear")->capture_default_str();
@@ -440,7 +445,8 @@ int main(int argc, char** argv) {
     }
     if (*figures) return make_figures(fig);
     if (*explore) {
-      if (ex_scene->count() && ex_queries->count()) throw tex::Error("explore: give --scene or --queries, not both");
+      if (ex_scene->count() && (ex_queries->count() || ex_model->count() || ex_scene_file->count()))
+        throw tex::Error("explore: give --scene, --queries, --model or --scene-file, one of them");
       ex.plots = !no_plots;
       return run_explore(ex, std::filesystem::read_symlink("/proc/self/exe").string());
     }

@@ -24,8 +24,11 @@
 #include "engines/rtl/driver.h"
 #include "model/error.h"
 #include "model/pyramid.h"
+#include "workloads/camera.h"
+#include "workloads/mesh_scene.h"
 #include "workloads/output_files.h"
 #include "workloads/query_trace.h"
+#include "workloads/rasterizer.h"
 #include "workloads/scenes.h"
 #include "workloads/texture_io.h"
 
@@ -74,19 +77,32 @@ struct Point {
   uint32_t fifo = 0;  // 0 = the RTL configuration's FIFO_DEPTH ("max")
 };
 
-// A scene in one rasterization order, or a query trace: the requests and the pyramid they sample.
+// A scene or a model's frame in one rasterization order, or a query trace: the requests and the
+// textures they sample (a model's: its descriptor table).
 struct Workload {
-  std::string name;   // scene name or trace path
+  std::string name;   // scene name, model file or trace path
   std::string order;  // scanline | tiled | trace
   std::string texture;
-  Pyramid pyramid;
+  std::vector<Pyramid> pyramids;            // one per descriptor-table entry
+  std::vector<std::pair<Wrap, Wrap>> wraps;  // each entry's wrap modes
   SamplerConfig config;
   std::vector<Request> requests;
+  TextureTable table() const {
+    TextureTable t;
+    for (size_t i = 0; i < pyramids.size(); ++i) t.push_back({&pyramids[i], wraps[i].first, wraps[i].second});
+    return t;
+  }
+  std::pair<int, int> largest() const {  // log2 sizes the RTL configuration must hold
+    int w = 0, h = 0;
+    for (const Pyramid& p : pyramids) w = std::max(w, p.log2_w0()), h = std::max(h, p.log2_h0());
+    return {w, h};
+  }
 };
 
 struct Sweep {
   ExploreArgs args;
   bool trace = false;
+  bool model = false;  // --model or --scene-file
   std::vector<std::string> workload_names, order_names;
   std::vector<int> cache_kib, ways;
   std::vector<LayoutParams> blocks;  // shapes
@@ -102,9 +118,18 @@ Sweep parse_sweep(const ExploreArgs& a) {
   Sweep s;
   s.args = a;
   s.trace = !a.queries.empty();
+  s.model = !a.model.empty() || !a.scene_file.empty();
+  if (int(s.trace) + int(!a.model.empty()) + int(!a.scene_file.empty()) > 1)
+    throw Error("explore: give one of --queries, --model and --scene-file");
+  if (!a.camera.empty() && !s.model) throw Error("explore: --camera applies to --model and --scene-file");
   if (s.trace) {
     s.workload_names = {a.queries};
     s.order_names = {"trace"};
+  } else if (s.model) {
+    s.workload_names = {a.model.empty() ? a.scene_file : a.model};
+    s.order_names = split_list(a.orders, "--order");
+    for (const std::string& o : s.order_names) parse_pixel_order(o);
+    if (!a.camera.empty()) parse_camera(a.camera);
   } else {
     s.workload_names = split_list(a.scenes, "--scene");
     for (const std::string& n : s.workload_names) {
@@ -148,7 +173,8 @@ void load_workloads(Sweep& s) {
     w.name = s.args.queries;
     w.order = "trace";
     w.texture = s.args.texture;
-    w.pyramid = build_pyramid(load_texture(s.args.texture), PyramidMode::Exact);
+    w.pyramids.push_back(build_pyramid(load_texture(s.args.texture), PyramidMode::Exact));
+    w.wraps.emplace_back(config.wrap_u, config.wrap_v);
     w.config = config;
     QueryReader reader(s.args.queries);
     QuerySource source(reader);
@@ -157,6 +183,34 @@ void load_workloads(Sweep& s) {
       w.requests.insert(w.requests.end(), chunk.begin(), chunk.begin() + long(n));
     if (w.requests.empty()) throw Error(s.args.queries + " has no queries");
     s.workloads.push_back(std::move(w));
+    return;
+  }
+  if (s.model) {  // the model's first frame: the orbit's first position, or --camera
+    const MeshScene scene = s.args.model.empty() ? load_models(read_scene_file(s.args.scene_file)) : load_model(s.args.model);
+    if (scene.textures.size() > size_t(kMaxTextures))
+      throw Error("the scene has " + std::to_string(scene.textures.size()) + " textures; the descriptor table holds " +
+                  std::to_string(kMaxTextures));
+    RasterOptions ro;
+    ro.width = s.args.width;
+    ro.height = s.args.height;
+    ro.tile = s.args.tile;
+    const Camera camera = s.args.camera.empty() ? orbit_camera(scene.bounds_min, scene.bounds_max,
+                                                               double(ro.width) / ro.height, 0, 1)
+                                                : parse_camera(s.args.camera);
+    for (const std::string& order : s.order_names) {
+      ro.order = parse_pixel_order(order);
+      Workload w;
+      w.name = s.workload_names[0];
+      w.order = order;
+      w.texture = std::to_string(scene.textures.size()) + " textures";
+      for (const SceneTexture& t : scene.textures) {
+        w.pyramids.push_back(build_pyramid(t.image, PyramidMode::Exact));
+        w.wraps.emplace_back(t.wrap_u, t.wrap_v);
+      }
+      w.config = config;
+      w.requests = to_requests(rasterize(scene, camera, ro).queries, w.name);
+      s.workloads.push_back(std::move(w));
+    }
     return;
   }
   for (const std::string& name : s.workload_names)
@@ -171,9 +225,10 @@ void load_workloads(Sweep& s) {
       w.name = name;
       w.order = order;
       w.texture = frame.own_texture ? "own map" : s.args.texture;
-      w.pyramid = build_pyramid(scene_texture(frame, s.args.texture), PyramidMode::Exact);
+      w.pyramids.push_back(build_pyramid(scene_texture(frame, s.args.texture), PyramidMode::Exact));
       w.config = config;
       if (frame.clamp_edges) w.config.wrap_u = w.config.wrap_v = Wrap::Clamp;
+      w.wraps.emplace_back(w.config.wrap_u, w.config.wrap_v);
       w.requests = to_requests(frame.queries, "scene " + name);
       s.workloads.push_back(std::move(w));
     }
@@ -186,13 +241,24 @@ CacheParams cache_of(const Point& p) {
   return c;
 }
 
+EngineOptions engine_options(const Point& p) {
+  EngineOptions o;
+  o.memory = Memory::Cached;
+  o.layout = p.layout;
+  o.cache = cache_of(p);
+  o.mem_latency = p.latency;
+  o.mem_bytes_per_clock = p.bandwidth;
+  o.fifo_depth = p.fifo;
+  return o;
+}
+
 // The cartesian product, in CSV order. A cache geometry the hardware cannot have (fewer than 4
 // sets, ...) is left out, and said once on stderr.
 void expand_points(Sweep& s) {
   std::set<std::string> said;
   std::vector<std::string> notes;
   for (size_t w = 0; w < s.workloads.size(); ++w) {
-    const Pyramid& pyr = s.workloads[w].pyramid;
+    const TextureTable table = s.workloads[w].table();
     for (int kib : s.cache_kib)
       for (int ways : s.ways)
         for (const LayoutParams& block : s.blocks)
@@ -204,8 +270,7 @@ void expand_points(Sweep& s) {
             p.layout = block;
             p.layout.order = bo;
             try {
-              TextureCache(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, p.layout),
-                           cache_of(p), s.workloads[w].config, pyr.log2_w0(), pyr.log2_h0());
+              TextureCache(texture_descriptors(table, engine_options(p)), cache_of(p), s.workloads[w].config);
             } catch (const Error& e) {
               const std::string what = std::to_string(kib) + " KiB, " + std::to_string(ways) + " ways, " +
                                        block_size_name(block) + " blocks";
@@ -227,25 +292,15 @@ void expand_points(Sweep& s) {
   for (const std::string& n : notes) std::fprintf(stderr, "explore: %s\n", n.c_str());
 }
 
-EngineOptions engine_options(const Point& p) {
-  EngineOptions o;
-  o.memory = Memory::Cached;
-  o.layout = p.layout;
-  o.cache = cache_of(p);
-  o.mem_latency = p.latency;
-  o.mem_bytes_per_clock = p.bandwidth;
-  o.fifo_depth = p.fifo;
-  return o;
-}
 
 // Why the RTL cannot measure this point (empty: it can).
 std::string rtl_unavailable(const Sweep& s, const Point& p) {
   if (!s.timing) return "--timing none";
   const Workload& w = s.workloads[p.workload];
   try {
-    const rtl::RtlConfig& rc = rtl::smallest_config_for(w.pyramid.log2_w0(), w.pyramid.log2_h0(),
-                                                        w.pyramid.levels[0].channel_bits, Memory::Cached, p.layout.block_w,
-                                                        p.layout.block_h);
+    const auto [log2_w, log2_h] = w.largest();
+    const rtl::RtlConfig& rc = rtl::smallest_config_for(log2_w, log2_h, w.pyramids[0].levels[0].channel_bits,
+                                                        Memory::Cached, p.layout.block_w, p.layout.block_h);
     rtl::cache_pins(rc, p.layout, cache_of(p), p.fifo);
     if (p.bandwidth > uint32_t(rc.line_bytes())) throw Error("the bandwidth is more than a line per clock");
   } catch (const Error& e) {
@@ -289,7 +344,7 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, CacheCounters>& m
     // The RTL engine runs the model's caches beside the RTL and fails on any read they do not predict.
     VectorSource source(w.requests);
     NullSink sink;
-    const EngineStats st = make_engine("rtl", engine_options(p))->run(w.pyramid, w.config, source, sink);
+    const EngineStats st = make_engine("rtl", engine_options(p))->run(w.table(), w.config, source, sink);
     r.timed = true;
     r.cache = *st.cache;
     r.samples_per_clock = st.samples_per_clock();
@@ -298,9 +353,7 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, CacheCounters>& m
   } else {
     auto [it, fresh] = model_memo.try_emplace(model_key(p));
     if (fresh) {
-      const Pyramid& pyr = w.pyramid;
-      TextureCache cache(MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, p.layout),
-                         cache_of(p), w.config, pyr.log2_w0(), pyr.log2_h0());
+      TextureCache cache(texture_descriptors(w.table(), engine_options(p)), cache_of(p), w.config);
       for (const Request& q : w.requests) cache.lookup_sample(q, nullptr);
       it->second = cache_counters(cache);
     }
@@ -384,9 +437,18 @@ std::vector<std::string> job_command(const Sweep& s, const Job& job, const std::
   const Point& p = s.points[job.first];
   const Workload& w = s.workloads[p.workload];
   std::vector<std::string> c = {self, "explore"};
-  if (s.trace) c.insert(c.end(), {"--queries", portable_path(w.name)});
-  else c.insert(c.end(), {"--scene", w.name, "--order", w.order, "--width", std::to_string(s.args.width), "--height",
-                          std::to_string(s.args.height), "--tile", std::to_string(s.args.tile)});
+  const std::vector<std::string> frame = {"--order", w.order, "--width", std::to_string(s.args.width), "--height",
+                                          std::to_string(s.args.height), "--tile", std::to_string(s.args.tile)};
+  if (s.trace) {
+    c.insert(c.end(), {"--queries", portable_path(w.name)});
+  } else if (s.model) {
+    c.insert(c.end(), {s.args.model.empty() ? "--scene-file" : "--model", portable_path(w.name)});
+    c.insert(c.end(), frame.begin(), frame.end());
+    if (!s.args.camera.empty()) c.insert(c.end(), {"--camera", s.args.camera});
+  } else {
+    c.insert(c.end(), {"--scene", w.name});
+    c.insert(c.end(), frame.begin(), frame.end());
+  }
   c.insert(c.end(), {"--texture", portable_path(s.args.texture), "--filter", s.args.filter, "--cache-kib",
                      std::to_string(p.cache_kib), "--ways", std::to_string(p.ways), "--block", block_size_name(p.layout),
                      "--block-order", block_order_name(p.layout.order), "--mem-latency", join_numbers(s.latencies),

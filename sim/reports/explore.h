@@ -20,6 +20,8 @@ namespace tex {
 struct ExploreArgs {
   std::string scenes = "plane";
   std::string queries;  // a query trace instead of scenes
+  std::string model, scene_file;  // a textured 3D model or a scene file instead (its first frame, orbit camera or `camera`)
+  std::string camera;
   std::string texture = "testcard:1024x1024";
   std::string filter = "trilinear";
   int width = 640, height = 480, tile = 8;

@@ -157,3 +157,30 @@ TEST_F(TexsimCli, ExploreBadInputFailsBeforeAnyWork) {
   expect_clean_failure("explore --collect nowhere", "nowhere/explore.csv", {"nowhere/points/jobs", "--emit-jobs"});
   expect_clean_failure("explore --cache-kib 1 --block 8x8 --ways 4 -o bad", out, {"no point"});
 }
+
+// A real frame: the spider's 4 textures in one descriptor table, through the RTL where a compiled
+// configuration holds the point; every row's counters equal texsim render's at the same point.
+TEST_F(TexsimCli, ExploreSweepsAModelsFrame) {
+  const std::string model = "/usr/share/assimp/models/OBJ/spider.obj";
+  const Result r = run("explore --model " + model + " --width 160 --height 120 --order tiled --cache-kib 2,8 "
+                       "--block 4x4,2x2 --mem-latency 200 --jobs 2 --no-plots -o ex");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = read_rows(dir / "ex/explore.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  for (const Row& row : rows) {
+    EXPECT_EQ(row.at("workload"), model);
+    EXPECT_EQ(row.at("texture"), "4 textures");
+    EXPECT_EQ(row.at("timing_engine"), row.at("block") == "4x4" ? "rtl" : "");
+  }
+  const Row& row = rows[0];
+  ASSERT_EQ(row.at("block"), "4x4");
+  const Result render = run("render --model " + model + " --width 160 --height 120 --memory cached --engine rtl "
+                            "--cache-kib " + row.at("cache_kib") + " --mem-latency 200 --out f.png --stats s.json");
+  ASSERT_EQ(render.exit_code, 0) << render.err;
+  const auto s = nlohmann::json::parse(read_text(dir / "s.json"));
+  EXPECT_EQ(std::to_string(s.at("samples").get<uint64_t>()), row.at("samples"));
+  EXPECT_EQ(std::to_string(s.at("cache_misses").get<uint64_t>()), row.at("cache_misses"));
+  EXPECT_EQ(std::to_string(s.at("cycles").get<uint64_t>()), row.at("cycles"));
+  expect_clean_failure("explore --model " + model + " --scene plane -o ex2", "ex2", {"--scene", "--model"});
+  expect_clean_failure("explore --model " + model + " --queries q.csv -o ex2", "ex2", {"--queries", "--model"});
+}
