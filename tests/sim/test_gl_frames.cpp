@@ -1,0 +1,244 @@
+// Real frames against OpenGL (Mesa through OSMesa): each test model drawn the way an OpenGL viewer
+// draws it (unlit, base colour only), from Assimp's own texture coordinates (v = 0 at the bottom of
+// the image, GL's convention, no flip) on textures uploaded bottom row first, gluLookAt +
+// gluPerspective, back faces culled unless double-sided, GL_LINEAR_MIPMAP_LINEAR with
+// glGenerateMipmap, GL_LESS depth. texsim renders the same view through its own loader, camera,
+// rasterizer and golden model; the two pictures must agree (docs/scenes.md, "Conventions").
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/glu.h>
+#include <GL/osmesa.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "cli_fixture.h"
+
+namespace {
+
+constexpr int kW = 192, kH = 144;
+const uint8_t kBackground[3] = {48, 48, 56};  // texsim's background
+
+int next_pow2(int n) {
+  int p = 1;
+  while (p < n) p *= 2;
+  return p;
+}
+
+GLint gl_wrap(int mode) {
+  return mode == aiTextureMapMode_Clamp || mode == aiTextureMapMode_Decal ? GL_CLAMP_TO_EDGE
+         : mode == aiTextureMapMode_Mirror                                 ? GL_MIRRORED_REPEAT
+                                                                          : GL_REPEAT;
+}
+
+// A texture file as a GL viewer uploads it: RGBA8 (gray to RGB, opaque without alpha), sides
+// resampled up to powers of two, the bottom row first.
+GLuint upload(const std::string& path, GLint wrap_s, GLint wrap_t) {
+  OIIO::ImageBuf src(path);
+  EXPECT_TRUE(src.read(0, 0, true, OIIO::TypeDesc::UINT8)) << path;
+  const int w = src.spec().width, h = src.spec().height, nc = src.spec().nchannels;
+  OIIO::ImageBuf img = src;
+  if (next_pow2(w) != w || next_pow2(h) != h)
+    img = OIIO::ImageBufAlgo::resize(src, "", 0, OIIO::ROI(0, next_pow2(w), 0, next_pow2(h), 0, 1, 0, nc));
+  const int pw = img.spec().width, ph = img.spec().height;
+  std::vector<uint8_t> px(size_t(pw) * ph * nc), rgba(size_t(pw) * ph * 4);
+  img.get_pixels(OIIO::ROI(0, pw, 0, ph, 0, 1, 0, nc), OIIO::TypeDesc::UINT8, px.data());
+  for (int y = 0; y < ph; ++y)
+    for (int x = 0; x < pw; ++x) {
+      const uint8_t* s = &px[(size_t(y) * pw + x) * nc];
+      uint8_t* d = &rgba[(size_t(ph - 1 - y) * pw + x) * 4];  // bottom row first
+      d[0] = s[0];
+      d[1] = nc >= 3 ? s[1] : s[0];
+      d[2] = nc >= 3 ? s[2] : s[0];
+      d[3] = nc == 4 ? s[3] : nc == 2 ? s[1] : 255;
+    }
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_2D, id);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, pw, ph, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap_s);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap_t);
+  return id;
+}
+
+struct GlFrame {
+  std::vector<uint8_t> rgb;  // top row first
+  double eye[3], target[3];
+};
+
+// The model drawn by OpenGL from a camera looking at its bounding box's centre. `flip_rows`
+// false uploads the textures top row first (a planted convention bug).
+GlFrame render_gl(const std::string& path, bool flip_rows = true) {
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  EXPECT_TRUE(scene) << path << ": " << importer.GetErrorString();
+  GlFrame f;
+  if (!scene) return f;
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+    for (unsigned i = 0; i < scene->mMeshes[m]->mNumVertices; ++i)
+      for (int c = 0; c < 3; ++c) {
+        lo[c] = std::min(lo[c], double(scene->mMeshes[m]->mVertices[i][c]));
+        hi[c] = std::max(hi[c], double(scene->mMeshes[m]->mVertices[i][c]));
+      }
+  double radius = 0;
+  for (int c = 0; c < 3; ++c) {
+    f.target[c] = (lo[c] + hi[c]) / 2;
+    radius += (hi[c] - lo[c]) * (hi[c] - lo[c]) / 4;
+  }
+  radius = std::sqrt(radius);
+  const double dir[3] = {0.55, 0.35, 0.76};  // from the front right, a little above
+  for (int c = 0; c < 3; ++c) f.eye[c] = f.target[c] + dir[c] * 2.6 * radius;
+
+  std::vector<uint8_t> buffer(size_t(kW) * kH * 4);
+  OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
+  EXPECT_TRUE(ctx);
+  EXPECT_TRUE(OSMesaMakeCurrent(ctx, buffer.data(), GL_UNSIGNED_BYTE, kW, kH));
+  glViewport(0, 0, kW, kH);
+  glClearColor(kBackground[0] / 255.f, kBackground[1] / 255.f, kBackground[2] / 255.f, 1.f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  gluPerspective(45.0, double(kW) / kH, radius * 0.05, radius * 10);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  gluLookAt(f.eye[0], f.eye[1], f.eye[2], f.target[0], f.target[1], f.target[2], 0, 1, 0);
+  glEnable(GL_TEXTURE_2D);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+  glFrontFace(GL_CCW);
+  const std::string dir_of = fs::path(path).parent_path().string();
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    const aiMaterial* mat = scene->mMaterials[mesh->mMaterialIndex];
+    aiString tex;
+    aiTextureType type = aiTextureType_BASE_COLOR;
+    if (mat->GetTexture(type, 0, &tex) != AI_SUCCESS) {
+      type = aiTextureType_DIFFUSE;
+      if (mat->GetTexture(type, 0, &tex) != AI_SUCCESS) continue;
+    }
+    if (!mesh->HasTextureCoords(0)) continue;
+    std::string name = tex.C_Str();
+    std::replace(name.begin(), name.end(), '\\', '/');
+    int mode_u = aiTextureMapMode_Wrap, mode_v = aiTextureMapMode_Wrap;
+    mat->Get(AI_MATKEY_MAPPINGMODE_U(type, 0), mode_u);
+    mat->Get(AI_MATKEY_MAPPINGMODE_V(type, 0), mode_v);
+    const GLuint id = upload(dir_of + "/" + name, gl_wrap(mode_u), gl_wrap(mode_v));
+    if (!flip_rows) {  // planted: the same texels uploaded top row first
+      glDeleteTextures(1, &id);
+      OIIO::ImageBuf src(dir_of + "/" + name);
+      OIIO::ImageBuf flipped = OIIO::ImageBufAlgo::flip(src);
+      const std::string tmp = (fs::temp_directory_path() / ("gl_flip_" + std::to_string(getpid()) + ".png")).string();
+      flipped.write(tmp);
+      upload(tmp, gl_wrap(mode_u), gl_wrap(mode_v));
+      fs::remove(tmp);
+    }
+    int two_sided = 0;
+    mat->Get(AI_MATKEY_TWOSIDED, two_sided);
+    if (two_sided) glDisable(GL_CULL_FACE);
+    else glEnable(GL_CULL_FACE);
+    glBegin(GL_TRIANGLES);
+    for (unsigned t = 0; t < mesh->mNumFaces; ++t) {
+      if (mesh->mFaces[t].mNumIndices != 3) continue;
+      for (int k = 0; k < 3; ++k) {
+        const unsigned i = mesh->mFaces[t].mIndices[k];
+        glTexCoord2f(mesh->mTextureCoords[0][i].x, mesh->mTextureCoords[0][i].y);
+        glVertex3f(mesh->mVertices[i].x, mesh->mVertices[i].y, mesh->mVertices[i].z);
+      }
+    }
+    glEnd();
+  }
+  glFinish();
+  f.rgb.resize(size_t(kW) * kH * 3);
+  for (int y = 0; y < kH; ++y)  // OSMesa's row 0 is the bottom
+    for (int x = 0; x < kW; ++x)
+      for (int c = 0; c < 3; ++c) f.rgb[(size_t(y) * kW + x) * 3 + c] = buffer[(size_t(kH - 1 - y) * kW + x) * 4 + c];
+  OSMesaDestroyContext(ctx);
+  return f;
+}
+
+struct Agreement {
+  double coverage = 0;  // pixels both draw, or both leave as background
+  double close = 0;     // of the pixels both draw: max channel difference <= 24
+  double mean = 0;      // mean absolute channel difference over the pixels both draw
+};
+
+Agreement compare(const std::vector<uint8_t>& gl, const std::vector<uint8_t>& ours_rgba) {
+  size_t same_coverage = 0, both = 0, close = 0;
+  double sum = 0;
+  for (size_t p = 0; p < size_t(kW) * kH; ++p) {
+    const uint8_t* a = &gl[p * 3];
+    const uint8_t* b = &ours_rgba[p * 4];
+    const bool bg_a = a[0] == kBackground[0] && a[1] == kBackground[1] && a[2] == kBackground[2];
+    const bool bg_b = b[0] == kBackground[0] && b[1] == kBackground[1] && b[2] == kBackground[2];
+    same_coverage += bg_a == bg_b;
+    if (bg_a || bg_b) continue;
+    ++both;
+    int worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      worst = std::max(worst, std::abs(int(a[c]) - int(b[c])));
+      sum += std::abs(int(a[c]) - int(b[c]));
+    }
+    close += worst <= 24;
+  }
+  Agreement g;
+  g.coverage = double(same_coverage) / (double(kW) * kH);
+  g.close = both ? double(close) / double(both) : 0;
+  g.mean = both ? sum / (3.0 * double(both)) : 0;
+  return g;
+}
+
+}  // namespace
+
+class GlFrames : public TexsimCli {
+ protected:
+  Agreement against_gl(const std::string& model, bool flip_rows = true) {
+    const GlFrame gl = render_gl(model, flip_rows);
+    char camera[256];
+    std::snprintf(camera, sizeof camera, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,45", gl.eye[0], gl.eye[1], gl.eye[2],
+                  gl.target[0], gl.target[1], gl.target[2]);
+    const Result r = run("render --model " + model + " --memory cached --camera " + camera + " --width " +
+                         std::to_string(kW) + " --height " + std::to_string(kH) + " --out ours.png");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    int w = 0, h = 0;
+    const std::vector<uint8_t> ours = read_image(dir / "ours.png", w, h);
+    EXPECT_EQ(w, kW);
+    if (ours.empty() || gl.rgb.empty()) return {};
+    return compare(gl.rgb, ours);
+  }
+};
+
+// glTF 2.0 (top-left texture origin in the file), COLLADA and OBJ (bottom-left): texsim's frame is
+// OpenGL's, pixel for pixel but for edges (coverage) and LOD/filter rounding.
+TEST_F(GlFrames, TestModelsLookAsOpenGLDrawsThem) {
+  for (const char* m : {"glTF2/BoxTextured-glTF/BoxTextured.gltf", "Collada/duck.dae", "OBJ/spider.obj"}) {
+    const std::string model = std::string("/usr/share/assimp/models/") + m;
+    const Agreement g = against_gl(model);
+    std::printf("[ gl       ] %s: coverage %.4f, pixels within 24 LSB %.4f, mean difference %.2f LSB\n", m,
+                g.coverage, g.close, g.mean);
+    EXPECT_GT(g.coverage, 0.999) << m;  // the same rasterization rules, culling and depth test
+    EXPECT_GT(g.close, 0.99) << m;
+    EXPECT_LT(g.mean, 3.0) << m;
+  }
+}
+
+// The check fires: textures uploaded top row first (the usual convention mistake) disagree.
+TEST_F(GlFrames, UpsideDownTexturesAreCaught) {
+  const Agreement g = against_gl("/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf", false);
+  std::printf("[ gl       ] upside down: coverage %.4f, pixels within 24 LSB %.4f, mean difference %.2f LSB\n",
+              g.coverage, g.close, g.mean);
+  EXPECT_GT(g.coverage, 0.999);  // the geometry is the same
+  EXPECT_LT(g.close, 0.9);
+}
