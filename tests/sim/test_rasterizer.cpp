@@ -275,3 +275,18 @@ TEST(Rasterizer, OrbitFramesTheBox) {
     }
   }
 }
+
+// --camera-path: keyframes spread evenly over the frames, interpolated linearly; a single frame
+// or a single keyframe is that keyframe.
+TEST(Rasterizer, CameraPathInterpolatesKeyframes) {
+  const std::vector<Camera> keys = {{{0, 0, 10}, {0, 0, 0}, 40}, {{10, 0, 0}, {0, 1, 0}, 60}, {{0, 4, -10}, {0, 0, 0}, 20}};
+  EXPECT_EQ(camera_on_path(keys, 0, 5).eye, keys[0].eye);
+  EXPECT_EQ(camera_on_path(keys, 4, 5).eye, keys[2].eye);
+  EXPECT_EQ(camera_on_path(keys, 2, 5).eye, keys[1].eye);  // frame 2 of 5: the middle keyframe
+  const Camera mid = camera_on_path(keys, 1, 5);          // halfway between keyframes 0 and 1
+  EXPECT_EQ(mid.eye, glm::dvec3(5, 0, 5));
+  EXPECT_EQ(mid.target, glm::dvec3(0, 0.5, 0));
+  EXPECT_EQ(mid.fovy_deg, 50);
+  EXPECT_EQ(camera_on_path(keys, 3, 1).eye, keys[0].eye);
+  EXPECT_EQ(camera_on_path({keys[1]}, 3, 7).fovy_deg, 60);
+}

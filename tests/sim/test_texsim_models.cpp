@@ -179,3 +179,26 @@ TEST_F(TexsimModels, OnChipAndCachedGiveTheSamePicture) {
   EXPECT_FALSE(read_json(dir / "a.json").contains("texture_bytes_touched"));
   EXPECT_TRUE(read_json(dir / "b.json").contains("texture_bytes_touched"));
 }
+
+// An animation along a camera path: one picture per frame, per-frame figures in --stats, and the
+// frames differ (the camera moves).
+TEST_F(TexsimModels, CameraPathRendersEveryFrame) {
+  textured_quad("a", 3);
+  write_text(dir / "path.json", R"({"keyframes": [{"eye": [0.5, 0.5, 3], "target": [0.5, 0.5, 0], "fovy": 40},
+                                                 {"eye": [1.5, 0.8, 2], "target": [0.5, 0.5, 0], "fovy": 30}]})");
+  const Result r = run("render --model a.obj --camera-path path.json --frames 3 --width 64 --height 48 "
+                       "--out f.png --stats s.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int w, h;
+  const auto first = read_image(dir / "f_000.png", w, h), last = read_image(dir / "f_002.png", w, h);
+  EXPECT_FALSE(first.empty());
+  EXPECT_TRUE(fs::exists(dir / "f_001.png"));
+  EXPECT_NE(first, last);
+  const nlohmann::json s = read_json(dir / "s.json");
+  ASSERT_EQ(s.at("frames").size(), 3u);
+  uint64_t sum = 0;
+  for (const auto& f : s.at("frames")) sum += f.at("samples").get<uint64_t>();
+  EXPECT_EQ(sum, s.at("samples").get<uint64_t>());
+  EXPECT_NE(r.out.find("frame 2: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("total: "), std::string::npos) << r.out;
+}
