@@ -152,7 +152,7 @@ TEST_F(TexsimCli, ExploreBadInputFailsBeforeAnyWork) {
   expect_clean_failure("explore --mem-latency 200,x -o bad", out, {"--mem-latency \"x\""});
   expect_clean_failure("explore --fifo-depth maximal -o bad", out, {"--fifo-depth \"maximal\""});
   expect_clean_failure("explore --timing fast -o bad", out, {"--timing \"fast\""});
-  expect_clean_failure("explore --scene plane -q q.csv -o bad", out, {"--scene or --queries"});
+  expect_clean_failure("explore --scene plane -q q.csv -o bad", out, {"--scene, --queries, --model or --scene-file"});
   expect_clean_failure("explore -q missing.csv -o bad", out, {"missing.csv"});
   expect_clean_failure("explore --collect nowhere", "nowhere/explore.csv", {"nowhere/points/jobs", "--emit-jobs"});
   expect_clean_failure("explore --cache-kib 1 --block 8x8 --ways 4 -o bad", out, {"no point"});
