@@ -169,6 +169,16 @@ CaseResult run_case(rtl::Driver& unit, const Pyramid& pyr, const SamplerConfig& 
                   coverage, model_cache, poke_texel, fifo_depth);
 }
 
+// The configuration's block shape in a random block order, at a random base.
+LayoutParams random_layout(std::mt19937_64& rng, const rtl::RtlConfig& c) {
+  LayoutParams layout;
+  layout.block_w = c.block_w;
+  layout.block_h = c.block_h;
+  layout.order = BlockOrder(rng() % 2);
+  layout.base = uint32_t(rng() % 4) * 4096u;
+  return layout;
+}
+
 // A random cache geometry the configuration holds.
 CacheParams random_cache(std::mt19937_64& rng, const rtl::RtlConfig& c) {
   CacheParams p;
@@ -226,11 +236,7 @@ void run_suite(const CachedSuite& suite) {
     cfg.wrap_u = Wrap(rng() % 3);
     cfg.wrap_v = Wrap(rng() % 3);
     randomize_lod_controls(rng, cfg);
-    LayoutParams layout;
-    layout.block_w = rc.block_w;
-    layout.block_h = rc.block_h;
-    layout.order = BlockOrder(rng() % 2);
-    layout.base = uint32_t(rng() % 4) * 4096u;
+    const LayoutParams layout = random_layout(rng, rc);
     const CacheParams cache = random_cache(rng, rc);
     std::string memory_name, timing_name;
     const rtl::MemoryTiming memory = random_memory(rng, rc, memory_name);
@@ -316,11 +322,7 @@ TEST(RtlCached, DescriptorTableInterleavesTextures) {
     cfg.filter = ci % 3 == 2 ? filters[rng() % filters.size()] : Filter{TexelFilter::Linear, MipMode::Linear};
     if (ci % 5 == 4) randomize_aniso(rng, cfg);
     randomize_lod_controls(rng, cfg);
-    LayoutParams layout;
-    layout.block_w = rc.block_w;
-    layout.block_h = rc.block_h;
-    layout.order = BlockOrder(rng() % 2);
-    layout.base = uint32_t(rng() % 4) * 4096u;
+    const LayoutParams layout = random_layout(rng, rc);
     const CacheParams cache = random_cache(rng, rc);
     std::string memory_name, timing_name;
     const rtl::MemoryTiming memory = random_memory(rng, rc, memory_name);
