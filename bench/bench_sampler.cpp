@@ -28,6 +28,7 @@
 #include "model/lod.h"
 #include "model/pyramid.h"
 #include "model/sampler.h"
+#include "bench_csv.h"
 #include "bench_rtl.h"
 #include "engines/engine.h"
 
@@ -288,7 +289,8 @@ class RateReporter : public benchmark::ConsoleReporter {
 
 std::string run_name(const std::string& what, const std::string& set) { return what + "/" + set; }
 
-void print_summary(const RateReporter& rep, const std::vector<std::string>& rtl_runs) {
+void print_summary(const RateReporter& rep, const std::vector<std::string>& rtl_runs,
+                   const std::vector<std::string>& csv_runs) {
   auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
   std::printf("\nSummary (samples/s, single thread, 1024x1024 RGBA8, trilinear, repeat; same process)\n");
   std::printf("%-9s %14s %14s %14s %12s %12s\n", "queries", "model fast", "model ref", "OIIO TS", "fast/TS",
@@ -325,6 +327,13 @@ void print_summary(const RateReporter& rep, const std::vector<std::string>& rtl_
     const double rate = rep.get(name);
     if (rate == 0) continue;  // filtered out
     std::printf("%-24s %12.3f M %15.4fx\n", name.substr(name.find('/') + 1).c_str(), rate / 1e6, ratio(rate, fast));
+  }
+  std::printf("\ntexsim's CSV, 1 M lines of a file (queries parsed to requests, results written)\n");
+  std::printf("%-36s %14s %16s\n", "what", "lines/s", "vs model fast");
+  for (const std::string& name : csv_runs) {
+    const double rate = rep.get(name);
+    if (rate == 0) continue;  // filtered out
+    std::printf("%-36s %12.3f M %15.4fx\n", name.c_str(), rate / 1e6, ratio(rate, fast));
   }
 }
 
@@ -368,6 +377,7 @@ int main(int argc, char** argv) {
           ->MinTime(kMinTime);
     }
     const std::vector<std::string> rtl_runs = bench::register_rtl_benchmarks(kMinTime);
+    const std::vector<std::string> csv_runs = bench::register_csv_benchmarks(kMinTime);
     static const std::vector<BenchEngine> engines = bench_engines();
     for (const QuerySet& s : fixture.sets)
       for (const BenchEngine& e : engines)
@@ -379,7 +389,7 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     RateReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
-    print_summary(reporter, rtl_runs);
+    print_summary(reporter, rtl_runs, csv_runs);
 
     benchmark::Shutdown();
   } catch (const std::exception& e) {

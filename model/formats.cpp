@@ -23,15 +23,6 @@ constexpr FilterName kFilterNames[] = {
     {"linear_mipmap_linear", {TexelFilter::Linear, MipMode::Linear}},
 };
 
-bool to_fixed(double x, int frac_bits, int64_t lo, int64_t hi, int32_t& out) {
-  if (!std::isfinite(x)) return false;
-  const double scaled = std::ldexp(x, frac_bits);
-  if (scaled < static_cast<double>(lo) - 0.5 || scaled >= static_cast<double>(hi) + 0.5) return false;
-  const long long r = std::llround(scaled);
-  if (r < lo || r > hi) return false;
-  out = static_cast<int32_t>(r);
-  return true;
-}
 }  // namespace
 
 bool parse_filter(const std::string& name, Filter& out) {
@@ -73,12 +64,5 @@ bool parse_pyramid_mode(const std::string& name, PyramidMode& out) {
   return true;
 }
 
-bool to_coord_fixed(double u, int32_t& out) {
-  return to_fixed(u, kCoordFracBits, INT32_MIN, INT32_MAX, out);
-}
-
-bool to_lod_fixed(double lambda, int32_t& out) {
-  return to_fixed(lambda, kLodFracBits, kLodMin, kLodMax, out);
-}
 
 }  // namespace tex

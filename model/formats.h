@@ -3,6 +3,8 @@
 // docs/numerics.md explains every format and every rounding.
 #pragma once
 #include <array>
+#include <climits>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -51,7 +53,21 @@ using Texel = std::array<uint16_t, 4>;
 
 // Real value -> fixed point, rounding half away from zero. Return false when out of range
 // or not finite: callers report the error, the model never clamps silently.
-bool to_coord_fixed(double u, int32_t& out);
-bool to_lod_fixed(double lambda, int32_t& out);
+// (Inline: texsim converts every value of a query trace with them.)
+inline bool to_fixed(double x, int frac_bits, int64_t lo, int64_t hi, int32_t& out) {
+  if (!std::isfinite(x)) return false;
+  const double scaled = x * double(int64_t(1) << frac_bits);  // exact: a power of two
+  if (scaled < static_cast<double>(lo) - 0.5 || scaled >= static_cast<double>(hi) + 0.5) return false;
+  // Round half away from zero (llround's rule) without a libm call: truncate, then look at the
+  // exact remainder (|scaled| < 2^32, so both are exact in a double).
+  long long r = static_cast<long long>(scaled);
+  const double rest = scaled - static_cast<double>(r);
+  r += int(rest >= 0.5) - int(rest <= -0.5);  // (no branch: the remainders are random)
+  if (r < lo || r > hi) return false;
+  out = static_cast<int32_t>(r);
+  return true;
+}
+inline bool to_coord_fixed(double u, int32_t& out) { return to_fixed(u, kCoordFracBits, INT32_MIN, INT32_MAX, out); }
+inline bool to_lod_fixed(double lambda, int32_t& out) { return to_fixed(lambda, kLodFracBits, kLodMin, kLodMax, out); }
 
 }  // namespace tex

@@ -1,6 +1,7 @@
 #include "cli/sampling.h"
 
 #include <bit>
+#include <chrono>
 #include <deque>
 #include <optional>
 
@@ -64,11 +65,37 @@ class Verifier {
   size_t checked_ = 0;
 };
 
+// Time spent in a source's read() and a sink's write(), to take out of the engine's sampling time.
+struct TimedSource final : RequestSource {
+  explicit TimedSource(RequestSource& inner) : inner(inner) {}
+  size_t read(Request* out, size_t max) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    const size_t n = inner.read(out, max);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return n;
+  }
+  RequestSource& inner;
+  double seconds = 0;
+};
+struct TimedSink final : TexelSink {
+  explicit TimedSink(TexelSink& inner) : inner(inner) {}
+  void write(const Texel* t, size_t n) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    inner.write(t, n);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  TexelSink& inner;
+  double seconds = 0;
+};
+
 }  // namespace
 
 EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
-                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& source, TexelSink& sink) {
+                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& input, TexelSink& output,
+                       const ReadAheadSource* parser) {
   const auto engine = make_engine(o.engine, eo);
+  TimedSource source(input);
+  TimedSink sink(output);
   // The anisotropic filter: count each request's probes on the way in.
   std::optional<ProbeCounter> counter;
   if (cfg.filter.anisotropic) {
@@ -76,7 +103,7 @@ EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, Output
     for (const BoundTexture& t : textures) sizes.emplace_back(t.pyramid->log2_w0(), t.pyramid->log2_h0());
     counter.emplace(source, cfg, sizes);
   }
-  RequestSource& requests = counter ? *counter : source;
+  RequestSource& requests = counter ? static_cast<RequestSource&>(*counter) : source;
   try {
     EngineStats stats;
     if (!o.verify) {
@@ -88,6 +115,10 @@ EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, Output
                   o.engine.c_str());
     }
     if (counter) stats.probes = counter->histogram();
+    // The engine alone: without waiting for the requests and writing the results.
+    stats.sample_seconds = std::max(0.0, stats.sample_seconds - source.seconds - sink.seconds);
+    stats.parse_seconds = parser ? parser->busy_seconds() : source.seconds;
+    stats.write_seconds = sink.seconds;
     return stats;
   } catch (const SimulationError& e) {
     if (trace && outputs.keep(*trace)) throw Error(std::string(e.what()) + "; waveform kept: " + trace->path());

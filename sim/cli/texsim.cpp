@@ -111,8 +111,9 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (eo.memory == Memory::Cached) eo.miss_sink = &lines;
 
   QuerySource source(reader);
+  ReadAheadSource parsed(source);  // parsing in a thread of its own, overlapping the engine
   CsvTexelWriter writer(result.open());
-  const EngineStats stats = run_engine(o, eo, outputs, trace, table, cfg, source, writer);
+  const EngineStats stats = run_engine(o, eo, outputs, trace, table, cfg, parsed, writer, &parsed);
   if (misses) misses->close();
   if (source.count() == 0)
     std::fprintf(stderr, "texsim: %s has no queries (only a header): the result has only its header\n",

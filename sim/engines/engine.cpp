@@ -1,6 +1,12 @@
 #include "engines/engine.h"
 
 #include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 namespace tex {
 
@@ -55,6 +61,8 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
                       {"samples", samples},
                       {"load_seconds", load_seconds},
                       {"sample_seconds", sample_seconds},
+                      {"parse_seconds", parse_seconds},
+                      {"write_seconds", write_seconds},
                       {"samples_per_second", sample_seconds > 0 ? double(samples) / sample_seconds : 0.0}};
   j["memory"] = memory_name(options.memory);
   if (probes) {
@@ -170,6 +178,85 @@ size_t VectorSource::read(Request* out, size_t max) {
   const size_t n = std::min(max, n_ - next_);
   std::copy_n(requests_ + next_, n, out);
   next_ += n;
+  return n;
+}
+
+struct ReadAheadSource::Impl {
+  struct Chunk {
+    std::vector<Request> requests;
+    std::exception_ptr error;  // the source threw here (after the requests before it)
+  };
+  RequestSource& inner;
+  size_t chunk, depth;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::deque<Chunk> ready;
+  bool done = false, stop = false;
+  double busy = 0;
+  Chunk current;
+  size_t at = 0;
+  std::thread worker;
+
+  Impl(RequestSource& source, size_t chunk_size, size_t max_chunks) : inner(source), chunk(chunk_size), depth(max_chunks) {
+    worker = std::thread([this] { run(); });
+  }
+  void run() {
+    for (;;) {
+      Chunk c;
+      c.requests.resize(chunk);
+      const auto t0 = std::chrono::steady_clock::now();
+      size_t n = 0;
+      try {
+        n = inner.read(c.requests.data(), chunk);
+      } catch (...) {
+        c.error = std::current_exception();
+      }
+      c.requests.resize(n);
+      const bool last = n == 0 || c.error;
+      std::unique_lock lock(mutex);
+      busy += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (n || c.error) ready.push_back(std::move(c));
+      done = last;
+      changed.notify_all();
+      if (last) return;
+      changed.wait(lock, [this] { return stop || ready.size() < depth; });
+      if (stop) return;
+    }
+  }
+};
+
+ReadAheadSource::ReadAheadSource(RequestSource& inner, size_t chunk, size_t depth)
+    : impl_(std::make_unique<Impl>(inner, chunk, depth)) {}
+
+ReadAheadSource::~ReadAheadSource() {
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->stop = true;
+  }
+  impl_->changed.notify_all();
+  impl_->worker.join();
+}
+
+size_t ReadAheadSource::read(Request* out, size_t max) {
+  Impl& d = *impl_;
+  if (d.at == d.current.requests.size()) {
+    if (d.current.error) std::rethrow_exception(std::exchange(d.current.error, nullptr));
+    const auto t0 = std::chrono::steady_clock::now();
+    std::unique_lock lock(d.mutex);
+    d.changed.wait(lock, [&] { return !d.ready.empty() || d.done; });
+    busy_seconds_ = d.busy;
+    wait_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (d.ready.empty()) return 0;
+    d.current = std::move(d.ready.front());
+    d.ready.pop_front();
+    d.at = 0;
+    d.changed.notify_all();
+    lock.unlock();
+    if (d.current.requests.empty() && d.current.error) std::rethrow_exception(std::exchange(d.current.error, nullptr));
+  }
+  const size_t n = std::min(max, d.current.requests.size() - d.at);
+  std::copy_n(d.current.requests.data() + d.at, n, out);
+  d.at += n;
   return n;
 }
 

@@ -89,7 +89,9 @@ struct EngineStats {
   std::string engine;
   uint64_t samples = 0;
   double load_seconds = 0;    // building the engine and loading the texture
-  double sample_seconds = 0;  // the sampling phase alone (wall time)
+  double sample_seconds = 0;  // the sampling phase alone (wall time; texsim takes out the two below)
+  double parse_seconds = 0;   // texsim: reading and converting the requests (in parallel with the rest)
+  double write_seconds = 0;   // texsim: writing the results
   std::optional<CycleStats> cycle;  // cycle-accurate engines only
   // Golden model only: texel words read, lerps that multiply.
   uint64_t texel_reads = 0, multiplies_per_channel = 0;
@@ -139,6 +141,24 @@ class ProbeCounter final : public RequestSource {
   SamplerConfig config_;
   std::vector<std::pair<int, int>> sizes_;
   std::array<uint64_t, kMaxAniso + 1> histogram_{};
+};
+
+// Reads a source ahead in a thread of its own, a chunk at a time, while the caller works on the
+// previous chunks: parsing overlaps sampling. The requests, and any error of the source (thrown by
+// read() where the source threw it), come out in order. busy_seconds(): the thread's time in the
+// source; wait_seconds(): the caller's time waiting for it.
+class ReadAheadSource final : public RequestSource {
+ public:
+  explicit ReadAheadSource(RequestSource& inner, size_t chunk = 16384, size_t depth = 4);
+  ~ReadAheadSource() override;
+  size_t read(Request* out, size_t max) override;
+  double busy_seconds() const { return busy_seconds_; }
+  double wait_seconds() const { return wait_seconds_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  double busy_seconds_ = 0, wait_seconds_ = 0;
 };
 
 // Texels in request order, delivered a chunk at a time.

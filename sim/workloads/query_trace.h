@@ -52,11 +52,14 @@ class QueryReader {
 
  private:
   bool next_line(std::string_view& line);
+  static bool parse_values(std::string_view line, int columns, double* v);
+  void parse_values_checked(std::string_view line, double* v);
   std::string name_;
   std::FILE* file_ = nullptr;
   bool owned_ = false, rewindable_ = false;
-  char* buf_ = nullptr;
-  size_t cap_ = 0;
+  std::vector<char> buf_;      // [begin_, end_): read, not yet split into lines
+  size_t begin_ = 0, end_ = 0;
+  bool eof_ = false;
   int line_no_ = 0, columns_ = 0;
   bool texture_ = false, lod_ = false, quad_ = false;  // the header's columns
 };

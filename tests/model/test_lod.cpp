@@ -38,6 +38,30 @@ TEST(Lod, LodFromDerivativesEdgeCases) {
   }
 }
 
+// to_coord_fixed rounds as std::llround(std::ldexp(u, 24)) does, on random values, exact halves,
+// values one ulp either side of a half, and the ends of the range.
+TEST(Lod, RealToFixedRoundsAsLlround) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> any(-128.0, 128.0);
+  int checked = 0;
+  for (int i = 0; i < 1000000; ++i) {
+    double u = any(rng);
+    if (i % 4 == 1) u = std::ldexp(std::floor(std::ldexp(u, 24)) + 0.5, -24);  // an exact half
+    if (i % 4 == 2) u = std::nextafter(std::ldexp(std::floor(std::ldexp(u, 24)) + 0.5, -24), 0.0);
+    if (i % 4 == 3) u = std::nextafter(std::ldexp(std::floor(std::ldexp(u, 24)) + 0.5, -24), 1e9);
+    const double scaled = std::ldexp(u, 24);
+    int32_t x = 0;
+    const bool ok = to_coord_fixed(u, x);
+    const bool in_range = scaled >= -2147483648.5 && scaled < 2147483647.5;
+    ASSERT_EQ(ok, in_range) << u;
+    if (ok) {
+      ASSERT_EQ(x, std::llround(scaled)) << u;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 900000);
+}
+
 // to_coord_fixed / to_lod_fixed: round half away from zero, range errors instead of clamping.
 TEST(Lod, RealToFixedConversion) {
   int32_t x = 0;
