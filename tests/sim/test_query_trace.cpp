@@ -95,3 +95,35 @@ TEST(QueryTrace, BadValueNamesLineAndColumn) {
   }
   std::filesystem::remove(path);
 }
+
+// ReadAheadSource hands out the source's requests in order, then the source's error where the
+// source threw it; dropped before the end, it stops its thread (no hang).
+TEST(QueryTrace, ReadAheadKeepsOrderAndErrors) {
+  struct Counting final : RequestSource {
+    size_t next = 0, fail_at;
+    explicit Counting(size_t fail) : fail_at(fail) {}
+    size_t read(Request* out, size_t max) override {
+      size_t n = 0;
+      while (n < max && next < fail_at) out[n++].tag = uint32_t(next++);
+      if (n == 0) throw Error("bad query " + std::to_string(next));
+      return n;
+    }
+  };
+  Counting inner(100000);
+  ReadAheadSource ahead(inner, 777, 3);
+  std::vector<Request> buf(1000);
+  size_t seen = 0;
+  try {
+    while (const size_t n = ahead.read(buf.data(), buf.size()))
+      for (size_t i = 0; i < n; ++i) ASSERT_EQ(buf[i].tag, uint32_t(seen++));
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "bad query 100000");
+  }
+  EXPECT_EQ(seen, 100000u);
+  Counting endless(1u << 30);
+  {
+    ReadAheadSource early(endless, 4096, 2);
+    EXPECT_EQ(early.read(buf.data(), 10), 10u);
+  }  // destroyed with chunks pending: must return
+}
