@@ -1,5 +1,6 @@
 #include "pyramid.h"
 
+#include <array>
 #include <cstdint>
 
 namespace tex {
@@ -12,28 +13,34 @@ struct SumImage {
   std::vector<std::array<uint64_t, 4>> sums;
 };
 
-// Halves each side that is larger than 1, adding the 2x2 (or 2x1, 1x2) children.
-SumImage reduce(const SumImage& in, int log2_w, int log2_h) {
+// Halves each side that is larger than 1, adding the 2x2 (or 2x1, 1x2) children. `at(x, y)` is a
+// child's sums (level 0's texels or a SumImage's entries).
+template <class At>
+SumImage reduce(int in_w, int in_h, const At& at, int log2_w, int log2_h) {
   SumImage out;
   out.w = 1 << log2_w;
   out.h = 1 << log2_h;
-  out.sums.assign(size_t(out.w) * out.h, {0, 0, 0, 0});
-  const int sx = in.w / out.w, sy = in.h / out.h;
+  out.sums.resize(size_t(out.w) * out.h);
+  const int sx = in_w / out.w, sy = in_h / out.h;
   for (int y = 0; y < out.h; ++y)
-    for (int x = 0; x < out.w; ++x)
+    for (int x = 0; x < out.w; ++x) {
+      std::array<uint64_t, 4> sum{};
       for (int dy = 0; dy < sy; ++dy)
-        for (int dx = 0; dx < sx; ++dx)
-          for (int c = 0; c < 4; ++c)
-            out.sums[size_t(y) * out.w + x][c] += in.sums[size_t(y * sy + dy) * in.w + x * sx + dx][c];
+        for (int dx = 0; dx < sx; ++dx) {
+          const auto& child = at(x * sx + dx, y * sy + dy);
+          for (int c = 0; c < 4; ++c) sum[size_t(c)] += child[size_t(c)];
+        }
+      out.sums[size_t(y) * out.w + x] = sum;
+    }
   return out;
 }
-
-SumImage from_image(const Image& img) {
-  SumImage s{img.width, img.height, {}};
-  s.sums.resize(img.texels.size());
-  for (size_t i = 0; i < img.texels.size(); ++i)
-    for (int c = 0; c < 4; ++c) s.sums[i][c] = img.texels[i][c];
-  return s;
+SumImage reduce(const SumImage& in, int log2_w, int log2_h) {
+  return reduce(in.w, in.h, [&](int x, int y) -> const std::array<uint64_t, 4>& { return in.sums[size_t(y) * in.w + x]; },
+                log2_w, log2_h);
+}
+// Level 1 straight from level 0's texels (no copy of level 0 as sums: the largest level is read once).
+SumImage reduce(const Image& in, int log2_w, int log2_h) {
+  return reduce(in.width, in.height, [&](int x, int y) -> const Texel& { return in.at(x, y); }, log2_w, log2_h);
 }
 
 // Mean of `count` (a power of two) texels per sum, rounded half up.
@@ -52,16 +59,17 @@ Pyramid build_pyramid(const Image& level0, PyramidMode mode) {
   p.mode = mode;
   p.levels.push_back(level0);
   const int lw0 = log2_exact(level0.width), lh0 = log2_exact(level0.height);
-  SumImage sums = from_image(level0);
+  SumImage sums;
   for (int k = 1; k < level_count(lw0, lh0); ++k) {
     const LevelShape shape = level_shape(lw0, lh0, k);
     if (mode == PyramidMode::Exact) {
-      sums = reduce(sums, shape.log2_w, shape.log2_h);  // footprint sums carried exactly
+      // footprint sums carried exactly
+      sums = k == 1 ? reduce(level0, shape.log2_w, shape.log2_h) : reduce(sums, shape.log2_w, shape.log2_h);
       const int count = (level0.width / shape.width()) * (level0.height / shape.height());
       p.levels.push_back(to_image(sums, count, level0.channel_bits));
     } else {
       const Image& parent = p.levels.back();
-      SumImage s = reduce(from_image(parent), shape.log2_w, shape.log2_h);
+      SumImage s = reduce(parent, shape.log2_w, shape.log2_h);
       const int count = (parent.width / shape.width()) * (parent.height / shape.height());
       p.levels.push_back(to_image(s, count, level0.channel_bits));
     }
