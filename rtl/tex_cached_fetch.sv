@@ -188,11 +188,12 @@ module tex_cached_fetch #(
         logic          nx1, ny1;     // the second tap along x (y) is needed: its weight != 0
         logic          has_x, has_y;
         logic [LNW-1:0] index;       // a block's number in its level
+        logic [LNW-1:0] level_base;  // the level's first line (one table read per slot)
         logic [XW-1:0] xs;
         logic [YW-1:0] ys;
         // (temporaries too: a value on every path, no latch)
         {lev, lw, lh, lnbx, lnby, m, x0, x1, bx0, bx1, bx, y0, y1, by0, by1, by} = '0;
-        {nx1, ny1, has_x, has_y, index, xs, ys} = '0;
+        {nx1, ny1, has_x, has_y, index, level_base, xs, ys} = '0;
         look[s]        = '0;
         look_line[s]   = '0;
         look_set_hi[s] = '0;
@@ -202,6 +203,7 @@ module tex_cached_fetch #(
         // level d always; d1 when f != 0
         if (push && (s == 0 || f != '0)) begin
           lev  = level[s*VW +: VW];
+          level_base = base_line[(32'(front_tex) << VW) + 32'(lev)];
           lw   = log2_size[(s*2 + 0)*VW +: VW];
           lh   = log2_size[(s*2 + 1)*VW +: VW];
           lnbx = (lw > VW'(LBW)) ? lw - VW'(LBW) : '0;
@@ -232,7 +234,7 @@ module tex_cached_fetch #(
               index = LNW'(interleave(bx & XW'((1 << m) - 1), by & YW'((1 << m) - 1)))
                     | (((LNW'(bx) >> m) | (LNW'(by) >> m)) << (2 * m));
             end
-            look_line[s][q*LNW +: LNW]   = base_line[(32'(front_tex) << VW) + 32'(lev)] + index;
+            look_line[s][q*LNW +: LNW]   = level_base + index;
             look_set_hi[s][q*SHW +: SHW] = set_high(bx, by, set_k);
           end
           for (int k = 0; k < 4; k++) begin
