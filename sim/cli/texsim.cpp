@@ -87,6 +87,9 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (list.size() > 1 && eo.memory != Memory::Cached)
     throw Error(textures_path + ": " + std::to_string(list.size()) +
                 " textures; the on-chip unit holds one (the paper's design): use --memory cached");
+  if (list.size() > 1 && !engine_info(o.engine).texture_table)
+    throw Error(textures_path + ": " + std::to_string(list.size()) + " textures; engine " + o.engine +
+                " takes one per frame: use --engine model or rtl");
   std::vector<Pyramid> pyramids;
   pyramids.reserve(list.size());
   TextureTable table;

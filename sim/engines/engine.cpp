@@ -280,8 +280,8 @@ EngineResult run_collected(const std::vector<Request>& requests,
 EngineStats Engine::run(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
                         TexelSink& sink) {
   if (textures.size() != 1)
-    throw Error("this engine samples one texture per frame (the RTL's descriptor table is not built yet); the frame has " +
-                std::to_string(textures.size()) + ": use --engine model");
+    throw Error("this engine (the SystemC wrapper) passes one texture per frame; the frame has " +
+                std::to_string(textures.size()) + ": use --engine model or rtl, whose cached units hold a descriptor table");
   SamplerConfig c = config;
   c.wrap_u = textures[0].wrap_u;
   c.wrap_v = textures[0].wrap_v;

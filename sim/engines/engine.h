@@ -249,8 +249,8 @@ class Engine {
   // The same for requests in memory.
   EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
   // Several textures through the cached unit's descriptor table (the table's wrap modes replace
-  // the configuration's). This default takes a table of one texture and refuses more, for engines
-  // whose hardware has no descriptor table yet.
+  // the configuration's): the model and the RTL. This default takes a table of one texture and
+  // refuses more: the SystemC wrapper passes one texture (docs/systemc.md).
   virtual EngineStats run(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
                           TexelSink& sink);
 };
@@ -261,6 +261,7 @@ struct EngineInfo {
   bool cycle_accurate = false;
   bool can_trace = false;
   std::function<std::unique_ptr<Engine>(const EngineOptions&)> make;
+  bool texture_table = false;  // samples a frame of several textures (cached mode's descriptor table)
 };
 // Every engine of this build, in the order --help lists them.
 const std::vector<EngineInfo>& engines();

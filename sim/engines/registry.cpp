@@ -31,9 +31,9 @@ class ModelEngine final : public Engine {
 const std::vector<EngineInfo>& engines() {
   static const std::vector<EngineInfo> list = {
       {"model", "the golden model (bit-exact executable specification)", false, false,
-       [](const EngineOptions& o) -> std::unique_ptr<Engine> { return std::make_unique<ModelEngine>(o); }},
+       [](const EngineOptions& o) -> std::unique_ptr<Engine> { return std::make_unique<ModelEngine>(o); }, true},
       {"rtl", "the Verilated RTL, cycle-accurate, smallest configuration that holds the texture", true, true,
-       rtl::make_rtl_engine},
+       rtl::make_rtl_engine, true},
       {"systemc", "the Verilated RTL behind a TLM-2.0 socket (approximately timed, pipelined)", true, true,
        [](const EngineOptions& o) { return systemc::make_systemc_engine(systemc::Backend::Rtl, o); }},
       {"systemc-model", "the golden model behind the same socket (loosely timed)", false, false,

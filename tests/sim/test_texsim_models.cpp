@@ -142,6 +142,8 @@ TEST_F(TexsimModels, BadInputsFailCleanly) {
   write_text(dir / "two.json", R"({"models": [{"file": "a.obj"}, {"file": "b.obj", "translation": [2, 0, 0]}]})");
   // Several textures need the cached unit's descriptor table.
   expect_clean_failure("render --scene-file two.json --out f.png", "f.png", {"2 textures", "--memory cached"});
+  expect_clean_failure("render --scene-file two.json --memory cached --engine systemc --out f.png", "f.png",
+                       {"2 textures", "engine systemc", "--engine model or rtl"});
   expect_clean_failure("render --model missing.obj --out f.png", "f.png", {"missing.obj"});
   write_text(dir / "garbage.obj", "this is not a model\x01\x02\n");
   expect_clean_failure("render --model garbage.obj --out f.png", "f.png", {"garbage.obj"});
