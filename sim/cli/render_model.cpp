@@ -124,17 +124,14 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
     VectorSink texels;
     last_stats = run_engine(o, eo, outputs, trace, table, cfg, source, texels);
     save_image(compose_frame(frame, texels.texels, 8, Texel{48, 48, 56, 255}), *images[size_t(f - first)]);
-    const FrameFigures fig =
-        frame_figures(counts, last_stats, resident, uint64_t(lines.lines().size()) * uint64_t(eo.layout.block_w) *
-                                                        uint64_t(eo.layout.block_h) * 4);
+    const FrameFigures fig = frame_figures(counts, last_stats, resident, lines.bytes(line_bytes(table, eo)));
     total.add(fig);
     nlohmann::json j = fig.to_json();
     j["frame"] = f;
     per_frame.push_back(j);
     if (first != last) std::printf("  frame %d: %s\n", f, fig.summary().c_str());
   }
-  total.texture_bytes_touched =
-      uint64_t(all_lines.lines().size()) * uint64_t(eo.layout.block_w) * uint64_t(eo.layout.block_h) * 4;
+  total.texture_bytes_touched = all_lines.bytes(line_bytes(table, eo));
   if (misses) misses->close();
   if (query_writer) queries_out->close();
   if (list_out) {

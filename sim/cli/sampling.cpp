@@ -249,6 +249,11 @@ FrameFigures frame_figures(const QueryCounts& counts, const EngineStats& stats, 
   return f;
 }
 
+int line_bytes(const TextureTable& textures, const EngineOptions& options) {
+  const int texel_bytes = textures.at(0).pyramid->levels[0].channel_bits > 8 ? 8 : 4;
+  return options.layout.block_w * options.layout.block_h * texel_bytes;
+}
+
 uint64_t texture_bytes_resident(const TextureTable& textures, const EngineOptions& options) {
   uint64_t bytes = 0;
   if (options.memory == Memory::Cached) {

@@ -254,6 +254,8 @@ class LineSet final : public MissSink {
   explicit LineSet(MissSink* next = nullptr) : next_(next) {}
   void write(const uint32_t* addresses, size_t n) override;
   const std::unordered_set<uint32_t>& lines() const { return lines_; }
+  // The bytes of those lines, for lines of `line_bytes` (texture_bytes_touched).
+  uint64_t bytes(int line_bytes) const { return uint64_t(lines_.size()) * uint64_t(line_bytes); }
 
  private:
   MissSink* next_;
@@ -273,6 +275,8 @@ struct FrameFigures {
   std::string summary() const;            // one line
 };
 FrameFigures frame_figures(const QueryCounts& counts, const EngineStats& stats, uint64_t resident, uint64_t touched);
+// The memory's line size for the table's textures (cached mode: one block of their texels).
+int line_bytes(const TextureTable& textures, const EngineOptions& options);
 // Bytes of every texture of the table in memory: the cached layout's image, or the on-chip levels.
 uint64_t texture_bytes_resident(const TextureTable& textures, const EngineOptions& options);
 

@@ -125,8 +125,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   std::optional<FrameFigures> frame;
   if (!textures_path.empty())
     frame = frame_figures(source.counts(), stats, texture_bytes_resident(table, eo),
-                          uint64_t(lines.lines().size()) * uint64_t(eo.layout.block_w * eo.layout.block_h) *
-                              uint64_t(pyr.levels[0].channel_bits > 8 ? 8 : 4));
+                          lines.bytes(line_bytes(table, eo)));
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_stats(stats_out, stats, eo, secs, frame ? frame->to_json() : nlohmann::json::object());
   outputs.commit();
