@@ -53,6 +53,11 @@ Probes tex_probe(const Request& r, const SamplerConfig& config, int log2_w0, int
   return p;
 }
 
+int tex_probe_count(const Request& r, const SamplerConfig& config, int log2_w0, int log2_h0) {
+  if (!r.has_derivatives || config.probe_cap() == 1) return 1;
+  return tex_aniso(r.deriv, log2_w0, log2_h0, config.probe_cap(), config.aniso_pow2).n;
+}
+
 // The stages in pipeline order, as the RTL runs them (model/stages.h, docs/architecture.md).
 Texel Sampler::sample(const Request& r) {
   const Probes p = tex_probe(r, config_, log2_w0_, log2_h0_);

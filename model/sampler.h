@@ -52,6 +52,8 @@ struct Probes {
   std::array<Request, kMaxAniso> at;
 };
 Probes tex_probe(const Request& r, const SamplerConfig& config, int log2_w0, int log2_h0);
+// Only the probe count N of tex_probe (what the on-chip unit's timing depends on).
+int tex_probe_count(const Request& r, const SamplerConfig& config, int log2_w0, int log2_h0);
 
 struct SamplerStats {
   uint64_t samples = 0;

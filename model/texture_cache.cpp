@@ -96,10 +96,21 @@ const TextureDescriptor& TextureCache::texture(const Request& r) const {
   return textures_[r.texture];
 }
 
-void TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>* misses) {
+RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>* misses) {
   const MemoryLayout& layout = texture(r).layout;
+  RequestWork w;
+  if (!r.has_derivatives) {  // (one probe: the request itself)
+    const SampleLookup l = lookup(r, misses);
+    w.fills[0] = uint8_t(l.slot[0].misses + l.slot[1].misses);
+    return w;
+  }
   const Probes p = tex_probe(r, config_, layout.log2_w0(), layout.log2_h0());
-  for (int i = 0; i < p.n; ++i) lookup(p.at[size_t(i)], misses);
+  w.probes = uint8_t(p.n);
+  for (int i = 0; i < p.n; ++i) {
+    const SampleLookup l = lookup(p.at[size_t(i)], misses);
+    w.fills[size_t(i)] = uint8_t(l.slot[0].misses + l.slot[1].misses);
+  }
+  return w;
 }
 
 SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misses) {

@@ -10,6 +10,7 @@
 
 #include "memory_layout.h"
 #include "sampler.h"
+#include "timing.h"
 
 namespace tex {
 
@@ -68,7 +69,8 @@ class TextureCache {
   // `misses` (if not null), in the order docs/memory.md gives.
   SampleLookup lookup(const Request& probe, std::vector<uint32_t>* misses);
   // A whole request: its probes (tex_probe) one after another, as the RTL's FIFO holds them.
-  void lookup_sample(const Request& r, std::vector<uint32_t>* misses);
+  // Returns what its timing depends on: the probes and the lines each misses.
+  RequestWork lookup_sample(const Request& r, std::vector<uint32_t>* misses);
 
   const CacheStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }

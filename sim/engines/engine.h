@@ -15,13 +15,11 @@
 #include "model/pyramid.h"
 #include "model/sampler.h"
 #include "model/texture_cache.h"
+#include "model/timing.h"
 
 namespace tex {
 
-// Stimulus timing of cycle-accurate engines: `none` offers a request and takes a response in every
-// clock (what the hardware does when nothing stalls it); `random` and `heavy` add input gaps and
-// output stalls drawn from the seed (moderate, and in about 60% of the clocks).
-enum class Stalls { None, Random, Heavy };
+// Stimulus timing of cycle-accurate engines (tex::Stalls, model/timing.h).
 const std::vector<std::string>& stalls_names();
 bool parse_stalls(const std::string& name, Stalls& out);
 std::string stalls_name(Stalls s);

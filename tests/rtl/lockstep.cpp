@@ -49,6 +49,29 @@ std::string describe(const Texel& t) {
   return o.str();
 }
 
+std::vector<uint64_t> model_clocks(rtl::Driver& unit, uint32_t fifo_depth, const std::vector<RequestWork>& work,
+                                   const rtl::Timing& stim, uint64_t seed) {
+  const rtl::MemoryModel* memory = unit.memory();
+  TimedStream timed(rtl::unit_shape(unit.config(), fifo_depth), memory ? &memory->channel() : nullptr, stim, seed);
+  for (const RequestWork& w : work) timed.push(w);
+  std::vector<uint64_t> clocks(work.size());
+  timed.finish([&](size_t i, uint64_t clock) { clocks[i] = clock; });
+  return clocks;
+}
+
+std::string compare_clocks(const std::vector<uint64_t>& rtl, const std::vector<uint64_t>& model) {
+  if (rtl.size() != model.size())
+    return "response clocks: " + std::to_string(rtl.size()) + " from the RTL, " + std::to_string(model.size()) +
+           " from the timing model";
+  size_t first = rtl.size(), differ = 0;
+  for (size_t i = 0; i < rtl.size(); ++i)
+    if (rtl[i] != model[i] && differ++ == 0) first = i;
+  if (!differ) return "";
+  return "response " + std::to_string(first) + " at clock " + std::to_string(rtl[first]) + " in the RTL, " +
+         std::to_string(model[first]) + " in the timing model (" + std::to_string(differ) + " of " +
+         std::to_string(rtl.size()) + " responses differ)";
+}
+
 LockstepResult lockstep(rtl::Driver& unit, const Pyramid& pyramid, const SamplerConfig& config,
                         const std::vector<Request>& requests, const rtl::Timing& timing, uint64_t seed) {
   LockstepResult res;
@@ -56,12 +79,19 @@ LockstepResult lockstep(rtl::Driver& unit, const Pyramid& pyramid, const Sampler
   Sampler model(pyramid, config);
   const int cw = unit.config().cw;
   std::vector<uint64_t> expected(requests.size());
-  for (size_t i = 0; i < requests.size(); ++i) expected[i] = rtl::pack_rgba(model.sample(requests[i]), cw);
+  std::vector<RequestWork> work(requests.size());
+  for (size_t i = 0; i < requests.size(); ++i) {
+    expected[i] = rtl::pack_rgba(model.sample(requests[i]), cw);
+    work[i].probes = uint8_t(tex_probe_count(requests[i], config, pyramid.log2_w0(), pyramid.log2_h0()));
+  }
+  const std::vector<uint64_t> want_clocks = model_clocks(unit, 0, work, timing, seed);
+  std::vector<uint64_t> clocks(requests.size());
   std::vector<uint8_t> answered(requests.size(), 0);
   std::ostringstream report;
   try {
     res.stats = rtl::stream(unit, requests.data(), requests.size(), timing, seed, [&](size_t i, uint64_t got) {
       ++res.compared;
+      clocks[i] = response_clock(unit);
       if (answered[i]++) report << "request #" << i << " answered twice\n";
       if (got != expected[i] && ++res.mismatches <= 5)
         report << "request #" << i << " " << describe(requests[i]) << ": rtl " << describe(rtl::unpack_rgba(got, cw))
@@ -72,6 +102,7 @@ LockstepResult lockstep(rtl::Driver& unit, const Pyramid& pyramid, const Sampler
         report << "request #" << i << " never answered\n";
         break;
       }
+    if (const std::string c = compare_clocks(clocks, want_clocks); !c.empty()) report << c << "\n";
   } catch (const Error& e) {
     report << e.what() << "\n";
   }

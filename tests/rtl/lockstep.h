@@ -26,6 +26,7 @@ int scale();
 
 // Every request is compared with tex::Sampler::sample() of the model; the driver checks tags
 // (order, loss, duplicates) and the time-out; this checks data and that every index came back once.
+// It also checks each response's clock against the timing model (model/timing.h).
 struct LockstepResult {
   uint64_t compared = 0;
   uint64_t mismatches = 0;
@@ -35,6 +36,18 @@ struct LockstepResult {
 };
 LockstepResult lockstep(rtl::Driver& unit, const Pyramid& pyramid, const SamplerConfig& config,
                         const std::vector<Request>& requests, const rtl::Timing& timing, uint64_t seed);
+
+// The timing model over the stream `unit` is about to run: the configuration's shape (fifo_depth:
+// the cfg_fifo_limit in use), the driver's memory channel as it stands, the same stimulus and
+// seed. The clock of each response, counted from the first offer, in response order.
+std::vector<uint64_t> model_clocks(rtl::Driver& unit, uint32_t fifo_depth, const std::vector<RequestWork>& work,
+                                   const rtl::Timing& stim, uint64_t seed);
+// The clock of the response the driver took last, counted as model_clocks() counts.
+inline uint64_t response_clock(const rtl::Driver& unit) {
+  return unit.counters().last_response_cycle - unit.counters().first_offer_cycle;
+}
+// "" when equal, else the first difference and how many differ.
+std::string compare_clocks(const std::vector<uint64_t>& rtl, const std::vector<uint64_t>& model);
 
 std::string describe(const SamplerConfig& c);
 std::string describe(const Request& r);

@@ -114,17 +114,24 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
   eo.layout = layout;
   TextureCache model(texture_descriptors(mt, eo), model_cache ? *model_cache : cache, cfg);
   std::vector<uint32_t> predicted;
+  std::vector<RequestWork> work;  // each request's probes and their misses: what its timing depends on
   for (const Request& q : requests) {
     const Pyramid& t = *mt.at(q.texture).pyramid;
     const Probes p = tex_probe(q, cfg, t.log2_w0(), t.log2_h0());
+    RequestWork& w = work.emplace_back();
+    w.probes = uint8_t(p.n);
     for (int i = 0; i < p.n; ++i) {
       const SampleLookup l = model.lookup(p.at[size_t(i)], &predicted);
+      w.fills[size_t(i)] = uint8_t(l.slot[0].misses + l.slot[1].misses);
       if (coverage) coverage->sample(l);
     }
   }
+  const std::vector<uint64_t> want_clocks = model_clocks(unit, fifo_depth, work, stim, seed);
+  std::vector<uint64_t> clocks(requests.size());
   uint64_t mismatches = 0;
   try {
     const rtl::StreamStats st = rtl::stream(unit, requests.data(), requests.size(), stim, seed, [&](size_t i, uint64_t rgba) {
+      clocks[i] = response_clock(unit);
       const Texel want = samplers[requests[i].texture].sample(requests[i]);
       const Texel got = rtl::unpack_rgba(rgba, pyr.levels[0].channel_bits);
       if (got != want && mismatches++ == 0)
@@ -157,6 +164,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
                   i < predicted.size() ? predicted[i] : 0u);
     r.failure = text;
   }
+  if (const std::string c = compare_clocks(clocks, want_clocks); !c.empty() && r.failure.empty()) r.failure = c;
   return r;
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <random>
 
 #include "model/error.h"
 #include "model/formats.h"
@@ -10,9 +9,6 @@
 namespace tex::rtl {
 
 namespace {
-
-// Uniform double in [0, 1) from 53 random bits.
-inline double unit(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
 
 std::string size_text(int log2_w, int log2_h) { return std::to_string(1 << log2_w) + "x" + std::to_string(1 << log2_h); }
 
@@ -91,6 +87,18 @@ CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const 
     throw Error("cache geometry " + std::to_string(lines) + " lines / " + std::to_string(cache.ways) +
                 " ways: the sets must be a power of two, at least 4");
   return p;
+}
+
+UnitShape unit_shape(const RtlConfig& config, uint32_t fifo_depth) {
+  UnitShape s;
+  s.cached = config.cached;
+  if (!config.cached) return s;
+  s.fifo_depth = uint32_t(config.fifo_depth);
+  s.fifo_limit = fifo_depth;
+  s.miss_depth = uint32_t(config.miss_depth);
+  s.fill_depth = uint32_t(config.fill_depth);
+  s.line_beats = uint32_t(config.line_bytes() * 8 / config.mem_bits);
+  return s;
 }
 
 void set_request_pins(PinsIn& in, const Request& r) {
@@ -387,29 +395,6 @@ Driver::Clock Driver::clock(const Request* offer, bool take_response) {
 
 // ---------------------------------------------------------------- stimulus
 
-Timing Timing::of(Stalls stalls) {
-  Timing t;
-  switch (stalls) {
-    case Stalls::None:
-      break;
-    case Stalls::Random:  // moderate gaps and stalls, now and then a long stall
-      t.gap_prob = 0.05;
-      t.max_gap = 4;
-      t.stall_prob = 0.05;
-      t.max_stall = 8;
-      t.long_stall_prob = 0.0005;
-      t.long_stall = 200;
-      break;
-    case Stalls::Heavy:  // a gap or stall starts in 60% of the free clocks and lasts 1..6
-      t.gap_prob = 0.6;
-      t.max_gap = 6;
-      t.stall_prob = 0.6;
-      t.max_stall = 6;
-      break;
-  }
-  return t;
-}
-
 StreamStats stream(Driver& driver, RequestSource& source, const Timing& timing, uint64_t seed,
                    const ResponseFn& on_response, const std::function<void(size_t)>& progress) {
   StreamStats st;
@@ -417,62 +402,25 @@ StreamStats stream(Driver& driver, RequestSource& source, const Timing& timing, 
   const uint64_t base = driver.issued();  // sequence numbers continue across streams until a reset
   RequestQueue queue(source);
   size_t accepted = 0, done = 0;
-  if (timing.ideal()) {
-    for (;;) {
-      const Request* next = queue.peek();
-      if (!next && done == accepted) break;
-      const Driver::Clock c = driver.clock(next, true);
-      if (c.responded) {
-        on_response(size_t(c.response_index - base), c.rgba);
-        if ((++done & 0xFFFF) == 0 && progress) progress(done);
-      }
-      if (c.accepted) {
-        queue.pop();
-        ++accepted;
-      }
+  StimulusClock stimulus(timing, seed);
+  for (;;) {
+    const Request* next = queue.peek();
+    if (!next && done == accepted) break;
+    bool offer = true, ready = true;
+    if (!timing.ideal()) stimulus.begin(next != nullptr, offer, ready);  // (ideal: no draws)
+    const Driver::Clock c = driver.clock(offer ? next : nullptr, ready);
+    if (c.responded) {
+      on_response(size_t(c.response_index - base), c.rgba);
+      if ((++done & 0xFFFF) == 0 && progress) progress(done);
     }
-  } else {
-    std::mt19937_64 rng(seed);
-    int gap_left = 0, stall_left = 0;
-    bool holding = false;    // a request was offered and not taken in the previous clock
-    bool after_gap = false;  // the next request follows an input gap
-    for (;;) {
-      const Request* next = queue.peek();
-      if (!next && done == accepted) break;
-      // A request once offered stays offered until accepted: gaps start only between requests.
-      if (gap_left == 0 && !holding && timing.gap_prob > 0 && next && unit(rng) < timing.gap_prob)
-        gap_left = 1 + int(rng() % uint64_t(std::max(1, timing.max_gap)));
-      if (stall_left == 0) {
-        if (timing.long_stall_prob > 0 && unit(rng) < timing.long_stall_prob)
-          stall_left = timing.long_stall;
-        else if (timing.stall_prob > 0 && unit(rng) < timing.stall_prob)
-          stall_left = 1 + int(rng() % uint64_t(std::max(1, timing.max_stall)));
-      }
-      const bool offer = next && gap_left == 0;
-      if (gap_left > 0) {
-        --gap_left;
-        if (next) {
-          ++st.gap_cycles;
-          after_gap = true;
-        }
-      }
-      const bool ready = stall_left == 0;
-      if (stall_left > 0) --stall_left;
-      const Driver::Clock c = driver.clock(offer ? next : nullptr, ready);
-      if (c.responded) {
-        on_response(size_t(c.response_index - base), c.rgba);
-        ++done;
-        if (progress && (done & 0xFFFF) == 0) progress(done);
-      }
-      holding = offer && !c.accepted;
-      if (c.accepted) {
-        if (after_gap) ++st.requests_after_gap;
-        after_gap = false;
-        queue.pop();
-        ++accepted;
-      }
+    if (!timing.ideal()) stimulus.end(c.accepted);
+    if (c.accepted) {
+      queue.pop();
+      ++accepted;
     }
   }
+  st.gap_cycles = stimulus.gap_cycles;
+  st.requests_after_gap = stimulus.requests_after_gap;
   st.protocol = driver.counters();
   st.memory = driver.memory_counters();
 

@@ -17,6 +17,7 @@
 #include "model/pyramid.h"
 #include "model/sampler.h"
 #include "model/texture_cache.h"
+#include "model/timing.h"
 
 namespace tex::rtl {
 
@@ -33,6 +34,7 @@ struct RtlConfig {
   int mem_bits = 0;              // MEM_W: bits of a memory beat
   int miss_depth = 0;            // MISS_DEPTH: lines requested and not yet received, at most
   int textures = 1;              // TEXTURES: descriptor-table entries (tex_unit: 1)
+  int fill_depth = 4;            // FILL_DEPTH: lines received and not yet written (the RTL's default)
   int line_bytes() const { return block_w * block_h * (cw > 8 ? 8 : 4); }
   Memory memory() const { return cached ? Memory::Cached : Memory::OnChip; }
   bool fits(int log2_w, int log2_h) const { return log2_w <= max_log2_w && log2_h <= max_log2_h; }
@@ -61,6 +63,10 @@ struct CachePins {
 // Throws tex::Error naming what does not fit the configuration. fifo_depth 0 = its FIFO_DEPTH.
 CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const CacheParams& cache,
                      uint32_t fifo_depth);
+
+// The parameters the timing model needs to clock this configuration like the RTL (fifo_depth: the
+// cfg_fifo_limit in use, 0 = FIFO_DEPTH).
+UnitShape unit_shape(const RtlConfig& config, uint32_t fifo_depth = 0);
 
 constexpr int kTagBits = 16;
 constexpr uint32_t kTagMask = (1u << kTagBits) - 1;
@@ -311,18 +317,9 @@ class Driver {
 
 // ---------------------------------------------------------------- stimulus
 
-// Input gaps and output stalls, probabilities per clock; all 0 = ideal (a request offered and the
-// response taken in every clock).
-struct Timing {
-  double gap_prob = 0;         // start an input gap (req_valid low) in this clock
-  int max_gap = 1;             // a gap lasts 1..max_gap clocks
-  double stall_prob = 0;       // start an output stall (rsp_ready low) in this clock
-  int max_stall = 1;           // a stall lasts 1..max_stall clocks
-  double long_stall_prob = 0;  // start a long stall of long_stall clocks instead
-  int long_stall = 300;
-  bool ideal() const { return gap_prob == 0 && stall_prob == 0 && long_stall_prob == 0; }
-  static Timing of(Stalls stalls);  // the profiles of --stalls
-};
+// Input gaps and output stalls (model/timing.h): the RTL harness and the timing model draw them
+// from the same generator.
+using Timing = tex::Stimulus;
 
 // Counters of one stream() call: the driver's protocol counters plus the stimulus's own.
 struct StreamStats {

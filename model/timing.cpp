@@ -1,0 +1,188 @@
+#include "model/timing.h"
+
+#include <string>
+
+#include "model/error.h"
+
+namespace tex {
+
+Stimulus Stimulus::of(Stalls stalls) {
+  Stimulus t;
+  switch (stalls) {
+    case Stalls::None:
+      break;
+    case Stalls::Random:  // moderate gaps and stalls, now and then a long stall
+      t.gap_prob = 0.05;
+      t.max_gap = 4;
+      t.stall_prob = 0.05;
+      t.max_stall = 8;
+      t.long_stall_prob = 0.0005;
+      t.long_stall = 200;
+      break;
+    case Stalls::Heavy:  // a gap or stall starts in 60% of the free clocks and lasts 1..6
+      t.gap_prob = 0.6;
+      t.max_gap = 6;
+      t.stall_prob = 0.6;
+      t.max_stall = 6;
+      break;
+  }
+  return t;
+}
+
+UnitClock::UnitClock(const UnitShape& shape, const MemoryChannel* memory)
+    : shape_(shape), memory_(memory ? *memory : MemoryChannel(16, 16, MemoryTiming{})) {
+  if (shape_.cached && !memory) throw Error("the cached unit's timing needs its memory channel");
+  memory_.count_repeats(false);  // (addresses do not decide timing: the model passes none)
+  if (shape_.cached) {
+    const uint32_t d = shape_.fifo_depth;
+    if (d < 2 || (d & (d - 1)) != 0) throw Error("FIFO depth " + std::to_string(d) + ": a power of two, at least 2");
+    if (shape_.miss_depth < 16) throw Error("miss ring of " + std::to_string(shape_.miss_depth) + ": at least 16");
+    if (shape_.fill_depth < 1 || shape_.line_beats < 1) throw Error("fill FIFO and beats per line: at least 1");
+    fifo_.assign(d, 0);
+    fifo_limit_ = shape_.fifo_limit == 0 || shape_.fifo_limit > d ? d : shape_.fifo_limit;
+  }
+}
+
+bool UnitClock::idle() const {
+  return probe_valid_ == 0 && pipe_valid_ == 0 && !s1_valid_ && !sample_valid_ && !out_valid_ && front_valid_ == 0 &&
+         fifo_count_ == 0 && !h_valid_ && !r_valid_ && !t_valid_ && !o_valid_ && back_valid_ == 0 && ring_used_ == 0;
+}
+
+// tex_probe (rtl/tex_probe.sv): req_ready = en && !hold; the clock-4 register holds a request
+// while the sequencer issues its probes, one per clock with en.
+bool UnitClock::probe_stage(const RequestWork* offer, bool en, bool& probe_valid, bool& probe_last,
+                            uint8_t& probe_fills) {
+  probe_valid = (probe_valid_ & 8u) != 0;
+  const RequestWork& w = probe_work_[probe_head_ & 3];
+  const bool hold = probe_valid && index_ != uint32_t(w.probes) - 1;
+  const bool en_up = en && !hold;
+  probe_last = !hold;
+  probe_fills = probe_valid ? w.fills[index_ & (kMaxAniso - 1)] : 0;
+  const bool accepted = offer && en_up;
+  if (en_up) {
+    index_ = 0;
+    if (probe_valid) ++probe_head_;
+    probe_valid_ = (probe_valid_ << 1 | uint32_t(accepted)) & 0xFu;
+    if (accepted) probe_work_[probe_tail_++ & 3] = *offer;
+  } else if (en) {
+    ++index_;
+  }
+  return accepted;
+}
+
+// tex_skid (rtl/tex_skid.sv): the output register refills from the skid entry first, else from
+// the input; the input is parked when the output is stalled.
+void UnitClock::skid_stage(bool sample_valid, bool ready) {
+  if (ready || !out_valid_) {
+    out_valid_ = skid_valid_ || sample_valid;
+    skid_valid_ = false;
+  } else if (sample_valid && !skid_valid_) {
+    skid_valid_ = true;
+  }
+}
+
+// tex_unit: one stall-enable pipeline, en = the skid buffer has room.
+UnitClock::Edge UnitClock::clock_onchip(const RequestWork* offer, bool ready) {
+  Edge e;
+  const bool en = !skid_valid_;
+  e.rsp_valid = out_valid_;
+  e.responded = out_valid_ && ready;
+  const bool sample_valid = sample_valid_;
+  if (en) {
+    // tex_accum: clock 2 takes clock 1 (a sample leaves with its last probe); clock 1 the last
+    // probe register; the probe registers shift in tex_probe's probe.
+    sample_valid_ = s1_valid_ && s1_last_;
+    s1_valid_ = (pipe_valid_ >> 8) & 1u;
+    s1_last_ = (pipe_last_ >> 8) & 1u;
+  }
+  bool probe_valid = false, probe_last = false;
+  uint8_t fills = 0;
+  e.accepted = probe_stage(offer, en, probe_valid, probe_last, fills);
+  if (en) {
+    pipe_valid_ = (pipe_valid_ << 1 | uint32_t(probe_valid)) & 0x1FFu;
+    pipe_last_ = (pipe_last_ << 1 | uint32_t(probe_last)) & 0x1FFu;
+  }
+  skid_stage(sample_valid, ready);
+  return e;
+}
+
+// tex_unit_cached: the front (tex_probe, front clocks 1-4, the tag stage) advances with the
+// registered en_front (room in the FIFO and the miss ring), the back (H, R, T, taps, filter,
+// tex_accum) with en_back (room in the skid buffer); tex_cached_fetch in between.
+UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
+  Edge e;
+  const bool en_back = !skid_valid_;
+  const bool en_front = en_front_;
+  e.rsp_valid = out_valid_;
+  e.responded = out_valid_ && ready;
+
+  // The tag stage pushes the front's clock-4 probe and its misses.
+  const bool push = en_front && (front_valid_ & 8u) != 0;
+  const uint32_t push_fills = push ? front_fills_[3] : 0;
+  // Memory: a miss is issued when the channel is ready; a beat is taken when the fill FIFO has room.
+  const bool issue = ring_unissued_ != 0 && memory_.request_ready();
+  const bool beat_take = memory_.response_valid() && fill_count_ != shape_.fill_depth;
+  const bool line_done = beat_take && beat_ == shape_.line_beats - 1;
+  // H: the head writes its fills, one per clock, then leaves for R.
+  const bool fill_write = en_back && h_valid_ && h_fills_ != 0 && fill_count_ != 0;
+  const bool h_go = en_back && h_valid_ && (h_fills_ == 0 || (h_fills_ == 1 && fill_write));
+  const bool pop = (!h_valid_ || h_go) && fifo_count_ != 0;
+  fifo_max = std::max(fifo_max, fifo_count_);
+  head_wait_cycles += en_back && h_valid_ && !h_go;
+  lines_read += issue;
+
+  const bool sample_valid = sample_valid_;
+  if (en_back) {
+    sample_valid_ = s1_valid_ && s1_last_;
+    s1_valid_ = (back_valid_ >> 2) & 1u;
+    s1_last_ = (back_last_ >> 2) & 1u;
+    back_valid_ = (back_valid_ << 1 | uint32_t(o_valid_)) & 7u;
+    back_last_ = (back_last_ << 1 | uint32_t(o_last_)) & 7u;
+    o_valid_ = t_valid_;
+    o_last_ = t_last_;
+    t_valid_ = r_valid_;
+    t_last_ = r_last_;
+    r_valid_ = h_go;
+    r_last_ = h_last_;
+  }
+  if (pop) {
+    const uint8_t entry = fifo_[fifo_rd_++ & (shape_.fifo_depth - 1)];
+    h_valid_ = true;
+    h_fills_ = entry & 15u;
+    h_last_ = (entry >> 4) & 1u;
+  } else {
+    if (h_go) h_valid_ = false;
+    if (fill_write) --h_fills_;
+  }
+  if (push) fifo_[fifo_wr_++ & (shape_.fifo_depth - 1)] = uint8_t(push_fills | uint32_t(front_last_[3]) << 4);
+  fifo_count_ = fifo_count_ + uint32_t(push) - uint32_t(pop);
+  ring_used_ = ring_used_ + push_fills - uint32_t(fill_write);
+  ring_unissued_ = ring_unissued_ + push_fills - uint32_t(issue);
+  fill_count_ = fill_count_ + uint32_t(line_done) - uint32_t(fill_write);
+  if (beat_take) beat_ = line_done ? 0 : beat_ + 1;
+  // Room after this clock for one more sample and its (at most 8) misses.
+  en_front_ = fifo_count_ < fifo_limit_ && ring_used_ + 8 <= shape_.miss_depth;
+
+  bool probe_valid = false, probe_last = false;
+  uint8_t fills = 0;
+  e.accepted = probe_stage(offer, en_front, probe_valid, probe_last, fills);
+  if (en_front) {
+    front_valid_ = (front_valid_ << 1 | uint32_t(probe_valid)) & 0xFu;
+    front_fills_ = {fills, front_fills_[0], front_fills_[1], front_fills_[2]};
+    front_last_ = {probe_last, front_last_[0], front_last_[1], front_last_[2]};
+  }
+  skid_stage(sample_valid, ready);
+  memory_.clock(issue, 0, beat_take);
+  return e;
+}
+
+TimingCounters TimedStream::counters() const {
+  TimingCounters c = c_;
+  c.gap_cycles = stimulus_.gap_cycles;
+  c.lines_read = unit_.lines_read;
+  c.fifo_max = unit_.fifo_max;
+  c.head_wait_cycles = unit_.head_wait_cycles;
+  return c;
+}
+
+}  // namespace tex

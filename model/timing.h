@@ -1,0 +1,247 @@
+// The timing layer of the golden model (docs/timing.md): for every response, the clock at which it
+// leaves the unit, exactly as the RTL gives it. The functional model (sampler, texture cache) stays
+// the bit-level specification; this layer adds when. It clocks only what decides timing: the
+// valid bits of every pipeline register, tex_probe's sequencer, and in the cached unit the sample
+// FIFO, the miss ring, the fill FIFO and the head's fills, against the memory channel the RTL
+// harness uses (model/memory_channel.h). A request's timing depends on its probe count and on how
+// many lines each probe misses, which the functional model gives (RequestWork).
+//
+// Stage names are the RTL's (rtl/tex_unit.sv, rtl/tex_unit_cached.sv, rtl/tex_cached_fetch.sv):
+//   tex_probe (request clocks 1-4, sequencer) -> probe registers -> tex_accum (2) -> tex_skid, and
+//   in the cached unit: tex_probe -> front (4) -> tag stage / FIFO push -> H (head) -> R -> T ->
+//   taps -> filter (3) -> tex_accum (2) -> tex_skid.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "model/formats.h"
+#include "model/memory_channel.h"
+
+namespace tex {
+
+// Stimulus timing: `none` offers a request and takes a response in every clock (what the hardware
+// does when nothing stalls it); `random` and `heavy` add input gaps and output stalls drawn from
+// the seed (moderate, and in about 60% of the clocks).
+enum class Stalls { None, Random, Heavy };
+
+// Input gaps and output stalls, probabilities per clock; all 0 = ideal (a request offered and the
+// response taken in every clock).
+struct Stimulus {
+  double gap_prob = 0;         // start an input gap (req_valid low) in this clock
+  int max_gap = 1;             // a gap lasts 1..max_gap clocks
+  double stall_prob = 0;       // start an output stall (rsp_ready low) in this clock
+  int max_stall = 1;           // a stall lasts 1..max_stall clocks
+  double long_stall_prob = 0;  // start a long stall of long_stall clocks instead
+  int long_stall = 300;
+  bool ideal() const { return gap_prob == 0 && stall_prob == 0 && long_stall_prob == 0; }
+  static Stimulus of(Stalls stalls);  // the profiles of --stalls
+};
+
+// The stimulus's choices clock by clock, from its seed: every cycle-accurate engine (the RTL
+// harness, the timing model) draws from this one generator, so they see the same gaps and stalls.
+class StimulusClock {
+ public:
+  StimulusClock(const Stimulus& s, uint64_t seed) : s_(s), rng_(seed) {}
+  // The coming clock, with `have` a request left to offer: whether it is offered, whether a
+  // response is taken.
+  void begin(bool have, bool& offer, bool& ready) {
+    if (gap_left_ == 0 && !holding_ && s_.gap_prob > 0 && have && unit() < s_.gap_prob)
+      gap_left_ = 1 + int(rng_() % uint64_t(std::max(1, s_.max_gap)));
+    if (stall_left_ == 0) {
+      if (s_.long_stall_prob > 0 && unit() < s_.long_stall_prob)
+        stall_left_ = s_.long_stall;
+      else if (s_.stall_prob > 0 && unit() < s_.stall_prob)
+        stall_left_ = 1 + int(rng_() % uint64_t(std::max(1, s_.max_stall)));
+    }
+    offer = have && gap_left_ == 0;
+    if (gap_left_ > 0) {
+      --gap_left_;
+      if (have) {
+        ++gap_cycles;
+        after_gap_ = true;
+      }
+    }
+    ready = stall_left_ == 0;
+    if (stall_left_ > 0) --stall_left_;
+    offered_ = offer;
+  }
+  // The clock's edge: whether the offered request was taken (once offered, it is offered again
+  // until taken: gaps start only between requests).
+  void end(bool accepted) {
+    holding_ = offered_ && !accepted;
+    if (accepted) {
+      requests_after_gap += after_gap_;
+      after_gap_ = false;
+    }
+  }
+  uint64_t gap_cycles = 0;          // req_valid held low with requests left
+  uint64_t requests_after_gap = 0;  // requests accepted right after an input gap
+
+ private:
+  double unit() { return double(rng_() >> 11) * (1.0 / 9007199254740992.0); }
+  Stimulus s_;
+  std::mt19937_64 rng_;
+  int gap_left_ = 0, stall_left_ = 0;
+  bool holding_ = false, after_gap_ = false, offered_ = false;
+};
+
+// What one request's timing depends on: its probes (tex_probe: 1, or N of an anisotropic
+// footprint) and, in the cached unit, the lines each probe misses (the tag stage's fills, 0..8).
+struct RequestWork {
+  uint8_t probes = 1;
+  std::array<uint8_t, kMaxAniso> fills{};
+};
+
+// The unit's parameters that decide timing (the RTL's, rtl/tex_unit_cached.sv).
+struct UnitShape {
+  bool cached = false;
+  uint32_t fifo_depth = 256;  // FIFO_DEPTH (power of two)
+  uint32_t fifo_limit = 0;    // cfg_fifo_limit: samples the FIFO holds at most; 0 = fifo_depth
+  uint32_t miss_depth = 64;   // MISS_DEPTH
+  uint32_t fill_depth = 4;    // FILL_DEPTH
+  uint32_t line_beats = 1;    // beats per line (line bytes / beat bytes)
+};
+constexpr uint64_t kOnChipLatency = 16;  // tex_unit: request handshake -> response, one probe, no stall
+constexpr uint64_t kCachedLatency = 19;  // tex_unit_cached, every line hitting
+
+// Counters of a timed stream (the cycle-accurate engines' CycleStats and cache counters).
+struct TimingCounters {
+  uint64_t samples = 0;
+  uint64_t first_offer_cycle = 0, last_response_cycle = 0;  // valid once samples > 0
+  bool any_offer = false;
+  uint64_t latency_min = 0, latency_max = 0;  // accept edge -> response edge
+  uint64_t output_stall_cycles = 0;           // rsp_valid && !rsp_ready
+  uint64_t backpressure_cycles = 0;           // req_valid && !req_ready
+  uint64_t gap_cycles = 0;                    // no request offered while some remain
+  uint64_t lines_read = 0;                    // cached: memory reads
+  uint32_t fifo_max = 0;                      // cached: the sample FIFO's largest occupancy
+  uint64_t head_wait_cycles = 0;              // cached: the FIFO's head waits for memory, the output ready
+  uint64_t cycles() const { return samples ? last_response_cycle - first_offer_cycle + 1 : 0; }
+};
+
+// The unit, clock by clock, valid bits only. clock() is one rising edge with the request pins
+// (offer: the request on req_valid, or null) and rsp_ready; it says what fired at that edge.
+class UnitClock {
+ public:
+  // `memory`: the cached unit's memory channel as it stands (copied; null on-chip).
+  UnitClock(const UnitShape& shape, const MemoryChannel* memory);
+
+  struct Edge {
+    bool accepted = false;   // req_valid && req_ready
+    bool responded = false;  // rsp_valid && rsp_ready
+    bool rsp_valid = false;  // a response was on the output (taken or not)
+  };
+  Edge clock(const RequestWork* offer, bool ready) { return shape_.cached ? clock_cached(offer, ready) : clock_onchip(offer, ready); }
+  bool idle() const;  // nothing in flight, and the memory has nothing to send
+
+  uint64_t lines_read = 0, head_wait_cycles = 0;
+  uint32_t fifo_max = 0;
+
+ private:
+  Edge clock_onchip(const RequestWork* offer, bool ready);
+  Edge clock_cached(const RequestWork* offer, bool ready);
+  // tex_probe with enable en: accepts the offer, issues one probe per clock (valid, last, fills).
+  bool probe_stage(const RequestWork* offer, bool en, bool& probe_valid, bool& probe_last, uint8_t& probe_fills);
+  void skid_stage(bool sample_valid, bool ready);
+
+  UnitShape shape_;
+  MemoryChannel memory_;
+  // tex_probe: the request registers' valid bits (bit k-1: clock k) and the requests in them,
+  // oldest (clock 4) at probe_head_; the sequencer's probe index.
+  uint32_t probe_valid_ = 0;
+  std::array<RequestWork, 4> probe_work_{};
+  uint32_t probe_head_ = 0, probe_tail_ = 0;
+  uint32_t index_ = 0;
+  // tex_unit: the probe registers 1-9 (bit n-1) and whether each holds its sample's last probe.
+  uint32_t pipe_valid_ = 0, pipe_last_ = 0;
+  // tex_accum's clock 1 and 2, tex_skid's output register and skid entry.
+  bool s1_valid_ = false, s1_last_ = false, sample_valid_ = false;
+  bool out_valid_ = false, skid_valid_ = false;
+  // tex_unit_cached: en_front; the front's clock 1-4 (bit n-1), each probe's fills and last.
+  bool en_front_ = true;
+  uint32_t front_valid_ = 0;
+  std::array<uint8_t, 4> front_fills_{};
+  std::array<bool, 4> front_last_{};
+  // The sample FIFO: each entry's fills (low 4 bits) and last (bit 4).
+  std::vector<uint8_t> fifo_;
+  uint32_t fifo_rd_ = 0, fifo_wr_ = 0, fifo_count_ = 0, fifo_limit_ = 0;
+  uint32_t ring_used_ = 0, ring_unissued_ = 0;  // the miss ring
+  uint32_t fill_count_ = 0, beat_ = 0;          // the fill FIFO
+  bool h_valid_ = false, h_last_ = false;       // H: the head and its fills to write
+  uint32_t h_fills_ = 0;
+  bool r_valid_ = false, r_last_ = false, t_valid_ = false, t_last_ = false, o_valid_ = false, o_last_ = false;
+  uint32_t back_valid_ = 0, back_last_ = 0;     // the filter's clocks 1-3 (bit n-1)
+};
+
+// A stream of requests through the unit under the stimulus: requests are queued as the functional
+// model produces them (push), run() clocks while a queued request remains to be offered, finish()
+// until the last response. on_response(index, clock): the request's index in the stream and the
+// clock of its response handshake, counted from the clock in which the first request was offered.
+class TimedStream {
+ public:
+  TimedStream(const UnitShape& shape, const MemoryChannel* memory, const Stimulus& stimulus, uint64_t seed)
+      : unit_(shape, memory), stimulus_(stimulus, seed) {
+    // The requests in flight: at most the FIFO's probes and the registers around it.
+    size_t ring = 1024;
+    while (ring < size_t(shape.fifo_depth) + 64) ring *= 2;
+    accept_clock_.resize(ring);
+  }
+  void push(const RequestWork& w) { queue_.push_back(w); }
+  template <class OnResponse>
+  void run(OnResponse&& on_response) {
+    while (head_ < queue_.size()) step(&queue_[head_], on_response);
+    queue_.clear();
+    head_ = 0;
+  }
+  template <class OnResponse>
+  void finish(OnResponse&& on_response) {
+    run(on_response);
+    while (done_ < accepted_) step(nullptr, on_response);
+  }
+  TimingCounters counters() const;
+
+ private:
+  template <class OnResponse>
+  void step(const RequestWork* next, OnResponse& on_response) {
+    bool offer = false, ready = false;
+    stimulus_.begin(next != nullptr, offer, ready);
+    if (offer && !c_.any_offer) {
+      c_.any_offer = true;
+      c_.first_offer_cycle = now_;
+    }
+    const UnitClock::Edge e = unit_.clock(offer ? next : nullptr, ready);
+    if (e.responded) {
+      const uint64_t latency = now_ - accept_clock_[done_ & (accept_clock_.size() - 1)];
+      c_.latency_min = c_.samples == 0 ? latency : std::min(c_.latency_min, latency);
+      c_.latency_max = std::max(c_.latency_max, latency);
+      ++c_.samples;
+      c_.last_response_cycle = now_;
+      on_response(done_++, now_ - c_.first_offer_cycle);
+    } else if (e.rsp_valid) {
+      ++c_.output_stall_cycles;
+    }
+    if (offer) {
+      if (e.accepted) {
+        accept_clock_[accepted_++ & (accept_clock_.size() - 1)] = now_;
+        ++head_;
+      } else {
+        ++c_.backpressure_cycles;
+      }
+    }
+    stimulus_.end(e.accepted);
+    ++now_;
+  }
+
+  UnitClock unit_;
+  StimulusClock stimulus_;
+  std::vector<RequestWork> queue_;
+  size_t head_ = 0;
+  uint64_t now_ = 0, accepted_ = 0, done_ = 0;
+  std::vector<uint64_t> accept_clock_;  // accept clocks of the requests in flight (a power of two)
+  TimingCounters c_;
+};
+
+}  // namespace tex
