@@ -75,6 +75,7 @@ class TextureCache {
   const CacheStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }
   uint64_t memory_read_bytes() const { return stats_.total_misses() * uint64_t(line_bytes_); }
+  int line_bytes() const { return line_bytes_; }
   int sets() const { return sets_; }
   int ways() const { return ways_; }
   // The set of block (bx, by) of any level (docs/memory.md §2): {hash, by & 1, bx & 1} with

@@ -136,6 +136,7 @@ class UnitClock {
   };
   Edge clock(const RequestWork* offer, bool ready) { return shape_.cached ? clock_cached(offer, ready) : clock_onchip(offer, ready); }
   bool idle() const;  // nothing in flight, and the memory has nothing to send
+  uint32_t fifo_limit() const { return fifo_limit_; }
 
   uint64_t lines_read = 0, head_wait_cycles = 0;
   uint32_t fifo_max = 0;
@@ -202,6 +203,7 @@ class TimedStream {
     while (done_ < accepted_) step(nullptr, on_response);
   }
   TimingCounters counters() const;
+  uint32_t fifo_limit() const { return unit_.fifo_limit(); }  // cached: the FIFO depth in use
 
  private:
   template <class OnResponse>

@@ -92,6 +92,8 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
 
   std::optional<MissTraceWriter> misses;
   if (OutputFile* miss_out = o.miss_trace_output(outputs)) misses.emplace(*miss_out);
+  std::optional<ClockWriter> clocks;  // every frame's, each counted from its first request
+  if (OutputFile* clocks_out = o.response_clocks_output(outputs)) eo.clock_sink = &clocks.emplace(*clocks_out);
   // Every input is checked: the notes on what was skipped or resampled, then the work.
   for (const std::string& note : scene.notes) std::fprintf(stderr, "texsim: note: %s\n", note.c_str());
   LineSet all_lines(misses ? &*misses : nullptr);
@@ -133,6 +135,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   }
   total.texture_bytes_touched = all_lines.bytes(line_bytes(table, eo));
   if (misses) misses->close();
+  if (clocks) clocks->close();
   if (query_writer) queries_out->close();
   if (list_out) {
     std::FILE* list = list_out->open();

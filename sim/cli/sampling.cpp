@@ -1,11 +1,22 @@
 #include "cli/sampling.h"
 
 #include <bit>
+#include <charconv>
 #include <chrono>
 #include <deque>
 #include <optional>
 
 namespace tex {
+
+void ClockWriter::write(const uint64_t* clocks, size_t n) {
+  std::string text(n * 21, '\0');  // 20 digits at most, and the newline
+  char* p = text.data();
+  for (size_t i = 0; i < n; ++i) {
+    p = std::to_chars(p, p + 20, clocks[i]).ptr;
+    *p++ = '\n';
+  }
+  std::fwrite(text.data(), 1, size_t(p - text.data()), file_);
+}
 
 namespace {
 

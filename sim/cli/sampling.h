@@ -61,6 +61,8 @@ struct SamplingOptions {
   std::string mem_latency = "100", mem_jitter = "0", mem_bytes_per_clock = "16", mem_outstanding = "64";
   std::string fifo_depth;
   std::string miss_trace;
+  std::string response_clocks;
+  bool no_timing = false;
   CLI::Option *wrap_u_opt = nullptr, *wrap_v_opt = nullptr, *texture_opt = nullptr;
   std::vector<CLI::Option*> cached_opts;  // meaningful with --memory cached only
 
@@ -98,6 +100,11 @@ struct SamplingOptions {
                    "write an FST waveform (engines rtl, systemc); kept when the simulation fails");
     cmd.add_option("--trace-window", trace_window, "clocks FIRST:LAST to trace (default: all)");
     cmd.add_flag("--verify", verify, "also run the golden model and fail unless every sample is bit-identical");
+    cmd.add_option("--response-clocks", response_clocks,
+                   "write the clock of every response, one per line, counted from the first request's clock "
+                   "(engines model, rtl: the same file from both)");
+    cmd.add_flag("--no-timing", no_timing,
+                 "engine model: skip the timing model (no cycles, samples/clock or response clocks; faster)");
     cmd.add_option("--memory", memory,
                    "onchip | cached: per-level memories, or the pyramid in external memory behind two caches "
                    "(engines model, rtl; docs/memory.md)")
@@ -199,6 +206,13 @@ struct SamplingOptions {
         if (opt->count()) throw Error(opt->get_name() + " needs --memory cached (the on-chip memories have no cache)");
     }
     make_engine(engine, o);  // unknown engine, --trace with an engine that cannot trace
+    if (no_timing && engine != "model")
+      throw Error("--no-timing applies to --engine model (engine " + engine + " is clocked: its timing is the simulation)");
+    o.timing = !no_timing;
+    if (!response_clocks.empty() && no_timing) throw Error("--response-clocks needs the timing model: drop --no-timing");
+    if (!response_clocks.empty() && engine != "model" && engine != "rtl")
+      throw Error("--response-clocks: engine " + engine +
+                  " is timed by its TLM-2.0 initiator, not the clocked stimulus (use --engine model or rtl)");
     return o;
   }
 
@@ -214,6 +228,21 @@ struct SamplingOptions {
   OutputFile* miss_trace_output(OutputSet& outputs) const {
     return miss_trace.empty() ? nullptr : &outputs.declare(miss_trace, "--miss-trace");
   }
+  OutputFile* response_clocks_output(OutputSet& outputs) const {
+    return response_clocks.empty() ? nullptr : &outputs.declare(response_clocks, "--response-clocks");
+  }
+};
+
+// --response-clocks: one decimal clock per line.
+class ClockWriter final : public ClockSink {
+ public:
+  explicit ClockWriter(OutputFile& out) : out_(out), file_(out.open()) {}
+  void write(const uint64_t* clocks, size_t n) override;
+  void close() { out_.close(); }
+
+ private:
+  OutputFile& out_;
+  std::FILE* file_;
 };
 
 // --miss-trace: one line address per line, 0x%08x.

@@ -84,6 +84,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   OutputFile* stats_out = o.stats_output(outputs);
   OutputFile* trace = o.trace_output(outputs);
   OutputFile* miss_out = o.miss_trace_output(outputs);
+  OutputFile* clocks_out = o.response_clocks_output(outputs);
   if (list.size() > 1 && eo.memory != Memory::Cached)
     throw Error(textures_path + ": " + std::to_string(list.size()) +
                 " textures; the on-chip unit holds one (the paper's design): use --memory cached");
@@ -112,12 +113,15 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (miss_out) misses.emplace(*miss_out);
   LineSet lines(misses ? &*misses : nullptr);  // texture bytes touched
   if (eo.memory == Memory::Cached) eo.miss_sink = &lines;
+  std::optional<ClockWriter> clocks;
+  if (clocks_out) eo.clock_sink = &clocks.emplace(*clocks_out);
 
   QuerySource source(reader);
   ReadAheadSource parsed(source);  // parsing in a thread of its own, overlapping the engine
   CsvTexelWriter writer(result.open());
   const EngineStats stats = run_engine(o, eo, outputs, trace, table, cfg, parsed, writer, &parsed);
   if (misses) misses->close();
+  if (clocks) clocks->close();
   if (source.count() == 0)
     std::fprintf(stderr, "texsim: %s has no queries (only a header): the result has only its header\n",
                  reader.name().c_str());
@@ -234,6 +238,8 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
   if (trace) eo.trace_path = trace->write_path();
   std::optional<MissTraceWriter> misses;  // every frame's, in order
   if (OutputFile* miss_out = o.miss_trace_output(outputs)) eo.miss_sink = &misses.emplace(*miss_out);
+  std::optional<ClockWriter> clocks;  // every frame's, each counted from its first request
+  if (OutputFile* clocks_out = o.response_clocks_output(outputs)) eo.clock_sink = &clocks.emplace(*clocks_out);
 
   size_t samples = 0;
   EngineStats last_stats;
@@ -250,6 +256,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     samples += requests.size();
   }
   if (misses) misses->close();
+  if (clocks) clocks->close();
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_stats(stats_out, last_stats, eo, secs);  // counters of the last frame, time of them all
   outputs.commit();

@@ -43,6 +43,14 @@ class MissSink {
   virtual void write(const uint32_t* addresses, size_t n) = 0;
 };
 
+// Receives the clock of every response, in order (--response-clocks): the clock of its handshake,
+// counted from the clock in which the first request was offered.
+class ClockSink {
+ public:
+  virtual ~ClockSink() = default;
+  virtual void write(const uint64_t* clocks, size_t n) = 0;
+};
+
 struct EngineOptions {
   Stalls stalls = Stalls::None;
   uint64_t seed = 1;  // random stalls; the RTL's registers without reset start from it too
@@ -57,6 +65,8 @@ struct EngineOptions {
   uint32_t mem_latency = 100, mem_jitter = 0, mem_bytes_per_clock = 16, mem_outstanding = 64;
   uint32_t fifo_depth = 0;  // rtl: samples the FIFO holds at most; 0 = the configuration's FIFO_DEPTH
   MissSink* miss_sink = nullptr;  // cached: the line addresses read from memory, in order
+  ClockSink* clock_sink = nullptr;  // cycle-accurate and timed engines: each response's clock
+  bool timing = true;  // model: clock the timing model (model/timing.h) too: cycle counters, response clocks
 };
 
 // Cached mode: what the caches and the memory did (every engine; timing ones from cycle engines).
@@ -271,12 +281,20 @@ std::string engine_list();
 std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions& options);
 
 // The golden model, with its read and multiply counters; in cached mode (options.memory) also its
-// caches' hits and misses, and the miss stream into options.miss_sink.
+// caches' hits and misses, and the miss stream into options.miss_sink. With options.timing, the
+// timing model's cycle counters and response clocks (model_unit_shape's unit).
 EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
                       const EngineOptions& options = {});
 EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
 EngineStats run_model(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
                       TexelSink& sink, const EngineOptions& options = {});
+
+// The unit the model's timing layer clocks: the RTL configuration `--engine rtl` would run for these
+// textures and options where one is built (so that both engines give the same clocks), else the
+// design's defaults (FIFO of 2048 samples or the depth asked for, miss ring of 512, fill FIFO of 4,
+// 16-byte beats). `name`: the configuration's name, or a description of the defaults.
+UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& options, std::string& name,
+                           int& beat_bytes);
 
 // The descriptor table of a texture table in cached mode: layouts packed one after another from
 // options.layout.base. Throws tex::Error (too many textures, different channel widths, memory).

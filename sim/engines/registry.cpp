@@ -1,7 +1,10 @@
 // The engines of this build and the golden model's engine.
+#include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "engines/engine.h"
+#include "engines/rtl/driver.h"
 #include "engines/rtl/rtl_engine.h"
 #include "engines/systemc/systemc_engine.h"
 #include "model/error.h"
@@ -66,6 +69,42 @@ EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, Reque
   return run_model(TextureTable{{&pyramid, config.wrap_u, config.wrap_v}}, config, source, sink, options);
 }
 
+UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& options, std::string& name,
+                           int& beat_bytes) {
+  int log2_w = 0, log2_h = 0;
+  for (const BoundTexture& t : textures) {
+    log2_w = std::max(log2_w, t.pyramid->log2_w0());
+    log2_h = std::max(log2_h, t.pyramid->log2_h0());
+  }
+  const int cw = textures.empty() ? 8 : textures[0].pyramid->levels[0].channel_bits;
+  beat_bytes = 16;
+  try {
+    const rtl::RtlConfig& rc = rtl::smallest_config_for(log2_w, log2_h, cw, options.memory, options.layout.block_w,
+                                                        options.layout.block_h);
+    if (options.memory == Memory::Cached) rtl::cache_pins(rc, options.layout, options.cache, options.fifo_depth);
+    name = rc.name;
+    beat_bytes = rc.mem_bits / 8;
+    return rtl::unit_shape(rc, options.fifo_depth);
+  } catch (const Error&) {
+    // No built configuration runs this: the design's defaults.
+  }
+  UnitShape shape;
+  shape.cached = options.memory == Memory::Cached;
+  name = "model";
+  if (!shape.cached) return shape;
+  const int line = options.layout.block_w * options.layout.block_h * (cw > 8 ? 8 : 4);
+  beat_bytes = std::min(16, line);
+  shape.fifo_depth = 2048;
+  while (shape.fifo_depth < options.fifo_depth) shape.fifo_depth *= 2;
+  shape.fifo_limit = options.fifo_depth;
+  shape.miss_depth = 512;
+  shape.fill_depth = 4;
+  shape.line_beats = uint32_t(line / beat_bytes);
+  name = "model (FIFO " + std::to_string(shape.fifo_depth) + ", miss ring 512, " + std::to_string(beat_bytes) +
+         "-byte beats)";
+  return shape;
+}
+
 EngineStats run_model(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
                       TexelSink& sink, const EngineOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -75,6 +114,7 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
   if (textures.size() > 1 && options.memory != Memory::Cached)
     throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one texture (the paper's design); "
                 "use --memory cached, whose descriptor table holds up to " + std::to_string(kMaxTextures));
+  const bool cached = options.memory == Memory::Cached;
   std::vector<Sampler> samplers;  // one per descriptor-table entry, with its wrap modes
   for (const BoundTexture& t : textures) {
     SamplerConfig c = config;
@@ -83,11 +123,37 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
     samplers.emplace_back(*t.pyramid, c);
   }
   std::optional<TextureCache> cache;
-  if (options.memory == Memory::Cached) cache.emplace(texture_descriptors(textures, options), options.cache, config);
+  if (cached) cache.emplace(texture_descriptors(textures, options), options.cache, config);
+  // The timing layer: the unit model_unit_shape gives, the memory and stimulus of the RTL engine
+  // (the same seeds), so that its clocks are the RTL's.
+  std::optional<TimedStream> timed;
+  std::string configuration;
+  if (options.timing) {
+    int beat_bytes = 16;
+    const UnitShape shape = model_unit_shape(textures, options, configuration, beat_bytes);
+    std::optional<MemoryChannel> memory;
+    if (cached) {
+      MemoryTiming m;
+      m.latency = options.mem_latency;
+      m.jitter = options.mem_jitter;
+      m.bytes_per_clock = options.mem_bytes_per_clock;
+      m.max_outstanding = options.mem_outstanding;
+      m.seed = options.seed ^ 0x9E3779B97F4A7C15ULL;  // (rtl::DriverOptions::of)
+      const int line = cache->line_bytes();
+      memory.emplace(line, std::min(beat_bytes, line), m);
+    }
+    timed.emplace(shape, memory ? &*memory : nullptr, Stimulus::of(options.stalls), options.seed ^ 0x5DEECE66DULL);
+  }
   const auto t1 = std::chrono::steady_clock::now();
   std::vector<Request> requests(4096);
   std::vector<Texel> texels(requests.size());
   std::vector<uint32_t> misses;
+  std::vector<uint64_t> clocks;
+  auto on_response = [&](size_t, uint64_t clock) { clocks.push_back(clock); };
+  auto flush_clocks = [&] {
+    if (options.clock_sink && !clocks.empty()) options.clock_sink->write(clocks.data(), clocks.size());
+    clocks.clear();
+  };
   while (const size_t n = source.read(requests.data(), requests.size())) {
     for (size_t i = 0; i < n; ++i) {
       if (requests[i].texture >= samplers.size())
@@ -98,9 +164,27 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
     sink.write(texels.data(), n);
     if (cache) {
       misses.clear();
-      for (size_t i = 0; i < n; ++i) cache->lookup_sample(requests[i], options.miss_sink ? &misses : nullptr);
+      for (size_t i = 0; i < n; ++i) {
+        const RequestWork w = cache->lookup_sample(requests[i], options.miss_sink ? &misses : nullptr);
+        if (timed) timed->push(w);
+      }
       if (options.miss_sink && !misses.empty()) options.miss_sink->write(misses.data(), misses.size());
+    } else if (timed) {
+      const Pyramid& p = *textures[0].pyramid;
+      for (size_t i = 0; i < n; ++i) {
+        RequestWork w;
+        w.probes = uint8_t(tex_probe_count(requests[i], config, p.log2_w0(), p.log2_h0()));
+        timed->push(w);
+      }
     }
+    if (timed) {
+      timed->run(on_response);
+      flush_clocks();
+    }
+  }
+  if (timed) {
+    timed->finish(on_response);
+    flush_clocks();
   }
   const auto t2 = std::chrono::steady_clock::now();
   EngineStats stats;
@@ -117,6 +201,23 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
       for (size_t b = 0; b < 4; ++b) stats.bank_reads[k][b] += s.memory.bank_reads[k][b];
   }
   if (cache) stats.cache = cache_counters(*cache);
+  if (timed) {
+    const TimingCounters t = timed->counters();
+    CycleStats c;
+    c.configuration = configuration;
+    c.cycles = t.cycles();
+    c.latency_cycles = t.latency_min;
+    c.latency_max_cycles = t.latency_max;
+    c.output_stall_cycles = t.output_stall_cycles;
+    c.input_gap_cycles = t.gap_cycles;
+    c.backpressure_cycles = t.backpressure_cycles;
+    stats.cycle = c;
+    if (stats.cache) {
+      stats.cache->fifo_depth = timed->fifo_limit();
+      stats.cache->fifo_max_occupancy = t.fifo_max;
+      stats.cache->memory_stall_cycles = t.head_wait_cycles;
+    }
+  }
   return stats;
 }
 

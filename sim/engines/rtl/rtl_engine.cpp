@@ -100,10 +100,23 @@ class RtlEngine final : public Engine {
       if (misses) misses->compare(unit->memory_port()->take_reads(), false);
       if (show) std::fprintf(stderr, "\rrtl: %zu samples, clock %llu", done, (unsigned long long)unit->cycle());
     };
+    std::vector<uint64_t> clocks;  // --response-clocks, a chunk at a time
+    ClockSink* clock_sink = options_.clock_sink;
     const StreamStats st = stream(
         *unit, requests, Timing::of(options_.stalls), options_.seed ^ 0x5DEECE66DULL,
-        [&](size_t, uint64_t rgba) { texels.push(unpack_rgba(rgba, cw)); }, progress);
+        [&](size_t, uint64_t rgba) {
+          texels.push(unpack_rgba(rgba, cw));
+          if (clock_sink) {
+            clocks.push_back(unit->counters().last_response_cycle - unit->counters().first_offer_cycle);
+            if (clocks.size() == 4096) {
+              clock_sink->write(clocks.data(), clocks.size());
+              clocks.clear();
+            }
+          }
+        },
+        progress);
     texels.flush();
+    if (clock_sink && !clocks.empty()) clock_sink->write(clocks.data(), clocks.size());
     if (misses) misses->compare(unit->memory_port()->take_reads(), true);
     if (show) std::fprintf(stderr, "\r%60s\r", "");
     const auto t2 = std::chrono::steady_clock::now();
