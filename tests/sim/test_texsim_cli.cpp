@@ -448,6 +448,55 @@ TEST_F(TexsimCli, CachedMissTraceIsTheSameForModelAndRtl) {
   expect_clean_failure(common + " -e rtl --fifo-depth 0 -o x.csv", "x.csv", {"--fifo-depth 0"});
 }
 
+// --response-clocks: the timing model (--engine model) and the RTL write the same clock for every
+// response, on-chip and cached, under random stalls and memory jitter; the model's cycle counters
+// are the RTL's.
+TEST_F(TexsimCli, ResponseClocksAreTheSameForModelAndRtl) {
+  std::string q = "u,v,dudx,dvdx,dudy,dvdy\n";
+  for (int i = 0; i < 600; ++i)
+    q += std::to_string(i * 0.0131) + "," + std::to_string(i * 0.0297) + "," + std::to_string(0.002 * (i % 13)) +
+         ",0.001," + std::to_string(-0.0005 * (i % 5)) + "," + std::to_string(0.004 * (i % 3)) + "\n";
+  queries(q);
+  auto json_cycles = [&](const char* name) {
+    const std::string j = read_text(dir / name);
+    const size_t at = j.find("\"cycles\"");
+    return at == std::string::npos ? std::string("none") : j.substr(at, j.find(',', at) - at);
+  };
+  const std::vector<std::string> cases = {
+      "sample -t noise:16x16 -q q.csv -f anisotropic --stalls heavy",
+      "sample -t noise:64x8 -q q.csv --memory cached --cache-kib 1 --ways 1 --mem-latency 60 --mem-jitter 40 "
+      "--mem-bytes-per-clock 5 --fifo-depth 8 --stalls random --seed 3"};
+  for (const std::string& c : cases) {
+    const Result m = run(c + " -o m.csv --response-clocks m.clk --stats m.json");
+    ASSERT_EQ(m.exit_code, 0) << m.err;
+    const Result r = run(c + " -e rtl -o r.csv --response-clocks r.clk --stats r.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string clocks = read_text(dir / "m.clk");
+    EXPECT_EQ(clocks, read_text(dir / "r.clk")) << c;
+    EXPECT_EQ(json_cycles("m.json"), json_cycles("r.json")) << c;
+    EXPECT_NE(json_cycles("m.json"), "none");
+    // One line per response, in increasing clocks (at most one response per clock).
+    std::istringstream in(clocks);
+    uint64_t clock = 0, last = 0, lines = 0;
+    while (in >> clock) {
+      if (lines++ > 0) {
+        EXPECT_GT(clock, last) << c << ": line " << lines;
+      }
+      last = clock;
+    }
+    EXPECT_EQ(lines, 600u) << c;
+  }
+  ASSERT_EQ(run(cases[0] + " -o t.csv").exit_code, 0);
+  const Result fast = run(cases[0] + " -o n.csv --no-timing --stats n.json");
+  ASSERT_EQ(fast.exit_code, 0) << fast.err;
+  EXPECT_EQ(json_cycles("n.json"), "none");
+  EXPECT_EQ(read_text(dir / "n.csv"), read_text(dir / "t.csv"));
+  expect_clean_failure(cases[0] + " -e rtl --no-timing -o x.csv", "x.csv", {"--no-timing", "--engine model"});
+  expect_clean_failure(cases[0] + " --no-timing --response-clocks x.clk -o x.csv", "x.csv", {"--response-clocks", "--no-timing"});
+  expect_clean_failure(cases[0] + " -e systemc --response-clocks x.clk -o x.csv", "x.csv", {"--response-clocks", "systemc"});
+  EXPECT_FALSE(fs::exists(dir / "x.clk"));
+}
+
 TEST_F(TexsimCli, TiledOrderDrawsTheSamePictureFromOtherCacheTraffic) {
   const std::string common = "render --scene plane --width 96 --height 64 --texture testcard:256x256 --memory cached";
   const Result a = run(common + " -o scan.png --miss-trace scan.txt");
