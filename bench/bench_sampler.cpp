@@ -30,6 +30,7 @@
 #include "model/sampler.h"
 #include "bench_csv.h"
 #include "bench_rtl.h"
+#include "bench_timing.h"
 #include "engines/engine.h"
 
 namespace {
@@ -290,7 +291,7 @@ class RateReporter : public benchmark::ConsoleReporter {
 std::string run_name(const std::string& what, const std::string& set) { return what + "/" + set; }
 
 void print_summary(const RateReporter& rep, const std::vector<std::string>& rtl_runs,
-                   const std::vector<std::string>& csv_runs) {
+                   const std::vector<std::string>& csv_runs, const std::vector<std::string>& timing_sets) {
   auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
   std::printf("\nSummary (samples/s, single thread, 1024x1024 RGBA8, trilinear, repeat; same process)\n");
   std::printf("%-9s %14s %14s %14s %12s %12s\n", "queries", "model fast", "model ref", "OIIO TS", "fast/TS",
@@ -327,6 +328,14 @@ void print_summary(const RateReporter& rep, const std::vector<std::string>& rtl_
     const double rate = rep.get(name);
     if (rate == 0) continue;  // filtered out
     std::printf("%-24s %12.3f M %15.4fx\n", name.substr(name.find('/') + 1).c_str(), rate / 1e6, ratio(rate, fast));
+  }
+  std::printf("\nTiming model vs the Verilated cached RTL (Vtex_cached_13x13, 200k requests, 8 KiB caches, "
+              "latency 100; the same clock for every response)\n");
+  std::printf("%-9s %16s %16s %12s\n", "queries", "RTL clocks/s", "model clocks/s", "model/RTL");
+  for (const std::string& s : timing_sets) {
+    const double rtl = rep.get(run_name("timing_rtl", s)), model = rep.get(run_name("timing_model", s));
+    if (rtl == 0 && model == 0) continue;  // filtered out
+    std::printf("%-9s %14.3f M %14.3f M %11.1fx\n", s.c_str(), rtl / 1e6, model / 1e6, ratio(model, rtl));
   }
   std::printf("\ntexsim's CSV, 1 M lines of a file (queries parsed to requests, results written)\n");
   std::printf("%-36s %14s %16s\n", "what", "lines/s", "vs model fast");
@@ -378,6 +387,9 @@ int main(int argc, char** argv) {
     }
     const std::vector<std::string> rtl_runs = bench::register_rtl_benchmarks(kMinTime);
     const std::vector<std::string> csv_runs = bench::register_csv_benchmarks(kMinTime);
+    std::vector<std::pair<std::string, const std::vector<tex::Request>*>> timing_sets;
+    for (const QuerySet& s : fixture.sets) timing_sets.emplace_back(s.name, &s.requests);
+    const std::vector<std::string> timing_names = bench::register_timing_benchmarks(kMinTime, fixture.pyramid, timing_sets);
     static const std::vector<BenchEngine> engines = bench_engines();
     for (const QuerySet& s : fixture.sets)
       for (const BenchEngine& e : engines)
@@ -389,7 +401,7 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     RateReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
-    print_summary(reporter, rtl_runs, csv_runs);
+    print_summary(reporter, rtl_runs, csv_runs, timing_names);
 
     benchmark::Shutdown();
   } catch (const std::exception& e) {

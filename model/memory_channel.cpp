@@ -7,10 +7,6 @@
 
 namespace tex {
 
-namespace {
-inline double unit(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
-}  // namespace
-
 MemoryChannel::MemoryChannel(int line_bytes, int beat_bytes, const MemoryTiming& timing)
     : line_bytes_(line_bytes), beat_bytes_(beat_bytes), timing_(timing), rng_(timing.seed) {
   if (beat_bytes_ <= 0 || line_bytes_ % beat_bytes_ != 0)
@@ -22,44 +18,19 @@ MemoryChannel::MemoryChannel(int line_bytes, int beat_bytes, const MemoryTiming&
                 " bytes per clock (one beat)");
   if (timing_.max_outstanding == 0) throw Error("the memory's outstanding-read limit must be at least 1");
   credit_ = uint32_t(beat_bytes_);
+  uint32_t ring = 1;
+  while (ring < timing_.max_outstanding) ring *= 2;
+  pending_.resize(ring);
+  mask_ = ring - 1;
+  quiet_ = !(timing_.request_stall_prob > 0) && !(timing_.response_stall_prob > 0);
   prepare();
 }
 
 void MemoryChannel::reset() {
-  pending_.clear();
+  head_ = count_ = 0;
   beat_ = 0;
   credit_ = uint32_t(beat_bytes_);
   last_ready_ = now_;
-  prepare();
-}
-
-void MemoryChannel::prepare() {
-  request_ready_ = pending_.size() < timing_.max_outstanding &&
-                   !(timing_.request_stall_prob > 0 && unit(rng_) < timing_.request_stall_prob);
-  response_valid_ = !pending_.empty() && pending_.front().ready_at <= now_ && credit_ >= uint32_t(beat_bytes_) &&
-                    !(timing_.response_stall_prob > 0 && unit(rng_) < timing_.response_stall_prob);
-}
-
-void MemoryChannel::clock(bool request_fire, uint32_t address, bool response_fire) {
-  if (response_fire) {
-    if (!response_valid_) throw Error("memory: a beat taken while none was offered");
-    credit_ -= uint32_t(beat_bytes_);
-    if (++beat_ * beat_bytes_ == line_bytes_) {
-      beat_ = 0;
-      pending_.pop_front();
-    }
-  }
-  if (request_fire) {
-    if (!request_ready_) throw Error("memory: a read taken while mem_req_ready was low");
-    uint64_t ready = now_ + timing_.latency + (timing_.jitter ? rng_() % (uint64_t(timing_.jitter) + 1) : 0);
-    ready = std::max(ready, last_ready_);  // in order
-    if (count_repeats_)
-      for (const Read& r : pending_) repeats_ += r.address == address;
-    last_ready_ = ready;
-    pending_.push_back({address, ready});
-  }
-  ++now_;
-  credit_ = std::min<uint32_t>(credit_ + timing_.bytes_per_clock, uint32_t(beat_bytes_));
   prepare();
 }
 

@@ -63,22 +63,25 @@ TextureCache::TextureCache(std::vector<TextureDescriptor> textures, const CacheP
   }
 }
 
-bool TextureCache::access(int cache, int set, uint32_t address) {
+bool TextureCache::access(int cache, int set, uint32_t address, Way*& used_way) {
   Way* ways = &caches_[size_t(cache)][size_t(set * ways_)];
-  int hit = -1, victim = 0;
-  for (int w = 0; w < ways_; ++w) {
-    if (ways[w].valid && ways[w].tag == address) hit = w;
-    if (ways[w].age == ways_ - 1) victim = w;
-  }
-  const int used = hit >= 0 ? hit : victim;
+  const int n = ways_;
+  // The hit, else the victim: the way of age n - 1 (the ages of a set are always 0..n-1).
+  int used = -1;
+  for (int w = 0; w < n; ++w)
+    if (ways[w].valid && ways[w].tag == address) used = w;
+  const bool hit = used >= 0;
+  if (!hit)
+    for (int w = 0; w < n; ++w)
+      if (ways[w].age == n - 1) used = w;
   const int age = ways[used].age;
-  for (int w = 0; w < ways_; ++w)
-    if (ways[w].age < age) ++ways[w].age;
+  for (int w = 0; w < n; ++w) ways[w].age += ways[w].age < age;
   ways[used].age = 0;
   ++stats_.lookups[size_t(cache)];
   const uint64_t previous_use = ways[used].last_use;
   ways[used].last_use = sample_ + 1;
-  if (hit >= 0) {
+  used_way = &ways[used];
+  if (hit) {
     ++stats_.hits[size_t(cache)];
     return true;
   }
@@ -89,26 +92,25 @@ bool TextureCache::access(int cache, int set, uint32_t address) {
   return false;
 }
 
-const TextureDescriptor& TextureCache::texture(const Request& r) const {
-  if (r.texture >= textures_.size())
-    throw Error("texture cache: request names texture " + std::to_string(r.texture) + "; the table holds " +
-                std::to_string(textures_.size()));
-  return textures_[r.texture];
+void TextureCache::bad_texture(const Request& r) const {
+  throw Error("texture cache: request names texture " + std::to_string(r.texture) + "; the table holds " +
+              std::to_string(textures_.size()));
 }
+
 
 RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>* misses) {
   const MemoryLayout& layout = texture(r).layout;
   RequestWork w;
   if (!r.has_derivatives) {  // (one probe: the request itself)
     const SampleLookup l = lookup(r, misses);
-    w.fills[0] = uint8_t(l.slot[0].misses + l.slot[1].misses);
+    w.set_fills(0, uint32_t(l.slot[0].misses + l.slot[1].misses));
     return w;
   }
   const Probes p = tex_probe(r, config_, layout.log2_w0(), layout.log2_h0());
   w.probes = uint8_t(p.n);
   for (int i = 0; i < p.n; ++i) {
     const SampleLookup l = lookup(p.at[size_t(i)], misses);
-    w.fills[size_t(i)] = uint8_t(l.slot[0].misses + l.slot[1].misses);
+    w.set_fills(i, uint32_t(l.slot[0].misses + l.slot[1].misses));
   }
   return w;
 }
@@ -148,13 +150,32 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
         by_of[p] = by;
       }
     const int cache = k & 1;
+    std::array<uint32_t, 4> address{};
+    bool same = last_[size_t(cache)].mask == sl.block_mask;
+    for (int p = 0; p < 4; ++p)
+      if (sl.block_mask >> p & 1) {
+        address[size_t(p)] = layout.block_address(k, bx_of[p], by_of[p]);
+        same = same && address[size_t(p)] == last_[size_t(cache)].address[size_t(p)];
+      }
+    LastLookup& last = last_[size_t(cache)];
+    if (same) {  // the lines the last lookup of this cache left most recent: all hit, no age moves
+      for (int p = 0; p < 4; ++p)
+        if (sl.block_mask >> p & 1) {
+          ++sl.blocks;
+          last.way[size_t(p)]->last_use = sample_ + 1;
+        }
+      stats_.lookups[size_t(cache)] += uint64_t(sl.blocks);
+      stats_.hits[size_t(cache)] += uint64_t(sl.blocks);
+      continue;
+    }
+    last.mask = sl.block_mask;
+    last.address = address;
     for (int p = 0; p < 4; ++p) {
       if (!(sl.block_mask >> p & 1)) continue;
       ++sl.blocks;
-      const uint32_t address = layout.block_address(k, bx_of[p], by_of[p]);
-      if (!access(cache, set_index(bx_of[p], by_of[p]), address)) {
+      if (!access(cache, set_index(bx_of[p], by_of[p]), address[size_t(p)], last.way[size_t(p)])) {
         ++sl.misses;
-        if (misses) misses->push_back(address);
+        if (misses) misses->push_back(address[size_t(p)]);
       }
     }
   }

@@ -98,10 +98,15 @@ class TextureCache {
   Way way(int cache, int set, int w) const { return caches_[size_t(cache)][size_t(set * ways_ + w)]; }
 
  private:
-  // Looks the line up in its set; on a miss allocates the LRU way. Returns true on a hit.
-  bool access(int cache, int set, uint32_t address);
+  // Looks the line up in its set; on a miss allocates the LRU way. Returns true on a hit; `used`:
+  // the way that now holds the line.
+  bool access(int cache, int set, uint32_t address, Way*& used);
 
-  const TextureDescriptor& texture(const Request& r) const;
+  const TextureDescriptor& texture(const Request& r) const {
+    if (r.texture >= textures_.size()) [[unlikely]] bad_texture(r);
+    return textures_[r.texture];
+  }
+  [[noreturn]] void bad_texture(const Request& r) const;
 
   std::vector<TextureDescriptor> textures_;
   SamplerConfig config_;
@@ -110,6 +115,16 @@ class TextureCache {
   int log2_sets_hi_ = 0;             // k = log2(SETS / 4)
   std::vector<uint32_t> reversed_;   // reversed_[i]: the k bits of i in reverse order
   std::array<std::vector<Way>, 2> caches_;
+  // Per cache, the lines of the last slot that looked it up (block parity p: address[p], the way
+  // holding it). A slot that needs the same lines again hits in every one of them and changes no
+  // age (each is already the most recent of its set, and each parity has its own sets), so only the
+  // counters move: the simulator skips the tag search (most probes of a coherent frame repeat it).
+  struct LastLookup {
+    uint8_t mask = 0;  // 0: none yet
+    std::array<uint32_t, 4> address{};
+    std::array<Way*, 4> way{};
+  };
+  std::array<LastLookup, 2> last_;
   CacheStats stats_;
   uint64_t sample_ = 0;  // samples looked up so far
 };

@@ -29,8 +29,8 @@ Stimulus Stimulus::of(Stalls stalls) {
   return t;
 }
 
-UnitClock::UnitClock(const UnitShape& shape, const MemoryChannel* memory)
-    : shape_(shape), memory_(memory ? *memory : MemoryChannel(16, 16, MemoryTiming{})) {
+UnitClock::UnitClock(const UnitShape& shape, const MemoryChannel* memory, bool always_ready)
+    : shape_(shape), memory_(memory ? *memory : MemoryChannel(16, 16, MemoryTiming{})), always_ready_(always_ready) {
   if (shape_.cached && !memory) throw Error("the cached unit's timing needs its memory channel");
   memory_.count_repeats(false);  // (addresses do not decide timing: the model passes none)
   if (shape_.cached) {
@@ -45,6 +45,7 @@ UnitClock::UnitClock(const UnitShape& shape, const MemoryChannel* memory)
 
 bool UnitClock::idle() const {
   return probe_valid_ == 0 && pipe_valid_ == 0 && !s1_valid_ && !sample_valid_ && !out_valid_ && front_valid_ == 0 &&
+         back_line_ == 0 &&
          fifo_count_ == 0 && !h_valid_ && !r_valid_ && !t_valid_ && !o_valid_ && back_valid_ == 0 && ring_used_ == 0;
 }
 
@@ -57,7 +58,7 @@ bool UnitClock::probe_stage(const RequestWork* offer, bool en, bool& probe_valid
   const bool hold = probe_valid && index_ != uint32_t(w.probes) - 1;
   const bool en_up = en && !hold;
   probe_last = !hold;
-  probe_fills = probe_valid ? w.fills[index_ & (kMaxAniso - 1)] : 0;
+  probe_fills = probe_valid ? uint8_t(w.fills(int(index_ & (kMaxAniso - 1)))) : 0;
   const bool accepted = offer && en_up;
   if (en_up) {
     index_ = 0;
@@ -83,10 +84,8 @@ void UnitClock::skid_stage(bool sample_valid, bool ready) {
 
 // tex_unit: one stall-enable pipeline, en = the skid buffer has room.
 UnitClock::Edge UnitClock::clock_onchip(const RequestWork* offer, bool ready) {
-  Edge e;
   const bool en = !skid_valid_;
-  e.rsp_valid = out_valid_;
-  e.responded = out_valid_ && ready;
+  uint32_t flags = (out_valid_ ? Edge::kRspValid : 0) | (out_valid_ && ready ? Edge::kResponded : 0);
   const bool sample_valid = sample_valid_;
   if (en) {
     // tex_accum: clock 2 takes clock 1 (a sample leaves with its last probe); clock 1 the last
@@ -97,24 +96,22 @@ UnitClock::Edge UnitClock::clock_onchip(const RequestWork* offer, bool ready) {
   }
   bool probe_valid = false, probe_last = false;
   uint8_t fills = 0;
-  e.accepted = probe_stage(offer, en, probe_valid, probe_last, fills);
+  if (probe_stage(offer, en, probe_valid, probe_last, fills)) flags |= Edge::kAccepted;
   if (en) {
     pipe_valid_ = (pipe_valid_ << 1 | uint32_t(probe_valid)) & 0x1FFu;
     pipe_last_ = (pipe_last_ << 1 | uint32_t(probe_last)) & 0x1FFu;
   }
   skid_stage(sample_valid, ready);
-  return e;
+  return Edge{flags};
 }
 
 // tex_unit_cached: the front (tex_probe, front clocks 1-4, the tag stage) advances with the
 // registered en_front (room in the FIFO and the miss ring), the back (H, R, T, taps, filter,
 // tex_accum) with en_back (room in the skid buffer); tex_cached_fetch in between.
 UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
-  Edge e;
   const bool en_back = !skid_valid_;
   const bool en_front = en_front_;
-  e.rsp_valid = out_valid_;
-  e.responded = out_valid_ && ready;
+  uint32_t flags = (out_valid_ ? Edge::kRspValid : 0) | (out_valid_ && ready ? Edge::kResponded : 0);
 
   // The tag stage pushes the front's clock-4 probe and its misses.
   const bool push = en_front && (front_valid_ & 8u) != 0;
@@ -132,7 +129,12 @@ UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
   lines_read += issue;
 
   const bool sample_valid = sample_valid_;
-  if (en_back) {
+  if (always_ready_) {
+    // rsp_ready always high: the skid entry never fills, en_back is always high, and a sample's last
+    // probe leaving H is its response 9 clocks later (the same registers, clocked as one line).
+    flags = (back_line_ & 1u) ? Edge::kRspValid | Edge::kResponded : 0;
+    back_line_ = (back_line_ >> 1) | uint32_t(h_go && h_last_) << 8;
+  } else if (en_back && (h_go || r_valid_ || t_valid_ || o_valid_ || back_valid_ != 0 || s1_valid_ || sample_valid_)) {
     sample_valid_ = s1_valid_ && s1_last_;
     s1_valid_ = (back_valid_ >> 2) & 1u;
     s1_last_ = (back_last_ >> 2) & 1u;
@@ -146,7 +148,7 @@ UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
     r_last_ = h_last_;
   }
   if (pop) {
-    const uint8_t entry = fifo_[fifo_rd_++ & (shape_.fifo_depth - 1)];
+    const uint32_t entry = fifo_[fifo_rd_++ & (shape_.fifo_depth - 1)];
     h_valid_ = true;
     h_fills_ = entry & 15u;
     h_last_ = (entry >> 4) & 1u;
@@ -154,7 +156,7 @@ UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
     if (h_go) h_valid_ = false;
     if (fill_write) --h_fills_;
   }
-  if (push) fifo_[fifo_wr_++ & (shape_.fifo_depth - 1)] = uint8_t(push_fills | uint32_t(front_last_[3]) << 4);
+  if (push) fifo_[fifo_wr_++ & (shape_.fifo_depth - 1)] = uint16_t(push_fills | uint32_t(front_last_[3]) << 4);
   fifo_count_ = fifo_count_ + uint32_t(push) - uint32_t(pop);
   ring_used_ = ring_used_ + push_fills - uint32_t(fill_write);
   ring_unissued_ = ring_unissued_ + push_fills - uint32_t(issue);
@@ -163,17 +165,103 @@ UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
   // Room after this clock for one more sample and its (at most 8) misses.
   en_front_ = fifo_count_ < fifo_limit_ && ring_used_ + 8 <= shape_.miss_depth;
 
-  bool probe_valid = false, probe_last = false;
-  uint8_t fills = 0;
-  e.accepted = probe_stage(offer, en_front, probe_valid, probe_last, fills);
-  if (en_front) {
+  if (en_front) {  // (a stalled front keeps every register: nothing to do)
+    bool probe_valid = false, probe_last = false;
+    uint8_t fills = 0;
+    if (probe_stage(offer, true, probe_valid, probe_last, fills)) flags |= Edge::kAccepted;
     front_valid_ = (front_valid_ << 1 | uint32_t(probe_valid)) & 0xFu;
     front_fills_ = {fills, front_fills_[0], front_fills_[1], front_fills_[2]};
     front_last_ = {probe_last, front_last_[0], front_last_[1], front_last_[2]};
   }
-  skid_stage(sample_valid, ready);
+  if (!always_ready_ && (out_valid_ || skid_valid_ || sample_valid)) skid_stage(sample_valid, ready);  // (else it stays empty)
   memory_.clock(issue, 0, beat_take);
-  return e;
+  return Edge{flags};
+}
+
+uint64_t UnitClock::wait_for_fill() {
+  if (!shape_.cached || en_front_ || skid_valid_ || out_valid_ || sample_valid_ || s1_valid_ || back_valid_ != 0 ||
+      o_valid_ || t_valid_ || r_valid_ || back_line_ != 0 || !h_valid_ || h_fills_ == 0 || fill_count_ != 0)
+    return 0;
+  // As clock_cached with en_front low, en_back high, nothing to fill yet: only the miss ring's
+  // requests and the memory's beats move (en_front stays low: the FIFO and the ring do not change).
+  fifo_max = std::max(fifo_max, fifo_count_);
+  uint64_t clocks = 0;
+  while (fill_count_ == 0) {
+    const bool issue = ring_unissued_ != 0 && memory_.request_ready();
+    const bool beat_take = memory_.response_valid();
+    const bool line_done = beat_take && beat_ == shape_.line_beats - 1;
+    lines_read += issue;
+    ring_unissued_ -= uint32_t(issue);
+    fill_count_ += uint32_t(line_done);
+    if (beat_take) beat_ = line_done ? 0 : beat_ + 1;
+    memory_.clock(issue, 0, beat_take);
+    ++clocks;
+  }
+  head_wait_cycles += clocks;
+  return clocks;
+}
+
+TimedStream::TimedStream(const UnitShape& shape, const MemoryChannel* memory, const Stimulus& stimulus, uint64_t seed)
+    : unit_(shape, memory, stimulus.ideal()), stimulus_(stimulus, seed), ideal_(stimulus.ideal()) {
+  // The requests in flight: at most the FIFO's probes and the registers around it.
+  size_t ring = 1024;
+  while (ring < size_t(shape.fifo_depth) + 64) ring *= 2;
+  accept_clock_.resize(ring);
+}
+
+void TimedStream::step(const RequestWork* next, std::vector<uint64_t>* clocks) {
+  if (ideal_) {  // (with stalls the stimulus draws in every clock: clock by clock)
+    const uint64_t waited = unit_.wait_for_fill();
+    if (waited) {
+      if (next) {
+        if (!c_.any_offer) {
+          c_.any_offer = true;
+          c_.first_offer_cycle = now_;
+        }
+        c_.backpressure_cycles += waited;
+      }
+      now_ += waited;
+    }
+  }
+  bool offer = next != nullptr, ready = true;
+  if (!ideal_) stimulus_.begin(next != nullptr, offer, ready);  // (ideal: no draws)
+  if (offer && !c_.any_offer) {
+    c_.any_offer = true;
+    c_.first_offer_cycle = now_;
+  }
+  const UnitClock::Edge e = unit_.clock(offer ? next : nullptr, ready);
+  if (e.responded()) {
+    const uint64_t latency = now_ - accept_clock_[done_ & (accept_clock_.size() - 1)];
+    c_.latency_min = c_.samples == 0 ? latency : std::min(c_.latency_min, latency);
+    c_.latency_max = std::max(c_.latency_max, latency);
+    ++c_.samples;
+    ++done_;
+    c_.last_response_cycle = now_;
+    if (clocks) clocks->push_back(now_ - c_.first_offer_cycle);
+  } else if (e.rsp_valid()) {
+    ++c_.output_stall_cycles;
+  }
+  if (offer) {
+    if (e.accepted()) {
+      accept_clock_[accepted_++ & (accept_clock_.size() - 1)] = now_;
+      ++head_;
+    } else {
+      ++c_.backpressure_cycles;
+    }
+  }
+  if (!ideal_) stimulus_.end(e.accepted());
+  ++now_;
+}
+
+void TimedStream::run(std::vector<uint64_t>* clocks) {
+  while (head_ < queue_.size()) step(&queue_[head_], clocks);
+  queue_.clear();
+  head_ = 0;
+}
+
+void TimedStream::finish(std::vector<uint64_t>* clocks) {
+  run(clocks);
+  while (done_ < accepted_) step(nullptr, clocks);
 }
 
 TimingCounters TimedStream::counters() const {

@@ -91,8 +91,12 @@ class StimulusClock {
 // What one request's timing depends on: its probes (tex_probe: 1, or N of an anisotropic
 // footprint) and, in the cached unit, the lines each probe misses (the tag stage's fills, 0..8).
 struct RequestWork {
+  uint64_t fill_bits = 0;  // probe i's fills in bits [4i, 4i + 4)
   uint8_t probes = 1;
-  std::array<uint8_t, kMaxAniso> fills{};
+  uint32_t fills(int probe) const { return uint32_t(fill_bits >> (4 * probe)) & 15u; }
+  void set_fills(int probe, uint32_t n) {
+    fill_bits = (fill_bits & ~(uint64_t(15) << (4 * probe))) | uint64_t(n & 15u) << (4 * probe);
+  }
 };
 
 // The unit's parameters that decide timing (the RTL's, rtl/tex_unit_cached.sv).
@@ -126,15 +130,26 @@ struct TimingCounters {
 // (offer: the request on req_valid, or null) and rsp_ready; it says what fired at that edge.
 class UnitClock {
  public:
-  // `memory`: the cached unit's memory channel as it stands (copied; null on-chip).
-  UnitClock(const UnitShape& shape, const MemoryChannel* memory);
+  // `memory`: the cached unit's memory channel as it stands (copied; null on-chip). `always_ready`:
+  // rsp_ready is high in every clock (the ideal stimulus): the cached unit's back (H to the output
+  // register) is then a fixed delay line, which the model clocks as one shift register.
+  UnitClock(const UnitShape& shape, const MemoryChannel* memory, bool always_ready = false);
 
+  // (One word of flags, not three bools: a struct of bytes returned through memory stalls the
+  // caller's load of it, which cost a third of a clock's time.)
   struct Edge {
-    bool accepted = false;   // req_valid && req_ready
-    bool responded = false;  // rsp_valid && rsp_ready
-    bool rsp_valid = false;  // a response was on the output (taken or not)
+    uint32_t flags = 0;
+    static constexpr uint32_t kAccepted = 1, kResponded = 2, kRspValid = 4;
+    bool accepted() const { return flags & kAccepted; }    // req_valid && req_ready
+    bool responded() const { return flags & kResponded; }  // rsp_valid && rsp_ready
+    bool rsp_valid() const { return flags & kRspValid; }   // a response was on the output (taken or not)
   };
   Edge clock(const RequestWork* offer, bool ready) { return shape_.cached ? clock_cached(offer, ready) : clock_onchip(offer, ready); }
+  // Clocks in which the unit only waits for memory (the front full, the back empty, the FIFO's head
+  // waiting for its first fill) run here in a tight loop of the memory channel alone, until a line
+  // has arrived: the same clocks clock() would run, with no request taken and no response. Returns
+  // how many (0 when the unit is not in that state).
+  uint64_t wait_for_fill();
   bool idle() const;  // nothing in flight, and the memory has nothing to send
   uint32_t fifo_limit() const { return fifo_limit_; }
 
@@ -166,8 +181,9 @@ class UnitClock {
   uint32_t front_valid_ = 0;
   std::array<uint8_t, 4> front_fills_{};
   std::array<bool, 4> front_last_{};
-  // The sample FIFO: each entry's fills (low 4 bits) and last (bit 4).
-  std::vector<uint8_t> fifo_;
+  // The sample FIFO: each entry's fills (low 4 bits) and last (bit 4). (16-bit entries: a write
+  // through a char type would alias every member and force the clock's state out of registers.)
+  std::vector<uint16_t> fifo_;
   uint32_t fifo_rd_ = 0, fifo_wr_ = 0, fifo_count_ = 0, fifo_limit_ = 0;
   uint32_t ring_used_ = 0, ring_unissued_ = 0;  // the miss ring
   uint32_t fill_count_ = 0, beat_ = 0;          // the fill FIFO
@@ -175,70 +191,31 @@ class UnitClock {
   uint32_t h_fills_ = 0;
   bool r_valid_ = false, r_last_ = false, t_valid_ = false, t_last_ = false, o_valid_ = false, o_last_ = false;
   uint32_t back_valid_ = 0, back_last_ = 0;     // the filter's clocks 1-3 (bit n-1)
+  // always_ready: bit k set = a sample's last probe left H k + 1 clocks before its response clock
+  // (R, T, taps, filter 1-3, tex_accum 1-2, output register: 9 registers).
+  bool always_ready_ = false;
+  uint32_t back_line_ = 0;
 };
 
 // A stream of requests through the unit under the stimulus: requests are queued as the functional
-// model produces them (push), run() clocks while a queued request remains to be offered, finish()
-// until the last response. on_response(index, clock): the request's index in the stream and the
-// clock of its response handshake, counted from the clock in which the first request was offered.
+// model produces them (push); run() clocks while a queued request remains to be offered, finish()
+// until the last response. Both append the clock of each response handshake, in response order,
+// to `clocks` (if not null), counted from the clock in which the first request was offered.
 class TimedStream {
  public:
-  TimedStream(const UnitShape& shape, const MemoryChannel* memory, const Stimulus& stimulus, uint64_t seed)
-      : unit_(shape, memory), stimulus_(stimulus, seed) {
-    // The requests in flight: at most the FIFO's probes and the registers around it.
-    size_t ring = 1024;
-    while (ring < size_t(shape.fifo_depth) + 64) ring *= 2;
-    accept_clock_.resize(ring);
-  }
+  TimedStream(const UnitShape& shape, const MemoryChannel* memory, const Stimulus& stimulus, uint64_t seed);
   void push(const RequestWork& w) { queue_.push_back(w); }
-  template <class OnResponse>
-  void run(OnResponse&& on_response) {
-    while (head_ < queue_.size()) step(&queue_[head_], on_response);
-    queue_.clear();
-    head_ = 0;
-  }
-  template <class OnResponse>
-  void finish(OnResponse&& on_response) {
-    run(on_response);
-    while (done_ < accepted_) step(nullptr, on_response);
-  }
+  void run(std::vector<uint64_t>* clocks);
+  void finish(std::vector<uint64_t>* clocks);
   TimingCounters counters() const;
   uint32_t fifo_limit() const { return unit_.fifo_limit(); }  // cached: the FIFO depth in use
 
  private:
-  template <class OnResponse>
-  void step(const RequestWork* next, OnResponse& on_response) {
-    bool offer = false, ready = false;
-    stimulus_.begin(next != nullptr, offer, ready);
-    if (offer && !c_.any_offer) {
-      c_.any_offer = true;
-      c_.first_offer_cycle = now_;
-    }
-    const UnitClock::Edge e = unit_.clock(offer ? next : nullptr, ready);
-    if (e.responded) {
-      const uint64_t latency = now_ - accept_clock_[done_ & (accept_clock_.size() - 1)];
-      c_.latency_min = c_.samples == 0 ? latency : std::min(c_.latency_min, latency);
-      c_.latency_max = std::max(c_.latency_max, latency);
-      ++c_.samples;
-      c_.last_response_cycle = now_;
-      on_response(done_++, now_ - c_.first_offer_cycle);
-    } else if (e.rsp_valid) {
-      ++c_.output_stall_cycles;
-    }
-    if (offer) {
-      if (e.accepted) {
-        accept_clock_[accepted_++ & (accept_clock_.size() - 1)] = now_;
-        ++head_;
-      } else {
-        ++c_.backpressure_cycles;
-      }
-    }
-    stimulus_.end(e.accepted);
-    ++now_;
-  }
+  void step(const RequestWork* next, std::vector<uint64_t>* clocks);
 
   UnitClock unit_;
   StimulusClock stimulus_;
+  bool ideal_;
   std::vector<RequestWork> queue_;
   size_t head_ = 0;
   uint64_t now_ = 0, accepted_ = 0, done_ = 0;

@@ -54,8 +54,8 @@ std::vector<uint64_t> model_clocks(rtl::Driver& unit, uint32_t fifo_depth, const
   const rtl::MemoryModel* memory = unit.memory();
   TimedStream timed(rtl::unit_shape(unit.config(), fifo_depth), memory ? &memory->channel() : nullptr, stim, seed);
   for (const RequestWork& w : work) timed.push(w);
-  std::vector<uint64_t> clocks(work.size());
-  timed.finish([&](size_t i, uint64_t clock) { clocks[i] = clock; });
+  std::vector<uint64_t> clocks;
+  timed.finish(&clocks);
   return clocks;
 }
 

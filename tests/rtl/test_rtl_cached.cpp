@@ -122,7 +122,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
     w.probes = uint8_t(p.n);
     for (int i = 0; i < p.n; ++i) {
       const SampleLookup l = model.lookup(p.at[size_t(i)], &predicted);
-      w.fills[size_t(i)] = uint8_t(l.slot[0].misses + l.slot[1].misses);
+      w.set_fills(i, uint32_t(l.slot[0].misses + l.slot[1].misses));
       if (coverage) coverage->sample(l);
     }
   }

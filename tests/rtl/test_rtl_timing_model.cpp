@@ -84,8 +84,8 @@ TEST(TimingModel, CachedCatchesAPlantedOneClockError) {
   const MemoryChannel late_memory(rc->line_bytes(), rc->mem_bits / 8, slow);
   TimedStream timed(rtl::unit_shape(*rc), &late_memory, stim, 8);
   for (const RequestWork& w : work) timed.push(w);
-  std::vector<uint64_t> late(work.size());
-  timed.finish([&](size_t i, uint64_t clock) { late[i] = clock; });
+  std::vector<uint64_t> late;
+  timed.finish(&late);
   const std::vector<uint64_t> got = rtl_clocks(*unit, requests, stim, 8);
   EXPECT_EQ(compare_clocks(got, want), "");
   const std::string report = compare_clocks(got, late);
