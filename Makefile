@@ -15,7 +15,7 @@ help:
 	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
 	@echo "make memory-report - cached memory through the RTL: throughput, hit rate, bytes, FIFO vs latency (docs/memory.md)"
 	@echo "make scenes - real frames: the assimp test models through the cached RTL at latency 200: $(OUT)/scenes/index.html"
-	@echo "make explore - sweep cache size, block shape, latency and pixel order over plane and panel: $(OUT)/explore/index.html"
+	@echo "make explore - sweep cache size, ways, block shape, latency, FIFO and pixel order over plane and panel, every point timed: $(OUT)/explore/index.html"
 	@echo "make rtl-soak  - RTL vs model lockstep, 20x the random samples of make test, new seeds"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make xprop  - 4-state X-propagation run of the RTL in Icarus Verilog, with planted bugs"
@@ -69,11 +69,12 @@ scenes: build
 	/usr/bin/python3 scripts/scenes_report.py --texsim $(TEXSIM) --out $(OUT)/scenes
 
 # The default architecture sweep (docs/memory.md §6): plane and panel, 640x480, the 1024x1024 test
-# card, scanline and tiled order, caches 1..32 KiB, blocks 4x4 (through the RTL) and 2x2, 8x8 (model),
-# latencies 50..800 clocks, 16 B/clock; points in $(JOBS) processes.
+# card, scanline and tiled order, caches 1..64 KiB of 1, 2 and 4 ways, blocks 4x4, 2x2 and 8x8,
+# latencies 50..800 clocks, 16 B/clock, FIFOs of 256 and 2048 samples, every point timed by the
+# model's timing layer (most of these have no Verilated build); points in $(JOBS) processes.
 explore: build
-	$(TEXSIM) explore --scene plane,panel --cache-kib 1,2,4,8,16,32 --block 4x4,2x2,8x8 \
-	  --mem-latency 50,100,200,400,800 --jobs $(JOBS) --out $(OUT)/explore
+	$(TEXSIM) explore --scene plane,panel --cache-kib 1,2,4,8,16,32,64 --ways 1,2,4 --block 4x4,2x2,8x8 \
+	  --mem-latency 50,100,200,400,800 --fifo-depth 256,max --jobs $(JOBS) --out $(OUT)/explore
 
 # The paper's scenes through an engine (FIG_ENGINE, default model) vs a real-valued reference (docs/scenes.md).
 FIG_ENGINE ?= model

@@ -4,14 +4,15 @@
 Usage: /usr/bin/python3 scripts/explore_plots.py DIR
 
 Reads DIR/explore.csv (one row per sweep point, written by `texsim explore`) and writes into DIR:
-  latency.png   samples/clock (RTL) against memory latency, a line per cache size
+  latency.png   samples/clock (timing model or RTL) against memory latency, a line per cache size
+  throughput.png  samples/clock against cache size, a line per block shape
   hit_rate.png  hit rate (golden model's caches) against cache size, a line per block shape
   bytes.png     bytes read from memory per sample against cache size, a line per block shape
   index.html    the plots, the smallest cache reaching 0.97 samples/clock per latency, every row
 One panel per (workload, order). A sweep parameter that is on neither a plot's axes nor its series
 is held at one value (the default if the sweep has it: ways 2, 4x4 blocks, row-major, 16 B/clock,
 latency 200, the deepest FIFO; else the smallest), named in the figure's title. A plot without
-rows (no point timed through the RTL) is left out and index.html says so. The outputs are written
+rows (no point timed: --timing none) is left out and index.html says so. The outputs are written
 to temporary files and renamed into place once all of them are complete.
 Needs numpy and matplotlib (Debian's python3-matplotlib, in /usr/bin/python3).
 """
@@ -36,7 +37,7 @@ except ImportError as missing:
 COLUMNS = ["workload", "order", "texture", "width", "height", "filter", "cache_kib", "ways", "block", "block_order",
            "mem_latency", "mem_bytes_per_clock", "fifo_depth", "samples", "cache_lookups", "cache_hits",
            "cache_misses", "hit_rate", "memory_read_bytes", "bytes_per_sample", "timing_engine",
-           "samples_per_clock", "cycles", "memory_stall_cycles", "fifo_max_occupancy", "seconds"]
+           "samples_per_clock", "cycles", "memory_stall_cycles", "fifo_max_occupancy", "confirmed", "seconds"]
 # Numbers every row has; the other numeric columns may be empty (not measured).
 REQUIRED_NUMBERS = ["cache_kib", "ways", "mem_latency", "mem_bytes_per_clock", "hit_rate", "bytes_per_sample"]
 OPTIONAL_NUMBERS = ["width", "height", "fifo_depth", "samples", "cache_lookups", "cache_hits", "cache_misses",
@@ -46,7 +47,7 @@ DEFAULTS = {"ways": 2.0, "block": "4x4", "block_order": "row-major", "mem_bytes_
             "mem_latency": 200.0}
 HELD = ["ways", "block", "block_order", "mem_bytes_per_clock", "mem_latency", "fifo_depth"]
 TARGET = 0.97
-OUTPUTS = ["latency.png", "hit_rate.png", "bytes.png", "index.html"]
+OUTPUTS = ["latency.png", "throughput.png", "hit_rate.png", "bytes.png", "index.html"]
 NUMBER = re.compile(r"-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?", re.ASCII)
 
 
@@ -246,16 +247,17 @@ def plot(rows, path, x, y, series, title, xlabel, ylabel, log2x=False, scale=1.0
 
 
 def smallest_cache_table(rows, all_rows):
-    """Per (workload, order) and latency, the smallest cache whose RTL samples/clock reaches TARGET."""
+    """Per (workload, order) and latency, the smallest cache whose samples/clock reaches TARGET."""
     timed, note = hold([r for r in rows if r["samples_per_clock"] is not None], ["cache_kib", "mem_latency"],
                        "cache_kib")
     e = html.escape
     if not timed:
-        return (f"<p>No point was timed through the RTL (samples_per_clock is empty in every row), so the "
+        return (f"<p>No point was timed (samples_per_clock is empty in every row: --timing none), so the "
                 f"smallest cache reaching {TARGET:g} samples/clock is not known.</p>")
     latencies = sorted({r["mem_latency"] for r in timed})
     out = [f"<p>The smallest cache (KiB) whose samples/clock reaches {TARGET:g}, per memory latency (clocks). "
-           f"These are RTL measurements (timing_engine rtl), with {e(note)}.</p>",
+           f"Timed by the timing model (timing_engine model, clock for clock the RTL's) or the RTL "
+           f"(timing_engine rtl), with {e(note)}.</p>",
            "<table><tr><th>workload</th><th>order</th>"
            + "".join(f"<th>latency {fmt(lat)}</th>" for lat in latencies) + "</tr>"]
     for workload, order in panels(all_rows):
@@ -285,13 +287,17 @@ def page(header, rows, made):
         "th{background:#eee}img{max-width:100%}.wide{overflow-x:auto}</style></head><body>",
         "<h1>texsim explore</h1>",
         f"<p>{len(rows)} points; workloads: {e(', '.join(workloads)) if workloads else 'none'}. Hit rate and "
-        "bytes/sample from the golden model's caches (every point); samples/clock through the Verilated RTL "
-        "(rows with timing_engine rtl).</p>",
+        "bytes/sample from the golden model's caches (every point); samples/clock from the model's timing layer "
+        "(timing_engine model: the RTL's clocks exactly, at every point, compiled or not; confirmed rtl where "
+        "--confirm rtl re-ran the point through the Verilated RTL) or from the RTL itself (timing_engine rtl).</p>",
     ]
     captions = {
-        "latency.png": ("Samples per clock against memory latency, a line per cache size (RTL)",
-                        "No point was timed through the RTL (samples_per_clock is empty in every row), so there is "
+        "latency.png": ("Samples per clock against memory latency, a line per cache size",
+                        "No point was timed (samples_per_clock is empty in every row: --timing none), so there is "
                         "no latency plot."),
+        "throughput.png": ("Samples per clock against cache size, a line per block shape",
+                           "No point was timed (samples_per_clock is empty in every row: --timing none), so there "
+                           "is no throughput plot."),
         "hit_rate.png": ("Hit rate against cache size, a line per block shape", "The CSV has no rows to plot."),
         "bytes.png": ("Bytes read from memory per sample against cache size, a line per block shape",
                       "The CSV has no rows to plot."),
@@ -336,8 +342,11 @@ def write_all(out_dir, header, rows):
         timed = [r for r in rows if r["samples_per_clock"] is not None]
         made = {
             "latency.png": plot(timed, temps["latency.png"], "mem_latency", "samples_per_clock", "cache_kib",
-                                "samples per clock through the RTL", "memory latency (clocks)", "samples / clock",
+                                "samples per clock", "memory latency (clocks)", "samples / clock",
                                 ylim=(0, 1.05), target=TARGET),
+            "throughput.png": plot(timed, temps["throughput.png"], "cache_kib", "samples_per_clock", "block",
+                                   "samples per clock", "cache size (KiB)", "samples / clock", log2x=True,
+                                   ylim=(0, 1.05), target=TARGET),
             "hit_rate.png": plot(rows, temps["hit_rate.png"], "cache_kib", "hit_rate", "block",
                                  "cache hit rate (golden model's caches)", "cache size (KiB)", "hit rate (%)",
                                  log2x=True, scale=100.0),

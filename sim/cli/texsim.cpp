@@ -392,9 +392,13 @@ int main(int argc, char** argv) {
   explore->add_option("--fifo-depth", ex.fifo_depths, "sample FIFO depths; max = the RTL configuration's FIFO_DEPTH")
       ->capture_default_str();
   explore->add_option("--timing", ex.timing,
-                      "rtl | none: samples/clock through the Verilated RTL at every point a compiled configuration "
-                      "holds (its block shape, cache size, FIFO), or hit rates and bytes from the model only")
+                      "model | rtl | none: samples/clock from the model's timing layer at every point, or through "
+                      "the Verilated RTL where a compiled configuration holds the point (the model elsewhere), or "
+                      "hit rates and bytes only")
       ->capture_default_str();
+  explore->add_option("--confirm", ex.confirm,
+                      "rtl: also run every point a compiled configuration holds through the RTL and fail on any "
+                      "difference from the timing model");
   explore->add_option("--out,-o", ex.out_dir, "output directory: explore.csv, *.png, index.html")->capture_default_str();
   explore->add_option("--jobs,-j", ex.jobs, "points measured in this many processes at once")->capture_default_str();
   explore->add_option("--emit-jobs", ex.emit_jobs_path,

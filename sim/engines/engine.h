@@ -295,6 +295,10 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
 // 16-byte beats). `name`: the configuration's name, or a description of the defaults.
 UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& options, std::string& name,
                            int& beat_bytes);
+// The model engine's timing model for these textures and options: model_unit_shape's unit, the
+// memory and stimulus of the RTL engine (the same seeds). `line_bytes`: the cache line (cached).
+std::unique_ptr<TimedStream> model_timing(const TextureTable& textures, const EngineOptions& options, int line_bytes,
+                                          std::string& configuration);
 
 // The descriptor table of a texture table in cached mode: layouts packed one after another from
 // options.layout.base. Throws tex::Error (too many textures, different channel widths, memory).

@@ -1,5 +1,6 @@
 // The engines of this build and the golden model's engine.
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <optional>
 
@@ -81,7 +82,10 @@ UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& op
   try {
     const rtl::RtlConfig& rc = rtl::smallest_config_for(log2_w, log2_h, cw, options.memory, options.layout.block_w,
                                                         options.layout.block_h);
-    if (options.memory == Memory::Cached) rtl::cache_pins(rc, options.layout, options.cache, options.fifo_depth);
+    if (options.memory == Memory::Cached) {
+      rtl::cache_pins(rc, options.layout, options.cache, options.fifo_depth);
+      if (options.mem_bytes_per_clock > uint32_t(rc.mem_bits / 8)) throw Error("wider than the configuration's beat");
+    }
     name = rc.name;
     beat_bytes = rc.mem_bits / 8;
     return rtl::unit_shape(rc, options.fifo_depth);
@@ -93,7 +97,7 @@ UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& op
   name = "model";
   if (!shape.cached) return shape;
   const int line = options.layout.block_w * options.layout.block_h * (cw > 8 ? 8 : 4);
-  beat_bytes = std::min(16, line);
+  beat_bytes = std::min(line, std::max(16, int(std::bit_ceil(options.mem_bytes_per_clock))));
   shape.fifo_depth = 2048;
   while (shape.fifo_depth < options.fifo_depth) shape.fifo_depth *= 2;
   shape.fifo_limit = options.fifo_depth;
@@ -103,6 +107,24 @@ UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& op
   name = "model (FIFO " + std::to_string(shape.fifo_depth) + ", miss ring 512, " + std::to_string(beat_bytes) +
          "-byte beats)";
   return shape;
+}
+
+std::unique_ptr<TimedStream> model_timing(const TextureTable& textures, const EngineOptions& options, int line_bytes,
+                                          std::string& configuration) {
+  int beat_bytes = 16;
+  const UnitShape shape = model_unit_shape(textures, options, configuration, beat_bytes);
+  std::optional<MemoryChannel> memory;
+  if (shape.cached) {
+    MemoryTiming m;
+    m.latency = options.mem_latency;
+    m.jitter = options.mem_jitter;
+    m.bytes_per_clock = options.mem_bytes_per_clock;
+    m.max_outstanding = options.mem_outstanding;
+    m.seed = options.seed ^ 0x9E3779B97F4A7C15ULL;  // (rtl::DriverOptions::of)
+    memory.emplace(line_bytes, std::min(beat_bytes, line_bytes), m);
+  }
+  return std::make_unique<TimedStream>(shape, memory ? &*memory : nullptr, Stimulus::of(options.stalls),
+                                       options.seed ^ 0x5DEECE66DULL);  // (the RTL engine's stimulus seed)
 }
 
 EngineStats run_model(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
@@ -124,26 +146,10 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
   }
   std::optional<TextureCache> cache;
   if (cached) cache.emplace(texture_descriptors(textures, options), options.cache, config);
-  // The timing layer: the unit model_unit_shape gives, the memory and stimulus of the RTL engine
-  // (the same seeds), so that its clocks are the RTL's.
-  std::optional<TimedStream> timed;
+  // The timing layer: the unit model_unit_shape gives, the memory and stimulus of the RTL engine.
+  std::unique_ptr<TimedStream> timed;
   std::string configuration;
-  if (options.timing) {
-    int beat_bytes = 16;
-    const UnitShape shape = model_unit_shape(textures, options, configuration, beat_bytes);
-    std::optional<MemoryChannel> memory;
-    if (cached) {
-      MemoryTiming m;
-      m.latency = options.mem_latency;
-      m.jitter = options.mem_jitter;
-      m.bytes_per_clock = options.mem_bytes_per_clock;
-      m.max_outstanding = options.mem_outstanding;
-      m.seed = options.seed ^ 0x9E3779B97F4A7C15ULL;  // (rtl::DriverOptions::of)
-      const int line = cache->line_bytes();
-      memory.emplace(line, std::min(beat_bytes, line), m);
-    }
-    timed.emplace(shape, memory ? &*memory : nullptr, Stimulus::of(options.stalls), options.seed ^ 0x5DEECE66DULL);
-  }
+  if (options.timing) timed = model_timing(textures, options, cache ? cache->line_bytes() : 0, configuration);
   const auto t1 = std::chrono::steady_clock::now();
   std::vector<Request> requests(4096);
   std::vector<Texel> texels(requests.size());

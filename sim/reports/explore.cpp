@@ -99,6 +99,10 @@ struct Workload {
   }
 };
 
+// Who gives samples/clock: the model's timing layer at every point, the RTL where a compiled
+// configuration holds the point (the model elsewhere), or nobody (caches only).
+enum class TimingMode { Model, Rtl, None };
+
 struct Sweep {
   ExploreArgs args;
   bool trace = false;
@@ -108,7 +112,8 @@ struct Sweep {
   std::vector<LayoutParams> blocks;  // shapes
   std::vector<BlockOrder> block_orders;
   std::vector<uint32_t> latencies, bandwidths, fifos;
-  bool timing = true;
+  TimingMode timing = TimingMode::Model;
+  bool confirm = false;  // --confirm rtl
   std::vector<Workload> workloads;
   std::vector<Point> points;  // in CSV order
 };
@@ -159,8 +164,13 @@ Sweep parse_sweep(const ExploreArgs& a) {
   s.bandwidths = parse_numbers(a.bandwidths, "--mem-bytes-per-clock", 1, 1024);
   for (const std::string& f : split_list(a.fifo_depths, "--fifo-depth"))
     s.fifos.push_back(f == "max" ? 0 : parse_bounded(f, "--fifo-depth", 1, 1u << 20));
-  if (a.timing != "rtl" && a.timing != "none") throw Error("--timing " + quote_clipped(a.timing) + " is not rtl or none");
-  s.timing = a.timing == "rtl";
+  if (a.timing == "model") s.timing = TimingMode::Model;
+  else if (a.timing == "rtl") s.timing = TimingMode::Rtl;
+  else if (a.timing == "none") s.timing = TimingMode::None;
+  else throw Error("--timing " + quote_clipped(a.timing) + " is not model, rtl or none");
+  if (!a.confirm.empty() && a.confirm != "rtl") throw Error("--confirm " + quote_clipped(a.confirm) + " is not rtl");
+  s.confirm = a.confirm == "rtl";
+  if (s.confirm && s.timing != TimingMode::Model) throw Error("--confirm rtl checks the timing model: it needs --timing model");
   if (a.jobs < 1 || a.jobs > 256) throw Error("--jobs " + std::to_string(a.jobs) + " is outside 1..256");
   return s;
 }
@@ -259,10 +269,10 @@ void expand_points(Sweep& s) {
   std::vector<std::string> notes;
   for (size_t w = 0; w < s.workloads.size(); ++w) {
     const TextureTable table = s.workloads[w].table();
-    for (int kib : s.cache_kib)
-      for (int ways : s.ways)
-        for (const LayoutParams& block : s.blocks)
-          for (BlockOrder bo : s.block_orders) {
+    for (const LayoutParams& block : s.blocks)
+      for (BlockOrder bo : s.block_orders)
+        for (int kib : s.cache_kib)
+          for (int ways : s.ways) {
             Point p;
             p.workload = w;
             p.cache_kib = kib;
@@ -277,9 +287,19 @@ void expand_points(Sweep& s) {
               if (said.insert(what).second) notes.push_back("left out " + what + ": " + e.what());
               continue;
             }
+            const int cw = s.workloads[w].pyramids[0].levels[0].channel_bits;
+            const uint32_t line = uint32_t(block.block_w * block.block_h * (cw > 8 ? 8 : 4));
             for (uint32_t lat : s.latencies)
               for (uint32_t bw : s.bandwidths)
                 for (uint32_t fifo : s.fifos) {
+                  if (bw > line) {  // the memory port carries one beat, at most a line, per clock
+                    const std::string what = std::to_string(bw) + " bytes per clock with " + block_size_name(block) +
+                                             " blocks";
+                    if (said.insert(what).second)
+                      notes.push_back("left out " + what + ": more than one " + std::to_string(line) +
+                                      "-byte line per clock");
+                    continue;
+                  }
                   p.latency = lat;
                   p.bandwidth = bw;
                   p.fifo = fifo;
@@ -295,7 +315,6 @@ void expand_points(Sweep& s) {
 
 // Why the RTL cannot measure this point (empty: it can).
 std::string rtl_unavailable(const Sweep& s, const Point& p) {
-  if (!s.timing) return "--timing none";
   const Workload& w = s.workloads[p.workload];
   try {
     const auto [log2_w, log2_h] = w.largest();
@@ -315,7 +334,8 @@ struct Row {
   Point point;
   uint64_t samples = 0;
   CacheCounters cache;
-  bool timed = false;  // through the RTL
+  std::string timing_engine;  // model | rtl | "" (not timed)
+  bool confirmed = false;     // --confirm rtl: the RTL gave the same figures
   double samples_per_clock = 0;
   uint64_t cycles = 0;
   uint32_t fifo_depth = 0;  // in use (timed rows; else the one asked for, 0 = max)
@@ -327,37 +347,91 @@ class NullSink final : public TexelSink {
   void write(const Texel*, size_t) override {}
 };
 
-// Points of one cache geometry share the model's counters: it has no notion of time.
+// Points of one cache geometry share the model's caches: their counters, and each request's probes
+// and misses (what the timing layer clocks at every latency, bandwidth and FIFO depth).
 using ModelKey = std::tuple<size_t, int, int, int, int, int>;
 ModelKey model_key(const Point& p) {
   return {p.workload, p.cache_kib, p.ways, p.layout.block_w, p.layout.block_h, int(p.layout.order)};
 }
+struct ModelRun {
+  CacheCounters cache;
+  std::vector<RequestWork> work;
+  int line_bytes = 0;
+};
 
-Row measure(const Sweep& s, const Point& p, std::map<ModelKey, CacheCounters>& model_memo) {
+std::string point_name(const Sweep& s, const Point& p) {
+  const Workload& w = s.workloads[p.workload];
+  return w.name + " (" + w.order + "), " + std::to_string(p.cache_kib) + " KiB x " + std::to_string(p.ways) +
+         " ways, " + block_size_name(p.layout) + " " + block_order_name(p.layout.order) + ", latency " +
+         std::to_string(p.latency) + ", " + std::to_string(p.bandwidth) + " B/clock, FIFO " +
+         (p.fifo ? std::to_string(p.fifo) : std::string("max"));
+}
+
+Row measure(const Sweep& s, const Point& p, std::map<ModelKey, ModelRun>& model_memo) {
   const auto t0 = std::chrono::steady_clock::now();
   const Workload& w = s.workloads[p.workload];
   Row r;
   r.point = p;
   r.samples = w.requests.size();
   r.fifo_depth = p.fifo;
-  if (rtl_unavailable(s, p).empty()) {
+  const bool rtl_can = rtl_unavailable(s, p).empty();
+  std::optional<EngineStats> rtl;
+  if (rtl_can && (s.timing == TimingMode::Rtl || s.confirm)) {
     // The RTL engine runs the model's caches beside the RTL and fails on any read they do not predict.
     VectorSource source(w.requests);
     NullSink sink;
-    const EngineStats st = make_engine("rtl", engine_options(p))->run(w.table(), w.config, source, sink);
-    r.timed = true;
-    r.cache = *st.cache;
-    r.samples_per_clock = st.samples_per_clock();
-    r.cycles = st.cycle->cycles;
-    r.fifo_depth = st.cache->fifo_depth;
+    rtl = make_engine("rtl", engine_options(p))->run(w.table(), w.config, source, sink);
+  }
+  if (rtl && s.timing == TimingMode::Rtl) {
+    r.timing_engine = "rtl";
+    r.cache = *rtl->cache;
+    r.samples_per_clock = rtl->samples_per_clock();
+    r.cycles = rtl->cycle->cycles;
+    r.fifo_depth = rtl->cache->fifo_depth;
   } else {
     auto [it, fresh] = model_memo.try_emplace(model_key(p));
+    ModelRun& m = it->second;
     if (fresh) {
       TextureCache cache(texture_descriptors(w.table(), engine_options(p)), cache_of(p), w.config);
-      for (const Request& q : w.requests) cache.lookup_sample(q, nullptr);
-      it->second = cache_counters(cache);
+      m.work.reserve(w.requests.size());
+      for (const Request& q : w.requests) m.work.push_back(cache.lookup_sample(q, nullptr));
+      m.cache = cache_counters(cache);
+      m.line_bytes = cache.line_bytes();
     }
-    r.cache = it->second;
+    r.cache = m.cache;
+    if (s.timing != TimingMode::None) {
+      std::string configuration;
+      const std::unique_ptr<TimedStream> timed = model_timing(w.table(), engine_options(p), m.line_bytes, configuration);
+      for (size_t i = 0; i < m.work.size(); i += 4096) {
+        for (size_t k = i; k < std::min(m.work.size(), i + 4096); ++k) timed->push(m.work[k]);
+        timed->run(nullptr);
+      }
+      timed->finish(nullptr);
+      const TimingCounters t = timed->counters();
+      r.timing_engine = "model";
+      r.cycles = t.cycles();
+      r.samples_per_clock = r.cycles > t.latency_min ? double(t.samples) / double(r.cycles - t.latency_min) : 0.0;
+      r.fifo_depth = timed->fifo_limit();
+      r.cache.fifo_depth = r.fifo_depth;
+      r.cache.fifo_max_occupancy = t.fifo_max;
+      r.cache.memory_stall_cycles = t.head_wait_cycles;
+      if (rtl) {  // --confirm rtl: the same figures, or the sweep fails
+        const CacheCounters& k = *rtl->cache;
+        std::string differ;
+        auto check = [&](const char* what, uint64_t model, uint64_t measured) {
+          if (model != measured && differ.empty())
+            differ = std::string(what) + ": timing model " + std::to_string(model) + ", RTL " + std::to_string(measured);
+        };
+        check("cycles", r.cycles, rtl->cycle->cycles);
+        check("memory_stall_cycles", r.cache.memory_stall_cycles, k.memory_stall_cycles);
+        check("fifo_max_occupancy", r.cache.fifo_max_occupancy, k.fifo_max_occupancy);
+        check("fifo_depth", r.fifo_depth, k.fifo_depth);
+        check("cache_hits", r.cache.hits, k.hits);
+        check("cache_misses", r.cache.misses, k.misses);
+        if (!differ.empty()) throw SimulationError("--confirm rtl: " + point_name(s, p) + ": " + differ);
+        r.confirmed = true;
+      }
+    }
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
@@ -368,7 +442,7 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, CacheCounters>& m
 const char* kCsvHeader =
     "workload,order,texture,width,height,filter,cache_kib,ways,block,block_order,mem_latency,mem_bytes_per_clock,"
     "fifo_depth,samples,cache_lookups,cache_hits,cache_misses,hit_rate,memory_read_bytes,bytes_per_sample,"
-    "timing_engine,samples_per_clock,cycles,memory_stall_cycles,fifo_max_occupancy,seconds";
+    "timing_engine,samples_per_clock,cycles,memory_stall_cycles,fifo_max_occupancy,confirmed,seconds";
 
 // A CSV field: quoted when it holds a comma, a quote or a line break.
 std::string csv_field(const std::string& text) {
@@ -395,26 +469,32 @@ std::string csv_row(const Sweep& s, const Row& r) {
                 k.lookups ? double(k.hits) / double(k.lookups) : 0.0, (unsigned long long)k.memory_read_bytes,
                 r.samples ? double(k.memory_read_bytes) / double(r.samples) : 0.0);
   line += buf;
-  if (r.timed)
-    std::snprintf(buf, sizeof buf, "rtl,%.5f,%llu,%llu,%u,%.3f", r.samples_per_clock, (unsigned long long)r.cycles,
-                  (unsigned long long)k.memory_stall_cycles, k.fifo_max_occupancy, r.seconds);
+  if (!r.timing_engine.empty())
+    std::snprintf(buf, sizeof buf, "%s,%.5f,%llu,%llu,%u,%s,%.3f", r.timing_engine.c_str(), r.samples_per_clock,
+                  (unsigned long long)r.cycles, (unsigned long long)k.memory_stall_cycles, k.fifo_max_occupancy,
+                  r.confirmed ? "rtl" : "", r.seconds);
   else
-    std::snprintf(buf, sizeof buf, ",,,,,%.3f", r.seconds);
+    std::snprintf(buf, sizeof buf, ",,,,,,%.3f", r.seconds);
   return line + buf + "\n";
 }
 
 // ------------------------------------------------------------------------------ jobs
 
-// Points of one cache geometry form a job: one process measures its latencies, bandwidths and
-// FIFO depths with one texture, one scene and one run of the model's caches.
+// Points of one workload and block shape form a job: one process builds the texture and the scene
+// once, runs the model's caches once per cache size and ways, and times every latency, bandwidth
+// and FIFO depth of each.
 struct Job {
   size_t first = 0, count = 0;  // range of Sweep::points
 };
 
+std::tuple<size_t, int, int, int> job_key(const Point& p) {
+  return {p.workload, p.layout.block_w, p.layout.block_h, int(p.layout.order)};
+}
+
 std::vector<Job> jobs_of(const Sweep& s) {
   std::vector<Job> jobs;
   for (size_t i = 0; i < s.points.size(); ++i) {
-    if (jobs.empty() || model_key(s.points[i]) != model_key(s.points[jobs.back().first])) jobs.push_back({i, 0});
+    if (jobs.empty() || job_key(s.points[i]) != job_key(s.points[jobs.back().first])) jobs.push_back({i, 0});
     ++jobs.back().count;
   }
   return jobs;
@@ -450,10 +530,11 @@ std::vector<std::string> job_command(const Sweep& s, const Job& job, const std::
     c.insert(c.end(), frame.begin(), frame.end());
   }
   c.insert(c.end(), {"--texture", portable_path(s.args.texture), "--filter", s.args.filter, "--cache-kib",
-                     std::to_string(p.cache_kib), "--ways", std::to_string(p.ways), "--block", block_size_name(p.layout),
+                     s.args.cache_kib, "--ways", s.args.ways, "--block", block_size_name(p.layout),
                      "--block-order", block_order_name(p.layout.order), "--mem-latency", join_numbers(s.latencies),
                      "--mem-bytes-per-clock", join_numbers(s.bandwidths), "--fifo-depth", join_numbers(s.fifos, true),
                      "--timing", s.args.timing, "--rows", rows});
+  if (s.confirm) c.insert(c.end(), {"--confirm", "rtl"});
   return c;
 }
 
@@ -690,16 +771,18 @@ int run_explore(const ExploreArgs& a, const std::string& self) {
   expand_points(s);
   if (!a.emit_jobs_path.empty()) return emit_jobs(s, self);
 
-  std::map<std::string, size_t> model_only;  // why the RTL did not time a point -> points
+  std::map<std::string, size_t> no_rtl;  // why the RTL could not run a point -> points
+  size_t rtl_points = 0;
   for (const Point& p : s.points)
-    if (const std::string why = rtl_unavailable(s, p); !why.empty()) ++model_only[why];
+    if (const std::string why = rtl_unavailable(s, p); !why.empty()) ++no_rtl[why];
+    else ++rtl_points;
 
   const bool progress = rows_file == nullptr && isatty(STDERR_FILENO);
   std::string rows;
   if (a.jobs > 1 && rows_file == nullptr) {
     rows = run_jobs(s, self, a.jobs, progress);
   } else {
-    std::map<ModelKey, CacheCounters> memo;
+    std::map<ModelKey, ModelRun> memo;
     for (size_t i = 0; i < s.points.size(); ++i) {
       rows += csv_row(s, measure(s, s.points[i], memo));
       if (progress) std::fprintf(stderr, "\rexplore: %zu/%zu points", i + 1, s.points.size());
@@ -716,14 +799,17 @@ int run_explore(const ExploreArgs& a, const std::string& self) {
   std::vector<std::string> inputs = {a.texture};
   if (s.trace) inputs.push_back(a.queries);
   write_results(a.out_dir, rows, inputs, a.plots);
-  size_t timed = s.points.size();
-  for (const auto& [why, n] : model_only) {
-    timed -= n;
-    std::printf("  model only (no samples/clock): %zu points: %s\n", n, why.c_str());
-  }
+  if (s.timing == TimingMode::Rtl || s.confirm)
+    for (const auto& [why, n] : no_rtl)
+      std::printf("  %s (no RTL configuration): %zu points: %s\n",
+                  s.confirm ? "not confirmed" : "timed by the model", n, why.c_str());
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("texsim explore: %zu points (%zu through the RTL), %zu workloads, %.1f s -> %s/explore.csv%s\n",
-              s.points.size(), timed, s.workloads.size(), secs, a.out_dir.c_str(),
+  const std::string timing = s.timing == TimingMode::None ? "none timed"
+                             : s.timing == TimingMode::Rtl ? std::to_string(rtl_points) + " timed by the RTL, the rest by the timing model"
+                             : s.confirm ? "all timed by the timing model, " + std::to_string(rtl_points) + " confirmed by the RTL"
+                                         : "all timed by the timing model";
+  std::printf("texsim explore: %zu points (%s), %zu workloads, %.1f s -> %s/explore.csv%s\n", s.points.size(),
+              timing.c_str(), s.workloads.size(), secs, a.out_dir.c_str(),
               a.plots ? (", index in " + a.out_dir + "/index.html").c_str() : "");
   return 0;
 }

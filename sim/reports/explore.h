@@ -3,10 +3,12 @@
 // A sweep is the cartesian product of its lists: workload (scene or query trace) x rasterization
 // order x cache size x ways x block shape x block order x memory latency x bandwidth x FIFO depth.
 // Every point gets one CSV row. Hit rate and bytes per sample come from the golden model's caches;
-// samples per clock from the Verilated RTL wherever a compiled configuration holds the point (its
-// block shape, cache size and FIFO depth), else the row is the model's alone (timing_engine empty).
-// Through the RTL the model's caches still run alongside and every line the RTL reads is checked
-// against them, so the two engines' hit counts are one and the same.
+// samples per clock from the model's timing layer (model/timing.h) at every point, compiled or not
+// (--timing model, the default), or from the Verilated RTL wherever a compiled configuration holds
+// the point (--timing rtl; the model times the rest). --confirm rtl re-runs every point a compiled
+// configuration holds through the RTL and fails on any difference in cycles, memory waits, FIFO
+// occupancy or cache counters. Through the RTL the model's caches run alongside and every line the
+// RTL reads is checked against them.
 //
 // Outputs in OUT: explore.csv, then scripts/explore_plots.py's latency.png, hit_rate.png,
 // bytes.png and index.html. Points run in this process, or in --jobs N child processes, or as
@@ -33,7 +35,8 @@ struct ExploreArgs {
   std::string latencies = "50,100,200,400,800";
   std::string bandwidths = "16";
   std::string fifo_depths = "max";
-  std::string timing = "rtl";  // rtl | none
+  std::string timing = "model";  // model | rtl | none
+  std::string confirm;           // "" | rtl
   std::string out_dir = "out/explore";
   std::string rows_path;       // measure here and write only these rows (a job of --emit-jobs)
   std::string emit_jobs_path;  // write one command line per job instead of running them

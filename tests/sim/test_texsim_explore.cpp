@@ -49,24 +49,21 @@ const std::string kSweep = kScene + " --cache-kib 1,4";
 }  // namespace
 
 TEST_F(TexsimCli, ExploreSweepsEveryPointAndPlotsIt) {
-  const Result r = run(kSweep + " --jobs 2 -o ex");
+  const Result r = run(kSweep + " --jobs 2 --confirm rtl -o ex");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // 1 KiB of 8x8 lines is 4 lines = 2 sets of 2 ways: the hardware cannot have it, said once.
   EXPECT_NE(r.err.find("left out 1 KiB, 2 ways, 8x8 blocks"), std::string::npos) << r.err;
   const auto rows = read_rows(dir / "ex/explore.csv");
   ASSERT_EQ(rows.size(), 2u * 3 * 2 * 2);  // orders x geometries x latencies x FIFO depths
   for (const Row& row : rows) {
-    // No compiled RTL configuration has 8x8 blocks: those rows are the model's alone.
-    if (row.at("block") == "8x8") {
-      EXPECT_EQ(row.at("timing_engine"), "");
-      EXPECT_EQ(row.at("samples_per_clock"), "");
-    } else {
-      ASSERT_EQ(row.at("timing_engine"), "rtl");
-      const double spc = std::stod(row.at("samples_per_clock"));
-      EXPECT_GT(spc, 0.0);
-      EXPECT_LE(spc, 1.0);
-      EXPECT_TRUE(row.at("fifo_depth") == "64" || row.at("fifo_depth") == "2048") << row.at("fifo_depth");  // max = 2048
-    }
+    // Every point timed by the timing model; the RTL re-ran (--confirm rtl) those a compiled
+    // configuration holds: no compiled configuration has 8x8 blocks.
+    ASSERT_EQ(row.at("timing_engine"), "model");
+    EXPECT_EQ(row.at("confirmed"), row.at("block") == "8x8" ? "" : "rtl");
+    const double spc = std::stod(row.at("samples_per_clock"));
+    EXPECT_GT(spc, 0.0);
+    EXPECT_LE(spc, 1.0);
+    EXPECT_TRUE(row.at("fifo_depth") == "64" || row.at("fifo_depth") == "2048") << row.at("fifo_depth");  // max = 2048
     EXPECT_EQ(std::stoull(row.at("cache_hits")) + std::stoull(row.at("cache_misses")), std::stoull(row.at("cache_lookups")));
   }
   auto find = [&](const std::string& order, const std::string& kib, const std::string& block, const std::string& lat,
@@ -97,12 +94,15 @@ TEST_F(TexsimCli, ExploreSweepsEveryPointAndPlotsIt) {
   EXPECT_NEAR(stats["samples_per_clock"].get<double>(), std::stod(timed.at("samples_per_clock")), 1e-5);
   EXPECT_EQ(stats["cache_hits"].get<uint64_t>(), std::stoull(timed.at("cache_hits")));
   EXPECT_EQ(stats["memory_read_bytes"].get<uint64_t>(), std::stoull(timed.at("memory_read_bytes")));
-  ASSERT_EQ(run(point + " --block 8x8").exit_code, 0);
+  ASSERT_EQ(run(point + " --block 8x8 --fifo-depth 64").exit_code, 0);  // the model engine (no 8x8 RTL)
   stats = nlohmann::json::parse(read_text(dir / "s.json"));
-  EXPECT_EQ(stats["cache_misses"].get<uint64_t>(), std::stoull(find("tiled", "4", "8x8", "300", "64").at("cache_misses")));
+  const Row& model_only = find("tiled", "4", "8x8", "300", "64");
+  EXPECT_EQ(stats["cache_misses"].get<uint64_t>(), std::stoull(model_only.at("cache_misses")));
+  EXPECT_NEAR(stats["samples_per_clock"].get<double>(), std::stod(model_only.at("samples_per_clock")), 1e-5);
+  EXPECT_EQ(stats["cycles"].get<uint64_t>(), std::stoull(model_only.at("cycles")));
 
   // Plots and the page (scripts/explore_plots.py).
-  for (const char* f : {"latency.png", "hit_rate.png", "bytes.png", "index.html"})
+  for (const char* f : {"latency.png", "throughput.png", "hit_rate.png", "bytes.png", "index.html"})
     EXPECT_GT(fs::file_size(dir / "ex" / f), 1000u) << f;
   EXPECT_NE(read_text(dir / "ex/index.html").find("0.97"), std::string::npos);
   EXPECT_NE(r.out.find("index in ex/index.html"), std::string::npos) << r.out;
@@ -138,7 +138,8 @@ TEST_F(TexsimCli, ExploreTakesAQueryTrace) {
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].at("order"), "trace");
   EXPECT_EQ(rows[0].at("samples"), "300");
-  EXPECT_EQ(rows[0].at("timing_engine"), "rtl");
+  EXPECT_EQ(rows[0].at("timing_engine"), "model");
+  EXPECT_GT(std::stod(rows[0].at("samples_per_clock")), 0.0);
 }
 
 TEST_F(TexsimCli, ExploreBadInputFailsBeforeAnyWork) {
@@ -151,26 +152,28 @@ TEST_F(TexsimCli, ExploreBadInputFailsBeforeAnyWork) {
   expect_clean_failure("explore --scene plane,nosuch -o bad", out, {"nosuch"});
   expect_clean_failure("explore --mem-latency 200,x -o bad", out, {"--mem-latency \"x\""});
   expect_clean_failure("explore --fifo-depth maximal -o bad", out, {"--fifo-depth \"maximal\""});
-  expect_clean_failure("explore --timing fast -o bad", out, {"--timing \"fast\""});
+  expect_clean_failure("explore --timing fast -o bad", out, {"--timing \"fast\"", "model, rtl or none"});
+  expect_clean_failure("explore --confirm gpu -o bad", out, {"--confirm \"gpu\""});
+  expect_clean_failure("explore --confirm rtl --timing none -o bad", out, {"--confirm rtl", "--timing model"});
   expect_clean_failure("explore --scene plane -q q.csv -o bad", out, {"--scene, --queries, --model or --scene-file"});
   expect_clean_failure("explore -q missing.csv -o bad", out, {"missing.csv"});
   expect_clean_failure("explore --collect nowhere", "nowhere/explore.csv", {"nowhere/points/jobs", "--emit-jobs"});
   expect_clean_failure("explore --cache-kib 1 --block 8x8 --ways 4 -o bad", out, {"no point"});
 }
 
-// A real frame: the spider's 4 textures in one descriptor table, through the RTL where a compiled
+// A real frame: the spider's 4 textures in one descriptor table, --timing rtl: through the RTL where a compiled
 // configuration holds the point; every row's counters equal texsim render's at the same point.
 TEST_F(TexsimCli, ExploreSweepsAModelsFrame) {
   const std::string model = "/usr/share/assimp/models/OBJ/spider.obj";
   const Result r = run("explore --model " + model + " --width 160 --height 120 --order tiled --cache-kib 2,8 "
-                       "--block 4x4,2x2 --mem-latency 200 --jobs 2 --no-plots -o ex");
+                       "--block 4x4,2x2 --mem-latency 200 --timing rtl --jobs 2 --no-plots -o ex");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto rows = read_rows(dir / "ex/explore.csv");
   ASSERT_EQ(rows.size(), 4u);
   for (const Row& row : rows) {
     EXPECT_EQ(row.at("workload"), model);
     EXPECT_EQ(row.at("texture"), "4 textures");
-    EXPECT_EQ(row.at("timing_engine"), row.at("block") == "4x4" ? "rtl" : "");
+    EXPECT_EQ(row.at("timing_engine"), row.at("block") == "4x4" ? "rtl" : "model");  // --timing rtl
   }
   const Row& row = rows[0];
   ASSERT_EQ(row.at("block"), "4x4");
