@@ -180,13 +180,16 @@ UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
 
 uint64_t UnitClock::wait_for_fill() {
   if (!shape_.cached || en_front_ || skid_valid_ || out_valid_ || sample_valid_ || s1_valid_ || back_valid_ != 0 ||
-      o_valid_ || t_valid_ || r_valid_ || back_line_ != 0 || !h_valid_ || h_fills_ == 0 || fill_count_ != 0)
+      o_valid_ || t_valid_ || r_valid_ || (back_line_ & 1u) || !h_valid_ || h_fills_ == 0 || fill_count_ != 0)
     return 0;
   // As clock_cached with en_front low, en_back high, nothing to fill yet: only the miss ring's
-  // requests and the memory's beats move (en_front stays low: the FIFO and the ring do not change).
+  // requests and the memory's beats move (en_front stays low: the FIFO and the ring do not change),
+  // and with always_ready the samples already past H move down the back's line (no response is
+  // due in these clocks: the loop stops before one is).
   fifo_max = std::max(fifo_max, fifo_count_);
   uint64_t clocks = 0;
-  while (fill_count_ == 0) {
+  while (fill_count_ == 0 && !(back_line_ & 1u)) {
+    back_line_ >>= 1;
     const bool issue = ring_unissued_ != 0 && memory_.request_ready();
     const bool beat_take = memory_.response_valid();
     const bool line_done = beat_take && beat_ == shape_.line_beats - 1;
