@@ -209,6 +209,7 @@ struct SamplingOptions {
     if (no_timing && engine != "model")
       throw Error("--no-timing applies to --engine model (engine " + engine + " is clocked: its timing is the simulation)");
     o.timing = !no_timing;
+    o.count_reads = !stats_path.empty();  // the model's read counters are --stats' only: else its fast path
     if (!response_clocks.empty() && no_timing) throw Error("--response-clocks needs the timing model: drop --no-timing");
     if (!response_clocks.empty() && engine != "model" && engine != "rtl")
       throw Error("--response-clocks: engine " + engine +

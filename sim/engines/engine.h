@@ -67,6 +67,9 @@ struct EngineOptions {
   MissSink* miss_sink = nullptr;  // cached: the line addresses read from memory, in order
   ClockSink* clock_sink = nullptr;  // cycle-accurate and timed engines: each response's clock
   bool timing = true;  // model: clock the timing model (model/timing.h) too: cycle counters, response clocks
+  // model: count texel reads, multiplies and bank reads (the reference path); false: 8-bit textures
+  // go through the fast path (Sampler::sample_rgba8, the same texels, about 3x faster).
+  bool count_reads = true;
 };
 
 // Cached mode: what the caches and the memory did (every engine; timing ones from cycle engines).
