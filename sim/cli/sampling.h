@@ -102,7 +102,7 @@ struct SamplingOptions {
     cmd.add_flag("--verify", verify, "also run the golden model and fail unless every sample is bit-identical");
     cmd.add_option("--response-clocks", response_clocks,
                    "write the clock of every response, one per line, counted from the first request's clock "
-                   "(engines model, rtl: the same file from both)");
+                   "(engines model, rtl: the same file from both; systemc: its TLM-2.0 initiator's timing)");
     cmd.add_flag("--no-timing", no_timing,
                  "engine model: skip the timing model (no cycles, samples/clock or response clocks; faster)");
     cmd.add_option("--memory", memory,
@@ -211,9 +211,9 @@ struct SamplingOptions {
     o.timing = !no_timing;
     o.count_reads = !stats_path.empty();  // the model's read counters are --stats' only: else its fast path
     if (!response_clocks.empty() && no_timing) throw Error("--response-clocks needs the timing model: drop --no-timing");
-    if (!response_clocks.empty() && engine != "model" && engine != "rtl")
-      throw Error("--response-clocks: engine " + engine +
-                  " is timed by its TLM-2.0 initiator, not the clocked stimulus (use --engine model or rtl)");
+    if (!response_clocks.empty() && engine == "systemc-model")
+      throw Error("--response-clocks: engine systemc-model is loosely timed (the model behind the socket has no "
+                  "clocks; use --engine model, rtl or systemc)");
     return o;
   }
 

@@ -493,8 +493,22 @@ TEST_F(TexsimCli, ResponseClocksAreTheSameForModelAndRtl) {
   EXPECT_EQ(read_text(dir / "n.csv"), read_text(dir / "t.csv"));
   expect_clean_failure(cases[0] + " -e rtl --no-timing -o x.csv", "x.csv", {"--no-timing", "--engine model"});
   expect_clean_failure(cases[0] + " --no-timing --response-clocks x.clk -o x.csv", "x.csv", {"--response-clocks", "--no-timing"});
-  expect_clean_failure(cases[0] + " -e systemc --response-clocks x.clk -o x.csv", "x.csv", {"--response-clocks", "systemc"});
+  expect_clean_failure(cases[0] + " -e systemc-model --response-clocks x.clk -o x.csv", "x.csv",
+                       {"--response-clocks", "systemc-model"});
   EXPECT_FALSE(fs::exists(dir / "x.clk"));
+  // The SystemC engine: the RTL's clocks under its TLM-2.0 initiator's timing, one per response.
+  const Result sc = run(cases[1] + " -e systemc -o s.csv --response-clocks s.clk");
+  ASSERT_EQ(sc.exit_code, 0) << sc.err;
+  std::istringstream sin(read_text(dir / "s.clk"));
+  uint64_t clock = 0, last = 0, lines = 0;
+  while (sin >> clock) {
+    if (lines++ > 0) {
+      EXPECT_GT(clock, last) << "systemc: line " << lines;
+    }
+    last = clock;
+  }
+  EXPECT_EQ(lines, 600u);
+  EXPECT_EQ(read_text(dir / "s.csv"), read_text(dir / "r.csv"));
 }
 
 TEST_F(TexsimCli, TiledOrderDrawsTheSamePictureFromOtherCacheTraffic) {

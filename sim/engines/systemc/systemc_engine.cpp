@@ -48,12 +48,13 @@ InitiatorTiming initiator_timing(const EngineOptions& o) {
 
 // Runs in the child: elaborate, load, stream, check.
 EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
-                     TexelSink& sink, MissSink& misses, const SystemcOptions& o) {
+                     TexelSink& sink, MissSink& misses, ClockSink& clocks, const SystemcOptions& o) {
   const bool at = o.initiator == InitiatorStyle::At || (o.initiator == InitiatorStyle::Auto && backend == Backend::Rtl);
   const sc_time period(o.clock_ns, SC_NS);
   const auto wall0 = std::chrono::steady_clock::now();
   EngineOptions eo = o.engine;
   eo.miss_sink = &misses;
+  eo.clock_sink = o.engine.clock_sink ? &clocks : nullptr;  // (the parent's sink, through the pipe)
   TexUnitTlm unit("tex_unit_tlm", backend, pyramid, config, period, eo);
   StreamInitiator bench("testbench", source, sink, at, period, initiator_timing(o.engine));
   bench.socket.bind(unit.socket);
@@ -109,8 +110,9 @@ EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfi
 
 // ---------------------------------------------------------------- parent <-> child
 // Parent -> child: the requests as raw structs (same binary), then end of file.
-// Child -> parent: frames [type][u64 length][bytes]: 'T' texels, then one 'S' (stats JSON) or
-// 'E' (error JSON: message, and whether it is a simulation failure).
+// Child -> parent: frames [type][u64 length][bytes]: 'T' texels, 'M' line addresses, 'C' response
+// clocks, then one 'S' (stats JSON) or 'E' (error JSON: message, and whether it is a simulation
+// failure).
 
 bool write_all(int fd, const void* data, size_t n) {
   const char* p = static_cast<const char*>(data);
@@ -172,15 +174,28 @@ class PipeMissSink final : public MissSink {
   int fd_;
 };
 
+// Response clocks to the parent.
+class PipeClockSink final : public ClockSink {
+ public:
+  explicit PipeClockSink(int fd) : fd_(fd) {}
+  void write(const uint64_t* c, size_t n) override {
+    if (!send_frame(fd_, 'C', c, n * sizeof(uint64_t))) throw Error("SystemC: the parent process went away");
+  }
+
+ private:
+  int fd_;
+};
+
 [[noreturn]] void run_child(int request_fd, int result_fd, const Simulation& simulation) {
   ::setenv("SYSC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
   std::signal(SIGPIPE, SIG_IGN);
   PipeSource source(request_fd);
   PipeSink sink(result_fd);
   PipeMissSink misses(result_fd);
+  PipeClockSink clocks(result_fd);
   nlohmann::json outcome;
   try {
-    outcome["stats"] = simulation(source, sink, misses).to_json(EngineOptions{});
+    outcome["stats"] = simulation(source, sink, misses, clocks).to_json(EngineOptions{});
   } catch (const SimulationError& e) {
     outcome = {{"error", e.what()}, {"simulation", true}};
   } catch (const std::exception& e) {
@@ -239,9 +254,9 @@ EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerCo
       for (size_t i = 0; i < n; ++i) rtl::check_request(r[i], index + i);
     index += n;
   };
-  return run_forked(source, sink, [&](RequestSource& s, TexelSink& t, MissSink& m) {
-    return simulate(backend, pyramid, config, s, t, m, options);
-  }, check, eo.miss_sink);
+  return run_forked(source, sink, [&](RequestSource& s, TexelSink& t, MissSink& m, ClockSink& c) {
+    return simulate(backend, pyramid, config, s, t, m, c, options);
+  }, check, eo.miss_sink, eo.clock_sink);
 }
 
 EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
@@ -252,7 +267,8 @@ EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerC
 }
 
 EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation& simulation,
-                       const std::function<void(const Request*, size_t)>& check, MissSink* misses) {
+                       const std::function<void(const Request*, size_t)>& check, MissSink* misses,
+                       ClockSink* clocks) {
   int to_child[2], from_child[2];
   if (::pipe(to_child) != 0) throw Error(std::string("pipe: ") + std::strerror(errno));
   if (::pipe(from_child) != 0) {
@@ -342,6 +358,12 @@ EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation&
         if (type == 'T') sink.write(reinterpret_cast<const Texel*>(body), len / sizeof(Texel));
         else if (type == 'M') {
           if (misses) misses->write(reinterpret_cast<const uint32_t*>(body), len / sizeof(uint32_t));
+        } else if (type == 'C') {
+          if (clocks) {  // (a frame's body need not be 8-byte aligned in `in`)
+            std::vector<uint64_t> c(len / sizeof(uint64_t));
+            std::memcpy(c.data(), body, c.size() * sizeof(uint64_t));
+            clocks->write(c.data(), c.size());
+          }
         }
         else outcome = nlohmann::json::parse(std::string(body, len));
         at += 9 + len;
@@ -371,7 +393,7 @@ EngineResult run_forked(const std::function<EngineResult()>& simulation) {
   VectorSource none(nullptr, 0);
   VectorSink sink;
   EngineResult r;
-  r.stats = run_forked(none, sink, [&](RequestSource&, TexelSink& out, MissSink&) {
+  r.stats = run_forked(none, sink, [&](RequestSource&, TexelSink& out, MissSink&, ClockSink&) {
     const EngineResult x = simulation();
     out.write(x.texels.data(), x.texels.size());
     return x.stats;

@@ -45,12 +45,13 @@ EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerC
 // `check` in the parent first) go to the child's source, texels from the child's sink to `sink`.
 // An exception in the child becomes a tex::Error (tex::SimulationError if it was one) with its
 // message in the parent; the child is killed if the parent fails (a bad request, a sink error).
-// The child's `misses` sink (never null) carries line addresses back to `misses` in the parent
-// (dropped when that is null).
-using Simulation = std::function<EngineStats(RequestSource& source, TexelSink& sink, MissSink& misses)>;
+// The child's `misses` and `clocks` sinks (never null) carry line addresses and response clocks
+// back to `misses` and `clocks` in the parent (dropped when those are null).
+using Simulation =
+    std::function<EngineStats(RequestSource& source, TexelSink& sink, MissSink& misses, ClockSink& clocks)>;
 EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation& simulation,
                        const std::function<void(const Request*, size_t)>& check = [](const Request*, size_t) {},
-                       MissSink* misses = nullptr);
+                       MissSink* misses = nullptr, ClockSink* clocks = nullptr);
 // For tests that build their own platform: no requests in, the result's texels out.
 EngineResult run_forked(const std::function<EngineResult()>& simulation);
 

@@ -53,6 +53,8 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyra
 }
 
 void TexUnitTlm::finish() {
+  if (options_.clock_sink && !clocks_.empty()) options_.clock_sink->write(clocks_.data(), clocks_.size());
+  clocks_.clear();
   if (!checker_ || !error_.empty()) return;
   try {
     checker_->compare(memory_port_->take_reads(), true);
@@ -221,6 +223,13 @@ void TexUnitTlm::on_clock() {
     return;
   }
   if (c.responded) {
+    if (options_.clock_sink) {  // --response-clocks: the handshake's clock, from the first request offered
+      clocks_.push_back(driver_->counters().last_response_cycle - driver_->counters().first_offer_cycle);
+      if (clocks_.size() == 4096) {
+        options_.clock_sink->write(clocks_.data(), clocks_.size());
+        clocks_.clear();
+      }
+    }
     tlm_generic_payload* t = in_flight_.front();
     in_flight_.pop_front();
     auto* s = reinterpret_cast<SampleTransfer*>(t->get_data_ptr());

@@ -69,6 +69,7 @@ class TexUnitTlm : public sc_core::sc_module {
   // Cached memory: the golden model's caches (hits, misses), and the end-of-run check that the RTL
   // read every line they miss (sets error()).
   const TextureCache* cache() const { return cache_ ? &*cache_ : nullptr; }
+  // The end of the stream: the cached RTL's last reads checked, the last response clocks passed on.
   void finish();
 
  private:
@@ -96,6 +97,7 @@ class TexUnitTlm : public sc_core::sc_module {
   std::optional<rtl::MissChecker> checker_;  // cached RTL: predicted against actual reads
   std::unique_ptr<TlmMemoryPort> memory_port_;  // cached RTL
   std::vector<uint32_t> misses_;            // cached model: lines one sample misses
+  std::vector<uint64_t> clocks_;            // RTL: response clocks not yet given to options_.clock_sink
   tlm::tlm_generic_payload line_trans_;     // cached model: the read of one line
   std::vector<uint8_t> line_data_;
   std::unique_ptr<Sampler> sampler_;     // model backend
