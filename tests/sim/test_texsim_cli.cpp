@@ -539,3 +539,20 @@ TEST_F(TexsimCli, TiledOrderDrawsTheSamePictureFromOtherCacheTraffic) {
   EXPECT_NE(text("scan.txt"), text("tiled.txt"));
   EXPECT_GT(text("scan.txt").size(), 100u);
 }
+
+// Image files go through libtexsim_images.so (OpenImageIO), loaded on first use: a run without
+// image files never needs it, and a module that cannot be found is a one-line error naming it,
+// before any work (TEXSIM_IMAGE_MODULE points elsewhere).
+TEST_F(TexsimCli, ImageModuleIsLoadedOnlyForImageFiles) {
+  write_image(dir / "t.png", 8, 8, 4, [](int x, int y, int c) { return (x * 31 + y * 17 + c * 5) & 255; });
+  queries("u,v,lod\n0.5,0.5,0\n0.25,0.75,1\n");
+  const std::string missing = (dir / "nowhere" / "libtexsim_images.so").string();
+  setenv("TEXSIM_IMAGE_MODULE", missing.c_str(), 1);
+  const Result pattern = run("sample -t noise:16x16 -q q.csv -o a.csv");
+  expect_clean_failure("sample -t t.png -q q.csv -o b.csv", "b.csv", {missing, "image module"});
+  expect_clean_failure("render -s plane --width 32 --height 32 -o c.png", "c.png", {missing});
+  unsetenv("TEXSIM_IMAGE_MODULE");
+  EXPECT_EQ(pattern.exit_code, 0) << pattern.err;
+  const Result image = run("sample -t t.png -q q.csv -o b.csv");
+  EXPECT_EQ(image.exit_code, 0) << image.err;
+}

@@ -1,0 +1,162 @@
+// The image module: OpenImageIO behind image_module.h's plain buffers (built as
+// libtexsim_images.so; texture_io.cpp loads it on first use).
+#include "workloads/image_module.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace {
+
+namespace OIIO = OIIO_NAMESPACE;
+using tex::images::Pixels;
+
+// libpng (inside OpenImageIO) prints its own "libpng error: ..." lines on stderr; the reader's
+// error message already says the same, and bad input must give exactly one line.
+class QuietStderr {
+ public:
+  QuietStderr() : saved_(dup(STDERR_FILENO)) {
+    std::fflush(stderr);
+    const int null_fd = open("/dev/null", O_WRONLY);
+    if (null_fd >= 0) {
+      dup2(null_fd, STDERR_FILENO);
+      close(null_fd);
+    }
+  }
+  ~QuietStderr() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      dup2(saved_, STDERR_FILENO);
+      close(saved_);
+    }
+  }
+
+ private:
+  int saved_;
+};
+
+std::string one_line(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  return s;
+}
+
+bool to_pixels(const OIIO::ImageBuf& src, Pixels& out, std::string& error) {
+  out.width = src.spec().width;
+  out.height = src.spec().height;
+  out.channels = src.spec().nchannels;
+  out.values.assign(size_t(out.width) * out.height * out.channels, 0);
+  if (!src.get_pixels(OIIO::ROI(0, out.width, 0, out.height, 0, 1, 0, out.channels), OIIO::TypeDesc::UINT8,
+                      out.values.data())) {
+    error = "cannot read pixels (" + one_line(src.geterror()) + ")";
+    return false;
+  }
+  return true;
+}
+
+bool read(const std::string& file, const void* data, size_t size, Pixels& out, std::string& error) {
+  try {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
+    if (data) proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(const_cast<void*>(data), size);
+    OIIO::ImageBuf src;
+    bool ok;
+    {
+      QuietStderr quiet;
+      src.reset(file, 0, 0, nullptr, &config, proxy.get());
+      ok = src.read(0, 0, true, OIIO::TypeDesc::UINT8);
+    }
+    if (!ok) {
+      error = "cannot read image (" + one_line(src.geterror()) + ")";
+      return false;
+    }
+    out.floating_point = src.nativespec().format.is_floating_point();
+    return to_pixels(src, out, error);
+  } catch (const std::exception& e) {
+    error = e.what();
+    return false;
+  }
+}
+
+bool float_range(const std::string& file, size_t& outside, size_t& total, float& low, float& high) {
+  outside = total = 0;
+  low = 0;
+  high = 1;
+  try {
+    OIIO::ImageBuf f(file);
+    if (!f.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return false;
+    const OIIO::ImageSpec& s = f.spec();
+    std::vector<float> values(size_t(s.width) * s.height * s.nchannels);
+    if (!f.get_pixels(OIIO::ROI(0, s.width, 0, s.height, 0, 1, 0, s.nchannels), OIIO::TypeDesc::FLOAT, values.data()))
+      return false;
+    total = values.size();
+    for (float v : values) {
+      outside += v < 0.0f || v > 1.0f;
+      low = std::min(low, v);
+      high = std::max(high, v);
+    }
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+bool resize(Pixels& p, int w, int h, std::string& error) {
+  try {
+    OIIO::ImageBuf src(OIIO::ImageSpec(p.width, p.height, p.channels, OIIO::TypeDesc::UINT8));
+    src.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, p.values.data());
+    OIIO::ImageBuf resized = OIIO::ImageBufAlgo::resize(src, "", 0, OIIO::ROI(0, w, 0, h, 0, 1, 0, p.channels));
+    if (resized.has_error()) {
+      error = "resize failed (" + one_line(resized.geterror()) + ")";
+      return false;
+    }
+    const bool floating = p.floating_point;
+    if (!to_pixels(resized, p, error)) return false;
+    p.floating_point = floating;
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
+    return false;
+  }
+}
+
+bool can_write(const std::string& path) {
+  try {
+    return OIIO::ImageOutput::create(path) != nullptr;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+bool write(const std::string& format_path, const std::string& write_path, const Pixels& p, std::string& error) {
+  try {
+    auto writer = OIIO::ImageOutput::create(format_path);  // the format of the name the user gave
+    if (!writer) {
+      error = "no image writer for this file type";
+      return false;
+    }
+    OIIO::ImageSpec spec(p.width, p.height, p.channels, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // write the texels as they are, no un-premultiply
+    if (!writer->open(write_path, spec) || !writer->write_image(OIIO::TypeDesc::UINT8, p.values.data()) ||
+        !writer->close()) {
+      error = "cannot write image (" + one_line(writer->geterror()) + ")";
+      return false;
+    }
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
+    return false;
+  }
+}
+
+const tex::images::Module kModule = {read, float_range, resize, can_write, write};
+
+}  // namespace
+
+extern "C" const tex::images::Module* texsim_images_module() { return &kModule; }
