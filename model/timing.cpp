@@ -43,12 +43,6 @@ UnitClock::UnitClock(const UnitShape& shape, const MemoryChannel* memory, bool a
   }
 }
 
-bool UnitClock::idle() const {
-  return probe_valid_ == 0 && pipe_valid_ == 0 && !s1_valid_ && !sample_valid_ && !out_valid_ && front_valid_ == 0 &&
-         back_line_ == 0 &&
-         fifo_count_ == 0 && !h_valid_ && !r_valid_ && !t_valid_ && !o_valid_ && back_valid_ == 0 && ring_used_ == 0;
-}
-
 // tex_probe (rtl/tex_probe.sv): req_ready = en && !hold; the clock-4 register holds a request
 // while the sequencer issues its probes, one per clock with en.
 bool UnitClock::probe_stage(const RequestWork* offer, bool en, bool& probe_valid, bool& probe_last,

@@ -150,7 +150,6 @@ class UnitClock {
   // has arrived: the same clocks clock() would run, with no request taken and no response. Returns
   // how many (0 when the unit is not in that state).
   uint64_t wait_for_fill();
-  bool idle() const;  // nothing in flight, and the memory has nothing to send
   uint32_t fifo_limit() const { return fifo_limit_; }
 
   uint64_t lines_read = 0, head_wait_cycles = 0;

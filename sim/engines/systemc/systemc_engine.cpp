@@ -151,40 +151,22 @@ class PipeSource final : public RequestSource {
   int fd_;
 };
 
-class PipeSink final : public TexelSink {
+// The child's sinks: each write is one frame of its type to the parent ('T' texels, 'M' line
+// addresses, 'C' response clocks).
+template <char Type, class Sink, class T>
+class PipeFrames final : public Sink {
  public:
-  explicit PipeSink(int fd) : fd_(fd) {}
-  void write(const Texel* t, size_t n) override {
-    if (!send_frame(fd_, 'T', t, n * sizeof(Texel))) throw Error("SystemC: the parent process went away");
+  explicit PipeFrames(int fd) : fd_(fd) {}
+  void write(const T* items, size_t n) override {
+    if (!send_frame(fd_, Type, items, n * sizeof(T))) throw Error("SystemC: the parent process went away");
   }
 
  private:
   int fd_;
 };
-
-// Line addresses to the parent, in frames of up to 4096.
-class PipeMissSink final : public MissSink {
- public:
-  explicit PipeMissSink(int fd) : fd_(fd) {}
-  void write(const uint32_t* a, size_t n) override {
-    if (!send_frame(fd_, 'M', a, n * sizeof(uint32_t))) throw Error("SystemC: the parent process went away");
-  }
-
- private:
-  int fd_;
-};
-
-// Response clocks to the parent.
-class PipeClockSink final : public ClockSink {
- public:
-  explicit PipeClockSink(int fd) : fd_(fd) {}
-  void write(const uint64_t* c, size_t n) override {
-    if (!send_frame(fd_, 'C', c, n * sizeof(uint64_t))) throw Error("SystemC: the parent process went away");
-  }
-
- private:
-  int fd_;
-};
+using PipeSink = PipeFrames<'T', TexelSink, Texel>;
+using PipeMissSink = PipeFrames<'M', MissSink, uint32_t>;
+using PipeClockSink = PipeFrames<'C', ClockSink, uint64_t>;
 
 [[noreturn]] void run_child(int request_fd, int result_fd, const Simulation& simulation) {
   ::setenv("SYSC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
