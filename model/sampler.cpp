@@ -8,12 +8,15 @@
 
 namespace tex {
 
-Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config)
+Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPaths paths)
     : config_(config),
-      memory_(pyramid),
       channel_bits_(pyramid.levels[0].channel_bits),
       log2_w0_(pyramid.log2_w0()),
-      log2_h0_(pyramid.log2_h0()) {
+      log2_h0_(pyramid.log2_h0()),
+      last_level_(int(pyramid.levels.size()) - 1) {
+  if (paths == SamplerPaths::FastOnly && channel_bits_ != 8)
+    throw Error("sampler: the fast path takes 8-bit channels; this texture has " + std::to_string(channel_bits_));
+  if (paths == SamplerPaths::Both) memory_.emplace(pyramid);
   if (channel_bits_ == 8)
     for (const Image& img : pyramid.levels) {
       std::vector<uint32_t> p(img.texels.size());
@@ -26,9 +29,9 @@ Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config)
 }
 
 void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t) {
-  memory_.write(level, x, y, t);
+  if (memory_) memory_->write(level, x, y, t);
   if (channel_bits_ == 8)
-    packed_[size_t(level)][(size_t(y) << memory_.shape(level).log2_w) + size_t(x)] =
+    packed_[size_t(level)][(size_t(y) << level_shape(log2_w0_, log2_h0_, level).log2_w) + size_t(x)] =
         uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
 }
 
@@ -72,6 +75,7 @@ Texel Sampler::sample(const Request& r) {
 }
 
 stage::Unrounded Sampler::sample_probe(const Request& r) {
+  if (!memory_) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
   const stage::LevelSelect sel =
       stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
   const int32_t su = stage::scale(r.u, log2_w0_), sv = stage::scale(r.v, log2_h0_);
@@ -83,10 +87,10 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   const int slots = sel.two_levels ? 2 : 1;
   for (int s = 0; s < slots; ++s) {
     const int k = s == 0 ? sel.d : sel.d1;
-    const LevelShape shape = memory_.shape(k);
+    const LevelShape shape = memory_->shape(k);
     const stage::AxisTaps tu = stage::address(su, k, config_.filter.texel);
     const stage::AxisTaps tv = stage::address(sv, k, config_.filter.texel);
-    slot[s].taps = memory_.fetch(k, stage::wrap(tu.i0, shape.log2_w, config_.wrap_u),
+    slot[s].taps = memory_->fetch(k, stage::wrap(tu.i0, shape.log2_w, config_.wrap_u),
                                  stage::wrap(tu.i1, shape.log2_w, config_.wrap_u),
                                  stage::wrap(tv.i0, shape.log2_h, config_.wrap_v),
                                  stage::wrap(tv.i1, shape.log2_h, config_.wrap_v), !linear);
@@ -268,12 +272,12 @@ void Sampler::sample_rgba8(const Request* requests, size_t n, uint32_t* out) con
   });
 }
 
-SamplerStats Sampler::stats() const { return {samples_, multiplies_, memory_.stats(), probes_}; }
+SamplerStats Sampler::stats() const { return {samples_, multiplies_, memory_ ? memory_->stats() : BankStats{}, probes_}; }
 
 void Sampler::reset_stats() {
   samples_ = multiplies_ = 0;
   probes_ = {};
-  memory_.reset_stats();
+  if (memory_) memory_->reset_stats();
 }
 
 }  // namespace tex

@@ -1,7 +1,9 @@
 // The texture sampler: LOD, address generation, wrap, banked fetch and filter, bit-exact.
 #pragma once
 #include <array>
+#include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "banked_memory.h"
@@ -62,11 +64,17 @@ struct SamplerStats {
   std::array<uint64_t, kMaxAniso + 1> probes{};  // samples by probe count (index 1..16)
 };
 
+// Which paths a Sampler can take: both, or the 8-bit fast path alone (it then skips building the
+// reference path's banked memories: a texture's set-up costs half as much).
+enum class SamplerPaths { Both, FastOnly };
+
 class Sampler {
  public:
-  Sampler(const Pyramid& pyramid, const SamplerConfig& config);
+  // Throws tex::Error for FastOnly with channels other than 8 bits.
+  Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPaths paths = SamplerPaths::Both);
 
-  // Reference path: every stage in order, counting reads and multiplies.
+  // Reference path: every stage in order, counting reads and multiplies (not with FastOnly: throws
+  // tex::Error).
   Texel sample(const Request& r);
   // One probe's trilinear value before rounding (CW.24 per channel); counts reads and multiplies.
   stage::Unrounded sample_probe(const Request& probe);
@@ -81,14 +89,14 @@ class Sampler {
   SamplerStats stats() const;
   void reset_stats();
   const SamplerConfig& config() const { return config_; }
-  int last_level() const { return memory_.levels() - 1; }
+  int last_level() const { return last_level_; }
   int channel_bits() const { return channel_bits_; }
 
  private:
   SamplerConfig config_;
-  BankedMipMemory memory_;
+  std::optional<BankedMipMemory> memory_;  // the reference path's memories (not with FastOnly)
   int channel_bits_;
-  int log2_w0_, log2_h0_;
+  int log2_w0_, log2_h0_, last_level_;
   uint64_t samples_ = 0, multiplies_ = 0;
   std::array<uint64_t, kMaxAniso + 1> probes_{};
   std::vector<std::vector<uint32_t>> packed_;  // per level, row-major RGBA8 (fast path only)

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <thread>
 #include <sstream>
 
 #include "cli/render_model.h"
@@ -91,22 +92,43 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (list.size() > 1 && !engine_info(o.engine).texture_table)
     throw Error(textures_path + ": " + std::to_string(list.size()) + " textures; engine " + o.engine +
                 " takes one per frame: use --engine model or rtl");
+  // A query file is checked whole before the work (a pipe is checked as it streams), in a thread
+  // of its own while the textures load; a bad texture is still the error reported first.
+  std::optional<QueryReader> reader;
+  std::exception_ptr query_error;
+  try {
+    reader.emplace(queries_path);
+  } catch (...) {
+    query_error = std::current_exception();
+  }
+  std::thread checker;
+  if (reader && reader->rewindable())
+    checker = std::thread([&] {
+      try {
+        QuerySource check(*reader);
+        std::vector<Request> scratch(4096);
+        while (check.read(scratch.data(), scratch.size())) {
+        }
+      } catch (...) {
+        query_error = std::current_exception();
+      }
+    });
   std::vector<Pyramid> pyramids;
   pyramids.reserve(list.size());
   TextureTable table;
-  for (const TextureListEntry& e : list) {
-    pyramids.push_back(build_pyramid(load_texture(e.path, o.resize), o.pyramid_mode()));
-    table.push_back({&pyramids.back(), e.wrap_u, e.wrap_v});
-  }
-  const Pyramid& pyr = pyramids[0];
-  QueryReader reader(queries_path);
-  if (reader.rewindable()) {  // a file: check every query now; a pipe is checked as it streams
-    QuerySource check(reader);
-    std::vector<Request> scratch(4096);
-    while (check.read(scratch.data(), scratch.size())) {
+  try {
+    for (const TextureListEntry& e : list) {
+      pyramids.push_back(build_pyramid(load_texture(e.path, o.resize), o.pyramid_mode()));
+      table.push_back({&pyramids.back(), e.wrap_u, e.wrap_v});
     }
-    reader.rewind();
+  } catch (...) {
+    if (checker.joinable()) checker.join();
+    throw;
   }
+  if (checker.joinable()) checker.join();
+  if (query_error) std::rethrow_exception(query_error);
+  if (reader->rewindable()) reader->rewind();
+  const Pyramid& pyr = pyramids[0];
   if (trace) eo.trace_path = trace->write_path();
 
   std::optional<MissTraceWriter> misses;
@@ -116,7 +138,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   std::optional<ClockWriter> clocks;
   if (clocks_out) eo.clock_sink = &clocks.emplace(*clocks_out);
 
-  QuerySource source(reader);
+  QuerySource source(*reader);
   ReadAheadSource parsed(source);  // parsing in a thread of its own, overlapping the engine
   CsvTexelWriter writer(result.open());
   const EngineStats stats = run_engine(o, eo, outputs, trace, table, cfg, parsed, writer, &parsed);
@@ -124,7 +146,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (clocks) clocks->close();
   if (source.count() == 0)
     std::fprintf(stderr, "texsim: %s has no queries (only a header): the result has only its header\n",
-                 reader.name().c_str());
+                 reader->name().c_str());
   // A frame's trace (--textures): the figures texsim render gives for the frame.
   std::optional<FrameFigures> frame;
   if (!textures_path.empty())

@@ -137,12 +137,14 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
     throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one texture (the paper's design); "
                 "use --memory cached, whose descriptor table holds up to " + std::to_string(kMaxTextures));
   const bool cached = options.memory == Memory::Cached;
+  bool fast = !options.count_reads;  // the fast path: 8-bit textures only
+  for (const BoundTexture& t : textures) fast = fast && t.pyramid->levels[0].channel_bits == 8;
   std::vector<Sampler> samplers;  // one per descriptor-table entry, with its wrap modes
   for (const BoundTexture& t : textures) {
     SamplerConfig c = config;
     c.wrap_u = t.wrap_u;
     c.wrap_v = t.wrap_v;
-    samplers.emplace_back(*t.pyramid, c);
+    samplers.emplace_back(*t.pyramid, c, fast ? SamplerPaths::FastOnly : SamplerPaths::Both);
   }
   std::optional<TextureCache> cache;
   if (cached) cache.emplace(texture_descriptors(textures, options), options.cache, config);
@@ -160,8 +162,6 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
     if (options.clock_sink && !clocks.empty()) options.clock_sink->write(clocks.data(), clocks.size());
     clocks.clear();
   };
-  bool fast = !options.count_reads;  // the fast path: 8-bit textures only
-  for (const BoundTexture& t : textures) fast = fast && t.pyramid->levels[0].channel_bits == 8;
   std::vector<uint32_t> packed(fast ? requests.size() : 0);
   uint64_t fast_samples = 0;
   while (const size_t n = source.read(requests.data(), requests.size())) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "model/error.h"
 #include "model/formats.h"
 #include "model/image.h"
 #include "model/pyramid.h"
@@ -133,4 +134,35 @@ TEST(FastPathEquivalence, BatchSplitsDoNotMatter) {
   }
   ASSERT_EQ(at, reqs.size());
   EXPECT_EQ(split, whole);
+}
+
+// A sampler built for the fast path alone (SamplerPaths::FastOnly, what the model engine uses
+// without --stats) gives the same texels, also after write_texel; its reference path and 16-bit
+// textures are errors.
+TEST(FastPathEquivalence, FastOnlySamplerGivesTheSameTexels) {
+  std::mt19937 rng(11);
+  const Pyramid pyr = build_pyramid(random_image(32, 64, rng));
+  SamplerConfig cfg;
+  cfg.filter = {TexelFilter::Linear, MipMode::Linear};
+  cfg.wrap_u = Wrap::Mirror;
+  std::vector<Request> reqs(2000);
+  for (Request& r : reqs) r = lambda_request(random_coord(rng), random_coord(rng), random_lod(rng, pyr.last_level()));
+  Sampler both(pyr, cfg);
+  Sampler fast(pyr, cfg, SamplerPaths::FastOnly);
+  EXPECT_EQ(fast.last_level(), both.last_level());
+  const Texel planted{1, 2, 3, 4};
+  both.write_texel(1, 3, 5, planted);
+  fast.write_texel(1, 3, 5, planted);
+  std::vector<uint32_t> a(reqs.size()), b(reqs.size());
+  both.sample_rgba8(reqs.data(), reqs.size(), a.data());
+  fast.sample_rgba8(reqs.data(), reqs.size(), b.data());
+  EXPECT_EQ(a, b);
+  for (size_t i = 0; i < 200; ++i) {
+    const Texel t = both.sample(reqs[i]);
+    EXPECT_EQ(b[i], uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24) << i;
+  }
+  EXPECT_THROW(fast.sample(reqs[0]), tex::Error);
+  Pyramid wide = pyr;
+  for (Image& img : wide.levels) img.channel_bits = 16;
+  EXPECT_THROW(Sampler(wide, cfg, SamplerPaths::FastOnly), tex::Error);
 }
