@@ -30,8 +30,7 @@ uint64_t run_rtl(TimingWorkload& w, std::vector<uint64_t>* clocks) {
   w.unit->configure(SamplerConfig{}, *w.pyramid);
   const rtl::StreamStats st = rtl::stream(*w.unit, w.requests.data(), w.requests.size(), rtl::Timing{}, 7,
                                           [&](size_t i, uint64_t) {
-                                            if (clocks) (*clocks)[i] = w.unit->counters().last_response_cycle -
-                                                                       w.unit->counters().first_offer_cycle;
+                                            if (clocks) (*clocks)[i] = w.unit->counters().last_response_clock();
                                           });
   return st.cycles();
 }

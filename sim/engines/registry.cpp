@@ -170,9 +170,10 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
         throw Error("request " + std::to_string(requests[i].tag) + " names texture " +
                     std::to_string(requests[i].texture) + "; the table holds " + std::to_string(samplers.size()));
     if (fast) {
-      if (samplers.size() == 1) samplers[0].sample_rgba8(requests.data(), n, packed.data());
-      else
-        for (size_t i = 0; i < n; ++i) samplers[requests[i].texture].sample_rgba8(&requests[i], 1, &packed[i]);
+      for (size_t i = 0, j = 0; i < n; i = j) {  // a batch per run of requests of one texture
+        while (j < n && requests[j].texture == requests[i].texture) ++j;
+        samplers[requests[i].texture].sample_rgba8(&requests[i], j - i, &packed[i]);
+      }
       for (size_t i = 0; i < n; ++i)
         texels[i] = {uint16_t(packed[i] & 255), uint16_t(packed[i] >> 8 & 255), uint16_t(packed[i] >> 16 & 255),
                      uint16_t(packed[i] >> 24)};

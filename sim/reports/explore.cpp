@@ -402,10 +402,7 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, ModelRun>& model_
     if (s.timing != TimingMode::None) {
       std::string configuration;
       const std::unique_ptr<TimedStream> timed = model_timing(w.table(), engine_options(p), m.line_bytes, configuration);
-      for (size_t i = 0; i < m.work.size(); i += 4096) {
-        for (size_t k = i; k < std::min(m.work.size(), i + 4096); ++k) timed->push(m.work[k]);
-        timed->run(nullptr);
-      }
+      for (const RequestWork& work : m.work) timed->push(work);
       timed->finish(nullptr);
       const TimingCounters t = timed->counters();
       r.timing_engine = "model";

@@ -43,9 +43,7 @@ LockstepResult lockstep(rtl::Driver& unit, const Pyramid& pyramid, const Sampler
 std::vector<uint64_t> model_clocks(rtl::Driver& unit, uint32_t fifo_depth, const std::vector<RequestWork>& work,
                                    const rtl::Timing& stim, uint64_t seed);
 // The clock of the response the driver took last, counted as model_clocks() counts.
-inline uint64_t response_clock(const rtl::Driver& unit) {
-  return unit.counters().last_response_cycle - unit.counters().first_offer_cycle;
-}
+inline uint64_t response_clock(const rtl::Driver& unit) { return unit.counters().last_response_clock(); }
 // "" when equal, else the first difference and how many differ.
 std::string compare_clocks(const std::vector<uint64_t>& rtl, const std::vector<uint64_t>& model);
 

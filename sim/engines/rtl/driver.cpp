@@ -406,7 +406,7 @@ StreamStats stream(Driver& driver, RequestSource& source, const Timing& timing, 
   for (;;) {
     const Request* next = queue.peek();
     if (!next && done == accepted) break;
-    bool offer = true, ready = true;
+    bool offer = next != nullptr, ready = true;
     if (!timing.ideal()) stimulus.begin(next != nullptr, offer, ready);  // (ideal: no draws)
     const Driver::Clock c = driver.clock(offer ? next : nullptr, ready);
     if (c.responded) {

@@ -190,6 +190,8 @@ struct ProtocolCounters {
   // Responses by the run of stalled clocks just before their handshake: 0, 1-9, 10-99, >= 100.
   uint64_t responses_by_stall_run[4] = {0, 0, 0, 0};
   uint64_t cycles() const { return samples ? last_response_cycle - first_offer_cycle + 1 : 0; }
+  // The last response's clock, counted from the first offer (--response-clocks, the timing model's count).
+  uint64_t last_response_clock() const { return last_response_cycle - first_offer_cycle; }
 };
 
 class Driver {

@@ -107,7 +107,7 @@ class RtlEngine final : public Engine {
         [&](size_t, uint64_t rgba) {
           texels.push(unpack_rgba(rgba, cw));
           if (clock_sink) {
-            clocks.push_back(unit->counters().last_response_cycle - unit->counters().first_offer_cycle);
+            clocks.push_back(unit->counters().last_response_clock());
             if (clocks.size() == 4096) {
               clock_sink->write(clocks.data(), clocks.size());
               clocks.clear();

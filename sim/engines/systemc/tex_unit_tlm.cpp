@@ -224,7 +224,7 @@ void TexUnitTlm::on_clock() {
   }
   if (c.responded) {
     if (options_.clock_sink) {  // --response-clocks: the handshake's clock, from the first request offered
-      clocks_.push_back(driver_->counters().last_response_cycle - driver_->counters().first_offer_cycle);
+      clocks_.push_back(driver_->counters().last_response_clock());
       if (clocks_.size() == 4096) {
         options_.clock_sink->write(clocks_.data(), clocks_.size());
         clocks_.clear();
