@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "formats.h"
+#include "huge_pages.h"
 
 namespace tex {
 
@@ -12,7 +13,7 @@ struct Image {
   int width = 0;
   int height = 0;
   int channel_bits = kDefaultChannelBits;
-  std::vector<Texel> texels;  // row-major, y = 0 is the top row
+  BigVector<Texel> texels;  // row-major, y = 0 is the top row
 
   Image() = default;
   Image(int w, int h, int bits = kDefaultChannelBits) : width(w), height(h), channel_bits(bits), texels(size_t(w) * h) {}

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 
 namespace tex {
 
@@ -10,7 +11,7 @@ namespace {
 // Sums per channel over each texel's footprint in level 0 (exact mode) or in the parent (cascade).
 struct SumImage {
   int w = 0, h = 0;
-  std::vector<std::array<uint64_t, 4>> sums;
+  BigVector<std::array<uint64_t, 4>> sums;
 };
 
 // Halves each side that is larger than 1, adding the 2x2 (or 2x1, 1x2) children. `at(x, y)` is a
@@ -54,11 +55,13 @@ Image to_image(const SumImage& s, int count, int channel_bits) {
 
 }  // namespace
 
-Pyramid build_pyramid(const Image& level0, PyramidMode mode) {
+Pyramid build_pyramid(Image level0_in, PyramidMode mode) {
   Pyramid p;
   p.mode = mode;
-  p.levels.push_back(level0);
-  const int lw0 = log2_exact(level0.width), lh0 = log2_exact(level0.height);
+  const int lw0 = log2_exact(level0_in.width), lh0 = log2_exact(level0_in.height);
+  p.levels.reserve(size_t(level_count(lw0, lh0)));  // (`level0` stays valid as levels are added)
+  p.levels.push_back(std::move(level0_in));
+  const Image& level0 = p.levels[0];
   SumImage sums;
   for (int k = 1; k < level_count(lw0, lh0); ++k) {
     const LevelShape shape = level_shape(lw0, lh0, k);

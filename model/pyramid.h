@@ -28,7 +28,8 @@ struct Pyramid {
 
 // exact: every texel is the rounded mean of its whole level-0 footprint (maketx --filter box).
 // cascade: every level from its rounded parent, as a simple hardware generator does.
-Pyramid build_pyramid(const Image& level0, PyramidMode mode = PyramidMode::Exact);
+// Takes level 0 by value: pass a temporary (or std::move) to build without copying it.
+Pyramid build_pyramid(Image level0, PyramidMode mode = PyramidMode::Exact);
 
 }  // namespace tex
 

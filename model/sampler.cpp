@@ -19,7 +19,7 @@ Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPat
   if (paths == SamplerPaths::Both) memory_.emplace(pyramid);
   if (channel_bits_ == 8)
     for (const Image& img : pyramid.levels) {
-      std::vector<uint32_t> p(img.texels.size());
+      BigVector<uint32_t> p(img.texels.size());
       for (size_t i = 0; i < p.size(); ++i) {
         const Texel& t = img.texels[i];
         p[i] = uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;

@@ -99,7 +99,7 @@ class Sampler {
   int log2_w0_, log2_h0_, last_level_;
   uint64_t samples_ = 0, multiplies_ = 0;
   std::array<uint64_t, kMaxAniso + 1> probes_{};
-  std::vector<std::vector<uint32_t>> packed_;  // per level, row-major RGBA8 (fast path only)
+  std::vector<BigVector<uint32_t>> packed_;  // per level, row-major RGBA8 (fast path only)
 };
 
 }  // namespace tex

@@ -92,8 +92,8 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (list.size() > 1 && !engine_info(o.engine).texture_table)
     throw Error(textures_path + ": " + std::to_string(list.size()) + " textures; engine " + o.engine +
                 " takes one per frame: use --engine model or rtl");
-  // A query file is checked whole before the work (a pipe is checked as it streams), in a thread
-  // of its own while the textures load; a bad texture is still the error reported first.
+  // A query file is checked whole before the work (a pipe is checked as it streams), on both cores
+  // while the textures load; a bad texture is still the error reported first.
   std::optional<QueryReader> reader;
   std::exception_ptr query_error;
   try {
@@ -105,10 +105,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (reader && reader->rewindable())
     checker = std::thread([&] {
       try {
-        QuerySource check(*reader);
-        std::vector<Request> scratch(4096);
-        while (check.read(scratch.data(), scratch.size())) {
-        }
+        check_query_file(queries_path, 2);
       } catch (...) {
         query_error = std::current_exception();
       }
@@ -127,7 +124,6 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   }
   if (checker.joinable()) checker.join();
   if (query_error) std::rethrow_exception(query_error);
-  if (reader->rewindable()) reader->rewind();
   const Pyramid& pyr = pyramids[0];
   if (trace) eo.trace_path = trace->write_path();
 

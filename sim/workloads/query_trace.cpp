@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <algorithm>
+#include <exception>
+#include <thread>
 
 #include "model/error.h"
 
@@ -35,7 +37,7 @@ int split(std::string_view line, std::string_view* fields, int max) {
 
 }  // namespace
 
-QueryReader::QueryReader(const std::string& path) : name_(path == "-" ? "standard input" : path) {
+QueryReader::QueryReader(const std::string& path) : name_(path == "-" ? "standard input" : path), path_(path) {
   if (path == "-") {
     file_ = stdin;
   } else {
@@ -51,15 +53,39 @@ QueryReader::QueryReader(const std::string& path) : name_(path == "-" ? "standar
   }
 }
 
-QueryReader::~QueryReader() {
-  if (owned_) std::fclose(file_);
+namespace {
+
+// Line breaks in the first `bytes` bytes of `file` (read from its start).
+int count_lines(std::FILE* file, uint64_t bytes, const std::string& name) {
+  std::vector<char> buf(size_t(1) << 20);
+  int lines = 0;
+  std::rewind(file);
+  while (bytes > 0) {
+    const size_t n = std::fread(buf.data(), 1, size_t(std::min<uint64_t>(bytes, buf.size())), file);
+    if (n == 0) throw Error(name + ": cannot read (" + std::strerror(errno) + ")");
+    lines += int(std::count(buf.data(), buf.data() + n, '\n'));
+    bytes -= n;
+  }
+  return lines;
 }
 
-void QueryReader::rewind() {
-  std::rewind(file_);
-  line_no_ = columns_ = 0;
-  begin_ = end_ = 0;
-  eof_ = false;
+}  // namespace
+
+QueryReader::QueryReader(const QueryReader& header, uint64_t begin, uint64_t end) : QueryReader(header.path_) {
+  line_no_ = count_lines(file_, begin, name_);
+  if (std::fseek(file_, long(begin), SEEK_SET) != 0) throw Error(name_ + ": cannot seek (" + std::strerror(errno) + ")");
+  file_pos_ = begin;
+  file_end_ = end;
+  columns_ = header.columns_;
+  texture_ = header.texture_;
+  lod_ = header.lod_;
+  quad_ = header.quad_;
+}
+
+uint64_t QueryReader::offset() const { return file_pos_ - (end_ - begin_); }
+
+QueryReader::~QueryReader() {
+  if (owned_) std::fclose(file_);
 }
 
 // Lines come out of a large buffer (1 MiB, grown for a longer line): no read call and no copy per line.
@@ -84,12 +110,14 @@ bool QueryReader::next_line(std::string_view& line) {
     if (buf_.empty()) buf_.resize(size_t(1) << 20);
     if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);
     errno = 0;
-    const size_t n = std::fread(buf_.data() + end_, 1, buf_.size() - end_, file_);
+    const size_t want = size_t(std::min<uint64_t>(buf_.size() - end_, file_end_ - file_pos_));
+    const size_t n = want ? std::fread(buf_.data() + end_, 1, want, file_) : 0;
     if (n == 0) {
       if (std::ferror(file_)) throw Error(name_ + ": cannot read (" + std::strerror(errno) + ")");
       eof_ = true;
     }
     end_ += n;
+    file_pos_ += n;
   }
   ++line_no_;
   if (line_no_ == 1) {
@@ -202,27 +230,34 @@ void QueryReader::parse_values_checked(std::string_view line, double* v) {
   }
 }
 
+void QueryReader::read_header() {
+  std::string_view raw;
+  while (columns_ == 0 && next_line(raw)) {
+    const std::string_view line = trim(raw);
+    if (line.empty() || line[0] == '#') continue;
+    const std::string at = name_ + ":" + std::to_string(line_no_) + ": ";
+    std::string_view f[kMaxColumns + 1];
+    const int n = split(line, f, kMaxColumns);
+    std::string header;
+    for (int i = 0; i < std::min(n, kMaxColumns); ++i) header += (i ? "," : "") + std::string(f[i]);
+    for (const TraceFormat& format : kFormats)
+      if (header == format.header && n <= kMaxColumns) {
+        columns_ = int(std::count(header.begin(), header.end(), ',')) + 1;
+        texture_ = format.texture;
+        lod_ = format.lod;
+        quad_ = format.quad;
+      }
+    if (columns_ == 0) throw Error(at + "unknown header " + quote_clipped(line) + " (expected " + known_headers() + ")");
+  }
+  if (columns_ == 0) throw Error(name_ + ": no header line (expected " + known_headers() + ")");
+}
+
 bool QueryReader::next(Query& q) {
+  if (columns_ == 0) read_header();
   std::string_view raw;
   while (next_line(raw)) {
     const std::string_view line = trim(raw);
     if (line.empty() || line[0] == '#') continue;
-    if (columns_ == 0) {
-      const std::string at = name_ + ":" + std::to_string(line_no_) + ": ";
-      std::string_view f[kMaxColumns + 1];
-      const int n = split(line, f, kMaxColumns);
-      std::string header;
-      for (int i = 0; i < std::min(n, kMaxColumns); ++i) header += (i ? "," : "") + std::string(f[i]);
-      for (const TraceFormat& format : kFormats)
-        if (header == format.header && n <= kMaxColumns) {
-          columns_ = int(std::count(header.begin(), header.end(), ',')) + 1;
-          texture_ = format.texture;
-          lod_ = format.lod;
-          quad_ = format.quad;
-        }
-      if (columns_ == 0) throw Error(at + "unknown header " + quote_clipped(line) + " (expected " + known_headers() + ")");
-      continue;
-    }
     double v[kMaxColumns];
     if (!parse_values(line, columns_, v)) parse_values_checked(line, v);
     // Whole-number columns: the texture id, the quad number and pixel, the helper flag.
@@ -256,8 +291,60 @@ bool QueryReader::next(Query& q) {
     }
     return true;
   }
-  if (columns_ == 0) throw Error(name_ + ": no header line (expected " + known_headers() + ")");
   return false;
+}
+
+void check_query_file(const std::string& path, unsigned threads) {
+  auto check = [](QueryReader& reader) {
+    QuerySource source(reader);
+    std::vector<Request> scratch(4096);
+    while (source.read(scratch.data(), scratch.size())) {
+    }
+  };
+  QueryReader first(path);
+  first.read_header();
+  struct stat st {};
+  const uint64_t size = ::fstat(fileno(first.file_), &st) == 0 ? uint64_t(st.st_size) : 0;
+  // Cuts at line starts after the header, about size / threads apart (none for small files: a
+  // thread costs more than it saves there).
+  constexpr uint64_t kMinPart = uint64_t(4) << 20;
+  std::vector<uint64_t> cuts = {first.offset()};
+  for (unsigned k = 1; k < threads && size > first.file_pos_ + 2 * kMinPart; ++k) {
+    // (past what the first part has already read)
+    uint64_t at = std::max(std::max(cuts.back(), first.file_pos_) + kMinPart, size / threads * k);
+    if (at >= size) break;
+    // The next line start at or after `at`.
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f || std::fseek(f, long(at - 1), SEEK_SET) != 0) {
+      if (f) std::fclose(f);
+      break;
+    }
+    for (int ch; (ch = std::fgetc(f)) != EOF && ch != '\n';) ++at;
+    std::fclose(f);
+    if (at >= size) break;
+    cuts.push_back(at);
+  }
+  cuts.push_back(size);
+  first.file_end_ = cuts[1];
+  std::vector<std::exception_ptr> errors(cuts.size() - 1);
+  std::vector<std::thread> helpers;
+  for (size_t k = 1; k + 1 < cuts.size(); ++k)
+    helpers.emplace_back([&, k] {
+      try {
+        QueryReader part(first, cuts[k], cuts[k + 1]);
+        check(part);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    });
+  try {
+    check(first);
+  } catch (...) {
+    errors[0] = std::current_exception();
+  }
+  for (std::thread& t : helpers) t.join();
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
 }
 
 Request to_request(const Query& q, const std::string& name, uint32_t tag) {

@@ -1,5 +1,6 @@
 // Query traces (CSV in) and results (CSV out), streamed: memory does not grow with the trace.
 #pragma once
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -46,19 +47,25 @@ class QueryReader {
 
   bool next(Query& q);  // false at the end
   const std::string& name() const { return name_; }
-  // True for a regular file: it can be read twice (a check pass before the work).
+  // True for a regular file: it can be read twice (check_query_file before the work).
   bool rewindable() const { return rewindable_; }
-  void rewind();
 
  private:
+  friend void check_query_file(const std::string& path, unsigned threads);
+  // The lines of bytes [begin, end) of `header`'s file (begin is the start of a line after the
+  // header), numbered as in the whole file: one part of a parallel check pass.
+  QueryReader(const QueryReader& header, uint64_t begin, uint64_t end);
+  void read_header();       // reads up to and including the header line
+  uint64_t offset() const;  // the file offset of the next unread byte
   bool next_line(std::string_view& line);
   static bool parse_values(std::string_view line, int columns, double* v);
   void parse_values_checked(std::string_view line, double* v);
-  std::string name_;
+  std::string name_, path_;
   std::FILE* file_ = nullptr;
   bool owned_ = false, rewindable_ = false;
   std::vector<char> buf_;      // [begin_, end_): read, not yet split into lines
   size_t begin_ = 0, end_ = 0;
+  uint64_t file_pos_ = 0, file_end_ = UINT64_MAX;  // offset of buf_[end_]; where reading stops
   bool eof_ = false;
   int line_no_ = 0, columns_ = 0;
   bool texture_ = false, lod_ = false, quad_ = false;  // the header's columns
@@ -88,6 +95,11 @@ class QuerySource final : public RequestSource {
   size_t count_ = 0;
   QueryCounts counts_;
 };
+
+// The check pass over a regular query file before the work: every line read and converted as the
+// engines will, the file cut at line starts into `threads` parts checked in parallel. Throws the
+// error of the file's first bad line (the same message a single pass gives).
+void check_query_file(const std::string& path, unsigned threads);
 
 Request to_request(const Query& q, const std::string& name, uint32_t tag);
 std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name);

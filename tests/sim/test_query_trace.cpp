@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -126,4 +127,42 @@ TEST(QueryTrace, ReadAheadKeepsOrderAndErrors) {
     ReadAheadSource early(endless, 4096, 2);
     EXPECT_EQ(early.read(buf.data(), 10), 10u);
   }  // destroyed with chunks pending: must return
+}
+
+// The check pass cuts a big file into parts read in parallel: each bad line is reported with its
+// line number in the whole file, and with several bad lines the first one wins, wherever the cut.
+TEST(QueryTrace, ParallelCheckReportsTheFirstBadLine) {
+  const auto path = std::filesystem::temp_directory_path() / ("query_trace_check_" + std::to_string(getpid()) + ".csv");
+  constexpr int kLines = 600000;  // about 15 MB: the file is cut into parts
+  auto write = [&](std::vector<int> bad) {
+    std::ofstream out(path);
+    out << "# a comment before the header\nu,v,lod\n";
+    for (int line = 3; line < kLines + 3; ++line) {
+      if (std::find(bad.begin(), bad.end(), line) != bad.end())
+        out << "0.5,oops,1\n";
+      else
+        out << "0.123456,0.654321," << (line % 7) << ".25\n";
+    }
+  };
+  auto error_of = [&]() -> std::string {
+    try {
+      check_query_file(path.string(), 2);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  write({});
+  EXPECT_EQ(error_of(), "");
+  EXPECT_GT(std::filesystem::file_size(path), 12u << 20);
+  for (int line : {4, kLines / 2 - 1, kLines / 2 + 3, kLines + 2}) {
+    write({line});
+    EXPECT_NE(error_of().find(":" + std::to_string(line) + ": value 2 (column 5) is not a number"), std::string::npos)
+        << "bad line " << line << ": " << error_of();
+  }
+  write({kLines - 10, 100});  // the first bad line is in the first part, the other in the second
+  EXPECT_NE(error_of().find(":100: "), std::string::npos) << error_of();
+  write({kLines / 4 * 3, kLines - 5});  // both in the second part
+  EXPECT_NE(error_of().find(":" + std::to_string(kLines / 4 * 3) + ": "), std::string::npos) << error_of();
+  std::filesystem::remove(path);
 }
