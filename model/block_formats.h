@@ -1,0 +1,60 @@
+// Texel formats of a texture in memory: RGBA8 and the block-compressed formats BC1-BC5 and BC7
+// (Khronos Data Format Specification, "S3TC" and "BPTC"; D3D names). A compressed level is a
+// row-major array of 4x4 blocks of 8 or 16 bytes. The decoders here are the bit-level
+// specification of the hardware's (docs/numerics.md, "Block-compressed formats"): every rounding
+// is stated, and independent decoders (libsquish, OpenImageIO, Mesa) check them
+// (tests/sim/test_block_formats_reference.cpp).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "image.h"
+
+namespace tex {
+
+enum class TexelFormat : uint8_t { Rgba8 = 0, Bc1 = 1, Bc2 = 2, Bc3 = 3, Bc4 = 4, Bc5 = 5, Bc7 = 7 };
+
+struct FormatInfo {
+  TexelFormat format;
+  const char* name;  // as the CLI takes it: rgba8, bc1, ...
+  int block_bytes;   // bytes per 4x4 block; 0 for RGBA8 (4 bytes per texel)
+  int channels;      // channels the format stores (BC4: R; BC5: R, G)
+  bool srgb_allowed; // sRGB variants exist (BC1, BC2, BC3, BC7, RGBA8)
+};
+
+const FormatInfo& format_info(TexelFormat f);
+bool parse_texel_format(const std::string& name, TexelFormat& out);
+std::string texel_format_names();  // "rgba8 | bc1 | ..." for --help and errors
+inline bool is_compressed(TexelFormat f) { return f != TexelFormat::Rgba8; }
+
+using Rgba8 = std::array<uint8_t, 4>;
+
+// Texel i (x + 4 y) of one block. BC4 decodes to (R, 0, 0, 255) and BC5 to (R, G, 0, 255), as GL
+// returns RED and RG textures. A BC7 block with the reserved mode 8 (low byte 0) decodes to
+// (0, 0, 0, 0), as D3D11 specifies.
+Rgba8 decode_texel(TexelFormat f, const uint8_t* block, int i);
+// All 16 texels of one block (the same values as decode_texel, faster).
+std::array<Rgba8, 16> decode_block(TexelFormat f, const uint8_t* block);
+// A level of blocks (row-major, ceil(w/4) x ceil(h/4) blocks) as an 8-bit image of w x h texels.
+Image decode_level(TexelFormat f, const uint8_t* blocks, int width, int height);
+// Bytes of a level of w x h texels in format f.
+uint64_t level_bytes(TexelFormat f, int width, int height);
+
+// The fields of a BC7 block that select how it decodes (functional coverage, tests).
+struct Bc7Mode {
+  int mode = 8;          // 0..7; 8 = reserved (low byte 0)
+  int partition = 0;     // 0..63 (mode 0: 0..15)
+  int subsets = 1;       // 1..3
+  int rotation = 0;      // modes 4, 5
+  int index_select = 0;  // mode 4
+};
+Bc7Mode bc7_mode_of(const uint8_t* block);
+
+// The BPTC tables (ARB_texture_compression_bptc Table.P2, P3, A2, A3a, A3b): the subset of texel i
+// in a partition, and the anchor texel of each subset.
+int bc7_subset(int subsets, int partition, int texel);
+int bc7_anchor(int subsets, int partition, int subset);
+
+}  // namespace tex
