@@ -34,8 +34,8 @@ bool parse_block_size(const std::string& text, LayoutParams& out) {
 }
 std::string block_size_name(const LayoutParams& p) { return std::to_string(p.block_w) + "x" + std::to_string(p.block_h); }
 
-MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params)
-    : params_(params), log2_w0_(log2_w0), log2_h0_(log2_h0), channel_bits_(channel_bits) {
+MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params, TexelFormat format)
+    : params_(params), log2_w0_(log2_w0), log2_h0_(log2_h0), channel_bits_(channel_bits), format_(format) {
   for (const int s : {log2_w0, log2_h0})
     if (s < 0 || s > kMaxLog2Size)
       throw Error("texture side 2^" + std::to_string(s) + ": must be 1 to " + std::to_string(1 << kMaxLog2Size) +
@@ -47,6 +47,19 @@ MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const Lay
   log2_bh_ = log2_of_side(params.block_h, "height");
   texel_bytes_ = channel_bits > 8 ? 8 : 4;
   line_bytes_ = params.block_w * params.block_h * texel_bytes_;
+  if (is_compressed(format)) {
+    // Whole 4x4 blocks per line, as 2^a x 2^b blocks with a = b or b + 1 (wider than tall).
+    block_bytes_ = format_info(format).block_bytes;
+    if (channel_bits != 8)
+      throw Error(std::string(format_info(format).name) + " holds 8-bit channels, not " + std::to_string(channel_bits));
+    if (line_bytes_ < block_bytes_)
+      throw Error(std::to_string(line_bytes_) + "-byte lines (block " + std::to_string(params.block_w) + "x" +
+                  std::to_string(params.block_h) + ") cannot hold a " + std::to_string(block_bytes_) + "-byte " +
+                  format_info(format).name + " block");
+    const int log2_blocks = log2_exact(line_bytes_ / block_bytes_);
+    log2_bw_ = 2 + (log2_blocks + 1) / 2;
+    log2_bh_ = 2 + log2_blocks / 2;
+  }
   if (params.base % uint32_t(line_bytes_) != 0)
     throw Error("memory base address " + std::to_string(params.base) + " is not a multiple of the " +
                 std::to_string(line_bytes_) + "-byte line");
@@ -107,15 +120,21 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
   int level = 0;
   uint32_t bx = 0, by = 0;
   if (!layout.locate_line(address, level, bx, by)) return false;
-  const int bw = layout.params().block_w, bh = layout.params().block_h, tb = layout.texel_bytes();
+  const int bw = layout.block_w(), bh = layout.block_h(), tb = layout.texel_bytes();
   const uint32_t w = std::max(1u, (1u << layout.log2_w0()) >> level), h = std::max(1u, (1u << layout.log2_h0()) >> level);
+  const bool blocks = is_compressed(layout.format());
   for (int ty = 0; ty < bh; ++ty)
     for (int tx = 0; tx < bw; ++tx) {
       const uint32_t x = bx * uint32_t(bw) + uint32_t(tx), y = by * uint32_t(bh) + uint32_t(ty);
       if (x >= w || y >= h) continue;
       const uint8_t* at = line + layout.texel_offset(x, y);
       Texel t{};
-      for (size_t c = 0; c < 4; ++c) t[c] = tb == 4 ? at[c] : uint16_t(at[2 * c] | at[2 * c + 1] << 8);
+      if (blocks) {
+        const Rgba8 d = decode_texel(layout.format(), at, int((x & 3) + 4 * (y & 3)));
+        for (size_t c = 0; c < 4; ++c) t[c] = d[c];
+      } else {
+        for (size_t c = 0; c < 4; ++c) t[c] = tb == 4 ? at[c] : uint16_t(at[2 * c] | at[2 * c + 1] << 8);
+      }
       texel(level, int(x), int(y), t);
     }
   return true;
@@ -123,13 +142,31 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
 
 std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout) {
   if (pyramid.log2_w0() != layout.log2_w0() || pyramid.log2_h0() != layout.log2_h0() ||
-      pyramid.levels[0].channel_bits != layout.channel_bits() || int(pyramid.levels.size()) != layout.levels())
+      pyramid.levels[0].channel_bits != layout.channel_bits() || int(pyramid.levels.size()) != layout.levels() ||
+      pyramid.format != layout.format())
     throw Error("the memory layout is for a " + std::to_string(1 << layout.log2_w0()) + "x" +
                 std::to_string(1 << layout.log2_h0()) + " texture of " + std::to_string(layout.channel_bits()) +
                 "-bit channels; the pyramid is " + std::to_string(pyramid.levels[0].width) + "x" +
                 std::to_string(pyramid.levels[0].height) + ", " + std::to_string(pyramid.levels[0].channel_bits) +
-                "-bit, " + std::to_string(pyramid.levels.size()) + " levels");
+                "-bit, " + std::to_string(pyramid.levels.size()) + " levels" +
+                (pyramid.format != layout.format() ? std::string(", ") + format_info(pyramid.format).name + " not " +
+                                                         format_info(layout.format()).name
+                                                   : std::string()));
   std::vector<uint8_t> image(size_t(layout.image_bytes()), 0);
+  if (is_compressed(layout.format())) {  // each 4x4 block where its top-left texel goes
+    const size_t bytes = size_t(format_info(layout.format()).block_bytes);
+    for (int k = 0; k < layout.levels(); ++k) {
+      const Image& img = pyramid.levels[size_t(k)];
+      const int nbx = (img.width + 3) / 4, nby = (img.height + 3) / 4;
+      for (int by = 0; by < nby; ++by)
+        for (int bx = 0; bx < nbx; ++bx) {
+          const uint32_t x = uint32_t(bx) * 4, y = uint32_t(by) * 4;
+          std::copy_n(&pyramid.blocks[size_t(k)][(size_t(by) * size_t(nbx) + size_t(bx)) * bytes], bytes,
+                      &image[layout.line_address(k, x, y) - layout.params().base + layout.texel_offset(x, y)]);
+        }
+    }
+    return image;
+  }
   const int tb = layout.texel_bytes();
   const uint32_t base = layout.params().base;
   for (int k = 0; k < layout.levels(); ++k) {
@@ -155,26 +192,28 @@ std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayo
 std::vector<uint8_t> memory_image_file(const Pyramid& pyramid, const MemoryLayout& layout) {
   std::vector<uint8_t> image = build_memory_image(pyramid, layout);
   std::vector<uint8_t> out;
-  out.reserve(64 + 8 * size_t(layout.levels()) + image.size());
+  out.reserve(72 + 8 * size_t(layout.levels()) + image.size());
   auto u32 = [&](uint32_t v) {
     for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i)));
   };
   auto u64 = [&](uint64_t v) {
     for (int i = 0; i < 8; ++i) out.push_back(uint8_t(v >> (8 * i)));
   };
-  for (const char c : std::string("TEXMEM01")) out.push_back(uint8_t(c));
-  u32(uint32_t(64 + 8 * layout.levels()));
+  for (const char c : std::string("TEXMEM02")) out.push_back(uint8_t(c));
+  u32(uint32_t(72 + 8 * layout.levels()));
   u32(uint32_t(layout.log2_w0()));
   u32(uint32_t(layout.log2_h0()));
   u32(uint32_t(layout.levels()));
   u32(uint32_t(layout.channel_bits()));
-  u32(uint32_t(layout.texel_bytes()));
-  u32(uint32_t(layout.params().block_w));
-  u32(uint32_t(layout.params().block_h));
+  u32(is_compressed(layout.format()) ? 0u : uint32_t(layout.texel_bytes()));
+  u32(uint32_t(layout.block_w()));
+  u32(uint32_t(layout.block_h()));
   u32(uint32_t(layout.params().order));
   u32(uint32_t(layout.line_bytes()));
   u64(layout.params().base);
   u64(layout.image_bytes());
+  u32(uint32_t(layout.format()));
+  u32(0);
   for (int k = 0; k < layout.levels(); ++k) u64(layout.level_base(k));
   out.insert(out.end(), image.begin(), image.end());
   return out;

@@ -1,6 +1,8 @@
 // The pyramid in external memory (docs/memory.md §1): each level cut into blocks of BW x BH texels,
 // one block per cache line, blocks in row-major or Morton order, levels one after another from a
-// base address. The model builds the memory image the cached RTL reads.
+// base address. The model builds the memory image the cached RTL reads. A block-compressed texture
+// (model/block_formats.h) has lines of the same bytes, holding whole 4x4 blocks: a BC1 line of 64
+// bytes holds 4 x 2 blocks (16 x 8 texels), a BC7 line 2 x 2 blocks (8 x 8 texels).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -16,7 +18,7 @@ bool parse_block_order(const std::string& name, BlockOrder& out);  // "row-major
 std::string block_order_name(BlockOrder o);
 
 struct LayoutParams {
-  int block_w = 4, block_h = 4;  // texels per block (= cache line): 2, 4 or 8 each
+  int block_w = 4, block_h = 4;  // RGBA8 texels per block (= cache line): 2, 4 or 8 each
   BlockOrder order = BlockOrder::RowMajor;
   uint32_t base = 0;  // byte address of level 0, a multiple of the line size
 };
@@ -41,16 +43,22 @@ inline uint64_t interleave_bits(uint32_t a, uint32_t b) {
 class MemoryLayout {
  public:
   // Throws tex::Error naming the bad value: a texture size or channel width the unit cannot have,
-  // a block side, a base not aligned to the line, an image ending beyond the 32-bit address space.
-  MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params);
+  // a block side, a base not aligned to the line, an image ending beyond the 32-bit address space,
+  // a block format with channels other than 8 bits or a line smaller than one of its blocks.
+  MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params,
+               TexelFormat format = TexelFormat::Rgba8);
 
   const LayoutParams& params() const { return params_; }
   int log2_w0() const { return log2_w0_; }
   int log2_h0() const { return log2_h0_; }
   int channel_bits() const { return channel_bits_; }
   int levels() const { return int(levels_.size()); }
-  int texel_bytes() const { return texel_bytes_; }    // 4 (channels <= 8 bits) or 8
-  int line_bytes() const { return line_bytes_; }      // block_w * block_h * texel_bytes
+  TexelFormat format() const { return format_; }
+  int texel_bytes() const { return texel_bytes_; }    // RGBA: 4 (channels <= 8 bits) or 8
+  int line_bytes() const { return line_bytes_; }      // params' block_w * block_h * texel_bytes
+  // Texels per line in this format (RGBA: the params' block; a block format: its blocks' texels).
+  int block_w() const { return 1 << log2_bw_; }
+  int block_h() const { return 1 << log2_bh_; }
   int log2_block_w() const { return log2_bw_; }
   int log2_block_h() const { return log2_bh_; }
   // The block grid of a level: NBX_k x NBY_k blocks, each at least 1.
@@ -71,9 +79,11 @@ class MemoryLayout {
   }
   // The level and block of the line at `address`; false if no level's block starts there.
   bool locate_line(uint32_t address, int& level, uint32_t& bx, uint32_t& by) const;
-  // Byte offset of texel (x, y) inside its line.
+  // Byte offset of texel (x, y) inside its line; in a block format, of the 4x4 block holding it.
   uint32_t texel_offset(uint32_t x, uint32_t y) const {
-    return (((y & ((1u << log2_bh_) - 1)) << log2_bw_) | (x & ((1u << log2_bw_) - 1))) * uint32_t(texel_bytes_);
+    const uint32_t lx = x & ((1u << log2_bw_) - 1), ly = y & ((1u << log2_bh_) - 1);
+    if (block_bytes_) return (((ly >> 2) << (log2_bw_ - 2)) | (lx >> 2)) * uint32_t(block_bytes_);
+    return ((ly << log2_bw_) | lx) * uint32_t(texel_bytes_);
   }
 
  private:
@@ -83,19 +93,22 @@ class MemoryLayout {
   };
   LayoutParams params_;
   int log2_w0_, log2_h0_, channel_bits_;
+  TexelFormat format_;
   int texel_bytes_, line_bytes_, log2_bw_, log2_bh_;
+  int block_bytes_ = 0;  // a block format's bytes per 4x4 block; 0 for RGBA
   std::vector<Level> levels_;
   uint64_t image_bytes_ = 0;
 };
 
 // Calls texel(level, x, y, value) for every texel of the level stored in the line at `address`
-// (`line`: its line_bytes() bytes as memory holds them); padding is skipped. False if the address
+// (`line`: its line_bytes() bytes as memory holds them; blocks decoded); padding is skipped. False if the address
 // is not a line of the layout.
 bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
                  const std::function<void(int level, int x, int y, const Texel& t)>& texel);
 
-// The bytes at addresses base .. base + image_bytes - 1 (padding texels 0). Throws tex::Error when
-// the pyramid is not the one the layout was made for (sizes, channel width).
+// The bytes at addresses base .. base + image_bytes - 1 (padding 0): texels, or a block format's
+// blocks as the pyramid keeps them. Throws tex::Error when the pyramid is not the one the layout
+// was made for (sizes, channel width, format).
 std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout);
 
 // The memory image file of `texsim mip --memory-image`: header (docs/memory.md §1), then the image.

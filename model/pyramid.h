@@ -1,7 +1,9 @@
 // The mip pyramid: level 0 and its 2x2 box-filtered reductions down to 1x1.
 #pragma once
+#include <cstdint>
 #include <vector>
 
+#include "block_formats.h"
 #include "formats.h"
 #include "image.h"
 
@@ -19,8 +21,12 @@ inline LevelShape level_shape(int log2_w0, int log2_h0, int k) {
 }
 
 struct Pyramid {
-  std::vector<Image> levels;  // levels[0] is the texture
+  std::vector<Image> levels;  // levels[0] is the texture (a compressed texture's levels decoded)
   PyramidMode mode = PyramidMode::Exact;
+  // How memory holds the texture. A block format keeps each level's 4x4 blocks as stored (the
+  // cached unit reads them; its decoder gives what `levels` holds); RGBA8 has no `blocks`.
+  TexelFormat format = TexelFormat::Rgba8;
+  std::vector<std::vector<uint8_t>> blocks;
   int log2_w0() const { return log2_exact(levels[0].width); }
   int log2_h0() const { return log2_exact(levels[0].height); }
   int last_level() const { return int(levels.size()) - 1; }

@@ -6,7 +6,7 @@
 namespace tex {
 
 std::vector<MemoryLayout> pack_layouts(const std::vector<std::pair<int, int>>& sizes, int channel_bits,
-                                       const LayoutParams& params) {
+                                       const LayoutParams& params, const std::vector<TexelFormat>& formats) {
   std::vector<MemoryLayout> out;
   LayoutParams p = params;
   uint64_t next = params.base;
@@ -14,7 +14,8 @@ std::vector<MemoryLayout> pack_layouts(const std::vector<std::pair<int, int>>& s
     if (next > 0xFFFFFFFFull)
       throw Error("textures: " + std::to_string(sizes.size()) + " pyramids do not fit the 32-bit address space");
     p.base = uint32_t(next);
-    out.emplace_back(log2_w, log2_h, channel_bits, p);  // throws when it ends beyond 2^32
+    const TexelFormat f = out.size() < formats.size() ? formats[out.size()] : TexelFormat::Rgba8;
+    out.emplace_back(log2_w, log2_h, channel_bits, p, f);  // throws when it ends beyond 2^32
     next += out.back().image_bytes();                   // a whole number of lines
   }
   return out;

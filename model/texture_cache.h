@@ -49,10 +49,10 @@ struct TextureDescriptor {
 };
 
 // Layouts of several pyramids of `channel_bits` texels packed one after another from params.base
-// (each starts on a line); sizes are {log2 w0, log2 h0}. Throws tex::Error when they do not fit
-// the 32-bit address space.
+// (each starts on a line); sizes are {log2 w0, log2 h0}, formats one per pyramid (none: all RGBA).
+// Throws tex::Error when they do not fit the 32-bit address space.
 std::vector<MemoryLayout> pack_layouts(const std::vector<std::pair<int, int>>& sizes, int channel_bits,
-                                       const LayoutParams& params);
+                                       const LayoutParams& params, const std::vector<TexelFormat>& formats = {});
 
 class TextureCache {
  public:

@@ -126,6 +126,12 @@ EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, Output
                   o.engine.c_str());
     }
     if (counter) stats.probes = counter->histogram();
+    std::vector<std::string> formats;  // the table's, each once, in table order
+    for (const BoundTexture& t : textures)
+      if (std::find(formats.begin(), formats.end(), format_info(t.pyramid->format).name) == formats.end())
+        formats.push_back(format_info(t.pyramid->format).name);
+    stats.format.clear();
+    for (const std::string& f : formats) stats.format += (stats.format.empty() ? "" : ",") + f;
     // The engine alone: without waiting for the requests and writing the results.
     stats.sample_seconds = std::max(0.0, stats.sample_seconds - source.seconds - sink.seconds);
     stats.parse_seconds = parser ? parser->busy_seconds() : source.seconds;

@@ -15,6 +15,7 @@
 #include "model/pyramid.h"
 #include "workloads/output_files.h"
 #include "workloads/query_trace.h"
+#include "workloads/texture_files.h"
 #include "workloads/text.h"
 
 namespace tex {
@@ -45,6 +46,8 @@ struct SamplingOptions {
   std::string wrap = "repeat";
   std::string wrap_u, wrap_v;
   std::string pyramid = "exact";
+  std::string format = "rgba8";
+  CLI::Option* format_opt = nullptr;
   std::string engine = "model";
   double lod_bias = 0, min_lod = -128, max_lod = 127.99;
   bool resize = false;
@@ -67,7 +70,8 @@ struct SamplingOptions {
   std::vector<CLI::Option*> cached_opts;  // meaningful with --memory cached only
 
   void add_to(CLI::App& cmd) {
-    texture_opt = cmd.add_option("--texture,-t", texture, "image file (any OpenImageIO format) or pattern NAME[:WxH]")
+    texture_opt = cmd.add_option("--texture,-t", texture,
+                                 "image file (any OpenImageIO format), DDS/KTX/KTX2 texture file, or pattern NAME[:WxH]")
                       ->capture_default_str();
     cmd.add_option("--filter,-f", filter,
                    "point | bilinear | mip_nearest | trilinear | anisotropic (trilinear probes along the "
@@ -80,6 +84,10 @@ struct SamplingOptions {
     wrap_u_opt = cmd.add_option("--wrap-u", wrap_u, "wrap mode of u only (overrides --wrap)");
     wrap_v_opt = cmd.add_option("--wrap-v", wrap_v, "wrap mode of v only (overrides --wrap)");
     cmd.add_option("--pyramid", pyramid, "exact (mean of the level-0 footprint) | cascade")->capture_default_str();
+    format_opt = cmd.add_option("--format", format,
+                                texel_format_names() + ": how memory holds an image file or pattern (each level "
+                                "compressed: libsquish, Mesa for bc7); a DDS/KTX file keeps its own")
+                     ->capture_default_str();
     cmd.add_option("--engine,-e", engine, engine_list())->capture_default_str();
     cmd.add_option("--lod-bias", lod_bias, "added to lambda before the clamp, in levels")->capture_default_str();
     cmd.add_option("--min-lod", min_lod, "lambda clamp, in levels")->capture_default_str();
@@ -158,6 +166,16 @@ struct SamplingOptions {
     PyramidMode m;
     if (!parse_pyramid_mode(pyramid, m)) throw Error("unknown pyramid mode " + quote_clipped(pyramid) + " (exact, cascade)");
     return m;
+  }
+
+  TextureOptions texture_options() const {
+    TextureOptions t;
+    t.resize = resize;
+    t.mode = pyramid_mode();
+    if (!parse_texel_format(format, t.format))
+      throw Error("unknown --format " + quote_clipped(format) + " (" + texel_format_names() + ")");
+    t.format_given = format_opt->count() > 0;
+    return t;
   }
 
   // Also checks that the engine exists and can honour the options (before any work).

@@ -68,6 +68,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   const auto t0 = std::chrono::steady_clock::now();
   // Everything is checked before the work: options, engine, outputs, texture, every query.
   const SamplerConfig cfg = o.config();
+  const TextureOptions topts = o.texture_options();
   EngineOptions eo = o.engine_options();
   OutputSet outputs;
   std::vector<TextureListEntry> list;
@@ -115,7 +116,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   TextureTable table;
   try {
     for (const TextureListEntry& e : list) {
-      pyramids.push_back(build_pyramid(load_texture(e.path, o.resize), o.pyramid_mode()));
+      pyramids.push_back(load_pyramid(e.path, topts));
       table.push_back({&pyramids.back(), e.wrap_u, e.wrap_v});
     }
   } catch (...) {
@@ -184,23 +185,28 @@ struct ImageOptions {
   }
 };
 
-int cmd_mip(const std::string& texture, const std::string& mode_name, bool resize, const std::string& dump_dir,
-            const std::string& layout_path, const ImageOptions& image) {
+int cmd_mip(const std::string& texture, const std::string& mode_name, bool resize, const std::string& format_name,
+            bool format_given, const std::string& dump_dir, const std::string& layout_path, const ImageOptions& image) {
   if (dump_dir.empty() && layout_path.empty() && image.path.empty())
     throw Error("mip: give --dump-levels DIR, --layout FILE and/or --memory-image FILE");
   const LayoutParams memory_layout = image.layout();
-  PyramidMode mode;
-  if (!parse_pyramid_mode(mode_name, mode)) throw Error("unknown pyramid mode " + quote_clipped(mode_name) + " (exact, cascade)");
+  TextureOptions topts;
+  topts.resize = resize;
+  if (!parse_pyramid_mode(mode_name, topts.mode))
+    throw Error("unknown pyramid mode " + quote_clipped(mode_name) + " (exact, cascade)");
+  if (!parse_texel_format(format_name, topts.format))
+    throw Error("unknown --format " + quote_clipped(format_name) + " (" + texel_format_names() + ")");
+  topts.format_given = format_given;
   OutputSet outputs;
   outputs.add_input(texture, "--texture");
   if (!layout_path.empty()) check_image_path(layout_path);
   OutputFile* layout = layout_path.empty() ? nullptr : &outputs.declare(layout_path, "--layout", OutputSet::Kind::File);
   OutputFile* image_out = image.path.empty() ? nullptr : &outputs.declare(image.path, "--memory-image");
-  const Pyramid pyr = build_pyramid(load_texture(texture, resize), mode);
+  const Pyramid pyr = load_pyramid(texture, topts);
   std::vector<uint8_t> image_bytes;
   if (image_out)  // (the layout checks the block, base and size before anything is written)
     image_bytes = memory_image_file(
-        pyr, MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, memory_layout));
+        pyr, MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, memory_layout, pyr.format));
   if (!dump_dir.empty()) {
     outputs.make_directory(dump_dir, "--dump-levels");
     std::vector<OutputFile*> levels;
@@ -220,8 +226,8 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
     image_out->close();
   }
   outputs.commit();
-  std::printf("texsim mip: %dx%d texture, %zu levels (%s)%s%s%s%s%s%s\n", pyr.levels[0].width, pyr.levels[0].height,
-              pyr.levels.size(), mode_name.c_str(), dump_dir.empty() ? "" : ", levels in ", dump_dir.c_str(),
+  std::printf("texsim mip: %dx%d %s texture, %zu levels (%s)%s%s%s%s%s%s\n", pyr.levels[0].width,
+              pyr.levels[0].height, format_info(pyr.format).name, pyr.levels.size(), mode_name.c_str(), dump_dir.empty() ? "" : ", levels in ", dump_dir.c_str(),
               layout_path.empty() ? "" : ", layout in ", layout_path.c_str(),
               image.path.empty() ? "" : ", memory image in ", image.path.c_str());
   return 0;
@@ -234,6 +240,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
                bool texture_given, bool wrap_given, const std::string& out) {
   const auto t0 = std::chrono::steady_clock::now();
   SamplerConfig cfg = o.config();
+  const TextureOptions topts = o.texture_options();
   EngineOptions eo = o.engine_options();
   make_scene(scene, so);  // checks the scene name, size and frame numbers before any work
   check_image_path(out);
@@ -264,7 +271,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
   for (int f = first; f <= last; ++f) {
     so.frame = f;
     const SceneFrame frame = make_scene(scene, so);
-    const Pyramid pyr = build_pyramid(scene_texture(frame, texture_given ? o.texture : "", o.resize), o.pyramid_mode());
+    const Pyramid pyr = scene_pyramid(frame, texture_given ? o.texture : "", topts);
     if (frame.clamp_edges && !wrap_given) cfg.wrap_u = cfg.wrap_v = Wrap::Clamp;
     const auto requests = to_requests(frame.queries, "scene " + scene);
     VectorSource source(requests);
@@ -309,12 +316,17 @@ int main(int argc, char** argv) {
                      "a descriptor table instead of --texture: one `id path [wrap_u [wrap_v]]` per line, ids 0, 1, ... "
                      "(what render --trace-queries writes); the trace's tex column names the entry");
 
-  std::string mip_texture = "testcard", mip_mode = "exact", dump_dir, layout;
+  std::string mip_texture = "testcard", mip_mode = "exact", mip_format = "rgba8", dump_dir, layout;
   bool mip_resize = false;
   CLI::App* mip = app.add_subcommand("mip", "build a pyramid; dump its levels or the paper's Figure 1 layout");
-  mip->add_option("--texture,-t", mip_texture, "image file or pattern NAME[:WxH]")->capture_default_str();
+  mip->add_option("--texture,-t", mip_texture, "image file, DDS/KTX/KTX2 texture file, or pattern NAME[:WxH]")
+      ->capture_default_str();
   mip->add_option("--pyramid", mip_mode, "exact | cascade")->capture_default_str();
   mip->add_flag("--resize", mip_resize, "resample a texture whose sides are not powers of two");
+  CLI::Option* mip_format_opt = mip->add_option("--format", mip_format,
+                                                texel_format_names() + ": how memory holds an image file or pattern "
+                                                "(libsquish, Mesa for bc7; a DDS/KTX file keeps its own)")
+                                    ->capture_default_str();
   mip->add_option("--dump-levels", dump_dir, "write DIR/level00.png, level01.png, ...");
   mip->add_option("--layout", layout, "write the packed R/G/B memory layout (paper Figure 1)");
   ImageOptions image;
@@ -443,7 +455,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (*sample) return cmd_sample(sample_opts, queries, textures_list, out);
-    if (*mip) return cmd_mip(mip_texture, mip_mode, mip_resize, dump_dir, layout, image);
+    if (*mip)
+      return cmd_mip(mip_texture, mip_mode, mip_resize, mip_format, mip_format_opt->count() > 0, dump_dir, layout, image);
     if (*render) {
       SceneOptions so;
       so.width = width;

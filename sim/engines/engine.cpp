@@ -65,6 +65,7 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
                       {"write_seconds", write_seconds},
                       {"samples_per_second", sample_seconds > 0 ? double(samples) / sample_seconds : 0.0}};
   j["memory"] = memory_name(options.memory);
+  if (!format.empty()) j["format"] = format;
   if (probes) {
     const std::vector<uint64_t> by_n(probes->begin() + 1, probes->end());  // [N - 1]: samples of N probes
     j["probes_per_sample"] = by_n;
@@ -288,19 +289,30 @@ EngineStats Engine::run(const TextureTable& textures, const SamplerConfig& confi
   return run(*textures[0].pyramid, c, source, sink);
 }
 
+void require_uncompressed_cached(const TextureTable& textures, const EngineOptions& options, const std::string& engine) {
+  if (options.memory != Memory::Cached) return;
+  for (const BoundTexture& t : textures)
+    if (is_compressed(t.pyramid->format))
+      throw Error("engine " + engine + ": a " + format_info(t.pyramid->format).name +
+                  " texture in the cached unit; the RTL reads RGBA8 lines only so far (its block decoders are "
+                  "still to come), use --engine model or --format rgba8");
+}
+
 std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures, const EngineOptions& options) {
   if (textures.empty() || textures.size() > size_t(kMaxTextures))
     throw Error(std::to_string(textures.size()) + " textures: the descriptor table holds 1 to " +
                 std::to_string(kMaxTextures));
   std::vector<std::pair<int, int>> sizes;
+  std::vector<TexelFormat> formats;
   const int bits = textures[0].pyramid->levels[0].channel_bits;
   for (const BoundTexture& t : textures) {
     if (t.pyramid->levels[0].channel_bits != bits)
       throw Error("textures of one frame must have the same channel width (" + std::to_string(bits) + " and " +
                   std::to_string(t.pyramid->levels[0].channel_bits) + " bits)");
     sizes.emplace_back(t.pyramid->log2_w0(), t.pyramid->log2_h0());
+    formats.push_back(t.pyramid->format);
   }
-  const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout);
+  const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout, formats);
   std::vector<TextureDescriptor> out;
   for (size_t i = 0; i < textures.size(); ++i) out.push_back({layouts[i], textures[i].wrap_u, textures[i].wrap_v});
   return out;

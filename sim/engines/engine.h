@@ -98,6 +98,7 @@ struct CycleStats {
 
 struct EngineStats {
   std::string engine;
+  std::string format;  // how memory holds the textures: rgba8, bc1, ... (several: "bc1,rgba8")
   uint64_t samples = 0;
   double load_seconds = 0;    // building the engine and loading the texture
   double sample_seconds = 0;  // the sampling phase alone (wall time; texsim takes out the two below)
@@ -306,5 +307,9 @@ std::unique_ptr<TimedStream> model_timing(const TextureTable& textures, const En
 // The descriptor table of a texture table in cached mode: layouts packed one after another from
 // options.layout.base. Throws tex::Error (too many textures, different channel widths, memory).
 std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures, const EngineOptions& options);
+// Throws tex::Error for a block-compressed texture in the cached unit of an engine whose RTL has
+// no block decoders yet (the golden model has them: docs/numerics.md); on chip a compressed
+// texture is held decoded, as the paper's per-level memories hold texels.
+void require_uncompressed_cached(const TextureTable& textures, const EngineOptions& options, const std::string& engine);
 
 }  // namespace tex

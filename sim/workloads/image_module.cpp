@@ -1,6 +1,10 @@
-// The image module: OpenImageIO behind image_module.h's plain buffers (built as
-// libtexsim_images.so; texture_io.cpp loads it on first use).
+// The image module: OpenImageIO behind image_module.h's plain buffers, and Mesa's BC7 encoder
+// (built as libtexsim_images.so; texture_io.cpp loads it on first use).
 #include "workloads/image_module.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/osmesa.h>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
@@ -155,7 +159,42 @@ bool write(const std::string& format_path, const std::string& write_path, const 
   }
 }
 
-const tex::images::Module kModule = {read, float_range, resize, can_write, write};
+bool compress_bc7(const Pixels& p, std::vector<uint8_t>& blocks, std::string& error) {
+  // One off-screen context for the process: Mesa compresses what glTexImage2D is given when the
+  // internal format is a compressed one.
+  static std::vector<uint8_t> surface(4 * 4 * 4);
+  static OSMesaContext context = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
+  if (!context || !OSMesaMakeCurrent(context, surface.data(), GL_UNSIGNED_BYTE, 4, 4)) {
+    error = "cannot create an OSMesa context for Mesa's BC7 encoder";
+    return false;
+  }
+  if (p.channels != 4) {
+    error = "BC7 encoding takes RGBA8";
+    return false;
+  }
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_COMPRESSED_RGBA_BPTC_UNORM, p.width, p.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               p.values.data());
+  GLint compressed = 0, size = 0;
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_COMPRESSED, &compressed);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_COMPRESSED_IMAGE_SIZE, &size);
+  const size_t want = size_t((p.width + 3) / 4) * size_t((p.height + 3) / 4) * 16;
+  bool ok = glGetError() == GL_NO_ERROR && compressed && size_t(size) == want;
+  if (ok) {
+    blocks.resize(want);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetCompressedTexImage(GL_TEXTURE_2D, 0, blocks.data());
+    ok = glGetError() == GL_NO_ERROR;
+  }
+  glDeleteTextures(1, &texture);
+  if (!ok) error = "Mesa did not compress the level to BC7 (" + std::to_string(size) + " bytes)";
+  return ok;
+}
+
+const tex::images::Module kModule = {read, float_range, resize, can_write, write, compress_bc7};
 
 }  // namespace
 

@@ -1,4 +1,5 @@
-// The image module (libtexsim_images.so): OpenImageIO behind plain 8-bit buffers. texsim loads it
+// The image module (libtexsim_images.so): OpenImageIO behind plain 8-bit buffers, and Mesa's BC7
+// encoder (the one in Debian; libsquish stops at BC5). texsim loads it
 // with dlopen on the first image file it reads or writes, so that a run without image files (a
 // pattern texture, CSV in and out) does not load OpenImageIO's 260 shared libraries (0.4 s).
 // texture_io.cpp is its one user; everything here is the module's ABI with the host (the same
@@ -33,6 +34,9 @@ struct Module {
   // Writes RGBA8 `pixels` to `write_path` in the format of the extension of `format_path`.
   bool (*write)(const std::string& format_path, const std::string& write_path, const Pixels& pixels,
                 std::string& error);
+  // RGBA8 `pixels` as BC7 blocks (row-major 4x4 blocks), by Mesa's BPTC encoder through OSMesa
+  // (glTexImage2D to GL_COMPRESSED_RGBA_BPTC_UNORM, then glGetCompressedTexImage).
+  bool (*compress_bc7)(const Pixels& pixels, std::vector<uint8_t>& blocks, std::string& error);
 };
 
 // The host side: the module, loaded on the first call (TEXSIM_IMAGE_MODULE names another file).

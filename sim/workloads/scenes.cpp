@@ -417,6 +417,12 @@ Image scene_texture(const SceneFrame& frame, const std::string& user_spec, bool 
   return load_texture(user_spec.empty() ? frame.default_texture : user_spec, resize);
 }
 
+Pyramid scene_pyramid(const SceneFrame& frame, const std::string& user_spec, const TextureOptions& options) {
+  if (frame.own_texture || user_spec.empty())
+    return compress_pyramid(build_pyramid(scene_texture(frame, user_spec, options.resize), options.mode), options.format);
+  return load_pyramid(user_spec, options);
+}
+
 std::vector<Rgba> texels_to_values(const std::vector<Texel>& texels, int channel_bits) {
   const double maxv = (1 << channel_bits) - 1;
   std::vector<Rgba> out(texels.size());

@@ -9,7 +9,9 @@
 
 #include "model/formats.h"
 #include "model/image.h"
+#include "model/pyramid.h"
 #include "workloads/query_trace.h"
+#include "workloads/texture_files.h"
 
 namespace tex {
 
@@ -67,6 +69,9 @@ SceneFrame make_scene(const std::string& name, int width, int height);
 
 // The texture a frame samples: its own map, else `user_spec` when given, else its default.
 Image scene_texture(const SceneFrame& frame, const std::string& user_spec, bool resize = false);
+// The same texture's pyramid, as the options make it (workloads/texture_files.h: a DDS/KTX file,
+// or the box pyramid in options.format).
+Pyramid scene_pyramid(const SceneFrame& frame, const std::string& user_spec, const TextureOptions& options);
 
 // The final picture from sampled texels (one per query). Pixel scenes place the texels bit-exactly
 // (channel_bits wide); mesh scenes draw the filtered mesh (8 bits).

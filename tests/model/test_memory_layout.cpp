@@ -4,6 +4,8 @@
 // implementation of the specification's formulas.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -251,25 +253,26 @@ TEST(MemoryLayout, FileHeader) {
   const MemoryLayout l(3, 2, 8, params(2, 2, BlockOrder::Morton, 4096));
   const Pyramid pyr = build_pyramid(numbered(8, 4));
   const std::vector<uint8_t> f = memory_image_file(pyr, l);
-  ASSERT_EQ(f.size(), 96u + 192u);
-  EXPECT_EQ(std::string(f.begin(), f.begin() + 8), "TEXMEM01");
-  const uint32_t want32[] = {96, 3, 2, 4, 8, 4, 2, 2, 1, 16};  // offsets 8 .. 44
+  ASSERT_EQ(f.size(), 104u + 192u);
+  EXPECT_EQ(std::string(f.begin(), f.begin() + 8), "TEXMEM02");
+  const uint32_t want32[] = {104, 3, 2, 4, 8, 4, 2, 2, 1, 16};  // offsets 8 .. 44
   for (size_t i = 0; i < 10; ++i) EXPECT_EQ(u32_at(f, 8 + 4 * i), want32[i]) << "offset " << 8 + 4 * i;
   EXPECT_EQ(u64_at(f, 48), 4096u);
   EXPECT_EQ(u64_at(f, 56), 192u);
   const uint64_t bases[] = {4096, 4096 + 128, 4096 + 160, 4096 + 176};
-  for (size_t k = 0; k < 4; ++k) EXPECT_EQ(u64_at(f, 64 + 8 * k), bases[k]) << k;
+  EXPECT_EQ(u32_at(f, 64), 0u);  // RGBA
+  for (size_t k = 0; k < 4; ++k) EXPECT_EQ(u64_at(f, 72 + 8 * k), bases[k]) << k;
   // Texel (2, 2) of level 0: Morton block 3 of 16 bytes, first texel.
-  expect_rgba8_at(f, 96 + 48, Texel{2, 2, 4, 200});
-  EXPECT_EQ(std::vector<uint8_t>(f.begin() + 96, f.end()), build_memory_image(pyr, l));
+  expect_rgba8_at(f, 104 + 48, Texel{2, 2, 4, 200});
+  EXPECT_EQ(std::vector<uint8_t>(f.begin() + 104, f.end()), build_memory_image(pyr, l));
 
   const std::vector<uint8_t> g = memory_image_file(build_pyramid(numbered(4, 4, 16)), MemoryLayout(2, 2, 16, {}));
-  EXPECT_EQ(u32_at(g, 8), 64u + 8 * 3);
+  EXPECT_EQ(u32_at(g, 8), 72u + 8 * 3);
   EXPECT_EQ(u32_at(g, 24), 16u);   // channel bits
   EXPECT_EQ(u32_at(g, 28), 8u);    // texel bytes
   EXPECT_EQ(u32_at(g, 40), 0u);    // row-major
   EXPECT_EQ(u32_at(g, 44), 128u);  // line bytes
-  EXPECT_EQ(g.size(), 88u + 3 * 128);
+  EXPECT_EQ(g.size(), 96u + 3 * 128);
 }
 
 TEST(MemoryLayout, BadGeometryIsAnErrorNamingTheValue) {
@@ -320,4 +323,75 @@ TEST(MemoryLayout, DecodingEveryLineGivesBackThePyramid) {
       EXPECT_FALSE(decode_line(layout, 0, image.data(), ignore));  // below the base
     }
   }
+}
+
+namespace {
+
+// A pyramid of random blocks of format f (its levels decoded from them), as a texture file gives.
+Pyramid random_block_pyramid(TexelFormat f, int log2_w, int log2_h, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Pyramid p;
+  p.format = f;
+  for (int k = 0; k < level_count(log2_w, log2_h); ++k) {
+    const LevelShape s = level_shape(log2_w, log2_h, k);
+    std::vector<uint8_t> b(level_bytes(f, s.width(), s.height()));
+    for (uint8_t& x : b) x = uint8_t(rng());
+    if (f == TexelFormat::Bc7)
+      for (size_t i = 0; i < b.size(); i += 16) b[i] |= 1;  // mode 0: no reserved blocks
+    p.levels.push_back(decode_level(f, b.data(), s.width(), s.height()));
+    p.blocks.push_back(b);
+  }
+  return p;
+}
+
+}  // namespace
+
+// A block format keeps the line's bytes and packs whole 4x4 blocks in it, wider than tall.
+TEST(MemoryLayout, BlockFormatsPackWholeBlocksPerLine) {
+  const MemoryLayout bc1(6, 5, 8, LayoutParams{}, TexelFormat::Bc1);
+  EXPECT_EQ(bc1.line_bytes(), 64);
+  EXPECT_EQ(bc1.block_w(), 16);  // 8 blocks of 8 bytes: 4 x 2 blocks
+  EXPECT_EQ(bc1.block_h(), 8);
+  EXPECT_EQ(bc1.texel_offset(5, 6), (1u * 4 + 1) * 8);  // block (1, 1) of the line
+  EXPECT_EQ(bc1.texel_offset(21, 9), (0u * 4 + 1) * 8); // (x 21 -> 5 in its line, y 9 -> 1)
+  const MemoryLayout bc7(6, 5, 8, LayoutParams{}, TexelFormat::Bc7);
+  EXPECT_EQ(bc7.block_w(), 8);  // 4 blocks of 16 bytes: 2 x 2
+  EXPECT_EQ(bc7.block_h(), 8);
+  EXPECT_EQ(bc7.texel_offset(5, 6), 3u * 16);
+  // Lines of 8x8 texels: 8x4 + 4x2 + 2x1 lines, then one (padded) line for each of the 4 levels
+  // from 8x4 down to 1x1.
+  EXPECT_EQ(bc7.image_bytes(), (32u + 8 + 2 + 4) * 64);
+  const MemoryLayout small(6, 5, 8, params(2, 2, BlockOrder::RowMajor, 0), TexelFormat::Bc1);
+  EXPECT_EQ(small.line_bytes(), 16);
+  EXPECT_EQ(small.block_w(), 8);
+  EXPECT_EQ(small.block_h(), 4);
+  try {
+    MemoryLayout(6, 5, 16, LayoutParams{}, TexelFormat::Bc1);
+    ADD_FAILURE() << "16-bit BC1";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bc1 holds 8-bit channels, not 16"), std::string::npos) << e.what();
+  }
+}
+
+// The memory image of a compressed pyramid holds its blocks; decoding every line of it gives back
+// every texel of every level exactly once, in both block orders.
+TEST(MemoryLayout, CompressedImageDecodesToTheLevels) {
+  for (TexelFormat f : {TexelFormat::Bc1, TexelFormat::Bc3, TexelFormat::Bc7})
+    for (BlockOrder order : {BlockOrder::RowMajor, BlockOrder::Morton}) {
+      const Pyramid pyr = random_block_pyramid(f, 6, 4, 7 + uint64_t(f));
+      const MemoryLayout l(6, 4, 8, params(4, 4, order, 512), f);
+      const std::vector<uint8_t> img = build_memory_image(pyr, l);
+      ASSERT_EQ(img.size(), l.image_bytes());
+      std::vector<std::vector<int>> seen;
+      for (const Image& level : pyr.levels) seen.emplace_back(size_t(level.width) * level.height, 0);
+      for (uint32_t a = 512; a < 512 + l.image_bytes(); a += uint32_t(l.line_bytes()))
+        ASSERT_TRUE(decode_line(l, a, &img[a - 512], [&](int k, int x, int y, const Texel& t) {
+          ++seen[size_t(k)][size_t(y) * pyr.levels[size_t(k)].width + size_t(x)];
+          EXPECT_EQ(t, pyr.levels[size_t(k)].at(x, y)) << format_info(f).name << " level " << k << " (" << x << ", " << y << ")";
+        }));
+      for (const auto& level : seen)
+        for (int n : level) ASSERT_EQ(n, 1) << format_info(f).name;
+    }
+  Pyramid wrong = random_block_pyramid(TexelFormat::Bc1, 6, 4, 1);
+  EXPECT_THROW(build_memory_image(wrong, MemoryLayout(6, 4, 8, LayoutParams{}, TexelFormat::Bc7)), Error);
 }

@@ -404,10 +404,10 @@ TEST_F(TexsimCli, MipMemoryImageIsTheModelsImage) {
   p.base = 2048;
   const MemoryLayout layout(6, 4, 8, p);
   EXPECT_EQ(file, memory_image_file(pyr, layout));
-  // 7 levels: 8x8 + 4x4 + 2x2 + 1x1 + 1x1 + 1x1 + 1x1 blocks of 64 bytes after a 64 + 7*8 byte header.
-  ASSERT_EQ(file.size(), 120u + (64u + 16u + 4u + 4u) * 64u);
+  // 7 levels: 8x8 + 4x4 + 2x2 + 1x1 + 1x1 + 1x1 + 1x1 blocks of 64 bytes after a 72 + 7*8 byte header.
+  ASSERT_EQ(file.size(), 128u + (64u + 16u + 4u + 4u) * 64u);
   // Texel (9, 3) of level 0: block (1, 1), Morton index 3, at 2048 + 3*64, texel (1, 1) of it.
-  const size_t at = 120 + 3 * 64 + (1 * 8 + 1) * 4;
+  const size_t at = 128 + 3 * 64 + (1 * 8 + 1) * 4;
   EXPECT_EQ(file[at], pyr.levels[0].at(9, 3)[0]);
   EXPECT_EQ(file[at + 3], pyr.levels[0].at(9, 3)[3]);
   EXPECT_NE(run("mip --memory-image m2.bin --mem-base 100").exit_code, 0);  // not a multiple of 64
@@ -555,4 +555,42 @@ TEST_F(TexsimCli, ImageModuleIsLoadedOnlyForImageFiles) {
   EXPECT_EQ(pattern.exit_code, 0) << pattern.err;
   const Result image = run("sample -t t.png -q q.csv -o b.csv");
   EXPECT_EQ(image.exit_code, 0) << image.err;
+}
+
+// --format: the texture is held compressed in memory (libsquish), the stats say so, the cached unit
+// reads fewer bytes per sample than for RGBA8, the on-chip unit samples the decoded levels, and
+// what cannot be done is one clean error.
+TEST_F(TexsimCli, BlockFormatsThroughTheCli) {
+  std::string q = "u,v,lod\n";
+  for (int i = 0; i < 400; ++i) q += std::to_string((i % 20) / 20.0) + "," + std::to_string((i / 20) / 20.0) + ",1.5\n";
+  queries(q);
+  auto stats = [&](const std::string& args) {
+    const Result r = run("sample -t testcard:256x256 -q q.csv -o r.csv --stats s.json " + args);
+    EXPECT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    return nlohmann::json::parse(read_text(dir / "s.json"));
+  };
+  const auto rgba = stats("--memory cached");
+  const auto bc1 = stats("--memory cached --format bc1");
+  const auto bc3 = stats("--memory cached --format bc3");
+  EXPECT_EQ(rgba["format"], "rgba8");
+  EXPECT_EQ(bc1["format"], "bc1");
+  EXPECT_LT(bc1["bytes_per_sample"].get<double>() * 4, rgba["bytes_per_sample"].get<double>());
+  EXPECT_LT(bc3["bytes_per_sample"].get<double>() * 2, rgba["bytes_per_sample"].get<double>());
+  // On chip and cached sample the same decoded texels.
+  const Result a = run("sample -t testcard:256x256 -q q.csv -o onchip.csv --format bc1");
+  const Result b = run("sample -t testcard:256x256 -q q.csv -o cached.csv --format bc1 --memory cached");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_EQ(read_text(dir / "onchip.csv"), read_text(dir / "cached.csv"));
+  EXPECT_NE(read_text(dir / "onchip.csv"), read_text(dir / "r.csv"));  // BC1 is not the RGBA8 picture
+  const Result m = run("mip -t testcard:64x64 --format bc7 --memory-image m.bin");  // Mesa's encoder
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const std::string image = read_text(dir / "m.bin");
+  ASSERT_GT(image.size(), 72u);
+  EXPECT_EQ(image.substr(0, 8), "TEXMEM02");
+  EXPECT_EQ(uint8_t(image[64]), 7);  // format: BC7
+  EXPECT_EQ(uint8_t(image[28]), 0);  // no texel bytes: blocks
+  expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --format bc6", "x.csv", {"--format", "bc6", "bc7"});
+  expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --format bc1 --memory cached -e rtl", "x.csv",
+                       {"engine rtl", "bc1"});
 }

@@ -56,6 +56,7 @@ class RtlEngine final : public Engine {
                   TexelSink& sink) override {
     const bool cached = options_.memory == Memory::Cached;
     if (textures.empty()) throw Error("engine rtl: no texture");
+    require_uncompressed_cached(textures, options_, "rtl");
     if (!cached && textures.size() > 1)
       throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one (the paper's design); "
                   "use --memory cached");

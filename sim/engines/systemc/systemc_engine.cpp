@@ -196,6 +196,8 @@ class SystemcEngine final : public Engine {
 
   EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
                   TexelSink& sink) override {
+    require_uncompressed_cached({{&pyramid, config.wrap_u, config.wrap_v}}, options_.engine,
+                                backend_ == Backend::Rtl ? "systemc" : "systemc-model");
     return run_systemc(backend_, pyramid, config, source, sink, options_);
   }
 

@@ -1,0 +1,415 @@
+#include "workloads/texture_files.h"
+
+#include <algorithm>
+#include <cstring>
+#include <squish.h>
+#include <fstream>
+#include <iterator>
+
+#include "model/error.h"
+#include "model/pyramid.h"
+#include "workloads/image_module.h"
+#include "workloads/texture_io.h"
+
+namespace tex {
+
+namespace {
+
+constexpr uint8_t kDdsMagic[4] = {'D', 'D', 'S', ' '};
+constexpr uint8_t kKtx1Magic[12] = {0xAB, 'K', 'T', 'X', ' ', '1', '1', 0xBB, '\r', '\n', 0x1A, '\n'};
+constexpr uint8_t kKtx2Magic[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+
+// A format the unit reads, as a file format names it.
+struct Known {
+  uint32_t code;
+  const char* name;
+  TexelFormat format;
+  bool srgb;
+  bool supported;  // false: named in the error message only
+};
+
+// DXGI_FORMAT values (DX10 header).
+constexpr Known kDxgi[] = {
+    {2, "R32G32B32A32_FLOAT", TexelFormat::Rgba8, false, false},
+    {10, "R16G16B16A16_FLOAT", TexelFormat::Rgba8, false, false},
+    {11, "R16G16B16A16_UNORM", TexelFormat::Rgba8, false, false},
+    {24, "R10G10B10A2_UNORM", TexelFormat::Rgba8, false, false},
+    {27, "R8G8B8A8_TYPELESS", TexelFormat::Rgba8, false, false},
+    {28, "R8G8B8A8_UNORM", TexelFormat::Rgba8, false, true},
+    {29, "R8G8B8A8_UNORM_SRGB", TexelFormat::Rgba8, true, true},
+    {61, "R8_UNORM", TexelFormat::Rgba8, false, false},
+    {70, "BC1_TYPELESS", TexelFormat::Bc1, false, false},
+    {71, "BC1_UNORM", TexelFormat::Bc1, false, true},
+    {72, "BC1_UNORM_SRGB", TexelFormat::Bc1, true, true},
+    {73, "BC2_TYPELESS", TexelFormat::Bc2, false, false},
+    {74, "BC2_UNORM", TexelFormat::Bc2, false, true},
+    {75, "BC2_UNORM_SRGB", TexelFormat::Bc2, true, true},
+    {76, "BC3_TYPELESS", TexelFormat::Bc3, false, false},
+    {77, "BC3_UNORM", TexelFormat::Bc3, false, true},
+    {78, "BC3_UNORM_SRGB", TexelFormat::Bc3, true, true},
+    {79, "BC4_TYPELESS", TexelFormat::Bc4, false, false},
+    {80, "BC4_UNORM", TexelFormat::Bc4, false, true},
+    {81, "BC4_SNORM", TexelFormat::Bc4, false, false},
+    {82, "BC5_TYPELESS", TexelFormat::Bc5, false, false},
+    {83, "BC5_UNORM", TexelFormat::Bc5, false, true},
+    {84, "BC5_SNORM", TexelFormat::Bc5, false, false},
+    {87, "B8G8R8A8_UNORM", TexelFormat::Rgba8, false, false},
+    {91, "B8G8R8A8_UNORM_SRGB", TexelFormat::Rgba8, false, false},
+    {94, "BC6H_TYPELESS", TexelFormat::Rgba8, false, false},
+    {95, "BC6H_UF16", TexelFormat::Rgba8, false, false},
+    {96, "BC6H_SF16", TexelFormat::Rgba8, false, false},
+    {97, "BC7_TYPELESS", TexelFormat::Bc7, false, false},
+    {98, "BC7_UNORM", TexelFormat::Bc7, false, true},
+    {99, "BC7_UNORM_SRGB", TexelFormat::Bc7, true, true},
+};
+
+// glInternalFormat values (KTX 1).
+constexpr Known kGl[] = {
+    {0x8058, "GL_RGBA8", TexelFormat::Rgba8, false, true},
+    {0x8C43, "GL_SRGB8_ALPHA8", TexelFormat::Rgba8, true, true},
+    {0x83F0, "GL_COMPRESSED_RGB_S3TC_DXT1_EXT", TexelFormat::Bc1, false, false},
+    {0x83F1, "GL_COMPRESSED_RGBA_S3TC_DXT1_EXT", TexelFormat::Bc1, false, true},
+    {0x83F2, "GL_COMPRESSED_RGBA_S3TC_DXT3_EXT", TexelFormat::Bc2, false, true},
+    {0x83F3, "GL_COMPRESSED_RGBA_S3TC_DXT5_EXT", TexelFormat::Bc3, false, true},
+    {0x8C4C, "GL_COMPRESSED_SRGB_S3TC_DXT1_EXT", TexelFormat::Bc1, true, false},
+    {0x8C4D, "GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT", TexelFormat::Bc1, true, true},
+    {0x8C4E, "GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT3_EXT", TexelFormat::Bc2, true, true},
+    {0x8C4F, "GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT", TexelFormat::Bc3, true, true},
+    {0x8DBB, "GL_COMPRESSED_RED_RGTC1", TexelFormat::Bc4, false, true},
+    {0x8DBC, "GL_COMPRESSED_SIGNED_RED_RGTC1", TexelFormat::Bc4, false, false},
+    {0x8DBD, "GL_COMPRESSED_RG_RGTC2", TexelFormat::Bc5, false, true},
+    {0x8DBE, "GL_COMPRESSED_SIGNED_RG_RGTC2", TexelFormat::Bc5, false, false},
+    {0x8E8C, "GL_COMPRESSED_RGBA_BPTC_UNORM", TexelFormat::Bc7, false, true},
+    {0x8E8D, "GL_COMPRESSED_SRGB_ALPHA_BPTC_UNORM", TexelFormat::Bc7, true, true},
+    {0x8E8E, "GL_COMPRESSED_RGB_BPTC_SIGNED_FLOAT", TexelFormat::Rgba8, false, false},
+    {0x8E8F, "GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT", TexelFormat::Rgba8, false, false},
+};
+
+// VkFormat values (KTX2).
+constexpr Known kVk[] = {
+    {0, "VK_FORMAT_UNDEFINED (Basis Universal)", TexelFormat::Rgba8, false, false},
+    {37, "VK_FORMAT_R8G8B8A8_UNORM", TexelFormat::Rgba8, false, true},
+    {43, "VK_FORMAT_R8G8B8A8_SRGB", TexelFormat::Rgba8, true, true},
+    {131, "VK_FORMAT_BC1_RGB_UNORM_BLOCK", TexelFormat::Bc1, false, false},
+    {132, "VK_FORMAT_BC1_RGB_SRGB_BLOCK", TexelFormat::Bc1, true, false},
+    {133, "VK_FORMAT_BC1_RGBA_UNORM_BLOCK", TexelFormat::Bc1, false, true},
+    {134, "VK_FORMAT_BC1_RGBA_SRGB_BLOCK", TexelFormat::Bc1, true, true},
+    {135, "VK_FORMAT_BC2_UNORM_BLOCK", TexelFormat::Bc2, false, true},
+    {136, "VK_FORMAT_BC2_SRGB_BLOCK", TexelFormat::Bc2, true, true},
+    {137, "VK_FORMAT_BC3_UNORM_BLOCK", TexelFormat::Bc3, false, true},
+    {138, "VK_FORMAT_BC3_SRGB_BLOCK", TexelFormat::Bc3, true, true},
+    {139, "VK_FORMAT_BC4_UNORM_BLOCK", TexelFormat::Bc4, false, true},
+    {140, "VK_FORMAT_BC4_SNORM_BLOCK", TexelFormat::Bc4, false, false},
+    {141, "VK_FORMAT_BC5_UNORM_BLOCK", TexelFormat::Bc5, false, true},
+    {142, "VK_FORMAT_BC5_SNORM_BLOCK", TexelFormat::Bc5, false, false},
+    {143, "VK_FORMAT_BC6H_UFLOAT_BLOCK", TexelFormat::Rgba8, false, false},
+    {144, "VK_FORMAT_BC6H_SFLOAT_BLOCK", TexelFormat::Rgba8, false, false},
+    {145, "VK_FORMAT_BC7_UNORM_BLOCK", TexelFormat::Bc7, false, true},
+    {146, "VK_FORMAT_BC7_SRGB_BLOCK", TexelFormat::Bc7, true, true},
+};
+
+const char kSupported[] = "RGBA8, BC1 (with alpha), BC2, BC3, BC4 and BC5 (unorm), BC7, and the sRGB variants";
+
+class Reader {
+ public:
+  explicit Reader(const std::string& path) : path_(path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open the texture file");
+    bytes_.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  [[noreturn]] void fail(const std::string& what) const { throw Error(path_ + ": " + what); }
+  size_t size() const { return bytes_.size(); }
+  const uint8_t* at(uint64_t offset, uint64_t n, const std::string& what) const {
+    if (offset > bytes_.size() || n > bytes_.size() - offset)
+      fail("truncated: " + what + " needs " + std::to_string(n) + " bytes at offset " + std::to_string(offset) +
+           ", the file has " + std::to_string(bytes_.size()));
+    return bytes_.data() + offset;
+  }
+  uint32_t u32(uint64_t offset, const char* what) const {
+    const uint8_t* p = at(offset, 4, what);
+    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+  }
+  uint64_t u64(uint64_t offset, const char* what) const {
+    return u32(offset, what) | uint64_t(u32(offset + 4, what)) << 32;
+  }
+
+ private:
+  std::string path_;
+  std::vector<uint8_t> bytes_;
+};
+
+// The format a code names, or the one-line error naming it.
+template <size_t N>
+const Known& known(const Known (&table)[N], uint32_t code, const std::string& kind, const Reader& r,
+                   const std::string& prefix = "") {
+  for (const Known& k : table)
+    if (k.code == code) {
+      if (!k.supported) r.fail("format " + prefix + k.name + " is not supported (this unit reads " + kSupported + ")");
+      return k;
+    }
+  r.fail(kind + " " + std::to_string(code) + " is not supported (this unit reads " + kSupported + ")");
+}
+
+// Checks the sizes and the level count, common to every container; returns the level count.
+int check_shape(const Reader& r, TextureFile& t, uint32_t width, uint32_t height, uint32_t levels) {
+  if (width == 0 || height == 0 || width > (1u << kMaxLog2Size) || height > (1u << kMaxLog2Size) ||
+      !is_power_of_two(int(width)) || !is_power_of_two(int(height)))
+    r.fail(std::to_string(width) + "x" + std::to_string(height) + ": the unit takes sides that are powers of two from 1 to " +
+           std::to_string(1 << kMaxLog2Size));
+  t.width = int(width);
+  t.height = int(height);
+  if (is_compressed(t.format) && (width % 4 || height % 4))
+    r.fail(std::to_string(width) + "x" + std::to_string(height) + ": a " + format_info(t.format).name +
+           " texture needs sides that are multiples of 4 at level 0");
+  if (t.srgb && !format_info(t.format).srgb_allowed) r.fail("sRGB " + std::string(format_info(t.format).name) + " does not exist");
+  const int full = level_count(log2_exact(t.width), log2_exact(t.height));
+  if (levels == 0) levels = 1;
+  if (int64_t(levels) != 1 && int64_t(levels) != full)
+    r.fail(std::to_string(levels) + " mip levels: a partial chain (a " + std::to_string(width) + "x" + std::to_string(height) +
+           " texture has 1 or " + std::to_string(full) + ")");
+  return int(levels);
+}
+
+uint64_t bytes_of_level(const TextureFile& t, int k) {
+  const LevelShape s = level_shape(log2_exact(t.width), log2_exact(t.height), k);
+  return level_bytes(t.format, s.width(), s.height());
+}
+
+TextureFile read_dds(const Reader& r) {
+  TextureFile t;
+  if (r.u32(4, "the DDS header") != 124) r.fail("not a DDS header (size " + std::to_string(r.u32(4, "")) + ", not 124)");
+  const uint32_t flags = r.u32(8, "the DDS header"), height = r.u32(12, "the DDS header"), width = r.u32(16, "the DDS header");
+  const uint32_t depth = r.u32(24, "the DDS header"), mips = r.u32(28, "the DDS header");
+  const uint32_t pf_flags = r.u32(80, "the DDS header"), fourcc = r.u32(84, "the DDS header");
+  const uint32_t caps2 = r.u32(112, "the DDS header");
+  if (caps2 & 0x200) r.fail("a cube map: the unit reads 2D textures");
+  if ((caps2 & 0x200000) || ((flags & 0x800000) && depth > 1)) r.fail("a volume texture: the unit reads 2D textures");
+  uint64_t offset = 128;
+  char cc[5] = {};
+  std::memcpy(cc, r.at(84, 4, "the DDS header"), 4);
+  if ((pf_flags & 0x4) && std::string(cc) == "DX10") {
+    const uint32_t dxgi = r.u32(128, "the DX10 header"), dimension = r.u32(132, "the DX10 header");
+    const uint32_t misc = r.u32(136, "the DX10 header"), array = r.u32(140, "the DX10 header");
+    if (misc & 0x4) r.fail("a cube map: the unit reads 2D textures");
+    if (dimension != 3) r.fail("resource dimension " + std::to_string(dimension) + ": the unit reads 2D textures (3)");
+    if (array > 1) r.fail("an array of " + std::to_string(array) + " textures: the unit reads one");
+    const Known& k = known(kDxgi, dxgi, "DXGI format", r, "DXGI_FORMAT_");
+    t.format = k.format;
+    t.srgb = k.srgb;
+    t.format_name = std::string("DXGI_FORMAT_") + k.name;
+    offset = 148;
+  } else if (pf_flags & 0x4) {
+    const std::string code = cc;
+    const struct {
+      const char* fourcc;
+      TexelFormat format;
+    } legacy[] = {{"DXT1", TexelFormat::Bc1}, {"DXT3", TexelFormat::Bc2}, {"DXT5", TexelFormat::Bc3},
+                  {"ATI1", TexelFormat::Bc4}, {"BC4U", TexelFormat::Bc4}, {"ATI2", TexelFormat::Bc5},
+                  {"BC5U", TexelFormat::Bc5}};
+    bool found = false;
+    for (const auto& l : legacy)
+      if (code == l.fourcc) {
+        t.format = l.format;
+        found = true;
+      }
+    const bool printable = std::all_of(code.begin(), code.end(), [](char c) { return c >= 32 && c < 127; }) && code.size() == 4;
+    if (!found)
+      r.fail("format " + (printable ? "FourCC '" + code + "'" : "D3DFORMAT " + std::to_string(fourcc)) +
+             " is not supported (this unit reads " + kSupported + ")");
+    t.format_name = code;
+  } else {
+    const uint32_t bits = r.u32(88, "the DDS header");
+    const bool rgba8 = (pf_flags & 0x40) && (pf_flags & 0x1) && bits == 32 && r.u32(92, "") == 0xFF &&
+                       r.u32(96, "") == 0xFF00 && r.u32(100, "") == 0xFF0000 && r.u32(104, "") == 0xFF000000;
+    if (!rgba8)
+      r.fail("an uncompressed pixel format of " + std::to_string(bits) +
+             " bits other than RGBA8 (R in the low byte) is not supported (this unit reads " + kSupported + ")");
+    t.format_name = "RGBA8";
+  }
+  const int levels = check_shape(r, t, width, height, mips);
+  for (int k = 0; k < levels; ++k) {
+    const uint64_t n = bytes_of_level(t, k);
+    const uint8_t* p = r.at(offset, n, "level " + std::to_string(k));
+    t.levels.emplace_back(p, p + n);
+    offset += n;
+  }
+  if (offset != r.size())
+    r.fail(std::to_string(r.size() - offset) + " bytes after the last of " + std::to_string(levels) +
+           " levels (the block count does not match the size " + std::to_string(width) + "x" + std::to_string(height) + ")");
+  return t;
+}
+
+TextureFile read_ktx1(const Reader& r) {
+  TextureFile t;
+  const uint32_t endian = r.u32(12, "the KTX header");
+  if (endian != 0x04030201) r.fail("a big-endian KTX file: not supported");
+  const uint32_t internal = r.u32(28, "the KTX header"), width = r.u32(36, "the KTX header"),
+                 height = r.u32(40, "the KTX header"), depth = r.u32(44, "the KTX header"),
+                 array = r.u32(48, "the KTX header"), faces = r.u32(52, "the KTX header"),
+                 mips = r.u32(56, "the KTX header"), kv = r.u32(60, "the KTX header");
+  if (faces != 1) r.fail(std::to_string(faces) + " faces (a cube map): the unit reads 2D textures");
+  if (depth > 0) r.fail("a volume texture (depth " + std::to_string(depth) + "): the unit reads 2D textures");
+  if (array > 0) r.fail("an array of " + std::to_string(array) + " textures: the unit reads one");
+  const Known& k = known(kGl, internal, "glInternalFormat", r);
+  t.format = k.format;
+  t.srgb = k.srgb;
+  t.format_name = k.name;
+  if (t.format == TexelFormat::Rgba8 && (r.u32(16, "") != 0x1401 || r.u32(24, "") != 0x1908))
+    r.fail("glType/glFormat other than GL_UNSIGNED_BYTE/GL_RGBA for " + std::string(k.name));
+  const int levels = check_shape(r, t, width, height, mips);
+  uint64_t offset = 64 + uint64_t(kv);
+  for (int l = 0; l < levels; ++l) {
+    const uint64_t n = bytes_of_level(t, l);
+    const uint32_t stored = r.u32(offset, ("the size of level " + std::to_string(l)).c_str());
+    if (stored != n)
+      r.fail("level " + std::to_string(l) + " has " + std::to_string(stored) + " bytes; a " + format_info(t.format).name +
+             " level of that size has " + std::to_string(n));
+    const uint8_t* p = r.at(offset + 4, n, "level " + std::to_string(l));
+    t.levels.emplace_back(p, p + n);
+    offset += 4 + (n + 3) / 4 * 4;  // each level padded to 4 bytes
+  }
+  if (offset != r.size())
+    r.fail(std::to_string(r.size() - offset) + " bytes after the last of " + std::to_string(levels) + " levels");
+  return t;
+}
+
+TextureFile read_ktx2(const Reader& r) {
+  TextureFile t;
+  const uint32_t vk = r.u32(12, "the KTX2 header"), width = r.u32(20, "the KTX2 header"),
+                 height = r.u32(24, "the KTX2 header"), depth = r.u32(28, "the KTX2 header"),
+                 layers = r.u32(32, "the KTX2 header"), faces = r.u32(36, "the KTX2 header"),
+                 mips = r.u32(40, "the KTX2 header"), scheme = r.u32(44, "the KTX2 header");
+  if (scheme != 0) {
+    const char* names[] = {"none", "BasisLZ", "Zstandard", "ZLIB"};
+    r.fail("supercompression " + (scheme < 4 ? std::string(names[scheme]) : std::to_string(scheme)) +
+           " is not supported (store the levels uncompressed)");
+  }
+  if (faces != 1) r.fail(std::to_string(faces) + " faces (a cube map): the unit reads 2D textures");
+  if (depth > 0) r.fail("a volume texture (depth " + std::to_string(depth) + "): the unit reads 2D textures");
+  if (layers > 0) r.fail("an array of " + std::to_string(layers) + " textures: the unit reads one");
+  const Known& k = known(kVk, vk, "vkFormat", r);
+  t.format = k.format;
+  t.srgb = k.srgb;
+  t.format_name = k.name;
+  const int levels = check_shape(r, t, width, height, mips);
+  for (int l = 0; l < levels; ++l) {
+    const uint64_t entry = 80 + 24 * uint64_t(l);
+    const uint64_t offset = r.u64(entry, "the level index"), length = r.u64(entry + 8, "the level index");
+    const uint64_t n = bytes_of_level(t, l);
+    if (length != n)
+      r.fail("level " + std::to_string(l) + " has " + std::to_string(length) + " bytes; a " + format_info(t.format).name +
+             " level of that size has " + std::to_string(n));
+    const uint8_t* p = r.at(offset, n, "level " + std::to_string(l));
+    t.levels.emplace_back(p, p + n);
+  }
+  return t;
+}
+
+// libsquish's flags for a format (BC1 with its 1-bit alpha mode: weigh colour by alpha so that
+// transparent texels take index 3 of a three-colour block).
+int squish_flags(TexelFormat f) {
+  switch (f) {
+    case TexelFormat::Bc1: return squish::kDxt1 | squish::kColourClusterFit;
+    case TexelFormat::Bc2: return squish::kDxt3 | squish::kColourClusterFit;
+    case TexelFormat::Bc3: return squish::kDxt5 | squish::kColourClusterFit;
+    case TexelFormat::Bc4: return squish::kBc4;
+    case TexelFormat::Bc5: return squish::kBc5;
+    default: return 0;
+  }
+}
+
+std::vector<uint8_t> compress_level(const Image& img, TexelFormat f) {
+  std::vector<uint8_t> rgba(size_t(img.width) * img.height * 4);
+  for (size_t i = 0; i < img.texels.size(); ++i)
+    for (int c = 0; c < 4; ++c) rgba[i * 4 + size_t(c)] = uint8_t(img.texels[i][size_t(c)]);
+  if (f == TexelFormat::Bc7) {  // Mesa's encoder, in the image module
+    const images::Pixels pixels{img.width, img.height, 4, false, std::move(rgba)};
+    std::vector<uint8_t> blocks;
+    std::string error;
+    if (!images::module().compress_bc7(pixels, blocks, error)) throw Error("--format bc7: " + error);
+    return blocks;
+  }
+  std::vector<uint8_t> blocks(level_bytes(f, img.width, img.height));
+  squish::CompressImage(rgba.data(), img.width, img.height, blocks.data(), squish_flags(f));
+  return blocks;
+}
+
+bool starts_with(const std::string& path, const uint8_t* magic, size_t n) {
+  std::ifstream in(path, std::ios::binary);
+  uint8_t head[12] = {};
+  in.read(reinterpret_cast<char*>(head), std::streamsize(n));
+  return in.gcount() == std::streamsize(n) && std::memcmp(head, magic, n) == 0;
+}
+
+}  // namespace
+
+bool is_texture_file(const std::string& path) {
+  return starts_with(path, kDdsMagic, 4) || starts_with(path, kKtx1Magic, 12) || starts_with(path, kKtx2Magic, 12);
+}
+
+TextureFile read_texture_file(const std::string& path) {
+  const Reader r(path);
+  const uint8_t* head = r.at(0, std::min<size_t>(r.size(), 12), "the signature");
+  if (r.size() >= 4 && std::memcmp(head, kDdsMagic, 4) == 0) return read_dds(r);
+  if (r.size() >= 12 && std::memcmp(head, kKtx1Magic, 12) == 0) return read_ktx1(r);
+  if (r.size() >= 12 && std::memcmp(head, kKtx2Magic, 12) == 0) return read_ktx2(r);
+  r.fail("not a DDS, KTX or KTX2 file");
+}
+
+Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format) {
+  if (format == TexelFormat::Rgba8) return pyramid;
+  if (pyramid.levels[0].channel_bits != 8) throw Error("--format: block formats hold 8-bit channels");
+  if (pyramid.levels[0].width % 4 || pyramid.levels[0].height % 4)
+    throw Error("--format " + std::string(format_info(format).name) + ": a " + std::to_string(pyramid.levels[0].width) +
+                "x" + std::to_string(pyramid.levels[0].height) + " texture; block formats need sides that are multiples of 4");
+  pyramid.format = format;
+  pyramid.blocks.clear();
+  for (Image& level : pyramid.levels) {
+    pyramid.blocks.push_back(compress_level(level, format));
+    level = decode_level(format, pyramid.blocks.back().data(), level.width, level.height);
+  }
+  return pyramid;
+}
+
+Pyramid load_pyramid(const std::string& spec, const TextureOptions& o) {
+  if (!is_texture_file(spec)) return compress_pyramid(build_pyramid(load_texture(spec, o.resize), o.mode), o.format);
+  const TextureFile file = read_texture_file(spec);
+  if (o.format_given && o.format != file.format)
+    throw Error(spec + ": --format " + format_info(o.format).name + ", but the file holds " + file.format_name +
+                " (a texture file keeps its format)");
+  return pyramid_of(file, o.mode, spec);
+}
+
+Pyramid pyramid_of(const TextureFile& file, PyramidMode mode, const std::string& name) {
+  if (file.srgb)  // (filtering the encoded values would darken every blend: refused, not approximated)
+    throw Error(name + ": " + file.format_name + " is an sRGB format; decoding sRGB to linear before filtering "
+                "is not built yet (store the texture as UNORM to sample its values as they are)");
+  auto decoded = [&](int k) {
+    const LevelShape s = level_shape(log2_exact(file.width), log2_exact(file.height), k);
+    if (!is_compressed(file.format)) {
+      Image img(s.width(), s.height(), 8);
+      for (size_t i = 0; i < img.texels.size(); ++i)
+        for (int c = 0; c < 4; ++c) img.texels[i][size_t(c)] = file.levels[size_t(k)][i * 4 + size_t(c)];
+      return img;
+    }
+    return decode_level(file.format, file.levels[size_t(k)].data(), s.width(), s.height());
+  };
+  if (file.levels.size() == 1) {
+    Pyramid p = compress_pyramid(build_pyramid(decoded(0), mode), file.format);
+    if (is_compressed(file.format)) {  // level 0 as the file has it
+      p.blocks[0] = file.levels[0];
+      p.levels[0] = decoded(0);
+    }
+    return p;
+  }
+  Pyramid p;
+  p.mode = mode;
+  p.format = file.format;
+  for (int k = 0; k < int(file.levels.size()); ++k) {
+    p.levels.push_back(decoded(k));
+    if (is_compressed(file.format)) p.blocks.push_back(file.levels[size_t(k)]);
+  }
+  return p;
+}
+
+}  // namespace tex
