@@ -6,6 +6,7 @@ Usage: /usr/bin/python3 scripts/memory_report.py [--texsim build/texsim] [--out 
 Runs `texsim` (engine rtl) on the issue's workload: the plane scene, 640x480, trilinear, the
 1024x1024 test card, memory latency 200 clocks, 16 B/clock; onchip against cached, scanline and
 8x8-tile order, cache sizes 8/16/32 KiB; random queries over the whole pyramid (a worst case);
+the texture held as RGBA8, BC1 and BC7 (engine model: the RTL has no block decoders yet);
 then samples/clock per memory latency and FIFO depth (--fifo-depth). Writes OUT/report.md (the tables of docs/memory.md §5) and OUT/latency.png.
 Needs matplotlib (Debian's python3-matplotlib, in /usr/bin/python3).
 """
@@ -92,6 +93,28 @@ def main():
         cached = texsim(sample + ["-e", "rtl", "--memory", "cached", "--cache-kib", str(kib)] + mem, exe, a.out)
         lines.append(row("random u, v, λ (100 000)", onchip, cached, texel_bytes))
         print(lines[-1], flush=True)
+
+    # Texture formats: the caches and memory hold compressed blocks (docs/memory.md §1). The RTL's
+    # block decoders are still to come, so the golden model times these runs (its timing layer is the
+    # RTL's, clock for clock, for RGBA8; the decoders sit in the same clock as the filter).
+    lines += ["", "Texture formats, plane 640×480, 8 KiB × 2 caches, latency 200, 16 B/clock, engine model "
+              "(timing layer): BC1 and BC7 each level compressed (`--format`: libsquish, Mesa's BC7 encoder); "
+              "'bytes vs RGBA8' = RGBA8's bytes per sample / this format's.", "",
+              "| workload | format | samples/clock | cached / onchip | hit rate | bytes/sample | bytes vs RGBA8 | "
+              "clocks waiting for memory |", "|---|---|---|---|---|---|---|---|"]
+    for order in ["scanline", "tiled"]:
+        extra = ["--order", order]
+        onchip = texsim(SCENE + extra + ["-e", "rtl"], exe, a.out)
+        rgba_bytes = None
+        for fmt in ["rgba8", "bc1", "bc7"]:
+            r = texsim(SCENE + extra + ["--memory", "cached", "--format", fmt] + mem, exe, a.out)
+            rgba_bytes = rgba_bytes or r["bytes_per_sample"]
+            label = f"plane, {order}" + (" 8×8" if order == "tiled" else "")
+            lines.append(f"| {label} | {fmt} | {r['samples_per_clock']:.3f} | "
+                         f"**{r['samples_per_clock'] / onchip['samples_per_clock']:.3f}** | {100 * r['hit_rate']:.1f} % | "
+                         f"{r['bytes_per_sample']:.2f} | {rgba_bytes / r['bytes_per_sample']:.1f}× | "
+                         f"{r['memory_stall_cycles']} |")
+            print(lines[-1], flush=True)
 
     # Latency x FIFO depth (cfg_fifo_limit), tiled order, default caches: the FIFO a latency needs.
     latencies = [50, 100, 200, 500, 1000, 2000]

@@ -113,7 +113,8 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
     j["load_cycles"] = cycle->load_cycles;
     j["clocks_per_second"] = sample_seconds > 0 ? double(cycle->cycles) / sample_seconds : 0.0;
     if (!options.trace_path.empty()) j["trace"] = options.trace_path;
-  } else {
+  }
+  if (!cycle || !bank_reads.empty()) {  // the golden model's counters (also beside its timing layer)
     j["texel_reads"] = texel_reads;
     j["multiplies_per_channel"] = multiplies_per_channel;
     j["bank_reads"] = bank_reads;
