@@ -73,7 +73,7 @@ scenes: build
 # latencies 50..800 clocks, 16 B/clock, FIFOs of 256 and 2048 samples, every point timed by the
 # model's timing layer (most of these have no Verilated build); points in $(JOBS) processes.
 explore: build
-	$(TEXSIM) explore --scene plane,panel --cache-kib 1,2,4,8,16,32,64 --ways 1,2,4 --block 4x4,2x2,8x8 \
+	$(TEXSIM) explore --scene plane,panel --cache-kib 1,2,4,8,16,32,64 --ways 1,2,4 --block 4x4,2x2,8x8 --format rgba8,bc1,bc7 \
 	  --mem-latency 50,100,200,400,800 --fifo-depth 256,max --jobs $(JOBS) --out $(OUT)/explore
 
 # The paper's scenes through an engine (FIG_ENGINE, default model) vs a real-valued reference (docs/scenes.md).

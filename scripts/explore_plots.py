@@ -34,7 +34,7 @@ try:
 except ImportError as missing:
     sys.exit(f"explore_plots: error: {missing} (run it with /usr/bin/python3, which has python3-matplotlib)")
 
-COLUMNS = ["workload", "order", "texture", "width", "height", "filter", "cache_kib", "ways", "block", "block_order",
+COLUMNS = ["workload", "order", "texture", "format", "width", "height", "filter", "cache_kib", "ways", "block", "block_order",
            "mem_latency", "mem_bytes_per_clock", "fifo_depth", "samples", "cache_lookups", "cache_hits",
            "cache_misses", "hit_rate", "memory_read_bytes", "bytes_per_sample", "timing_engine",
            "samples_per_clock", "cycles", "memory_stall_cycles", "fifo_max_occupancy", "confirmed", "seconds"]
@@ -108,6 +108,10 @@ def read_rows(path):
                         raise Failure(f"{path} line {line}: column cache_kib: {text!r} is not a positive number")
                     row[c] = value
                 rows.append(row)
+            # A sweep over texture formats: each format is a panel of its own, next to the orders.
+            if len({r["format"] for r in rows}) > 1:
+                for r in rows:
+                    r["order"] = f"{r['order']}, {r['format']}"
             return header, rows
     except OSError as e:
         raise Failure(f"cannot read {path}: {e.strerror or e}")

@@ -30,6 +30,7 @@
 #include "workloads/query_trace.h"
 #include "workloads/rasterizer.h"
 #include "workloads/scenes.h"
+#include "workloads/texture_files.h"
 #include "workloads/texture_io.h"
 
 extern char** environ;
@@ -83,6 +84,7 @@ struct Workload {
   std::string name;   // scene name, model file or trace path
   std::string order;  // scanline | tiled | trace
   std::string texture;
+  TexelFormat format = TexelFormat::Rgba8;  // every pyramid's, compressed by compress_pyramid
   std::vector<Pyramid> pyramids;            // one per descriptor-table entry
   std::vector<std::pair<Wrap, Wrap>> wraps;  // each entry's wrap modes
   SamplerConfig config;
@@ -108,6 +110,7 @@ struct Sweep {
   bool trace = false;
   bool model = false;  // --model or --scene-file
   std::vector<std::string> workload_names, order_names;
+  std::vector<TexelFormat> formats;
   std::vector<int> cache_kib, ways;
   std::vector<LayoutParams> blocks;  // shapes
   std::vector<BlockOrder> block_orders;
@@ -145,6 +148,11 @@ Sweep parse_sweep(const ExploreArgs& a) {
     s.order_names = split_list(a.orders, "--order");
     for (const std::string& o : s.order_names) parse_pixel_order(o);
   }
+  for (const std::string& f : split_list(a.formats, "--format")) {
+    TexelFormat t;
+    if (!parse_texel_format(f, t)) throw Error("unknown --format " + quote_clipped(f) + " (" + texel_format_names() + ")");
+    s.formats.push_back(t);
+  }
   for (uint32_t k : parse_numbers(a.cache_kib, "--cache-kib", 1, 1024)) s.cache_kib.push_back(int(k));
   for (const std::string& w : split_list(a.ways, "--ways")) {
     if (w != "1" && w != "2" && w != "4") throw Error("--ways " + quote_clipped(w) + " is not 1, 2 or 4");
@@ -175,7 +183,7 @@ Sweep parse_sweep(const ExploreArgs& a) {
   return s;
 }
 
-void load_workloads(Sweep& s) {
+void load_rgba8_workloads(Sweep& s) {
   SamplerConfig config;
   if (!parse_filter(s.args.filter, config.filter)) throw Error("unknown --filter " + quote_clipped(s.args.filter));
   if (s.trace) {
@@ -242,6 +250,21 @@ void load_workloads(Sweep& s) {
       w.requests = to_requests(frame.queries, "scene " + name);
       s.workloads.push_back(std::move(w));
     }
+}
+
+// Every workload once per format, its textures compressed (in the order workload, order, format).
+void load_workloads(Sweep& s) {
+  load_rgba8_workloads(s);
+  if (s.formats.size() == 1 && s.formats[0] == TexelFormat::Rgba8) return;
+  std::vector<Workload> all;
+  for (Workload& w : s.workloads)
+    for (TexelFormat f : s.formats) {
+      Workload c = w;
+      c.format = f;
+      for (Pyramid& p : c.pyramids) p = compress_pyramid(std::move(p), f);
+      all.push_back(std::move(c));
+    }
+  s.workloads = std::move(all);
 }
 
 CacheParams cache_of(const Point& p) {
@@ -316,6 +339,7 @@ void expand_points(Sweep& s) {
 // Why the RTL cannot measure this point (empty: it can).
 std::string rtl_unavailable(const Sweep& s, const Point& p) {
   const Workload& w = s.workloads[p.workload];
+  if (is_compressed(w.format)) return std::string("the RTL has no ") + format_info(w.format).name + " decoder yet";
   try {
     const auto [log2_w, log2_h] = w.largest();
     const rtl::RtlConfig& rc = rtl::smallest_config_for(log2_w, log2_h, w.pyramids[0].levels[0].channel_bits,
@@ -437,7 +461,7 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, ModelRun>& model_
 // ------------------------------------------------------------------------------ CSV
 
 const char* kCsvHeader =
-    "workload,order,texture,width,height,filter,cache_kib,ways,block,block_order,mem_latency,mem_bytes_per_clock,"
+    "workload,order,texture,format,width,height,filter,cache_kib,ways,block,block_order,mem_latency,mem_bytes_per_clock,"
     "fifo_depth,samples,cache_lookups,cache_hits,cache_misses,hit_rate,memory_read_bytes,bytes_per_sample,"
     "timing_engine,samples_per_clock,cycles,memory_stall_cycles,fifo_max_occupancy,confirmed,seconds";
 
@@ -454,7 +478,7 @@ std::string csv_row(const Sweep& s, const Row& r) {
   const Point& p = r.point;
   const CacheCounters& k = r.cache;
   char buf[512];
-  std::string line = csv_field(w.name) + "," + w.order + "," + csv_field(w.texture) + ",";
+  std::string line = csv_field(w.name) + "," + w.order + "," + csv_field(w.texture) + "," + format_info(w.format).name + ",";
   if (s.trace) line += ",,";
   else line += std::to_string(s.args.width) + "," + std::to_string(s.args.height) + ",";
   std::snprintf(buf, sizeof buf, "%s,%d,%d,%s,%s,%u,%u,", filter_name(w.config.filter).c_str(), p.cache_kib, p.ways,
@@ -526,7 +550,8 @@ std::vector<std::string> job_command(const Sweep& s, const Job& job, const std::
     c.insert(c.end(), {"--scene", w.name});
     c.insert(c.end(), frame.begin(), frame.end());
   }
-  c.insert(c.end(), {"--texture", portable_path(s.args.texture), "--filter", s.args.filter, "--cache-kib",
+  c.insert(c.end(), {"--texture", portable_path(s.args.texture), "--format", format_info(w.format).name,
+                     "--filter", s.args.filter, "--cache-kib",
                      s.args.cache_kib, "--ways", s.args.ways, "--block", block_size_name(p.layout),
                      "--block-order", block_order_name(p.layout.order), "--mem-latency", join_numbers(s.latencies),
                      "--mem-bytes-per-clock", join_numbers(s.bandwidths), "--fifo-depth", join_numbers(s.fifos, true),

@@ -1,7 +1,8 @@
 // `texsim explore`: sweeps the cached memory hierarchy over workloads (docs/memory.md §6).
 //
 // A sweep is the cartesian product of its lists: workload (scene or query trace) x rasterization
-// order x cache size x ways x block shape x block order x memory latency x bandwidth x FIFO depth.
+// order x texture format x cache size x ways x block shape x block order x memory latency x
+// bandwidth x FIFO depth.
 // Every point gets one CSV row. Hit rate and bytes per sample come from the golden model's caches;
 // samples per clock from the model's timing layer (model/timing.h) at every point, compiled or not
 // (--timing model, the default), or from the Verilated RTL wherever a compiled configuration holds
@@ -28,6 +29,7 @@ struct ExploreArgs {
   std::string filter = "trilinear";
   int width = 640, height = 480, tile = 8;
   std::string orders = "scanline,tiled";
+  std::string formats = "rgba8";  // how memory holds the textures (model/block_formats.h)
   std::string cache_kib = "2,4,8,16,32";
   std::string ways = "2";
   std::string blocks = "4x4,8x8";

@@ -142,6 +142,31 @@ TEST_F(TexsimCli, ExploreTakesAQueryTrace) {
   EXPECT_GT(std::stod(rows[0].at("samples_per_clock")), 0.0);
 }
 
+// --format: every workload once per format, the format in its column, compressed points timed by
+// the model (the RTL has no decoders yet: --timing rtl leaves them to the model) and reading fewer
+// bytes; an emitted job carries its format.
+TEST_F(TexsimCli, ExploreSweepsTextureFormats) {
+  std::string q = "u,v,lod\n";
+  for (int i = 0; i < 300; ++i) q += std::to_string(i * 0.011) + "," + std::to_string(i * 0.007) + ",1.5\n";
+  queries(q);
+  const Result r = run("explore -q q.csv -t testcard:64x64 --format rgba8,bc1,bc7 --cache-kib 1 --block 4x4 "
+                       "--mem-latency 20 --timing rtl --no-plots -o t");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = read_rows(dir / "t/explore.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].at("format"), "rgba8");
+  EXPECT_EQ(rows[1].at("format"), "bc1");
+  EXPECT_EQ(rows[2].at("format"), "bc7");
+  EXPECT_EQ(rows[0].at("timing_engine"), "rtl");
+  EXPECT_EQ(rows[1].at("timing_engine"), "model");
+  EXPECT_LT(std::stod(rows[1].at("bytes_per_sample")) * 4, std::stod(rows[0].at("bytes_per_sample")));
+  EXPECT_LT(std::stod(rows[2].at("bytes_per_sample")) * 2, std::stod(rows[0].at("bytes_per_sample")));
+  const Result e = run("explore -q q.csv -t testcard:64x64 --format bc1 --cache-kib 1 --block 4x4 --emit-jobs jobs.txt -o j");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_NE(read_text(dir / "jobs.txt").find("--format bc1"), std::string::npos);
+  expect_clean_failure("explore -q q.csv --format bc6 -o bad", "bad/explore.csv", {"--format \"bc6\""});
+}
+
 TEST_F(TexsimCli, ExploreBadInputFailsBeforeAnyWork) {
   const std::string out = "bad/explore.csv";
   expect_clean_failure("explore --cache-kib 4,,8 -o bad", out, {"--cache-kib", "empty item"});
