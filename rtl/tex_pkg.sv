@@ -38,4 +38,14 @@ package tex_pkg;
   localparam logic [MIP_W-1:0] MIP_NONE    = 2'd0;
   localparam logic [MIP_W-1:0] MIP_NEAREST = 2'd1;
   localparam logic [MIP_W-1:0] MIP_LINEAR  = 2'd2;
+
+  // ---- texel formats (model/block_formats.h TexelFormat): how memory holds a texture
+  localparam int FORMAT_W = 3;
+  localparam logic [FORMAT_W-1:0] FMT_RGBA8 = 3'd0;
+  localparam logic [FORMAT_W-1:0] FMT_BC1   = 3'd1;
+  localparam logic [FORMAT_W-1:0] FMT_BC2   = 3'd2;
+  localparam logic [FORMAT_W-1:0] FMT_BC3   = 3'd3;
+  localparam logic [FORMAT_W-1:0] FMT_BC4   = 3'd4;
+  localparam logic [FORMAT_W-1:0] FMT_BC5   = 3'd5;
+  localparam logic [FORMAT_W-1:0] FMT_BC7   = 3'd7;
 endpackage

@@ -59,5 +59,21 @@ if ! out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex
   exit 1
 fi
 echo "lint: verilator -Wall clean for tex_lambda"
+# The block decoders on their own (not yet in tex_unit_cached), and the elaboration check of
+# tex_bc7_mode's MODE.
+if ! out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_channel.sv \
+             rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv --top-module tex_bc_decode 2>&1) ||
+   [ -n "$out" ]; then
+  echo "$out" >&2
+  echo "lint: FAILED for tex_bc_decode" >&2
+  exit 1
+fi
+if out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc7_mode.sv \
+           --top-module tex_bc7_mode -GMODE=8 2>&1) || ! grep -q "tex_bc7_mode: parameter MODE must be in 0..7" <<< "$out"; then
+  echo "$out" >&2
+  echo "lint: tex_bc7_mode's MODE check did not fire for MODE=8" >&2
+  exit 1
+fi
+echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7); MODE check fires for tex_bc7_mode MODE=8"
 echo "lint: verilator -Wall clean for ${#configs[@]} configurations (MAX_LOG2_W MAX_LOG2_H CW: ${configs[*]/%/;});" \
      "parameter checks fire for ${bad[*]}"

@@ -126,3 +126,30 @@ for cfg in "${cached_configs[@]}"; do
   fi
 done
 [ -n "$fit_cached" ] || echo "synth: no tex_unit_cached configuration fits the HX8K (largest first: ${cached_configs[*]})"
+
+# ---- the block decoders (docs/numerics.md): one texel per decoder, combinational; the cached unit
+# will take 8 per sample. synth_ice40 and synth_ecp5 LUTs per decoder, no latches; a table in
+# BUILD/synth/decoders.md.
+decoder_files="rtl/tex_pkg.sv rtl/tex_bc_channel.sv rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv"
+decoders=("tex_bc_colour:BC1 (and the colour of BC2, BC3)" "tex_bc_channel:BC4 (and BC3's alpha, each half of BC5)"
+          "tex_bc7:BC7" "tex_bc_decode:every format (what the cached unit's taps will take)")
+{
+  echo "| decoder | formats | iCE40 SB_LUT4 | iCE40 SB_CARRY | ECP5 LUT4 | ECP5 CCU2C | ECP5 MULT18X18D |"
+  echo "|---|---|---|---|---|---|---|"
+} > "$out/decoders.md"
+for d in "${decoders[@]}"; do
+  top=${d%%:*}
+  what=${d#*:}
+  for target in ice40 ecp5; do
+    if ! yosys -p "read_verilog -sv $decoder_files; synth_$target -top $top; tee -o $out/${target}_$top.stat stat;
+                   select -assert-none t:\$dlatch t:\$_DLATCH* t:LATCH*" > "$out/${target}_$top.log" 2>&1; then
+      tail -20 "$out/${target}_$top.log" >&2
+      echo "synth: FAILED synth_$target of $top, see $out/${target}_$top.log" >&2
+      exit 1
+    fi
+  done
+  count() { awk -v c="$2" '$1 == c {n = $2} END {print n + 0}' "$out/$1_$top.stat"; }
+  row="| $top | $what | $(count ice40 SB_LUT4) | $(count ice40 SB_CARRY) | $(count ecp5 LUT4) | $(count ecp5 CCU2C) | $(count ecp5 MULT18X18D) |"
+  echo "$row" >> "$out/decoders.md"
+  echo "synth: decoder $row"
+done

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "model/block_formats.h"
 #include "model/formats.h"
 #include "model/stages.h"
 
@@ -92,6 +93,13 @@ TEST(Params, RtlPackageAgreesWithModel) {
       {"MIP_NEAREST", int(MipMode::Nearest)},
       {"MIP_LINEAR", int(MipMode::Linear)},
       {"MAX_CW", kMaxChannelBits},
+      {"FMT_RGBA8", int(TexelFormat::Rgba8)},
+      {"FMT_BC1", int(TexelFormat::Bc1)},
+      {"FMT_BC2", int(TexelFormat::Bc2)},
+      {"FMT_BC3", int(TexelFormat::Bc3)},
+      {"FMT_BC4", int(TexelFormat::Bc4)},
+      {"FMT_BC5", int(TexelFormat::Bc5)},
+      {"FMT_BC7", int(TexelFormat::Bc7)},
       {"TEX_ID_W", std::bit_width(unsigned(kMaxTextures - 1))},
       // u >> (15 - log2 w): the smallest shift (2, at 8192 texels) leaves 32 - 2 bits.
       {"SCALED_W", 32 - (15 - kMaxLog2Size)},
