@@ -16,7 +16,7 @@ help:
 	@echo "make memory-report - cached memory through the RTL: throughput, hit rate, bytes, FIFO vs latency (docs/memory.md)"
 	@echo "make scenes - real frames: the assimp test models through the cached RTL at latency 200: $(OUT)/scenes/index.html"
 	@echo "make explore - sweep cache size, ways, block shape, latency, FIFO and pixel order over plane and panel, every point timed: $(OUT)/explore/index.html"
-	@echo "make rtl-soak  - RTL vs model lockstep, 20x the random samples of make test, new seeds"
+	@echo "make rtl-soak  - RTL vs model lockstep and the block decoders (1.2 M blocks), 20x the random samples of make test, new seeds"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make xprop  - 4-state X-propagation run of the RTL in Icarus Verilog, with planted bugs"
 	@echo "make formal - Yosys proofs of the handshake (skid buffer, req_ready path), each shown failing on a planted bug"
@@ -89,7 +89,7 @@ RTL_SOAK_SEED := $(shell date +%s)
 endif
 rtl-soak: build
 	@echo "rtl-soak: TEX_SEED_BASE=$(RTL_SOAK_SEED)"
-	cd $(BUILD) && TEX_SCALE=20 TEX_SEED_BASE=$(RTL_SOAK_SEED) ./tests/rtl/texunit_rtl_tests --gtest_filter='RtlRandom.*'
+	cd $(BUILD) && TEX_SCALE=20 TEX_SEED_BASE=$(RTL_SOAK_SEED) ./tests/rtl/texunit_rtl_tests --gtest_filter='RtlRandom.*:RtlBlockDecode.*'
 
 lint:
 	@bash scripts/lint.sh
