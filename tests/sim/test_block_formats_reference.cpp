@@ -5,6 +5,7 @@
 // often. Where the formats leave the rounding of interpolated values to the decoder (BC1-BC5),
 // decoders may differ by 1 LSB; the counts of such texels are printed and docs/numerics.md
 // explains them. BC7's rounding is specified: it must be identical.
+#define GL_GLEXT_PROTOTYPES  // glGenerateMipmap
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <GL/osmesa.h>
@@ -13,6 +14,7 @@
 #include <squish.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -21,6 +23,8 @@
 #include <random>
 
 #include "model/block_formats.h"
+#include "model/pyramid.h"
+#include "model/srgb.h"
 
 using namespace tex;
 
@@ -202,4 +206,80 @@ TEST(BlockFormatsReference, OpenImageIoDdsReaderDecodesTheSame) {
     EXPECT_LE(c.max_diff, k.max_diff) << format_info(k.format).name;
   }
   std::filesystem::remove(path);
+}
+
+// The sRGB decode table against Mesa's (softpipe): a 256 x 1 GL_SRGB8_ALPHA8 texture of every code
+// drawn with nearest filtering into a float framebuffer gives each code's linear value; and
+// glGenerateMipmap of a random sRGB texture, which Mesa filters in linear space, against the
+// model's cascade pyramid (srgb_box_levels: each level from its parent's codes).
+TEST(BlockFormatsReference, MesaSrgbDecodeAndMipmaps) {
+  setenv("GALLIUM_DRIVER", "softpipe", 1);
+  std::vector<float> pixels(256 * 4, -1.0f);
+  OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
+  ASSERT_TRUE(ctx);
+  ASSERT_TRUE(OSMesaMakeCurrent(ctx, pixels.data(), GL_FLOAT, 256, 1));
+  std::vector<uint8_t> codes(256 * 4);
+  for (int c = 0; c < 256; ++c) codes[size_t(c) * 4] = codes[size_t(c) * 4 + 1] = codes[size_t(c) * 4 + 2] = uint8_t(c), codes[size_t(c) * 4 + 3] = 255;
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, 256, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, codes.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+  glEnable(GL_TEXTURE_2D);
+  glViewport(0, 0, 256, 1);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(0, 256, 0, 1, -1, 1);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glBegin(GL_QUADS);
+  glTexCoord2f(0, 0); glVertex2f(0, 0);
+  glTexCoord2f(1, 0); glVertex2f(256, 0);
+  glTexCoord2f(1, 1); glVertex2f(256, 1);
+  glTexCoord2f(0, 1); glVertex2f(0, 1);
+  glEnd();
+  glFinish();
+  ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  int worst = 0;
+  for (int c = 0; c < 256; ++c) {
+    const long mesa = std::lround(double(pixels[size_t(c) * 4]) * 65535.0);
+    worst = std::max(worst, int(std::labs(mesa - long(srgb_decode_table()[size_t(c)]))));
+  }
+  std::printf("  sRGB decode: the model's unorm16 table and Mesa's float decode differ by at most %d / 65535\n", worst);
+  EXPECT_LE(worst, 1);
+
+  // glGenerateMipmap in linear space against the model's cascade pyramid.
+  constexpr int kMip = 64;
+  std::mt19937_64 rng(9);
+  Image level0(kMip, kMip, 8);
+  std::vector<uint8_t> bytes(size_t(kMip) * kMip * 4);
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = uint8_t(rng());
+  for (size_t i = 0; i < level0.texels.size(); ++i)
+    for (int c = 0; c < 4; ++c) level0.texels[i][size_t(c)] = bytes[i * 4 + size_t(c)];
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, kMip, kMip, 0, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  const std::vector<Image> model = srgb_box_levels(level0, PyramidMode::Cascade);
+  int differ = 0, total = 0, mip_worst = 0;
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  for (int k = 1; k < int(model.size()); ++k) {
+    const Image& want = model[size_t(k)];
+    std::vector<uint8_t> got(size_t(want.width) * want.height * 4);
+    glGetTexImage(GL_TEXTURE_2D, k, GL_RGBA, GL_UNSIGNED_BYTE, got.data());
+    for (size_t i = 0; i < want.texels.size(); ++i)
+      for (int c = 0; c < 3; ++c) {  // (alpha: Mesa's blit rounds it its own way; the model's is build_pyramid's)
+        const int d = std::abs(int(want.texels[i][size_t(c)]) - int(got[i * 4 + size_t(c)]));
+        differ += d > 0;
+        mip_worst = std::max(mip_worst, d);
+        ++total;
+      }
+  }
+  std::printf("  sRGB mipmaps: %d of %d R, G, B codes differ from Mesa's glGenerateMipmap, by at most %d\n", differ,
+              total, mip_worst);
+  EXPECT_LE(mip_worst, 1);
+  glDeleteTextures(1, &tex);
+  OSMesaDestroyContext(ctx);
 }

@@ -1,0 +1,70 @@
+#include "srgb.h"
+
+#include <cmath>
+
+#include "error.h"
+#include "pyramid.h"
+
+namespace tex {
+
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+double linear_to_srgb(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055; }
+
+const std::array<uint16_t, 256>& srgb_decode_table() {
+  static const std::array<uint16_t, 256> table = [] {
+    std::array<uint16_t, 256> t{};
+    for (int c = 0; c < 256; ++c) t[size_t(c)] = uint16_t(std::lround(65535.0 * srgb_to_linear(c / 255.0)));
+    return t;
+  }();
+  return table;
+}
+
+uint8_t encode_srgb8(double linear) { return uint8_t(std::floor(255.0 * linear_to_srgb(linear) + 0.5)); }
+
+std::vector<Image> srgb_box_levels(const Image& level0, PyramidMode mode) {
+  if (level0.channel_bits != 8) throw Error("an sRGB texture holds 8-bit codes, not " + std::to_string(level0.channel_bits) + "-bit channels");
+  // Alpha and the level shapes as build_pyramid makes them; R, G, B replaced below.
+  std::vector<Image> levels = build_pyramid(level0, mode).levels;
+  const int lw0 = log2_exact(level0.width), lh0 = log2_exact(level0.height);
+  // Decoded level 0 (or, in cascade mode, the previous level) in double.
+  auto decode = [](const Image& img) {
+    std::vector<std::array<double, 3>> d(img.texels.size());
+    for (size_t i = 0; i < d.size(); ++i)
+      for (int c = 0; c < 3; ++c) d[i][size_t(c)] = srgb_to_linear(img.texels[i][size_t(c)] / 255.0);
+    return d;
+  };
+  std::vector<std::array<double, 3>> source = decode(level0);
+  int src_w = level0.width, src_h = level0.height;
+  for (int k = 1; k < int(levels.size()); ++k) {
+    Image& out = levels[size_t(k)];
+    const LevelShape s = level_shape(lw0, lh0, k);
+    const int fx = src_w / s.width(), fy = src_h / s.height();
+    for (int y = 0; y < s.height(); ++y)
+      for (int x = 0; x < s.width(); ++x) {
+        std::array<double, 3> sum{};
+        for (int dy = 0; dy < fy; ++dy)
+          for (int dx = 0; dx < fx; ++dx)
+            for (int c = 0; c < 3; ++c) sum[size_t(c)] += source[size_t(y * fy + dy) * size_t(src_w) + size_t(x * fx + dx)][size_t(c)];
+        for (int c = 0; c < 3; ++c) out.at(x, y)[size_t(c)] = encode_srgb8(sum[size_t(c)] / double(fx * fy));
+      }
+    if (mode == PyramidMode::Cascade) {  // the next level from this one's codes
+      source = decode(out);
+      src_w = s.width();
+      src_h = s.height();
+    }
+  }
+  return levels;
+}
+
+Image decode_srgb_level(const Image& srgb8) {
+  const std::array<uint16_t, 256>& table = srgb_decode_table();
+  Image out(srgb8.width, srgb8.height, kLinearBits);
+  for (size_t i = 0; i < out.texels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) out.texels[i][size_t(c)] = table[srgb8.texels[i][size_t(c)] & 255];
+    out.texels[i][3] = uint16_t(srgb8.texels[i][3] * 257);
+  }
+  return out;
+}
+
+}  // namespace tex
