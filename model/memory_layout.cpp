@@ -142,12 +142,12 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
 
 std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout) {
   if (pyramid.log2_w0() != layout.log2_w0() || pyramid.log2_h0() != layout.log2_h0() ||
-      pyramid.levels[0].channel_bits != layout.channel_bits() || int(pyramid.levels.size()) != layout.levels() ||
+      pyramid.memory_channel_bits() != layout.channel_bits() || int(pyramid.levels.size()) != layout.levels() ||
       pyramid.format != layout.format())
     throw Error("the memory layout is for a " + std::to_string(1 << layout.log2_w0()) + "x" +
                 std::to_string(1 << layout.log2_h0()) + " texture of " + std::to_string(layout.channel_bits()) +
                 "-bit channels; the pyramid is " + std::to_string(pyramid.levels[0].width) + "x" +
-                std::to_string(pyramid.levels[0].height) + ", " + std::to_string(pyramid.levels[0].channel_bits) +
+                std::to_string(pyramid.levels[0].height) + ", " + std::to_string(pyramid.memory_channel_bits()) +
                 "-bit, " + std::to_string(pyramid.levels.size()) + " levels" +
                 (pyramid.format != layout.format() ? std::string(", ") + format_info(pyramid.format).name + " not " +
                                                          format_info(layout.format()).name
@@ -170,7 +170,7 @@ std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayo
   const int tb = layout.texel_bytes();
   const uint32_t base = layout.params().base;
   for (int k = 0; k < layout.levels(); ++k) {
-    const Image& img = pyramid.levels[size_t(k)];
+    const Image& img = pyramid.srgb ? pyramid.codes[size_t(k)] : pyramid.levels[size_t(k)];  // what memory holds
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x) {
         const uint32_t ux = uint32_t(x), uy = uint32_t(y);

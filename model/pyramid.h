@@ -27,6 +27,12 @@ struct Pyramid {
   // cached unit reads them; its decoder gives what `levels` holds); RGBA8 has no `blocks`.
   TexelFormat format = TexelFormat::Rgba8;
   std::vector<std::vector<uint8_t>> blocks;
+  // sRGB-encoded texels (model/srgb.h): memory holds 8-bit codes (`codes`, or `blocks` of a block
+  // format), and `levels` hold them decoded, linear unorm16, as the filter takes them.
+  bool srgb = false;
+  std::vector<Image> codes;  // an sRGB RGBA8 texture's levels as stored
+  // Bits per channel in memory: 8 for a block format or an sRGB texture, else the levels' own.
+  int memory_channel_bits() const { return srgb || is_compressed(format) ? 8 : levels[0].channel_bits; }
   int log2_w0() const { return log2_exact(levels[0].width); }
   int log2_h0() const { return log2_exact(levels[0].height); }
   int last_level() const { return int(levels.size()) - 1; }

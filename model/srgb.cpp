@@ -57,6 +57,27 @@ std::vector<Image> srgb_box_levels(const Image& level0, PyramidMode mode) {
   return levels;
 }
 
+Texel encode_srgb_texel(const Texel& linear16) {
+  Texel t;
+  for (int c = 0; c < 3; ++c) t[size_t(c)] = encode_srgb8(linear16[size_t(c)] / 65535.0);
+  t[3] = uint16_t((uint32_t(linear16[3]) * 255 + 32767) / 65535);
+  return t;
+}
+
+Pyramid build_srgb_pyramid(const Image& level0, PyramidMode mode) {
+  Pyramid p;
+  p.mode = mode;
+  p.srgb = true;
+  p.codes = srgb_box_levels(level0, mode);
+  for (const Image& c : p.codes) p.levels.push_back(decode_srgb_level(c));
+  return p;
+}
+
+void decode_srgb_levels(Pyramid& pyramid) {
+  pyramid.srgb = true;
+  for (Image& level : pyramid.levels) level = decode_srgb_level(level);
+}
+
 Image decode_srgb_level(const Image& srgb8) {
   const std::array<uint16_t, 256>& table = srgb_decode_table();
   Image out(srgb8.width, srgb8.height, kLinearBits);

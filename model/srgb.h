@@ -32,4 +32,16 @@ std::vector<Image> srgb_box_levels(const Image& level0, PyramidMode mode);
 // (a * 257); channel_bits kLinearBits.
 Image decode_srgb_level(const Image& srgb8);
 
+// A linear unorm16 result as 8-bit sRGB codes (R, G, B encoded, alpha rounded to 8 bits): what a
+// picture of an sRGB texture's samples stores.
+Texel encode_srgb_texel(const Texel& linear16);
+
+struct Pyramid;
+// The pyramid of an sRGB RGBA8 texture: `codes` = srgb_box_levels(level0, mode), `levels` their
+// decoding (linear unorm16), `srgb` set.
+Pyramid build_srgb_pyramid(const Image& level0, PyramidMode mode);
+// An sRGB pyramid of a block format: `blocks` hold the compressed codes; `levels` are the decoded
+// blocks' codes through the table.
+void decode_srgb_levels(Pyramid& pyramid);
+
 }  // namespace tex

@@ -127,9 +127,10 @@ EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, Output
     }
     if (counter) stats.probes = counter->histogram();
     std::vector<std::string> formats;  // the table's, each once, in table order
-    for (const BoundTexture& t : textures)
-      if (std::find(formats.begin(), formats.end(), format_info(t.pyramid->format).name) == formats.end())
-        formats.push_back(format_info(t.pyramid->format).name);
+    for (const BoundTexture& t : textures) {
+      const std::string name = std::string(format_info(t.pyramid->format).name) + (t.pyramid->srgb ? "_srgb" : "");
+      if (std::find(formats.begin(), formats.end(), name) == formats.end()) formats.push_back(name);
+    }
     stats.format.clear();
     for (const std::string& f : formats) stats.format += (stats.format.empty() ? "" : ",") + f;
     // The engine alone: without waiting for the requests and writing the results.
@@ -267,7 +268,7 @@ FrameFigures frame_figures(const QueryCounts& counts, const EngineStats& stats, 
 }
 
 int line_bytes(const TextureTable& textures, const EngineOptions& options) {
-  const int texel_bytes = textures.at(0).pyramid->levels[0].channel_bits > 8 ? 8 : 4;
+  const int texel_bytes = textures.at(0).pyramid->memory_channel_bits() > 8 ? 8 : 4;
   return options.layout.block_w * options.layout.block_h * texel_bytes;
 }
 

@@ -47,6 +47,7 @@ struct SamplingOptions {
   std::string wrap_u, wrap_v;
   std::string pyramid = "exact";
   std::string format = "rgba8";
+  bool srgb = false;
   CLI::Option* format_opt = nullptr;
   std::string engine = "model";
   double lod_bias = 0, min_lod = -128, max_lod = 127.99;
@@ -88,6 +89,9 @@ struct SamplingOptions {
                                 texel_format_names() + ": how memory holds an image file or pattern (each level "
                                 "compressed: libsquish, Mesa for bc7); a DDS/KTX file keeps its own")
                      ->capture_default_str();
+    cmd.add_flag("--srgb", srgb,
+                 "the texture's R, G, B are sRGB codes: decoded to linear (16 bits) before filtering, its pyramid "
+                 "averaged in linear space, results linear (CSV r16,g16,b16,a16); DDS/KTX sRGB formats set it");
     cmd.add_option("--engine,-e", engine, engine_list())->capture_default_str();
     cmd.add_option("--lod-bias", lod_bias, "added to lambda before the clamp, in levels")->capture_default_str();
     cmd.add_option("--min-lod", min_lod, "lambda clamp, in levels")->capture_default_str();
@@ -175,6 +179,7 @@ struct SamplingOptions {
     if (!parse_texel_format(format, t.format))
       throw Error("unknown --format " + quote_clipped(format) + " (" + texel_format_names() + ")");
     t.format_given = format_opt->count() > 0;
+    t.srgb = srgb;
     return t;
   }
 

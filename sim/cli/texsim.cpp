@@ -13,6 +13,7 @@
 #include "model/error.h"
 #include "model/image.h"
 #include "model/pyramid.h"
+#include "model/srgb.h"
 #include "reports/explore.h"
 #include "reports/figures.h"
 #include "workloads/query_trace.h"
@@ -137,7 +138,9 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
 
   QuerySource source(*reader);
   ReadAheadSource parsed(source);  // parsing in a thread of its own, overlapping the engine
-  CsvTexelWriter writer(result.open());
+  bool srgb = false;  // sRGB textures give linear unorm16 results
+  for (const BoundTexture& t : table) srgb = srgb || t.pyramid->srgb;
+  CsvTexelWriter writer(result.open(), srgb ? "r16,g16,b16,a16" : "r,g,b,a");
   const EngineStats stats = run_engine(o, eo, outputs, trace, table, cfg, parsed, writer, &parsed);
   if (misses) misses->close();
   if (clocks) clocks->close();
@@ -206,7 +209,7 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
   std::vector<uint8_t> image_bytes;
   if (image_out)  // (the layout checks the block, base and size before anything is written)
     image_bytes = memory_image_file(
-        pyr, MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, memory_layout, pyr.format));
+        pyr, MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.memory_channel_bits(), memory_layout, pyr.format));
   if (!dump_dir.empty()) {
     outputs.make_directory(dump_dir, "--dump-levels");
     std::vector<OutputFile*> levels;
@@ -277,7 +280,12 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     VectorSource source(requests);
     VectorSink texels;
     last_stats = run_engine(o, eo, outputs, trace, {{&pyr, cfg.wrap_u, cfg.wrap_v}}, cfg, source, texels);
-    save_image(compose(frame, texels.texels, pyr.levels[0].channel_bits), *images[size_t(f - first)]);
+    if (pyr.srgb) {  // linear results back to sRGB codes for the picture, as a display expects
+      for (Texel& t : texels.texels) t = encode_srgb_texel(t);
+      save_image(compose(frame, texels.texels, 8), *images[size_t(f - first)]);
+    } else {
+      save_image(compose(frame, texels.texels, pyr.levels[0].channel_bits), *images[size_t(f - first)]);
+    }
     samples += requests.size();
   }
   if (misses) misses->close();

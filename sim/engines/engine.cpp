@@ -292,11 +292,15 @@ EngineStats Engine::run(const TextureTable& textures, const SamplerConfig& confi
 
 void require_uncompressed_cached(const TextureTable& textures, const EngineOptions& options, const std::string& engine) {
   if (options.memory != Memory::Cached) return;
-  for (const BoundTexture& t : textures)
+  for (const BoundTexture& t : textures) {
     if (is_compressed(t.pyramid->format))
       throw Error("engine " + engine + ": a " + format_info(t.pyramid->format).name +
                   " texture in the cached unit; the RTL reads RGBA8 lines only so far (its block decoders are "
                   "still to come), use --engine model or --format rgba8");
+    if (t.pyramid->srgb)
+      throw Error("engine " + engine + ": an sRGB texture in the cached unit; the RTL's sRGB table is still to "
+                  "come, use --engine model or --memory onchip (which holds the levels decoded)");
+  }
 }
 
 std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures, const EngineOptions& options) {
@@ -305,11 +309,11 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
                 std::to_string(kMaxTextures));
   std::vector<std::pair<int, int>> sizes;
   std::vector<TexelFormat> formats;
-  const int bits = textures[0].pyramid->levels[0].channel_bits;
+  const int bits = textures[0].pyramid->memory_channel_bits();
   for (const BoundTexture& t : textures) {
-    if (t.pyramid->levels[0].channel_bits != bits)
-      throw Error("textures of one frame must have the same channel width (" + std::to_string(bits) + " and " +
-                  std::to_string(t.pyramid->levels[0].channel_bits) + " bits)");
+    if (t.pyramid->memory_channel_bits() != bits)
+      throw Error("textures of one frame must have the same channel width in memory (" + std::to_string(bits) +
+                  " and " + std::to_string(t.pyramid->memory_channel_bits()) + " bits)");
     sizes.emplace_back(t.pyramid->log2_w0(), t.pyramid->log2_h0());
     formats.push_back(t.pyramid->format);
   }

@@ -77,7 +77,10 @@ UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& op
     log2_w = std::max(log2_w, t.pyramid->log2_w0());
     log2_h = std::max(log2_h, t.pyramid->log2_h0());
   }
-  const int cw = textures.empty() ? 8 : textures[0].pyramid->levels[0].channel_bits;
+  // (in memory for the cached unit; on chip the levels as the filter takes them: sRGB decoded)
+  const int cw = textures.empty()                  ? 8
+                 : options.memory == Memory::Cached ? textures[0].pyramid->memory_channel_bits()
+                                                    : textures[0].pyramid->levels[0].channel_bits;
   beat_bytes = 16;
   try {
     const rtl::RtlConfig& rc = rtl::smallest_config_for(log2_w, log2_h, cw, options.memory, options.layout.block_w,

@@ -421,7 +421,10 @@ void QueryTraceWriter::write(const Query& q) {
   std::fwrite(line.data(), 1, line.size(), out_);
 }
 
-CsvTexelWriter::CsvTexelWriter(std::FILE* out) : out_(out) { std::fputs("r,g,b,a\n", out_); }
+CsvTexelWriter::CsvTexelWriter(std::FILE* out, const char* header) : out_(out) {
+  std::fputs(header, out_);
+  std::fputc('\n', out_);
+}
 
 void CsvTexelWriter::write(const Texel* texels, size_t n) {
   char buf[4096 + 32];

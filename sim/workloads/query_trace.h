@@ -115,10 +115,11 @@ class QueryTraceWriter {
   std::FILE* out_;
 };
 
-// Writes `r,g,b,a` then one line per texel.
+// Writes `header` (`r,g,b,a`; `r16,g16,b16,a16` for linear unorm16 results of sRGB textures) then
+// one line per texel.
 class CsvTexelWriter final : public TexelSink {
  public:
-  explicit CsvTexelWriter(std::FILE* out);
+  explicit CsvTexelWriter(std::FILE* out, const char* header = "r,g,b,a");
   void write(const Texel* texels, size_t n) override;
 
  private:

@@ -418,8 +418,7 @@ Image scene_texture(const SceneFrame& frame, const std::string& user_spec, bool 
 }
 
 Pyramid scene_pyramid(const SceneFrame& frame, const std::string& user_spec, const TextureOptions& options) {
-  if (frame.own_texture || user_spec.empty())
-    return compress_pyramid(build_pyramid(scene_texture(frame, user_spec, options.resize), options.mode), options.format);
+  if (frame.own_texture || user_spec.empty()) return make_pyramid(scene_texture(frame, user_spec, options.resize), options);
   return load_pyramid(user_spec, options);
 }
 

@@ -8,6 +8,7 @@
 
 #include "model/error.h"
 #include "model/pyramid.h"
+#include "model/srgb.h"
 #include "workloads/image_module.h"
 #include "workloads/texture_io.h"
 
@@ -371,19 +372,46 @@ Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format) {
   return pyramid;
 }
 
+namespace {
+
+// The sRGB pyramid of code levels (8-bit, compressed in `blocks` for a block format): the codes
+// kept for memory, the levels decoded to linear for the filter.
+Pyramid finish_srgb(Pyramid p) {
+  if (!is_compressed(p.format)) p.codes = p.levels;
+  decode_srgb_levels(p);
+  return p;
+}
+
+// The code pyramid of an sRGB level 0 (not yet decoded), box-filtered in linear space.
+Pyramid srgb_code_pyramid(const Image& level0, PyramidMode mode) {
+  Pyramid p;
+  p.mode = mode;
+  p.levels = srgb_box_levels(level0, mode);
+  return p;
+}
+
+}  // namespace
+
+Pyramid make_pyramid(Image level0, const TextureOptions& o) {
+  if (!o.srgb) return compress_pyramid(build_pyramid(std::move(level0), o.mode), o.format);
+  if (!format_info(o.format).srgb_allowed)
+    throw Error(std::string("--srgb: an sRGB ") + format_info(o.format).name + " does not exist (" +
+                format_info(o.format).name + " holds data, not colour)");
+  return finish_srgb(compress_pyramid(srgb_code_pyramid(level0, o.mode), o.format));
+}
+
 Pyramid load_pyramid(const std::string& spec, const TextureOptions& o) {
-  if (!is_texture_file(spec)) return compress_pyramid(build_pyramid(load_texture(spec, o.resize), o.mode), o.format);
+  if (!is_texture_file(spec)) return make_pyramid(load_texture(spec, o.resize), o);
   const TextureFile file = read_texture_file(spec);
   if (o.format_given && o.format != file.format)
     throw Error(spec + ": --format " + format_info(o.format).name + ", but the file holds " + file.format_name +
                 " (a texture file keeps its format)");
+  if (o.srgb && !file.srgb)
+    throw Error(spec + ": --srgb, but the file holds " + file.format_name + ", not an sRGB format (a texture file keeps its own)");
   return pyramid_of(file, o.mode, spec);
 }
 
 Pyramid pyramid_of(const TextureFile& file, PyramidMode mode, const std::string& name) {
-  if (file.srgb)  // (filtering the encoded values would darken every blend: refused, not approximated)
-    throw Error(name + ": " + file.format_name + " is an sRGB format; decoding sRGB to linear before filtering "
-                "is not built yet (store the texture as UNORM to sample its values as they are)");
   auto decoded = [&](int k) {
     const LevelShape s = level_shape(log2_exact(file.width), log2_exact(file.height), k);
     if (!is_compressed(file.format)) {
@@ -395,12 +423,13 @@ Pyramid pyramid_of(const TextureFile& file, PyramidMode mode, const std::string&
     return decode_level(file.format, file.levels[size_t(k)].data(), s.width(), s.height());
   };
   if (file.levels.size() == 1) {
-    Pyramid p = compress_pyramid(build_pyramid(decoded(0), mode), file.format);
+    Pyramid p = compress_pyramid(file.srgb ? srgb_code_pyramid(decoded(0), mode) : build_pyramid(decoded(0), mode),
+                                 file.format);
     if (is_compressed(file.format)) {  // level 0 as the file has it
       p.blocks[0] = file.levels[0];
       p.levels[0] = decoded(0);
     }
-    return p;
+    return file.srgb ? finish_srgb(std::move(p)) : p;
   }
   Pyramid p;
   p.mode = mode;
@@ -409,7 +438,7 @@ Pyramid pyramid_of(const TextureFile& file, PyramidMode mode, const std::string&
     p.levels.push_back(decoded(k));
     if (is_compressed(file.format)) p.blocks.push_back(file.levels[size_t(k)]);
   }
-  return p;
+  return file.srgb ? finish_srgb(std::move(p)) : p;
 }
 
 }  // namespace tex

@@ -30,9 +30,9 @@ bool is_texture_file(const std::string& path);
 // chain (the level count named), KTX2 supercompression, sRGB on BC4/BC5.
 TextureFile read_texture_file(const std::string& path);
 
-// The pyramid of a texture file: its levels as stored, decoded for the sampler (an sRGB format is
-// refused: its decoding to linear before the filter is not built yet). A file with one level gets
-// the rest of the chain from the box filter (`mode`), each level compressed again
+// The pyramid of a texture file: its levels as stored, decoded for the sampler (an sRGB format's
+// codes decoded to linear: model/srgb.h). A file with one level gets the rest of the chain from
+// the box filter (`mode`; in linear space for sRGB), each level compressed again
 // (compress_pyramid). Throws tex::Error.
 Pyramid pyramid_of(const TextureFile& file, PyramidMode mode, const std::string& name);
 
@@ -47,7 +47,12 @@ struct TextureOptions {
   PyramidMode mode = PyramidMode::Exact;
   TexelFormat format = TexelFormat::Rgba8;
   bool format_given = false;  // --format: for an image file or pattern; a texture file has its own
+  bool srgb = false;          // --srgb: an image file's or pattern's texels are sRGB codes
 };
+
+// The pyramid of level 0 as the options make it: the box pyramid (in linear space for sRGB:
+// model/srgb.h), each level compressed to options.format. Throws tex::Error (sRGB BC4 or BC5).
+Pyramid make_pyramid(Image level0, const TextureOptions& options);
 
 // A texture's pyramid: a DDS/KTX file's levels and format, or an image file or pattern
 // (workloads/texture_io.h) with its box pyramid, compressed to options.format. Throws tex::Error.

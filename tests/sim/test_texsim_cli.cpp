@@ -594,3 +594,32 @@ TEST_F(TexsimCli, BlockFormatsThroughTheCli) {
   expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --format bc1 --memory cached -e rtl", "x.csv",
                        {"engine rtl", "bc1"});
 }
+
+// --srgb: results are linear unorm16 under their own header, the pyramid averages in linear space
+// (a checker's far levels are brighter than the codes' mean), render writes sRGB codes again,
+// and what has no sRGB form or no RTL yet is one clean error.
+TEST_F(TexsimCli, SrgbTexturesThroughTheCli) {
+  queries("u,v,lod\n0.5,0.5,6\n0.25,0.25,0\n");
+  write_image(dir / "bw.png", 64, 64, 3, [](int x, int y, int) { return (x / 8 + y / 8) % 2 ? 255 : 0; });
+  const Result r = run("sample -t bw.png --srgb -q q.csv -o s.csv --stats s.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string header;
+  const auto rows = read_csv_rows(dir / "s.csv", header);
+  EXPECT_EQ(header, "r16,g16,b16,a16");
+  ASSERT_EQ(rows.size(), 2u);
+  // The 1x1 level of a black and white checker: linear one half, code 188, decoded 32957 (averaging
+  // the codes would give 128, linear 0.216).
+  EXPECT_EQ(rows[0][0], 32957);
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir / "s.json"))["format"], "rgba8_srgb");
+  const Result plain = run("sample -t bw.png -q q.csv -o p.csv");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(read_csv_rows(dir / "p.csv", header)[0][0], 128);
+  EXPECT_EQ(header, "r,g,b,a");
+  const Result png = run("render --scene plane --width 64 --height 48 -t checker:64x64 --srgb -o f.png");
+  ASSERT_EQ(png.exit_code, 0) << png.err;
+  int w = 0, h = 0;
+  EXPECT_FALSE(read_image(dir / "f.png", w, h).empty());
+  expect_clean_failure("sample -t checker:64x64 --srgb --format bc5 -q q.csv -o x.csv", "x.csv", {"--srgb", "bc5"});
+  expect_clean_failure("sample -t checker:64x64 --srgb --memory cached -e rtl -q q.csv -o x.csv", "x.csv",
+                       {"engine rtl", "sRGB"});
+}

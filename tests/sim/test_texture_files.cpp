@@ -12,6 +12,7 @@
 #include <random>
 
 #include "model/error.h"
+#include "model/srgb.h"
 #include "workloads/texture_files.h"
 
 using namespace tex;
@@ -213,14 +214,25 @@ TEST(TextureFiles, BadFilesNameTheProblem) {
   bad_size[64] = 100;  // level 0's imageSize
   expect_error("size.ktx", bad_size, "level 0 has 100 bytes");
   expect_error("short.dds", {'D', 'D', 'S', ' ', 124, 0}, "truncated");
-  // An sRGB file is read, but not sampled as if it were linear.
+  // An sRGB file: its blocks kept, its levels decoded to linear (16 bits) for the filter; --srgb
+  // on a file that is not sRGB is refused.
   save(s / "srgb.dds", dds("DX10", 72, 16, 16, bc1));
   EXPECT_TRUE(read_texture_file((s / "srgb.dds").string()).srgb);
+  const Pyramid p = pyramid_of(read_texture_file((s / "srgb.dds").string()), PyramidMode::Exact, "srgb.dds");
+  EXPECT_TRUE(p.srgb);
+  EXPECT_EQ(p.blocks, bc1);
+  EXPECT_EQ(p.levels[0].channel_bits, 16);
+  const Image codes = decode_level(TexelFormat::Bc1, bc1[0].data(), 16, 16);
+  EXPECT_EQ(p.levels[0].at(5, 7)[0], srgb_decode_table()[codes.at(5, 7)[0]]);
+  EXPECT_EQ(p.memory_channel_bits(), 8);
+  TextureOptions srgb;
+  srgb.srgb = true;
+  save(s / "unorm.dds", dds("DXT1", 0, 16, 16, bc1));
   try {
-    pyramid_of(read_texture_file((s / "srgb.dds").string()), PyramidMode::Exact, "srgb.dds");
-    ADD_FAILURE() << "sRGB sampled as linear";
+    load_pyramid((s / "unorm.dds").string(), srgb);
+    ADD_FAILURE() << "--srgb on a UNORM file";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("DXGI_FORMAT_BC1_UNORM_SRGB is an sRGB format"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--srgb, but the file holds DXT1"), std::string::npos) << e.what();
   }
 }
 

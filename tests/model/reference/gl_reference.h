@@ -48,12 +48,15 @@ struct GlSampler {
   tex::MipMode mip = tex::MipMode::Linear;
   tex::Wrap wrap_s = tex::Wrap::Repeat, wrap_t = tex::Wrap::Repeat;
   double lod_bias = 0, min_lod = -1000, max_lod = 1000;
+  // A texel's stored value to the value filtered (sRGB: decoded in double); none: as stored.
+  double (*decode)(int channel, double stored) = nullptr;
 
   int q() const { return int(levels->size()) - 1; }
 
   double texel_value(int k, int64_t i, int64_t j, int c) const {
     const tex::Image& img = (*levels)[k];
-    return img.at(int(gl_wrap(i, img.width, wrap_s)), int(gl_wrap(j, img.height, wrap_t)))[c];
+    const double v = img.at(int(gl_wrap(i, img.width, wrap_s)), int(gl_wrap(j, img.height, wrap_t)))[c];
+    return decode ? decode(c, v) : v;
   }
 
   // §8.14.2: NEAREST takes the texel containing (u', v') = (s w, t h); LINEAR weights the 2x2
