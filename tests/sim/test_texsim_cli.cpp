@@ -615,6 +615,16 @@ TEST_F(TexsimCli, SrgbTexturesThroughTheCli) {
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_EQ(read_csv_rows(dir / "p.csv", header)[0][0], 128);
   EXPECT_EQ(header, "r,g,b,a");
+  // On chip the RTL holds the decoded levels (a 16-bit configuration): the model's results.
+  write_image(dir / "bw16.png", 16, 16, 3, [](int x, int y, int) { return (x / 2 + y / 2) % 2 ? 255 : 0; });
+  std::string q2 = "u,v,lod\n";
+  for (int i = 0; i < 64; ++i) q2 += std::to_string(i * 0.037) + "," + std::to_string(i * 0.051) + "," + std::to_string(i % 5 - 0.5) + "\n";
+  write_text(dir / "q2.csv", q2);
+  const Result m = run("sample -t bw16.png --srgb -q q2.csv -o m.csv");
+  const Result t = run("sample -t bw16.png --srgb -q q2.csv -o t.csv -e rtl --stalls random");
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_EQ(read_text(dir / "m.csv"), read_text(dir / "t.csv"));
   const Result png = run("render --scene plane --width 64 --height 48 -t checker:64x64 --srgb -o f.png");
   ASSERT_EQ(png.exit_code, 0) << png.err;
   int w = 0, h = 0;
