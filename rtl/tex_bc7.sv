@@ -1,8 +1,9 @@
 // tex_bc7: one texel of a BC7 block (ARB_texture_compression_bptc; docs/numerics.md
 // "Block-compressed formats"). The mode is the number of zeros below the low byte's lowest one;
-// one tex_bc7_mode per mode reads the block's fields as that mode, the block's own is kept, and
-// each channel is ((64 - w) e0 + w e1 + 32) >> 6, then the rotation swaps A with R, G or B. The
-// reserved mode 8 (low byte 0) gives (0, 0, 0, 0), as D3D11 says.
+// one tex_bc7_mode per mode reads the block's fields as that mode, the block's own is kept, its
+// indices are read by one shifter (for all modes: the 128-bit shifts are most of the area), the
+// weights looked up, and each channel is ((64 - w) e0 + w e1 + 32) >> 6; then the rotation swaps
+// A with R, G or B. The reserved mode 8 (low byte 0) gives (0, 0, 0, 0), as D3D11 says.
 // Handshake: none (combinational; the cached unit's taps). Latency: 0. Throughput: 1 per clock.
 // Ports:
 //   block : the 128-bit block, byte i at bits 8i+7..8i (little-endian, as memory holds it)
@@ -13,44 +14,466 @@ module tex_bc7 (
   input  logic [3:0]   texel,
   output logic [31:0]  rgba
 );
-  // Each mode's reading, mode m at [m * width +: width] (flat: Yosys keeps wires, not memories).
-  logic [8*32-1:0] e0, e1;
-  logic [8*7-1:0]  colour_w, alpha_w;
-  logic [8*2-1:0]  rotation;
-  generate
-    for (genvar m = 0; m < 8; m++) begin : g_mode
-      tex_bc7_mode #(.MODE(m)) u_mode (
-        .block(block), .texel(texel), .e0(e0[32 * m +: 32]), .e1(e1[32 * m +: 32]), .colour_w(colour_w[7 * m +: 7]),
-        .alpha_w(alpha_w[7 * m +: 7]), .rotation(rotation[2 * m +: 2]));
-    end
-  endgenerate
-
   logic [2:0]  mode;
   logic        reserved;
-  logic [31:0] a, b, mixed;
-  logic [6:0]  wc, wa;
-  logic [1:0]  rot;
   always_comb begin
     mode = 3'd0;
     for (int m = 7; m >= 0; m--)
       if (block[m]) mode = 3'(m);
   end
   assign reserved = block[7:0] == 8'd0;
+
+  // The partition (modes 0: 4 bits, 1, 2, 3, 7: 6 bits after the mode bits), read once: the
+  // texel's subset, the anchors (an anchor's index has one bit less) for whichever mode it is.
+  // partition2 (Table.P2: bit t = the subset of texel t)
+  function automatic logic [15:0] partition2(input logic [5:0] p);
+    case (p)
+      6'd0: partition2 = 16'hcccc;
+      6'd1: partition2 = 16'h8888;
+      6'd2: partition2 = 16'heeee;
+      6'd3: partition2 = 16'hecc8;
+      6'd4: partition2 = 16'hc880;
+      6'd5: partition2 = 16'hfeec;
+      6'd6: partition2 = 16'hfec8;
+      6'd7: partition2 = 16'hec80;
+      6'd8: partition2 = 16'hc800;
+      6'd9: partition2 = 16'hffec;
+      6'd10: partition2 = 16'hfe80;
+      6'd11: partition2 = 16'he800;
+      6'd12: partition2 = 16'hffe8;
+      6'd13: partition2 = 16'hff00;
+      6'd14: partition2 = 16'hfff0;
+      6'd15: partition2 = 16'hf000;
+      6'd16: partition2 = 16'hf710;
+      6'd17: partition2 = 16'h008e;
+      6'd18: partition2 = 16'h7100;
+      6'd19: partition2 = 16'h08ce;
+      6'd20: partition2 = 16'h008c;
+      6'd21: partition2 = 16'h7310;
+      6'd22: partition2 = 16'h3100;
+      6'd23: partition2 = 16'h8cce;
+      6'd24: partition2 = 16'h088c;
+      6'd25: partition2 = 16'h3110;
+      6'd26: partition2 = 16'h6666;
+      6'd27: partition2 = 16'h366c;
+      6'd28: partition2 = 16'h17e8;
+      6'd29: partition2 = 16'h0ff0;
+      6'd30: partition2 = 16'h718e;
+      6'd31: partition2 = 16'h399c;
+      6'd32: partition2 = 16'haaaa;
+      6'd33: partition2 = 16'hf0f0;
+      6'd34: partition2 = 16'h5a5a;
+      6'd35: partition2 = 16'h33cc;
+      6'd36: partition2 = 16'h3c3c;
+      6'd37: partition2 = 16'h55aa;
+      6'd38: partition2 = 16'h9696;
+      6'd39: partition2 = 16'ha55a;
+      6'd40: partition2 = 16'h73ce;
+      6'd41: partition2 = 16'h13c8;
+      6'd42: partition2 = 16'h324c;
+      6'd43: partition2 = 16'h3bdc;
+      6'd44: partition2 = 16'h6996;
+      6'd45: partition2 = 16'hc33c;
+      6'd46: partition2 = 16'h9966;
+      6'd47: partition2 = 16'h0660;
+      6'd48: partition2 = 16'h0272;
+      6'd49: partition2 = 16'h04e4;
+      6'd50: partition2 = 16'h4e40;
+      6'd51: partition2 = 16'h2720;
+      6'd52: partition2 = 16'hc936;
+      6'd53: partition2 = 16'h936c;
+      6'd54: partition2 = 16'h39c6;
+      6'd55: partition2 = 16'h639c;
+      6'd56: partition2 = 16'h9336;
+      6'd57: partition2 = 16'h9cc6;
+      6'd58: partition2 = 16'h817e;
+      6'd59: partition2 = 16'he718;
+      6'd60: partition2 = 16'hccf0;
+      6'd61: partition2 = 16'h0fcc;
+      6'd62: partition2 = 16'h7744;
+      6'd63: partition2 = 16'hee22;
+      default: partition2 = '0;
+    endcase
+  endfunction
+  // partition3 (Table.P3: bits 2t+1..2t = the subset of texel t)
+  function automatic logic [31:0] partition3(input logic [5:0] p);
+    case (p)
+      6'd0: partition3 = 32'haa685050;
+      6'd1: partition3 = 32'h6a5a5040;
+      6'd2: partition3 = 32'h5a5a4200;
+      6'd3: partition3 = 32'h5450a0a8;
+      6'd4: partition3 = 32'ha5a50000;
+      6'd5: partition3 = 32'ha0a05050;
+      6'd6: partition3 = 32'h5555a0a0;
+      6'd7: partition3 = 32'h5a5a5050;
+      6'd8: partition3 = 32'haa550000;
+      6'd9: partition3 = 32'haa555500;
+      6'd10: partition3 = 32'haaaa5500;
+      6'd11: partition3 = 32'h90909090;
+      6'd12: partition3 = 32'h94949494;
+      6'd13: partition3 = 32'ha4a4a4a4;
+      6'd14: partition3 = 32'ha9a59450;
+      6'd15: partition3 = 32'h2a0a4250;
+      6'd16: partition3 = 32'ha5945040;
+      6'd17: partition3 = 32'h0a425054;
+      6'd18: partition3 = 32'ha5a5a500;
+      6'd19: partition3 = 32'h55a0a0a0;
+      6'd20: partition3 = 32'ha8a85454;
+      6'd21: partition3 = 32'h6a6a4040;
+      6'd22: partition3 = 32'ha4a45000;
+      6'd23: partition3 = 32'h1a1a0500;
+      6'd24: partition3 = 32'h0050a4a4;
+      6'd25: partition3 = 32'haaa59090;
+      6'd26: partition3 = 32'h14696914;
+      6'd27: partition3 = 32'h69691400;
+      6'd28: partition3 = 32'ha08585a0;
+      6'd29: partition3 = 32'haa821414;
+      6'd30: partition3 = 32'h50a4a450;
+      6'd31: partition3 = 32'h6a5a0200;
+      6'd32: partition3 = 32'ha9a58000;
+      6'd33: partition3 = 32'h5090a0a8;
+      6'd34: partition3 = 32'ha8a09050;
+      6'd35: partition3 = 32'h24242424;
+      6'd36: partition3 = 32'h00aa5500;
+      6'd37: partition3 = 32'h24924924;
+      6'd38: partition3 = 32'h24499224;
+      6'd39: partition3 = 32'h50a50a50;
+      6'd40: partition3 = 32'h500aa550;
+      6'd41: partition3 = 32'haaaa4444;
+      6'd42: partition3 = 32'h66660000;
+      6'd43: partition3 = 32'ha5a0a5a0;
+      6'd44: partition3 = 32'h50a050a0;
+      6'd45: partition3 = 32'h69286928;
+      6'd46: partition3 = 32'h44aaaa44;
+      6'd47: partition3 = 32'h66666600;
+      6'd48: partition3 = 32'haa444444;
+      6'd49: partition3 = 32'h54a854a8;
+      6'd50: partition3 = 32'h95809580;
+      6'd51: partition3 = 32'h96969600;
+      6'd52: partition3 = 32'ha85454a8;
+      6'd53: partition3 = 32'h80959580;
+      6'd54: partition3 = 32'haa141414;
+      6'd55: partition3 = 32'h96960000;
+      6'd56: partition3 = 32'haaaa1414;
+      6'd57: partition3 = 32'ha05050a0;
+      6'd58: partition3 = 32'ha0a5a5a0;
+      6'd59: partition3 = 32'h96000000;
+      6'd60: partition3 = 32'h40804080;
+      6'd61: partition3 = 32'ha9a8a9a8;
+      6'd62: partition3 = 32'haaaaaa44;
+      6'd63: partition3 = 32'h2a4a5254;
+      default: partition3 = '0;
+    endcase
+  endfunction
+  // anchor2 (Table.A2: the anchor texel of subset 1 of 2)
+  function automatic logic [3:0] anchor2(input logic [5:0] p);
+    case (p)
+      6'd0: anchor2 = 4'd15;
+      6'd1: anchor2 = 4'd15;
+      6'd2: anchor2 = 4'd15;
+      6'd3: anchor2 = 4'd15;
+      6'd4: anchor2 = 4'd15;
+      6'd5: anchor2 = 4'd15;
+      6'd6: anchor2 = 4'd15;
+      6'd7: anchor2 = 4'd15;
+      6'd8: anchor2 = 4'd15;
+      6'd9: anchor2 = 4'd15;
+      6'd10: anchor2 = 4'd15;
+      6'd11: anchor2 = 4'd15;
+      6'd12: anchor2 = 4'd15;
+      6'd13: anchor2 = 4'd15;
+      6'd14: anchor2 = 4'd15;
+      6'd15: anchor2 = 4'd15;
+      6'd16: anchor2 = 4'd15;
+      6'd17: anchor2 = 4'd2;
+      6'd18: anchor2 = 4'd8;
+      6'd19: anchor2 = 4'd2;
+      6'd20: anchor2 = 4'd2;
+      6'd21: anchor2 = 4'd8;
+      6'd22: anchor2 = 4'd8;
+      6'd23: anchor2 = 4'd15;
+      6'd24: anchor2 = 4'd2;
+      6'd25: anchor2 = 4'd8;
+      6'd26: anchor2 = 4'd2;
+      6'd27: anchor2 = 4'd2;
+      6'd28: anchor2 = 4'd8;
+      6'd29: anchor2 = 4'd8;
+      6'd30: anchor2 = 4'd2;
+      6'd31: anchor2 = 4'd2;
+      6'd32: anchor2 = 4'd15;
+      6'd33: anchor2 = 4'd15;
+      6'd34: anchor2 = 4'd6;
+      6'd35: anchor2 = 4'd8;
+      6'd36: anchor2 = 4'd2;
+      6'd37: anchor2 = 4'd8;
+      6'd38: anchor2 = 4'd15;
+      6'd39: anchor2 = 4'd15;
+      6'd40: anchor2 = 4'd2;
+      6'd41: anchor2 = 4'd8;
+      6'd42: anchor2 = 4'd2;
+      6'd43: anchor2 = 4'd2;
+      6'd44: anchor2 = 4'd2;
+      6'd45: anchor2 = 4'd15;
+      6'd46: anchor2 = 4'd15;
+      6'd47: anchor2 = 4'd6;
+      6'd48: anchor2 = 4'd6;
+      6'd49: anchor2 = 4'd2;
+      6'd50: anchor2 = 4'd6;
+      6'd51: anchor2 = 4'd8;
+      6'd52: anchor2 = 4'd15;
+      6'd53: anchor2 = 4'd15;
+      6'd54: anchor2 = 4'd2;
+      6'd55: anchor2 = 4'd2;
+      6'd56: anchor2 = 4'd15;
+      6'd57: anchor2 = 4'd15;
+      6'd58: anchor2 = 4'd15;
+      6'd59: anchor2 = 4'd15;
+      6'd60: anchor2 = 4'd15;
+      6'd61: anchor2 = 4'd2;
+      6'd62: anchor2 = 4'd2;
+      6'd63: anchor2 = 4'd15;
+      default: anchor2 = '0;
+    endcase
+  endfunction
+  // anchor3a (Table.A3a: the anchor texel of subset 1 of 3)
+  function automatic logic [3:0] anchor3a(input logic [5:0] p);
+    case (p)
+      6'd0: anchor3a = 4'd3;
+      6'd1: anchor3a = 4'd3;
+      6'd2: anchor3a = 4'd15;
+      6'd3: anchor3a = 4'd15;
+      6'd4: anchor3a = 4'd8;
+      6'd5: anchor3a = 4'd3;
+      6'd6: anchor3a = 4'd15;
+      6'd7: anchor3a = 4'd15;
+      6'd8: anchor3a = 4'd8;
+      6'd9: anchor3a = 4'd8;
+      6'd10: anchor3a = 4'd6;
+      6'd11: anchor3a = 4'd6;
+      6'd12: anchor3a = 4'd6;
+      6'd13: anchor3a = 4'd5;
+      6'd14: anchor3a = 4'd3;
+      6'd15: anchor3a = 4'd3;
+      6'd16: anchor3a = 4'd3;
+      6'd17: anchor3a = 4'd3;
+      6'd18: anchor3a = 4'd8;
+      6'd19: anchor3a = 4'd15;
+      6'd20: anchor3a = 4'd3;
+      6'd21: anchor3a = 4'd3;
+      6'd22: anchor3a = 4'd6;
+      6'd23: anchor3a = 4'd10;
+      6'd24: anchor3a = 4'd5;
+      6'd25: anchor3a = 4'd8;
+      6'd26: anchor3a = 4'd8;
+      6'd27: anchor3a = 4'd6;
+      6'd28: anchor3a = 4'd8;
+      6'd29: anchor3a = 4'd5;
+      6'd30: anchor3a = 4'd15;
+      6'd31: anchor3a = 4'd15;
+      6'd32: anchor3a = 4'd8;
+      6'd33: anchor3a = 4'd15;
+      6'd34: anchor3a = 4'd3;
+      6'd35: anchor3a = 4'd5;
+      6'd36: anchor3a = 4'd6;
+      6'd37: anchor3a = 4'd10;
+      6'd38: anchor3a = 4'd8;
+      6'd39: anchor3a = 4'd15;
+      6'd40: anchor3a = 4'd15;
+      6'd41: anchor3a = 4'd3;
+      6'd42: anchor3a = 4'd15;
+      6'd43: anchor3a = 4'd5;
+      6'd44: anchor3a = 4'd15;
+      6'd45: anchor3a = 4'd15;
+      6'd46: anchor3a = 4'd15;
+      6'd47: anchor3a = 4'd15;
+      6'd48: anchor3a = 4'd3;
+      6'd49: anchor3a = 4'd15;
+      6'd50: anchor3a = 4'd5;
+      6'd51: anchor3a = 4'd5;
+      6'd52: anchor3a = 4'd5;
+      6'd53: anchor3a = 4'd8;
+      6'd54: anchor3a = 4'd5;
+      6'd55: anchor3a = 4'd10;
+      6'd56: anchor3a = 4'd5;
+      6'd57: anchor3a = 4'd10;
+      6'd58: anchor3a = 4'd8;
+      6'd59: anchor3a = 4'd13;
+      6'd60: anchor3a = 4'd15;
+      6'd61: anchor3a = 4'd12;
+      6'd62: anchor3a = 4'd3;
+      6'd63: anchor3a = 4'd3;
+      default: anchor3a = '0;
+    endcase
+  endfunction
+  // anchor3b (Table.A3b: the anchor texel of subset 2 of 3)
+  function automatic logic [3:0] anchor3b(input logic [5:0] p);
+    case (p)
+      6'd0: anchor3b = 4'd15;
+      6'd1: anchor3b = 4'd8;
+      6'd2: anchor3b = 4'd8;
+      6'd3: anchor3b = 4'd3;
+      6'd4: anchor3b = 4'd15;
+      6'd5: anchor3b = 4'd15;
+      6'd6: anchor3b = 4'd3;
+      6'd7: anchor3b = 4'd8;
+      6'd8: anchor3b = 4'd15;
+      6'd9: anchor3b = 4'd15;
+      6'd10: anchor3b = 4'd15;
+      6'd11: anchor3b = 4'd15;
+      6'd12: anchor3b = 4'd15;
+      6'd13: anchor3b = 4'd15;
+      6'd14: anchor3b = 4'd15;
+      6'd15: anchor3b = 4'd8;
+      6'd16: anchor3b = 4'd15;
+      6'd17: anchor3b = 4'd8;
+      6'd18: anchor3b = 4'd15;
+      6'd19: anchor3b = 4'd3;
+      6'd20: anchor3b = 4'd15;
+      6'd21: anchor3b = 4'd8;
+      6'd22: anchor3b = 4'd15;
+      6'd23: anchor3b = 4'd8;
+      6'd24: anchor3b = 4'd3;
+      6'd25: anchor3b = 4'd15;
+      6'd26: anchor3b = 4'd6;
+      6'd27: anchor3b = 4'd10;
+      6'd28: anchor3b = 4'd15;
+      6'd29: anchor3b = 4'd15;
+      6'd30: anchor3b = 4'd10;
+      6'd31: anchor3b = 4'd8;
+      6'd32: anchor3b = 4'd15;
+      6'd33: anchor3b = 4'd3;
+      6'd34: anchor3b = 4'd15;
+      6'd35: anchor3b = 4'd10;
+      6'd36: anchor3b = 4'd10;
+      6'd37: anchor3b = 4'd8;
+      6'd38: anchor3b = 4'd9;
+      6'd39: anchor3b = 4'd10;
+      6'd40: anchor3b = 4'd6;
+      6'd41: anchor3b = 4'd15;
+      6'd42: anchor3b = 4'd8;
+      6'd43: anchor3b = 4'd15;
+      6'd44: anchor3b = 4'd3;
+      6'd45: anchor3b = 4'd6;
+      6'd46: anchor3b = 4'd6;
+      6'd47: anchor3b = 4'd8;
+      6'd48: anchor3b = 4'd15;
+      6'd49: anchor3b = 4'd3;
+      6'd50: anchor3b = 4'd15;
+      6'd51: anchor3b = 4'd15;
+      6'd52: anchor3b = 4'd15;
+      6'd53: anchor3b = 4'd15;
+      6'd54: anchor3b = 4'd15;
+      6'd55: anchor3b = 4'd15;
+      6'd56: anchor3b = 4'd15;
+      6'd57: anchor3b = 4'd15;
+      6'd58: anchor3b = 4'd15;
+      6'd59: anchor3b = 4'd15;
+      6'd60: anchor3b = 4'd3;
+      6'd61: anchor3b = 4'd15;
+      6'd62: anchor3b = 4'd15;
+      6'd63: anchor3b = 4'd8;
+      default: anchor3b = '0;
+    endcase
+  endfunction
+
+  logic [1:0]  subsets;         // of the mode: 1..3
+  logic [5:0]  part;
+  logic [15:0] p2;
+  logic [31:0] p3;
+  logic [1:0]  subset, earlier;
+  logic [3:0]  anchor_1, anchor_2;
+  logic        is_anchor;
+  always_comb begin
+    case (mode)
+      3'd0:    begin subsets = 2'd3; part = {2'd0, block[4:1]}; end
+      3'd1:    begin subsets = 2'd2; part = block[7:2];         end
+      3'd2:    begin subsets = 2'd3; part = block[8:3];         end
+      3'd3:    begin subsets = 2'd2; part = block[9:4];         end
+      3'd7:    begin subsets = 2'd2; part = block[13:8];        end
+      default: begin subsets = 2'd1; part = 6'd0;               end
+    endcase
+  end
+  assign p2        = partition2(part);
+  assign p3        = partition3(part);
+  assign subset    = subsets == 2'd1 ? 2'd0 : subsets == 2'd2 ? {1'b0, p2[texel]} : p3[2 * texel +: 2];
+  assign anchor_1  = subsets == 2'd2 ? anchor2(part) : anchor3a(part);
+  assign anchor_2  = anchor3b(part);
+  assign is_anchor = texel == 4'd0 || (subsets != 2'd1 && texel == anchor_1) || (subsets == 2'd3 && texel == anchor_2);
+  assign earlier   = 2'(subsets != 2'd1 && anchor_1 < texel) + 2'(subsets == 2'd3 && anchor_2 < texel);
+
+  // Each mode's reading, mode m at [m * width +: width] (flat: Yosys keeps wires, not memories).
+  logic [8*32-1:0] e0, e1;
+  logic [8*7-1:0]  index_at, index2_at;
+  logic [8*4-1:0]  index_mask, index2_mask;
+  logic [8*3-1:0]  index_bits, index2_bits;
+  logic [7:0]      select;
+  logic [8*2-1:0]  rotation;
+  generate
+    for (genvar m = 0; m < 8; m++) begin : g_mode
+      tex_bc7_mode #(.MODE(m)) u_mode (
+        .block(block), .texel(texel), .subset(subset), .is_anchor(is_anchor), .earlier(earlier), .e0(e0[32 * m +: 32]), .e1(e1[32 * m +: 32]), .index_at(index_at[7 * m +: 7]),
+        .index_mask(index_mask[4 * m +: 4]), .index2_at(index2_at[7 * m +: 7]), .index2_mask(index2_mask[4 * m +: 4]),
+        .index_bits(index_bits[3 * m +: 3]), .index2_bits(index2_bits[3 * m +: 3]), .select(select[m]),
+        .rotation(rotation[2 * m +: 2]));
+    end
+  endgenerate
+
+  // Interpolation weights in 64ths of 2-, 3- and 4-bit indices.
+  function automatic logic [6:0] weight(input logic [2:0] bits, input logic [3:0] i);
+    logic [6:0] w;
+    w = 7'd0;
+    if (bits == 3'd2) begin
+      case (i[1:0])
+        2'd0: w = 7'd0;   2'd1: w = 7'd21;  2'd2: w = 7'd43;  default: w = 7'd64;
+      endcase
+    end else if (bits == 3'd3) begin
+      case (i[2:0])
+        3'd0: w = 7'd0;   3'd1: w = 7'd9;   3'd2: w = 7'd18;  3'd3: w = 7'd27;
+        3'd4: w = 7'd37;  3'd5: w = 7'd46;  3'd6: w = 7'd55;  default: w = 7'd64;
+      endcase
+    end else begin
+      case (i)
+        4'd0: w = 7'd0;   4'd1: w = 7'd4;   4'd2: w = 7'd9;   4'd3: w = 7'd13;
+        4'd4: w = 7'd17;  4'd5: w = 7'd21;  4'd6: w = 7'd26;  4'd7: w = 7'd30;
+        4'd8: w = 7'd34;  4'd9: w = 7'd38;  4'd10: w = 7'd43; 4'd11: w = 7'd47;
+        4'd12: w = 7'd51; 4'd13: w = 7'd55; 4'd14: w = 7'd60; default: w = 7'd64;
+      endcase
+    end
+    weight = w;
+  endfunction
+
+  logic [31:0] a, b, mixed;
+  logic [6:0]  wc, wa;
+  logic [1:0]  rot;
+  logic [3:0]  index, index2;    // this texel's, from the one shifter
+  logic [2:0]  ib, ib2;
+  logic        sel;
   assign a   = e0[32 * mode +: 32];
   assign b   = e1[32 * mode +: 32];
-  assign wc  = colour_w[7 * mode +: 7];
-  assign wa  = alpha_w[7 * mode +: 7];
-  assign rot = rotation[2 * mode +: 2];
+  assign rot    = rotation[2 * mode +: 2];
+  assign index  = 4'(block >> index_at[7 * mode +: 7]) & index_mask[4 * mode +: 4];
+  assign index2 = 4'(block >> index2_at[7 * mode +: 7]) & index2_mask[4 * mode +: 4];
+  assign ib     = index_bits[3 * mode +: 3];
+  assign ib2    = index2_bits[3 * mode +: 3];
+  assign sel    = select[mode];
+  // Colour from the secondary index when the selection bit is 1; alpha from it when there is one
+  // and the bit is 0.
+  assign wc     = (ib2 != 3'd0 && sel) ? weight(ib2, index2) : weight(ib, index);
+  assign wa     = (ib2 != 3'd0 && !sel) ? weight(ib2, index2) : weight(ib, index);
   generate
     for (genvar c = 0; c < 4; c++) begin : g_channel
-      logic [6:0]  w, w0;     // the weights of e1 and e0 in 64ths
-      logic [14:0] sum;       // (64 - w) e0 + w e1 + 32, at most 64 * 255 + 32 < 2^14
-      logic [6:0]  sum_rest_unused;
-      assign w   = c < 3 ? wc : wa;
-      assign w0  = 7'd64 - w;
-      assign sum = 15'(w0) * 15'(a[8 * c +: 8]) + 15'(w) * 15'(b[8 * c +: 8]) + 15'd32;
+      // ((64 - w) e0 + w e1 + 32) >> 6 with one multiply: (64 e0 + w (e1 - e0) + 32) >> 6.
+      logic [6:0]         w;     // the weight of e1 in 64ths
+      logic signed [8:0]  diff;  // e1 - e0
+      logic signed [16:0] step;  // (e1 - e0) w, |step| <= 255 * 64
+      logic signed [16:0] sum;   // 64 e0 + step + 32, in [0, 64 * 255 + 32]
+      logic [8:0]         sum_rest_unused;
+      assign w    = c < 3 ? wc : wa;
+      assign diff = $signed({1'b0, b[8 * c +: 8]}) - $signed({1'b0, a[8 * c +: 8]});
+      assign step = diff * $signed({1'b0, w});
+      assign sum  = $signed({3'd0, a[8 * c +: 8], 6'd0}) + step + 17'sd32;
       assign mixed[8 * c +: 8] = sum[13:6];
-      assign sum_rest_unused = {sum[14], sum[5:0]};
+      assign sum_rest_unused = {sum[16:14], sum[5:0]};
     end
   endgenerate
   always_comb begin
