@@ -46,6 +46,13 @@ const std::string kScene =
     "--block 4x4,8x8 --mem-latency 30,300 --fifo-depth 64,max";
 const std::string kSweep = kScene + " --cache-kib 1,4";
 
+// 300 queries along a diagonal, at lambda 1.5.
+std::string diagonal_queries() {
+  std::string q = "u,v,lod\n";
+  for (int i = 0; i < 300; ++i) q += std::to_string(i * 0.011) + "," + std::to_string(i * 0.007) + ",1.5\n";
+  return q;
+}
+
 }  // namespace
 
 TEST_F(TexsimCli, ExploreSweepsEveryPointAndPlotsIt) {
@@ -129,9 +136,7 @@ TEST_F(TexsimCli, ExploreEmittedJobsCollectToTheSameCsv) {
 }
 
 TEST_F(TexsimCli, ExploreTakesAQueryTrace) {
-  std::string q = "u,v,lod\n";
-  for (int i = 0; i < 300; ++i) q += std::to_string(i * 0.011) + "," + std::to_string(i * 0.007) + ",1.5\n";
-  queries(q);
+  queries(diagonal_queries());
   const Result r = run("explore -q q.csv -t noise:64x64 --cache-kib 1 --block 4x4 --mem-latency 20 --no-plots -o t");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto rows = read_rows(dir / "t/explore.csv");
@@ -146,9 +151,7 @@ TEST_F(TexsimCli, ExploreTakesAQueryTrace) {
 // the model (the RTL has no decoders yet: --timing rtl leaves them to the model) and reading fewer
 // bytes; an emitted job carries its format.
 TEST_F(TexsimCli, ExploreSweepsTextureFormats) {
-  std::string q = "u,v,lod\n";
-  for (int i = 0; i < 300; ++i) q += std::to_string(i * 0.011) + "," + std::to_string(i * 0.007) + ",1.5\n";
-  queries(q);
+  queries(diagonal_queries());
   const Result r = run("explore -q q.csv -t testcard:64x64 --format rgba8,bc1,bc7 --cache-kib 1 --block 4x4 "
                        "--mem-latency 20 --timing rtl --no-plots -o t");
   ASSERT_EQ(r.exit_code, 0) << r.err;
