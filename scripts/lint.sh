@@ -74,6 +74,11 @@ if out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_p
   echo "lint: tex_bc7_mode's MODE check did not fire for MODE=8" >&2
   exit 1
 fi
-echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7); MODE check fires for tex_bc7_mode MODE=8"
+if ! out=$(verilator --lint-only -Wall rtl/tex_srgb_decode.sv --top-module tex_srgb_decode 2>&1) || [ -n "$out" ]; then
+  echo "$out" >&2
+  echo "lint: FAILED for tex_srgb_decode" >&2
+  exit 1
+fi
+echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7) and tex_srgb_decode; MODE check fires for tex_bc7_mode MODE=8"
 echo "lint: verilator -Wall clean for ${#configs[@]} configurations (MAX_LOG2_W MAX_LOG2_H CW: ${configs[*]/%/;});" \
      "parameter checks fire for ${bad[*]}"

@@ -130,9 +130,11 @@ done
 # ---- the block decoders (docs/numerics.md): one texel per decoder, combinational; the cached unit
 # will take 8 per sample. synth_ice40 and synth_ecp5 LUTs per decoder, no latches; a table in
 # BUILD/synth/decoders.md.
-decoder_files="rtl/tex_pkg.sv rtl/tex_bc_channel.sv rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv"
+decoder_files="rtl/tex_pkg.sv rtl/tex_bc_channel.sv rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv
+               rtl/tex_srgb_decode.sv"
 decoders=("tex_bc_colour:BC1 (and the colour of BC2, BC3)" "tex_bc_channel:BC4 (and BC3's alpha, each half of BC5)"
-          "tex_bc7:BC7" "tex_bc_decode:every format (what the cached unit's taps will take)")
+          "tex_bc7:BC7" "tex_bc_decode:every format (what the cached unit's taps will take)"
+          "tex_srgb_decode:sRGB, one channel (3 per texel)")
 {
   echo "| decoder | formats | iCE40 SB_LUT4 | iCE40 SB_CARRY | ECP5 LUT4 | ECP5 CCU2C | ECP5 MULT18X18D |"
   echo "|---|---|---|---|---|---|---|"

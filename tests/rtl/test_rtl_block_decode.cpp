@@ -3,7 +3,8 @@
 // BC4-style channel block (exhaustive), random blocks of every format (BC7 in all 8 modes and the
 // reserved one), with functional coverage: every BC7 mode, every partition of the partitioned
 // modes, every rotation and index selection, BC1's two colour modes and its transparent texel.
-// TEX_SCALE=K (make rtl-soak) takes K times the random blocks (20: over 1 M).
+// TEX_SCALE=K (make rtl-soak) takes K times the random blocks (20: over 1 M). Also the sRGB decode
+// ROM (rtl/tex_srgb_decode.sv) against the model's table, every code.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -12,8 +13,10 @@
 #include <set>
 
 #include "Vtex_bc_decode.h"
+#include "Vtex_srgb_decode.h"
 #include "lockstep.h"
 #include "model/block_formats.h"
+#include "model/srgb.h"
 
 using namespace tex;
 
@@ -129,4 +132,14 @@ TEST(RtlBlockDecode, Rgba8IsNotDecoded) {
   uint8_t b[16];
   for (int i = 0; i < 16; ++i) b[i] = uint8_t(0x11 * i + 1);
   EXPECT_EQ(rtl.texel(TexelFormat::Rgba8, b, 3), (Rgba8{0, 0, 0, 0}));
+}
+
+TEST(RtlBlockDecode, SrgbRomIsTheModelsTable) {
+  VerilatedContext ctx;
+  Vtex_srgb_decode rom(&ctx);
+  for (int c = 0; c < 256; ++c) {
+    rom.code = uint8_t(c);
+    rom.eval();
+    ASSERT_EQ(rom.linear, srgb_decode_table()[size_t(c)]) << "code " << c;
+  }
 }
