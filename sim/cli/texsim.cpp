@@ -189,7 +189,8 @@ struct ImageOptions {
 };
 
 int cmd_mip(const std::string& texture, const std::string& mode_name, bool resize, const std::string& format_name,
-            bool format_given, const std::string& dump_dir, const std::string& layout_path, const ImageOptions& image) {
+            bool format_given, bool srgb, const std::string& dump_dir, const std::string& layout_path,
+            const ImageOptions& image) {
   if (dump_dir.empty() && layout_path.empty() && image.path.empty())
     throw Error("mip: give --dump-levels DIR, --layout FILE and/or --memory-image FILE");
   const LayoutParams memory_layout = image.layout();
@@ -200,6 +201,7 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
   if (!parse_texel_format(format_name, topts.format))
     throw Error("unknown --format " + quote_clipped(format_name) + " (" + texel_format_names() + ")");
   topts.format_given = format_given;
+  topts.srgb = srgb;
   OutputSet outputs;
   outputs.add_input(texture, "--texture");
   if (!layout_path.empty()) check_image_path(layout_path);
@@ -219,9 +221,14 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
       levels.push_back(&outputs.declare((std::filesystem::path(dump_dir) / name).string(), "--dump-levels",
                                         OutputSet::Kind::File));
     }
-    for (size_t k = 0; k < pyr.levels.size(); ++k) save_image(pyr.levels[k], *levels[k]);
+    // (an sRGB texture's levels as stored, sRGB codes: what a viewer shows right)
+    for (size_t k = 0; k < pyr.levels.size(); ++k) save_image(pyr.srgb ? pyr.codes[k] : pyr.levels[k], *levels[k]);
   }
-  if (layout) save_image(mip_layout(pyr), *layout);
+  if (layout) {
+    Pyramid shown;  // the levels as stored
+    shown.levels = pyr.srgb ? pyr.codes : pyr.levels;
+    save_image(mip_layout(shown), *layout);
+  }
   if (image_out) {
     std::FILE* f = image_out->open();
     if (std::fwrite(image_bytes.data(), 1, image_bytes.size(), f) != image_bytes.size())
@@ -229,8 +236,9 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
     image_out->close();
   }
   outputs.commit();
-  std::printf("texsim mip: %dx%d %s texture, %zu levels (%s)%s%s%s%s%s%s\n", pyr.levels[0].width,
-              pyr.levels[0].height, format_info(pyr.format).name, pyr.levels.size(), mode_name.c_str(), dump_dir.empty() ? "" : ", levels in ", dump_dir.c_str(),
+  std::printf("texsim mip: %dx%d %s%s texture, %zu levels (%s)%s%s%s%s%s%s\n", pyr.levels[0].width,
+              pyr.levels[0].height, format_info(pyr.format).name, pyr.srgb ? " sRGB" : "", pyr.levels.size(),
+              mode_name.c_str(), dump_dir.empty() ? "" : ", levels in ", dump_dir.c_str(),
               layout_path.empty() ? "" : ", layout in ", layout_path.c_str(),
               image.path.empty() ? "" : ", memory image in ", image.path.c_str());
   return 0;
@@ -325,12 +333,14 @@ int main(int argc, char** argv) {
                      "(what render --trace-queries writes); the trace's tex column names the entry");
 
   std::string mip_texture = "testcard", mip_mode = "exact", mip_format = "rgba8", dump_dir, layout;
-  bool mip_resize = false;
+  bool mip_resize = false, mip_srgb = false;
   CLI::App* mip = app.add_subcommand("mip", "build a pyramid; dump its levels or the paper's Figure 1 layout");
   mip->add_option("--texture,-t", mip_texture, "image file, DDS/KTX/KTX2 texture file, or pattern NAME[:WxH]")
       ->capture_default_str();
   mip->add_option("--pyramid", mip_mode, "exact | cascade")->capture_default_str();
   mip->add_flag("--resize", mip_resize, "resample a texture whose sides are not powers of two");
+  mip->add_flag("--srgb", mip_srgb, "the texture's R, G, B are sRGB codes: the pyramid averaged in linear space, "
+                "levels and memory image in sRGB codes");
   CLI::Option* mip_format_opt = mip->add_option("--format", mip_format,
                                                 texel_format_names() + ": how memory holds an image file or pattern "
                                                 "(libsquish, Mesa for bc7; a DDS/KTX file keeps its own)")
@@ -468,7 +478,8 @@ int main(int argc, char** argv) {
   try {
     if (*sample) return cmd_sample(sample_opts, queries, textures_list, out);
     if (*mip)
-      return cmd_mip(mip_texture, mip_mode, mip_resize, mip_format, mip_format_opt->count() > 0, dump_dir, layout, image);
+      return cmd_mip(mip_texture, mip_mode, mip_resize, mip_format, mip_format_opt->count() > 0, mip_srgb, dump_dir, layout,
+                     image);
     if (*render) {
       SceneOptions so;
       so.width = width;

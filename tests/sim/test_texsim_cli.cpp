@@ -625,6 +625,14 @@ TEST_F(TexsimCli, SrgbTexturesThroughTheCli) {
   ASSERT_EQ(m.exit_code, 0) << m.err;
   ASSERT_EQ(t.exit_code, 0) << t.err;
   EXPECT_EQ(read_text(dir / "m.csv"), read_text(dir / "t.csv"));
+  // mip --srgb: the levels as stored, sRGB codes averaged in linear space (the 1x1 level: 188).
+  const Result mip = run("mip -t bw.png --srgb --dump-levels lv");
+  ASSERT_EQ(mip.exit_code, 0) << mip.err;
+  EXPECT_NE(mip.out.find("rgba8 sRGB texture"), std::string::npos) << mip.out;
+  int lw = 0, lh = 0;
+  const std::vector<uint8_t> last = read_image(dir / "lv/level06.png", lw, lh);
+  ASSERT_EQ(last.size(), 4u);
+  EXPECT_EQ(last[0], 188);
   const Result png = run("render --scene plane --width 64 --height 48 -t checker:64x64 --srgb -o f.png");
   ASSERT_EQ(png.exit_code, 0) << png.err;
   int w = 0, h = 0;
