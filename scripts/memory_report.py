@@ -6,7 +6,7 @@ Usage: /usr/bin/python3 scripts/memory_report.py [--texsim build/texsim] [--out 
 Runs `texsim` (engine rtl) on the issue's workload: the plane scene, 640x480, trilinear, the
 1024x1024 test card, memory latency 200 clocks, 16 B/clock; onchip against cached, scanline and
 8x8-tile order, cache sizes 8/16/32 KiB; random queries over the whole pyramid (a worst case);
-the texture held as RGBA8, BC1 and BC7 (engine model: the RTL has no block decoders yet);
+the texture held as RGBA8, BC1 and BC7 (engine model: the cached RTL takes no block format yet);
 then samples/clock per memory latency and FIFO depth (--fifo-depth). Writes OUT/report.md (the tables of docs/memory.md §5) and OUT/latency.png.
 Needs matplotlib (Debian's python3-matplotlib, in /usr/bin/python3).
 """
@@ -95,7 +95,7 @@ def main():
         print(lines[-1], flush=True)
 
     # Texture formats: the caches and memory hold compressed blocks (docs/memory.md §1). The RTL's
-    # block decoders are still to come, so the golden model times these runs (its timing layer is the
+    # block decoders are not yet in the cached unit, so the golden model times these runs (its timing layer is the
     # RTL's, clock for clock, for RGBA8; the decoders sit in the same clock as the filter).
     lines += ["", "Texture formats, plane 640×480, 8 KiB × 2 caches, latency 200, 16 B/clock, engine model "
               "(timing layer): BC1 and BC7 each level compressed (`--format`: libsquish, Mesa's BC7 encoder); "

@@ -295,11 +295,11 @@ void require_uncompressed_cached(const TextureTable& textures, const EngineOptio
   for (const BoundTexture& t : textures) {
     if (is_compressed(t.pyramid->format))
       throw Error("engine " + engine + ": a " + format_info(t.pyramid->format).name +
-                  " texture in the cached unit; the RTL reads RGBA8 lines only so far (its block decoders are "
-                  "still to come), use --engine model or --format rgba8");
+                  " texture in the cached unit; the cached RTL reads RGBA8 lines only so far (its block decoders "
+                  "are not yet inside it), use --engine model or --format rgba8");
     if (t.pyramid->srgb)
-      throw Error("engine " + engine + ": an sRGB texture in the cached unit; the RTL's sRGB table is still to "
-                  "come, use --engine model or --memory onchip (which holds the levels decoded)");
+      throw Error("engine " + engine + ": an sRGB texture in the cached unit; the RTL's sRGB table is not yet "
+                  "inside it, use --engine model or --memory onchip (which holds the levels decoded)");
   }
 }
 
