@@ -11,9 +11,12 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <fcntl.h>
+#include <type_traits>
 #include <unistd.h>
 
 namespace {
@@ -159,12 +162,61 @@ bool write(const std::string& format_path, const std::string& write_path, const 
   }
 }
 
+// Mesa, loaded on the first BC7 encoding only: libOSMesa brings LLVM (llvmpipe), some 100 MB that
+// no other image operation needs.
+struct Mesa {
+  decltype(&OSMesaCreateContextExt) create_context = nullptr;
+  decltype(&OSMesaMakeCurrent) make_current = nullptr;
+  decltype(&glGenTextures) gen_textures = nullptr;
+  decltype(&glBindTexture) bind_texture = nullptr;
+  decltype(&glPixelStorei) pixel_store = nullptr;
+  decltype(&glTexImage2D) tex_image = nullptr;
+  decltype(&glGetTexLevelParameteriv) level_parameter = nullptr;
+  decltype(&glGetError) get_error = nullptr;
+  decltype(&glGetCompressedTexImage) get_compressed = nullptr;
+  decltype(&glDeleteTextures) delete_textures = nullptr;
+  std::string error;  // why it could not be loaded (empty: loaded)
+};
+
+const Mesa& mesa() {
+  static const Mesa loaded = [] {
+    Mesa m;
+    void* lib = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
+    if (!lib) lib = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
+    if (!lib) {
+      m.error = std::string("cannot load Mesa's libOSMesa, the BC7 encoder (") + dlerror() + ")";
+      return m;
+    }
+    auto find = [&](auto& f, const char* name) {
+      f = reinterpret_cast<std::remove_reference_t<decltype(f)>>(dlsym(lib, name));
+      if (!f && m.error.empty()) m.error = std::string("libOSMesa has no ") + name;
+    };
+    find(m.create_context, "OSMesaCreateContextExt");
+    find(m.make_current, "OSMesaMakeCurrent");
+    find(m.gen_textures, "glGenTextures");
+    find(m.bind_texture, "glBindTexture");
+    find(m.pixel_store, "glPixelStorei");
+    find(m.tex_image, "glTexImage2D");
+    find(m.level_parameter, "glGetTexLevelParameteriv");
+    find(m.get_error, "glGetError");
+    find(m.get_compressed, "glGetCompressedTexImage");
+    find(m.delete_textures, "glDeleteTextures");
+    return m;
+  }();
+  return loaded;
+}
+
 bool compress_bc7(const Pixels& p, std::vector<uint8_t>& blocks, std::string& error) {
+  const Mesa& gl = mesa();
+  if (!gl.error.empty()) {
+    error = gl.error;
+    return false;
+  }
   // One off-screen context for the process: Mesa compresses what glTexImage2D is given when the
   // internal format is a compressed one.
   static std::vector<uint8_t> surface(4 * 4 * 4);
-  static OSMesaContext context = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
-  if (!context || !OSMesaMakeCurrent(context, surface.data(), GL_UNSIGNED_BYTE, 4, 4)) {
+  static OSMesaContext context = gl.create_context(OSMESA_RGBA, 0, 0, 0, nullptr);
+  if (!context || !gl.make_current(context, surface.data(), GL_UNSIGNED_BYTE, 4, 4)) {
     error = "cannot create an OSMesa context for Mesa's BC7 encoder";
     return false;
   }
@@ -173,23 +225,23 @@ bool compress_bc7(const Pixels& p, std::vector<uint8_t>& blocks, std::string& er
     return false;
   }
   GLuint texture = 0;
-  glGenTextures(1, &texture);
-  glBindTexture(GL_TEXTURE_2D, texture);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_COMPRESSED_RGBA_BPTC_UNORM, p.width, p.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+  gl.gen_textures(1, &texture);
+  gl.bind_texture(GL_TEXTURE_2D, texture);
+  gl.pixel_store(GL_UNPACK_ALIGNMENT, 1);
+  gl.tex_image(GL_TEXTURE_2D, 0, GL_COMPRESSED_RGBA_BPTC_UNORM, p.width, p.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                p.values.data());
   GLint compressed = 0, size = 0;
-  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_COMPRESSED, &compressed);
-  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_COMPRESSED_IMAGE_SIZE, &size);
+  gl.level_parameter(GL_TEXTURE_2D, 0, GL_TEXTURE_COMPRESSED, &compressed);
+  gl.level_parameter(GL_TEXTURE_2D, 0, GL_TEXTURE_COMPRESSED_IMAGE_SIZE, &size);
   const size_t want = size_t((p.width + 3) / 4) * size_t((p.height + 3) / 4) * 16;
-  bool ok = glGetError() == GL_NO_ERROR && compressed && size_t(size) == want;
+  bool ok = gl.get_error() == GL_NO_ERROR && compressed && size_t(size) == want;
   if (ok) {
     blocks.resize(want);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetCompressedTexImage(GL_TEXTURE_2D, 0, blocks.data());
-    ok = glGetError() == GL_NO_ERROR;
+    gl.pixel_store(GL_PACK_ALIGNMENT, 1);
+    gl.get_compressed(GL_TEXTURE_2D, 0, blocks.data());
+    ok = gl.get_error() == GL_NO_ERROR;
   }
-  glDeleteTextures(1, &texture);
+  gl.delete_textures(1, &texture);
   if (!ok) error = "Mesa did not compress the level to BC7 (" + std::to_string(size) + " bytes)";
   return ok;
 }
