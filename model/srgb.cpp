@@ -67,14 +67,14 @@ Texel encode_srgb_texel(const Texel& linear16) {
 Pyramid build_srgb_pyramid(const Image& level0, PyramidMode mode) {
   Pyramid p;
   p.mode = mode;
-  p.srgb = true;
-  p.codes = srgb_box_levels(level0, mode);
-  for (const Image& c : p.codes) p.levels.push_back(decode_srgb_level(c));
+  p.levels = srgb_box_levels(level0, mode);
+  decode_srgb_levels(p);
   return p;
 }
 
 void decode_srgb_levels(Pyramid& pyramid) {
   pyramid.srgb = true;
+  if (!is_compressed(pyramid.format)) pyramid.codes = pyramid.levels;
   for (Image& level : pyramid.levels) level = decode_srgb_level(level);
 }
 

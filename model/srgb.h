@@ -40,8 +40,9 @@ struct Pyramid;
 // The pyramid of an sRGB RGBA8 texture: `codes` = srgb_box_levels(level0, mode), `levels` their
 // decoding (linear unorm16), `srgb` set.
 Pyramid build_srgb_pyramid(const Image& level0, PyramidMode mode);
-// An sRGB pyramid of a block format: `blocks` hold the compressed codes; `levels` are the decoded
-// blocks' codes through the table.
+// Makes a pyramid whose `levels` hold 8-bit sRGB codes (a block format's: decoded from `blocks`)
+// an sRGB pyramid: the codes kept as memory holds them (`codes`, unless `blocks` hold them), the
+// levels decoded to linear for the filter, `srgb` set.
 void decode_srgb_levels(Pyramid& pyramid);
 
 }  // namespace tex

@@ -374,16 +374,9 @@ Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format) {
 
 namespace {
 
-// The sRGB pyramid of code levels (8-bit, compressed in `blocks` for a block format): the codes
-// kept for memory, the levels decoded to linear for the filter.
-Pyramid finish_srgb(Pyramid p) {
-  if (!is_compressed(p.format)) p.codes = p.levels;
-  decode_srgb_levels(p);
-  return p;
-}
-
-// The code pyramid of an sRGB level 0 (not yet decoded), box-filtered in linear space.
-Pyramid srgb_code_pyramid(const Image& level0, PyramidMode mode) {
+// The box pyramid of level 0 as stored: 8-bit sRGB codes averaged in linear space, or as it is.
+Pyramid box_pyramid(Image level0, PyramidMode mode, bool srgb) {
+  if (!srgb) return build_pyramid(std::move(level0), mode);
   Pyramid p;
   p.mode = mode;
   p.levels = srgb_box_levels(level0, mode);
@@ -393,11 +386,13 @@ Pyramid srgb_code_pyramid(const Image& level0, PyramidMode mode) {
 }  // namespace
 
 Pyramid make_pyramid(Image level0, const TextureOptions& o) {
-  if (!o.srgb) return compress_pyramid(build_pyramid(std::move(level0), o.mode), o.format);
+  if (!o.srgb) return compress_pyramid(box_pyramid(std::move(level0), o.mode, false), o.format);
   if (!format_info(o.format).srgb_allowed)
     throw Error(std::string("--srgb: an sRGB ") + format_info(o.format).name + " does not exist (" +
                 format_info(o.format).name + " holds data, not colour)");
-  return finish_srgb(compress_pyramid(srgb_code_pyramid(level0, o.mode), o.format));
+  Pyramid p = compress_pyramid(box_pyramid(std::move(level0), o.mode, true), o.format);
+  decode_srgb_levels(p);
+  return p;
 }
 
 Pyramid load_pyramid(const std::string& spec, const TextureOptions& o) {
@@ -423,13 +418,13 @@ Pyramid pyramid_of(const TextureFile& file, PyramidMode mode, const std::string&
     return decode_level(file.format, file.levels[size_t(k)].data(), s.width(), s.height());
   };
   if (file.levels.size() == 1) {
-    Pyramid p = compress_pyramid(file.srgb ? srgb_code_pyramid(decoded(0), mode) : build_pyramid(decoded(0), mode),
-                                 file.format);
+    Pyramid p = compress_pyramid(box_pyramid(decoded(0), mode, file.srgb), file.format);
     if (is_compressed(file.format)) {  // level 0 as the file has it
       p.blocks[0] = file.levels[0];
       p.levels[0] = decoded(0);
     }
-    return file.srgb ? finish_srgb(std::move(p)) : p;
+    if (file.srgb) decode_srgb_levels(p);
+    return p;
   }
   Pyramid p;
   p.mode = mode;
@@ -438,7 +433,8 @@ Pyramid pyramid_of(const TextureFile& file, PyramidMode mode, const std::string&
     p.levels.push_back(decoded(k));
     if (is_compressed(file.format)) p.blocks.push_back(file.levels[size_t(k)]);
   }
-  return file.srgb ? finish_srgb(std::move(p)) : p;
+  if (file.srgb) decode_srgb_levels(p);
+  return p;
 }
 
 }  // namespace tex
