@@ -7,6 +7,7 @@
 
 #include "engines/rtl/driver.h"
 #include "model/image.h"
+#include "model/srgb.h"
 
 namespace bench {
 
@@ -42,12 +43,15 @@ RtlWorkload make_rtl_workload(const tex::rtl::RtlConfig& config) {
   // The configuration's largest texture, at most 1024x1024 (the same texture for Vtex_unit_10x10
   // and Vtex_cached_13x13: its speed does not depend on the texture's size).
   const int lw = std::min(config.max_log2_w, 10), lh = std::min(config.max_log2_h, 10);
-  Pyramid pyr = build_pyramid(make_pattern("noise", 1 << lw, 1 << lh));
-  for (Image& img : pyr.levels) {  // 16-bit configurations take 16-bit texels
-    img.channel_bits = config.cw;
-    for (Texel& t : img.texels)
-      for (uint16_t& c : t) c = uint16_t(c * ((1u << config.cw) - 1) / 255);
-  }
+  // (an SRGB configuration: an sRGB texture, every texel through the decode tables)
+  Pyramid pyr = config.srgb ? build_srgb_pyramid(make_pattern("noise", 1 << lw, 1 << lh), PyramidMode::Exact)
+                            : build_pyramid(make_pattern("noise", 1 << lw, 1 << lh));
+  if (!config.srgb)
+    for (Image& img : pyr.levels) {  // 16-bit configurations take 16-bit texels
+      img.channel_bits = config.cw;
+      for (Texel& t : img.texels)
+        for (uint16_t& c : t) c = uint16_t(c * ((1u << config.cw) - 1) / 255);
+    }
   work.unit->load(pyr, LoadMethod::Backdoor);
   SamplerConfig cfg;  // trilinear, repeat
   work.unit->configure(cfg, pyr);

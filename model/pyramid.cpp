@@ -2,7 +2,10 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <utility>
+
+#include "error.h"
 
 namespace tex {
 
@@ -83,6 +86,24 @@ Pyramid build_pyramid(Image level0_in, PyramidMode mode) {
 }  // namespace tex
 
 namespace tex {
+
+Pyramid pyramid_of_blocks(TexelFormat format, int log2_w0, int log2_h0, std::vector<std::vector<uint8_t>> blocks) {
+  if (!is_compressed(format)) throw Error("pyramid_of_blocks: RGBA8 has no blocks");
+  if (int(blocks.size()) != level_count(log2_w0, log2_h0))
+    throw Error("pyramid_of_blocks: " + std::to_string(blocks.size()) + " levels of blocks, a full chain has " +
+                std::to_string(level_count(log2_w0, log2_h0)));
+  Pyramid p;
+  p.format = format;
+  for (int k = 0; k < int(blocks.size()); ++k) {
+    const LevelShape s = level_shape(log2_w0, log2_h0, k);
+    if (blocks[size_t(k)].size() != level_bytes(format, s.width(), s.height()))
+      throw Error("pyramid_of_blocks: level " + std::to_string(k) + " has " + std::to_string(blocks[size_t(k)].size()) +
+                  " bytes, not " + std::to_string(level_bytes(format, s.width(), s.height())));
+    p.levels.push_back(decode_level(format, blocks[size_t(k)].data(), s.width(), s.height()));
+  }
+  p.blocks = std::move(blocks);
+  return p;
+}
 
 Image mip_layout(const Pyramid& pyramid) {
   const Image& l0 = pyramid.levels[0];

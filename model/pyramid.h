@@ -43,6 +43,11 @@ struct Pyramid {
 // Takes level 0 by value: pass a temporary (or std::move) to build without copying it.
 Pyramid build_pyramid(Image level0, PyramidMode mode = PyramidMode::Exact);
 
+// A block-format texture as stored: one vector of blocks per level of a full chain (level k of
+// level_bytes(format, w_k, h_k) bytes), each level decoded into `levels`. Throws tex::Error for an
+// RGBA8 format, a missing level or a level of the wrong size.
+Pyramid pyramid_of_blocks(TexelFormat format, int log2_w0, int log2_h0, std::vector<std::vector<uint8_t>> blocks);
+
 }  // namespace tex
 
 namespace tex {

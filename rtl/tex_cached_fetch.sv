@@ -8,7 +8,9 @@
 //   H (head)   the FIFO's oldest sample writes its fills (lines from mem_rsp, in order) into the
 //              data banks, one line per clock; it leaves when the last one is written.
 //   R          reads the data banks (tex_cache_data), 4 banks x 2 caches.
-//   T          routes bank texels to the 8 taps (slot 0 = level d, slot 1 = level d1).
+//   T          routes bank words to the 8 taps (slot 0 = level d, slot 1 = level d1): a texel, or
+//              a block format's 4x4 block decoded by one tex_bc_decode per tap (BLOCK_FORMATS);
+//              with SRGB an sRGB texture's R, G, B through tex_srgb_decode (24 per sample).
 //   taps       registered outputs, into tex_filter.
 // Handshake: two stall-enable halves. The front (tex_front and the tag stage) advances when
 //   en_front is high: a register output, high when the FIFO has room for one more sample and the
@@ -29,14 +31,19 @@
 //   desc_we, desc_index, desc_base, desc_log2_w, desc_log2_h : a descriptor write: entry
 //                                     desc_index's level 0 is at byte address desc_base (a
 //                                     multiple of the line size) and has 2^desc_log2_w x
-//                                     2^desc_log2_h texels; its level bases are computed here
+//                                     2^desc_log2_h texels in format desc_format (tex_pkg::FMT_*;
+//                                     FMT_RGBA8 unless BLOCK_FORMATS), sRGB if desc_srgb (SRGB only);
+//                                     its level bases are computed here
 //   cfg_block_morton                : 0 row-major, 1 Morton order of the blocks of a level
 //   cfg_log2_sets, cfg_log2_ways    : cache geometry (both caches), see tex_cache_tags
 //   cfg_fifo_limit                  : samples the FIFO holds at most (0 or > FIFO_DEPTH: FIFO_DEPTH)
 //   mem_req_addr                    : byte address of a line (MEM_ADDR_W bits, line aligned)
 //   mem_rsp_data                    : one beat, MEM_W bits: bytes [i*MEM_W/8 +: MEM_W/8] of the
 //                                     line in beat i; LINE_BITS / MEM_W beats per line, in order
+//   mem_rsp_data: lines of texels of 4 channels of CW bits (SRGB: 8 bits) in 4 (CW > 8: 8) bytes
 //   out_valid, out_tag, taps, out_w, out_f : as tex_fetch's taps with the weights beside them
+//                                     (SRGB: an sRGB texture's R, G, B linear unorm16, A x 257; a
+//                                     linear texture's 8-bit channels zero-extended)
 // The harness reads fifo_count (the FIFO's occupancy) and head_waits (the head sample waits for
 // memory) for its statistics (public in Verilator, rtl/tex_unit.vlt).
 module tex_cached_fetch #(
@@ -53,6 +60,10 @@ module tex_cached_fetch #(
   parameter int FILL_DEPTH = 4,    // lines received, not yet written (power of two)
   parameter int MEM_W      = 128,  // bits of a memory response beat
   parameter int TEXTURES   = 16,   // descriptor-table entries (power of two, 1..16)
+  parameter int BLOCK_FORMATS = 0, // 1: block-format textures too (needs 8-bit memory channels and
+                                   //    >= 16 texels per line)
+  parameter int SRGB       = 0,    // 1: memory holds 8-bit channels, the taps are CW = 16 bits: sRGB
+                                   //    textures' R, G, B decoded to linear by tex_srgb_decode
   parameter int XW         = (MAX_LOG2_W > 0) ? MAX_LOG2_W : 1,  // derived, do not override
   parameter int YW         = (MAX_LOG2_H > 0) ? MAX_LOG2_H : 1,
   parameter int TXW        = (TEXTURES > 1) ? $clog2(TEXTURES) : 1
@@ -77,6 +88,8 @@ module tex_cached_fetch #(
   input  logic [tex_pkg::MEM_ADDR_W-1:0]    desc_base,
   input  logic [tex_pkg::LEVEL_W-1:0]       desc_log2_w,
   input  logic [tex_pkg::LEVEL_W-1:0]       desc_log2_h,
+  input  logic [tex_pkg::FORMAT_W-1:0]      desc_format,
+  input  logic                              desc_srgb,
   input  logic                              cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways,
@@ -98,8 +111,10 @@ module tex_cached_fetch #(
   localparam int VW   = tex_pkg::LEVEL_W;
   localparam int WB   = tex_pkg::WEIGHT_BITS;
   localparam int AW   = tex_pkg::MEM_ADDR_W;
-  localparam int DW   = 4 * CW;                     // a texel in the cache
-  localparam int TB   = (CW > 8) ? 8 : 4;           // bytes of a texel in memory
+  localparam int DW   = 4 * CW;                     // a tap's texel
+  localparam int CCW  = (SRGB != 0) ? 8 : CW;       // bits of a channel in the cache
+  localparam int DWC  = 4 * CCW;                    // a texel in the cache
+  localparam int TB   = (CCW > 8) ? 8 : 4;          // bytes of a texel in memory
   localparam int LBW  = $clog2(BW);                 // log2 block width, height
   localparam int LBH  = $clog2(BH);
   localparam int LINE_BITS = BW * BH * TB * 8;
@@ -114,6 +129,48 @@ module tex_cached_fetch #(
   localparam int LCW  = $clog2(FILL_DEPTH + 1);
   localparam int BTW  = (BEATS > 1) ? $clog2(BEATS) : 1;
   localparam int RD   = SLW + OFW;                  // a bank read: {slot, offset}
+  localparam int FW   = tex_pkg::FORMAT_W;
+  localparam int PB   = (BLOCK_FORMATS != 0) ? 3 : 1;  // low bits of a tap coordinate the taps need
+  localparam int WW   = LINE_BITS / 4;              // bits of a bank word
+  localparam int KW   = 2;                          // a line's kind in the banks (tex_cache_data)
+
+  // A texture format's line, in texels: log2 width and height. RGBA: the BW x BH block; a block
+  // format: its 4x4 blocks, 2^a x 2^b of them (a = b or b + 1) in the line's bytes (model
+  // MemoryLayout).
+  function automatic logic [2*VW-1:0] line_shape(input logic [FW-1:0] fmt);
+    int lb;  // log2 of the line's blocks
+    lb = (fmt == tex_pkg::FMT_BC1 || fmt == tex_pkg::FMT_BC4) ? LOG2_LB - 3 : LOG2_LB - 4;
+    if (BLOCK_FORMATS == 0 || fmt == tex_pkg::FMT_RGBA8) line_shape = {VW'(LBH), VW'(LBW)};
+    else line_shape = {VW'(2 + lb / 2), VW'(2 + (lb + 1) / 2)};
+  endfunction
+  // Its kind in the data banks: 0 texels, 1 8-byte blocks, 2 16-byte blocks.
+  function automatic logic [KW-1:0] line_kind(input logic [FW-1:0] fmt);
+    if (BLOCK_FORMATS == 0 || fmt == tex_pkg::FMT_RGBA8) line_kind = 2'd0;
+    else if (fmt == tex_pkg::FMT_BC1 || fmt == tex_pkg::FMT_BC4) line_kind = 2'd1;
+    else line_kind = 2'd2;
+  endfunction
+
+  // ---------------------------------------------------------------- formats, sRGB flags
+  logic [FW-1:0] desc_fmt [TEXTURES];
+  logic          desc_srgb_of [TEXTURES];
+  generate
+    if (BLOCK_FORMATS != 0) begin : g_formats
+      always_ff @(posedge clk)
+        if (desc_we) desc_fmt[desc_index] <= desc_format;
+    end else begin : g_rgba_only
+      always_comb for (int t = 0; t < TEXTURES; t++) desc_fmt[t] = tex_pkg::FMT_RGBA8;
+      logic unused_format;
+      assign unused_format = ^desc_format;
+    end
+    if (SRGB != 0) begin : g_srgb_flags
+      always_ff @(posedge clk)
+        if (desc_we) desc_srgb_of[desc_index] <= desc_srgb;
+    end else begin : g_linear_only
+      always_comb for (int t = 0; t < TEXTURES; t++) desc_srgb_of[t] = 1'b0;
+      logic unused_srgb;
+      assign unused_srgb = desc_srgb;
+    end
+  endgenerate
 
   // ---------------------------------------------------------------- level bases in memory
   // base_line[t * 2^LEVEL_W + k] = texture t's level 0 + the lines of its levels 0..k-1
@@ -124,14 +181,16 @@ module tex_cached_fetch #(
   always_ff @(posedge clk) begin
     if (desc_we) begin
       logic [LNW-1:0] acc;
+      logic [VW-1:0]  sw, sh;  // the format's line, log2 texels
       acc = LNW'(desc_base >> LOG2_LB);
+      {sh, sw} = line_shape((BLOCK_FORMATS != 0) ? desc_format : tex_pkg::FMT_RGBA8);
       for (int k = 0; k < (1 << VW); k++) begin
         logic [VW:0] lw, lh, lbx, lby;
         base_line[(32'(desc_index) << VW) + k] <= acc;
         lw  = ({1'b0, desc_log2_w} > (VW+1)'(k)) ? {1'b0, desc_log2_w} - (VW+1)'(k) : '0;
         lh  = ({1'b0, desc_log2_h} > (VW+1)'(k)) ? {1'b0, desc_log2_h} - (VW+1)'(k) : '0;
-        lbx = (lw > (VW+1)'(LBW)) ? lw - (VW+1)'(LBW) : '0;
-        lby = (lh > (VW+1)'(LBH)) ? lh - (VW+1)'(LBH) : '0;
+        lbx = (lw > {1'b0, sw}) ? lw - {1'b0, sw} : '0;
+        lby = (lh > {1'b0, sh}) ? lh - {1'b0, sh} : '0;
         acc = acc + (LNW'(1) << (lbx + lby));
       end
     end
@@ -170,6 +229,15 @@ module tex_cached_fetch #(
   assign push = en_front && front_valid;
   logic c0;                 // the cache of slot 0 (level d's parity); slot 1 uses the other
   assign c0 = level[0];
+  // The sample's texture format, its line shape and bank kind.
+  logic [FW-1:0] fmt;
+  logic [VW-1:0] lbw, lbh;  // log2 of the line's texels across, down
+  logic          blk;       // a block format: banks by 4x4-block parity, not texel parity
+  assign fmt        = push ? desc_fmt[front_tex] : tex_pkg::FMT_RGBA8;
+  assign {lbh, lbw} = line_shape(fmt);
+  assign blk        = fmt != tex_pkg::FMT_RGBA8;
+  logic srgb;               // the sample's texture is sRGB
+  assign srgb       = push && desc_srgb_of[front_tex];
 
   // Per slot s and block parity p = {y parity, x parity}: the lookup, its line number and set.
   logic [3:0]       look [2];
@@ -177,7 +245,7 @@ module tex_cached_fetch #(
   logic [4*SHW-1:0] look_set_hi [2];
   logic [7:0]       bank_block [2];  // texel bank b: the parity of its tap's block at [b*2 +: 2]
   logic [4*OFW-1:0] bank_offset [2];
-  logic [3:0]       tap_parity [2];  // {y1, y0, x1, x0} & 1
+  logic [4*PB-1:0]  tap_low [2];     // {y1, y0, x1, x0} mod 2^PB
   genvar s, b;
   generate
     for (s = 0; s < 2; s = s + 1) begin : g_slot
@@ -191,35 +259,40 @@ module tex_cached_fetch #(
         logic [LNW-1:0] level_base;  // the level's first line (one table read per slot)
         logic [XW-1:0] xs;
         logic [YW-1:0] ys;
+        logic          px0, py0;  // tap 0's bank parity: of its texel (bit 0) or 4x4 block (bit 2)
+        logic [4:0]    pq;                  // the parity bit's position + 1
         // (temporaries too: a value on every path, no latch)
         {lev, lw, lh, lnbx, lnby, m, x0, x1, bx0, bx1, bx, y0, y1, by0, by1, by} = '0;
-        {nx1, ny1, has_x, has_y, index, level_base, xs, ys} = '0;
+        {nx1, ny1, has_x, has_y, index, level_base, xs, ys, px0, py0, pq} = '0;
         look[s]        = '0;
         look_line[s]   = '0;
         look_set_hi[s] = '0;
         bank_block[s]  = '0;
         bank_offset[s] = '0;
-        tap_parity[s]  = '0;
+        tap_low[s]     = '0;
         // level d always; d1 when f != 0
         if (push && (s == 0 || f != '0)) begin
           lev  = level[s*VW +: VW];
           level_base = base_line[(32'(front_tex) << VW) + 32'(lev)];
           lw   = log2_size[(s*2 + 0)*VW +: VW];
           lh   = log2_size[(s*2 + 1)*VW +: VW];
-          lnbx = (lw > VW'(LBW)) ? lw - VW'(LBW) : '0;
-          lnby = (lh > VW'(LBH)) ? lh - VW'(LBH) : '0;
+          lnbx = (lw > lbw) ? lw - lbw : '0;
+          lnby = (lh > lbh) ? lh - lbh : '0;
           m    = (lnbx < lnby) ? lnbx : lnby;
           x0   = x[(s*2 + 0)*XW +: XW];
           x1   = x[(s*2 + 1)*XW +: XW];
           y0   = y[(s*2 + 0)*YW +: YW];
           y1   = y[(s*2 + 1)*YW +: YW];
-          bx0  = x0 >> LBW;
-          bx1  = x1 >> LBW;
-          by0  = y0 >> LBH;
-          by1  = y1 >> LBH;
+          bx0  = x0 >> lbw;
+          bx1  = x1 >> lbw;
+          by0  = y0 >> lbh;
+          by1  = y1 >> lbh;
           nx1  = w[(s*2 + 0)*WB +: WB] != '0;
           ny1  = w[(s*2 + 1)*WB +: WB] != '0;
-          tap_parity[s] = {y1[0], y0[0], x1[0], x0[0]};
+          tap_low[s] = {PB'(y1), PB'(y0), PB'(x1), PB'(x0)};
+          pq  = blk ? 5'd3 : 5'd1;
+          px0 = 1'(32'(x0) >> (pq - 5'd1));
+          py0 = 1'(32'(y0) >> (pq - 5'd1));
           for (int q = 0; q < 4; q++) begin
             // The needed x taps whose block has x parity q[0] (likewise y): bx0 if its parity
             // matches, else bx1 (two distinct blocks of a footprint differ in parity).
@@ -238,16 +311,18 @@ module tex_cached_fetch #(
             look_set_hi[s][q*SHW +: SHW] = set_high(bx, by, set_k);
           end
           for (int k = 0; k < 4; k++) begin
-            // The texel bank k reads: the x tap of parity k[0], the y tap of parity k[1] (either
+            // What bank k reads: the x tap of bank parity k[0], the y tap of parity k[1] (either
             // one if both are equal; as masks: Verilator's C++ would branch on data), the parity
-            // of its block (which tag bank has its line slot) and its offset in the bank word.
-            xs = x0 ^ ({XW{x0[0] ^ k[0]}} & (x0 ^ x1));
-            ys = y0 ^ ({YW{y0[0] ^ k[1]}} & (y0 ^ y1));
-            bank_block[s][k*2 +: 2] = {(y0[0] == k[1]) ? by0[0] : by1[0],
-                                       (x0[0] == k[0]) ? bx0[0] : bx1[0]};
+            // of its line (which tag bank has its line slot) and its offset in the bank word (of
+            // the texel, or of the 4x4 block: docs/memory.md §2, tex_cache_data).
+            xs = x0 ^ ({XW{px0 ^ k[0]}} & (x0 ^ x1));
+            ys = y0 ^ ({YW{py0 ^ k[1]}} & (y0 ^ y1));
+            bank_block[s][k*2 +: 2] = {(py0 == k[1]) ? by0[0] : by1[0], (px0 == k[0]) ? bx0[0] : bx1[0]};
             bank_offset[s][k*OFW +: OFW] =
-                OFW'((((32'(ys) & (BH - 1)) >> 1) * (BW / 2)) + ((32'(xs) & (BW - 1)) >> 1));
+                OFW'((((32'(ys) >> pq) & ((32'd1 << (lbh - VW'(pq))) - 1)) << (lbw - VW'(pq)))
+                     | ((32'(xs) >> pq) & ((32'd1 << (lbw - VW'(pq))) - 1)));
           end
+
         end
       end
     end
@@ -273,7 +348,7 @@ module tex_cached_fetch #(
 
   // Per slot: its cache's answers; the misses in order (slot 0, then slot 1; block parity 0..3).
   // Only in a clock with a push, as the lookups.
-  localparam int MEW = AW + 1 + SLW;  // a miss: {line address, cache, line slot}
+  localparam int MEW = AW + KW + 1 + SLW;  // a miss: {line address, bank kind, cache, line slot}
   logic [7:0]       miss;
   logic [8*MEW-1:0] miss_entry;
   logic [8*RD-1:0]  reads;           // slot s bank b at [(s*4 + b)*RD +: RD]: {line slot, offset}
@@ -295,7 +370,7 @@ module tex_cached_fetch #(
         for (int q = 0; q < 4; q++) begin
           miss[sl*4 + q] = look[sl][q] && !hit_s[q];
           miss_entry[(sl*4 + q)*MEW +: MEW] =
-              {AW'(look_line[sl][q*LNW +: LNW]) << LOG2_LB, cache_s, slot_s[q*SLW +: SLW]};
+              {AW'(look_line[sl][q*LNW +: LNW]) << LOG2_LB, line_kind(fmt), cache_s, slot_s[q*SLW +: SLW]};
           fills = fills + 4'(miss[sl*4 + q]);
         end
         for (int k = 0; k < 4; k++) begin
@@ -374,8 +449,12 @@ module tex_cached_fetch #(
   end
 
   // ---------------------------------------------------------------- sample FIFO
-  // An entry: {tag, w, f, c0, tap parities (slot 1, slot 0), bank reads, fills}.
-  localparam int EW = TAG_W + 4*WB + WB + 1 + 8 + 8*RD + 4;
+  // An entry: {tag, w, f, sRGB, format, c0, taps' low coordinate bits (slot 1, slot 0), bank reads, fills}.
+  localparam int P_TAPS = 4 + 8*RD;          // field positions
+  localparam int P_C0   = P_TAPS + 8*PB;
+  localparam int P_FMT  = P_C0 + 1;
+  localparam int P_SRGB = P_FMT + FW;
+  localparam int EW     = P_SRGB + 1 + 5*WB + TAG_W;
   localparam int FPW = $clog2(FIFO_DEPTH);
   logic [EW-1:0]  fifo [FIFO_DEPTH];
   logic [FPW-1:0] fifo_wr, fifo_rd;
@@ -384,7 +463,7 @@ module tex_cached_fetch #(
   logic [FCW-1:0] fifo_next;
   logic [MCW-1:0] ring_next;
   always_ff @(posedge clk) begin
-    if (push) fifo[fifo_wr] <= {front_tag, w, f, c0, tap_parity[1], tap_parity[0], reads, fills};
+    if (push) fifo[fifo_wr] <= {front_tag, w, f, srgb, fmt, c0, tap_low[1], tap_low[0], reads, fills};
   end
   assign fifo_next = fifo_count + FCW'(push) - FCW'(fifo_pop);
   logic [FCW-1:0] fifo_limit;  // the FIFO's depth in use
@@ -433,21 +512,22 @@ module tex_cached_fetch #(
   end
 
   // The line at the head of the fill FIFO in the cache's format: texel j, channel k at
-  // [(j*4 + k)*CW +: CW] from memory bytes [j*TB + k*TB/4 +: TB/4]. Only in a clock that writes
+  // [(j*4 + k)*CCW +: CCW] from memory bytes [j*TB + k*TB/4 +: TB/4]. Only in a clock that writes
   // it (0 otherwise), as the tag stage.
-  logic [BW*BH*DW-1:0] fill_line;
+  logic [BW*BH*DWC-1:0] fill_line;
   always_comb begin
     fill_line = '0;
     if (fill_write)
       for (int j = 0; j < BW * BH; j++)
         for (int k = 0; k < 4; k++)
-          fill_line[(j*4 + k)*CW +: CW] = fill_mem[fill_rd][(j*TB + k*TB/4)*8 +: CW];
+          fill_line[(j*4 + k)*CCW +: CCW] = fill_mem[fill_rd][(j*TB + k*TB/4)*8 +: CCW];
   end
 
   // The fill's destination: the oldest miss in the ring.
   logic             fill_cache;
   logic [SLW-1:0]   fill_slot;
-  assign {fill_cache, fill_slot} = ring[ring_ret][SLW:0];
+  logic [KW-1:0]    fill_kind;
+  assign {fill_kind, fill_cache, fill_slot} = ring[ring_ret][KW+SLW:0];
 
   // ---------------------------------------------------------------- R: read the data banks
   logic          r_valid;
@@ -460,27 +540,26 @@ module tex_cached_fetch #(
   logic [8*RD-1:0] r_reads;
   logic            r_c0;
   assign r_reads = r_entry[4 +: 8*RD];
-  assign r_c0    = r_entry[4 + 8*RD + 8];
+  assign r_c0    = r_entry[P_C0];
 
-  logic [4*DW-1:0] bank_texel [2];  // cache c, bank b at [b*DW +: DW] (clock T)
+  logic [4*WW-1:0] bank_word [2];  // cache c, bank b's word at [b*WW +: WW] (clock T)
   generate
     for (c = 0; c < 2; c = c + 1) begin : g_data
       logic [4*SLW-1:0] rd_slot;
-      logic [4*OFW-1:0] rd_offset;
       logic             sc;
       assign sc = (r_c0 != 1'(c));
       for (b = 0; b < 4; b = b + 1) begin : g_bank
-        assign {rd_slot[b*SLW +: SLW], rd_offset[b*OFW +: OFW]} = r_reads[(sc*4 + b)*RD +: RD];
+        assign rd_slot[b*SLW +: SLW] = r_reads[(sc*4 + b)*RD + OFW +: SLW];
       end
-      tex_cache_data #(.LINES(LINES), .BW(BW), .BH(BH), .DW(DW)) u_data (
+      tex_cache_data #(.LINES(LINES), .BW(BW), .BH(BH), .DW(DWC), .BLOCKS(BLOCK_FORMATS)) u_data (
         .clk(clk), .wr_en(fill_write && fill_cache == 1'(c)), .wr_slot(fill_slot),
-        .wr_line(fill_line), .re(en_back && r_valid), .rd_slot(rd_slot), .rd_offset(rd_offset),
-        .rd_texel(bank_texel[c])
+        .wr_line(fill_line), .wr_kind(fill_kind), .re(en_back && r_valid), .rd_slot(rd_slot),
+        .rd_word(bank_word[c])
       );
     end
   endgenerate
 
-  // ---------------------------------------------------------------- T: texels -> taps
+  // ---------------------------------------------------------------- T: bank words -> taps
   logic          t_valid;
   logic [EW-1:0] t_entry;
   always_ff @(posedge clk) begin
@@ -488,21 +567,111 @@ module tex_cached_fetch #(
     else if (en_back) t_valid <= r_valid;
     if (en_back && r_valid) t_entry <= r_entry;
   end
-  logic       t_c0;
-  logic [7:0] t_parity;  // slot s at [s*4 +: 4]: {y1, y0, x1, x0} & 1
-  assign t_c0     = t_entry[4 + 8*RD + 8];
-  assign t_parity = t_entry[4 + 8*RD +: 8];
+  logic            t_c0, t_blk;
+  logic [FW-1:0]   t_fmt;
+  logic [8*PB-1:0] t_low;    // slot s at [s*4*PB +: 4*PB]: {y1, y0, x1, x0} mod 2^PB
+  logic [8*RD-1:0] t_reads;  // the bank reads of the sample: their offsets in the words
+  assign t_c0    = t_entry[P_C0];
+  assign t_fmt   = t_entry[P_FMT +: FW];
+  assign t_blk   = t_fmt != tex_pkg::FMT_RGBA8;
+  assign t_low   = t_entry[P_TAPS +: 8*PB];
+  assign t_reads = t_entry[4 +: 8*RD];
+  // Tap i = sl*4 + t (t bit 0: the x tap, bit 1: the y tap) reads the bank of its parity: of its
+  // texel, or of its 4x4 block; at that bank's offset, a texel or a block in the bank's word.
+  // Only while a sample is in T (a simulator skips it in the clocks in between).
+  logic [8*WW-1:0]  tap_word;    // tap i's bank word at [i*WW +: WW]
+  logic [8*OFW-1:0] tap_offset;  // and its offset in it
+  always_comb begin
+    logic [PB-1:0] xl, yl;  // the tap's low coordinate bits
+    logic [1:0]    bank;
+    {xl, yl, bank} = '0;
+    tap_word   = '0;
+    tap_offset = '0;
+    if (t_valid)
+      for (int sl = 0; sl < 2; sl++)
+        for (int t = 0; t < 4; t++) begin
+          xl   = t_low[(sl*4 + t%2)*PB +: PB];
+          yl   = t_low[(sl*4 + 2 + t/2)*PB +: PB];
+          bank = t_blk ? {yl[PB-1], xl[PB-1]} : {yl[0], xl[0]};
+          tap_word[(sl*4 + t)*WW +: WW]    = bank_word[t_c0 ^ 1'(sl)][32'(bank)*WW +: WW];
+          tap_offset[(sl*4 + t)*OFW +: OFW] = t_reads[(sl*4 + 32'(bank))*RD +: OFW];
+        end
+  end
+
+  logic [8*DWC-1:0] decoded;  // tap i's texel of a block format at [i*DWC +: DWC]
+  generate
+    if (BLOCK_FORMATS != 0) begin : g_decode
+      // One decoder per tap (all 8 texels of a trilinear sample in this clock); their inputs
+      // are 0 unless a block-format sample is in T.
+      logic [8*128-1:0] dec_block;
+      logic [8*4-1:0]   dec_texel;
+      always_comb begin
+        dec_block = '0;
+        dec_texel = '0;
+        if (t_valid && t_blk)
+          for (int sl = 0; sl < 2; sl++)
+            for (int t = 0; t < 4; t++) begin
+              dec_block[(sl*4 + t)*128 +: 128] = line_kind(t_fmt) == 2'd1
+                  ? 128'(64'(tap_word[(sl*4 + t)*WW +: WW] >> (32'(tap_offset[(sl*4 + t)*OFW +: OFW]) * 64)))
+                  : 128'(tap_word[(sl*4 + t)*WW +: WW] >> (32'(tap_offset[(sl*4 + t)*OFW +: OFW]) * 128));
+              dec_texel[(sl*4 + t)*4 +: 4] = {t_low[(sl*4 + 2 + t/2)*PB +: 2], t_low[(sl*4 + t%2)*PB +: 2]};
+            end
+      end
+      for (b = 0; b < 8; b = b + 1) begin : g_tap
+        logic [31:0] rgba;
+        tex_bc_decode u_dec (.format(t_fmt), .block(dec_block[b*128 +: 128]), .texel(dec_texel[b*4 +: 4]),
+                             .rgba(rgba));
+        assign decoded[b*DWC +: DWC] = DWC'(rgba);
+      end
+    end else begin : g_no_decode
+      assign decoded = '0;
+    end
+  endgenerate
+
+  // Each tap's texel as the cache holds its channels: from its bank word, or decoded (only while
+  // a sample is in T: a simulator skips it in the clocks in between).
+  logic [8*DWC-1:0] cached;
+  always_comb begin
+    cached = '0;
+    if (t_valid)
+      for (int sl = 0; sl < 2; sl++)
+        for (int t = 0; t < 4; t++)
+          cached[(sl*4 + t)*DWC +: DWC] =
+              t_blk ? decoded[(sl*4 + t)*DWC +: DWC]
+                    : DWC'(tap_word[(sl*4 + t)*WW +: WW] >> (32'(tap_offset[(sl*4 + t)*OFW +: OFW]) * DWC));
+  end
+
+  // SRGB: the 8-bit channels into the CW = 16 filter. An sRGB texture's R, G, B through the decode
+  // table (24 ROM reads per sample), its alpha widened exactly (a * 257 = {a, a}); a linear
+  // texture's channels as they are (the filter's arithmetic is exact, so 8-bit values give the
+  // 8-bit filter's result in the low bits).
+  logic [8*DW-1:0] widened;
+  generate
+    if (SRGB != 0) begin : g_srgb
+      logic t_srgb;
+      assign t_srgb = t_entry[P_SRGB];
+      for (b = 0; b < 8; b = b + 1) begin : g_tap
+        logic [47:0] rgb;  // linear unorm16 R, G, B
+        logic [7:0]  a;
+        for (genvar k = 0; k < 3; k = k + 1) begin : g_channel
+          tex_srgb_decode u_rom (.code(cached[b*32 + k*8 +: 8]), .linear(rgb[k*16 +: 16]));
+        end
+        assign a = cached[b*32 + 24 +: 8];
+        assign widened[b*DW +: DW] = t_srgb ? DW'({a, a, rgb})
+                                            : DW'({8'd0, a, 8'd0, cached[b*32 + 16 +: 8], 8'd0, cached[b*32 + 8 +: 8],
+                                                   8'd0, cached[b*32 +: 8]});
+      end
+    end else begin : g_linear
+      assign widened = cached;
+    end
+  endgenerate
+
   always_ff @(posedge clk) begin
     if (rst) out_valid <= 1'b0;
     else if (en_back) out_valid <= t_valid;
     if (en_back && t_valid) begin
       {out_tag, out_w, out_f} <= t_entry[EW-1 -: TAG_W + 5*WB];
-      for (int sl = 0; sl < 2; sl++) begin
-        for (int t = 0; t < 4; t++) begin  // t: the tap, bit 0 = tx, bit 1 = ty
-          taps[(sl*4 + t)*DW +: DW] <= bank_texel[t_c0 ^ 1'(sl)][{t_parity[sl*4 + 2 + t/2],
-                                                                   t_parity[sl*4 + t%2]}*DW +: DW];
-        end
-      end
+      taps <= widened;
     end
   end
 endmodule

@@ -16,6 +16,12 @@ rtl/tex_fetch.sv
 rtl/tex_filter.sv
 rtl/tex_unit.sv
 rtl/tex_cache_tags.sv
+rtl/tex_bc_colour.sv
+rtl/tex_bc_channel.sv
+rtl/tex_bc7_mode.sv
+rtl/tex_bc7.sv
+rtl/tex_bc_decode.sv
+rtl/tex_srgb_decode.sv
 rtl/tex_cache_data.sv
 rtl/tex_cached_fetch.sv
 rtl/tex_unit_cached.sv

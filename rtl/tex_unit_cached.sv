@@ -21,7 +21,10 @@
 //   cfg_desc_*       : a descriptor write (cfg_desc_we high for one clock): entry cfg_desc_index
 //                      is the pyramid at byte address cfg_desc_base (MEM_ADDR_W bits, line
 //                      aligned) of 2^cfg_desc_log2_w x 2^cfg_desc_log2_h texels (a full chain of
-//                      levels, docs/memory.md §1) with wrap modes cfg_desc_wrap_u, cfg_desc_wrap_v.
+//                      levels, docs/memory.md §1) with wrap modes cfg_desc_wrap_u, cfg_desc_wrap_v,
+//                      in format cfg_desc_format (tex_pkg::FMT_*: RGBA, or with BLOCK_FORMATS a
+//                      block format, decoded after the cache to unorm8 texels; docs/memory.md §1),
+//                      its R, G, B sRGB-encoded if cfg_desc_srgb (SRGB only; not BC4, BC5).
 //                      Written before the requests that name the entry (and rewritten between
 //                      frames, with no request of that entry in flight); the caches need no flush
 //                      (they are tagged by address).
@@ -46,7 +49,12 @@ module tex_unit_cached #(
   parameter int MISS_DEPTH = 64,   // misses in flight (power of two, >= 16)
   parameter int FILL_DEPTH = 4,    // received lines not yet written (power of two)
   parameter int MEM_W      = 128,  // bits of a memory beat (power of two, divides the line)
-  parameter int TEXTURES   = 16    // texture descriptor-table entries (power of two, 1..16)
+  parameter int TEXTURES   = 16,   // texture descriptor-table entries (power of two, 1..16)
+  parameter int BLOCK_FORMATS = 1, // 1: BC1-BC5 and BC7 textures too, 8 decoders after the cache
+                                   // (needs 8-bit memory channels and lines of at least 64 bytes)
+  parameter int SRGB       = 0     // 1: sRGB textures too: memory holds 8-bit channels, CW = 16;
+                                   // an sRGB texture's R, G, B decoded to linear unorm16 by a table
+                                   // before the filter, a linear texture filtered as 8-bit values
 ) (
   input  logic                                   clk,
   input  logic                                   rst,
@@ -58,6 +66,8 @@ module tex_unit_cached #(
   input  logic [tex_pkg::LEVEL_W-1:0]            cfg_desc_log2_h,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_desc_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_desc_wrap_v,
+  input  logic [tex_pkg::FORMAT_W-1:0]           cfg_desc_format,
+  input  logic                                   cfg_desc_srgb,
   input  logic                                   cfg_texel_linear,
   input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
@@ -107,7 +117,7 @@ module tex_unit_cached #(
   localparam int TGW = (TAG_W < 1) ? 1 : TAG_W;
   localparam int XW  = (MLW > 0) ? MLW : 1;
   localparam int YW  = (MLH > 0) ? MLH : 1;
-  localparam int LINE_BITS = BLOCK_W * BLOCK_H * ((CW > 8) ? 64 : 32);
+  localparam int LINE_BITS = BLOCK_W * BLOCK_H * ((CW > 8 && SRGB == 0) ? 64 : 32);
 `ifdef __ICARUS__
   `define TEX_PARAM_ERROR(msg) initial $fatal(1, msg);
 `else
@@ -153,6 +163,12 @@ module tex_unit_cached #(
     if (TEXTURES < 1 || TEXTURES > (1 << tex_pkg::TEX_ID_W) || (TEXTURES & (TEXTURES - 1)) != 0) begin : g_bad_textures
       `TEX_PARAM_ERROR("tex_unit_cached: parameter TEXTURES must be a power of two from 1 to 16 (tex_pkg::TEX_ID_W)")
     end
+    if (!(SRGB == 0 || (SRGB == 1 && CW == 16))) begin : g_bad_srgb
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter SRGB must be 0, or 1 with CW = 16")
+    end
+    if (!(BLOCK_FORMATS == 0 || (BLOCK_FORMATS == 1 && (CW == 8 || SRGB == 1) && LINE_BITS >= 512))) begin : g_bad_block_formats
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter BLOCK_FORMATS must be 0, or 1 with 8-bit memory channels (CW = 8, or SRGB) and lines of at least 64 bytes (BLOCK_W * BLOCK_H >= 16)")
+    end
   endgenerate
 `undef TEX_PARAM_ERROR
 
@@ -179,6 +195,8 @@ module tex_unit_cached #(
   logic [tex_pkg::MEM_ADDR_W-1:0] desc_base_q;
   logic [ZW-1:0]                  desc_size_q;             // {log2 h, log2 w}
   logic [MW-1:0]                  desc_wrap_q;             // {wrap v, wrap u}
+  logic [tex_pkg::FORMAT_W-1:0]   desc_format_q;
+  logic                           desc_srgb_q;
   logic [ZW-1:0]                  desc_size [TEXTURES];
   logic [MW-1:0]                  desc_wrap [TEXTURES];
   always_ff @(posedge clk) begin
@@ -187,6 +205,8 @@ module tex_unit_cached #(
     desc_base_q  <= cfg_desc_base;
     desc_size_q  <= {cfg_desc_log2_h, cfg_desc_log2_w};
     desc_wrap_q  <= {cfg_desc_wrap_v, cfg_desc_wrap_u};
+    desc_format_q <= cfg_desc_format;
+    desc_srgb_q   <= cfg_desc_srgb;
     if (desc_we_q) begin
       desc_size[desc_index_q] <= desc_size_q;
       desc_wrap[desc_index_q] <= desc_wrap_q;
@@ -267,13 +287,15 @@ module tex_unit_cached #(
   tex_cached_fetch #(
     .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .CW(CWD), .TAG_W(SW), .BW(BLOCK_W), .BH(BLOCK_H),
     .LINES(LINES), .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH),
-    .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES)
+    .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES), .BLOCK_FORMATS(BLOCK_FORMATS),
+    .SRGB(SRGB)
   ) u_fetch (
     .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
     .front_valid(valid_f[4]), .front_tag(tag_f4), .front_tex(tex_f[3*TXW +: TXW]), .level(level_s4),
     .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
     .desc_we(desc_we_q), .desc_index(desc_index_q), .desc_base(desc_base_q),
-    .desc_log2_w(desc_size_q[0 +: VW]), .desc_log2_h(desc_size_q[VW +: VW]),
+    .desc_log2_w(desc_size_q[0 +: VW]), .desc_log2_h(desc_size_q[VW +: VW]), .desc_format(desc_format_q),
+    .desc_srgb(desc_srgb_q),
     .cfg_block_morton(cfg_block_morton_q), .cfg_log2_sets(cfg_log2_sets_q),
     .cfg_log2_ways(cfg_log2_ways_q), .cfg_fifo_limit(cfg_fifo_limit_q),
     .mem_req_valid(mem_req_valid), .mem_req_ready(mem_req_ready), .mem_req_addr(mem_req_addr),
@@ -366,6 +388,15 @@ module tex_unit_cached #(
       assert (32'(cfg_desc_index) < TEXTURES)
         else $error("tex_unit_cached: cfg_desc_index %0d is beyond the descriptor table (TEXTURES = %0d)",
                     cfg_desc_index, TEXTURES);
+    if (!rst && cfg_desc_we)
+      assert (cfg_desc_format == tex_pkg::FMT_RGBA8
+              || (BLOCK_FORMATS != 0 && cfg_desc_format != 3'd6))
+        else $error("tex_unit_cached: cfg_desc_format %0d is not a format of this unit (BLOCK_FORMATS = %0d)",
+                    cfg_desc_format, BLOCK_FORMATS);
+    if (!rst && cfg_desc_we && cfg_desc_srgb)
+      assert (SRGB != 0 && cfg_desc_format != tex_pkg::FMT_BC4 && cfg_desc_format != tex_pkg::FMT_BC5)
+        else $error("tex_unit_cached: cfg_desc_srgb for format %0d (SRGB = %0d; BC4 and BC5 have no sRGB)",
+                    cfg_desc_format, SRGB);
     if (!rst && req_valid)
       assert (32'(req_tex) < TEXTURES)
         else $error("tex_unit_cached: req_tex %0d is beyond the descriptor table (TEXTURES = %0d)", req_tex, TEXTURES);

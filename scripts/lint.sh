@@ -30,10 +30,12 @@ for p in "${bad[@]}"; do
 done
 # tex_unit_cached (docs/memory.md): cache, block, FIFO and beat parameters.
 lint_cached() { verilator --lint-only -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit_cached "$@" 2>&1; }
-cached=("-GMAX_LOG2_W=6 -GMAX_LOG2_H=3" "-GCW=16 -GMAX_LOG2_W=5 -GMAX_LOG2_H=4 -GBLOCK_W=2 -GMEM_W=64"
+cached=("-GMAX_LOG2_W=6 -GMAX_LOG2_H=3" "-GCW=16 -GMAX_LOG2_W=5 -GMAX_LOG2_H=4 -GBLOCK_W=2 -GMEM_W=64 -GBLOCK_FORMATS=0"
         "-GMAX_LOG2_W=0 -GMAX_LOG2_H=0" "-GBLOCK_W=8 -GBLOCK_H=2 -GMAX_WAYS=1 -GLINES=16 -GFILL_DEPTH=1"
         "-GMAX_LOG2_W=13 -GMAX_LOG2_H=13 -GLINES=1024 -GFIFO_DEPTH=1024 -GMEM_W=512"
-        "-GMAX_LOG2_W=13 -GMAX_LOG2_H=0 -GCW=16 -GTEXTURES=1" "-GTEXTURES=2")
+        "-GBLOCK_W=8 -GBLOCK_H=8 -GMEM_W=256" "-GBLOCK_W=2 -GBLOCK_H=4 -GBLOCK_FORMATS=0"
+        "-GMAX_LOG2_W=13 -GMAX_LOG2_H=0 -GCW=16 -GTEXTURES=1 -GBLOCK_FORMATS=0" "-GTEXTURES=2"
+        "-GMAX_LOG2_W=6 -GMAX_LOG2_H=3 -GCW=16 -GSRGB=1" "-GCW=16 -GSRGB=1 -GBLOCK_FORMATS=0")
 for cfg in "${cached[@]}"; do
   if ! out=$(lint_cached $cfg) || [ -n "$out" ]; then
     echo "$out" >&2
@@ -42,9 +44,11 @@ for cfg in "${cached[@]}"; do
   fi
 done
 bad_cached=("MAX_LOG2_W=14" "BLOCK_W=3" "BLOCK_H=16" "MAX_WAYS=3" "LINES=24" "FIFO_DEPTH=3" "MISS_DEPTH=8" "MEM_W=1024"
-            "TEXTURES=3" "TEXTURES=32")
+            "TEXTURES=3" "TEXTURES=32" "BLOCK_FORMATS=2" "CW=16" "SRGB=2" "SRGB=1")
 for p in "${bad_cached[@]}"; do
-  if out=$(lint_cached -G"$p") || ! grep -q "tex_unit_cached: parameter ${p%%=*} must" <<< "$out"; then
+  name=${p%%=*}
+  [ "$p" = CW=16 ] && name=BLOCK_FORMATS  # the decoders take 8-bit memory channels (CW 8, or SRGB)
+  if out=$(lint_cached -G"$p") || ! grep -q "tex_unit_cached: parameter $name must" <<< "$out"; then
     echo "$out" >&2
     echo "lint: tex_unit_cached's parameter check did not fire for $p" >&2
     exit 1
@@ -59,7 +63,7 @@ if ! out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex
   exit 1
 fi
 echo "lint: verilator -Wall clean for tex_lambda"
-# The block decoders on their own (not yet in tex_unit_cached), and the elaboration check of
+# The block decoders on their own (tex_unit_cached has 8 of them), and the elaboration check of
 # tex_bc7_mode's MODE.
 if ! out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_channel.sv \
              rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv --top-module tex_bc_decode 2>&1) ||

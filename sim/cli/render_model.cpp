@@ -4,9 +4,11 @@
 #include <filesystem>
 
 #include "model/pyramid.h"
+#include "model/srgb.h"
 #include "workloads/camera.h"
 #include "workloads/mesh_scene.h"
 #include "workloads/rasterizer.h"
+#include "workloads/texture_files.h"
 #include "workloads/texture_io.h"
 
 namespace tex {
@@ -68,7 +70,14 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   pyramids.reserve(scene.textures.size());
   TextureTable table;
   for (const SceneTexture& t : scene.textures) {
-    pyramids.push_back(build_pyramid(t.image, o.pyramid_mode()));
+    // --format for every texture; sRGB where the file says so (glTF 2 base colour) or --srgb.
+    TextureOptions topts = o.texture_options();
+    topts.srgb = topts.srgb || t.srgb;
+    try {
+      pyramids.push_back(make_pyramid(t.image, topts));
+    } catch (const Error& e) {
+      throw Error(t.source + " (" + t.material + (t.srgb ? ", sRGB base colour" : "") + "): " + e.what());
+    }
     table.push_back({&pyramids.back(), a.wrap_given ? cfg.wrap_u : t.wrap_u, a.wrap_given ? cfg.wrap_v : t.wrap_v});
   }
   const uint64_t resident = texture_bytes_resident(table, eo);  // also checks the table fits the memory
@@ -125,6 +134,8 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
     VectorSource source(requests);
     VectorSink texels;
     last_stats = run_engine(o, eo, outputs, trace, table, cfg, source, texels);
+    for (size_t i = 0; i < texels.texels.size(); ++i)  // an sRGB texture's linear results back to codes
+      if (table[requests[i].texture].pyramid->srgb) texels.texels[i] = encode_srgb_texel(texels.texels[i]);
     save_image(compose_frame(frame, texels.texels, 8, Texel{48, 48, 56, 255}), *images[size_t(f - first)]);
     const FrameFigures fig = frame_figures(counts, last_stats, resident, lines.bytes(line_bytes(table, eo)));
     total.add(fig);
@@ -139,11 +150,13 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   if (query_writer) queries_out->close();
   if (list_out) {
     std::FILE* list = list_out->open();
-    std::fprintf(list, "# texture list of %s: id file wrap_u wrap_v (texsim sample --textures)\n", a.trace_queries.c_str());
+    std::fprintf(list, "# texture list of %s: id file wrap_u wrap_v [srgb] (texsim sample --textures)\n",
+                 a.trace_queries.c_str());
     for (size_t t = 0; t < scene.textures.size(); ++t) {
       save_image(scene.textures[t].image, *texture_files[t]);
-      std::fprintf(list, "%zu %s %s %s\n", t, std::filesystem::path(texture_files[t]->path()).filename().c_str(),
-                   wrap_name(table[t].wrap_u).c_str(), wrap_name(table[t].wrap_v).c_str());
+      std::fprintf(list, "%zu %s %s %s%s\n", t, std::filesystem::path(texture_files[t]->path()).filename().c_str(),
+                   wrap_name(table[t].wrap_u).c_str(), wrap_name(table[t].wrap_v).c_str(),
+                   table[t].pyramid->srgb ? " srgb" : "");
     }
     list_out->close();
   }

@@ -25,11 +25,13 @@ namespace {
 
 using namespace tex;
 
-// --textures FILE: one `id path [wrap_u [wrap_v]]` per line (ids 0, 1, ... in order; paths relative to
-// the file; wrap modes default to --wrap*), the descriptor table of a frame's trace.
+// --textures FILE: one `id path [wrap_u [wrap_v [srgb]]]` per line (ids 0, 1, ... in order; paths
+// relative to the file; wrap modes default to --wrap*; `srgb`: the texels are sRGB codes), the
+// descriptor table of a frame's trace.
 struct TextureListEntry {
   std::string path;
   Wrap wrap_u, wrap_v;
+  bool srgb = false;
 };
 std::vector<TextureListEntry> read_texture_list(const std::string& path, const SamplerConfig& cfg) {
   std::FILE* f = std::fopen(path.c_str(), "r");
@@ -40,16 +42,18 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
   while (std::fgets(buf, sizeof buf, f)) {
     ++line_no;
     std::istringstream line(buf);
-    std::string id, file, wu, wv, extra;
+    std::string id, file, wu, wv, flag, extra;
     line >> id;
     if (id.empty() || id[0] == '#') continue;
-    line >> file >> wu >> wv >> extra;
+    line >> file >> wu >> wv >> flag >> extra;
     const std::string at = path + ":" + std::to_string(line_no) + ": ";
     if (id != std::to_string(out.size()))
       throw Error(at + "texture id " + quote_clipped(id) + ": expected " + std::to_string(out.size()) + " (ids 0, 1, ... in order)");
-    if (file.empty()) throw Error(at + "expected `id path [wrap_u [wrap_v]]`");
-    if (!extra.empty()) throw Error(at + "unexpected " + quote_clipped(extra) + " after the wrap modes");
-    TextureListEntry e{file, cfg.wrap_u, cfg.wrap_v};
+    if (file.empty()) throw Error(at + "expected `id path [wrap_u [wrap_v [srgb]]]`");
+    if (!flag.empty() && flag != "srgb")
+      throw Error(at + "unexpected " + quote_clipped(flag) + " after the wrap modes (srgb, or nothing)");
+    if (!extra.empty()) throw Error(at + "unexpected " + quote_clipped(extra) + " after srgb");
+    TextureListEntry e{file, cfg.wrap_u, cfg.wrap_v, flag == "srgb"};
     if (std::filesystem::path(file).is_relative()) e.path = (std::filesystem::path(path).parent_path() / file).string();
     if (!wu.empty() && !parse_wrap(wu, e.wrap_u)) throw Error(at + "unknown wrap mode " + quote_clipped(wu) + " (repeat, clamp, mirror)");
     if (!wv.empty() && !parse_wrap(wv, e.wrap_v)) throw Error(at + "unknown wrap mode " + quote_clipped(wv) + " (repeat, clamp, mirror)");
@@ -60,7 +64,7 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
     out.push_back(e);
   }
   std::fclose(f);
-  if (out.empty()) throw Error(path + ": no textures listed (one `id path [wrap_u [wrap_v]]` per line)");
+  if (out.empty()) throw Error(path + ": no textures listed (one `id path [wrap_u [wrap_v [srgb]]]` per line)");
   return out;
 }
 
@@ -117,7 +121,9 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   TextureTable table;
   try {
     for (const TextureListEntry& e : list) {
-      pyramids.push_back(load_pyramid(e.path, topts));
+      TextureOptions entry = topts;
+      entry.srgb = entry.srgb || e.srgb;
+      pyramids.push_back(load_pyramid(e.path, entry));
       table.push_back({&pyramids.back(), e.wrap_u, e.wrap_v});
     }
   } catch (...) {

@@ -290,19 +290,6 @@ EngineStats Engine::run(const TextureTable& textures, const SamplerConfig& confi
   return run(*textures[0].pyramid, c, source, sink);
 }
 
-void require_uncompressed_cached(const TextureTable& textures, const EngineOptions& options, const std::string& engine) {
-  if (options.memory != Memory::Cached) return;
-  for (const BoundTexture& t : textures) {
-    if (is_compressed(t.pyramid->format))
-      throw Error("engine " + engine + ": a " + format_info(t.pyramid->format).name +
-                  " texture in the cached unit; the cached RTL reads RGBA8 lines only so far (its block decoders "
-                  "are not yet inside it), use --engine model or --format rgba8");
-    if (t.pyramid->srgb)
-      throw Error("engine " + engine + ": an sRGB texture in the cached unit; the RTL's sRGB table is not yet "
-                  "inside it, use --engine model or --memory onchip (which holds the levels decoded)");
-  }
-}
-
 std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures, const EngineOptions& options) {
   if (textures.empty() || textures.size() > size_t(kMaxTextures))
     throw Error(std::to_string(textures.size()) + " textures: the descriptor table holds 1 to " +

@@ -307,9 +307,5 @@ std::unique_ptr<TimedStream> model_timing(const TextureTable& textures, const En
 // The descriptor table of a texture table in cached mode: layouts packed one after another from
 // options.layout.base. Throws tex::Error (too many textures, different channel widths, memory).
 std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures, const EngineOptions& options);
-// Throws tex::Error for a block-compressed or sRGB texture in the cached unit of an engine whose
-// RTL has no block decoders or sRGB table yet (the golden model has them: docs/numerics.md); on
-// chip such a texture is held decoded (sRGB: linear unorm16), as the paper's memories hold texels.
-void require_uncompressed_cached(const TextureTable& textures, const EngineOptions& options, const std::string& engine);
 
 }  // namespace tex

@@ -72,19 +72,10 @@ EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, Reque
 
 UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& options, std::string& name,
                            int& beat_bytes) {
-  int log2_w = 0, log2_h = 0;
-  for (const BoundTexture& t : textures) {
-    log2_w = std::max(log2_w, t.pyramid->log2_w0());
-    log2_h = std::max(log2_h, t.pyramid->log2_h0());
-  }
-  // (in memory for the cached unit; on chip the levels as the filter takes them: sRGB decoded)
-  const int cw = textures.empty()                  ? 8
-                 : options.memory == Memory::Cached ? textures[0].pyramid->memory_channel_bits()
-                                                    : textures[0].pyramid->levels[0].channel_bits;
   beat_bytes = 16;
   try {
-    const rtl::RtlConfig& rc = rtl::smallest_config_for(log2_w, log2_h, cw, options.memory, options.layout.block_w,
-                                                        options.layout.block_h);
+    const rtl::RtlConfig& rc =
+        rtl::smallest_config_for(textures, options.memory, options.layout.block_w, options.layout.block_h);
     if (options.memory == Memory::Cached) {
       rtl::cache_pins(rc, options.layout, options.cache, options.fifo_depth);
       if (options.mem_bytes_per_clock > uint32_t(rc.mem_bits / 8)) throw Error("wider than the configuration's beat");
@@ -99,7 +90,8 @@ UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& op
   shape.cached = options.memory == Memory::Cached;
   name = "model";
   if (!shape.cached) return shape;
-  const int line = options.layout.block_w * options.layout.block_h * (cw > 8 ? 8 : 4);
+  const int memory_bits = textures.empty() ? 8 : textures[0].pyramid->memory_channel_bits();  // (a table has one)
+  const int line = options.layout.block_w * options.layout.block_h * (memory_bits > 8 ? 8 : 4);
   beat_bytes = std::min(line, std::max(16, int(std::bit_ceil(options.mem_bytes_per_clock))));
   shape.fifo_depth = 2048;
   while (shape.fifo_depth < options.fifo_depth) shape.fifo_depth *= 2;

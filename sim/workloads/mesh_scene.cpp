@@ -85,9 +85,9 @@ class SceneTextureSet {
  public:
   explicit SceneTextureSet(MeshScene& scene) : scene_(scene) {}
 
-  // The index of the entry for (source, wrap modes), or -1.
-  int find(const std::string& source, Wrap u, Wrap v) const {
-    const auto it = ids_.find({key(source), u, v});
+  // The index of the entry for (source, wrap modes, sRGB or not), or -1.
+  int find(const std::string& source, Wrap u, Wrap v, bool srgb) const {
+    const auto it = ids_.find({key(source), u, v, srgb});
     return it == ids_.end() ? -1 : it->second;
   }
   // An image already decoded for `source` (with other wrap modes), or null.
@@ -99,7 +99,7 @@ class SceneTextureSet {
   }
   int add(SceneTexture t) {
     const int id = int(scene_.textures.size());
-    ids_[{key(t.source), t.wrap_u, t.wrap_v}] = id;
+    ids_[{key(t.source), t.wrap_u, t.wrap_v, t.srgb}] = id;
     scene_.textures.push_back(std::move(t));
     return id;
   }
@@ -112,7 +112,7 @@ class SceneTextureSet {
     return ec ? source : p.string();
   }
   MeshScene& scene_;
-  std::map<std::tuple<std::string, Wrap, Wrap>, int> ids_;
+  std::map<std::tuple<std::string, Wrap, Wrap, bool>, int> ids_;
 };
 
 // Assimp 5.2's glTF 1.0 importer composes a node's translation, rotation and scale as R·S·T (the
@@ -137,10 +137,16 @@ void gltf1_transforms(const nlohmann::json& nodes, const std::string& id, const 
     for (size_t i = 0; i < children.size(); ++i) gltf1_transforms(nodes, children[i], *ai.mChildren[i], out);
 }
 
-NodeTransforms gltf1_transforms(const aiScene& ai, const std::string& path) {
+// The importer that read the file, as Assimp records it ("glTF Importer" for glTF 1.0, "glTF2
+// Importer" for 2.0, ...); "" if it does not say.
+std::string source_format(const aiScene& ai) {
   aiString format;
-  if (!ai.mMetaData || !ai.mMetaData->Get("SourceAsset_Format", format) || std::string(format.C_Str()) != "glTF Importer")
-    return {};
+  if (!ai.mMetaData || !ai.mMetaData->Get("SourceAsset_Format", format)) return "";
+  return format.C_Str();
+}
+
+NodeTransforms gltf1_transforms(const aiScene& ai, const std::string& path) {
+  if (source_format(ai) != "glTF Importer") return {};
   NodeTransforms out;
   try {
     std::ifstream in(path);
@@ -171,7 +177,7 @@ class ModelLoader {
   ModelLoader(const aiScene& ai, const std::string& path, MeshScene& out)
       : ai_(ai), path_(path), dir_(fs::path(path).parent_path()), out_(out), textures_(out),
         material_texture_(ai.mNumMaterials, kUnknown), mesh_noted_(ai.mNumMeshes, false),
-        fixed_transforms_(gltf1_transforms(ai, path)) {}
+        fixed_transforms_(gltf1_transforms(ai, path)), gltf2_(source_format(ai) == "glTF2 Importer") {}
 
   // Draw order: the node tree depth first, each node's meshes in its list order, then its
   // children in order (a mesh that several nodes reference is drawn once per node, as placed).
@@ -240,6 +246,8 @@ class ModelLoader {
 
   // The material's base-colour texture (glTF 2), else its diffuse one (glTF 1, OBJ, COLLADA, ...;
   // Assimp 5.2 also lists glTF 2's base colour as diffuse): its index in the table, or kNone.
+  // glTF 2's base colour is sRGB-encoded (glTF 2.0 §3.9.2); the other formats do not say, and
+  // their textures are taken as linear unless `--srgb`.
   int texture_of(unsigned material) {
     int& id = material_texture_[material];
     if (id != kUnknown) return id;
@@ -255,17 +263,18 @@ class ModelLoader {
       if (mat.Get(AI_MATKEY_UVWSRC(type, 0), uv_set) == AI_SUCCESS && uv_set != 0)
         out_.notes.push_back(path_ + ": material " + in_quotes(material_name(material)) + " names texture coordinate set " +
                              std::to_string(uv_set) + "; set 0 is used");
-      id = texture(material, name.C_Str(), to_wrap(u), to_wrap(v));
+      id = texture(material, name.C_Str(), to_wrap(u), to_wrap(v), gltf2_);
       break;
     }
     return id;
   }
 
-  int texture(unsigned material, const std::string& name, Wrap wrap_u, Wrap wrap_v) {
+  int texture(unsigned material, const std::string& name, Wrap wrap_u, Wrap wrap_v, bool srgb) {
     SceneTexture t;
     t.material = material_name(material);
     t.wrap_u = wrap_u;
     t.wrap_v = wrap_v;
+    t.srgb = srgb;
     const auto [embedded, embedded_index] = ai_.GetEmbeddedTextureAndIndex(name.c_str());
     if (embedded) {
       t.source = path_ + "#embedded:" + std::to_string(embedded_index);
@@ -276,7 +285,7 @@ class ModelLoader {
       if (!fs::exists(t.source))
         throw Error(path_ + ": material " + in_quotes(t.material) + ": texture file not found: " + t.source);
     }
-    if (const int id = textures_.find(t.source, wrap_u, wrap_v); id >= 0) return id;
+    if (const int id = textures_.find(t.source, wrap_u, wrap_v, srgb); id >= 0) return id;
 
     if (const SceneTexture* same = textures_.any(t.source)) {  // decoded already, other wrap modes
       t.image = same->image;
@@ -322,6 +331,7 @@ class ModelLoader {
   std::vector<int> material_texture_;  // per material: texture index, kNone or kUnknown (not asked yet)
   std::vector<bool> mesh_noted_;       // per Assimp mesh: skip note written
   NodeTransforms fixed_transforms_;    // glTF 1.0: node matrices as the file means them
+  bool gltf2_;                         // glTF 2.0: base colour textures are sRGB
 };
 
 glm::dmat4 placement_matrix(const ModelPlacement& p) {
@@ -389,7 +399,7 @@ MeshScene load_models(const std::vector<ModelPlacement>& models) {
     const MeshScene& model = it->second;
     std::vector<int> ids;  // the model's texture index -> the merged scene's
     for (const SceneTexture& t : model.textures) {
-      const int id = table.find(t.source, t.wrap_u, t.wrap_v);
+      const int id = table.find(t.source, t.wrap_u, t.wrap_v, t.srgb);
       ids.push_back(id >= 0 ? id : table.add(t));
     }
     const glm::dmat4 m = placement_matrix(p);

@@ -20,6 +20,7 @@ struct SceneTexture {
   int file_width = 0, file_height = 0;  // as stored in the file
   bool resized = false;     // file_width/height were not powers of two
   Wrap wrap_u = Wrap::Repeat, wrap_v = Wrap::Repeat;  // glTF sampler modes; repeat where the format has none
+  bool srgb = false;        // its texels are sRGB codes: glTF 2's base colour (the spec says so)
 };
 
 // One drawable mesh: triangles (three indices each) with world-space positions and texture

@@ -330,18 +330,15 @@ namespace {
 // A pyramid of random blocks of format f (its levels decoded from them), as a texture file gives.
 Pyramid random_block_pyramid(TexelFormat f, int log2_w, int log2_h, uint64_t seed) {
   std::mt19937_64 rng(seed);
-  Pyramid p;
-  p.format = f;
+  std::vector<std::vector<uint8_t>> blocks;
   for (int k = 0; k < level_count(log2_w, log2_h); ++k) {
     const LevelShape s = level_shape(log2_w, log2_h, k);
-    std::vector<uint8_t> b(level_bytes(f, s.width(), s.height()));
+    std::vector<uint8_t>& b = blocks.emplace_back(level_bytes(f, s.width(), s.height()));
     for (uint8_t& x : b) x = uint8_t(rng());
     if (f == TexelFormat::Bc7)
       for (size_t i = 0; i < b.size(); i += 16) b[i] |= 1;  // mode 0: no reserved blocks
-    p.levels.push_back(decode_level(f, b.data(), s.width(), s.height()));
-    p.blocks.push_back(b);
   }
-  return p;
+  return pyramid_of_blocks(f, log2_w, log2_h, std::move(blocks));
 }
 
 }  // namespace

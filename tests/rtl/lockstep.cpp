@@ -172,6 +172,23 @@ std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_
   return r;
 }
 
+Pyramid random_block_texture(TexelFormat format, int lw, int lh, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::vector<uint8_t>> blocks;
+  const int bytes = format_info(format).block_bytes;
+  for (int k = 0; k < level_count(lw, lh); ++k) {
+    const LevelShape s = level_shape(lw, lh, k);
+    std::vector<uint8_t>& level = blocks.emplace_back(level_bytes(format, s.width(), s.height()));
+    for (uint8_t& b : level) b = uint8_t(rng());
+    if (format == TexelFormat::Bc7)
+      for (size_t i = 0; i < level.size(); i += size_t(bytes)) {
+        const int r = int(rng() % 16), mode = r % 8;  // 15: the reserved mode (byte 0 = 0)
+        level[i] = r == 15 ? 0 : uint8_t((level[i] << (mode + 1)) | (1 << mode));
+      }
+  }
+  return pyramid_of_blocks(format, lw, lh, std::move(blocks));
+}
+
 Request random_footprint(std::mt19937_64& rng, int lw, int lh, int probes, int axis) {
   Request r;
   r.has_derivatives = true;

@@ -11,6 +11,7 @@
 
 #include "lockstep.h"
 #include "model/image.h"
+#include "model/srgb.h"
 
 using namespace tex;
 using namespace tex::rtltest;
@@ -64,12 +65,27 @@ struct CacheCoverage {
   }
 };
 
+// A random texture for a configuration: RGBA (channels as memory holds them) or random blocks of a
+// block format; sRGB if asked and the configuration has the tables (not BC4, BC5: no sRGB).
+Pyramid random_pyramid(const rtl::RtlConfig& rc, TexelFormat format, int lw, int lh, bool srgb, uint64_t seed) {
+  srgb = srgb && rc.srgb && format != TexelFormat::Bc4 && format != TexelFormat::Bc5;
+  if (is_compressed(format)) {
+    Pyramid p = random_block_texture(format, lw, lh, seed);
+    if (srgb) decode_srgb_levels(p);
+    return p;
+  }
+  Image level0 = random_texture(1 << lw, 1 << lh, rc.memory_channel_bits(), seed);
+  return srgb ? build_srgb_pyramid(level0, PyramidMode::Exact) : build_pyramid(std::move(level0), PyramidMode::Exact);
+}
+
 struct CachedSuite {
   std::string config;  // a compiled tex_unit_cached configuration
   std::vector<std::pair<int, int>> textures;  // log2 sizes
   int cases;
   size_t requests_per_case;
   bool check_coverage = true;  // every bin of CacheCoverage::required must be hit
+  std::vector<TexelFormat> formats = {TexelFormat::Rgba8};  // case i: formats[i % size], random blocks
+  bool srgb = false;  // odd cases sRGB (where the format has it)
 };
 
 const rtl::RtlConfig& config_named(const std::string& name) {
@@ -98,7 +114,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
   unit.load_textures(table);
   unit.configure(cfg, pyr);
   if (poke_texel >= 0) {  // planted bug: one byte of the image is wrong
-    const MemoryLayout ml(pyr.log2_w0(), pyr.log2_h0(), pyr.levels[0].channel_bits, layout);
+    const MemoryLayout ml(pyr.log2_w0(), pyr.log2_h0(), pyr.memory_channel_bits(), layout, pyr.format);
     unit.memory()->poke(ml.line_address(0, 0, 0) + uint32_t(poke_texel), 0x5A ^ uint8_t(pyr.levels[0].at(0, 0)[0]));
   }
   // The model's table: the RTL's, unless a test plants another.
@@ -133,7 +149,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
     const rtl::StreamStats st = rtl::stream(unit, requests.data(), requests.size(), stim, seed, [&](size_t i, uint64_t rgba) {
       clocks[i] = response_clock(unit);
       const Texel want = samplers[requests[i].texture].sample(requests[i]);
-      const Texel got = rtl::unpack_rgba(rgba, pyr.levels[0].channel_bits);
+      const Texel got = rtl::unpack_rgba(rgba, unit.config().cw);
       if (got != want && mismatches++ == 0)
         r.failure = "sample " + std::to_string(i) + " " + describe(requests[i]) + ": RTL " + describe(got) +
                     ", model " + describe(want);
@@ -236,7 +252,8 @@ void run_suite(const CachedSuite& suite) {
     if (only && *only != seed) continue;
     std::mt19937_64 rng(seed);
     const auto [lw, lh] = suite.textures[size_t(ci) % suite.textures.size()];
-    const Pyramid pyr = build_pyramid(random_texture(1 << lw, 1 << lh, rc.cw, seed), PyramidMode::Exact);
+    const TexelFormat format = suite.formats[size_t(ci) % suite.formats.size()];
+    const Pyramid pyr = random_pyramid(rc, format, lw, lh, suite.srgb && ci % 2 == 1, seed);
     SamplerConfig cfg;
     cfg.filter = filters[rng() % filters.size()];
     if (ci % 3 != 2) cfg.filter = Filter{TexelFilter::Linear, MipMode::Linear};  // most cases trilinear
@@ -260,7 +277,8 @@ void run_suite(const CachedSuite& suite) {
     if (!r.failure.empty()) {
       ++failures;
       ADD_FAILURE() << suite.config << " case " << ci << " (replay: TEX_SEED=" << seed << "): "
-                    << (1 << lw) << "x" << (1 << lh) << ", " << describe(cfg) << ", "
+                    << (1 << lw) << "x" << (1 << lh) << " " << format_info(format).name << (pyr.srgb ? " sRGB" : "")
+                    << ", " << describe(cfg) << ", "
                     << block_order_name(layout.order) << ", " << cache.size_bytes << " B x " << cache.ways
                     << " ways, FIFO " << (fifo_depth ? std::to_string(fifo_depth) : "all") << ", " << memory_name
                     << ", stimulus " << timing_name << ": " << r.failure;
@@ -285,6 +303,26 @@ void run_suite(const CachedSuite& suite) {
 // 64x8 (non-square), 4x4 blocks of RGBA8, 64 lines per cache at most, a 32-sample FIFO.
 TEST(RtlCached, NonSquareRgba8) { run_suite({"Vtex_cached_6x3", {{6, 3}, {5, 3}, {3, 0}, {6, 2}}, 60, 10000}); }
 
+// Every block format on the same unit (64-byte lines: BC1 and BC4 lines of 16x8 texels, the others
+// 8x8), random blocks (every BC7 mode), decoded by the RTL's 8 tap decoders after the cache:
+// samples, miss streams and response clocks against the model. (The cache bins above are RGBA8's
+// line shape; these lines are wider.)
+TEST(RtlCached, BlockFormats) {
+  run_suite({"Vtex_cached_6x3", {{6, 3}, {5, 2}, {2, 2}, {6, 2}, {4, 3}}, 30, 6000, false,
+             {TexelFormat::Bc1, TexelFormat::Bc2, TexelFormat::Bc3, TexelFormat::Bc4, TexelFormat::Bc5,
+              TexelFormat::Bc7}});
+}
+
+// The sRGB configuration (8-bit channels in memory, a 16-bit filter): every format, sRGB in every
+// other case (RGBA8, BC1, BC2, BC3, BC7) and linear in the others (8-bit values through the 16-bit
+// filter), against the model's linear unorm16 samples.
+TEST(RtlCached, SrgbAndLinearEveryFormat) {
+  run_suite({"Vtex_cached_13x13_srgb", {{6, 3}, {5, 2}, {2, 2}, {6, 2}}, 28, 4000, false,
+             {TexelFormat::Rgba8, TexelFormat::Bc1, TexelFormat::Bc7, TexelFormat::Bc4, TexelFormat::Bc3,
+              TexelFormat::Bc2, TexelFormat::Bc5},
+             true});
+}
+
 // 32x16 with 16-bit channels, 2x4 blocks (128-byte lines), 64-bit memory beats.
 TEST(RtlCached, Channels16Blocks2x4) {
   run_suite({"Vtex_cached_5x4_cw16", {{5, 4}, {4, 4}, {0, 3}, {5, 1}}, 60, 10000});
@@ -299,20 +337,24 @@ TEST(RtlCached, LargestTextures) {
   run_suite({"Vtex_cached_13x13", {{13, 2}, {1, 13}, {13, 13}}, 3, 20000, false});
 }
 
-// The descriptor table: 2 to 16 textures of random sizes and wrap modes in memory at once, a
-// random texture in every request (consecutive requests interleave textures at 1 sample per
-// clock, no flush), under random caches, memory timing and stalls; samples and miss streams
-// against the model. A table whose entries the model swaps is caught.
-TEST(RtlCached, DescriptorTableInterleavesTextures) {
-  const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
-  const uint64_t base = mix64(seed_base() ^ 0xDE5C);
+const std::vector<TexelFormat> kBlockFormats = {TexelFormat::Bc1, TexelFormat::Bc2, TexelFormat::Bc3,
+                                                TexelFormat::Bc4, TexelFormat::Bc5, TexelFormat::Bc7};
+
+// The descriptor table: 2 to 16 textures of random sizes, wrap modes and formats (RGBA8 and block
+// formats mixed; with the sRGB tables, half of them sRGB) in memory at once, a random texture in
+// every request (consecutive requests interleave textures at 1 sample per clock, no flush), under
+// random caches, memory timing and stalls; samples, miss streams and response clocks against the
+// model.
+void run_descriptor_tables(const std::string& config, int cases) {
+  const rtl::RtlConfig& rc = config_named(config);
+  const uint64_t base = mix64(seed_base() ^ 0xDE5C ^ std::hash<std::string>{}(config));
   const std::optional<uint64_t> only = env_u64("TEX_SEED");
   auto unit = rtl::Driver::create(rc, {});
   unit->reset();
   const std::vector<Filter> filters = all_filters();
   uint64_t samples = 0, switches = 0, reads = 0;
-  int full_tables = 0, failures = 0;
-  for (int ci = 0; ci < 40 * scale(); ++ci) {
+  int full_tables = 0, failures = 0, block_textures = 0, srgb_textures = 0;
+  for (int ci = 0; ci < cases * scale(); ++ci) {
     const uint64_t seed = mix64(base + uint64_t(ci));
     if (only && *only != seed) continue;
     std::mt19937_64 rng(seed);
@@ -322,8 +364,13 @@ TEST(RtlCached, DescriptorTableInterleavesTextures) {
     pyramids.reserve(size_t(n));
     TextureTable table;
     for (int t = 0; t < n; ++t) {
-      const int lw = int(rng() % 7), lh = int(rng() % 4);  // up to the configuration's 64x8
-      pyramids.push_back(build_pyramid(random_texture(1 << lw, 1 << lh, rc.cw, rng()), PyramidMode::Exact));
+      // Up to the configuration's 64x8; half of the textures in a block format (sides >= 4).
+      const TexelFormat format = rng() % 2 ? TexelFormat::Rgba8 : kBlockFormats[rng() % kBlockFormats.size()];
+      const bool blocks = is_compressed(format), srgb = rng() % 2;
+      const int lw = blocks ? 2 + int(rng() % 5) : int(rng() % 7), lh = blocks ? 2 + int(rng() % 2) : int(rng() % 4);
+      pyramids.push_back(random_pyramid(rc, format, lw, lh, srgb, rng()));
+      block_textures += blocks;
+      srgb_textures += pyramids.back().srgb;
       table.push_back({&pyramids.back(), Wrap(rng() % 3), Wrap(rng() % 3)});
     }
     SamplerConfig cfg;
@@ -352,15 +399,48 @@ TEST(RtlCached, DescriptorTableInterleavesTextures) {
     }
   }
   std::printf("[ cached   ] descriptor table: %llu samples, %llu texture switches between consecutive requests, "
-              "%llu lines read, %d full tables of %d\n",
+              "%llu lines read, %d full tables of %d, %d block-format textures, %d sRGB (%s)\n",
               (unsigned long long)samples, (unsigned long long)switches, (unsigned long long)reads, full_tables,
-              kMaxTextures);
+              kMaxTextures, block_textures, srgb_textures, config.c_str());
   if (only) return;
   EXPECT_GT(full_tables, 0);
+  EXPECT_GT(block_textures, 0);
+  EXPECT_EQ(srgb_textures > 0, rc.srgb);
   EXPECT_GT(switches, samples / 2);
+}
 
-  // Planted bugs: a model whose table has the entries' wrap modes swapped, or its entries in the
-  // other order (each request then names the other texture), sees other samples.
+TEST(RtlCached, DescriptorTableInterleavesTextures) { run_descriptor_tables("Vtex_cached_6x3", 40); }
+
+// With the sRGB tables (CW 16 filter, 8-bit memory): sRGB and linear textures of every format mixed
+// in one table; a model that filters an sRGB texture's codes as linear values is caught.
+TEST(RtlCached, DescriptorTableMixesSrgbAndLinear) {
+  run_descriptor_tables("Vtex_cached_13x13_srgb", 24);
+  auto unit = rtl::Driver::create(config_named("Vtex_cached_13x13_srgb"), {});
+  unit->reset();
+  std::mt19937_64 rng(8);
+  const Pyramid srgb = build_srgb_pyramid(random_texture(64, 8, 8, 4), PyramidMode::Exact);
+  Pyramid codes = srgb;  // planted: the stored codes, filtered as if linear (16-bit values a * 257)
+  for (size_t k = 0; k < codes.levels.size(); ++k) {
+    codes.levels[k] = srgb.codes[k];
+    codes.levels[k].channel_bits = 16;
+    for (Texel& t : codes.levels[k].texels)
+      for (uint16_t& c : t) c = uint16_t(c * 257);
+  }
+  const std::vector<Request> requests = random_requests(rng, 6, 3, 2000);
+  const TextureTable table = {{&srgb, Wrap::Repeat, Wrap::Repeat}}, wrong = {{&codes, Wrap::Repeat, Wrap::Repeat}};
+  const CacheParams cache{2048, 2};
+  EXPECT_EQ(run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr).failure, "");
+  const CaseResult planted =
+      run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr, -1, 0, &wrong);
+  EXPECT_EQ(planted.failure.rfind("sample ", 0), 0u) << planted.failure;
+}
+
+// Planted bugs: a model whose table has the entries' wrap modes swapped, or its entries in the
+// other order (each request then names the other texture), sees other samples.
+TEST(RtlCached, DescriptorTableCheckersCatchPlantedBugs) {
+  const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
+  auto unit = rtl::Driver::create(rc, {});
+  unit->reset();
   std::mt19937_64 rng(3);
   const Pyramid a = build_pyramid(random_texture(64, 8, 8, 1), PyramidMode::Exact);
   const Pyramid b = build_pyramid(random_texture(32, 4, 8, 2), PyramidMode::Exact);
@@ -401,6 +481,18 @@ TEST(RtlCached, CheckersCatchPlantedBugs) {
   const CaseResult data = run_case(*unit, pyr, cfg, layout, cache, memory, requests, {}, 1, nullptr, nullptr, 0);
   EXPECT_EQ(data.failure.rfind("sample ", 0), 0u) << data.failure;  // a sample mismatch, not a protocol error
   EXPECT_NE(data.failure.find(": RTL "), std::string::npos) << data.failure;
+
+  // Block formats: the RTL decodes BC3 blocks, a model that reads the same bytes as BC2 (the same
+  // line shape, so the same lines) sees other samples.
+  unit->reset();
+  const Pyramid bc3 = random_block_texture(TexelFormat::Bc3, 6, 3, 5);
+  const Pyramid as_bc2 = pyramid_of_blocks(TexelFormat::Bc2, 6, 3, bc3.blocks);
+  const TextureTable rtl_table = {{&bc3, Wrap::Repeat, Wrap::Repeat}}, model_table = {{&as_bc2, Wrap::Repeat, Wrap::Repeat}};
+  const CaseResult same = run_case(*unit, rtl_table, cfg, layout, cache, memory, requests, {}, 1, nullptr);
+  EXPECT_EQ(same.failure, "");
+  const CaseResult misread = run_case(*unit, rtl_table, cfg, layout, cache, memory, requests, {}, 1, nullptr, nullptr, -1,
+                                    0, &model_table);
+  EXPECT_EQ(misread.failure.rfind("sample ", 0), 0u) << misread.failure;
 }
 
 // cfg_fifo_limit: a shallower FIFO holds at most that many samples and hides less latency;

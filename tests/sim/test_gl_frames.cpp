@@ -15,10 +15,12 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "cli_fixture.h"
+#include "model/srgb.h"
 
 namespace {
 
@@ -37,9 +39,9 @@ GLint gl_wrap(int mode) {
                                                                           : GL_REPEAT;
 }
 
-// A texture file as a GL viewer uploads it: RGBA8 (gray to RGB, opaque without alpha), sides
-// resampled up to powers of two, the bottom row first.
-GLuint upload(const std::string& path, GLint wrap_s, GLint wrap_t) {
+// A texture file as a GL viewer uploads it: RGBA8 (gray to RGB, opaque without alpha; sRGB8_ALPHA8
+// for colour data in sRGB), sides resampled up to powers of two, the bottom row first.
+GLuint upload(const std::string& path, GLint wrap_s, GLint wrap_t, bool srgb) {
   OIIO::ImageBuf src(path);
   EXPECT_TRUE(src.read(0, 0, true, OIIO::TypeDesc::UINT8)) << path;
   const int w = src.spec().width, h = src.spec().height, nc = src.spec().nchannels;
@@ -62,7 +64,7 @@ GLuint upload(const std::string& path, GLint wrap_s, GLint wrap_t) {
   glGenTextures(1, &id);
   glBindTexture(GL_TEXTURE_2D, id);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, pw, ph, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, pw, ph, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   glGenerateMipmap(GL_TEXTURE_2D);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -77,8 +79,10 @@ struct GlFrame {
 };
 
 // The model drawn by OpenGL from a camera looking at its bounding box's centre. `flip_rows`
-// false uploads the textures top row first (a planted convention bug).
-GlFrame render_gl(const std::string& path, bool flip_rows = true) {
+// false uploads the textures top row first (a planted convention bug). `srgb`: the textures are
+// sRGB (glTF 2's base colour): GL decodes them before filtering into a float frame, which is
+// encoded to sRGB codes after, as an sRGB framebuffer stores it.
+GlFrame render_gl(const std::string& path, bool flip_rows, bool srgb) {
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
                                                      aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
@@ -102,11 +106,14 @@ GlFrame render_gl(const std::string& path, bool flip_rows = true) {
   for (int c = 0; c < 3; ++c) f.eye[c] = f.target[c] + dir[c] * 2.6 * radius;
 
   std::vector<uint8_t> buffer(size_t(kW) * kH * 4);
+  std::vector<float> linear(srgb ? size_t(kW) * kH * 4 : 0);
   OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   EXPECT_TRUE(ctx);
-  EXPECT_TRUE(OSMesaMakeCurrent(ctx, buffer.data(), GL_UNSIGNED_BYTE, kW, kH));
+  EXPECT_TRUE(srgb ? OSMesaMakeCurrent(ctx, linear.data(), GL_FLOAT, kW, kH)
+                   : OSMesaMakeCurrent(ctx, buffer.data(), GL_UNSIGNED_BYTE, kW, kH));
   glViewport(0, 0, kW, kH);
-  glClearColor(kBackground[0] / 255.f, kBackground[1] / 255.f, kBackground[2] / 255.f, 1.f);
+  auto clear = [&](int c) { return float(srgb ? tex::srgb_to_linear(kBackground[c] / 255.0) : kBackground[c] / 255.0); };
+  glClearColor(clear(0), clear(1), clear(2), 1.f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -135,14 +142,14 @@ GlFrame render_gl(const std::string& path, bool flip_rows = true) {
     int mode_u = aiTextureMapMode_Wrap, mode_v = aiTextureMapMode_Wrap;
     mat->Get(AI_MATKEY_MAPPINGMODE_U(type, 0), mode_u);
     mat->Get(AI_MATKEY_MAPPINGMODE_V(type, 0), mode_v);
-    const GLuint id = upload(dir_of + "/" + name, gl_wrap(mode_u), gl_wrap(mode_v));
+    const GLuint id = upload(dir_of + "/" + name, gl_wrap(mode_u), gl_wrap(mode_v), srgb);
     if (!flip_rows) {  // planted: the same texels uploaded top row first
       glDeleteTextures(1, &id);
       OIIO::ImageBuf src(dir_of + "/" + name);
       OIIO::ImageBuf flipped = OIIO::ImageBufAlgo::flip(src);
       const std::string tmp = (fs::temp_directory_path() / ("gl_flip_" + std::to_string(getpid()) + ".png")).string();
       flipped.write(tmp);
-      upload(tmp, gl_wrap(mode_u), gl_wrap(mode_v));
+      upload(tmp, gl_wrap(mode_u), gl_wrap(mode_v), srgb);
       fs::remove(tmp);
     }
     int two_sided = 0;
@@ -161,6 +168,8 @@ GlFrame render_gl(const std::string& path, bool flip_rows = true) {
     glEnd();
   }
   glFinish();
+  for (size_t i = 0; i < linear.size(); ++i)  // the sRGB framebuffer's encoding
+    buffer[i] = uint8_t(std::lround(255.0 * tex::linear_to_srgb(std::clamp(double(linear[i]), 0.0, 1.0))));
   f.rgb.resize(size_t(kW) * kH * 3);
   for (int y = 0; y < kH; ++y)  // OSMesa's row 0 is the bottom
     for (int x = 0; x < kW; ++x)
@@ -204,8 +213,10 @@ Agreement compare(const std::vector<uint8_t>& gl, const std::vector<uint8_t>& ou
 
 class GlFrames : public TexsimCli {
  protected:
+  // glTF 2's base colour is sRGB (its specification); the other formats' textures linear.
   Agreement against_gl(const std::string& model, bool flip_rows = true) {
-    const GlFrame gl = render_gl(model, flip_rows);
+    const bool srgb = model.find("/glTF2/") != std::string::npos;
+    const GlFrame gl = render_gl(model, flip_rows, srgb);
     char camera[256];
     std::snprintf(camera, sizeof camera, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,45", gl.eye[0], gl.eye[1], gl.eye[2],
                   gl.target[0], gl.target[1], gl.target[2]);

@@ -249,6 +249,7 @@ TEST(MeshScene, CesiumMilkTruckGltf1) {
   EXPECT_EQ(file_names(s), std::set<std::string>{"CesiumMilkTruck.png"});
   EXPECT_EQ(s.textures[0].wrap_u, Wrap::Repeat);  // the file's sampler: wrapS = wrapT = 10497 (REPEAT)
   EXPECT_EQ(s.textures[0].wrap_v, Wrap::Repeat);
+  EXPECT_FALSE(s.textures[0].srgb);  // glTF 1.0 does not say: linear
   EXPECT_TRUE(has_note(s, "glass"));
   EXPECT_TRUE(has_note(s, "window_trim"));
   // The two wheel nodes differ only in translation x: 1.43267 and -1.35233 in the file.
@@ -271,6 +272,7 @@ TEST(MeshScene, BoxTexturedGltf2) {
   EXPECT_TRUE(s.textures[0].resized);
   EXPECT_EQ(s.textures[0].wrap_u, Wrap::Mirror);  // wrapS 33648
   EXPECT_EQ(s.textures[0].wrap_v, Wrap::Clamp);   // wrapT 33071
+  EXPECT_TRUE(s.textures[0].srgb);  // glTF 2.0's base colour is sRGB
   for (int axis = 0; axis < 3; ++axis) {
     EXPECT_NEAR(s.bounds_min[axis], -0.5, 1e-6);
     EXPECT_NEAR(s.bounds_max[axis], 0.5, 1e-6);
@@ -285,6 +287,7 @@ TEST(MeshScene, DuckCollada) {
   EXPECT_EQ(file_names(s), std::set<std::string>{"duckCM.tga"});
   EXPECT_FALSE(s.textures[0].resized);
   EXPECT_EQ(s.textures[0].wrap_u, Wrap::Repeat);
+  EXPECT_FALSE(s.textures[0].srgb);  // COLLADA does not say: linear
   EXPECT_TRUE(s.notes.empty());
 }
 

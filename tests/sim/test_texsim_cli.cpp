@@ -591,13 +591,24 @@ TEST_F(TexsimCli, BlockFormatsThroughTheCli) {
   EXPECT_EQ(uint8_t(image[64]), 7);  // format: BC7
   EXPECT_EQ(uint8_t(image[28]), 0);  // no texel bytes: blocks
   expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --format bc6", "x.csv", {"--format", "bc6", "bc7"});
-  expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --format bc1 --memory cached -e rtl", "x.csv",
-                       {"engine rtl", "bc1"});
+  // The cached RTL decodes the blocks after its caches: the model's samples, lines and clocks.
+  for (const char* f : {"bc1", "bc7"}) {
+    const std::string args = std::string(" -t testcard:64x64 -q q.csv --format ") + f + " --memory cached --stalls random";
+    const Result mr = run("sample" + args + " -o m.csv --response-clocks mc.txt");
+    const Result rr = run("sample" + args + " -o t.csv --response-clocks tc.txt -e rtl");
+    ASSERT_EQ(mr.exit_code, 0) << mr.err;
+    ASSERT_EQ(rr.exit_code, 0) << rr.err;
+    EXPECT_EQ(read_text(dir / "m.csv"), read_text(dir / "t.csv")) << f;
+    EXPECT_EQ(read_text(dir / "mc.txt"), read_text(dir / "tc.txt")) << f;
+  }
+  // The SystemC memory socket carries RGBA lines only.
+  expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --format bc1 --memory cached -e systemc", "x.csv",
+                       {"engine systemc", "bc1"});
 }
 
 // --srgb: results are linear unorm16 under their own header, the pyramid averages in linear space
 // (a checker's far levels are brighter than the codes' mean), render writes sRGB codes again,
-// and what has no sRGB form or no RTL yet is one clean error.
+// and what has no sRGB form is one clean error.
 TEST_F(TexsimCli, SrgbTexturesThroughTheCli) {
   queries("u,v,lod\n0.5,0.5,6\n0.25,0.25,0\n");
   write_image(dir / "bw.png", 64, 64, 3, [](int x, int y, int) { return (x / 8 + y / 8) % 2 ? 255 : 0; });
@@ -638,6 +649,13 @@ TEST_F(TexsimCli, SrgbTexturesThroughTheCli) {
   int w = 0, h = 0;
   EXPECT_FALSE(read_image(dir / "f.png", w, h).empty());
   expect_clean_failure("sample -t checker:64x64 --srgb --format bc5 -q q.csv -o x.csv", "x.csv", {"--srgb", "bc5"});
-  expect_clean_failure("sample -t checker:64x64 --srgb --memory cached -e rtl -q q.csv -o x.csv", "x.csv",
-                       {"engine rtl", "sRGB"});
+  // Cached, the RTL's sRGB tables after the caches: the model's results.
+  const Result cm = run("sample -t bw.png --srgb --memory cached -q q2.csv -o cm.csv");
+  const Result ct = run("sample -t bw.png --srgb --memory cached -q q2.csv -o ct.csv -e rtl --stats ct.json");
+  ASSERT_EQ(cm.exit_code, 0) << cm.err;
+  ASSERT_EQ(ct.exit_code, 0) << ct.err;
+  EXPECT_EQ(read_text(dir / "cm.csv"), read_text(dir / "ct.csv"));
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir / "ct.json"))["configuration"], "Vtex_cached_13x13_srgb");
+  expect_clean_failure("sample -t checker:64x64 --srgb --memory cached -e systemc -q q.csv -o x.csv", "x.csv",
+                       {"engine systemc", "sRGB"});
 }

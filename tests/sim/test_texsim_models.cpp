@@ -105,6 +105,31 @@ TEST_F(TexsimModels, TraceQueriesReplayTheFrame) {
   EXPECT_EQ(visible, a.at("samples").get<size_t>() - a.at("helper_samples").get<size_t>());
 }
 
+// glTF 2's base colour is sRGB: decoded before the filter (the cached RTL's tables give the model's
+// picture bit for bit), the trace's texture list says so, and the replay samples it as sRGB
+// (linear unorm16 results). --format applies to a model's textures too.
+TEST_F(TexsimModels, Gltf2BaseColourIsSrgb) {
+  fs::create_directories(dir / "trace");
+  const std::string common = "render --model " + kBox + " --memory cached --width 96 --height 72 --frames 8 --frame 1 ";
+  Result r = run(common + "--out m.png --stats m.json --trace-queries trace/q.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(dir / "trace/q.textures.txt").find(" srgb\n"), std::string::npos);
+  r = run(common + "-e rtl --out r.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir / "m.png"), read_text(dir / "r.png")) << "the RTL's sRGB tables against the model";
+  r = run("sample --textures trace/q.textures.txt --queries trace/q.csv --memory cached --out s.csv --stats s.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir / "s.csv").substr(0, 16), "r16,g16,b16,a16\n");
+  EXPECT_EQ(read_json(dir / "m.json").at("texture_bytes_touched"), read_json(dir / "s.json").at("texture_bytes_touched"));
+  r = run(common + "-e rtl --format bc1 --out b.png --stats b.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT(read_json(dir / "b.json").at("texture_bytes_resident").get<uint64_t>(),
+            read_json(dir / "m.json").at("texture_bytes_resident").get<uint64_t>() / 4);
+  r = run(common + "--format bc4 --out x.png");  // a base colour is sRGB, BC4 has no sRGB
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("CesiumLogoFlat.png"), std::string::npos) << r.err;
+}
+
 // Several models placed by a scene file share the descriptor table: the same file twice is one
 // texture; the frame samples each.
 TEST_F(TexsimModels, SceneFilePlacesSeveralModels) {

@@ -35,7 +35,10 @@ struct RtlConfig {
   int miss_depth = 0;            // MISS_DEPTH: lines requested and not yet received, at most
   int textures = 1;              // TEXTURES: descriptor-table entries (tex_unit: 1)
   int fill_depth = 4;            // FILL_DEPTH: lines received and not yet written (the RTL's default)
-  int line_bytes() const { return block_w * block_h * (cw > 8 ? 8 : 4); }
+  bool block_formats = false;    // BLOCK_FORMATS: BC1-BC5 and BC7 textures decoded after the cache
+  bool srgb = false;             // SRGB: 8-bit channels in memory, sRGB ones decoded for a CW = 16 filter
+  int memory_channel_bits() const { return srgb ? 8 : cw; }
+  int line_bytes() const { return block_w * block_h * (memory_channel_bits() > 8 ? 8 : 4); }
   Memory memory() const { return cached ? Memory::Cached : Memory::OnChip; }
   bool fits(int log2_w, int log2_h) const { return log2_w <= max_log2_w && log2_h <= max_log2_h; }
   std::string max_texture() const;  // "1024x1024"
@@ -44,10 +47,13 @@ struct RtlConfig {
 // Every compiled configuration (declared once, in sim/engines/rtl/CMakeLists.txt), in that order.
 const std::vector<RtlConfig>& compiled_configs();
 // The smallest configuration of that memory organisation with cw-bit channels that holds the
-// pyramid (cached: with the block shape asked for); throws tex::Error naming the largest one when
-// none does.
+// pyramid (cached: with the block shape asked for, and the sRGB tables if srgb); throws tex::Error
+// naming the largest one when none does.
 const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw = 8, Memory memory = Memory::OnChip,
-                                     int block_w = 4, int block_h = 4);
+                                     int block_w = 4, int block_h = 4, bool srgb = false);
+// The same for a descriptor table: the largest sides, the widest channels the filter takes (an
+// sRGB texture's: 16, linear) and, cached, the sRGB tables if any texture is sRGB.
+const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory, int block_w, int block_h);
 // Everything the RTL cannot take, as one tex::Error, before any clock: a texture too large or with
 // other channel widths than the configuration's, a lambda outside the 16-bit Q8.8 port.
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests = {});
@@ -118,6 +124,8 @@ struct DescriptorPins {
   uint32_t base = 0;  // byte address of level 0
   uint8_t log2_w = 0, log2_h = 0;
   uint8_t wrap_u = 0, wrap_v = 0;
+  uint8_t format = 0;  // tex_pkg::FMT_* = TexelFormat
+  bool srgb = false;   // R, G, B are sRGB codes (an SRGB configuration)
 };
 
 // Static configuration pins.

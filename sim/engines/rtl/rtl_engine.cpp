@@ -56,7 +56,6 @@ class RtlEngine final : public Engine {
                   TexelSink& sink) override {
     const bool cached = options_.memory == Memory::Cached;
     if (textures.empty()) throw Error("engine rtl: no texture");
-    require_uncompressed_cached(textures, options_, "rtl");
     if (!cached && textures.size() > 1)
       throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one (the paper's design); "
                   "use --memory cached");
@@ -64,13 +63,8 @@ class RtlEngine final : public Engine {
     SamplerConfig config = sampling;  // the on-chip unit's wrap pins: its one texture's
     config.wrap_u = textures[0].wrap_u;
     config.wrap_v = textures[0].wrap_v;
-    int log2_w = 0, log2_h = 0;  // the configuration must hold the largest side of every texture
-    for (const BoundTexture& t : textures) {
-      log2_w = std::max(log2_w, t.pyramid->log2_w0());
-      log2_h = std::max(log2_h, t.pyramid->log2_h0());
-    }
-    const RtlConfig& rc = smallest_config_for(log2_w, log2_h, pyramid.levels[0].channel_bits, options_.memory,
-                                              options_.layout.block_w, options_.layout.block_h);
+    const RtlConfig& rc =
+        smallest_config_for(textures, options_.memory, options_.layout.block_w, options_.layout.block_h);
     for (const BoundTexture& t : textures) check_inputs(rc, *t.pyramid);
     std::optional<TextureCache> cache;
     if (cached) {
@@ -95,7 +89,6 @@ class RtlEngine final : public Engine {
     if (cached) predicting.emplace(checked, misses.emplace(*cache, options_.miss_sink));
     RequestSource& requests = cached ? static_cast<RequestSource&>(*predicting) : checked;
     TexelQueue texels(sink);
-    const int cw = rc.cw;
     const bool show = options_.show_progress;
     auto progress = [&](size_t done) {
       if (misses) misses->compare(unit->memory_port()->take_reads(), false);
@@ -106,7 +99,7 @@ class RtlEngine final : public Engine {
     const StreamStats st = stream(
         *unit, requests, Timing::of(options_.stalls), options_.seed ^ 0x5DEECE66DULL,
         [&](size_t, uint64_t rgba) {
-          texels.push(unpack_rgba(rgba, cw));
+          texels.push(unpack_rgba(rgba, rc.cw));
           if (clock_sink) {
             clocks.push_back(unit->counters().last_response_clock());
             if (clocks.size() == 4096) {

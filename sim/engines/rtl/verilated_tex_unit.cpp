@@ -50,6 +50,7 @@ class VerilatedTexUnit final : public Driver {
     }
     if constexpr (kCached) {
       find_statistics();
+      apply_descriptor(DescriptorPins{}, false);  // no write until one is asked for (the pins start random)
     } else {
       find_banks();
     }
@@ -143,6 +144,8 @@ class VerilatedTexUnit final : public Driver {
       t.cfg_desc_log2_h = d.log2_h;
       t.cfg_desc_wrap_u = d.wrap_u;
       t.cfg_desc_wrap_v = d.wrap_v;
+      t.cfg_desc_format = d.format;
+      t.cfg_desc_srgb = d.srgb;
       t.eval();
     } else {
       throw Error(config_.name + " has no texture descriptors");
@@ -251,8 +254,9 @@ class VerilatedTexUnit final : public Driver {
 }  // namespace
 
 const std::vector<RtlConfig>& compiled_configs() {
-#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss) \
-  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, cached ? kMaxTextures : 1},
+#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, blocks, srgb) \
+  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, cached ? kMaxTextures : 1, 4, \
+            blocks != 0, srgb != 0},
   static const std::vector<RtlConfig> configs = {TEX_RTL_CONFIGS(TEX_RTL_CONFIG_ENTRY)};
 #undef TEX_RTL_CONFIG_ENTRY
   return configs;

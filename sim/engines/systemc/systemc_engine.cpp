@@ -18,6 +18,7 @@
 #include "engines/systemc/stream_initiator.h"
 #include "engines/systemc/memory_target.h"
 #include "engines/systemc/tex_unit_tlm.h"
+#include "model/block_formats.h"
 #include "model/error.h"
 
 // libsystemc.so defines main() and needs sc_main; texsim and the tests have their own main and
@@ -196,8 +197,11 @@ class SystemcEngine final : public Engine {
 
   EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
                   TexelSink& sink) override {
-    require_uncompressed_cached({{&pyramid, config.wrap_u, config.wrap_v}}, options_.engine,
-                                backend_ == Backend::Rtl ? "systemc" : "systemc-model");
+    if (options_.engine.memory == Memory::Cached && (is_compressed(pyramid.format) || pyramid.srgb))
+      throw Error(std::string("engine ") + (backend_ == Backend::Rtl ? "systemc" : "systemc-model") + ": a " +
+                  format_info(pyramid.format).name + (pyramid.srgb ? " sRGB" : "") +
+                  " texture in cached memory; the SystemC memory socket carries RGBA lines only so far "
+                  "(use --engine rtl or model, or --memory onchip)");
     return run_systemc(backend_, pyramid, config, source, sink, options_);
   }
 
