@@ -43,10 +43,10 @@ RtlWorkload make_rtl_workload(const tex::rtl::RtlConfig& config) {
   // The configuration's largest texture, at most 1024x1024 (the same texture for Vtex_unit_10x10
   // and Vtex_cached_13x13: its speed does not depend on the texture's size).
   const int lw = std::min(config.max_log2_w, 10), lh = std::min(config.max_log2_h, 10);
-  // (an SRGB configuration: an sRGB texture, every texel through the decode tables)
-  Pyramid pyr = config.srgb ? build_srgb_pyramid(make_pattern("noise", 1 << lw, 1 << lh), PyramidMode::Exact)
-                            : build_pyramid(make_pattern("noise", 1 << lw, 1 << lh));
-  if (!config.srgb)
+  // (a configuration with the formats: an sRGB texture, every texel through the decode tables)
+  Pyramid pyr = config.formats ? build_srgb_pyramid(make_pattern("noise", 1 << lw, 1 << lh), PyramidMode::Exact)
+                               : build_pyramid(make_pattern("noise", 1 << lw, 1 << lh));
+  if (!config.formats)
     for (Image& img : pyr.levels) {  // 16-bit configurations take 16-bit texels
       img.channel_bits = config.cw;
       for (Texel& t : img.texels)

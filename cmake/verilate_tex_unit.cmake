@@ -1,9 +1,9 @@
-# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [TRACE_FST] [SRGB] [CACHED BW BH LINES FIFO MEM_W MISS]):
+# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [TRACE_FST] [FORMATS] [CACHED BW BH LINES FIFO MEM_W MISS]):
 # tex_unit of rtl/ verilated into TARGET as class PREFIX, for textures up to 2^LOG2_W x 2^LOG2_H
 # with CW-bit channels (default 8); with CACHED, tex_unit_cached with those BLOCK_W, BLOCK_H,
-# LINES, FIFO_DEPTH, MEM_W and MISS_DEPTH (with SRGB: 8-bit channels in memory, the sRGB tables, CW
-# 16); BLOCK_FORMATS (the block decoders) wherever the unit can have them: 8-bit channels in memory
-# and lines of at least 64 bytes (tex_block_formats below, the one rule).
+# LINES, FIFO_DEPTH, MEM_W and MISS_DEPTH; with FORMATS also the block decoders and the sRGB tables
+# (BLOCK_FORMATS = SRGB = 1: 8-bit channels in memory, CW 16), else neither (Verilator evaluates
+# the 8 decoders in every clock, used or not: an RGBA unit simulates 6x faster without them).
 # One set of options for every build: -Wall (make lint keeps it at zero warnings), assertions on,
 # registers without reset start random (the design must not rely on zero initialisation),
 # single-threaded, C++ at -O2 (Verilator's default -Os is about 1.5x slower).
@@ -13,18 +13,8 @@
 set(TEX_VERILATOR_EXTRA_ARGS "" CACHE STRING "extra Verilator options for every tex_unit configuration")
 find_package(verilator 5 REQUIRED HINTS /usr/share/verilator $ENV{VERILATOR_ROOT})
 
-# tex_block_formats(OUT CW BW BH SRGB): 1 if a cached unit with these parameters has the BC decoders.
-function(tex_block_formats out cw bw bh srgb)
-  math(EXPR texels "${bw} * ${bh}")
-  if((cw EQUAL 8 OR srgb) AND texels GREATER_EQUAL 16)
-    set(${out} 1 PARENT_SCOPE)
-  else()
-    set(${out} 0 PARENT_SCOPE)
-  endif()
-endfunction()
-
 function(verilate_tex_unit target prefix log2_w log2_h)
-  cmake_parse_arguments(ARG "TRACE_FST;SRGB" "CW" "CACHED" ${ARGN})
+  cmake_parse_arguments(ARG "TRACE_FST;FORMATS" "CW" "CACHED" ${ARGN})
   if(NOT ARG_CW)
     set(ARG_CW 8)
   endif()
@@ -54,13 +44,12 @@ function(verilate_tex_unit target prefix log2_w log2_h)
     list(GET ARG_CACHED 3 fifo)
     list(GET ARG_CACHED 4 mem_w)
     list(GET ARG_CACHED 5 miss)
-    set(srgb 0)
-    if(ARG_SRGB)
-      set(srgb 1)
+    set(formats 0)
+    if(ARG_FORMATS)
+      set(formats 1)
     endif()
-    tex_block_formats(block_formats ${ARG_CW} ${bw} ${bh} ${srgb})
     set(cache_params -GBLOCK_W=${bw} -GBLOCK_H=${bh} -GLINES=${lines} -GFIFO_DEPTH=${fifo} -GMEM_W=${mem_w}
-                     -GMISS_DEPTH=${miss} -GBLOCK_FORMATS=${block_formats} -GSRGB=${srgb})
+                     -GMISS_DEPTH=${miss} -GBLOCK_FORMATS=${formats} -GSRGB=${formats})
   endif()
   verilate(${target} ${mode}
     PREFIX ${prefix}

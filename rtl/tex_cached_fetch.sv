@@ -579,23 +579,20 @@ module tex_cached_fetch #(
   // Tap i = sl*4 + t (t bit 0: the x tap, bit 1: the y tap) reads the bank of its parity: of its
   // texel, or of its 4x4 block; at that bank's offset, a texel or a block in the bank's word.
   // Only while a sample is in T (a simulator skips it in the clocks in between).
-  logic [8*WW-1:0]  tap_word;    // tap i's bank word at [i*WW +: WW]
-  logic [8*OFW-1:0] tap_offset;  // and its offset in it
+  logic [8*2-1:0]   tap_bank;    // tap i's bank at [i*2 +: 2]
+  logic [8*OFW-1:0] tap_offset;  // and its offset in the bank's word
   always_comb begin
     logic [PB-1:0] xl, yl;  // the tap's low coordinate bits
-    logic [1:0]    bank;
-    {xl, yl, bank} = '0;
-    tap_word   = '0;
+    {xl, yl} = '0;
+    tap_bank   = '0;
     tap_offset = '0;
     if (t_valid)
-      for (int sl = 0; sl < 2; sl++)
-        for (int t = 0; t < 4; t++) begin
-          xl   = t_low[(sl*4 + t%2)*PB +: PB];
-          yl   = t_low[(sl*4 + 2 + t/2)*PB +: PB];
-          bank = t_blk ? {yl[PB-1], xl[PB-1]} : {yl[0], xl[0]};
-          tap_word[(sl*4 + t)*WW +: WW]    = bank_word[t_c0 ^ 1'(sl)][32'(bank)*WW +: WW];
-          tap_offset[(sl*4 + t)*OFW +: OFW] = t_reads[(sl*4 + 32'(bank))*RD +: OFW];
-        end
+      for (int i = 0; i < 8; i++) begin
+        xl = t_low[(i/4*4 + i%2)*PB +: PB];
+        yl = t_low[(i/4*4 + 2 + i%4/2)*PB +: PB];
+        tap_bank[i*2 +: 2] = t_blk ? {yl[PB-1], xl[PB-1]} : {yl[0], xl[0]};
+        tap_offset[i*OFW +: OFW] = t_reads[(i/4*4 + 32'(tap_bank[i*2 +: 2]))*RD +: OFW];
+      end
   end
 
   logic [8*DWC-1:0] decoded;  // tap i's texel of a block format at [i*DWC +: DWC]
@@ -609,13 +606,16 @@ module tex_cached_fetch #(
         dec_block = '0;
         dec_texel = '0;
         if (t_valid && t_blk)
-          for (int sl = 0; sl < 2; sl++)
-            for (int t = 0; t < 4; t++) begin
-              dec_block[(sl*4 + t)*128 +: 128] = line_kind(t_fmt) == 2'd1
-                  ? 128'(64'(tap_word[(sl*4 + t)*WW +: WW] >> (32'(tap_offset[(sl*4 + t)*OFW +: OFW]) * 64)))
-                  : 128'(tap_word[(sl*4 + t)*WW +: WW] >> (32'(tap_offset[(sl*4 + t)*OFW +: OFW]) * 128));
-              dec_texel[(sl*4 + t)*4 +: 4] = {t_low[(sl*4 + 2 + t/2)*PB +: 2], t_low[(sl*4 + t%2)*PB +: 2]};
-            end
+          for (int i = 0; i < 8; i++) begin
+            // (8-byte blocks: the low half; a word holds whole blocks, WW >= 128 with the formats)
+            if (line_kind(t_fmt) == 2'd1)
+              dec_block[i*128 +: 64] =
+                  bank_word[t_c0 ^ 1'(i/4)][32'(tap_bank[i*2 +: 2])*WW + 32'(tap_offset[i*OFW +: OFW])*64 +: 64];
+            else
+              dec_block[i*128 +: 128] =
+                  bank_word[t_c0 ^ 1'(i/4)][32'(tap_bank[i*2 +: 2])*WW + 32'(tap_offset[i*OFW +: OFW])*128 +: 128];
+            dec_texel[i*4 +: 4] = {t_low[(i/4*4 + 2 + i%4/2)*PB +: 2], t_low[(i/4*4 + i%2)*PB +: 2]};
+          end
       end
       for (b = 0; b < 8; b = b + 1) begin : g_tap
         logic [31:0] rgba;
@@ -634,11 +634,10 @@ module tex_cached_fetch #(
   always_comb begin
     cached = '0;
     if (t_valid)
-      for (int sl = 0; sl < 2; sl++)
-        for (int t = 0; t < 4; t++)
-          cached[(sl*4 + t)*DWC +: DWC] =
-              t_blk ? decoded[(sl*4 + t)*DWC +: DWC]
-                    : DWC'(tap_word[(sl*4 + t)*WW +: WW] >> (32'(tap_offset[(sl*4 + t)*OFW +: OFW]) * DWC));
+      for (int i = 0; i < 8; i++)
+        cached[i*DWC +: DWC] =
+            t_blk ? decoded[i*DWC +: DWC]
+                  : bank_word[t_c0 ^ 1'(i/4)][32'(tap_bank[i*2 +: 2])*WW + 32'(tap_offset[i*OFW +: OFW])*DWC +: DWC];
   end
 
   // SRGB: the 8-bit channels into the CW = 16 filter. An sRGB texture's R, G, B through the decode

@@ -655,7 +655,7 @@ TEST_F(TexsimCli, SrgbTexturesThroughTheCli) {
   ASSERT_EQ(cm.exit_code, 0) << cm.err;
   ASSERT_EQ(ct.exit_code, 0) << ct.err;
   EXPECT_EQ(read_text(dir / "cm.csv"), read_text(dir / "ct.csv"));
-  EXPECT_EQ(nlohmann::json::parse(read_text(dir / "ct.json"))["configuration"], "Vtex_cached_13x13_srgb");
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir / "ct.json"))["configuration"], "Vtex_cached_13x13_formats");
   expect_clean_failure("sample -t checker:64x64 --srgb --memory cached -e systemc -q q.csv -o x.csv", "x.csv",
                        {"engine systemc", "sRGB"});
 }

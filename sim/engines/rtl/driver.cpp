@@ -20,12 +20,12 @@ std::string size_text(int log2_w, int log2_h) { return std::to_string(1 << log2_
 std::string RtlConfig::max_texture() const { return size_text(max_log2_w, max_log2_h); }
 
 const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memory, int block_w, int block_h,
-                                     bool srgb) {
+                                     bool formats) {
   const RtlConfig* best = nullptr;
   const RtlConfig* largest = nullptr;
   const bool cached = memory == Memory::Cached;
   for (const RtlConfig& c : compiled_configs()) {
-    if (c.cw != cw || c.cached != cached || c.srgb != srgb) continue;
+    if (c.cw != cw || c.cached != cached || c.formats != formats) continue;
     if (cached && (c.block_w != block_w || c.block_h != block_h)) continue;
     const int area = c.max_log2_w + c.max_log2_h;
     if (c.fits(log2_w, log2_h) && (!best || area < best->max_log2_w + best->max_log2_h)) best = &c;
@@ -36,13 +36,13 @@ const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memo
     std::string built;
     for (const RtlConfig& c : compiled_configs())
       if (const std::string shape = std::to_string(c.block_w) + "x" + std::to_string(c.block_h);
-          c.cached == cached && c.cw == cw && c.srgb == srgb && built.find(shape) == std::string::npos)
+          c.cached == cached && c.cw == cw && c.formats == formats && built.find(shape) == std::string::npos)
         built += (built.empty() ? "" : ", ") + shape;
     if (cached && !built.empty())
       throw Error("no cached RTL configuration is built for " + std::to_string(block_w) + "x" +
                   std::to_string(block_h) + " blocks of " + std::to_string(cw) + "-bit texels (built: " + built + ")");
     throw Error("no " + memory_name(memory) + " RTL configuration is built for " + std::to_string(cw) +
-                "-bit channels" + (srgb ? " with sRGB tables" : ""));
+                "-bit channels" + (formats ? " with the block decoders and sRGB tables" : ""));
   }
   throw Error("texture " + size_text(log2_w, log2_h) + " does not fit the RTL: the largest compiled tex_unit takes " +
               largest->max_texture() + " (use --engine model for larger textures)");
@@ -50,35 +50,34 @@ const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memo
 
 const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory, int block_w, int block_h) {
   int log2_w = 0, log2_h = 0, cw = 8;
-  bool srgb = false;
+  bool formats = false;  // cached: blocks or sRGB codes to decode after the cache (a CW = 16 unit)
   for (const BoundTexture& t : textures) {
     log2_w = std::max(log2_w, t.pyramid->log2_w0());
     log2_h = std::max(log2_h, t.pyramid->log2_h0());
     cw = std::max(cw, t.pyramid->levels[0].channel_bits);
-    srgb = srgb || t.pyramid->srgb;
+    formats = formats || t.pyramid->srgb || is_compressed(t.pyramid->format);
   }
-  return smallest_config_for(log2_w, log2_h, cw, memory, block_w, block_h, memory == Memory::Cached && srgb);
+  formats = formats && memory == Memory::Cached;
+  return smallest_config_for(log2_w, log2_h, formats ? 16 : cw, memory, block_w, block_h, formats);
 }
 
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests) {
   if (!config.fits(pyramid.log2_w0(), pyramid.log2_h0()))
     throw Error("texture " + size_text(pyramid.log2_w0(), pyramid.log2_h0()) + " does not fit " + config.name +
                 " (at most " + config.max_texture() + ")");
-  // An SRGB unit filters 16-bit channels: an sRGB texture's decoded ones, or a linear 8-bit
-  // texture's as they are; memory holds 8-bit channels for both.
+  // A unit with the formats filters 16-bit channels: an sRGB texture's decoded ones, or a linear
+  // 8-bit texture's as they are; memory holds 8-bit channels (or blocks) for both.
   const int bits = pyramid.levels[0].channel_bits;
-  if (config.srgb ? pyramid.memory_channel_bits() != 8 : bits != config.cw)
+  if (config.formats ? pyramid.memory_channel_bits() != 8 : bits != config.cw)
     throw Error(config.name + " is built for " +
-                (config.srgb ? std::string("8-bit channels in memory (RGBA8 or sRGB)")
-                             : std::to_string(config.cw) + "-bit channels") +
-                "; this texture has " + std::to_string(config.srgb ? pyramid.memory_channel_bits() : bits) +
+                (config.formats ? std::string("8-bit channels in memory (RGBA8, blocks or sRGB)")
+                                : std::to_string(config.cw) + "-bit channels") +
+                "; this texture has " + std::to_string(config.formats ? pyramid.memory_channel_bits() : bits) +
                 "-bit channels");
-  if (pyramid.srgb && config.cached && !config.srgb)
-    throw Error("an sRGB texture: " + config.name + " has no sRGB tables (SRGB = 0)");
-  // (on chip a block-format texture is held decoded, as the paper's memories hold texels)
-  if (is_compressed(pyramid.format) && config.cached && !config.block_formats)
-    throw Error(std::string("a ") + format_info(pyramid.format).name + " texture: " + config.name +
-                " has no block decoders (BLOCK_FORMATS = 0: its channels or lines are not those of the formats)");
+  // (on chip a block-format or sRGB texture is held decoded, as the paper's memories hold texels)
+  if ((pyramid.srgb || is_compressed(pyramid.format)) && config.cached && !config.formats)
+    throw Error(std::string("a ") + format_info(pyramid.format).name + (pyramid.srgb ? " sRGB" : "") + " texture: " +
+                config.name + " has no block decoders or sRGB tables (built without FORMATS)");
   for (size_t i = 0; i < requests.size(); ++i) check_request(requests[i], i);
 }
 

@@ -35,9 +35,10 @@ struct RtlConfig {
   int miss_depth = 0;            // MISS_DEPTH: lines requested and not yet received, at most
   int textures = 1;              // TEXTURES: descriptor-table entries (tex_unit: 1)
   int fill_depth = 4;            // FILL_DEPTH: lines received and not yet written (the RTL's default)
-  bool block_formats = false;    // BLOCK_FORMATS: BC1-BC5 and BC7 textures decoded after the cache
-  bool srgb = false;             // SRGB: 8-bit channels in memory, sRGB ones decoded for a CW = 16 filter
-  int memory_channel_bits() const { return srgb ? 8 : cw; }
+  // BLOCK_FORMATS = SRGB = 1: BC1-BC5 and BC7 blocks and sRGB codes decoded after the cache, 8-bit
+  // channels in memory, a CW = 16 filter (a linear 8-bit texture's values enter it as they are).
+  bool formats = false;
+  int memory_channel_bits() const { return formats ? 8 : cw; }
   int line_bytes() const { return block_w * block_h * (memory_channel_bits() > 8 ? 8 : 4); }
   Memory memory() const { return cached ? Memory::Cached : Memory::OnChip; }
   bool fits(int log2_w, int log2_h) const { return log2_w <= max_log2_w && log2_h <= max_log2_h; }
@@ -47,12 +48,12 @@ struct RtlConfig {
 // Every compiled configuration (declared once, in sim/engines/rtl/CMakeLists.txt), in that order.
 const std::vector<RtlConfig>& compiled_configs();
 // The smallest configuration of that memory organisation with cw-bit channels that holds the
-// pyramid (cached: with the block shape asked for, and the sRGB tables if srgb); throws tex::Error
+// pyramid (cached: with the block shape asked for, and the formats if `formats`); throws tex::Error
 // naming the largest one when none does.
 const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw = 8, Memory memory = Memory::OnChip,
-                                     int block_w = 4, int block_h = 4, bool srgb = false);
-// The same for a descriptor table: the largest sides, the widest channels the filter takes (an
-// sRGB texture's: 16, linear) and, cached, the sRGB tables if any texture is sRGB.
+                                     int block_w = 4, int block_h = 4, bool formats = false);
+// The same for a descriptor table: the largest sides, the widest channels the filter takes, and,
+// cached, a configuration with the formats if any texture is block-compressed or sRGB.
 const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory, int block_w, int block_h);
 // Everything the RTL cannot take, as one tex::Error, before any clock: a texture too large or with
 // other channel widths than the configuration's, a lambda outside the 16-bit Q8.8 port.
@@ -125,7 +126,7 @@ struct DescriptorPins {
   uint8_t log2_w = 0, log2_h = 0;
   uint8_t wrap_u = 0, wrap_v = 0;
   uint8_t format = 0;  // tex_pkg::FMT_* = TexelFormat
-  bool srgb = false;   // R, G, B are sRGB codes (an SRGB configuration)
+  bool srgb = false;   // R, G, B are sRGB codes (a configuration with the formats)
 };
 
 // Static configuration pins.

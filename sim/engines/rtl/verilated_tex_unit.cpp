@@ -254,9 +254,8 @@ class VerilatedTexUnit final : public Driver {
 }  // namespace
 
 const std::vector<RtlConfig>& compiled_configs() {
-#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, blocks, srgb) \
-  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, cached ? kMaxTextures : 1, 4, \
-            blocks != 0, srgb != 0},
+#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, formats) \
+  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, cached ? kMaxTextures : 1, 4, formats != 0},
   static const std::vector<RtlConfig> configs = {TEX_RTL_CONFIGS(TEX_RTL_CONFIG_ENTRY)};
 #undef TEX_RTL_CONFIG_ENTRY
   return configs;
