@@ -436,7 +436,7 @@ int main(int argc, char** argv) {
   explore->add_option("--order", ex.orders, "rasterization orders: scanline,tiled")->capture_default_str();
   explore->add_option("--format", ex.formats,
                       "texture formats, comma-separated: " + texel_format_names() + " (each level compressed: "
-                      "libsquish, Mesa for bc7; compressed points are timed by the model)")
+                      "libsquish, Mesa for bc7)")
       ->capture_default_str();
   explore->add_option("--tile", ex.tile, "tiled order: tile side in pixels")->capture_default_str();
   explore->add_option("--cache-kib", ex.cache_kib, "sizes of each cache (even, odd levels) in KiB, 1..1024")

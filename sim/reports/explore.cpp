@@ -94,11 +94,6 @@ struct Workload {
     for (size_t i = 0; i < pyramids.size(); ++i) t.push_back({&pyramids[i], wraps[i].first, wraps[i].second});
     return t;
   }
-  std::pair<int, int> largest() const {  // log2 sizes the RTL configuration must hold
-    int w = 0, h = 0;
-    for (const Pyramid& p : pyramids) w = std::max(w, p.log2_w0()), h = std::max(h, p.log2_h0());
-    return {w, h};
-  }
 };
 
 // Who gives samples/clock: the model's timing layer at every point, the RTL where a compiled
@@ -339,11 +334,8 @@ void expand_points(Sweep& s) {
 // Why the RTL cannot measure this point (empty: it can).
 std::string rtl_unavailable(const Sweep& s, const Point& p) {
   const Workload& w = s.workloads[p.workload];
-  if (is_compressed(w.format)) return std::string("the RTL has no ") + format_info(w.format).name + " decoder yet";
   try {
-    const auto [log2_w, log2_h] = w.largest();
-    const rtl::RtlConfig& rc = rtl::smallest_config_for(log2_w, log2_h, w.pyramids[0].levels[0].channel_bits,
-                                                        Memory::Cached, p.layout.block_w, p.layout.block_h);
+    const rtl::RtlConfig& rc = rtl::smallest_config_for(w.table(), Memory::Cached, p.layout.block_w, p.layout.block_h);
     rtl::cache_pins(rc, p.layout, cache_of(p), p.fifo);
     if (p.bandwidth > uint32_t(rc.line_bytes())) throw Error("the bandwidth is more than a line per clock");
   } catch (const Error& e) {

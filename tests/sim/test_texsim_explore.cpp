@@ -148,8 +148,8 @@ TEST_F(TexsimCli, ExploreTakesAQueryTrace) {
 }
 
 // --format: every workload once per format, the format in its column, compressed points timed by
-// the model (the RTL has no decoders yet: --timing rtl leaves them to the model) and reading fewer
-// bytes; an emitted job carries its format.
+// the RTL too (--timing rtl: the configuration with the block decoders) and reading fewer bytes; an
+// emitted job carries its format.
 TEST_F(TexsimCli, ExploreSweepsTextureFormats) {
   queries(diagonal_queries());
   const Result r = run("explore -q q.csv -t testcard:64x64 --format rgba8,bc1,bc7 --cache-kib 1 --block 4x4 "
@@ -161,7 +161,8 @@ TEST_F(TexsimCli, ExploreSweepsTextureFormats) {
   EXPECT_EQ(rows[1].at("format"), "bc1");
   EXPECT_EQ(rows[2].at("format"), "bc7");
   EXPECT_EQ(rows[0].at("timing_engine"), "rtl");
-  EXPECT_EQ(rows[1].at("timing_engine"), "model");
+  EXPECT_EQ(rows[1].at("timing_engine"), "rtl");
+  EXPECT_EQ(rows[2].at("timing_engine"), "rtl");
   EXPECT_LT(std::stod(rows[1].at("bytes_per_sample")) * 4, std::stod(rows[0].at("bytes_per_sample")));
   EXPECT_LT(std::stod(rows[2].at("bytes_per_sample")) * 2, std::stod(rows[0].at("bytes_per_sample")));
   const Result e = run("explore -q q.csv -t testcard:64x64 --format bc1 --cache-kib 1 --block 4x4 --emit-jobs jobs.txt -o j");
