@@ -2,8 +2,8 @@
 # Synthesis of tex_unit and tex_unit_cached with Yosys (and nextpnr for iCE40).
 #   scripts/synth.sh latch [BUILD]  generic `synth` of a small tex_unit and of tex_lambda; fails on any latch;
 #                                   prints the cell counts (run by `make test`)
-#   scripts/synth.sh [BUILD]        the latch check; generic `synth` of a small tex_unit_cached
-#                                   (no latches, cell counts); then synth_ice40 + nextpnr-ice40
+#   scripts/synth.sh [BUILD]        the latch check; generic `synth` of a small tex_unit_cached,
+#                                   RGBA and with the formats (no latches, cell counts); then synth_ice40 + nextpnr-ice40
 #                                   --hx8k of tex_unit and of tex_unit_cached, larger to smaller
 #                                   configurations until one fits: LUT/BRAM use and Fmax
 #                                   (run by `make synth`)
@@ -106,14 +106,18 @@ done
 [ -n "$fit_cfg" ] || echo "synth: no tex_unit configuration fits the HX8K (largest first: ${ice40_configs[*]})"
 
 # ---- tex_unit_cached: generic synth with the latch check, then iCE40 from larger to smaller.
-read_cached() {  # LOG2 CW LINES FIFO MISS MEM_W -> yosys commands
+read_cached() {  # LOG2 CW LINES FIFO MISS MEM_W [FORMATS] -> yosys commands
   echo "read_verilog -sv -DTEX_SYN_LOG2=$1 -DTEX_SYN_CW=$2 -DTEX_SYN_LINES=$3 -DTEX_SYN_FIFO=$4 \
-        -DTEX_SYN_MISS=$5 -DTEX_SYN_MEM_W=$6 $files rtl/synth/tex_ice40_cached_top.sv; \
+        -DTEX_SYN_MISS=$5 -DTEX_SYN_MEM_W=$6 -DTEX_SYN_FORMATS=${7:-0} $files rtl/synth/tex_ice40_cached_top.sv; \
         hierarchy -top tex_ice40_cached_top"
 }
 set -- 4 8 16 16 16 32
 generic_check cached tex_ice40_cached_top "$(read_cached "$@")" \
   "tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6"
+# With the block decoders and the sRGB tables (FORMATS: CW 16, 8-bit channels in memory).
+set -- 4 16 16 16 16 32 1
+generic_check cached_formats tex_ice40_cached_top "$(read_cached "$@")" \
+  "tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6 with the formats"
 
 fit_cached=""
 cached_configs=("4 8 16 16 16 32" "3 2 16 2 16 16")  # 16x16 8-bit; 8x8 2-bit, FIFO 2: the smallest

@@ -30,6 +30,9 @@
 `ifndef TEX_SYN_TEXTURES
 `define TEX_SYN_TEXTURES 16
 `endif
+`ifndef TEX_SYN_FORMATS
+`define TEX_SYN_FORMATS 0
+`endif
 module tex_ice40_cached_top #(
   parameter int MAX_LOG2_W = `TEX_SYN_LOG2,
   parameter int MAX_LOG2_H = `TEX_SYN_LOG2,
@@ -39,7 +42,8 @@ module tex_ice40_cached_top #(
   parameter int FIFO_DEPTH = `TEX_SYN_FIFO,
   parameter int MISS_DEPTH = `TEX_SYN_MISS,
   parameter int MEM_W      = `TEX_SYN_MEM_W,
-  parameter int TEXTURES   = `TEX_SYN_TEXTURES
+  parameter int TEXTURES   = `TEX_SYN_TEXTURES,
+  parameter int FORMATS    = `TEX_SYN_FORMATS  // 1: the block decoders and sRGB tables (CW 16)
 ) (
   input  logic clk,
   input  logic rst,
@@ -65,7 +69,9 @@ module tex_ice40_cached_top #(
   localparam int O_LOG2_H  = O_LOG2_W + VW;
   localparam int O_WRAP_U  = O_LOG2_H + VW;
   localparam int O_WRAP_V  = O_WRAP_U + WW;
-  localparam int O_LINEAR  = O_WRAP_V + WW;
+  localparam int O_FORMAT  = O_WRAP_V + WW;
+  localparam int O_SRGB    = O_FORMAT + tex_pkg::FORMAT_W;
+  localparam int O_LINEAR  = O_SRGB + 1;
   localparam int O_MIP     = O_LINEAR + 1;
   localparam int O_BIAS    = O_MIP + MW;
   localparam int O_MIN_LOD = O_BIAS + LW;
@@ -96,12 +102,14 @@ module tex_ice40_cached_top #(
   logic [AW-1:0]    mem_req_addr;
   tex_unit_cached #(
     .MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W), .LINES(LINES),
-    .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES)
+    .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES),
+    .BLOCK_FORMATS(FORMATS), .SRGB(FORMATS)
   ) u_unit (
     .clk(clk), .rst(rst),
     .cfg_desc_we(in_bits[O_DWE]), .cfg_desc_index(in_bits[O_DINDEX +: XW]),
     .cfg_desc_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_desc_log2_h(in_bits[O_LOG2_H +: VW]),
     .cfg_desc_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_desc_wrap_v(in_bits[O_WRAP_V +: WW]),
+    .cfg_desc_format(in_bits[O_FORMAT +: tex_pkg::FORMAT_W]), .cfg_desc_srgb(in_bits[O_SRGB]),
     .cfg_desc_base(in_bits[O_BASE +: AW]), .req_tex(in_bits[O_TEX +: XW]),
     .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mip_mode(in_bits[O_MIP +: MW]),
     .cfg_lod_bias(in_bits[O_BIAS +: LW]), .cfg_min_lod(in_bits[O_MIN_LOD +: LW]),
