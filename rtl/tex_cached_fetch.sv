@@ -39,8 +39,9 @@
 //   cfg_fifo_limit                  : samples the FIFO holds at most (0 or > FIFO_DEPTH: FIFO_DEPTH)
 //   mem_req_addr                    : byte address of a line (MEM_ADDR_W bits, line aligned)
 //   mem_rsp_data                    : one beat, MEM_W bits: bytes [i*MEM_W/8 +: MEM_W/8] of the
-//                                     line in beat i; LINE_BITS / MEM_W beats per line, in order
-//   mem_rsp_data: lines of texels of 4 channels of CW bits (SRGB: 8 bits) in 4 (CW > 8: 8) bytes
+//                                     line in beat i; LINE_BITS / MEM_W beats per line, in order;
+//                                     a line of texels of 4 channels of CW bits (SRGB: 8) in 4
+//                                     (CW > 8: 8) bytes, or of 4x4 blocks
 //   out_valid, out_tag, taps, out_w, out_f : as tex_fetch's taps with the weights beside them
 //                                     (SRGB: an sRGB texture's R, G, B linear unorm16, A x 257; a
 //                                     linear texture's 8-bit channels zero-extended)
