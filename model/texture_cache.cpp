@@ -89,6 +89,9 @@ bool TextureCache::access(int cache, int set, uint32_t address, Way*& used_way) 
   if (ways[used].valid && previous_use == sample_) ++stats_.evictions_of_previous;
   ways[used].valid = true;
   ways[used].tag = address;
+  ++reads_;
+  ways[used].error = next_error_ < error_reads_.size() && error_reads_[next_error_] == reads_;
+  next_error_ += ways[used].error;
   ++stats_.misses[size_t(cache)];
   return false;
 }
@@ -105,6 +108,7 @@ RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>*
   if (!r.has_derivatives) {  // (one probe: the request itself)
     const SampleLookup l = lookup(r, misses);
     w.set_fills(0, uint32_t(l.slot[0].misses + l.slot[1].misses));
+    w.error = l.error();
     return w;
   }
   const Probes p = tex_probe(r, config_, layout.log2_w0(), layout.log2_h0());
@@ -112,6 +116,7 @@ RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>*
   for (int i = 0; i < p.n; ++i) {
     const SampleLookup l = lookup(p.at[size_t(i)], misses);
     w.set_fills(i, uint32_t(l.slot[0].misses + l.slot[1].misses));
+    w.error = w.error || l.error();
   }
   return w;
 }
@@ -164,6 +169,7 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
         if (sl.block_mask >> p & 1) {
           ++sl.blocks;
           last.way[size_t(p)]->last_use = sample_ + 1;
+          sl.error = sl.error || last.way[size_t(p)]->error;
         }
       stats_.lookups[size_t(cache)] += uint64_t(sl.blocks);
       stats_.hits[size_t(cache)] += uint64_t(sl.blocks);
@@ -178,6 +184,7 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
         ++sl.misses;
         if (misses) misses->push_back(address[size_t(p)]);
       }
+      sl.error = sl.error || last.way[size_t(p)]->error;
     }
   }
   ++sample_;

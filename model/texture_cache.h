@@ -26,9 +26,11 @@ struct SlotLookup {
   int blocks = 0;         // distinct blocks looked up, 0..4
   int misses = 0;         // of those, missing: 0..4
   uint8_t block_mask = 0; // bit p: a block with parities p = (by & 1) * 2 + (bx & 1) was looked up
+  bool error = false;     // a line it looked up came from memory with an error
 };
 struct SampleLookup {
   std::array<SlotLookup, 2> slot;
+  bool error() const { return slot[0].error || slot[1].error; }
 };
 
 struct CacheStats {
@@ -69,8 +71,14 @@ class TextureCache {
   // `misses` (if not null), in the order docs/memory.md gives.
   SampleLookup lookup(const Request& probe, std::vector<uint32_t>* misses);
   // A whole request: its probes (tex_probe) one after another, as the RTL's FIFO holds them.
-  // Returns what its timing depends on: the probes and the lines each misses.
+  // Returns what its timing depends on: the probes and the lines each misses; and whether a line
+  // it looked up came from memory with an error (RequestWork::error).
   RequestWork lookup_sample(const Request& r, std::vector<uint32_t>* misses);
+
+  // Memory errors (docs/memory.md §3): the line reads, counted from 1 at construction in miss
+  // order, that memory answers with an error, ascending. Such a line is cached as any other,
+  // marked; a lookup of a marked line marks the sample (the unit answers it with rsp_error and 0).
+  void set_error_reads(std::vector<uint64_t> ordinals) { error_reads_ = std::move(ordinals); }
 
   const CacheStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }
@@ -94,6 +102,7 @@ class TextureCache {
     uint32_t tag = 0;       // the line address
     int age = 0;            // 0 = most recently used
     uint64_t last_use = 0;  // 1 + the number of the last sample that looked it up
+    bool error = false;     // memory answered its line with an error
   };
   Way way(int cache, int set, int w) const { return caches_[size_t(cache)][size_t(set * ways_ + w)]; }
 
@@ -127,6 +136,9 @@ class TextureCache {
   std::array<LastLookup, 2> last_;
   CacheStats stats_;
   uint64_t sample_ = 0;  // samples looked up so far
+  std::vector<uint64_t> error_reads_;
+  uint64_t reads_ = 0;        // line reads so far (misses since construction)
+  size_t next_error_ = 0;     // the next of error_reads_ to come
 };
 
 }  // namespace tex

@@ -93,6 +93,7 @@ class StimulusClock {
 struct RequestWork {
   uint64_t fill_bits = 0;  // probe i's fills in bits [4i, 4i + 4)
   uint8_t probes = 1;
+  bool error = false;      // a line it looked up came from memory with an error (no effect on timing)
   uint32_t fills(int probe) const { return uint32_t(fill_bits >> (4 * probe)) & 15u; }
   void set_fills(int probe, uint32_t n) {
     fill_bits = (fill_bits & ~(uint64_t(15) << (4 * probe))) | uint64_t(n & 15u) << (4 * probe);

@@ -19,8 +19,12 @@
 //   when en_back is high: a sample in R reads the banks at that same edge, before the write.
 //   A stage's data registers load only when a sample moves into it (out_tag, taps, out_w, out_f
 //   hold their last sample while out_valid is low): a simulator skips the empty stages.
-//   mem_req / mem_rsp are valid/ready; mem_req_valid, mem_req_addr and mem_rsp_ready are
-//   functions of registers only.
+//   mem_req / mem_rsp are valid/ready (tex_unit_cached maps them onto its AXI4 read master: one
+//   burst per line, beats in order); mem_req_valid, mem_req_addr and mem_rsp_ready are functions
+//   of registers only.
+// Memory errors: a line any of whose beats came with mem_rsp_error is written into its slot as it
+//   came and marked; a sample whose lookups include a marked line leaves with out_error (the mark
+//   goes with the next line written into that slot).
 // Latency: front_valid at clock 4 -> out_valid 5 clocks later when every line hits (FIFO push,
 //   H, R, T, taps); a miss adds the memory's latency. Throughput: 1 sample per clock while lines
 //   hit; a sample with k fills occupies H for max(k, 1) clocks.
@@ -42,9 +46,14 @@
 //                                     line in beat i; LINE_BITS / MEM_W beats per line, in order;
 //                                     a line of texels of 4 channels of CW bits (SRGB: 8) in 4
 //                                     (CW > 8: 8) bytes, or of 4x4 blocks
+//   mem_rsp_error                   : the beat came with an error (AXI RRESP SLVERR or DECERR)
 //   out_valid, out_tag, taps, out_w, out_f : as tex_fetch's taps with the weights beside them
 //                                     (SRGB: an sRGB texture's R, G, B linear unorm16, A x 257; a
 //                                     linear texture's 8-bit channels zero-extended)
+//   out_error                       : a line the sample looked up came with a memory error
+//   stat_lookups, stat_misses       : lines the tag stage looks up in this clock (0..8, both
+//                                     caches), and of those missing (unsigned, for counters)
+//   stat_mem_wait                   : the FIFO's head waits for memory in this clock
 // The harness reads fifo_count (the FIFO's occupancy) and head_waits (the head sample waits for
 // memory) for its statistics (public in Verilator, rtl/tex_unit.vlt).
 module tex_cached_fetch #(
@@ -102,12 +111,18 @@ module tex_cached_fetch #(
   input  logic                              mem_rsp_valid,
   output logic                              mem_rsp_ready,
   input  logic [MEM_W-1:0]                  mem_rsp_data,
+  input  logic                              mem_rsp_error,
 
   output logic                              out_valid,
   output logic [TAG_W-1:0]                  out_tag,
   output logic [32*CW-1:0]                  taps,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0] out_w,
-  output logic [tex_pkg::WEIGHT_BITS-1:0]   out_f
+  output logic [tex_pkg::WEIGHT_BITS-1:0]   out_f,
+  output logic                              out_error,
+
+  output logic [3:0]                        stat_lookups,
+  output logic [3:0]                        stat_misses,
+  output logic                              stat_mem_wait
 );
   localparam int VW   = tex_pkg::LEVEL_W;
   localparam int WB   = tex_pkg::WEIGHT_BITS;
@@ -353,7 +368,9 @@ module tex_cached_fetch #(
   logic [7:0]       miss;
   logic [8*MEW-1:0] miss_entry;
   logic [8*RD-1:0]  reads;           // slot s bank b at [(s*4 + b)*RD +: RD]: {line slot, offset}
+  logic [7:0]       need;            // slot s bank b reads a line the sample looked up (its error counts)
   logic [3:0]       fills;           // misses of this sample: 0..8
+  logic [3:0]       lookups;         // lines it looks up: 0..8
   always_comb begin
     logic [3:0]       hit_s;
     logic [4*SLW-1:0] slot_s;
@@ -362,7 +379,9 @@ module tex_cached_fetch #(
     miss       = '0;
     miss_entry = '0;
     reads      = '0;
+    need       = '0;
     fills      = '0;
+    lookups    = '0;
     if (push) begin
       for (int sl = 0; sl < 2; sl++) begin
         cache_s = c0 ^ 1'(sl);
@@ -373,14 +392,19 @@ module tex_cached_fetch #(
           miss_entry[(sl*4 + q)*MEW +: MEW] =
               {AW'(look_line[sl][q*LNW +: LNW]) << LOG2_LB, line_kind(fmt), cache_s, slot_s[q*SLW +: SLW]};
           fills = fills + 4'(miss[sl*4 + q]);
+          lookups = lookups + 4'(look[sl][q]);
         end
         for (int k = 0; k < 4; k++) begin
           reads[(sl*4 + k)*RD +: RD] =
               {slot_s[bank_block[sl][k*2 +: 2]*SLW +: SLW], bank_offset[sl][k*OFW +: OFW]};
+          need[sl*4 + k] = look[sl][bank_block[sl][k*2 +: 2]];
         end
       end
     end
   end
+
+  assign stat_lookups = lookups;
+  assign stat_misses  = fills;
 
   // ---------------------------------------------------------------- miss ring
   // Misses not yet written into the cache, in order: [retire, issue) sent to memory, [issue,
@@ -429,11 +453,14 @@ module tex_cached_fetch #(
   logic [LCW-1:0]       fill_count;
   logic [BTW-1:0]       beat;
   logic                 beat_take, line_done;
+  logic [FILL_DEPTH-1:0] fill_err;  // the line came with an error in any beat
+  logic                 beat_err;   // an earlier beat of the line being received did
   assign mem_rsp_ready = fill_count != LCW'(FILL_DEPTH);
   assign beat_take     = mem_rsp_valid && mem_rsp_ready;
   assign line_done     = beat_take && (BEATS == 1 || beat == BTW'(BEATS - 1));
   always_ff @(posedge clk) begin
     if (beat_take) fill_mem[fill_wr][32'(beat)*MEM_W +: MEM_W] <= mem_rsp_data;  // (beat is 0 if BEATS = 1)
+    if (line_done) fill_err[fill_wr] <= beat_err || mem_rsp_error;
   end
   always_ff @(posedge clk) begin
     if (rst) begin
@@ -441,8 +468,10 @@ module tex_cached_fetch #(
       fill_rd    <= '0;
       fill_count <= '0;
       beat       <= '0;
+      beat_err   <= 1'b0;
     end else begin
       if (beat_take) beat <= line_done ? '0 : beat + 1'b1;
+      if (beat_take) beat_err <= !line_done && (beat_err || mem_rsp_error);
       if (line_done) fill_wr <= (FILL_DEPTH > 1) ? fill_wr + 1'b1 : '0;
       if (retire)    fill_rd <= (FILL_DEPTH > 1) ? fill_rd + 1'b1 : '0;
       fill_count <= fill_count + LCW'(line_done) - LCW'(retire);
@@ -450,9 +479,11 @@ module tex_cached_fetch #(
   end
 
   // ---------------------------------------------------------------- sample FIFO
-  // An entry: {tag, w, f, sRGB, format, c0, taps' low coordinate bits (slot 1, slot 0), bank reads, fills}.
+  // An entry: {tag, w, f, sRGB, format, c0, needed bank reads, taps' low coordinate bits (slot 1,
+  // slot 0), bank reads, fills}.
   localparam int P_TAPS = 4 + 8*RD;          // field positions
-  localparam int P_C0   = P_TAPS + 8*PB;
+  localparam int P_NEED = P_TAPS + 8*PB;
+  localparam int P_C0   = P_NEED + 8;
   localparam int P_FMT  = P_C0 + 1;
   localparam int P_SRGB = P_FMT + FW;
   localparam int EW     = P_SRGB + 1 + 5*WB + TAG_W;
@@ -464,7 +495,7 @@ module tex_cached_fetch #(
   logic [FCW-1:0] fifo_next;
   logic [MCW-1:0] ring_next;
   always_ff @(posedge clk) begin
-    if (push) fifo[fifo_wr] <= {front_tag, w, f, srgb, fmt, c0, tap_low[1], tap_low[0], reads, fills};
+    if (push) fifo[fifo_wr] <= {front_tag, w, f, srgb, fmt, c0, need, tap_low[1], tap_low[0], reads, fills};
   end
   assign fifo_next = fifo_count + FCW'(push) - FCW'(fifo_pop);
   logic [FCW-1:0] fifo_limit;  // the FIFO's depth in use
@@ -497,6 +528,7 @@ module tex_cached_fetch #(
   assign h_go       = en_back && h_valid && (h_fills == '0 || (h_fills == 4'd1 && fill_write));
   assign fifo_pop   = (!h_valid || h_go) && fifo_count != '0;
   assign head_waits = en_back && h_valid && !h_go;
+  assign stat_mem_wait = head_waits;
   always_ff @(posedge clk) begin
     if (rst) begin
       h_valid <= 1'b0;
@@ -543,6 +575,22 @@ module tex_cached_fetch #(
   assign r_reads = r_entry[4 +: 8*RD];
   assign r_c0    = r_entry[P_C0];
 
+  // Memory errors: a mark per line slot of each cache, written with the line. The sample in R
+  // reads the marks of the lines it looked up at the edge the banks are read (before a write).
+  logic [LINES-1:0] line_err [2];
+  always_ff @(posedge clk)
+    if (fill_write) line_err[fill_cache][fill_slot] <= fill_err[fill_rd];
+  logic [7:0] r_need;
+  logic       r_err;
+  assign r_need = r_entry[P_NEED +: 8];
+  always_comb begin
+    r_err = 1'b0;
+    if (r_valid)
+      for (int sl = 0; sl < 2; sl++)
+        for (int k = 0; k < 4; k++)
+          r_err = r_err || (r_need[sl*4 + k] && line_err[r_c0 ^ 1'(sl)][r_reads[(sl*4 + k)*RD + OFW +: SLW]]);
+  end
+
   logic [4*WW-1:0] bank_word [2];  // cache c, bank b's word at [b*WW +: WW] (clock T)
   generate
     for (c = 0; c < 2; c = c + 1) begin : g_data
@@ -561,12 +609,15 @@ module tex_cached_fetch #(
   endgenerate
 
   // ---------------------------------------------------------------- T: bank words -> taps
-  logic          t_valid;
+  logic          t_valid, t_err;
   logic [EW-1:0] t_entry;
   always_ff @(posedge clk) begin
     if (rst) t_valid <= 1'b0;
     else if (en_back) t_valid <= r_valid;
-    if (en_back && r_valid) t_entry <= r_entry;
+    if (en_back && r_valid) begin
+      t_entry <= r_entry;
+      t_err   <= r_err;
+    end
   end
   logic            t_c0, t_blk;
   logic [FW-1:0]   t_fmt;
@@ -671,6 +722,7 @@ module tex_cached_fetch #(
     else if (en_back) out_valid <= t_valid;
     if (en_back && t_valid) begin
       {out_tag, out_w, out_f} <= t_entry[EW-1 -: TAG_W + 5*WB];
+      out_error <= t_err;
       taps <= widened;
     end
   end

@@ -1,11 +1,18 @@
 // tex_unit_cached: the texture unit with the pyramid in external memory behind two texture caches
 // (even and odd levels) and a latency-hiding sample FIFO (docs/memory.md). Same numerics, request
 // and response ports as tex_unit (bit-identical responses); the level memories and their write
-// port are replaced by a memory read port. Interface contract: docs/rtl-interface.md.
+// port are replaced by an AXI4 read master. Interface contract: docs/rtl-interface.md.
 //
-// Handshake: req, rsp, mem_req and mem_rsp are valid/ready. req_ready is a register output
-//   (tex_cached_fetch's en_front: room in the sample FIFO and the miss ring). Responses come in
-//   request order with their tag, with full backpressure; mem_rsp beats come in mem_req order.
+// Handshake: req and rsp are valid/ready. req_ready is a register output (tex_cached_fetch's
+//   en_front: room in the sample FIFO and the miss ring). Responses come in request order with
+//   their tag, with full backpressure.
+// AXI4 read master (AMBA AXI4 names): one INCR burst per cache line, LINE_BITS / MEM_W beats of
+//   MEM_W bits (ARLEN = beats - 1, ARSIZE = log2 of the beat's bytes), a single ID (ARID = 0) and
+//   so responses in order, at most MISS_DEPTH reads outstanding (the miss ring), ARVALID and
+//   ARADDR functions of registers only, RREADY of registers only. A beat with RRESP SLVERR or
+//   DECERR marks its line: every sample that looks the line up while it is cached comes out with
+//   rsp_error set and rsp_rgba 0 (the unit keeps running; docs/memory.md §3). RLAST and RID are
+//   checked in simulation only (the beats of a line are counted).
 // Latency: 19 clocks from the request handshake edge to rsp_valid when every line hits, the
 //   request has one probe and the output is not stalled (requests 1-4 tex_probe; probes 1-4
 //   tex_front, 5 tag stage and FIFO push, 6 head, 7 data read, 8 taps, 9-11 tex_filter, 12-13
@@ -32,7 +39,11 @@
 //   cfg_log2_sets, cfg_log2_ways : geometry of each cache (sets >= 4, sets * ways <= LINES)
 //   cfg_fifo_limit   : samples the FIFO holds at most, 1..FIFO_DEPTH (0 or more: FIFO_DEPTH), to
 //                      measure a shallower FIFO without rebuilding; unsigned $clog2(FIFO_DEPTH+1) bits
-//   mem_req_addr     : byte address of a line; mem_rsp_data: one MEM_W-bit beat of it
+//   m_axi_araddr     : byte address of a line (line aligned); m_axi_rdata: one MEM_W-bit beat
+//                      of it, bytes [i*MEM_W/8 +: MEM_W/8] of the line in beat i
+//   rsp_error        : the sample read a line the memory answered with an error; rsp_rgba is 0
+//   stat_lookups, stat_misses : lines looked up in this clock (0..8) and of those missing, unsigned
+//   stat_mem_wait    : the FIFO's head waits for memory in this clock (for counters)
 // cfg_* are registered every clock and must be static while requests are in flight;
 //   cfg_log2_sets, cfg_log2_ways, cfg_block_morton change only under reset (the caches are
 //   emptied by rst), a texture in memory only with its descriptor (and no request of it in flight).
@@ -48,7 +59,8 @@ module tex_unit_cached #(
   parameter int FIFO_DEPTH = 256,  // samples waiting for memory (power of two, >= 2)
   parameter int MISS_DEPTH = 64,   // misses in flight (power of two, >= 16)
   parameter int FILL_DEPTH = 4,    // received lines not yet written (power of two)
-  parameter int MEM_W      = 128,  // bits of a memory beat (power of two, divides the line)
+  parameter int MEM_W      = 128,  // AXI data width: bits of a beat (32..256, divides the line)
+  parameter int AXI_ID_W   = 1,    // AXI ID width (1..16; the unit uses ID 0)
   parameter int TEXTURES   = 16,   // texture descriptor-table entries (power of two, 1..16)
   parameter int BLOCK_FORMATS = 1, // 1: BC1-BC5 and BC7 textures too, 8 decoders after the cache
                                    // (needs 8-bit memory channels and lines of at least 64 bytes)
@@ -98,12 +110,27 @@ module tex_unit_cached #(
   output logic [4*CW-1:0]                        rsp_rgba,
   output logic [TAG_W-1:0]                       rsp_tag,
 
-  output logic                                   mem_req_valid,
-  input  logic                                   mem_req_ready,
-  output logic [tex_pkg::MEM_ADDR_W-1:0]         mem_req_addr,
-  input  logic                                   mem_rsp_valid,
-  output logic                                   mem_rsp_ready,
-  input  logic [MEM_W-1:0]                       mem_rsp_data
+  output logic                                   rsp_error,
+
+  output logic                                   m_axi_arvalid,
+  input  logic                                   m_axi_arready,
+  output logic [tex_pkg::MEM_ADDR_W-1:0]         m_axi_araddr,
+  output logic [7:0]                             m_axi_arlen,
+  output logic [2:0]                             m_axi_arsize,
+  output logic [1:0]                             m_axi_arburst,
+  output logic [AXI_ID_W-1:0]                    m_axi_arid,
+  output logic [3:0]                             m_axi_arcache,
+  output logic [2:0]                             m_axi_arprot,
+  input  logic                                   m_axi_rvalid,
+  output logic                                   m_axi_rready,
+  input  logic [MEM_W-1:0]                       m_axi_rdata,
+  input  logic [1:0]                             m_axi_rresp,
+  input  logic                                   m_axi_rlast,
+  input  logic [AXI_ID_W-1:0]                    m_axi_rid,
+
+  output logic [3:0]                             stat_lookups,
+  output logic [3:0]                             stat_misses,
+  output logic                                   stat_mem_wait
 );
   localparam int VW = tex_pkg::LEVEL_W;
   localparam int WB = tex_pkg::WEIGHT_BITS;
@@ -157,8 +184,11 @@ module tex_unit_cached #(
     if (FILL_DEPTH < 1 || (FILL_DEPTH & (FILL_DEPTH - 1)) != 0) begin : g_bad_fill
       `TEX_PARAM_ERROR("tex_unit_cached: parameter FILL_DEPTH must be a power of two")
     end
-    if (MEM_W < 8 || (MEM_W & (MEM_W - 1)) != 0 || MEM_W > LINE_BITS) begin : g_bad_mem_w
-      `TEX_PARAM_ERROR("tex_unit_cached: parameter MEM_W must be a power of two from 8 to the line's bits")
+    if (MEM_W < 32 || MEM_W > 256 || (MEM_W & (MEM_W - 1)) != 0 || MEM_W > LINE_BITS) begin : g_bad_mem_w
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter MEM_W must be a power of two from 32 to 256 that divides the line's bits (the AXI data width)")
+    end
+    if (AXI_ID_W < 1 || AXI_ID_W > 16) begin : g_bad_axi_id_w
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter AXI_ID_W must be in 1..16")
     end
     if (TEXTURES < 1 || TEXTURES > (1 << tex_pkg::TEX_ID_W) || (TEXTURES & (TEXTURES - 1)) != 0) begin : g_bad_textures
       `TEX_PARAM_ERROR("tex_unit_cached: parameter TEXTURES must be a power of two from 1 to 16 (tex_pkg::TEX_ID_W)")
@@ -278,8 +308,32 @@ module tex_unit_cached #(
     .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
   );
 
+  // ---------------------------------------------------------------- AXI4 read master
+  // The miss ring's line reads and the fill FIFO's beats are the AR and R channels: one INCR burst
+  // of a whole line per read.
+  localparam int BEATS = LINE_BITS / MEM_W;
+  logic                           mem_req_valid, mem_req_ready, mem_rsp_valid, mem_rsp_ready;
+  logic [tex_pkg::MEM_ADDR_W-1:0] mem_req_addr;
+  assign m_axi_arvalid = mem_req_valid;
+  assign mem_req_ready = m_axi_arready;
+  assign m_axi_araddr  = mem_req_addr;
+  assign m_axi_arlen   = 8'(BEATS - 1);
+  assign m_axi_arsize  = 3'($clog2(MEM_W / 8));
+  assign m_axi_arburst = 2'b01;      // INCR
+  assign m_axi_arid    = '0;
+  assign m_axi_arcache = 4'b0011;    // normal, non-cacheable, bufferable
+  assign m_axi_arprot  = 3'b000;     // unprivileged, secure, data
+  assign mem_rsp_valid = m_axi_rvalid;
+  assign m_axi_rready  = mem_rsp_ready;
+  logic rlast_unused;                // checked in simulation below: the beats are counted
+  logic [AXI_ID_W-1:0] rid_unused;   // one ID: responses in order
+  logic rresp_exokay_unused;         // RRESP[0] tells OKAY from EXOKAY (no exclusive reads)
+  assign rlast_unused = m_axi_rlast;
+  assign rid_unused   = m_axi_rid;
+  assign rresp_exokay_unused = m_axi_rresp[0];
+
   // ---------------------------------------------------------------- cached fetch: clocks 5-8
-  logic              fetch_valid;
+  logic              fetch_valid, fetch_error;
   logic [SW-1:0]     fetch_tag;
   logic [32*CWD-1:0] taps;
   logic [4*WB-1:0]   fetch_w;
@@ -299,9 +353,11 @@ module tex_unit_cached #(
     .cfg_block_morton(cfg_block_morton_q), .cfg_log2_sets(cfg_log2_sets_q),
     .cfg_log2_ways(cfg_log2_ways_q), .cfg_fifo_limit(cfg_fifo_limit_q),
     .mem_req_valid(mem_req_valid), .mem_req_ready(mem_req_ready), .mem_req_addr(mem_req_addr),
-    .mem_rsp_valid(mem_rsp_valid), .mem_rsp_ready(mem_rsp_ready), .mem_rsp_data(mem_rsp_data),
+    .mem_rsp_valid(mem_rsp_valid), .mem_rsp_ready(mem_rsp_ready), .mem_rsp_data(m_axi_rdata),
+    .mem_rsp_error(m_axi_rresp[1]),  // SLVERR (10) or DECERR (11); OKAY and EXOKAY are not
     .out_valid(fetch_valid), .out_tag(fetch_tag), .taps(taps), .out_w(fetch_w),
-    .out_f(fetch_f)
+    .out_f(fetch_f), .out_error(fetch_error),
+    .stat_lookups(stat_lookups), .stat_misses(stat_misses), .stat_mem_wait(stat_mem_wait)
   );
 
   // ---------------------------------------------------------------- filter: clocks 9-11
@@ -309,6 +365,7 @@ module tex_unit_cached #(
   // hold their last values): a simulator skips the filter while the unit waits for memory.
   logic [3:1]      valid_b;
   logic [SW-1:0]   tag_b1, tag_b2, tag_b3;  // the filter's clock n (one register each, as tag_f)
+  logic [3:1]      err_b;                   // and its probe's memory error
   logic            filter_en;      // a sample enters one of the filter's clocks
   assign filter_en = en_back && (fetch_valid || valid_b[1] || valid_b[2]);
   always_ff @(posedge clk) begin
@@ -318,6 +375,7 @@ module tex_unit_cached #(
       tag_b1 <= fetch_tag;
       tag_b2 <= tag_b1;
       tag_b3 <= tag_b2;
+      err_b  <= {err_b[2:1], fetch_error};
     end
   end
   logic [4*(CWD+24)-1:0] blend;
@@ -326,31 +384,39 @@ module tex_unit_cached #(
   );
 
   // ---------------------------------------------------------------- clocks 12-13: tex_accum
-  logic             sample_valid;
+  // A sample's memory error: any of its probes' (the side data of its last probe carries the OR).
+  logic             err_run;        // the probes of the sample so far, before this one
+  logic             probe_err;      // with this one
+  assign probe_err = err_b[3] || (!tag_b3[TGW] && err_run);
+  always_ff @(posedge clk)
+    if (en_back && valid_b[3]) err_run <= probe_err;
+  logic             sample_valid, sample_error;
   logic [4*CWD-1:0] rgba;
   logic [TGW-1:0]   sample_tag;
   logic             accum_held_unused;  // (in-flight accounting: tex_unit's checks)
   logic [2:0]       probe_held_unused;
   assign probe_held_unused = probe_held;
-  tex_accum #(.CW(CWD), .SIDE_W(TGW)) u_accum (
+  tex_accum #(.CW(CWD), .SIDE_W(TGW + 1)) u_accum (
     .clk(clk), .rst(rst), .en(en_back), .in_valid(valid_b[3]), .in_first(tag_b3[TGW]),
     .in_last(tag_b3[TGW+1]), .in_n(tag_b3[TGW+2 +: 5]), .blend(blend),
-    .in_side(tag_b3[TGW-1:0]), .out_valid(sample_valid), .rgba(rgba), .out_side(sample_tag),
+    .in_side({probe_err, tag_b3[TGW-1:0]}), .out_valid(sample_valid), .rgba(rgba),
+    .out_side({sample_error, sample_tag}),
     .held(accum_held_unused)
   );
 
   // ---------------------------------------------------------------- clock 14: skid buffer
-  tex_skid #(.W(TGW + 4*CWD)) u_skid (
+  // A sample with a memory error leaves as 0 (its texels are not what memory holds).
+  tex_skid #(.W(1 + TGW + 4*CWD)) u_skid (
     .clk(clk), .rst(rst),
-    .in_valid(sample_valid), .in_ready(en_back), .in_data({sample_tag, rgba}),
-    .out_valid(rsp_valid), .out_ready(rsp_ready), .out_data({rsp_tag, rsp_rgba})
+    .in_valid(sample_valid), .in_ready(en_back), .in_data({sample_error, sample_tag, sample_error ? '0 : rgba}),
+    .out_valid(rsp_valid), .out_ready(rsp_ready), .out_data({rsp_error, rsp_tag, rsp_rgba})
   );
 
 `ifndef SYNTHESIS
   // ---------------------------------------------------------------- simulation checks
   // Requests in flight never go below 0 (no response without a request); handshake rules of the
-  // request, response and memory request channels: a valid is held until ready, with a stable
-  // payload.
+  // request, response and AR channels: a valid is held until ready, with a stable payload; RLAST
+  // on the last beat of each burst and only there, no beat without a burst outstanding.
   logic [31:0] in_flight;
   logic        req_stalled_q, rsp_stalled_q, mreq_stalled_q;
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_u_q, req_v_q;
@@ -359,6 +425,8 @@ module tex_unit_cached #(
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [tex_pkg::TEX_ID_W-1:0]           req_tex_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
+  logic                                   rsp_error_q;
+  logic [31:0]                            r_beat, bursts_open;
   logic [tex_pkg::MEM_ADDR_W-1:0]         mreq_addr_q;
   always_ff @(posedge clk) begin
     if (rst) begin
@@ -370,7 +438,22 @@ module tex_unit_cached #(
     end
     req_stalled_q  <= !rst && req_valid && !req_ready;
     rsp_stalled_q  <= !rst && rsp_valid && !rsp_ready;
-    mreq_stalled_q <= !rst && mem_req_valid && !mem_req_ready;
+    mreq_stalled_q <= !rst && m_axi_arvalid && !m_axi_arready;
+    if (rst) begin
+      r_beat      <= '0;
+      bursts_open <= '0;
+    end else begin
+      if (m_axi_rvalid && m_axi_rready) begin
+        assert (bursts_open != '0 || (m_axi_arvalid && m_axi_arready))
+          else $error("tex_unit_cached: an AXI read beat with no burst outstanding");
+        assert (m_axi_rlast == (r_beat == 32'(BEATS - 1)))
+          else $error("tex_unit_cached: RLAST %0d on beat %0d of a burst of %0d", m_axi_rlast, r_beat, BEATS);
+        assert (m_axi_rid == '0) else $error("tex_unit_cached: RID %0d, the unit reads with ID 0", m_axi_rid);
+        r_beat <= (r_beat == 32'(BEATS - 1)) ? '0 : r_beat + 1;
+      end
+      bursts_open <= bursts_open + 32'(m_axi_arvalid && m_axi_arready)
+                   - 32'(m_axi_rvalid && m_axi_rready && r_beat == 32'(BEATS - 1));
+    end
     if (req_valid && !req_ready) begin
       req_u_q   <= req_u;
       req_v_q   <= req_v;
@@ -382,8 +465,9 @@ module tex_unit_cached #(
     if (rsp_valid && !rsp_ready) begin
       rsp_tag_q  <= rsp_tag;
       rsp_rgba_q <= rsp_rgba;
+      rsp_error_q <= rsp_error;
     end
-    if (mem_req_valid && !mem_req_ready) mreq_addr_q <= mem_req_addr;
+    if (m_axi_arvalid && !m_axi_arready) mreq_addr_q <= m_axi_araddr;
     if (!rst && cfg_desc_we)
       assert (32'(cfg_desc_index) < TEXTURES)
         else $error("tex_unit_cached: cfg_desc_index %0d is beyond the descriptor table (TEXTURES = %0d)",
@@ -406,12 +490,12 @@ module tex_unit_cached #(
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin
-      assert (rsp_valid && rsp_tag == rsp_tag_q && rsp_rgba == rsp_rgba_q)
+      assert (rsp_valid && rsp_tag == rsp_tag_q && rsp_rgba == rsp_rgba_q && rsp_error == rsp_error_q)
         else $error("tex_unit_cached: rsp_valid dropped or response changed while rsp_ready was low");
     end
     if (!rst && mreq_stalled_q) begin
-      assert (mem_req_valid && mem_req_addr == mreq_addr_q)
-        else $error("tex_unit_cached: mem_req_valid dropped or address changed while mem_req_ready was low");
+      assert (m_axi_arvalid && m_axi_araddr == mreq_addr_q)
+        else $error("tex_unit_cached: ARVALID dropped or ARADDR changed while ARREADY was low");
     end
   end
 `endif

@@ -32,7 +32,7 @@ done
 lint_cached() { verilator --lint-only -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit_cached "$@" 2>&1; }
 cached=("-GMAX_LOG2_W=6 -GMAX_LOG2_H=3" "-GCW=16 -GMAX_LOG2_W=5 -GMAX_LOG2_H=4 -GBLOCK_W=2 -GMEM_W=64 -GBLOCK_FORMATS=0"
         "-GMAX_LOG2_W=0 -GMAX_LOG2_H=0" "-GBLOCK_W=8 -GBLOCK_H=2 -GMAX_WAYS=1 -GLINES=16 -GFILL_DEPTH=1"
-        "-GMAX_LOG2_W=13 -GMAX_LOG2_H=13 -GLINES=1024 -GFIFO_DEPTH=1024 -GMEM_W=512"
+        "-GMAX_LOG2_W=13 -GMAX_LOG2_H=13 -GLINES=1024 -GFIFO_DEPTH=1024 -GMEM_W=256 -GAXI_ID_W=4"
         "-GBLOCK_W=8 -GBLOCK_H=8 -GMEM_W=256" "-GBLOCK_W=2 -GBLOCK_H=4 -GBLOCK_FORMATS=0"
         "-GMAX_LOG2_W=13 -GMAX_LOG2_H=0 -GCW=16 -GTEXTURES=1 -GBLOCK_FORMATS=0" "-GTEXTURES=2"
         "-GMAX_LOG2_W=6 -GMAX_LOG2_H=3 -GCW=16 -GSRGB=1" "-GCW=16 -GSRGB=1 -GBLOCK_FORMATS=0")
@@ -43,7 +43,7 @@ for cfg in "${cached[@]}"; do
     exit 1
   fi
 done
-bad_cached=("MAX_LOG2_W=14" "BLOCK_W=3" "BLOCK_H=16" "MAX_WAYS=3" "LINES=24" "FIFO_DEPTH=3" "MISS_DEPTH=8" "MEM_W=1024"
+bad_cached=("MAX_LOG2_W=14" "BLOCK_W=3" "BLOCK_H=16" "MAX_WAYS=3" "LINES=24" "FIFO_DEPTH=3" "MISS_DEPTH=8" "MEM_W=1024" "MEM_W=16" "AXI_ID_W=0"
             "TEXTURES=3" "TEXTURES=32" "BLOCK_FORMATS=2" "CW=16" "SRGB=2" "SRGB=1")
 for p in "${bad_cached[@]}"; do
   name=${p%%=*}

@@ -91,15 +91,21 @@ module tex_ice40_cached_top #(
   localparam int O_MREADY  = O_READY + 1;
   localparam int O_MVALID  = O_MREADY + 1;
   localparam int O_MDATA   = O_MVALID + 1;
-  localparam int NIN       = O_MDATA + MEM_W;
+  localparam int O_MRESP   = O_MDATA + MEM_W;
+  localparam int O_MLAST   = O_MRESP + 2;
+  localparam int NIN       = O_MLAST + 1;
 
   logic [NIN-1:0] in_bits;
   always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
 
   logic [4*CW-1:0]  rsp_rgba;
   logic [TAG_W-1:0] rsp_tag;
-  logic             mem_req_valid, mem_rsp_ready;
-  logic [AW-1:0]    mem_req_addr;
+  logic             arvalid, rready, rsp_error, stat_mem_wait, arid;
+  logic [AW-1:0]    araddr;
+  logic [7:0]       arlen;
+  logic [2:0]       arsize, arprot;
+  logic [1:0]       arburst;
+  logic [3:0]       arcache, stat_lookups, stat_misses;
   tex_unit_cached #(
     .MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W), .LINES(LINES),
     .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES),
@@ -124,9 +130,15 @@ module tex_ice40_cached_top #(
     .req_deriv(1'b0), .req_dudx('0), .req_dvdx('0), .req_dudy('0), .req_dvdy('0),
     .cfg_max_aniso_m1(4'd0), .cfg_aniso_pow2(1'b0),
     .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag),
-    .mem_req_valid(mem_req_valid), .mem_req_ready(in_bits[O_MREADY]), .mem_req_addr(mem_req_addr),
-    .mem_rsp_valid(in_bits[O_MVALID]), .mem_rsp_ready(mem_rsp_ready),
-    .mem_rsp_data(in_bits[O_MDATA +: MEM_W])
+    .rsp_error(rsp_error),
+    .m_axi_arvalid(arvalid), .m_axi_arready(in_bits[O_MREADY]), .m_axi_araddr(araddr),
+    .m_axi_arlen(arlen), .m_axi_arsize(arsize), .m_axi_arburst(arburst), .m_axi_arid(arid),
+    .m_axi_arcache(arcache), .m_axi_arprot(arprot),
+    .m_axi_rvalid(in_bits[O_MVALID]), .m_axi_rready(rready), .m_axi_rdata(in_bits[O_MDATA +: MEM_W]),
+    .m_axi_rresp(in_bits[O_MRESP +: 2]), .m_axi_rlast(in_bits[O_MLAST]), .m_axi_rid(1'b0),
+    .stat_lookups(stat_lookups), .stat_misses(stat_misses), .stat_mem_wait(stat_mem_wait)
   );
-  always_ff @(posedge clk) sout <= ^{rsp_rgba, rsp_tag, mem_req_valid, mem_rsp_ready, mem_req_addr};
+  always_ff @(posedge clk)
+    sout <= ^{rsp_rgba, rsp_tag, rsp_error, arvalid, rready, araddr, arlen, arsize, arburst, arid, arcache,
+              arprot, stat_lookups, stat_misses, stat_mem_wait};
 endmodule

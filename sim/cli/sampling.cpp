@@ -21,17 +21,21 @@ void ClockWriter::write(const uint64_t* clocks, size_t n) {
 namespace {
 
 // --verify: the golden model samples every request as the engine takes it, and every texel the
-// engine returns must equal the model's.
+// engine returns must equal the model's (0 for a sample its caches flag with a memory error).
 class Verifier {
  public:
-  Verifier(const TextureTable& textures, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
-           std::string engine)
+  Verifier(const TextureTable& textures, const SamplerConfig& config, const EngineOptions& options,
+           RequestSource& source, TexelSink& sink, std::string engine)
       : source_(*this, source), sink_(*this, sink), engine_(std::move(engine)) {
     for (const BoundTexture& t : textures) {
       SamplerConfig c = config;
       c.wrap_u = t.wrap_u;
       c.wrap_v = t.wrap_v;
       samplers_.emplace_back(*t.pyramid, c);
+    }
+    if (!options.mem_error_reads.empty()) {
+      cache_.emplace(texture_descriptors(textures, options), options.cache, config);
+      cache_->set_error_reads(options.mem_error_reads);
     }
   }
   RequestSource& source() { return source_; }
@@ -43,7 +47,10 @@ class Verifier {
     Source(Verifier& v, RequestSource& inner) : v(v), inner(inner) {}
     size_t read(Request* out, size_t max) override {
       const size_t n = inner.read(out, max);
-      for (size_t i = 0; i < n; ++i) v.expected_.push_back(v.samplers_.at(out[i].texture).sample(out[i]));
+      for (size_t i = 0; i < n; ++i) {
+        const bool error = v.cache_ && v.cache_->lookup_sample(out[i], nullptr).error;
+        v.expected_.push_back(error ? Texel{} : v.samplers_.at(out[i].texture).sample(out[i]));
+      }
       return n;
     }
     Verifier& v;
@@ -69,6 +76,7 @@ class Verifier {
     TexelSink& inner;
   };
   std::vector<Sampler> samplers_;  // one per texture of the table
+  std::optional<TextureCache> cache_;  // memory errors: the samples they flag
   Source source_;
   Sink sink_;
   std::string engine_;
@@ -101,6 +109,18 @@ struct TimedSink final : TexelSink {
 
 }  // namespace
 
+// The samples flagged by --mem-error-at, as the run's error: the reads, how many samples, the first ones.
+static Error memory_error(const EngineStats& stats, const EngineOptions& eo) {
+  std::string reads, samples;
+  for (const uint64_t r : eo.mem_error_reads) reads += (reads.empty() ? "" : ", ") + std::to_string(r);
+  const size_t n = stats.memory_error_samples.size(), shown = std::min<size_t>(n, 10);
+  for (size_t i = 0; i < shown; ++i) samples += (i ? ", " : "") + std::to_string(stats.memory_error_samples[i]);
+  return Error("memory error: line read" + std::string(eo.mem_error_reads.size() > 1 ? "s " : " ") + reads +
+               " answered SLVERR; " + std::to_string(n) + " sample" + (n == 1 ? "" : "s") + " flagged (request " +
+               samples + (n > shown ? ", ..." : "") + ", counted from 0 in request order); engine " + stats.engine +
+               ", no output written");
+}
+
 EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
                        const TextureTable& textures, const SamplerConfig& cfg, RequestSource& input, TexelSink& output,
                        const ReadAheadSource* parser) {
@@ -120,12 +140,16 @@ EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, Output
     if (!o.verify) {
       stats = engine->run(textures, cfg, requests, sink);
     } else {
-      Verifier verifier(textures, cfg, requests, sink, o.engine);
+      Verifier verifier(textures, cfg, eo, requests, sink, o.engine);
       stats = engine->run(textures, cfg, verifier.source(), verifier.sink());
       std::printf("verify: %zu samples of engine %s are bit-identical to the golden model\n", verifier.checked(),
                   o.engine.c_str());
     }
     if (counter) stats.probes = counter->histogram();
+    if (!stats.memory_error_samples.empty()) throw memory_error(stats, eo);
+    if (!eo.mem_error_reads.empty() && stats.cache && stats.cache->misses < eo.mem_error_reads.back())
+      std::fprintf(stderr, "texsim: --mem-error-at %llu: the run read only %llu lines from memory\n",
+                   (unsigned long long)eo.mem_error_reads.back(), (unsigned long long)stats.cache->misses);
     std::vector<std::string> formats;  // the table's, each once, in table order
     for (const BoundTexture& t : textures) {
       const std::string name = std::string(format_info(t.pyramid->format).name) + (t.pyramid->srgb ? "_srgb" : "");

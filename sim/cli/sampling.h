@@ -2,6 +2,7 @@
 // options, the engine run with --verify, the summary lines and the --stats file.
 #pragma once
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <optional>
@@ -27,6 +28,24 @@ inline uint64_t parse_unsigned(const std::string& text, const std::string& optio
   if (text.empty() || ec != std::errc() || end != text.data() + text.size())
     throw Error(option + " " + quote_clipped(text) + " is not a whole number from 0 to 18446744073709551615");
   return v;
+}
+
+// --mem-error-at N[,N...]: line reads (1 = the first), each at least 1, returned ascending.
+inline std::vector<uint64_t> parse_error_reads(const std::string& text) {
+  std::vector<uint64_t> out;
+  size_t at = 0;
+  for (;;) {
+    const size_t comma = text.find(',', at);
+    const std::string item = text.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+    const uint64_t n = parse_unsigned(item, "--mem-error-at");
+    if (n == 0) throw Error("--mem-error-at 0: line reads are counted from 1 (the first read)");
+    out.push_back(n);
+    if (comma == std::string::npos) break;
+    at = comma + 1;
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 // --block WxH: texels per block (= cache line), each side 2, 4 or 8.
@@ -64,6 +83,7 @@ struct SamplingOptions {
   std::string cache_kib = "8", ways = "2", block = "4x4", block_order = "row-major";
   std::string mem_latency = "100", mem_jitter = "0", mem_bytes_per_clock = "16", mem_outstanding = "64";
   std::string fifo_depth;
+  std::string mem_error_at;
   std::string miss_trace;
   std::string response_clocks;
   bool no_timing = false;
@@ -139,6 +159,9 @@ struct SamplingOptions {
     cached_opts.push_back(cmd.add_option("--fifo-depth", fifo_depth,
                                          "cached, rtl: samples the FIFO holds at most, 1 to the configuration's "
                                          "FIFO_DEPTH (default: all of it)"));
+    cached_opts.push_back(cmd.add_option("--mem-error-at", mem_error_at,
+                   "cached: the N-th line read from memory (1 = the first; N,M,... for several) answers SLVERR; "
+                   "texsim names the samples that read it and exits with status 1, writing nothing"));
     cached_opts.push_back(cmd.add_option("--miss-trace", miss_trace,
                    "cached: write the line addresses read from memory, in order, one 0x%08x per line"));
   }
@@ -221,6 +244,7 @@ struct SamplingOptions {
       o.mem_bytes_per_clock = bounded(mem_bytes_per_clock, "--mem-bytes-per-clock", 1, 1024);
       o.mem_outstanding = bounded(mem_outstanding, "--mem-outstanding", 1, 4096);
       if (!fifo_depth.empty()) o.fifo_depth = bounded(fifo_depth, "--fifo-depth", 1, 1u << 20);
+      if (!mem_error_at.empty()) o.mem_error_reads = parse_error_reads(mem_error_at);
       // The geometry must be one the caches can have (the texture's channel width sets the line
       // size; 8-bit lines are checked here, the engine checks again with the real texture).
       TextureCache(MemoryLayout(0, 0, 8, o.layout), o.cache, SamplerConfig{}, 0, 0);
@@ -229,6 +253,8 @@ struct SamplingOptions {
         if (opt->count()) throw Error(opt->get_name() + " needs --memory cached (the on-chip memories have no cache)");
     }
     make_engine(engine, o);  // unknown engine, --trace with an engine that cannot trace
+    if (!o.mem_error_reads.empty() && engine != "model" && engine != "rtl")
+      throw Error("--mem-error-at: engine " + engine + " does not inject memory errors (engines model, rtl)");
     if (no_timing && engine != "model")
       throw Error("--no-timing applies to --engine model (engine " + engine + " is clocked: its timing is the simulation)");
     o.timing = !no_timing;

@@ -87,6 +87,12 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
       j[c == 0 ? "hit_rate_even_levels" : "hit_rate_odd_levels"] =
           cache->cache_lookups[c] ? double(cache->cache_hits[c]) / double(cache->cache_lookups[c]) : 0.0;
     j["memory_read_bytes"] = cache->memory_read_bytes;
+    if (!options.mem_error_reads.empty()) {
+      j["mem_error_reads"] = options.mem_error_reads;
+      j["memory_error_samples"] = memory_error_samples.size();
+      j["memory_error_sample_indices"] = std::vector<uint64_t>(
+          memory_error_samples.begin(), memory_error_samples.begin() + std::min<size_t>(memory_error_samples.size(), 1000));
+    }
     j["bytes_per_sample"] = samples ? double(cache->memory_read_bytes) / double(samples) : 0.0;
     if (cycle) {
       j["mem_latency"] = options.mem_latency;
@@ -158,6 +164,8 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
       k.fifo_max_occupancy = j.at("fifo_max_occupancy").get<uint32_t>();
       k.memory_stall_cycles = j.at("memory_stall_cycles").get<uint64_t>();
       s.cache = k;
+      if (j.contains("memory_error_sample_indices"))
+        s.memory_error_samples = j.at("memory_error_sample_indices").get<std::vector<uint64_t>>();
     }
   } else {
     s.texel_reads = j.at("texel_reads").get<uint64_t>();

@@ -64,6 +64,9 @@ struct EngineOptions {
   CacheParams cache;
   uint32_t mem_latency = 100, mem_jitter = 0, mem_bytes_per_clock = 16, mem_outstanding = 64;
   uint32_t fifo_depth = 0;  // rtl: samples the FIFO holds at most; 0 = the configuration's FIFO_DEPTH
+  // cached: line reads (1 = the first, in miss order) that memory answers with SLVERR, ascending
+  // (--mem-error-at); the samples that look such a line up come out flagged, as 0.
+  std::vector<uint64_t> mem_error_reads;
   MissSink* miss_sink = nullptr;  // cached: the line addresses read from memory, in order
   ClockSink* clock_sink = nullptr;  // cycle-accurate and timed engines: each response's clock
   bool timing = true;  // model: clock the timing model (model/timing.h) too: cycle counters, response clocks
@@ -109,6 +112,9 @@ struct EngineStats {
   uint64_t texel_reads = 0, multiplies_per_channel = 0;
   std::vector<std::array<uint64_t, 4>> bank_reads;  // [level][bank]
   std::optional<CacheCounters> cache;               // cached mode only
+  // cached mode: the samples that read a line memory answered with an error (rsp_error), by their
+  // index in request order; their texels are 0.
+  std::vector<uint64_t> memory_error_samples;
   // Anisotropic filter only (ProbeCounter): samples by probe count N, index 1..16; the RTL takes
   // N clocks for a sample of N probes.
   std::optional<std::array<uint64_t, kMaxAniso + 1>> probes;

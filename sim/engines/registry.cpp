@@ -142,7 +142,12 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
     samplers.emplace_back(*t.pyramid, c, fast ? SamplerPaths::FastOnly : SamplerPaths::Both);
   }
   std::optional<TextureCache> cache;
-  if (cached) cache.emplace(texture_descriptors(textures, options), options.cache, config);
+  if (cached) {
+    cache.emplace(texture_descriptors(textures, options), options.cache, config);
+    cache->set_error_reads(options.mem_error_reads);
+  }
+  std::vector<uint64_t> error_samples;  // flagged by a memory error
+  uint64_t done = 0;                    // requests before this chunk
   // The timing layer: the unit model_unit_shape gives, the memory and stimulus of the RTL engine.
   std::unique_ptr<TimedStream> timed;
   std::string configuration;
@@ -176,11 +181,14 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
     } else {
       for (size_t i = 0; i < n; ++i) texels[i] = samplers[requests[i].texture].sample(requests[i]);
     }
-    sink.write(texels.data(), n);
     if (cache) {
       misses.clear();
       for (size_t i = 0; i < n; ++i) {
         const RequestWork w = cache->lookup_sample(requests[i], options.miss_sink ? &misses : nullptr);
+        if (w.error) [[unlikely]] {
+          texels[i] = {};  // what the unit answers with rsp_error
+          error_samples.push_back(done + i);
+        }
         if (timed) timed->push(w);
       }
       if (options.miss_sink && !misses.empty()) options.miss_sink->write(misses.data(), misses.size());
@@ -192,6 +200,8 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
         timed->push(w);
       }
     }
+    sink.write(texels.data(), n);
+    done += n;
     if (timed) {
       timed->run(keep_clocks);
       flush_clocks();
@@ -217,6 +227,7 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
       for (size_t b = 0; b < 4; ++b) stats.bank_reads[k][b] += s.memory.bank_reads[k][b];
   }
   if (cache) stats.cache = cache_counters(*cache);
+  stats.memory_error_samples = std::move(error_samples);
   if (timed) {
     const TimingCounters t = timed->counters();
     CycleStats c;

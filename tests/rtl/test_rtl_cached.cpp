@@ -1,10 +1,13 @@
 // Lockstep of tex_unit_cached (docs/memory.md) against the golden model: every response bit for
 // bit against tex::Sampler::sample(), and every line the RTL reads from memory against the misses
 // tex::TextureCache predicts, in order, under random cache geometries, block orders, memory
-// latency, jitter, bandwidth, outstanding-read limits, memory-port backpressure and random
-// request/response stalls. Functional coverage of the cache cases is asserted per configuration.
+// latency, jitter, bandwidth, outstanding-read limits, random ARREADY / RVALID gaps and random
+// request/response stalls; a third of the cases with memory errors (reads answered SLVERR): every
+// response's rsp_error against the model's caches (the flagged samples answer 0). Functional
+// coverage of the cache cases is asserted per configuration.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -97,6 +100,7 @@ const rtl::RtlConfig& config_named(const std::string& name) {
 // One case: its result, or a failure description.
 struct CaseResult {
   uint64_t samples = 0, clocks = 0, reads = 0;
+  uint64_t flagged = 0;   // responses with rsp_error
   uint32_t fifo_max = 0;  // largest FIFO occupancy
   std::string failure;
 };
@@ -107,10 +111,12 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
                     const CacheParams& cache, const rtl::MemoryTiming& timing, const std::vector<Request>& requests,
                     const rtl::Timing& stim, uint64_t seed, CacheCoverage* coverage,
                     const CacheParams* model_cache = nullptr, int poke_texel = -1, uint32_t fifo_depth = 0,
-                    const TextureTable* model_table = nullptr) {
+                    const TextureTable* model_table = nullptr, const std::vector<uint64_t>& error_reads = {},
+                    const std::vector<uint64_t>* model_error_reads = nullptr) {
   CaseResult r;
   const Pyramid& pyr = *table[0].pyramid;
   unit.set_memory(layout, cache, timing, fifo_depth);
+  unit.set_memory_errors(error_reads);
   unit.load_textures(table);
   unit.configure(cfg, pyr);
   if (poke_texel >= 0) {  // planted bug: one byte of the image is wrong
@@ -129,6 +135,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
   EngineOptions eo;
   eo.layout = layout;
   TextureCache model(texture_descriptors(mt, eo), model_cache ? *model_cache : cache, cfg);
+  model.set_error_reads(model_error_reads ? *model_error_reads : error_reads);
   std::vector<uint32_t> predicted;
   std::vector<RequestWork> work;  // each request's probes and their misses: what its timing depends on
   for (const Request& q : requests) {
@@ -139,6 +146,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
     for (int i = 0; i < p.n; ++i) {
       const SampleLookup l = model.lookup(p.at[size_t(i)], &predicted);
       w.set_fills(i, uint32_t(l.slot[0].misses + l.slot[1].misses));
+      w.error = w.error || l.error();
       if (coverage) coverage->sample(l);
     }
   }
@@ -148,9 +156,15 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
   try {
     const rtl::StreamStats st = rtl::stream(unit, requests.data(), requests.size(), stim, seed, [&](size_t i, uint64_t rgba) {
       clocks[i] = response_clock(unit);
-      const Texel want = samplers[requests[i].texture].sample(requests[i]);
+      // A sample the model's caches flag answers 0 with rsp_error.
+      const bool error = work[i].error, got_error = unit.last_response_error();
+      const Texel want = error ? Texel{} : samplers[requests[i].texture].sample(requests[i]);
       const Texel got = rtl::unpack_rgba(rgba, unit.config().cw);
-      if (got != want && mismatches++ == 0)
+      r.flagged += got_error;
+      if (got_error != error && mismatches++ == 0)
+        r.failure = "sample " + std::to_string(i) + " " + describe(requests[i]) + ": RTL rsp_error " +
+                    std::to_string(got_error) + ", model " + std::to_string(error);
+      else if (got != want && mismatches++ == 0)
         r.failure = "sample " + std::to_string(i) + " " + describe(requests[i]) + ": RTL " + describe(got) +
                     ", model " + describe(want);
     });
@@ -232,6 +246,16 @@ rtl::MemoryTiming random_memory(std::mt19937_64& rng, const rtl::RtlConfig& c, s
   return t;
 }
 
+// Case ci of a suite: in a third of the cases 1 to 3 line reads, among the first 300, answer SLVERR.
+std::vector<uint64_t> random_error_reads(std::mt19937_64& rng, int ci) {
+  std::vector<uint64_t> reads;
+  if (ci % 3 != 1) return reads;
+  for (int n = 1 + int(rng() % 3); n > 0; --n) reads.push_back(1 + rng() % 300);
+  std::sort(reads.begin(), reads.end());
+  reads.erase(std::unique(reads.begin(), reads.end()), reads.end());
+  return reads;
+}
+
 void run_suite(const CachedSuite& suite) {
   const auto t0 = std::chrono::steady_clock::now();
   const rtl::RtlConfig& rc = config_named(suite.config);
@@ -246,7 +270,7 @@ void run_suite(const CachedSuite& suite) {
   unit->reset();
   CacheCoverage coverage;
   const std::vector<Filter> filters = all_filters();
-  uint64_t samples = 0, clocks = 0, reads = 0, failures = 0;
+  uint64_t samples = 0, clocks = 0, reads = 0, failures = 0, flagged = 0;
   for (int ci = 0; ci < suite.cases * scale(); ++ci) {
     const uint64_t seed = mix64(base + uint64_t(ci));
     if (only && *only != seed) continue;
@@ -269,9 +293,11 @@ void run_suite(const CachedSuite& suite) {
     const std::vector<Request> requests = random_requests(rng, lw, lh, suite.requests_per_case);
     // A quarter of the cases use a shallower FIFO (cfg_fifo_limit), down to 1 sample.
     const uint32_t fifo_depth = rng() % 4 == 0 ? 1 + uint32_t(rng() % uint64_t(rc.fifo_depth)) : 0;
-    const CaseResult r =
-        run_case(*unit, pyr, cfg, layout, cache, memory, requests, stim, rng(), &coverage, nullptr, -1, fifo_depth);
+    const std::vector<uint64_t> errors = random_error_reads(rng, ci);
+    const CaseResult r = run_case(*unit, TextureTable{{&pyr, cfg.wrap_u, cfg.wrap_v}}, cfg, layout, cache, memory,
+                                  requests, stim, rng(), &coverage, nullptr, -1, fifo_depth, nullptr, errors);
     samples += r.samples;
+    flagged += r.flagged;
     clocks += r.clocks;
     reads += r.reads;
     if (!r.failure.empty()) {
@@ -281,17 +307,20 @@ void run_suite(const CachedSuite& suite) {
                     << ", " << describe(cfg) << ", "
                     << block_order_name(layout.order) << ", " << cache.size_bytes << " B x " << cache.ways
                     << " ways, FIFO " << (fifo_depth ? std::to_string(fifo_depth) : "all") << ", " << memory_name
-                    << ", stimulus " << timing_name << ": " << r.failure;
+                    << ", stimulus " << timing_name << ", " << errors.size() << " reads answered SLVERR: " << r.failure;
       unit->reset();
       if (failures >= 3) break;
     }
   }
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("[ cached   ] %s: %llu samples, %llu clocks, %llu lines read, compared bit for bit and read for "
-              "read (%.1f s)\n",
-              suite.config.c_str(), (unsigned long long)samples, (unsigned long long)clocks,
-              (unsigned long long)reads, secs);
-  if (only || !suite.check_coverage) return;
+  std::printf("[ cached   ] %s: %llu samples (%llu flagged by memory errors), %llu clocks, %llu lines read, "
+              "compared bit for bit and read for read (%.1f s)\n",
+              suite.config.c_str(), (unsigned long long)samples, (unsigned long long)flagged,
+              (unsigned long long)clocks, (unsigned long long)reads, secs);
+  if (only) return;
+  EXPECT_GT(flagged, 0u) << "no case of the suite flagged a sample: the memory-error check is vacuous";
+  EXPECT_LT(flagged, samples / 4);
+  if (!suite.check_coverage) return;
   for (const std::string& bin : coverage.required(rc)) {
     EXPECT_GT(coverage.bins[bin], 0u) << suite.config << ": coverage bin never hit: " << bin;
     std::printf("[ coverage ] %-52s %llu\n", bin.c_str(), (unsigned long long)coverage.bins[bin]);
@@ -352,7 +381,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
   auto unit = rtl::Driver::create(rc, {});
   unit->reset();
   const std::vector<Filter> filters = all_filters();
-  uint64_t samples = 0, switches = 0, reads = 0;
+  uint64_t samples = 0, switches = 0, reads = 0, flagged = 0;
   int full_tables = 0, failures = 0, block_textures = 0, srgb_textures = 0;
   for (int ci = 0; ci < cases * scale(); ++ci) {
     const uint64_t seed = mix64(base + uint64_t(ci));
@@ -388,9 +417,12 @@ void run_descriptor_tables(const std::string& config, int cases) {
       requests[i].texture = uint8_t(rng() % uint64_t(n));
       switches += i > 0 && requests[i].texture != requests[i - 1].texture;
     }
-    const CaseResult r = run_case(*unit, table, cfg, layout, cache, memory, requests, stim, rng(), nullptr);
+    const std::vector<uint64_t> errors = random_error_reads(rng, ci);
+    const CaseResult r = run_case(*unit, table, cfg, layout, cache, memory, requests, stim, rng(), nullptr, nullptr, -1,
+                                  0, nullptr, errors);
     samples += r.samples;
     reads += r.reads;
+    flagged += r.flagged;
     if (!r.failure.empty()) {
       ADD_FAILURE() << "case " << ci << " (replay: TEX_SEED=" << seed << "): " << n << " textures, " << describe(cfg)
                     << ", " << cache.size_bytes << " B x " << cache.ways << " ways, " << memory_name << ", stimulus "
@@ -399,12 +431,15 @@ void run_descriptor_tables(const std::string& config, int cases) {
       if (++failures >= 3) break;
     }
   }
-  std::printf("[ cached   ] descriptor table: %llu samples, %llu texture switches between consecutive requests, "
-              "%llu lines read, %d full tables of %d, %d block-format textures, %d sRGB (%s)\n",
-              (unsigned long long)samples, (unsigned long long)switches, (unsigned long long)reads, full_tables,
+  std::printf("[ cached   ] descriptor table: %llu samples (%llu flagged by memory errors), %llu texture switches "
+              "between consecutive requests, %llu lines read, %d full tables of %d, %d block-format textures, %d sRGB "
+              "(%s)\n",
+              (unsigned long long)samples, (unsigned long long)flagged, (unsigned long long)switches,
+              (unsigned long long)reads, full_tables,
               kMaxTextures, block_textures, srgb_textures, config.c_str());
   if (only) return;
   EXPECT_GT(full_tables, 0);
+  EXPECT_GT(flagged, 0u);
   EXPECT_EQ(block_textures > 0, rc.formats);
   EXPECT_EQ(srgb_textures > 0, rc.formats);
   EXPECT_GT(switches, samples / 2);
@@ -495,6 +530,39 @@ TEST(RtlCached, CheckersCatchPlantedBugs) {
   const CaseResult misread = run_case(*unit, rtl_table, cfg, layout, cache, memory, requests, {}, 1, nullptr, nullptr, -1,
                                     0, &model_table);
   EXPECT_EQ(misread.failure.rfind("sample ", 0), 0u) << misread.failure;
+}
+
+// Memory errors: the 5th line read answers SLVERR. The samples that look the line up while it is
+// cached come out flagged, as 0, and the unit keeps running (every later sample answered). A model
+// that counts the error one read late, or a memory that flags the line and a model that does not,
+// disagrees on a flag.
+TEST(RtlCached, MemoryErrorsFlagTheSamplesThatReadTheLine) {
+  const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
+  auto unit = rtl::Driver::create(rc, {});
+  unit->reset();
+  const Pyramid pyr = build_pyramid(random_texture(64, 8, 8, 9), PyramidMode::Exact);
+  std::mt19937_64 rng(13);
+  const std::vector<Request> requests = random_requests(rng, 6, 3, 3000);
+  const TextureTable table = {{&pyr, Wrap::Repeat, Wrap::Repeat}};
+  const CacheParams cache{2048, 2};
+  rtl::MemoryTiming memory;
+  memory.jitter = 40;
+  memory.request_stall_prob = memory.response_stall_prob = 0.2;
+  const std::vector<uint64_t> fifth = {5}, sixth = {6}, none = {};
+  const CaseResult good = run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, memory, requests, {}, 1,
+                                   nullptr, nullptr, -1, 0, nullptr, fifth);
+  EXPECT_EQ(good.failure, "");
+  EXPECT_EQ(good.samples, requests.size());
+  EXPECT_GT(good.flagged, 0u);
+  EXPECT_LT(good.flagged, requests.size() / 10);
+  unit->reset();
+  const CaseResult late = run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, memory, requests, {}, 1,
+                                   nullptr, nullptr, -1, 0, nullptr, fifth, &sixth);
+  EXPECT_NE(late.failure.find("rsp_error"), std::string::npos) << late.failure;
+  unit->reset();
+  const CaseResult unseen = run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, memory, requests, {}, 1,
+                                     nullptr, nullptr, -1, 0, nullptr, fifth, &none);
+  EXPECT_NE(unseen.failure.find("RTL rsp_error 1, model 0"), std::string::npos) << unseen.failure;
 }
 
 // cfg_fifo_limit: a shallower FIFO holds at most that many samples and hides less latency;

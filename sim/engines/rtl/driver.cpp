@@ -192,21 +192,36 @@ PinsOut Driver::tick_full(const PinsIn& in) {
     return out;
   }
   PinsIn pins = in;
-  pins.mem_req_ready = port_->request_ready();
-  pins.mem_rsp_valid = port_->response_valid();
-  pins.mem_rsp_data = port_->response_beat();
+  pins.ar_ready = port_->request_ready();
+  pins.r_valid = port_->response_valid();
+  pins.r_data = port_->response_beat();
+  pins.r_resp = port_->response_error() ? 2 : 0;  // SLVERR
+  pins.r_last = port_->response_last();
   const PinsOut out = tick_pins(pins, tracing_ && cycle_ >= options_.trace_begin);
   if (out.finished) fail_finished();
   // (In reset the unit ignores its memory port, and the memory model is emptied by reset().)
   if (!pins.rst) {
-    const bool request = out.mem_req_valid && pins.mem_req_ready;
-    port_->clock(request, out.mem_req_addr, pins.mem_rsp_valid && out.mem_rsp_ready);
+    const bool request = out.ar_valid && pins.ar_ready;
+    if (out.ar_valid) check_burst(out);
+    port_->clock(request, out.ar_addr, pins.r_valid && out.r_ready);
     memory_counters_.lines_read += request;
     memory_counters_.fifo_max = std::max(memory_counters_.fifo_max, out.fifo_count);
     memory_counters_.head_wait_cycles += out.head_waits;
   }
   ++cycle_;
   return out;
+}
+
+void Driver::check_burst(const PinsOut& out) const {
+  const int beat_bytes = config_.mem_bits / 8, beats = config_.line_bytes() / beat_bytes;
+  int log2_beat = 0;
+  while ((1 << log2_beat) < beat_bytes) ++log2_beat;
+  if (out.ar_len != beats - 1 || out.ar_size != log2_beat || out.ar_burst != 1)
+    throw SimulationError("RTL AXI read of " + hex_address(out.ar_addr) + " at clock " + std::to_string(cycle_) +
+                          ": ARLEN " + std::to_string(out.ar_len) + ", ARSIZE " + std::to_string(out.ar_size) +
+                          ", ARBURST " + std::to_string(out.ar_burst) + "; a line is one INCR burst (ARBURST 1) of " +
+                          std::to_string(beats) + " beats (ARLEN " + std::to_string(beats - 1) + ") of " +
+                          std::to_string(beat_bytes) + " bytes (ARSIZE " + std::to_string(log2_beat) + ")");
 }
 
 void Driver::fail_finished() {
@@ -279,6 +294,7 @@ void Driver::load_textures(const TextureTable& textures) {
   } else {
     memory_ = std::make_unique<MemoryModel>(std::move(image), options_.layout.base, config_.line_bytes(),
                                             config_.mem_bits / 8, options_.memory);
+    memory_->set_error_reads(options_.mem_error_reads);
     port_ = memory_.get();
   }
   apply_cache_pins(pins);
@@ -386,6 +402,7 @@ Driver::Clock Driver::clock(const Request* offer, bool take_response) {
     c.responded = true;
     c.response_index = answered_++;
     c.rgba = out.rsp_rgba;
+    c.error = last_error_ = out.rsp_error;
   } else if (take_response && answered_ < issued_) {
     if (filled_) ++counters_.bubbles_after_fill;
     if (++idle_ready_clocks_ > options_.timeout_cycles)
@@ -437,6 +454,7 @@ StreamStats stream(Driver& driver, RequestSource& source, const Timing& timing, 
     const Driver::Clock c = driver.clock(offer ? next : nullptr, ready);
     if (c.responded) {
       on_response(size_t(c.response_index - base), c.rgba);
+      if (c.error) st.error_responses.push_back(c.response_index - base);
       if ((++done & 0xFFFF) == 0 && progress) progress(done);
     }
     if (!timing.ideal()) stimulus.end(c.accepted);

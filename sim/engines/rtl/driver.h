@@ -94,10 +94,12 @@ struct PinsIn {
   uint16_t req_tag = 0;
   uint8_t req_tex = 0;           // tex_unit_cached: the descriptor-table entry
   bool rsp_ready = true;
-  // Memory port of tex_unit_cached: driven by the driver's memory model (ignored otherwise).
-  bool mem_req_ready = false;
-  bool mem_rsp_valid = false;
-  const uint8_t* mem_rsp_data = nullptr;  // MEM_W / 8 bytes of the beat
+  // AXI4 read port of tex_unit_cached: driven by the driver's memory model (ignored otherwise).
+  bool ar_ready = false;
+  bool r_valid = false;
+  const uint8_t* r_data = nullptr;  // MEM_W / 8 bytes of the beat
+  uint8_t r_resp = 0;               // 0 OKAY, 2 SLVERR
+  bool r_last = false;
 };
 
 // The request pins for one request (u, v and lod, or the derivatives); req_valid and req_tag are the caller's.
@@ -111,10 +113,12 @@ struct PinsOut {
   uint64_t rsp_rgba = 0;  // {A, B, G, R}, CW bits each
   uint16_t rsp_tag = 0;
   bool finished = false;  // an RTL assertion ($stop) or $finish happened in this clock
-  // tex_unit_cached: the memory port, and the statistics signals (sampled before the edge).
-  bool mem_req_valid = false;
-  uint32_t mem_req_addr = 0;
-  bool mem_rsp_ready = false;
+  // tex_unit_cached: rsp_error, the AXI4 read port, and the statistics signals (sampled before the edge).
+  bool rsp_error = false;
+  bool ar_valid = false;
+  uint32_t ar_addr = 0;
+  uint8_t ar_len = 0, ar_size = 0, ar_burst = 0;
+  bool r_ready = false;
   uint32_t fifo_count = 0;
   bool head_waits = false;
 };
@@ -159,6 +163,9 @@ struct DriverOptions {
   // tex_unit_cached: drives the memory port instead of the built-in MemoryModel (not owned; the
   // memory image is then the port's business and `memory` is unused).
   MemoryPort* memory_port = nullptr;
+  // tex_unit_cached, the built-in MemoryModel: the line reads (1 = the first since the texture
+  // load) that answer SLVERR, ascending (--mem-error-at).
+  std::vector<uint64_t> mem_error_reads;
   static DriverOptions of(const EngineOptions& o) {
     DriverOptions d;
     d.seed = o.seed;
@@ -172,6 +179,7 @@ struct DriverOptions {
     d.memory.bytes_per_clock = o.mem_bytes_per_clock;
     d.memory.max_outstanding = o.mem_outstanding;
     d.fifo_depth = o.fifo_depth;
+    d.mem_error_reads = o.mem_error_reads;
     d.memory.seed = o.seed ^ 0x9E3779B97F4A7C15ULL;
     if (d.memory.latency + d.memory.jitter + 10000 > d.timeout_cycles)
       d.timeout_cycles = d.memory.latency + d.memory.jitter + 10000;
@@ -249,6 +257,7 @@ class Driver {
     uint64_t accepted_index = 0;
     uint64_t response_index = 0;  // sequence number of the request it answers
     uint64_t rgba = 0;            // {A, B, G, R} CW bits each
+    bool error = false;           // rsp_error: the sample read a line memory answered with an error
   };
   Clock clock(const Request* offer, bool take_response);
 
@@ -260,6 +269,8 @@ class Driver {
     options_.memory = timing;
     options_.fifo_depth = fifo_depth;
   }
+  // tex_unit_cached: the line reads that answer SLVERR from the next load() on (1 = its first read).
+  void set_memory_errors(std::vector<uint64_t> reads) { options_.mem_error_reads = std::move(reads); }
   // tex_unit_cached: the built-in memory model (null for tex_unit or with an external memory port),
   // the port in use (null for tex_unit), and the counters.
   MemoryModel* memory() { return memory_.get(); }
@@ -267,6 +278,7 @@ class Driver {
   const MemoryCounters& memory_counters() const { return memory_counters_; }
 
   uint64_t in_flight() const { return issued_ - answered_; }
+  bool last_response_error() const { return last_error_; }  // rsp_error of the last response taken
   uint64_t issued() const { return issued_; }
   const ProtocolCounters& counters() const { return counters_; }
   void reset_counters();
@@ -304,6 +316,8 @@ class Driver {
  private:
   PinsOut tick_full(const PinsIn& in);
   [[noreturn]] void fail_finished();
+  // An AR request's burst: one INCR burst of a whole line (a tex::SimulationError otherwise).
+  void check_burst(const PinsOut& out) const;
   void write_descriptors();   // cached: descriptors_ into the table (the wrap modes of a
                               // single load()ed texture from cfg_), then an idle clock
 
@@ -316,6 +330,7 @@ class Driver {
   uint64_t idle_ready_clocks_ = 0;
   uint64_t stall_run_ = 0;
   bool filled_ = false;
+  bool last_error_ = false;
   ProtocolCounters counters_;
   PinsIn pins_;
   std::unique_ptr<MemoryModel> memory_;
@@ -338,6 +353,7 @@ struct StreamStats {
   MemoryCounters memory;
   uint64_t gap_cycles = 0;          // req_valid held low by the stimulus with requests left
   uint64_t requests_after_gap = 0;  // requests accepted right after an input gap
+  std::vector<uint64_t> error_responses;  // responses with rsp_error (their index in the stream)
   uint64_t samples() const { return protocol.samples; }
   uint64_t cycles() const { return protocol.cycles(); }
 };

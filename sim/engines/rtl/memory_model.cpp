@@ -29,7 +29,12 @@ void MemoryModel::clock(bool request_fire, uint32_t address, bool response_fire)
                             " (or not aligned to " + std::to_string(line) + " bytes) at memory clock " +
                             std::to_string(channel_.now()));
     reads_.push_back(address);
+    ++read_count_;
+    const bool error = next_error_ < error_reads_.size() && error_reads_[next_error_] == read_count_;
+    next_error_ += error;
+    in_flight_error_.push_back(error);
   }
+  if (response_fire && response_last()) in_flight_error_.pop_front();
   channel_.clock(request_fire, address, response_fire);
 }
 

@@ -5,6 +5,7 @@
 // stream.
 #pragma once
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,8 +19,10 @@ using MemoryTiming = tex::MemoryTiming;
 // "0x%08x": a line address in messages and in --miss-trace.
 std::string hex_address(uint32_t address);
 
-// What drives tex_unit_cached's memory port pins, clock by clock: the harness's MemoryModel below,
-// or a TLM-2.0 initiator socket (the SystemC wrapper, engines/systemc/tlm_memory_port.h).
+// What drives tex_unit_cached's AXI4 read port pins, clock by clock: the harness's MemoryModel
+// below, or a TLM-2.0 initiator socket (the SystemC wrapper, engines/systemc/tlm_memory_port.h).
+// request_ready is ARREADY; response_valid, response_beat, response_error and response_last are
+// RVALID, RDATA, RRESP (SLVERR or OKAY) and RLAST.
 class MemoryPort {
  public:
   virtual ~MemoryPort() = default;
@@ -27,6 +30,8 @@ class MemoryPort {
   virtual bool request_ready() const = 0;
   virtual bool response_valid() const = 0;
   virtual const uint8_t* response_beat() const = 0;
+  virtual bool response_error() const = 0;
+  virtual bool response_last() const = 0;
   // The clock edge: a read was taken (request_fire, its line address) and/or a beat was taken.
   virtual void clock(bool request_fire, uint32_t address, bool response_fire) = 0;
   // The unit was reset: forget every read in flight.
@@ -49,13 +54,25 @@ class MemoryModel final : public MemoryPort {
                                                size_t(channel_.response_beat()) * size_t(channel_.beat_bytes())]
                                      : nullptr;
   }
+  bool response_error() const override { return channel_.response_valid() && in_flight_error_.front(); }
+  bool response_last() const override {
+    return channel_.response_valid() && (channel_.response_beat() + 1) * channel_.beat_bytes() == channel_.line_bytes();
+  }
+  // The line reads (1 = the first since construction or reset()) that answer SLVERR on every beat,
+  // ascending (--mem-error-at).
+  void set_error_reads(std::vector<uint64_t> ordinals) { error_reads_ = std::move(ordinals); }
   // The clock edge: a request was taken (req_fire, address) and/or a beat was taken (rsp_fire).
   // Throws tex::SimulationError on a read outside the image, a misaligned address, or taking what
   // was not offered.
   void clock(bool request_fire, uint32_t address, bool response_fire) override;
 
   // Forgets every read in flight (the unit was reset); the bandwidth credit starts full.
-  void reset() override { channel_.reset(); }
+  void reset() override {
+    channel_.reset();
+    read_count_ = 0;
+    next_error_ = 0;
+    in_flight_error_.clear();
+  }
 
   // Line addresses read since the last take_reads(), in order (the RTL's miss stream).
   std::vector<uint32_t> take_reads() override { return std::exchange(reads_, {}); }
@@ -71,6 +88,10 @@ class MemoryModel final : public MemoryPort {
   uint32_t base_;
   MemoryChannel channel_;
   std::vector<uint32_t> reads_;
+  std::vector<uint64_t> error_reads_;
+  uint64_t read_count_ = 0;
+  size_t next_error_ = 0;
+  std::deque<bool> in_flight_error_;  // the reads in flight, oldest first: each answers SLVERR
 };
 
 }  // namespace tex::rtl

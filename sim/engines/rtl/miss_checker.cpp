@@ -23,4 +23,14 @@ void MissChecker::compare(const std::vector<uint32_t>& actual, bool at_end) {
                           " more lines than the RTL read (first: " + hex_address(predicted_.front()) + ")");
 }
 
+void MissChecker::check_error(uint64_t index, bool error) {
+  if (errors_.empty()) throw SimulationError("response to request #" + std::to_string(index) + " with none predicted");
+  const bool want = errors_.front();
+  errors_.pop_front();
+  if (error != want)
+    throw SimulationError("request #" + std::to_string(index) + ": the RTL " +
+                          (error ? "flags a memory error (rsp_error) that the model does not"
+                                 : "does not flag the memory error (rsp_error) that the model predicts"));
+}
+
 }  // namespace tex::rtl

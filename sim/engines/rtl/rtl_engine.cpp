@@ -70,6 +70,7 @@ class RtlEngine final : public Engine {
     if (cached) {
       cache_pins(rc, options_.layout, options_.cache, options_.fifo_depth);  // the geometry fits the configuration
       cache.emplace(texture_descriptors(textures, options_), options_.cache, config);
+      cache->set_error_reads(options_.mem_error_reads);
     }
 
     const auto t0 = std::chrono::steady_clock::now();
@@ -98,8 +99,9 @@ class RtlEngine final : public Engine {
     ClockSink* clock_sink = options_.clock_sink;
     const StreamStats st = stream(
         *unit, requests, Timing::of(options_.stalls), options_.seed ^ 0x5DEECE66DULL,
-        [&](size_t, uint64_t rgba) {
+        [&](size_t index, uint64_t rgba) {
           texels.push(unpack_rgba(rgba, rc.cw));
+          if (misses) misses->check_error(index, unit->last_response_error());
           if (clock_sink) {
             clocks.push_back(unit->counters().last_response_clock());
             if (clocks.size() == 4096) {
@@ -121,6 +123,7 @@ class RtlEngine final : public Engine {
     r.samples = st.samples();
     r.load_seconds = std::chrono::duration<double>(t1 - t0).count();
     r.sample_seconds = std::chrono::duration<double>(t2 - t1).count();
+    r.memory_error_samples = st.error_responses;
     CycleStats c;
     c.configuration = rc.name;
     c.cycles = st.cycles();

@@ -31,7 +31,7 @@ void set_beat(Pin& pin, const uint8_t* bytes) {
 
 template <class Top>
 class VerilatedTexUnit final : public Driver {
-  static constexpr bool kCached = requires(Top& t) { t.mem_req_valid; };
+  static constexpr bool kCached = requires(Top& t) { t.m_axi_arvalid; };
 
  public:
   VerilatedTexUnit(const RtlConfig& config, const DriverOptions& options) : Driver(config, options) {
@@ -69,9 +69,12 @@ class VerilatedTexUnit final : public Driver {
     Top& t = *top_;
     t.rst = in.rst;
     if constexpr (kCached) {
-      t.mem_req_ready = in.mem_req_ready;
-      t.mem_rsp_valid = in.mem_rsp_valid;
-      set_beat(t.mem_rsp_data, in.mem_rsp_data);
+      t.m_axi_arready = in.ar_ready;
+      t.m_axi_rvalid = in.r_valid;
+      set_beat(t.m_axi_rdata, in.r_data);
+      t.m_axi_rresp = in.r_resp;
+      t.m_axi_rlast = in.r_last;
+      t.m_axi_rid = 0;
       t.req_tex = in.req_tex;
     } else {
       t.wr_en = in.wr_en;
@@ -101,9 +104,13 @@ class VerilatedTexUnit final : public Driver {
     out.rsp_rgba = t.rsp_rgba;
     out.rsp_tag = t.rsp_tag;
     if constexpr (kCached) {
-      out.mem_req_valid = t.mem_req_valid;
-      out.mem_req_addr = t.mem_req_addr;
-      out.mem_rsp_ready = t.mem_rsp_ready;
+      out.rsp_error = t.rsp_error;
+      out.ar_valid = t.m_axi_arvalid;
+      out.ar_addr = t.m_axi_araddr;
+      out.ar_len = t.m_axi_arlen;
+      out.ar_size = t.m_axi_arsize;
+      out.ar_burst = t.m_axi_arburst;
+      out.r_ready = t.m_axi_rready;
       out.fifo_count = fifo_count_bytes_ == 1 ? *static_cast<const uint8_t*>(fifo_count_)
                        : fifo_count_bytes_ == 2 ? *static_cast<const uint16_t*>(fifo_count_)
                                                 : *static_cast<const uint32_t*>(fifo_count_);

@@ -218,6 +218,7 @@ void TexUnitTlm::on_clock() {
       if (!memory_port_->error().empty()) return fail(memory_port_->error());
       checker_->compare(memory_port_->take_reads(), false);
     }
+    if (c.responded && checker_) checker_->check_error(c.response_index, c.error);
   } catch (const std::exception& e) {  // scoreboard, time-out, RTL assertion, a read not predicted
     fail(e.what());
     return;
@@ -235,7 +236,8 @@ void TexUnitTlm::on_clock() {
     auto* s = reinterpret_cast<SampleTransfer*>(t->get_data_ptr());
     const Texel texel = rtl::unpack_rgba(c.rgba, driver_->config().cw);
     for (int ch = 0; ch < 4; ++ch) s->rgba[ch] = texel[size_t(ch)];
-    t->set_response_status(tlm::TLM_OK_RESPONSE);
+    // rsp_error: a line the sample read came from memory with an error (its rgba is 0).
+    t->set_response_status(c.error ? tlm::TLM_GENERIC_ERROR_RESPONSE : tlm::TLM_OK_RESPONSE);
     to_respond_.push_back(t);
     send_queued_responses();
   }

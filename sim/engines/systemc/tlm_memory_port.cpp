@@ -65,9 +65,6 @@ void TlmMemoryPort::clock(bool request_fire, uint32_t address, bool response_fir
 void TlmMemoryPort::answered(Line& line, const sc_time& delay) {
   line.answered = true;
   line.ready = sc_time_stamp() + delay;
-  if (line.trans.get_response_status() != tlm::TLM_OK_RESPONSE && error_.empty())
-    error_ = "memory socket: the read of line " + rtl::hex_address(uint32_t(line.trans.get_address())) +
-             " was answered with " + line.trans.get_response_string();
 }
 
 TlmMemoryPort::Line* TlmMemoryPort::find(tlm_generic_payload& t) {

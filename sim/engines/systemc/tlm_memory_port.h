@@ -3,7 +3,9 @@
 // a clock edge goes out as BEGIN_REQ at once; the next read waits for END_REQ (request exclusion).
 // A line's beats are offered from the clock at or after its BEGIN_RESP time (the call's time plus
 // the annotated delay), one beat per clock, in request order: a target may answer out of order,
-// the port puts the lines back in order. Responses are taken at once (TLM_COMPLETED).
+// the port puts the lines back in order. Responses are taken at once (TLM_COMPLETED). A read
+// answered with any status other than TLM_OK_RESPONSE gives its beats RRESP SLVERR: the samples
+// that need the line come out with rsp_error.
 #pragma once
 #include <systemc>
 #include <tlm>
@@ -31,11 +33,15 @@ class TlmMemoryPort final : public rtl::MemoryPort {
   bool request_ready() const override { return end_req_owed_ == nullptr; }
   bool response_valid() const override;
   const uint8_t* response_beat() const override;
+  bool response_error() const override {
+    return response_valid() && lines_.front()->trans.get_response_status() != tlm::TLM_OK_RESPONSE;
+  }
+  bool response_last() const override { return response_valid() && (beat_ + 1) * beat_bytes_ == line_bytes_; }
   void clock(bool request_fire, uint32_t address, bool response_fire) override;
   void reset() override;
   std::vector<uint32_t> take_reads() override { return std::exchange(reads_, {}); }
 
-  // The first protocol or response error (a read answered with an error status), empty if none.
+  // The first protocol error of the target, empty if none.
   const std::string& error() const { return error_; }
 
  private:
