@@ -364,7 +364,7 @@ module tex_cached_fetch #(
 
   // Per slot: its cache's answers; the misses in order (slot 0, then slot 1; block parity 0..3).
   // Only in a clock with a push, as the lookups.
-  localparam int MEW = AW + KW + 1 + SLW;  // a miss: {line address, bank kind, cache, line slot}
+  localparam int MEW = LNW + KW + 1 + SLW;  // a miss: {line number, bank kind, cache, line slot}
   logic [7:0]       miss;
   logic [8*MEW-1:0] miss_entry;
   logic [8*RD-1:0]  reads;           // slot s bank b at [(s*4 + b)*RD +: RD]: {line slot, offset}
@@ -390,7 +390,7 @@ module tex_cached_fetch #(
         for (int q = 0; q < 4; q++) begin
           miss[sl*4 + q] = look[sl][q] && !hit_s[q];
           miss_entry[(sl*4 + q)*MEW +: MEW] =
-              {AW'(look_line[sl][q*LNW +: LNW]) << LOG2_LB, line_kind(fmt), cache_s, slot_s[q*SLW +: SLW]};
+              {look_line[sl][q*LNW +: LNW], line_kind(fmt), cache_s, slot_s[q*SLW +: SLW]};
           fills = fills + 4'(miss[sl*4 + q]);
           lookups = lookups + 4'(look[sl][q]);
         end
@@ -416,7 +416,7 @@ module tex_cached_fetch #(
   logic           issue, retire;
   assign issue = mem_req_valid && mem_req_ready;
   assign mem_req_valid = ring_unissued != '0;
-  assign mem_req_addr  = ring[ring_iss][MEW-1 -: AW];
+  assign mem_req_addr  = {ring[ring_iss][MEW-1 -: LNW], LOG2_LB'(0)};  // a line: aligned
   always_ff @(posedge clk) begin
     if (push) begin
       logic [MPW-1:0] at;
@@ -477,6 +477,42 @@ module tex_cached_fetch #(
       fill_count <= fill_count + LCW'(line_done) - LCW'(retire);
     end
   end
+
+`ifdef FORMAL
+  // ---------------------------------------------------------------- AXI4 read-channel properties
+  // mem_req is the AR channel, mem_rsp the R channel (tex_unit_cached adds the constant ARLEN,
+  // ARSIZE, ARBURST, ARID). Proven by scripts/formal.sh, BMC from reset and k-induction
+  // (rtl/formal/tex_cached_fetch_formal.sv: every input free; the slave assumed to send no beat
+  // without an open burst):
+  //   ar_hold        - mem_req_valid stays high and mem_req_addr unchanged until mem_req_ready
+  //   ar_burst       - every read is of a whole, aligned line
+  //   ar_outstanding - at most MISS_DEPTH reads accepted and not yet written into the cache; the
+  //                    bursts open are those accepted less those fully received (accounting)
+  //   r_ready        - a beat is taken only with room for its line (at most FILL_DEPTH lines held)
+  logic             f_req_stalled;
+  logic [AW-1:0]    f_req_addr;
+  logic [MCW:0]     f_open;  // bursts accepted, last beat not yet taken
+  always_ff @(posedge clk) begin
+    f_req_stalled <= !rst && mem_req_valid && !mem_req_ready;
+    f_req_addr    <= mem_req_addr;
+    if (rst) f_open <= '0;
+    else f_open <= f_open + (MCW+1)'(issue) - (MCW+1)'(line_done);
+  end
+  always_comb begin
+    if (!rst && mem_rsp_valid) assume (f_open != '0);
+    if (!rst && f_req_stalled) p_arhold_1: assert (mem_req_valid && mem_req_addr == f_req_addr);
+    if (!rst && mem_req_valid) p_arburst_1: assert (mem_req_addr[LOG2_LB-1:0] == '0);
+    if (!rst) p_aroutstanding_1: assert (ring_used <= MCW'(MISS_DEPTH) && f_open <= (MCW+1)'(MISS_DEPTH));
+    if (!rst) p_rready_1: assert (!(beat_take && fill_count == LCW'(FILL_DEPTH)) && fill_count <= LCW'(FILL_DEPTH));
+    // (invariants that make them inductive: the ring's and the fill FIFO's accounting)
+    if (!rst) p_aroutstanding_2: assert (ring_unissued <= ring_used);
+    if (!rst) p_aroutstanding_3: assert (32'(f_open) + 32'(fill_count) == 32'(ring_used) - 32'(ring_unissued));
+    if (!rst) p_aroutstanding_4: assert (f_open != '0 || beat == '0);
+    if (!rst) p_aroutstanding_5: assert (!en_front || ring_used <= MCW'(MISS_DEPTH - 8));
+    if (!rst) p_aroutstanding_6: assert (MPW'(ring_wr - ring_iss) == MPW'(ring_unissued)
+                                         && MPW'(ring_wr - ring_ret) == MPW'(ring_used));
+  end
+`endif
 
   // ---------------------------------------------------------------- sample FIFO
   // An entry: {tag, w, f, sRGB, format, c0, needed bank reads, taps' low coordinate bits (slot 1,

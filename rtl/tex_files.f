@@ -25,3 +25,5 @@ rtl/tex_srgb_decode.sv
 rtl/tex_cache_data.sv
 rtl/tex_cached_fetch.sv
 rtl/tex_unit_cached.sv
+rtl/tex_axil_config.sv
+rtl/tex_unit_axi.sv

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Formal proofs of the valid/ready handshake with Yosys 0.23 + yosys-smtbmc + z3
 # (docs/verification.md, "Formal proofs"). The properties are immediate assertions under
-# `ifdef FORMAL in rtl/tex_skid.sv and rtl/tex_unit.sv; rtl/formal/*_formal.sv are the
-# environments (reset in the first clock, then every input free, resets included).
+# `ifdef FORMAL in rtl/tex_skid.sv, rtl/tex_unit.sv, rtl/tex_axil_config.sv and rtl/tex_cached_fetch.sv;
+# rtl/formal/*_formal.sv are the environments (reset in the first clock, then every input free,
+# resets included; tex_axil_config's AXI4-Lite master keeps the protocol's rules).
 #  1. tex_skid (W=2) and tex_unit (2x2 texels, CW=1, TAG_W=2; the texel datapath cut to a free
 #     value): BMC from reset, then k-induction from an arbitrary state, of
 #       order    - the n-th response is the n-th accepted item, with its data / tag (none lost,
@@ -11,8 +12,25 @@
 #       probes   - (unit) a request's probes (N = 1..16, any N: tex_aniso's comparisons are cut)
 #                  follow each other through the pipeline with its tag, first to last;
 #       capacity - in flight (accepted - emitted) = the requests held <= 2 (skid) / 17 (unit).
+#     tex_axil_config (ADDR_W=8; its counters cut to free values), BMC from reset and
+#     k-induction, of
+#       bhold, rhold - BVALID (RVALID) held until BREADY (RREADY), BRESP (RDATA, RRESP) stable;
+#       bone, rone   - one B per write whose AW and W were both taken (in either order), one R
+#                      per taken AR; none without a request;
+#       slverr       - a write to an undefined or read-only address, or with WSTRB != 4'b1111,
+#                      answers SLVERR; a read of an undefined address SLVERR with RDATA 0;
+#       nochange     - a SLVERR write changes no output and clears no counter;
+#       desc         - cfg_desc_we is one clock, exactly at each accepted DESC_COMMIT write.
+#     tex_cached_fetch (tex_unit_cached's AXI4 read master: 2x2-texel lines, 16 lines, miss ring
+#     16, fill FIFO 1, 64-bit beats; tag answers, line numbers and bank words cut; the slave
+#     assumed to send no beat without an open burst), BMC from reset and k-induction, of
+#       arhold        - ARVALID held until ARREADY, ARADDR stable;
+#       arburst       - every read is one whole line at an aligned address;
+#       aroutstanding - at most MISS_DEPTH reads in flight, and the bursts open are those accepted
+#                       less those fully received (with the ring's pointer invariants);
+#       rready        - a beat is taken only when the fill FIFO has room for its line.
 #  2. Structure (the real RTL, no FORMAL): no combinational path from out_ready to in_ready,
-#     rsp_ready to req_ready, or any input to any output of tex_unit.
+#     rsp_ready to req_ready, or any input to any output of tex_unit and of tex_axil_config.
 #  3. Planted bugs: each is a sed on a copy of the RTL and must make a named check fail (BMC
 #     counterexample from reset, or the structural check). Exit status non-zero if a proof fails
 #     on the real RTL or a planted bug is not caught.
@@ -38,11 +56,21 @@ SKID_PARAMS="-set W 2"
 UNIT_PARAMS="-set MAX_LOG2_W 1 -set MAX_LOG2_H 1 -set CW 1 -set TAG_W 2"
 UNIT_CFG="2x2 texels, CW=1, TAG_W=2"
 COMB_PARAMS="-chparam MAX_LOG2_W 2 -chparam MAX_LOG2_H 1 -chparam CW 2"  # structural: 4x2, CW=2
+AXIL_PARAMS="-set ADDR_W 8"
+AXIL_CFG="ADDR_W=8"
 SKID_BMC=10; UNIT_BMC=20   # BMC depth (steps from reset): the unit fills up (17 items) in 18
-INDUCT=4                   # k-induction length (both close at k = 1)
+AXIL_BMC=8                 # a write clearing unit_reset, then a descriptor commit: step 4
+CACHED_PARAMS="-set MISS_DEPTH 16"  # (the environment's defaults: 2x2 texels per line, 16 lines,
+CACHED_CFG="2x2-texel lines, 16 lines, FIFO 2, miss ring 16, fill FIFO 1, 64-bit beats"  # ...)
+CACHED_BMC=10              # 3 pushes of 8 misses: step 4; a second line received: step 8
+INDUCT=4                   # k-induction length (all close at k = 1)
 
-# sources DIR: the RTL file list with DIR/ in front
-sources() { sed "s|^|$1/|" "$root/rtl/tex_files.f" | tr '\n' ' '; }
+# sources DIR [TOP]: the RTL file list with DIR/ in front (tex_axil_config: only the package and
+# the module, which keeps its many planted-bug models quick to build)
+sources() {
+  if [[ "${2:-}" == tex_axil_config* ]]; then echo "$1/rtl/tex_pkg.sv $1/rtl/tex_axil_config.sv"
+  else sed "s|^|$1/|" "$root/rtl/tex_files.f" | tr '\n' ' '; fi
+}
 
 # model NAME DIR TOP PARAMS: DIR/rtl (+ DIR/rtl/formal) -> $work/NAME.smt2. The simulation checks
 # of tex_unit (`ifndef SYNTHESIS, not parsed by Yosys) are left out by -DSYNTHESIS. In tex_unit,
@@ -50,13 +78,19 @@ sources() { sed "s|^|$1/|" "$root/rtl/tex_files.f" | tr '\n' ' '; }
 # target) are cut points (free values each clock, an over-approximation): a derivative request
 # issues any number of probes 1..16, and the solver sees the control, tags, probe sequencer and
 # skid buffer without the multipliers. The model is bit-blasted (abc -g AND): z3 takes seconds on
-# it, minutes or more on the word-level model.
+# it, minutes or more on the word-level model. In tex_axil_config the 9 64-bit counters are cut
+# (no property is about their values; the model builds in half the time). In tex_cached_fetch the
+# cache tags' answers (hit, slot), the line numbers and the data banks' words are cut: every pattern
+# of hits and misses at any address is reachable, and the tag and data memories drop out.
 model() {
   local name=$1 dir=$2 top=$3 params=$4 cut=""
   [ "$top" = tex_unit_formal ] &&
     cut="cutpoint w:dut.rgba_s11 w:dut.u_probe.u_aniso.reaches; opt_clean;"
+  [ "$top" = tex_axil_config_formal ] && cut="cutpoint w:dut.cnt; opt_clean;"
+  [ "$top" = tex_cached_fetch_formal ] &&
+    cut="cutpoint w:dut.hit_c* w:dut.slot_c* w:dut.look_line* w:dut.bank_word*; opt_clean;"
   yosys -q -l "$work/$name.yosys.log" -p "
-    read_verilog -formal -DSYNTHESIS -sv $(sources "$dir") $dir/rtl/formal/$top.sv
+    read_verilog -formal -DSYNTHESIS -sv $(sources "$dir" "$top") $dir/rtl/formal/$top.sv
     chparam $params $top; prep -flatten -top $top; $cut
     memory_map; opt -fast; async2sync; dffunmap; techmap; opt -fast; abc -g AND; opt_clean;
     dffunmap; write_smt2 -wires $work/$name.smt2" \
@@ -67,18 +101,23 @@ model() {
 }
 
 # failed_props LOG: the properties (order, hold, probes, capacity) of the assertions that failed
-# in LOG, told apart by the text of the assertion's line.
+# in LOG, told apart by the text of the assertion's line; tex_axil_config's assertions are
+# labelled p_<property>_<n> (bhold, rhold, bone, rone, slverr, nochange, desc).
 failed_props() {
-  grep -o '\$assert\$[^$]*:[0-9]*\$' "$1" | sed 's/^\$assert\$//; s/\$$//' | sort -u |
-    while IFS=: read -r file line; do
-      text=$(sed -n "${line}p" "$file")
-      case "$text" in
-        *f_stalled_q*) echo hold ;;
-        *f_pick*) echo order ;;
-        *index*|*aniso_n*|*'!last['*|*'.tag[TGW])'*|*'!accum_held)'*|*'!probe_first)'*) echo probes ;;
-        *) echo capacity ;;
-      esac
-    done | sort -u | tr '\n' ' '
+  {
+    grep -o 'Assert failed in [^:]*: [^ ]*' "$1" | sed -n 's/.*[ .]p_\([a-z]*\)_[0-9]*$/\1/p'
+    grep -o '\$assert\$[^$]*:[0-9]*\$' "$1" | sed 's/^\$assert\$//; s/\$$//' | sort -u |
+      while IFS=: read -r file line; do
+        text=$(sed -n "${line}p" "$file")
+        case "$text" in
+          *f_stalled_q*) echo hold ;;
+          *f_pick*) echo order ;;
+          *index*|*aniso_n*|*'!last['*|*'.tag[TGW])'*|*'!accum_held)'*|*'!probe_first)'*) echo probes ;;
+          *) echo capacity ;;
+        esac
+      done
+    true  # (either grep may find nothing)
+  } | sort -u | tr '\n' ' '
 }
 
 # comb_clean DIR TOP SELECTION: the flattened real RTL (no FORMAL, flip-flops unmapped to $dff)
@@ -87,7 +126,7 @@ failed_props() {
 comb_clean() {
   local dir=$1 top=$2 sel=$3 params=""
   [ "$top" = tex_unit ] && params=$COMB_PARAMS
-  yosys -q -p "read_verilog -sv $(sources "$dir"); hierarchy -top $top $params; proc; flatten;
+  yosys -q -p "read_verilog -sv $(sources "$dir" "$top"); hierarchy -top $top $params; proc; flatten;
                memory_map; opt -fast; dffunmap; opt_clean;
                select -assert-count 1 w:clk; select -assert-min 1 o:*;
                select -assert-none $sel" > /dev/null 2>&1
@@ -136,6 +175,20 @@ proof unit tex_unit_formal "$UNIT_PARAMS" "tex_unit $UNIT_CFG" $UNIT_BMC \
 structural "tex_unit 4x2 CW=2: no combinational path rsp_ready -> req_ready" tex_unit "$UNIT_COMB"
 structural "tex_unit 4x2 CW=2: no combinational path from any input to any output" \
   tex_unit "$UNIT_ANY"
+proof axil tex_axil_config_formal "$AXIL_PARAMS" "tex_axil_config $AXIL_CFG" $AXIL_BMC \
+  "bhold (BVALID, BRESP until BREADY)" "rhold (RVALID, RDATA, RRESP until RREADY)" \
+  "bone (one B per write: AW and W both taken, either order; none without them)" \
+  "rone (one R per taken AR; none without it)" \
+  "slverr (undefined or read-only address, partial WSTRB: SLVERR; undefined read: SLVERR, 0)" \
+  "nochange (a SLVERR write changes no output, clears no counter)" \
+  "desc (cfg_desc_we: one clock, exactly at each accepted DESC_COMMIT, with its index)"
+structural "tex_axil_config: no combinational path from any input to any output" \
+  tex_axil_config "$UNIT_ANY"
+proof cached tex_cached_fetch_formal "$CACHED_PARAMS" "tex_cached_fetch $CACHED_CFG" $CACHED_BMC \
+  "arhold (ARVALID stays high, ARADDR unchanged, until ARREADY)" \
+  "arburst (every read is one whole, aligned line)" \
+  "aroutstanding (at most MISS_DEPTH reads in flight; bursts open = accepted - fully received)" \
+  "rready (a beat is taken only with room for its line)"
 
 # ---------------------------------------------------------------- planted bugs
 # plant NAME FILE SED: a copy of rtl/ in $work/NAME with FILE changed by SED; prints the dir.
@@ -149,17 +202,23 @@ plant() {
   echo "$dir"
 }
 caught=0
-# mutant NAME WHAT EXPECTED FILE SED: EXPECTED is a property (order, hold, capacity: a BMC
-# counterexample from reset must violate it) or comb-skid / comb-unit (the structural check).
+# mutant NAME WHAT EXPECTED FILE SED: EXPECTED is a property (order, hold, capacity, or one of
+# tex_axil_config's: a BMC counterexample from reset must violate it) or comb-skid / comb-unit /
+# comb-axil (the structural check).
 mutant() {
   local name=$1 what=$2 want=$3 file=$4 expr=$5 dir got=""
   dir=$(plant "$name" "$file" "$expr") || { fail=1; return; }
   case "$want" in
     comb-skid) comb_clean "$dir" tex_skid "$SKID_COMB" || got=$want ;;
     comb-unit) comb_clean "$dir" tex_unit "$UNIT_COMB" || got=$want ;;
+    comb-axil) comb_clean "$dir" tex_axil_config "$UNIT_ANY" || got=$want ;;
     *)
       local top=tex_skid_formal params=$SKID_PARAMS depth=$SKID_BMC
-      if [ "$file" != tex_skid.sv ]; then
+      if [ "$file" = tex_axil_config.sv ]; then
+        top=tex_axil_config_formal params=$AXIL_PARAMS depth=$AXIL_BMC
+      elif [ "$file" = tex_cached_fetch.sv ]; then
+        top=tex_cached_fetch_formal params=$CACHED_PARAMS depth=$CACHED_BMC
+      elif [ "$file" != tex_skid.sv ]; then
         top=tex_unit_formal params=$UNIT_PARAMS depth=$UNIT_BMC
       fi
       model "$name" "$dir" $top "$params" || { fail=1; return; }
@@ -198,6 +257,36 @@ mutant unit_accum "tex_accum's output register loads while the unit is stalled (
   capacity tex_accum.sv 's/else if (en) out_valid <= valid_s1 \&\& last_s1;/else out_valid <= valid_s1 \&\& last_s1;/'
 mutant unit_reset "tex_unit reset ignored in a stall (valid bits kept: responses, no requests)" \
   capacity tex_unit.sv 's/if (rst) valid <= '"'"'0;/if (rst \&\& en) valid <= '"'"'0;/'
+mutant axil_bdrop "tex_axil_config drops BVALID without BREADY" \
+  bhold tex_axil_config.sv 's/else if (s_axi_bready) bvalid <= 1.b0;/else bvalid <= 1'"'"'b0;/'
+mutant axil_rdata "tex_axil_config reloads RDATA while the response waits (a new ARVALID)" \
+  rhold tex_axil_config.sv 's/    if (ar_take) begin/    if (ar_take || s_axi_arvalid) begin/'
+mutant axil_no_w "tex_axil_config writes (and answers) when AW comes, without waiting for W" \
+  bone tex_axil_config.sv 's/assign do_write = (aw_full || aw_take) \&\& (w_full || w_take);/assign do_write = aw_full || aw_take;/'
+mutant axil_ar_busy "tex_axil_config takes AR while an R response waits (one response lost)" \
+  rone tex_axil_config.sv "s/assign s_axi_arready = !rvalid;/assign s_axi_arready = 1'b1;/"
+mutant axil_undef "tex_axil_config answers OKAY to a write to an undefined address" \
+  slverr tex_axil_config.sv 's/default:       wr_ok = 1.b0;  \/\/ undefined or read-only/default: ;/'
+mutant axil_wstrb "tex_axil_config ignores WSTRB (a partial write answers OKAY)" \
+  slverr tex_axil_config.sv "s/wr_ok = ws == 4'hF;/wr_ok = 1'b1;/"
+mutant axil_cache "tex_axil_config applies a refused CACHE write (unit running, bad geometry)" \
+  nochange tex_axil_config.sv 's/if (wr_en \&\& sel_cache)/if (do_write \&\& sel_cache)/'
+mutant axil_clear "tex_axil_config clears the counters on a refused CONTROL write" \
+  nochange tex_axil_config.sv 's/assign cnt_clear = wr_en \&\& sel_control \&\& wd\[2\];/assign cnt_clear = do_write \&\& sel_control \&\& wd[2];/'
+mutant axil_desc "tex_axil_config pulses cfg_desc_we on a DESC_ATTR write too" \
+  desc tex_axil_config.sv 's/desc_we <= wr_en \&\& sel_commit;/desc_we <= wr_en \&\& (sel_commit || sel_attr);/'
+mutant axil_desc_held "tex_axil_config holds cfg_desc_we high after a commit" \
+  desc tex_axil_config.sv 's/desc_we <= wr_en \&\& sel_commit;/desc_we <= desc_we || (wr_en \&\& sel_commit);/'
+mutant axil_comb "tex_axil_config AWREADY = !aw_full && (!bvalid || BREADY) (combinational path)" \
+  comb-axil tex_axil_config.sv 's/assign s_axi_awready = !aw_full \&\& !bvalid;/assign s_axi_awready = !aw_full \&\& (!bvalid || s_axi_bready);/'
+mutant cached_arhold "tex_cached_fetch reads the newest miss, not the oldest (ARADDR moves while stalled)" \
+  arhold tex_cached_fetch.sv 's/assign mem_req_addr  = {ring\[ring_iss\]/assign mem_req_addr  = {ring[ring_wr - 1'"'"'b1]/'
+mutant cached_arburst "tex_cached_fetch reads from the second byte of a line (a misaligned burst)" \
+  arburst tex_cached_fetch.sv "s/, LOG2_LB'(0)};/, LOG2_LB'(1)};/"
+mutant cached_ring "tex_cached_fetch admits a sample with 8 misses into a full miss ring" \
+  aroutstanding tex_cached_fetch.sv "s/ring_next <= MCW'(MISS_DEPTH - 8)/ring_next <= MCW'(MISS_DEPTH)/"
+mutant cached_rready "tex_cached_fetch takes beats with the fill FIFO full (RREADY always high)" \
+  rready tex_cached_fetch.sv "s/assign mem_rsp_ready = fill_count != LCW'(FILL_DEPTH);/assign mem_rsp_ready = 1'b1;/"
 
 total=$((SECONDS - start))
 if [ $fail -ne 0 ]; then
@@ -206,5 +295,6 @@ if [ $fail -ne 0 ]; then
   [ -n "${1:-}" ] || echo "formal: rerun with a WORKDIR argument to keep the logs and traces" >&2
   exit 1
 fi
-echo "formal: $proven properties proven (tex_skid W=2; tex_unit $UNIT_CFG)," \
+echo "formal: $proven properties proven (tex_skid W=2; tex_unit $UNIT_CFG; tex_axil_config $AXIL_CFG;" \
+     "tex_cached_fetch $CACHED_CFG)," \
      "$caught planted bugs caught (${total} s)"

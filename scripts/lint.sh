@@ -84,5 +84,47 @@ if ! out=$(verilator --lint-only -Wall rtl/tex_srgb_decode.sv --top-module tex_s
   exit 1
 fi
 echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7) and tex_srgb_decode; MODE check fires for tex_bc7_mode MODE=8"
+# The AXI4-Lite configuration slave on its own (-Wno-UNUSEDPARAM: alone it uses few of tex_pkg's
+# constants; inside tex_unit_axi below it is linted with all warnings), and the AXI top.
+lint_axil() { verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_axil_config.sv \
+                --top-module tex_axil_config "$@" 2>&1; }
+axil=("" "-GADDR_W=8 -GTEXTURES=1 -GMAX_WAYS=1 -GLINES=16 -GFIFO_DEPTH=2 -GBEAT_BYTES=1 -GLINE_BYTES=1"
+      "-GADDR_W=32 -GFIFO_DEPTH=1024 -GBEAT_BYTES=64 -GSRGB=1 -GBLOCK_FORMATS=0 -GMAX_LOG2_W=13 -GMAX_LOG2_H=0")
+for cfg in "${axil[@]}"; do
+  if ! out=$(lint_axil $cfg) || [ -n "$out" ]; then
+    echo "$out" >&2
+    echo "lint: FAILED for tex_axil_config ${cfg:-(defaults)}" >&2
+    exit 1
+  fi
+done
+bad_axil=("ADDR_W=7" "ADDR_W=33" "MAX_LOG2_W=14" "MAX_LOG2_H=-1" "LINES=24" "MAX_WAYS=3" "FIFO_DEPTH=3" "TEXTURES=3"
+          "BLOCK_FORMATS=2" "SRGB=2" "LINE_BYTES=48" "BEAT_BYTES=128")
+for p in "${bad_axil[@]}"; do
+  if out=$(lint_axil -G"$p") || ! grep -q "tex_axil_config: parameter ${p%%=*} must" <<< "$out"; then
+    echo "$out" >&2
+    echo "lint: tex_axil_config's parameter check did not fire for $p" >&2
+    exit 1
+  fi
+done
+lint_top() { verilator --lint-only -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit_axi "$@" 2>&1; }
+top=("" "-GCW=16 -GSRGB=1 -GMEM_W=32 -GAXI_ID_W=4 -GADDR_W=8 -GTEXTURES=2 -GMAX_LOG2_W=6 -GMAX_LOG2_H=3"
+     "-GBLOCK_W=2 -GBLOCK_H=4 -GBLOCK_FORMATS=0 -GMEM_W=256 -GADDR_W=32 -GLINES=16 -GMAX_WAYS=1")
+for cfg in "${top[@]}"; do
+  if ! out=$(lint_top $cfg) || [ -n "$out" ]; then
+    echo "$out" >&2
+    echo "lint: FAILED for tex_unit_axi ${cfg:-(defaults)}" >&2
+    exit 1
+  fi
+done
+# Its parameters reach both parts: each part's check fires.
+for p in "ADDR_W=7:tex_axil_config" "MEM_W=16:tex_unit_cached"; do
+  if out=$(lint_top -G"${p%%:*}") || ! grep -q "${p#*:}: parameter ${p%%=*} " <<< "$out"; then
+    echo "$out" >&2
+    echo "lint: tex_unit_axi: ${p#*:}'s parameter check did not fire for ${p%%:*}" >&2
+    exit 1
+  fi
+done
+echo "lint: verilator -Wall clean for ${#axil[@]} tex_axil_config and ${#top[@]} tex_unit_axi configurations;" \
+     "parameter checks fire for ${bad_axil[*]} (tex_axil_config), ADDR_W=7 and MEM_W=16 (tex_unit_axi)"
 echo "lint: verilator -Wall clean for ${#configs[@]} configurations (MAX_LOG2_W MAX_LOG2_H CW: ${configs[*]/%/;});" \
      "parameter checks fire for ${bad[*]}"

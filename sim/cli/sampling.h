@@ -253,8 +253,8 @@ struct SamplingOptions {
         if (opt->count()) throw Error(opt->get_name() + " needs --memory cached (the on-chip memories have no cache)");
     }
     make_engine(engine, o);  // unknown engine, --trace with an engine that cannot trace
-    if (!o.mem_error_reads.empty() && engine != "model" && engine != "rtl")
-      throw Error("--mem-error-at: engine " + engine + " does not inject memory errors (engines model, rtl)");
+    if (!o.mem_error_reads.empty() && engine != "model" && engine != "rtl" && engine != "systemc")
+      throw Error("--mem-error-at: engine " + engine + " does not inject memory errors (engines model, rtl, systemc)");
     if (no_timing && engine != "model")
       throw Error("--no-timing applies to --engine model (engine " + engine + " is clocked: its timing is the simulation)");
     o.timing = !no_timing;

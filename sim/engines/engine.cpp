@@ -65,6 +65,11 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
                       {"write_seconds", write_seconds},
                       {"samples_per_second", sample_seconds > 0 ? double(samples) / sample_seconds : 0.0}};
   j["memory"] = memory_name(options.memory);
+  if (!options.mem_error_reads.empty()) j["mem_error_reads"] = options.mem_error_reads;
+  if (!options.mem_error_reads.empty() || !memory_error_samples.empty()) {  // (cached mode: rsp_error)
+    j["memory_error_samples"] = memory_error_samples.size();
+    j["memory_error_sample_indices"] = memory_error_samples;
+  }
   if (!format.empty()) j["format"] = format;
   if (probes) {
     const std::vector<uint64_t> by_n(probes->begin() + 1, probes->end());  // [N - 1]: samples of N probes
@@ -87,12 +92,6 @@ nlohmann::json EngineStats::to_json(const EngineOptions& options) const {
       j[c == 0 ? "hit_rate_even_levels" : "hit_rate_odd_levels"] =
           cache->cache_lookups[c] ? double(cache->cache_hits[c]) / double(cache->cache_lookups[c]) : 0.0;
     j["memory_read_bytes"] = cache->memory_read_bytes;
-    if (!options.mem_error_reads.empty()) {
-      j["mem_error_reads"] = options.mem_error_reads;
-      j["memory_error_samples"] = memory_error_samples.size();
-      j["memory_error_sample_indices"] = std::vector<uint64_t>(
-          memory_error_samples.begin(), memory_error_samples.begin() + std::min<size_t>(memory_error_samples.size(), 1000));
-    }
     j["bytes_per_sample"] = samples ? double(cache->memory_read_bytes) / double(samples) : 0.0;
     if (cycle) {
       j["mem_latency"] = options.mem_latency;
@@ -141,6 +140,8 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
   s.samples = j.at("samples").get<uint64_t>();
   s.load_seconds = j.at("load_seconds").get<double>();
   s.sample_seconds = j.at("sample_seconds").get<double>();
+  if (j.contains("memory_error_sample_indices"))
+    s.memory_error_samples = j.at("memory_error_sample_indices").get<std::vector<uint64_t>>();
   if (j.contains("cycles")) {
     CycleStats c;
     c.configuration = j.at("configuration").get<std::string>();
@@ -164,8 +165,6 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
       k.fifo_max_occupancy = j.at("fifo_max_occupancy").get<uint32_t>();
       k.memory_stall_cycles = j.at("memory_stall_cycles").get<uint64_t>();
       s.cache = k;
-      if (j.contains("memory_error_sample_indices"))
-        s.memory_error_samples = j.at("memory_error_sample_indices").get<std::vector<uint64_t>>();
     }
   } else {
     s.texel_reads = j.at("texel_reads").get<uint64_t>();

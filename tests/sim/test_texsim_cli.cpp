@@ -659,3 +659,40 @@ TEST_F(TexsimCli, SrgbTexturesThroughTheCli) {
   expect_clean_failure("sample -t checker:64x64 --srgb --memory cached -e systemc -q q.csv -o x.csv", "x.csv",
                        {"engine systemc", "sRGB"});
 }
+
+// --mem-error-at N: the N-th line read answers SLVERR. Model, RTL and the RTL behind the TLM socket
+// (its memory target answering TLM_GENERIC_ERROR_RESPONSE) flag the same samples, texsim
+// names them on one line, exits non-zero and writes none of its outputs; bad values are refused
+// before any work.
+TEST_F(TexsimCli, MemoryErrorsNameTheFlaggedSamples) {
+  std::string q = "u,v,lod\n";
+  for (int i = 0; i < 400; ++i) q += std::to_string((i % 20) / 20.0) + "," + std::to_string((i / 20) / 20.0) + ",1.5\n";
+  queries(q);
+  const std::string args = "sample -t testcard:64x64 -q q.csv -o r.csv --memory cached --stalls random --mem-jitter 20 "
+                           "--response-clocks c.txt --stats s.json --mem-error-at 9,3";
+  std::string flagged[3];
+  for (int e = 0; e < 3; ++e) {
+    const std::string engine = e == 0 ? "model" : e == 1 ? "rtl" : "systemc";
+    const Result r = run(args + " -e " + engine);
+    expect_clean_failure(args + " -e " + engine, "r.csv",
+                         {"memory error: line reads 3, 9 answered SLVERR", "samples flagged", "engine " + engine});
+    EXPECT_FALSE(fs::exists(dir / "c.txt"));
+    EXPECT_FALSE(fs::exists(dir / "s.json"));
+    flagged[e] = r.err.substr(0, r.err.find("; engine"));
+  }
+  EXPECT_EQ(flagged[0], flagged[1]);
+  EXPECT_EQ(flagged[0], flagged[2]);
+  EXPECT_NE(flagged[0].find("(request "), std::string::npos) << flagged[0];
+  // A read the run never makes flags nothing: the results are written, with a warning.
+  const Result late = run("sample -t testcard:64x64 -q q.csv -o r.csv --memory cached --mem-error-at 100000");
+  EXPECT_EQ(late.exit_code, 0) << late.err;
+  EXPECT_NE(late.err.find("the run read only"), std::string::npos) << late.err;
+  expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --memory cached --mem-error-at 0", "x.csv",
+                       {"--mem-error-at 0", "counted from 1"});
+  expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --memory cached --mem-error-at 2,x", "x.csv",
+                       {"--mem-error-at", "\"x\""});
+  expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --mem-error-at 2", "x.csv",
+                       {"--mem-error-at", "--memory cached"});
+  expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --memory cached --mem-error-at 2 -e systemc-model",
+                       "x.csv", {"--mem-error-at", "systemc-model"});
+}

@@ -1,8 +1,9 @@
 // Cached memory through SystemC (docs/systemc.md): the texture unit's TLM-2.0 memory socket wired to
 // a memory target. Both backends give the golden model's texels and the model's miss stream; the
 // RTL behind the socket runs at the Verilator harness's samples/clock under the same memory
-// timing; texels really come over the bus (a corrupted byte in the target shows in the samples, an
-// error status stops the run); the debug transport reads the unit's memory view.
+// timing; texels really come over the bus (a corrupted byte in the target shows in the samples; an
+// error status flags the samples that read the line in the RTL backend, as the model predicts, and
+// stops the model backend); the debug transport reads the unit's memory view.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -87,6 +88,7 @@ EngineResult custom_platform(Backend backend, const Workload& w, const EngineOpt
     if (!unit.error().empty()) throw SimulationError(unit.error());
     EngineResult r;
     r.texels = sink.texels;
+    r.stats.memory_error_samples = bench.flagged();
     return r;
   });
 }
@@ -160,7 +162,15 @@ TEST(SystemcMemory, TexelsComeOverTheBus) {
     size_t differ = 0;
     for (size_t i = 0; i < bad.texels.size(); ++i) differ += bad.texels[i] != model.texels[i];
     EXPECT_GT(differ, 0u) << (b == Backend::Rtl ? "rtl" : "model") << " does not use the bytes it reads";
-    // A target that answers with an error status (its memory elsewhere) stops the run, naming the line.
+    // A target that answers every read with an error status (its memory elsewhere): the RTL flags
+    // every sample (TLM_GENERIC_ERROR_RESPONSE, texel 0) and keeps running; the loosely timed model
+    // stops the run, naming the line.
+    if (b == Backend::Rtl) {
+      const EngineResult flagged = custom_platform(b, w, o, [](std::vector<uint8_t>&) {}, uint64_t(1) << 30);
+      EXPECT_EQ(flagged.stats.memory_error_samples.size(), w.requests.size());
+      EXPECT_EQ(flagged.texels, std::vector<Texel>(w.requests.size(), Texel{}));
+      continue;
+    }
     try {
       custom_platform(b, w, o, [](std::vector<uint8_t>&) {}, uint64_t(1) << 30);
       ADD_FAILURE() << "an address error was not reported";
@@ -169,6 +179,24 @@ TEST(SystemcMemory, TexelsComeOverTheBus) {
       EXPECT_NE(std::string(e.what()).find("line " + rtl::hex_address(first)), std::string::npos) << e.what();
     }
   }
+}
+
+// --mem-error-at through the socket: the memory target answers its 4th and 30th reads with
+// TLM_GENERIC_ERROR_RESPONSE, the RTL flags exactly the samples the golden model flags (its texels
+// 0, the others the model's), in order, under random stalls.
+TEST(SystemcMemory, ErrorResponsesFlagTheModelsSamples) {
+  const Workload w = plane(96, 64, "testcard:128x128", PixelOrder::Tiled);
+  EngineOptions o = cached(60);
+  o.stalls = Stalls::Random;
+  o.mem_error_reads = {4, 30};
+  Misses misses;
+  const EngineResult model = model_run(w, o, misses);
+  ASSERT_GT(model.stats.memory_error_samples.size(), 0u);
+  SystemcOptions so;
+  so.engine = o;
+  const EngineResult sc = run_systemc(Backend::Rtl, w.pyramid, w.config, w.requests, so);
+  EXPECT_EQ(sc.stats.memory_error_samples, model.stats.memory_error_samples);
+  EXPECT_EQ(sc.texels, model.texels);
 }
 
 TEST(SystemcMemory, DebugTransportReadsTheUnitsMemoryView) {

@@ -31,7 +31,10 @@ bool MemoryTarget::check(tlm_generic_payload& t) {
   else if (t.get_streaming_width() < n) t.set_response_status(tlm::TLM_BURST_ERROR_RESPONSE);
   else {
     std::memcpy(t.get_data_ptr(), &image_[a - base_], n);
-    t.set_response_status(tlm::TLM_OK_RESPONSE);
+    ++reads_;
+    const bool error = next_error_ < timing_.error_reads.size() && timing_.error_reads[next_error_] == reads_;
+    next_error_ += error;
+    t.set_response_status(error ? tlm::TLM_GENERIC_ERROR_RESPONSE : tlm::TLM_OK_RESPONSE);
     return true;
   }
   return false;

@@ -9,7 +9,9 @@
 //     memory model (engines/rtl/memory_model.h) counts it until its last beat, the same clock.
 //   b_transport (loosely timed): the same read, annotating latency + transfer time.
 //   transport_dbg: reads bytes, no time.
-// Anything but an aligned read inside the image gets an error response status.
+// Anything but an aligned read inside the image gets an error response status; so does each good
+// read whose ordinal (1 = the first) is in `error_reads` (TLM_GENERIC_ERROR_RESPONSE, its data sent
+// all the same: --mem-error-at).
 #pragma once
 #include <systemc>
 #include <tlm>
@@ -26,6 +28,7 @@ struct MemoryTargetTiming {
   uint32_t latency = 100;         // clocks from accepting a read to its BEGIN_RESP
   uint32_t bytes_per_clock = 16;  // bandwidth
   uint32_t max_outstanding = 64;  // reads open at once (until their data has crossed the channel)
+  std::vector<uint64_t> error_reads;  // good reads answered TLM_GENERIC_ERROR_RESPONSE, ascending
 };
 
 class MemoryTarget : public sc_core::sc_module {
@@ -56,6 +59,8 @@ class MemoryTarget : public sc_core::sc_module {
   std::deque<sc_core::sc_time> closing_;                     // when the open reads close, in order
   sc_core::sc_event release_event_;
   uint32_t open_ = 0;
+  uint64_t reads_ = 0;       // good reads so far
+  size_t next_error_ = 0;    // the next of timing_.error_reads
 };
 
 }  // namespace tex::systemc

@@ -85,12 +85,15 @@ void StreamInitiator::release(Slot& slot) {
   slot_freed_.notify();
 }
 
-// Every response: status OK and the tag of the oldest request not yet answered.
+// Every response: status OK (or a sample flagged by a memory error) and the tag of the oldest
+// request not yet answered.
 void StreamInitiator::check_response(Slot& slot) {
   if (!error_.empty()) return;
   const uint64_t want = counters_.responses;
   const uint32_t tag = slot.data.tag;
-  if (!slot.is_response_ok()) {
+  if (slot.get_response_status() == tlm::TLM_GENERIC_ERROR_RESPONSE) {
+    flagged_.push_back(want);
+  } else if (!slot.is_response_ok()) {
     fail("sample tag " + std::to_string(tag) + ": response status " + slot.get_response_string());
     return;
   }

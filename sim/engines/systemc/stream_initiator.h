@@ -57,6 +57,9 @@ class StreamInitiator : public sc_core::sc_module {
   void flush() { texels_.flush(); }  // hands the last texels to the sink (run_stream does)
   const InitiatorCounters& counters() const { return counters_; }
   const std::string& error() const { return error_; }
+  // Responses with TLM_GENERIC_ERROR_RESPONSE (a memory error flagged the sample; its texel is 0),
+  // by index.
+  const std::vector<uint64_t>& flagged() const { return flagged_; }
   // Clocks from the first accepted request to the last response, inclusive (0 before any).
   uint64_t cycles() const;
 
@@ -93,6 +96,7 @@ class StreamInitiator : public sc_core::sc_module {
   tlm::tlm_generic_payload* awaiting_end_req_ = nullptr;
   tlm_utils::peq_with_cb_and_phase<StreamInitiator> end_resp_peq_;
   InitiatorCounters counters_;
+  std::vector<uint64_t> flagged_;
   bool any_accepted_ = false;
   std::string error_;
 };

@@ -67,6 +67,7 @@ EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfi
     timing.latency = eo.mem_latency;
     timing.bytes_per_clock = eo.mem_bytes_per_clock;
     timing.max_outstanding = eo.mem_outstanding;
+    timing.error_reads = eo.mem_error_reads;
     memory = std::make_unique<MemoryTarget>("memory", build_memory_image(pyramid, layout), eo.layout.base, period,
                                             timing);
     unit.memory_socket.bind(memory->socket);
@@ -84,6 +85,7 @@ EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfi
   r.samples = bench.counters().responses;
   r.load_seconds = std::chrono::duration<double>(wall1 - wall0).count();
   r.sample_seconds = std::chrono::duration<double>(wall2 - wall1).count();
+  r.memory_error_samples = bench.flagged();
   if (const rtl::Driver* d = unit.driver()) {
     const rtl::ProtocolCounters& pc = d->counters();
     CycleStats c;

@@ -27,6 +27,7 @@ const uint8_t* TlmMemoryPort::response_beat() const {
 void TlmMemoryPort::clock(bool request_fire, uint32_t address, bool response_fire) {
   if (response_fire && response_valid() && ++beat_ * beat_bytes_ == line_bytes_) {
     beat_ = 0;
+    error_lines_ += lines_.front()->trans.get_response_status() != tlm::TLM_OK_RESPONSE;
     lines_.pop_front();
   }
   if (!request_fire) return;

@@ -37,6 +37,8 @@ class TlmMemoryPort final : public rtl::MemoryPort {
     return response_valid() && lines_.front()->trans.get_response_status() != tlm::TLM_OK_RESPONSE;
   }
   bool response_last() const override { return response_valid() && (beat_ + 1) * beat_bytes_ == line_bytes_; }
+  // Lines delivered so far whose read was answered with an error status.
+  uint64_t error_lines() const { return error_lines_; }
   void clock(bool request_fire, uint32_t address, bool response_fire) override;
   void reset() override;
   std::vector<uint32_t> take_reads() override { return std::exchange(reads_, {}); }
@@ -61,6 +63,7 @@ class TlmMemoryPort final : public rtl::MemoryPort {
   std::vector<std::unique_ptr<Line>> orphans_;  // read before a reset, not answered yet
   tlm::tlm_generic_payload* end_req_owed_ = nullptr;
   int beat_ = 0;
+  uint64_t error_lines_ = 0;
   std::vector<uint32_t> reads_;
   std::string error_;
 };
