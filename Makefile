@@ -20,7 +20,7 @@ help:
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make xprop  - 4-state X-propagation run of the RTL in Icarus Verilog, with planted bugs"
 	@echo "make formal - Yosys proofs of the handshake (skid buffer, req_ready path), each shown failing on a planted bug"
-	@echo "make synth  - Yosys latch check, then iCE40 HX8K synthesis + place and route (Fmax, LUTs)"
+	@echo "make synth  - every compiled configuration through Yosys for ECP5, Artix-7 and iCE40: LUTs, FFs, BRAM, DSP, parts it fits, nextpnr-ice40 Fmax ($(OUT)/synth/synth.json, about two hours)"
 	@echo "make clean  - remove $(BUILD)/ and $(OUT)/"
 
 # Installs missing Debian packages (as root), then configures once.
@@ -106,7 +106,7 @@ synth-latch:
 	@bash scripts/synth.sh latch $(BUILD)
 
 synth:
-	@bash scripts/synth.sh $(BUILD)
+	@bash scripts/synth.sh $(BUILD) $(OUT)
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-model $(OUT)

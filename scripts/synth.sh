@@ -1,26 +1,40 @@
 #!/usr/bin/env bash
-# Synthesis of tex_unit and tex_unit_cached with Yosys (and nextpnr for iCE40).
-#   scripts/synth.sh latch [BUILD]  generic `synth` of a small tex_unit and of tex_lambda; fails on any latch;
-#                                   prints the cell counts (run by `make test`)
-#   scripts/synth.sh [BUILD]        the latch check; generic `synth` of a small tex_unit_cached,
-#                                   RGBA and with the formats (no latches, cell counts); then synth_ice40 + nextpnr-ice40
-#                                   --hx8k of tex_unit and of tex_unit_cached, larger to smaller
-#                                   configurations until one fits: LUT/BRAM use and Fmax
-#                                   (run by `make synth`)
-# Configurations: MAX_LOG2_W MAX_LOG2_H CW (tex_unit); LOG2 CW LINES FIFO MISS MEM_W
-# (tex_unit_cached, square, 4x4 blocks, through rtl/synth/tex_ice40_cached_top.sv, whose
-# parameters are macros: Yosys 0.23 cannot chparam tex_unit_cached). Logs and netlists go to
-# BUILD/synth/.
+# Synthesis of tex_unit and tex_unit_cached with Yosys (and nextpnr-ice40 where an iCE40 holds it).
+#   scripts/synth.sh latch [BUILD]  generic `synth` of a small tex_unit, of tex_lambda and of tex_axil_config;
+#                                   fails on any latch;
+#                                   prints the cell counts (run by `make test`, about 25 s)
+#   scripts/synth.sh [BUILD [OUT]]  the latch check; then every compiled configuration (TEX_RTL_CONFIGS in
+#                                   sim/engines/rtl/CMakeLists.txt: tex_unit and tex_unit_cached with its
+#                                   cache fields) through synth_ecp5, synth_xilinx -family xc7 -flatten and
+#                                   synth_ice40: LUTs, flip-flops, block RAMs, DSPs and the parts each fits
+#                                   (ECP5 LFE5U-25F/45F/85F, Artix-7 XC7A35T/100T/200T, iCE40 HX8K/UP5K;
+#                                   capacities in scripts/synth_report.py); nextpnr-ice40 (Fmax, critical
+#                                   path) for each iCE40 part that holds a configuration; the largest
+#                                   reduced on-chip unit (λ requests only) that places on the HX8K, for a
+#                                   measured Fmax and critical path; the block decoders' table.
+#                                   Writes OUT/synth/synth.json and synth.md (run by `make synth`, ~2 h)
+# Every design is read with the unit itself as the top (all its ports are top-level ports, nothing
+# is optimized away) and checked for latches after `proc` (Yosys fails on any). nextpnr places
+# through the pin-serializing wrappers rtl/synth/tex_ice40_top.sv and tex_ice40_cached_top.sv.
+# Environment: SYNTH_CONFIGS="Vtex_unit_4x4 ..." only these configurations; SYNTH_TARGETS="ecp5 xc7
+# ice40" only these targets; SYNTH_REFERENCE=0 skips the reduced iCE40 unit, SYNTH_DECODERS=0 the
+# decoders; SYNTH_FREQ nextpnr's target clock (MHz, default 30; timing may fail, Fmax is reported);
+# SYNTH_APPEND=1 adds to the rows of an earlier run (to finish or redo some configurations);
+# SYNTH_ICE40_ALL=1 runs synth_ice40 also where the ECP5 result already needs more than 4x the
+# largest iCE40's logic cells (skipped by default: the slowest run, and it cannot fit).
+# Logs, stats and netlists go to BUILD/synth/ (one `TARGET_CONFIG.log` per run). A tool failure stops
+# the script with one line naming the configuration and its log.
 set -euo pipefail
 case "${1:-}" in -h|--help) sed -n '2,/^set -/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0;; esac
 cd "$(dirname "$0")/.."
 mode=full
 if [ "${1:-}" = latch ]; then mode=latch; shift; fi
 out="${1:-build}/synth"
+res_dir="${2:-out}/synth"   # synth.json, synth.md (full mode)
 mkdir -p "$out"
 files=$(tr '\n' ' ' < rtl/tex_files.f)
-freq=${SYNTH_FREQ:-30}     # MHz target for nextpnr (it exits non-zero when missed)
-hx8k_luts=7680
+freq=${SYNTH_FREQ:-30}     # MHz target for nextpnr (--timing-allow-fail: Fmax is reported either way)
+t_start=$(date +%s)
 
 read_cfg() {  # $1 $2 $3 [top] -> yosys commands that read and parameterize the design
   local top=${4:-tex_unit}
@@ -45,97 +59,180 @@ generic_check "w$1_h$2_c$3" tex_unit "$(read_cfg "$@")" "tex_unit MAX_LOG2 $1x$2
 awk '/^ +\$/{printf "  %s %s\n", $1, $2}' "$out/generic_w$1_h$2_c$3_stat.txt" | sort -k2 -n -r | head -12
 # The LOD unit on its own (also inside tex_unit above): no latches either.
 generic_check tex_lambda tex_lambda "read_verilog -sv rtl/tex_pkg.sv rtl/tex_lambda.sv" "tex_lambda (the LOD unit)"
+# The AXI4-Lite configuration slave of tex_unit_axi on its own (default parameters).
+generic_check tex_axil_config tex_axil_config "read_verilog -sv rtl/tex_pkg.sv rtl/tex_axil_config.sv" \
+  "tex_axil_config (AXI4-Lite configuration and counters)"
 [ "$mode" = latch ] && exit 0
 
-# ---- iCE40 HX8K
-# ice40_fit TAG TOP "YOSYS READ COMMANDS" LABEL: synth_ice40, then nextpnr-ice40 --hx8k when the
-# LUTs fit; prints the result; returns 0 when it fits (exits on a tool failure).
-ice40_fit() {
-  local tag=$1 label=$4  # ($2, the top, is set by the read commands)
-  # (errexit is off in a function called from `if`: every failure is checked here.)
-  # (no -top: the read commands set it, and chparam on a wrapper renames the derived top)
-  if ! yosys -p "$3; synth_ice40 -json $out/ice40_$tag.json; tee -o $out/ice40_$tag.stat stat" \
-       > "$out/ice40_$tag.log" 2>&1; then
-    tail -20 "$out/ice40_$tag.log" >&2
-    echo "synth: FAILED synth_ice40 of $label, see $out/ice40_$tag.log" >&2
-    exit 1
+# ---- every compiled configuration on ECP5, Artix-7 and iCE40
+py=/usr/bin/python3
+report=scripts/synth_report.py
+mkdir -p "$res_dir"
+rows="$out/rows.jsonl" ref_rows="$out/ice40_reference.jsonl" run_secs="$out/run_seconds"
+# SYNTH_APPEND=1 keeps the rows of an earlier run (the JSON takes the last row of each
+# configuration and target, and the sum of the runs' times)
+[ "${SYNTH_APPEND:-0}" = 1 ] || rm -f "$rows" "$ref_rows" "$run_secs"
+fail() { echo "synth: FAILED $1, see $2" >&2; exit 1; }
+elapsed() { echo $(( $(date +%s) - $1 )); }
+latch_guard='proc; select -assert-none t:$dlatch t:$adlatch t:$dlatchsr'
+# Compiled configurations: the quoted entries of set(TEX_RTL_CONFIGS ...).
+mapfile -t configs < <(sed 's/#.*//' sim/engines/rtl/CMakeLists.txt | sed -n '/^set(TEX_RTL_CONFIGS/,/)/p' |
+                       grep -o '"Vtex_[^"]*"' | tr -d '"')
+[ ${#configs[@]} -gt 0 ] || fail "reading TEX_RTL_CONFIGS" sim/engines/rtl/CMakeLists.txt
+if [ -n "${SYNTH_CONFIGS:-}" ]; then  # in the order given
+  keep=()
+  for want in $SYNTH_CONFIGS; do
+    for c in "${configs[@]}"; do
+      [ "${c%% *}" = "$want" ] && keep+=("$c")
+    done
+  done
+  configs=("${keep[@]}")
+fi
+targets=(${SYNTH_TARGETS:-ecp5 xc7 ice40})
+n_runs=$(( ${#configs[@]} * ${#targets[@]} )) run=0
+
+# yosys_run LOG "SCRIPT" LABEL: one Yosys run (newlines in SCRIPT are spaces: commands end with
+# `;`); a failure ends the script naming LABEL and LOG.
+yosys_run() {
+  if ! yosys -p "${2//$'\n'/ }" > "$1" 2>&1; then
+    grep -m3 "ERROR\|Assertion" "$1" >&2 || tail -3 "$1" >&2
+    fail "$3" "$1"
   fi
-  local luts brams ffs
-  luts=$(awk '/SB_LUT4/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
-  brams=$(awk '/SB_RAM40_4K/{n=$2} END{print n+0}' "$out/ice40_$tag.stat")
-  ffs=$(awk '/SB_DFF/{n+=$2} END{print n+0}' "$out/ice40_$tag.stat")
-  echo "synth: synth_ice40 $label: $luts SB_LUT4, $ffs flip-flops, $brams SB_RAM40_4K"
-  if [ "$luts" -gt "$hx8k_luts" ]; then
-    echo "synth:   does not fit the HX8K ($luts > $hx8k_luts LUTs): skipping place and route"
-    return 1
-  fi
-  local pnr_log="$out/nextpnr_$tag.log" rc fmax util_lc util_ram
+}
+
+# nextpnr_run TAG PART "OPTIONS" NETLIST: place and route; prints "placed" or "unplaced".
+nextpnr_run() {
+  local log="$out/nextpnr_$1_$2.log" rc
   set +e
-  nextpnr-ice40 --hx8k --package ct256 --json "$out/ice40_$tag.json" --asc "$out/ice40_$tag.asc" \
-    --freq "$freq" --seed 1 > "$pnr_log" 2>&1
+  nextpnr-ice40 $3 --json "$4" --asc "$out/nextpnr_$1_$2.asc" --report "$out/nextpnr_$1_$2.json" \
+    --freq "$freq" --seed 1 --timing-allow-fail > "$log" 2>&1
   rc=$?
   set -e
-  fmax=$(grep -o "Max frequency for clock '[^']*': [0-9.]* MHz" "$pnr_log" | tail -1 | grep -o "[0-9.]* MHz" || true)
-  util_lc=$(grep -o "ICESTORM_LC: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
-  util_ram=$(grep -o "ICESTORM_RAM: *[0-9]*/ *[0-9]* *[0-9]*%" "$pnr_log" | tail -1 || true)
-  if grep -q "Unable to place\|Unable to find a placement\|ICESTORM_LC: *[0-9]*/ *[0-9]* *1[0-9][0-9]%" "$pnr_log"; then
-    echo "synth:   nextpnr: does not fit the HX8K ($util_lc)"
-    return 1
+  if [ $rc -eq 0 ] && grep -q "Max frequency for clock" "$log"; then
+    echo placed
+  elif grep -q "Unable to place\|Failed to expand region\|Unable to find a placement\|Failed to place\|too many\|ICESTORM_LC: *[0-9]*/ *[0-9]* *1[0-9][0-9]%" "$log"; then
+    echo unplaced
+  else
+    tail -5 "$log" >&2
+    fail "nextpnr-ice40 $2 of $1 (exit $rc)" "$log"
   fi
-  if [ -z "$fmax" ]; then
-    tail -20 "$pnr_log" >&2
-    echo "synth: FAILED nextpnr-ice40 for $label (exit $rc), see $pnr_log" >&2
-    exit 1
-  fi
-  [ $rc -ne 0 ] && echo "synth:   (nextpnr exit $rc: target --freq $freq MHz missed)"
-  echo "synth: SUMMARY nextpnr-ice40 --hx8k ct256, $label: Fmax $fmax (target $freq MHz), $util_lc, $util_ram"
 }
 
-# tex_ice40_top: tex_unit behind a serial pin wrapper (its ~240 ports exceed the package).
-# 16x16 texels, CW=8 first; smaller until one fits.
-fit_cfg=""
-ice40_configs=("4 4 8" "4 4 4" "3 3 4" "3 3 2")
-for cfg in "${ice40_configs[@]}"; do
+for cfg in "${configs[@]}"; do
   set -- $cfg
-  if ice40_fit "w$1_h$2_c$3" tex_ice40_top "$(read_cfg "$@" tex_ice40_top)" "MAX_LOG2 $1x$2 CW=$3"; then
-    fit_cfg=$cfg
-    break
+  name=$1 w=$2 h=$3 cw=$4 cached=0
+  if [ $# -ge 10 ]; then
+    cached=1 bw=$5 bh=$6 lines=$7 fifo=$8 mem_w=$9 miss=${10} formats=0
+    [ "${11:-}" = FORMATS ] && formats=1
+    params="tex_unit_cached ${w}x${h}, CW $cw, ${bw}x${bh} blocks, $lines lines, FIFO $fifo, MEM_W $mem_w, MISS $miss"
+    [ $formats = 1 ] && params="$params, block formats + sRGB"
+    # (chparam, not read_verilog -defer with hierarchy -chparam: that hits Yosys 0.23's assertion
+    # `modules_.count(module->name) == 0` on tex_unit_cached)
+    read_cmd="read_verilog -sv $files; chparam -set MAX_LOG2_W $w -set MAX_LOG2_H $h -set CW $cw
+      -set TAG_W 16 -set BLOCK_W $bw -set BLOCK_H $bh -set LINES $lines -set FIFO_DEPTH $fifo
+      -set MEM_W $mem_w -set MISS_DEPTH $miss -set BLOCK_FORMATS $formats -set SRGB $formats tex_unit_cached;
+      hierarchy -top tex_unit_cached"
+  else
+    params="tex_unit ${w}x${h}, CW $cw"
+    read_cmd="read_verilog -sv -defer $files; hierarchy -top tex_unit -chparam MAX_LOG2_W $w
+      -chparam MAX_LOG2_H $h -chparam CW $cw -chparam TAG_W 16"
   fi
+  # no latches: after `proc`, in a run of its own (the same `proc` before synth_* changes the
+  # netlist's order and abc's result by a few per cent)
+  t0=$(date +%s)
+  yosys_run "$out/latch_$name.log" "$read_cmd; $latch_guard" "latch check of $name (a latch, or Yosys)"
+  echo "synth: $name ($params): 0 latches ($(elapsed "$t0") s)"
+  for target in "${targets[@]}"; do
+    run=$((run + 1))
+    case $target in
+      ecp5)  synth_cmd="synth_ecp5 -run :check";;
+      xc7)   synth_cmd="synth_xilinx -family xc7 -flatten -run :check";;
+      ice40) synth_cmd="synth_ice40 -run :check";;
+      *) fail "unknown target $target (SYNTH_TARGETS)" "$0";;
+    esac
+    if [ "$target" = ice40 ] && [ "${SYNTH_ICE40_ALL:-0}" != 1 ]; then
+      skip=$("$py" "$report" ice40-skip --rows "$rows" --config "$name")
+      if [ -n "$skip" ]; then
+        echo "synth: [$run/$n_runs] $name: $target skipped"
+        "$py" "$report" row --rows "$rows" --config "$name" --params "$params" --target ice40 --skipped "$skip"
+        continue
+      fi
+    fi
+    echo "synth: [$run/$n_runs] $name: $target ..."
+    t0=$(date +%s)
+    log="$out/${target}_$name.log" stat="$out/${target}_$name.stat"
+    # (synth_*'s `check` step without its `autoname`, which only renames: minutes on iCE40)
+    yosys_run "$log" "$read_cmd; $synth_cmd; hierarchy -check; tee -o $stat stat; check -noinit" \
+      "$target synthesis of $name"
+    secs=$(elapsed "$t0")
+    pnr_args=()
+    if [ "$target" = ice40 ]; then
+      # nextpnr for each iCE40 part whose capacities hold the counts, through the pin wrapper
+      candidates=$("$py" "$report" ice40-candidates --stat "$stat")
+      parts=()
+      [ -n "$candidates" ] && mapfile -t parts <<< "$candidates"
+      net=""
+      for p in "${parts[@]}"; do
+        part=${p%% *} opts=${p#* }
+        if [ -z "$net" ]; then
+          net="$out/ice40_${name}_top.json"
+          if [ $cached = 1 ]; then
+            # (the wrapper measures a different unit unless it takes these shapes)
+            if { [ "$bw$bh" != 44 ] && ! grep -q TEX_SYN_BLOCK_W rtl/synth/tex_ice40_cached_top.sv; } ||
+               { [ "$w" != "$h" ] && ! grep -q TEX_SYN_LOG2_H rtl/synth/tex_ice40_cached_top.sv; }; then
+              echo "synth:   $part: not placed (tex_ice40_cached_top has no TEX_SYN_BLOCK_W/H or TEX_SYN_LOG2_H for this shape)"
+              net=none
+              break
+            fi
+            wrap_cmd="read_verilog -sv -DTEX_SYN_LOG2=$w -DTEX_SYN_LOG2_H=$h -DTEX_SYN_CW=$cw -DTEX_SYN_LINES=$lines
+              -DTEX_SYN_FIFO=$fifo -DTEX_SYN_MISS=$miss -DTEX_SYN_MEM_W=$mem_w -DTEX_SYN_FORMATS=$formats
+              -DTEX_SYN_BLOCK_W=$bw -DTEX_SYN_BLOCK_H=$bh $files rtl/synth/tex_ice40_cached_top.sv;
+              hierarchy -top tex_ice40_cached_top"
+          else
+            wrap_cmd="read_verilog -sv $files rtl/synth/tex_ice40_top.sv; chparam -set MAX_LOG2_W $w
+              -set MAX_LOG2_H $h -set CW $cw -set DERIV 1 tex_ice40_top; hierarchy -top tex_ice40_top"
+          fi
+          yosys_run "$out/ice40_${name}_top.log" "$wrap_cmd; synth_ice40 -json $net" \
+            "synth_ice40 of the pin wrapper of $name"
+        fi
+        state=$(nextpnr_run "$name" "$part" "$opts" "$net")
+        echo "synth:   nextpnr-ice40 $part: $state"
+        pnr_args+=(--pnr "$part=$out/nextpnr_${name}_$part.json:$out/nextpnr_${name}_$part.log")
+      done
+      secs=$(elapsed "$t0")
+    fi
+    "$py" "$report" row --rows "$rows" --config "$name" --params "$params" --target "$target" \
+      --stat "$stat" --seconds "$secs" "${pnr_args[@]}"
+  done
 done
-# (a report, not a failure: the cached part below is still measured)
-[ -n "$fit_cfg" ] || echo "synth: no tex_unit configuration fits the HX8K (largest first: ${ice40_configs[*]})"
 
-# ---- tex_unit_cached: generic synth with the latch check, then iCE40 from larger to smaller.
-read_cached() {  # LOG2 CW LINES FIFO MISS MEM_W [FORMATS] -> yosys commands
-  echo "read_verilog -sv -DTEX_SYN_LOG2=$1 -DTEX_SYN_CW=$2 -DTEX_SYN_LINES=$3 -DTEX_SYN_FIFO=$4 \
-        -DTEX_SYN_MISS=$5 -DTEX_SYN_MEM_W=$6 -DTEX_SYN_FORMATS=${7:-0} $files rtl/synth/tex_ice40_cached_top.sv; \
-        hierarchy -top tex_ice40_cached_top"
-}
-set -- 4 8 16 16 16 32
-generic_check cached tex_ice40_cached_top "$(read_cached "$@")" \
-  "tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6"
-# With the block decoders and the sRGB tables (FORMATS: CW 16, 8-bit channels in memory).
-set -- 4 16 16 16 16 32 1
-generic_check cached_formats tex_ice40_cached_top "$(read_cached "$@")" \
-  "tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6 with the formats"
-
-fit_cached=""
-cached_configs=("4 8 16 16 16 32" "3 2 16 2 16 16")  # 16x16 8-bit; 8x8 2-bit, FIFO 2: the smallest
-for cfg in "${cached_configs[@]}"; do
-  set -- $cfg
-  if ice40_fit "cached_l$1_c$2_n$3_f$4" tex_ice40_cached_top "$(read_cached "$@")" \
-               "tex_unit_cached LOG2 $1 CW=$2 LINES=$3 FIFO=$4 MISS=$5 MEM_W=$6"; then
-    fit_cached=$cfg
-    break
-  fi
-done
-[ -n "$fit_cached" ] || echo "synth: no tex_unit_cached configuration fits the HX8K (largest first: ${cached_configs[*]})"
+# ---- a measured iCE40 Fmax: no compiled configuration fits an iCE40, so the largest reduced
+# on-chip unit that places on the HX8K (λ requests only: tex_ice40_top with DERIV = 0 ties the
+# derivative inputs off and the LOD/anisotropy unit is optimized away), from larger to smaller.
+if [ "${SYNTH_REFERENCE:-1}" != 0 ]; then
+  for cfg in "3 3 2" "3 3 1" "2 2 1"; do
+    set -- $cfg
+    tag="ref_w$1_h$2_c$3" t0=$(date +%s)
+    echo "synth: iCE40 reference: tex_unit $1x$2, CW $3, λ requests only ..."
+    yosys_run "$out/ice40_$tag.log" "read_verilog -sv $files rtl/synth/tex_ice40_top.sv;
+      chparam -set MAX_LOG2_W $1 -set MAX_LOG2_H $2 -set CW $3 -set DERIV 0 tex_ice40_top;
+      hierarchy -top tex_ice40_top; $latch_guard; synth_ice40 -json $out/ice40_$tag.json;
+      tee -o $out/ice40_$tag.stat stat" "synth_ice40 of the iCE40 reference $1x$2 CW $3"
+    state=$(nextpnr_run "$tag" iCE40HX8K "--hx8k --package ct256" "$out/ice40_$tag.json")
+    echo "synth:   nextpnr-ice40 iCE40HX8K: $state"
+    "$py" "$report" row --rows "$ref_rows" --config "$tag" --target ice40 --stat "$out/ice40_$tag.stat" \
+      --params "tex_unit $1x$2, CW $3, λ requests only (tex_ice40_top DERIV=0)" --seconds "$(elapsed "$t0")" \
+      --pnr "iCE40HX8K=$out/nextpnr_${tag}_iCE40HX8K.json:$out/nextpnr_${tag}_iCE40HX8K.log"
+    [ "$state" = placed ] && break
+  done
+fi
 
 # ---- the block decoders (docs/numerics.md): one texel per decoder, combinational; the cached unit
-# will take 8 per sample. synth_ice40 and synth_ecp5 LUTs per decoder, no latches; a table in
+# takes 8 per sample. synth_ice40 and synth_ecp5 LUTs per decoder, no latches; a table in
 # BUILD/synth/decoders.md.
-decoder_files="rtl/tex_pkg.sv rtl/tex_bc_channel.sv rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv
-               rtl/tex_srgb_decode.sv"
+if [ "${SYNTH_DECODERS:-1}" != 0 ]; then
+# (one line: a newline inside `yosys -p` ends a command)
+decoder_files="rtl/tex_pkg.sv rtl/tex_bc_channel.sv rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/tex_srgb_decode.sv"
 decoders=("tex_bc_colour:BC1 (and the colour of BC2, BC3)" "tex_bc_channel:BC4 (and BC3's alpha, each half of BC5)"
           "tex_bc7:BC7" "tex_bc_decode:every format (what the cached unit's taps will take)"
           "tex_srgb_decode:sRGB, one channel (3 per texel)")
@@ -159,3 +256,15 @@ for d in "${decoders[@]}"; do
   echo "$row" >> "$out/decoders.md"
   echo "synth: decoder $row"
 done
+fi
+
+# ---- the JSON and the Markdown tables (the tables come from the JSON alone)
+rtl_state=$(git diff --quiet HEAD -- rtl 2>/dev/null && echo "" || echo " (rtl/ modified)")
+elapsed "$t_start" >> "$run_secs"
+"$py" "$report" collect --rows "$rows" --reference "$ref_rows" --out "$res_dir/synth.json" \
+  --seconds "$(awk '{s += $1} END {print s}' "$run_secs")" --commit "$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$rtl_state" \
+  --tools "$(yosys -V | cut -d' ' -f1,2); $(nextpnr-ice40 --version 2>&1 | head -1)"
+"$py" "$report" markdown --json "$res_dir/synth.json" --out "$res_dir/synth.md"
+cat "$res_dir/synth.md"
+echo "synth: $res_dir/synth.json, $res_dir/synth.md; logs in $out/ ($(( $(elapsed "$t_start") / 60 )) min;" \
+     "with earlier appended runs $(( $(awk '{s += $1} END {print s}' "$run_secs") / 60 )) min)"

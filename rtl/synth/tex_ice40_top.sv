@@ -2,6 +2,10 @@
 // tex_unit has about 240 ports, more than an HX8K package's pins: every input is fed from one
 // shift register loaded through pin `sin`, and the response is folded to one pin by XOR, so no
 // logic of tex_unit is optimized away and its timing is measured register to register.
+// DERIV = 1 (default) feeds the derivative request and the anisotropy configuration from the
+// shift register too: the whole tex_unit, as compiled (scripts/synth.sh places a compiled
+// configuration this way when an iCE40 part holds it). DERIV = 0 ties them to 0: λ requests only,
+// the LOD/anisotropy unit is optimized away (scripts/synth.sh's reduced iCE40 reference).
 // Handshake: none of its own (a measurement wrapper). Latency: that of tex_unit plus the
 //   shift-in. Ports: clk, rst, sin (serial input bit), req_ready, rsp_valid, sout (XOR of the
 //   response data and tag).
@@ -9,7 +13,8 @@ module tex_ice40_top #(
   parameter int MAX_LOG2_W = 4,
   parameter int MAX_LOG2_H = 4,
   parameter int CW         = 8,
-  parameter int TAG_W      = 16
+  parameter int TAG_W      = 16,
+  parameter int DERIV      = 1
 ) (
   input  logic clk,
   input  logic rst,
@@ -45,13 +50,38 @@ module tex_ice40_top #(
   localparam int O_LOD     = O_V + UW;
   localparam int O_TAG     = O_LOD + LW;
   localparam int O_READY   = O_TAG + TAG_W;
-  localparam int NIN       = O_READY + 1;
+  localparam int O_DERIV   = O_READY + 1;      // with DERIV only: req_deriv, the 4 derivatives,
+  localparam int O_DUDX    = O_DERIV + 1;      // cfg_max_aniso_m1, cfg_aniso_pow2
+  localparam int O_DVDX    = O_DUDX + UW;
+  localparam int O_DUDY    = O_DVDX + UW;
+  localparam int O_DVDY    = O_DUDY + UW;
+  localparam int O_ANISO   = O_DVDY + UW;
+  localparam int O_POW2    = O_ANISO + 4;
+  localparam int NIN       = DERIV != 0 ? O_POW2 + 1 : O_READY + 1;
 
   logic [NIN-1:0] in_bits;
   always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
 
   logic [4*CW-1:0]  rsp_rgba;
   logic [TAG_W-1:0] rsp_tag;
+  logic             req_deriv, cfg_aniso_pow2;
+  logic [UW-1:0]    req_dudx, req_dvdx, req_dudy, req_dvdy;
+  logic [3:0]       cfg_max_aniso_m1;
+  if (DERIV != 0) begin : g_deriv
+    assign req_deriv        = in_bits[O_DERIV];
+    assign req_dudx         = in_bits[O_DUDX +: UW];
+    assign req_dvdx         = in_bits[O_DVDX +: UW];
+    assign req_dudy         = in_bits[O_DUDY +: UW];
+    assign req_dvdy         = in_bits[O_DVDY +: UW];
+    assign cfg_max_aniso_m1 = in_bits[O_ANISO +: 4];
+    assign cfg_aniso_pow2   = in_bits[O_POW2];
+  end else begin : g_no_deriv
+    // λ requests only: the LOD / anisotropy unit is optimized away.
+    assign req_deriv        = 1'b0;
+    assign {req_dudx, req_dvdx, req_dudy, req_dvdy} = '0;
+    assign cfg_max_aniso_m1 = 4'd0;
+    assign cfg_aniso_pow2   = 1'b0;
+  end
   tex_unit #(.MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W)) u_unit (
     .clk(clk), .rst(rst),
     .cfg_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_log2_h(in_bits[O_LOG2_H +: VW]),
@@ -63,10 +93,8 @@ module tex_ice40_top #(
     .wr_y(in_bits[O_WR_Y +: XW]), .wr_data(in_bits[O_WR_DATA +: 4*CW]),
     .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
-    // Lambda requests only (the LOD / anisotropy unit is tied off and optimized away: a fit
-    // of the probe datapath on the HX8K is not measured here).
-    .req_deriv(1'b0), .req_dudx('0), .req_dvdx('0), .req_dudy('0), .req_dvdy('0),
-    .cfg_max_aniso_m1(4'd0), .cfg_aniso_pow2(1'b0),
+    .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
+    .req_dvdy(req_dvdy), .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
     .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag)
   );
   always_ff @(posedge clk) sout <= ^{rsp_rgba, rsp_tag};
