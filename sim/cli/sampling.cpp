@@ -3,6 +3,7 @@
 #include <bit>
 #include <charconv>
 #include <chrono>
+#include <cstdio>
 #include <deque>
 #include <optional>
 
@@ -122,8 +123,7 @@ static Error memory_error(const EngineStats& stats, const EngineOptions& eo) {
 }
 
 EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
-                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& input, TexelSink& output,
-                       const ReadAheadSource* parser) {
+                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& input, TexelSink& output) {
   const auto engine = make_engine(o.engine, eo);
   TimedSource source(input);
   TimedSink sink(output);
@@ -159,7 +159,7 @@ EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, Output
     for (const std::string& f : formats) stats.format += (stats.format.empty() ? "" : ",") + f;
     // The engine alone: without waiting for the requests and writing the results.
     stats.sample_seconds = std::max(0.0, stats.sample_seconds - source.seconds - sink.seconds);
-    stats.parse_seconds = parser ? parser->busy_seconds() : source.seconds;
+    stats.parse_seconds = source.seconds;
     stats.write_seconds = sink.seconds;
     return stats;
   } catch (const SimulationError& e) {
@@ -208,11 +208,25 @@ void print_cache_stats(const EngineStats& stats) {
   std::printf("\n");
 }
 
+// The process's peak resident memory (VmHWM: this program's, not the parent's it was forked
+// from, which getrusage's maxrss includes); 0 where /proc does not say.
+static uint64_t peak_memory_bytes() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0;
+  char line[256];
+  unsigned long long kib = 0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmHWM: %llu kB", &kib) == 1) break;
+  std::fclose(f);
+  return uint64_t(kib) * 1024;
+}
+
 void write_stats(OutputFile* out, const EngineStats& stats, const EngineOptions& options, double seconds,
                  const nlohmann::json& extra) {
   if (!out) return;
   nlohmann::json j = stats.to_json(options);
   j["wall_seconds"] = seconds;
+  j["peak_memory_bytes"] = peak_memory_bytes();
   j.update(extra);
   std::fputs((j.dump(2) + "\n").c_str(), out->open());
   out->close();

@@ -312,12 +312,11 @@ class MissTraceWriter final : public MissSink {
 // Runs the engine (with --verify through the golden model too) over a table of textures (one for
 // a query trace or a paper scene). A failure inside the simulation keeps the waveform, the one
 // output of a failed command: it shows what went wrong.
-// `parser`: the read-ahead source under `source`, if any (its thread's time is the parse time).
-// The stats' sample_seconds is the engine's alone: the time in source.read() (parse_seconds, or
-// the parser's) and in sink.write() (write_seconds) is taken out of it.
+// The stats' sample_seconds is the engine's alone: the time in source.read() (parse_seconds) and
+// in sink.write() (write_seconds) is taken out of it (a caller whose source or sink works in a
+// thread of its own sets the two to that thread's time).
 EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
-                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& source, TexelSink& sink,
-                       const ReadAheadSource* parser = nullptr);
+                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& source, TexelSink& sink);
 
 // The summary lines: cycle counters of a cycle-accurate engine, caches, anisotropic probes.
 void print_cycle_stats(const EngineStats& stats, const EngineOptions& options);

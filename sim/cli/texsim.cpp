@@ -98,40 +98,32 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (list.size() > 1 && !engine_info(o.engine).texture_table)
     throw Error(textures_path + ": " + std::to_string(list.size()) + " textures; engine " + o.engine +
                 " takes one per frame: use --engine model or rtl");
-  // A query file is checked whole before the work (a pipe is checked as it streams), on both cores
-  // while the textures load; a bad texture is still the error reported first.
+  // A query file is checked whole by threads of its own while the textures load (a pipe is
+  // checked as it streams); a bad texture is still the error reported first. A file of modest size
+  // is parsed only there: the engine reads the requests the threads keep. The cycle engines wait
+  // for the whole check before their work; the model, faster than the parse, starts on the first
+  // requests, and a bad line stops it as soon as the threads find it (no output is written).
   std::optional<QueryReader> reader;
+  std::optional<QueryFileParser> parser;
   std::exception_ptr query_error;
   try {
     reader.emplace(queries_path);
+    if (reader->rewindable()) parser.emplace(queries_path, 2, true);
   } catch (...) {
     query_error = std::current_exception();
   }
-  std::thread checker;
-  if (reader && reader->rewindable())
-    checker = std::thread([&] {
-      try {
-        check_query_file(queries_path, 2);
-      } catch (...) {
-        query_error = std::current_exception();
-      }
-    });
   std::vector<Pyramid> pyramids;
   pyramids.reserve(list.size());
   TextureTable table;
-  try {
-    for (const TextureListEntry& e : list) {
-      TextureOptions entry = topts;
-      entry.srgb = entry.srgb || e.srgb;
-      pyramids.push_back(load_pyramid(e.path, entry));
-      table.push_back({&pyramids.back(), e.wrap_u, e.wrap_v});
-    }
-  } catch (...) {
-    if (checker.joinable()) checker.join();
-    throw;
+  for (const TextureListEntry& e : list) {
+    TextureOptions entry = topts;
+    entry.srgb = entry.srgb || e.srgb;
+    pyramids.push_back(load_pyramid(e.path, entry));
+    table.push_back({&pyramids.back(), e.wrap_u, e.wrap_v});
   }
-  if (checker.joinable()) checker.join();
   if (query_error) std::rethrow_exception(query_error);
+  const bool kept = parser && parser->kept();
+  if (parser && (!kept || o.engine != "model")) parser->wait();
   const Pyramid& pyr = pyramids[0];
   if (trace) eo.trace_path = trace->write_path();
 
@@ -142,21 +134,33 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   std::optional<ClockWriter> clocks;
   if (clocks_out) eo.clock_sink = &clocks.emplace(*clocks_out);
 
-  QuerySource source(*reader);
-  ReadAheadSource parsed(source);  // parsing in a thread of its own, overlapping the engine
+  // One helper thread beside the engine: it parses a trace that streams, or else writes the results.
+  QuerySource streamed(*reader);
+  std::optional<ReadAheadSource> ahead;
+  RequestSource& source = kept ? static_cast<RequestSource&>(*parser) : ahead.emplace(streamed);
   bool srgb = false;  // sRGB textures give linear unorm16 results
   for (const BoundTexture& t : table) srgb = srgb || t.pyramid->srgb;
   CsvTexelWriter writer(result.open(), srgb ? "r16,g16,b16,a16" : "r,g,b,a");
-  const EngineStats stats = run_engine(o, eo, outputs, trace, table, cfg, parsed, writer, &parsed);
+  std::optional<WriteBehindSink> behind;
+  TexelSink& sink = kept ? static_cast<TexelSink&>(behind.emplace(writer)) : writer;
+  EngineStats stats = run_engine(o, eo, outputs, trace, table, cfg, source, sink);
+  if (behind) {
+    behind->finish();
+    stats.write_seconds = behind->busy_seconds();
+  }
+  if (kept) parser->wait();
+  stats.parse_seconds = kept ? parser->parse_seconds() : ahead->busy_seconds();
+  const size_t count = kept ? parser->count() : streamed.count();
+  const QueryCounts& counts = kept ? parser->counts() : streamed.counts();
   if (misses) misses->close();
   if (clocks) clocks->close();
-  if (source.count() == 0)
+  if (count == 0)
     std::fprintf(stderr, "texsim: %s has no queries (only a header): the result has only its header\n",
                  reader->name().c_str());
   // A frame's trace (--textures): the figures texsim render gives for the frame.
   std::optional<FrameFigures> frame;
   if (!textures_path.empty())
-    frame = frame_figures(source.counts(), stats, texture_bytes_resident(table, eo),
+    frame = frame_figures(counts, stats, texture_bytes_resident(table, eo),
                           lines.bytes(line_bytes(table, eo)));
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_stats(stats_out, stats, eo, secs, frame ? frame->to_json() : nlohmann::json::object());
@@ -170,11 +174,11 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   }
   if (frame) std::fprintf(report, "  %s\n", frame->summary().c_str());
   if (table.size() > 1)
-    std::fprintf(report, "texsim sample: %zu queries, %s, %zu textures, engine %s -> %s (%.2f s)\n", source.count(),
+    std::fprintf(report, "texsim sample: %zu queries, %s, %zu textures, engine %s -> %s (%.2f s)\n", count,
                  filter_name(cfg.filter).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
   else
     std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
-                 source.count(), filter_name(cfg.filter).c_str(), wrap_name(table[0].wrap_u).c_str(),
+                 count, filter_name(cfg.filter).c_str(), wrap_name(table[0].wrap_u).c_str(),
                  wrap_name(table[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
                  out_path.c_str(), secs);
   return 0;

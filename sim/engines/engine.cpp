@@ -269,6 +269,103 @@ size_t ReadAheadSource::read(Request* out, size_t max) {
   return n;
 }
 
+struct WriteBehindSink::Impl {
+  TexelSink& inner;
+  size_t chunk, depth;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::deque<std::vector<Texel>> queue, spare;  // full chunks, in order; emptied ones for reuse
+  std::vector<Texel> current;
+  bool writing = false, stop = false;
+  std::exception_ptr error;
+  double busy = 0;
+  std::thread worker;
+
+  Impl(TexelSink& sink, size_t chunk_size, size_t max_chunks) : inner(sink), chunk(chunk_size), depth(max_chunks) {
+    current.reserve(chunk);
+    worker = std::thread([this] { run(); });
+  }
+  void run() {
+    std::unique_lock lock(mutex);
+    for (;;) {
+      changed.wait(lock, [this] { return stop || !queue.empty(); });
+      if (queue.empty()) return;  // (stop)
+      std::vector<Texel> c = std::move(queue.front());
+      queue.pop_front();
+      writing = true;
+      const bool failed = error != nullptr;
+      lock.unlock();
+      const auto t0 = std::chrono::steady_clock::now();
+      std::exception_ptr e;
+      if (!failed) try {
+          inner.write(c.data(), c.size());
+        } catch (...) {
+          e = std::current_exception();
+        }
+      const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      c.clear();
+      lock.lock();
+      busy += dt;
+      if (e && !error) error = e;
+      spare.push_back(std::move(c));
+      writing = false;
+      changed.notify_all();
+    }
+  }
+  // Hands the current chunk to the thread (waits while `depth` chunks are queued).
+  void hand_over() {
+    std::unique_lock lock(mutex);
+    changed.wait(lock, [this] { return queue.size() < depth || error; });
+    if (error) std::rethrow_exception(error);
+    queue.push_back(std::move(current));
+    if (!spare.empty()) {
+      current = std::move(spare.front());
+      spare.pop_front();
+    } else {
+      current = {};
+      current.reserve(chunk);
+    }
+    changed.notify_all();
+  }
+};
+
+WriteBehindSink::WriteBehindSink(TexelSink& inner, size_t chunk, size_t depth)
+    : impl_(std::make_unique<Impl>(inner, chunk, depth)) {}
+
+WriteBehindSink::~WriteBehindSink() {
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->stop = true;
+    impl_->queue.clear();
+  }
+  impl_->changed.notify_all();
+  impl_->worker.join();
+}
+
+void WriteBehindSink::write(const Texel* texels, size_t n) {
+  Impl& d = *impl_;
+  while (n) {
+    const size_t m = std::min(n, d.chunk - d.current.size());
+    d.current.insert(d.current.end(), texels, texels + m);
+    texels += m;
+    n -= m;
+    if (d.current.size() == d.chunk) d.hand_over();
+  }
+}
+
+void WriteBehindSink::finish() {
+  Impl& d = *impl_;
+  if (!d.current.empty()) d.hand_over();
+  std::unique_lock lock(d.mutex);
+  d.changed.wait(lock, [&] { return (d.queue.empty() && !d.writing) || d.error; });
+  if (d.error) std::rethrow_exception(d.error);
+}
+
+double WriteBehindSink::busy_seconds() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->busy;
+}
+
 void RequestQueue::refill() {
   at_ = size_ = 0;
   if (!ended_) size_ = source_.read(buffer_.data(), buffer_.size());

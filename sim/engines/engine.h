@@ -186,6 +186,23 @@ class TexelSink {
   virtual void write(const Texel* texels, size_t n) = 0;
 };
 
+// Writes to a sink in a thread of its own, a chunk at a time, while the caller makes the next
+// chunks: formatting overlaps sampling. finish() waits until every texel is written and throws the
+// inner sink's error, if any (so does the first write() after it). busy_seconds(): the thread's
+// time in the sink. Destroyed without finish() (an error path), it drops what is still queued.
+class WriteBehindSink final : public TexelSink {
+ public:
+  explicit WriteBehindSink(TexelSink& inner, size_t chunk = 16384, size_t depth = 4);
+  ~WriteBehindSink() override;
+  void write(const Texel* texels, size_t n) override;
+  void finish();
+  double busy_seconds() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // A failure inside a simulation (RTL assertion, time-out, lost or extra response, a sample that
 // differs from the golden model): texsim keeps the waveform of such a run.
 struct SimulationError : Error {

@@ -8,10 +8,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <exception>
 #include <thread>
 
 #include "model/error.h"
+#include "model/huge_pages.h"
 
 namespace tex {
 
@@ -298,17 +301,26 @@ bool QueryReader::next(Query& q) {
   return false;
 }
 
-void check_query_file(const std::string& path, unsigned threads) {
-  auto check = [](QueryReader& reader) {
-    QuerySource source(reader);
-    std::vector<Request> scratch(4096);
-    while (source.read(scratch.data(), scratch.size())) {
-    }
-  };
-  QueryReader first(path);
+struct QueryFileParser::Part {
+  uint64_t begin = 0, end = 0;  // bytes of the file
+  // The requests, in chunks of kChunk (huge pages, no copy as the part grows; tags count from 0
+  // in each part). Written by the part's thread; [0, ready) is read under the mutex.
+  static constexpr size_t kChunk = (size_t(4) << 20) / sizeof(Request);
+  std::vector<std::unique_ptr<Request[], void (*)(Request*)>> chunks;
+  size_t ready = 0;
+  bool done = false;
+  std::exception_ptr error;
+  QueryCounts counts;
+  size_t count = 0;
+};
+
+QueryFileParser::QueryFileParser(const std::string& path, unsigned threads, bool keep)
+    : first_(std::make_unique<QueryReader>(path)), start_(std::chrono::steady_clock::now()) {
+  QueryReader& first = *first_;
   first.read_header();
   struct stat st {};
   const uint64_t size = ::fstat(fileno(first.file_), &st) == 0 ? uint64_t(st.st_size) : 0;
+  keep_ = keep && size <= kMaxFileBytes;
   // Cuts at line starts after the header, about size / threads apart (none for small files: a
   // thread costs more than it saves there).
   constexpr uint64_t kMinPart = uint64_t(4) << 20;
@@ -330,26 +342,122 @@ void check_query_file(const std::string& path, unsigned threads) {
   }
   cuts.push_back(size);
   first.file_end_ = cuts[1];
-  std::vector<std::exception_ptr> errors(cuts.size() - 1);
-  std::vector<std::thread> helpers;
-  for (size_t k = 1; k + 1 < cuts.size(); ++k)
-    helpers.emplace_back([&, k] {
-      try {
-        QueryReader part(first, cuts[k], cuts[k + 1]);
-        check(part);
-      } catch (...) {
-        errors[k] = std::current_exception();
-      }
-    });
-  try {
-    check(first);
-  } catch (...) {
-    errors[0] = std::current_exception();
+  for (size_t k = 0; k + 1 < cuts.size(); ++k) {
+    parts_.push_back(std::make_unique<Part>());
+    parts_.back()->begin = cuts[k];
+    parts_.back()->end = cuts[k + 1];
   }
-  for (std::thread& t : helpers) t.join();
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
+  for (size_t k = 0; k < parts_.size(); ++k) threads_.emplace_back([this, k] { parse(k); });
 }
+
+QueryFileParser::~QueryFileParser() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  for (std::thread& t : threads_) t.join();
+}
+
+void QueryFileParser::parse(size_t k) {
+  Part& part = *parts_[k];
+  std::exception_ptr error;
+  try {
+    std::unique_ptr<QueryReader> own;
+    if (k > 0) own.reset(new QueryReader(*first_, part.begin, part.end));  // (a private constructor)
+    QuerySource source(k > 0 ? *own : *first_);
+    std::vector<Request> scratch(keep_ ? 0 : 4096);
+    for (;;) {
+      {
+        std::lock_guard lock(mutex_);
+        if (stop_) return;
+      }
+      if (!keep_) {
+        if (source.read(scratch.data(), scratch.size()) == 0) break;
+        continue;
+      }
+      const size_t at = part.ready % Part::kChunk;  // (only this thread writes `ready`)
+      if (at == 0 && part.ready / Part::kChunk == part.chunks.size()) {
+        // Raw storage: every element is written before it is read.
+        HugePageAllocator<Request> alloc;
+        Request* c = alloc.allocate(Part::kChunk);
+        std::lock_guard lock(mutex_);
+        part.chunks.emplace_back(c, [](Request* p) { HugePageAllocator<Request>().deallocate(p, Part::kChunk); });
+      }
+      Request* chunk = part.chunks[part.ready / Part::kChunk].get();  // (the pointer does not move)
+      // A slice at a time, so that the engine starts early.
+      const size_t n = source.read(chunk + at, std::min<size_t>(4096, Part::kChunk - at));
+      if (n == 0) break;
+      std::lock_guard lock(mutex_);
+      part.ready += n;
+      changed_.notify_all();
+    }
+    part.counts = source.counts();
+    part.count = source.count();
+  } catch (...) {
+    error = std::current_exception();
+  }
+  std::lock_guard lock(mutex_);
+  part.error = error;
+  part.done = true;
+  if (++parts_done_ == parts_.size()) finish_locked();
+  changed_.notify_all();
+}
+
+void QueryFileParser::finish_locked() {
+  parse_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  for (const auto& p : parts_) counts_.append(p->counts);
+}
+
+void QueryFileParser::wait() {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] { return parts_done_ == parts_.size(); });
+  for (const auto& p : parts_)
+    if (p->error) std::rethrow_exception(p->error);
+}
+
+size_t QueryFileParser::count() const {
+  size_t n = 0;
+  for (const auto& p : parts_) n += p->count;
+  return n;
+}
+
+size_t QueryFileParser::read(Request* out, size_t max) {
+  if (!keep_) throw Error("QueryFileParser::read: " + first_->name() + " is too long to keep");
+  std::unique_lock lock(mutex_);
+  // The file's first bad line, once known: a part's error with every part before it done.
+  auto first_error = [&]() -> std::exception_ptr {
+    for (const auto& q : parts_) {
+      if (q->error) return q->error;
+      if (!q->done) return nullptr;
+    }
+    return nullptr;
+  };
+  size_t n = 0;
+  while (n < max && part_ < parts_.size()) {
+    const Part& p = *parts_[part_];
+    changed_.wait(lock, [&] { return p.ready > at_ || p.done || first_error(); });
+    if (const std::exception_ptr e = first_error()) std::rethrow_exception(e);
+    if (p.ready == at_) {  // (p is done, without error)
+      part_base_ += p.count;
+      ++part_;
+      at_ = 0;
+      continue;
+    }
+    const size_t m = std::min({max - n, p.ready - at_, Part::kChunk - at_ % Part::kChunk});
+    const Request* from = p.chunks[at_ / Part::kChunk].get() + at_ % Part::kChunk;
+    lock.unlock();
+    for (size_t i = 0; i < m; ++i) {
+      out[n + i] = from[i];
+      out[n + i].tag += uint32_t(part_base_);  // (each part counted from 0)
+    }
+    lock.lock();
+    n += m;
+    at_ += m;
+  }
+  return n;
+}
+
+void check_query_file(const std::string& path, unsigned threads) { QueryFileParser(path, threads, false).wait(); }
 
 Request to_request(const Query& q, const std::string& name, uint32_t tag) {
   Request r;
@@ -391,9 +499,23 @@ size_t QuerySource::read(Request* out, size_t max) {
 void QueryCounts::add(const Query& q) {
   ++samples;
   helper_samples += q.helper;
+  if (samples == 1) first_quad_ = q.quad;
   if (samples == 1 || q.quad != last_quad_) ++quads;
   last_quad_ = q.quad;
   textures_used |= 1u << q.texture;
+}
+
+void QueryCounts::append(const QueryCounts& later) {
+  if (later.samples == 0) return;
+  if (samples == 0) {
+    *this = later;
+    return;
+  }
+  quads += later.quads - (later.first_quad_ == last_quad_ ? 1 : 0);
+  samples += later.samples;
+  helper_samples += later.helper_samples;
+  textures_used |= later.textures_used;
+  last_quad_ = later.last_quad_;
 }
 
 QueryTraceWriter::QueryTraceWriter(std::FILE* out) : out_(out) {
@@ -430,17 +552,36 @@ CsvTexelWriter::CsvTexelWriter(std::FILE* out, const char* header) : out_(out) {
   std::fputc('\n', out_);
 }
 
+namespace {
+
+// The decimal text of 0..999, left-aligned in 3 bytes, and its length: a channel is one copy.
+struct Decimal {
+  char text[3];
+  uint8_t length;
+};
+const std::array<Decimal, 1000> kDecimals = [] {
+  std::array<Decimal, 1000> t{};
+  for (unsigned v = 0; v < 1000; ++v) {
+    char* end = std::to_chars(t[v].text, t[v].text + 3, v).ptr;
+    t[v].length = uint8_t(end - t[v].text);
+  }
+  return t;
+}();
+
+}  // namespace
+
 void CsvTexelWriter::write(const Texel* texels, size_t n) {
-  char buf[4096 + 32];
+  constexpr size_t kFlush = size_t(1) << 18;  // (big writes go past stdio's buffer)
+  if (buffer_.size() < kFlush + 64) buffer_.resize(kFlush + 64);
+  char* const buf = buffer_.data();
   size_t len = 0;
-  auto put = [&](unsigned v, char end) {  // a channel: at most 5 digits
-    char digits[8];
-    int k = 0;
-    do {
-      digits[k++] = char('0' + v % 10);
-      v /= 10;
-    } while (v != 0 && k < 5);
-    while (k > 0) buf[len++] = digits[--k];
+  auto put = [&](unsigned v, char end) {
+    if (v < 1000) {
+      std::memcpy(buf + len, kDecimals[v].text, 3);
+      len += kDecimals[v].length;
+    } else {  // unorm16 results of sRGB textures
+      len = size_t(std::to_chars(buf + len, buf + len + 8, v).ptr - buf);
+    }
     buf[len++] = end;
   };
   for (size_t i = 0; i < n; ++i) {
@@ -449,7 +590,7 @@ void CsvTexelWriter::write(const Texel* texels, size_t n) {
     put(t[1], ',');
     put(t[2], ',');
     put(t[3], '\n');
-    if (len > 4096) {
+    if (len > kFlush) {
       std::fwrite(buf, 1, len, out_);
       len = 0;
     }

@@ -1,8 +1,13 @@
 // Query traces (CSV in) and results (CSV out), streamed: memory does not grow with the trace.
 #pragma once
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <string_view>
 #include <vector>
 
@@ -47,11 +52,11 @@ class QueryReader {
 
   bool next(Query& q);  // false at the end
   const std::string& name() const { return name_; }
-  // True for a regular file: it can be read twice (check_query_file before the work).
+  // True for a regular file: it can be read twice (QueryFileParser before the work).
   bool rewindable() const { return rewindable_; }
 
  private:
-  friend void check_query_file(const std::string& path, unsigned threads);
+  friend class QueryFileParser;
   // The lines of bytes [begin, end) of `header`'s file (begin is the start of a line after the
   // header), numbered as in the whole file: one part of a parallel check pass.
   QueryReader(const QueryReader& header, uint64_t begin, uint64_t end);
@@ -76,9 +81,11 @@ struct QueryCounts {
   uint64_t samples = 0, quads = 0, helper_samples = 0;
   uint32_t textures_used = 0;  // bit t: texture t was sampled
   void add(const Query& q);
+  // The counts of the queries that follow these (a quad cut in two counts once).
+  void append(const QueryCounts& later);
 
  private:
-  uint32_t last_quad_ = 0;
+  uint32_t first_quad_ = 0, last_quad_ = 0;
 };
 
 // The queries of a reader as the hardware's fixed-point requests (tag = index), for the engines.
@@ -96,9 +103,52 @@ class QuerySource final : public RequestSource {
   QueryCounts counts_;
 };
 
-// The check pass over a regular query file before the work: every line read and converted as the
-// engines will, the file cut at line starts into `threads` parts checked in parallel. Throws the
-// error of the file's first bad line (the same message a single pass gives).
+// The check pass over a regular query file: every line read and converted as the engines will,
+// the file cut at line starts into parts parsed by threads of their own, started by the
+// constructor. wait() returns when all are done and throws the error of the file's first bad
+// line (the same message a single pass gives).
+// With `keep`, a file of at most kMaxFileBytes also keeps its requests (tag = index, in file
+// order) and read() hands them out while the parse goes on: the engine works on the first ones
+// as the threads convert the rest, and the file is parsed once. read() throws the file's first
+// bad line as soon as a thread finds it (and the threads before it are done), wherever the
+// engine is. Longer files keep nothing: the caller checks them with wait(), then streams them
+// in constant memory.
+class QueryFileParser final : public RequestSource {
+ public:
+  // About 2 M `u,v,lod` queries, 80 MB of requests.
+  static constexpr uint64_t kMaxFileBytes = uint64_t(48) << 20;
+  QueryFileParser(const std::string& path, unsigned threads, bool keep);
+  ~QueryFileParser() override;  // (stops the threads)
+  QueryFileParser(const QueryFileParser&) = delete;
+  QueryFileParser& operator=(const QueryFileParser&) = delete;
+
+  void wait();
+  bool kept() const { return keep_; }
+  size_t read(Request* out, size_t max) override;
+  // After wait(), or after read() returned 0:
+  size_t count() const;
+  const QueryCounts& counts() const { return counts_; }
+  double parse_seconds() const { return parse_seconds_; }  // start to the last part's end
+
+ private:
+  struct Part;
+  void parse(size_t k);
+  void finish_locked();  // the totals, once every part is done
+  std::unique_ptr<QueryReader> first_;  // (part 0's reader, past the header)
+  bool keep_ = false;
+  std::vector<std::unique_ptr<Part>> parts_;
+  std::vector<std::thread> threads_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  bool stop_ = false;
+  size_t parts_done_ = 0;
+  QueryCounts counts_;
+  double parse_seconds_ = 0;
+  std::chrono::steady_clock::time_point start_;
+  size_t part_ = 0, at_ = 0, part_base_ = 0;  // read()'s position
+};
+
+// QueryFileParser(path, threads, false).wait(): the check pass alone.
 void check_query_file(const std::string& path, unsigned threads);
 
 Request to_request(const Query& q, const std::string& name, uint32_t tag);
@@ -124,6 +174,7 @@ class CsvTexelWriter final : public TexelSink {
 
  private:
   std::FILE* out_;
+  std::vector<char> buffer_;  // a run of formatted lines
 };
 
 }  // namespace tex

@@ -166,3 +166,135 @@ TEST(QueryTrace, ParallelCheckReportsTheFirstBadLine) {
   EXPECT_NE(error_of().find(":" + std::to_string(kLines / 4 * 3) + ": "), std::string::npos) << error_of();
   std::filesystem::remove(path);
 }
+
+namespace {
+
+// A frame trace of `lines` queries (quads of 4, two textures); quad 1000 covers the middle tenth
+// of the file, so that wherever the parser cuts it, a quad runs across the cut.
+void write_frame_trace(const std::filesystem::path& path, int lines, const std::vector<int>& bad = {}) {
+  std::ofstream out(path);
+  out << kFrameTraceHeader << "\n";
+  for (int i = 0; i < lines; ++i) {
+    const int line = i + 2;
+    const bool middle = i > lines / 2 - lines / 20 && i < lines / 2 + lines / 20;
+    const int quad = middle ? 1000 : i / 4 + (i > lines / 2 ? 2000 : 0);
+    if (std::find(bad.begin(), bad.end(), line) != bad.end()) {
+      out << "0,0.5,oops,0,0,0,0," << quad << ",0,0,0\n";
+      continue;
+    }
+    out << (i % 7 == 0) << "," << (i % 1000) * 0.001 << "," << (i % 977) * 0.002 - 0.5 << ",0.01,"
+        << (i % 13) * 0.001 << ",0,0.02," << quad << "," << i % 640 << "," << i / 640 % 480 << "," << (i % 4 == 3)
+        << "\n";
+  }
+}
+
+std::vector<Request> read_all(RequestSource& source) {
+  std::vector<Request> all, buf(3000);  // (not a divisor of the parser's slices)
+  while (const size_t n = source.read(buf.data(), buf.size())) all.insert(all.end(), buf.begin(), buf.begin() + n);
+  return all;
+}
+
+bool same(const Request& a, const Request& b) {
+  return a.u == b.u && a.v == b.v && a.lod == b.lod && a.tag == b.tag && a.texture == b.texture &&
+         a.has_derivatives == b.has_derivatives && a.deriv.dudx == b.deriv.dudx && a.deriv.dvdx == b.deriv.dvdx &&
+         a.deriv.dudy == b.deriv.dudy && a.deriv.dvdy == b.deriv.dvdy;
+}
+
+}  // namespace
+
+// The parser's kept requests are the ones a single stream gives, tag for tag, and its counts (quads
+// cut in two by the parts count once) are the stream's.
+TEST(QueryTrace, KeptRequestsEqualTheStreamedOnes) {
+  const auto path = std::filesystem::temp_directory_path() / ("query_trace_keep_" + std::to_string(getpid()) + ".csv");
+  constexpr int kLines = 300000;  // about 15 MB: two parts
+  write_frame_trace(path, kLines);
+  ASSERT_GT(std::filesystem::file_size(path), 12u << 20);  // (cut in two)
+  QueryReader reader(path.string());
+  QuerySource streamed(reader);
+  const std::vector<Request> want = read_all(streamed);
+  QueryFileParser parser(path.string(), 2, true);
+  ASSERT_TRUE(parser.kept());
+  const std::vector<Request> got = read_all(parser);
+  parser.wait();
+  ASSERT_EQ(got.size(), want.size());
+  ASSERT_EQ(parser.count(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) ASSERT_TRUE(same(got[i], want[i])) << "request " << i;
+  const QueryCounts& a = parser.counts();
+  const QueryCounts& b = streamed.counts();
+  EXPECT_EQ(a.samples, b.samples);
+  EXPECT_EQ(a.quads, b.quads);
+  EXPECT_EQ(a.helper_samples, b.helper_samples);
+  EXPECT_EQ(a.textures_used, b.textures_used);
+  EXPECT_EQ(b.textures_used, 3u);
+  std::filesystem::remove(path);
+}
+
+// Reading kept requests stops at the file's first bad line, never handing out a request from past
+// it, whichever part it is in and however far the other part got; a parser dropped early stops.
+TEST(QueryTrace, KeptParseStopsAtTheFirstBadLine) {
+  const auto path = std::filesystem::temp_directory_path() / ("query_trace_keepbad_" + std::to_string(getpid()) + ".csv");
+  constexpr int kLines = 300000;
+  for (const std::vector<int>& bad :
+       std::vector<std::vector<int>>{{kLines - 10, 100}, {kLines / 4 * 3}, {kLines / 2 + 1, kLines - 3}, {5}}) {
+    write_frame_trace(path, kLines, bad);
+    const int first = *std::min_element(bad.begin(), bad.end());
+    QueryFileParser parser(path.string(), 2, true);
+    std::vector<Request> buf(3000);
+    size_t seen = 0;
+    std::string error;
+    try {
+      while (const size_t n = parser.read(buf.data(), buf.size())) seen += n;
+    } catch (const Error& e) {
+      error = e.what();
+    }
+    EXPECT_NE(error.find(":" + std::to_string(first) + ": value 3 (column 7) is not a number"), std::string::npos)
+        << "first bad line " << first << ": " << error;
+    EXPECT_LE(seen, size_t(first - 2)) << "requests handed out past the bad line " << first;
+  }
+  write_frame_trace(path, kLines);
+  {
+    QueryFileParser early(path.string(), 2, true);
+    std::vector<Request> buf(10);
+    EXPECT_EQ(early.read(buf.data(), buf.size()), 10u);
+  }  // destroyed mid-parse: must return
+  std::filesystem::remove(path);
+}
+
+// WriteBehindSink passes every texel on in order, and an error of the sink it writes to comes out
+// of finish() (or the next write); dropped with chunks queued, it stops its thread.
+TEST(QueryTrace, WriteBehindKeepsOrderAndErrors) {
+  struct Collect final : TexelSink {
+    std::vector<Texel> got;
+    size_t fail_after = SIZE_MAX;
+    void write(const Texel* t, size_t n) override {
+      if (got.size() + n > fail_after) throw Error("disk full");
+      got.insert(got.end(), t, t + n);
+    }
+  };
+  std::vector<Texel> texels(100003);
+  for (size_t i = 0; i < texels.size(); ++i) texels[i] = {uint16_t(i), uint16_t(i >> 16), 7, uint16_t(i * 3)};
+  Collect inner;
+  {
+    WriteBehindSink behind(inner, 777, 3);
+    for (size_t i = 0; i < texels.size(); i += 1000) behind.write(&texels[i], std::min<size_t>(1000, texels.size() - i));
+    behind.finish();
+  }
+  ASSERT_EQ(inner.got.size(), texels.size());
+  for (size_t i = 0; i < texels.size(); ++i) ASSERT_EQ(inner.got[i], texels[i]) << "texel " << i;
+  Collect failing;
+  failing.fail_after = 5000;
+  std::string error;
+  try {
+    WriteBehindSink behind(failing, 777, 3);
+    for (size_t i = 0; i < texels.size(); i += 1000) behind.write(&texels[i], std::min<size_t>(1000, texels.size() - i));
+    behind.finish();
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  EXPECT_EQ(error, "disk full");
+  Collect slow;
+  {
+    WriteBehindSink early(slow, 100, 2);
+    early.write(texels.data(), 150);
+  }  // destroyed without finish(): must return
+}
