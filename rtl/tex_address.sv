@@ -9,12 +9,14 @@
 //   scaled : signed SW bits, floor(coord * 2^log2_size0 * 512) (from tex_scale)
 //   level  : integer 0..11, the mip level whose texel coordinates are wanted
 //   linear : 1 = linear texel filter, 0 = nearest
-//   i0     : signed IW bits, integer texel index of the first tap (unwrapped; the second
-//            tap is i0 + 1)
+//   i0     : signed IW bits, integer texel index of the first tap (unwrapped)
+//   i1     : signed IW bits, i0 + 1, the second tap: (p + 512) >>> 9, an adder beside p's rather
+//            than a carry chain after the register (it would sit in clock 5, before the wrap
+//            and the memory read: nextpnr's critical path)
 //   w      : unsigned WEIGHT_BITS, weight of the second tap in 1/256
 module tex_address #(
   parameter int SW = tex_pkg::SCALED_W,  // from tex_scale
-  parameter int IW = tex_pkg::INDEX_W    // SW - 7: |i0| < 2^(SW - 10), and i0 + 1
+  parameter int IW = tex_pkg::INDEX_W    // SW - 7: |i0| < 2^(SW - 10), and i1
 ) (
   input  logic                                 clk,
   input  logic                                 en,
@@ -22,6 +24,7 @@ module tex_address #(
   input  logic [tex_pkg::LEVEL_W-1:0]          level,
   input  logic                                 linear,
   output logic signed [IW-1:0]                 i0,
+  output logic signed [IW-1:0]                 i1,
   output logic [tex_pkg::WEIGHT_BITS-1:0]      w
 );
   localparam int WB = tex_pkg::WEIGHT_BITS;
@@ -31,10 +34,12 @@ module tex_address #(
   // Inside the enable: a simulator skips the shifts in the clocks in which the stage holds.
   always_ff @(posedge clk) begin
     if (en) begin
-      logic signed [XW-1:0] t9, p;
+      logic signed [XW-1:0] t9, p, p1;
       t9 = XW'(scaled) >>> level;  // a size cast of a signed value sign-extends
       p  = linear ? t9 - XW'((1 << WB) - 1) : t9;
+      p1 = linear ? t9 + XW'((1 << WB) + 1) : t9 + XW'(1 << (WB + 1));  // p + 512
       i0 <= IW'(p >>> (WB + 1));
+      i1 <= IW'(p1 >>> (WB + 1));
       w  <= linear ? p[WB:1] : '0;
     end
   end

@@ -128,22 +128,30 @@ module tex_front #(
     for (s = 0; s < 2; s = s + 1) begin : g_slot
       for (a = 0; a < 2; a = a + 1) begin : g_axis
         localparam int OW = (a == 0) ? XW : YW;
-        logic signed [IW-1:0] i0_s4;
-        logic [VW-1:0]                      log2_size_s4;  // runtime size of the slot's level
+        logic signed [IW-1:0] i0_s4, i1_s4;                // the taps, unwrapped
+        logic [VW-1:0]                      log2_size_s3, log2_size_s4;  // the slot's level size
+        logic [IW-1:0]                      mask_s4;       // its size - 1, for tex_wrap
         logic [OW-1:0]                      t0, t1;        // wrapped taps i0, i0 + 1
         tex_address #(.SW(SW), .IW(IW)) u_address (
           .clk(clk), .en(en), .scaled(scaled_s3[a*SW +: SW]), .level(level_s3[s*VW +: VW]),
-          .linear(cfg_texel_linear_q), .i0(i0_s4), .w(w[(s*2 + a)*WB +: WB])
+          .linear(cfg_texel_linear_q), .i0(i0_s4), .i1(i1_s4), .w(w[(s*2 + a)*WB +: WB])
         );
         // max(log2_size0 - level, 0): a side that reaches 1 texel stays 1. (The borrow masks the
         // difference: no data-dependent branch in Verilator's C++.)
         logic [VW:0] size_diff;
         assign size_diff = {1'b0, size_s3[a*VW +: VW]} - {1'b0, level_s3[s*VW +: VW]};
-        always_ff @(posedge clk) if (en) log2_size_s4 <= size_diff[VW-1:0] & ~{VW{size_diff[VW]}};
+        assign log2_size_s3 = size_diff[VW-1:0] & ~{VW{size_diff[VW]}};
+        // The mask is registered here rather than made in clock 5 (a decoder, no carry chain).
+        always_ff @(posedge clk) begin
+          if (en) begin
+            log2_size_s4 <= log2_size_s3;
+            mask_s4      <= ~({IW{1'b1}} << log2_size_s3);
+          end
+        end
         assign log2_size[(s*2 + a)*VW +: VW] = log2_size_s4;
-        tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap0 (.i(i0_s4), .log2_n(log2_size_s4),
+        tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap0 (.i(i0_s4), .mask(mask_s4),
                                         .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t0));
-        tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap1 (.i(i0_s4 + IW'(1)), .log2_n(log2_size_s4),
+        tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap1 (.i(i1_s4), .mask(mask_s4),
                                         .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t1));
         if (a == 0) begin : g_x
           assign x[(s*2 + 0)*XW +: XW] = t0;

@@ -1,11 +1,12 @@
 // tex_wrap: the model's `wrap` stage (docs/numerics.md stage 3): OpenGL wrap of one integer texel
-// index, n = 2^log2_n.
+// index, n = 2^log2_n, given as its mask n - 1.
 //   repeat: i & (n-1)   clamp: min(max(i, 0), n-1)   mirror: m = i & (2n-1); m < n ? m : 2n-1-m
 //   (mode 3 gives 0, as the model's switch does). n = 1 maps every index to 0.
+//   No carry chain: the mask comes registered (tex_front, clock 4), n is one bit past it.
 // Handshake: none (combinational; tex_unit clock 5). Latency: 0. Throughput: 1 per clock.
 // Ports:
 //   i      : signed IW bits, unwrapped integer texel index
-//   log2_n : integer 0..11, log2 of the level's size along this axis (must fit OUT_W bits)
+//   mask   : unsigned IW bits, n - 1 (ones below bit log2_n; n must fit OUT_W bits)
 //   mode   : tex_pkg::WRAP_*
 //   o      : unsigned OUT_W bits, wrapped index in [0, n)
 module tex_wrap #(
@@ -13,15 +14,14 @@ module tex_wrap #(
   parameter int IW    = tex_pkg::INDEX_W   // from tex_address
 ) (
   input  logic signed [IW-1:0]               i,
-  input  logic [tex_pkg::LEVEL_W-1:0]        log2_n,
+  input  logic [IW-1:0]                      mask,
   input  logic [tex_pkg::WRAP_W-1:0]         mode,
   output logic [OUT_W-1:0]                   o
 );
-  logic [IW-1:0]    n, mask;          // n = 2^log2_n, mask = n - 1
+  logic [IW-1:0]    n;                // 2^log2_n: the lowest bit that is not in the mask
   logic [OUT_W-1:0] mask_o, low;      // n - 1 and i & (n - 1), in the output width
   logic             negative, beyond, odd_period;
-  assign n          = IW'(1) << log2_n;
-  assign mask       = n - IW'(1);
+  assign n          = ~mask & {mask[IW-2:0], 1'b1};
   assign mask_o     = OUT_W'(mask);
   assign low        = OUT_W'(i) & mask_o;
   assign negative   = i[IW-1];
