@@ -366,7 +366,7 @@ module tex_cached_fetch #(
   // Only in a clock with a push, as the lookups.
   localparam int MEW = LNW + KW + 1 + SLW;  // a miss: {line number, bank kind, cache, line slot}
   logic [7:0]       miss;
-  logic [8*MEW-1:0] miss_entry;
+  logic [8*MEW-1:0] miss_entry;      // the k-th miss of the sample at [k*MEW +: MEW], k < fills
   logic [8*RD-1:0]  reads;           // slot s bank b at [(s*4 + b)*RD +: RD]: {line slot, offset}
   logic [7:0]       need;            // slot s bank b reads a line the sample looked up (its error counts)
   logic [3:0]       fills;           // misses of this sample: 0..8
@@ -389,8 +389,9 @@ module tex_cached_fetch #(
         slot_s  = slot_c[cache_s];
         for (int q = 0; q < 4; q++) begin
           miss[sl*4 + q] = look[sl][q] && !hit_s[q];
-          miss_entry[(sl*4 + q)*MEW +: MEW] =
-              {look_line[sl][q*LNW +: LNW], line_kind(fmt), cache_s, slot_s[q*SLW +: SLW]};
+          if (miss[sl*4 + q])
+            miss_entry[32'(fills)*MEW +: MEW] =
+                {look_line[sl][q*LNW +: LNW], line_kind(fmt), cache_s, slot_s[q*SLW +: SLW]};
           fills = fills + 4'(miss[sl*4 + q]);
           lookups = lookups + 4'(look[sl][q]);
         end
@@ -408,27 +409,45 @@ module tex_cached_fetch #(
 
   // ---------------------------------------------------------------- miss ring
   // Misses not yet written into the cache, in order: [retire, issue) sent to memory, [issue,
-  // write) waiting for mem_req. The tag stage writes up to 8 per clock.
+  // write) waiting for mem_req. The tag stage writes up to 8 per clock, so the ring is 8 banks:
+  // entry p in bank p mod 8, row p / 8, and a sample's k-th miss (at ring_wr + k) goes to its own
+  // bank, one write port each. (One memory with 8 write ports, built of flip-flops and their write
+  // multiplexers, was most of the unit: 220 k of 256 k ECP5 LUT4s at MISS_DEPTH 512.) Reads are
+  // asynchronous, as before: the banks map to LUT RAM and no clock changes. The line numbers are
+  // read where memory is asked (ring_iss), the destinations where lines are written (ring_ret).
   localparam int MPW = $clog2(MISS_DEPTH);
-  logic [MEW-1:0] ring [MISS_DEPTH];
+  localparam int RBW = 3;           // log2 of the 8 banks
+  localparam int RRW = MPW - RBW;   // row bits (MISS_DEPTH >= 16)
+  localparam int DSW = MEW - LNW;   // a destination: {bank kind, cache, line slot}
   logic [MPW-1:0] ring_wr, ring_iss, ring_ret;
   logic [MCW-1:0] ring_used, ring_unissued;
   logic           issue, retire;
-  assign issue = mem_req_valid && mem_req_ready;
-  assign mem_req_valid = ring_unissued != '0;
-  assign mem_req_addr  = {ring[ring_iss][MEW-1 -: LNW], LOG2_LB'(0)};  // a line: aligned
-  always_ff @(posedge clk) begin
-    if (push) begin
-      logic [MPW-1:0] at;
-      at = ring_wr;
-      for (int i = 0; i < 8; i++) begin
-        if (miss[i]) begin
-          ring[at] <= miss_entry[i*MEW +: MEW];
-          at = at + 1'b1;
+  logic [LNW-1:0] ring_line [8];    // bank rb's line number at ring_iss's row
+  logic [DSW-1:0] ring_dest [8];    // bank rb's destination at ring_ret's row
+  genvar rb;
+  generate
+    for (rb = 0; rb < 8; rb = rb + 1) begin : g_ring_bank
+      logic [LNW-1:0] line_mem [1 << RRW];
+      logic [DSW-1:0] dest_mem [1 << RRW];
+      always_ff @(posedge clk) begin
+        if (push) begin
+          logic [RBW-1:0] k;    // the sample's miss that lands in this bank: (rb - ring_wr) mod 8
+          logic [RRW-1:0] row;  // its row: its place in the ring, ring_wr + k, over 8
+          k   = RBW'(rb) - ring_wr[RBW-1:0];
+          row = RRW'((ring_wr + MPW'(k)) >> RBW);
+          if ({1'b0, k} < fills) begin
+            line_mem[row] <= miss_entry[32'(k)*MEW + DSW +: LNW];
+            dest_mem[row] <= miss_entry[32'(k)*MEW +: DSW];
+          end
         end
       end
+      assign ring_line[rb] = line_mem[ring_iss[MPW-1:RBW]];
+      assign ring_dest[rb] = dest_mem[ring_ret[MPW-1:RBW]];
     end
-  end
+  endgenerate
+  assign issue = mem_req_valid && mem_req_ready;
+  assign mem_req_valid = ring_unissued != '0;
+  assign mem_req_addr  = {ring_line[ring_iss[RBW-1:0]], LOG2_LB'(0)};  // a line: aligned
   always_ff @(posedge clk) begin
     if (rst) begin
       ring_wr       <= '0;
@@ -596,7 +615,7 @@ module tex_cached_fetch #(
   logic             fill_cache;
   logic [SLW-1:0]   fill_slot;
   logic [KW-1:0]    fill_kind;
-  assign {fill_kind, fill_cache, fill_slot} = ring[ring_ret][KW+SLW:0];
+  assign {fill_kind, fill_cache, fill_slot} = ring_dest[ring_ret[RBW-1:0]];
 
   // ---------------------------------------------------------------- R: read the data banks
   logic          r_valid;

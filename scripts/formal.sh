@@ -279,8 +279,8 @@ mutant axil_desc_held "tex_axil_config holds cfg_desc_we high after a commit" \
   desc tex_axil_config.sv 's/desc_we <= wr_en \&\& sel_commit;/desc_we <= desc_we || (wr_en \&\& sel_commit);/'
 mutant axil_comb "tex_axil_config AWREADY = !aw_full && (!bvalid || BREADY) (combinational path)" \
   comb-axil tex_axil_config.sv 's/assign s_axi_awready = !aw_full \&\& !bvalid;/assign s_axi_awready = !aw_full \&\& (!bvalid || s_axi_bready);/'
-mutant cached_arhold "tex_cached_fetch reads the newest miss, not the oldest (ARADDR moves while stalled)" \
-  arhold tex_cached_fetch.sv 's/assign mem_req_addr  = {ring\[ring_iss\]/assign mem_req_addr  = {ring[ring_wr - 1'"'"'b1]/'
+mutant cached_arhold "tex_cached_fetch reads the newest miss's bank, not the oldest's (ARADDR moves while stalled)" \
+  arhold tex_cached_fetch.sv 's/assign mem_req_addr  = {ring_line\[ring_iss\[RBW-1:0\]\]/assign mem_req_addr  = {ring_line[ring_wr[RBW-1:0] - 1'"'"'b1]/'
 mutant cached_arburst "tex_cached_fetch reads from the second byte of a line (a misaligned burst)" \
   arburst tex_cached_fetch.sv "s/, LOG2_LB'(0)};/, LOG2_LB'(1)};/"
 mutant cached_ring "tex_cached_fetch admits a sample with 8 misses into a full miss ring" \
