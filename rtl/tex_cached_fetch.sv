@@ -366,7 +366,8 @@ module tex_cached_fetch #(
   // Only in a clock with a push, as the lookups.
   localparam int MEW = LNW + KW + 1 + SLW;  // a miss: {line number, bank kind, cache, line slot}
   logic [7:0]       miss;
-  logic [8*MEW-1:0] miss_entry;      // the k-th miss of the sample at [k*MEW +: MEW], k < fills
+  logic [MEW-1:0]   miss_entry [8];  // miss i's entry (i = slot * 4 + block parity)
+  logic [2:0]       miss_rank [8];   // the misses before miss i
   logic [8*RD-1:0]  reads;           // slot s bank b at [(s*4 + b)*RD +: RD]: {line slot, offset}
   logic [7:0]       need;            // slot s bank b reads a line the sample looked up (its error counts)
   logic [3:0]       fills;           // misses of this sample: 0..8
@@ -377,11 +378,14 @@ module tex_cached_fetch #(
     logic             cache_s;
     {hit_s, slot_s, cache_s} = '0;
     miss       = '0;
-    miss_entry = '0;
     reads      = '0;
     need       = '0;
     fills      = '0;
     lookups    = '0;
+    for (int i = 0; i < 8; i++) begin
+      miss_entry[i] = '0;
+      miss_rank[i]  = '0;
+    end
     if (push) begin
       for (int sl = 0; sl < 2; sl++) begin
         cache_s = c0 ^ 1'(sl);
@@ -389,9 +393,9 @@ module tex_cached_fetch #(
         slot_s  = slot_c[cache_s];
         for (int q = 0; q < 4; q++) begin
           miss[sl*4 + q] = look[sl][q] && !hit_s[q];
-          if (miss[sl*4 + q])
-            miss_entry[32'(fills)*MEW +: MEW] =
-                {look_line[sl][q*LNW +: LNW], line_kind(fmt), cache_s, slot_s[q*SLW +: SLW]};
+          miss_entry[sl*4 + q] =
+              {look_line[sl][q*LNW +: LNW], line_kind(fmt), cache_s, slot_s[q*SLW +: SLW]};
+          miss_rank[sl*4 + q]  = fills[2:0];
           fills = fills + 4'(miss[sl*4 + q]);
           lookups = lookups + 4'(look[sl][q]);
         end
@@ -411,7 +415,7 @@ module tex_cached_fetch #(
   // Misses not yet written into the cache, in order: [retire, issue) sent to memory, [issue,
   // write) waiting for mem_req. The tag stage writes up to 8 per clock, so the ring is 8 banks:
   // entry p in bank p mod 8, row p / 8, and a sample's k-th miss (at ring_wr + k) goes to its own
-  // bank, one write port each. (One memory with 8 write ports, built of flip-flops and their write
+  // bank, one write port each, through an 8-way multiplexer. (One memory with 8 write ports, built of flip-flops and their write
   // multiplexers, was most of the unit: 220 k of 256 k ECP5 LUT4s at MISS_DEPTH 512.) Reads are
   // asynchronous, as before: the banks map to LUT RAM and no clock changes. The line numbers are
   // read where memory is asked (ring_iss), the destinations where lines are written (ring_ret).
@@ -424,6 +428,18 @@ module tex_cached_fetch #(
   logic           issue, retire;
   logic [LNW-1:0] ring_line [8];    // bank rb's line number at ring_iss's row
   logic [DSW-1:0] ring_dest [8];    // bank rb's destination at ring_ret's row
+  // The sample's misses in order: miss_k[k] is its k-th (k < fills), an AND-OR of the 8 entries.
+  logic [MEW-1:0] miss_k [8];
+  always_comb begin
+    for (int k = 0; k < 8; k++) begin
+      logic [MEW-1:0] e;
+      e = '0;
+      if (push)
+        for (int i = 0; i < 8; i++)
+          if (miss[i] && miss_rank[i] == 3'(k)) e = e | miss_entry[i];
+      miss_k[k] = e;
+    end
+  end
   genvar rb;
   generate
     for (rb = 0; rb < 8; rb = rb + 1) begin : g_ring_bank
@@ -436,8 +452,8 @@ module tex_cached_fetch #(
           k   = RBW'(rb) - ring_wr[RBW-1:0];
           row = RRW'((ring_wr + MPW'(k)) >> RBW);
           if ({1'b0, k} < fills) begin
-            line_mem[row] <= miss_entry[32'(k)*MEW + DSW +: LNW];
-            dest_mem[row] <= miss_entry[32'(k)*MEW +: DSW];
+            line_mem[row] <= miss_k[k][MEW-1 -: LNW];
+            dest_mem[row] <= miss_k[k][DSW-1:0];
           end
         end
       end
