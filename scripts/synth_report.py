@@ -221,7 +221,7 @@ def cmd_ice40_skip(a):
     the same run exceed ICE40_SKIP_FACTOR x the largest iCE40's logic cells. (Measured so far:
     synth_ice40 needs 1.1-2.7x the LUT4s of synth_ecp5, which maps multipliers to DSPs.)"""
     largest = max(PARTS["ice40"], key=lambda p: p["luts"])
-    for r in read_rows(a.rows):
+    for r in reversed(read_rows(a.rows)):  # the newest ECP5 row (SYNTH_APPEND runs add rows)
         if r["config"] == a.config and r["target"] == "ecp5" and r.get("luts") is not None:
             if r["luts"] > ICE40_SKIP_FACTOR * largest["luts"]:
                 print(f"not synthesized: ECP5 needs {r['luts']} LUT4s, over {ICE40_SKIP_FACTOR} x "
