@@ -30,12 +30,16 @@ void BankedMipMemory::write(int level, int32_t x, int32_t y, const Texel& t) {
 }
 
 std::array<Texel, 4> BankedMipMemory::fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1,
-                                                     bool only_first) {
+                                                     bool only_first, const Texel& border) {
   const int32_t xs[4] = {x0, x1, x0, x1}, ys[4] = {y0, y0, y1, y1};
   std::array<Texel, 4> out{};
   std::array<int, 4> word_read = {-1, -1, -1, -1};  // which word each bank delivered this clock
   Level& lvl = levels_[level];
   for (int t = 0; t < (only_first ? 1 : 4); ++t) {
+    if (xs[t] == stage::kBorderTap || ys[t] == stage::kBorderTap) {
+      out[t] = border;
+      continue;
+    }
     const int bank = stage::bank(xs[t], ys[t]);
     const int word = word_of(level, xs[t], ys[t]);
     if (word_read[bank] < 0) {

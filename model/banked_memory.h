@@ -26,8 +26,10 @@ class BankedMipMemory {
 
   // The fetch stage (RTL: tex_fetch) of one level: the 2x2 footprint {(x0,y0), (x1,y0), (x0,y1),
   // (x1,y1)} of wrapped indices. Each bank is read at most once; `reads` counts the distinct
-  // (bank, word) pairs. With only_first, just (x0, y0) is read (point sampling).
-  std::array<Texel, 4> fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1, bool only_first);
+  // (bank, word) pairs. With only_first, just (x0, y0) is read (point sampling). A tap with an
+  // index stage::kBorderTap (clamp to border, outside the level) reads nothing and takes `border`.
+  std::array<Texel, 4> fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1, bool only_first,
+                             const Texel& border = {});
 
   // Replaces texel (x, y) of `level` (a unit that fills its memories from elsewhere: the SystemC
   // model backend in cached mode, from the lines it reads over the bus).

@@ -25,25 +25,78 @@ constexpr FilterName kFilterNames[] = {
 
 }  // namespace
 
+// Lower case, '-' as '_', without a GL_ or VK_..._ prefix: the key the names below are matched on.
+static std::string name_key(std::string name, const char* vk_prefix) {
+  for (char& c : name) {
+    if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
+    if (c == '-') c = '_';
+  }
+  auto strip = [&](const std::string& prefix) {
+    if (name.compare(0, prefix.size(), prefix) == 0) name.erase(0, prefix.size());
+  };
+  strip("gl_");
+  strip(vk_prefix);
+  return name;
+}
+
 bool parse_filter(const std::string& name, Filter& out) {
+  const std::string key = name_key(name, "");
   for (const auto& f : kFilterNames)
-    if (name == f.name) {
+    if (key == f.name) {
       out = f.filter;
       return true;
     }
   return false;
 }
 
+
 std::string filter_name(Filter f) {
+  const TexelFilter mag = f.mag;
+  f.mag = f.texel;
+  std::string name = "?";
   for (const auto& n : kFilterNames)
-    if (n.filter == f) return n.name;  // the first (short) name wins
+    if (n.filter == f) {
+      name = n.name;  // the first (short) name wins
+      break;
+    }
+  return mag == f.texel ? name : name + "/mag-" + texel_filter_name(mag);
+}
+
+bool parse_texel_filter(const std::string& name, TexelFilter& out) {
+  const std::string k = name_key(name, "vk_filter_");
+  if (k == "nearest") out = TexelFilter::Nearest;
+  else if (k == "linear") out = TexelFilter::Linear;
+  else return false;
+  return true;
+}
+
+std::string texel_filter_name(TexelFilter f) { return f == TexelFilter::Nearest ? "nearest" : "linear"; }
+
+bool parse_mip_mode(const std::string& name, MipMode& out) {
+  const std::string k = name_key(name, "vk_sampler_mipmap_mode_");
+  if (k == "none") out = MipMode::None;
+  else if (k == "nearest") out = MipMode::Nearest;
+  else if (k == "linear") out = MipMode::Linear;
+  else return false;
+  return true;
+}
+
+std::string mip_mode_name(MipMode m) {
+  switch (m) {
+    case MipMode::None: return "none";
+    case MipMode::Nearest: return "nearest";
+    case MipMode::Linear: return "linear";
+  }
   return "?";
 }
 
 bool parse_wrap(const std::string& name, Wrap& out) {
-  if (name == "repeat") out = Wrap::Repeat;
-  else if (name == "clamp") out = Wrap::Clamp;
-  else if (name == "mirror") out = Wrap::Mirror;
+  const std::string k = name_key(name, "vk_sampler_address_mode_");
+  if (k == "repeat") out = Wrap::Repeat;
+  else if (k == "clamp" || k == "clamp_to_edge") out = Wrap::Clamp;
+  else if (k == "mirror" || k == "mirrored_repeat") out = Wrap::Mirror;
+  else if (k == "border" || k == "clamp_to_border") out = Wrap::Border;
+  else if (k == "mirror_clamp" || k == "mirror_clamp_to_edge") out = Wrap::MirrorClamp;
   else return false;
   return true;
 }
@@ -53,9 +106,30 @@ std::string wrap_name(Wrap w) {
     case Wrap::Repeat: return "repeat";
     case Wrap::Clamp: return "clamp";
     case Wrap::Mirror: return "mirror";
+    case Wrap::Border: return "border";
+    case Wrap::MirrorClamp: return "mirror-clamp";
   }
   return "?";
 }
+
+namespace {
+constexpr const char* kBorderNames[kBorderColors] = {
+    "transparent-black", "int-transparent-black", "opaque-black", "int-opaque-black",
+    "opaque-white",      "int-opaque-white",      "custom"};
+}
+
+bool parse_border_color(const std::string& name, BorderColor& out) {
+  std::string k = name_key(name, "vk_border_color_");
+  if (k.compare(0, 6, "float_") == 0) k.erase(0, 6);
+  for (int i = 0; i < kBorderColors - 1; ++i)  // (custom is given as r,g,b,a)
+    if (k == name_key(kBorderNames[i], "")) {
+      out = BorderColor(i);
+      return true;
+    }
+  return false;
+}
+
+std::string border_color_name(BorderColor b) { return int(b) < kBorderColors ? kBorderNames[int(b)] : "?"; }
 
 bool parse_pyramid_mode(const std::string& name, PyramidMode& out) {
   if (name == "exact") out = PyramidMode::Exact;

@@ -22,30 +22,69 @@ constexpr int kLodMax = (1 << 15) - 1;
 constexpr int kMaxAniso = 16;       // anisotropic filtering: at most 16 probes per sample
 constexpr int kMaxTextures = 16;    // entries of the cached unit's texture descriptor table
 
-enum class Wrap : uint8_t { Repeat = 0, Clamp = 1, Mirror = 2 };
+// Address modes (Vulkan's VkSamplerAddressMode, GL's TEXTURE_WRAP_*): repeat, clamp to edge, mirrored
+// repeat, clamp to border (a tap outside the level takes the sampler's border colour), mirror clamp
+// to edge (mirrored once about 0, then clamped). The values are the RTL's 3-bit wrap fields.
+enum class Wrap : uint8_t { Repeat = 0, Clamp = 1, Mirror = 2, Border = 3, MirrorClamp = 4 };
+constexpr int kWrapModes = 5;
 enum class TexelFilter : uint8_t { Nearest = 0, Linear = 1 };
 enum class MipMode : uint8_t { None = 0, Nearest = 1, Linear = 2 };
 enum class PyramidMode : uint8_t { Exact = 0, Cascade = 1 };
 
-// A filter as the user names it: a texel filter within a level and a mip mode between levels.
-// GL's six minification filters are the six combinations; magnification uses the same texel filter.
+// A filter as the user names it: a texel filter within a level and a mip mode between levels
+// (Vulkan's minFilter and mipmapMode), and the magnification filter (magFilter), which applies
+// where lambda <= 0 (docs/numerics.md stage 1). GL's six minification filters are the six
+// combinations of texel and mip; a named filter magnifies with its own texel filter, so `mag`
+// starts equal to `texel` (--mag-filter sets it apart).
 // `anisotropic` (EXT_texture_filter_anisotropic): up to SamplerConfig::max_aniso trilinear probes
 // along the footprint's major axis for requests that carry derivatives (docs/numerics.md stage 1c).
 struct Filter {
   TexelFilter texel = TexelFilter::Linear;
   MipMode mip = MipMode::Linear;
   bool anisotropic = false;
+  TexelFilter mag = TexelFilter::Linear;
+  constexpr Filter() = default;
+  constexpr Filter(TexelFilter t, MipMode m, bool a = false) : texel(t), mip(m), anisotropic(a), mag(t) {}
   // Written out (not `= default`) so this header also compiles as C++17 (the SystemC library).
-  bool operator==(const Filter& o) const { return texel == o.texel && mip == o.mip && anisotropic == o.anisotropic; }
+  bool operator==(const Filter& o) const {
+    return texel == o.texel && mip == o.mip && anisotropic == o.anisotropic && mag == o.mag;
+  }
   bool operator!=(const Filter& o) const { return !(*this == o); }
 };
+
+// Border colours (Vulkan's VkBorderColor, whose values these are, and VK_EXT_custom_border_color):
+// what a clamp-to-border tap outside the level reads. The unit's formats are unsigned normalized,
+// so an INT colour reads as its FLOAT twin (1 is the channel's maximum).
+enum class BorderColor : uint8_t {
+  FloatTransparentBlack = 0,
+  IntTransparentBlack = 1,
+  FloatOpaqueBlack = 2,
+  IntOpaqueBlack = 3,
+  FloatOpaqueWhite = 4,
+  IntOpaqueWhite = 5,
+  Custom = 6,  // SamplerConfig::border_custom
+};
+constexpr int kBorderColors = 7;
 
 // Names: point, bilinear, trilinear, mip_nearest (bilinear in the nearest level), anisotropic
 // (trilinear probes), and the six GL names (nearest, linear, nearest_mipmap_nearest, ...).
 bool parse_filter(const std::string& name, Filter& out);
-std::string filter_name(Filter f);
+std::string filter_name(Filter f);  // with "/mag-" and the mag filter when it differs from the texel filter
+// nearest | linear (GL_NEAREST, VK_FILTER_LINEAR, ...: case and prefix ignored).
+bool parse_texel_filter(const std::string& name, TexelFilter& out);
+std::string texel_filter_name(TexelFilter f);
+// none | nearest | linear (a mipmapMode; "none": the base level only).
+bool parse_mip_mode(const std::string& name, MipMode& out);
+std::string mip_mode_name(MipMode m);
+// repeat | clamp | mirror | border | mirror-clamp, and the GL and Vulkan names (GL_CLAMP_TO_EDGE,
+// mirrored_repeat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER, ...: case and prefix ignored).
 bool parse_wrap(const std::string& name, Wrap& out);
 std::string wrap_name(Wrap w);
+constexpr const char* kWrapNames = "repeat | clamp | mirror | border | mirror-clamp (or GL / Vulkan names)";
+// transparent-black | opaque-black | opaque-white, each also int-... and the Vulkan names
+// (VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, ...).
+bool parse_border_color(const std::string& name, BorderColor& out);
+std::string border_color_name(BorderColor b);
 bool parse_pyramid_mode(const std::string& name, PyramidMode& out);
 
 // One texel: up to 4 channels of up to 16 bits (R, G, B, A).

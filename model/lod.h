@@ -20,7 +20,7 @@ bool lod_from_derivatives(const Derivatives& d, int log2_w, int log2_h, int32_t&
 // like u and v (2^-24 .. 128 texture widths per pixel; a converter saturates beyond). Scaled to
 // level-0 texels, normalized as a block (the largest magnitude to 16 bits), squared exactly,
 // rho^2 = max(|d(u,v)/dx|^2, |d(u,v)/dy|^2) (no square-root approximation), and log2 by a leading-
-// one detector plus a 32-entry table with linear interpolation. Result: lambda in Q8.8, rounded to
+// one detector plus a 33-entry table (32 intervals) with linear interpolation. Result: lambda in Q8.8, rounded to
 // nearest; all derivatives 0 gives kLodMin (magnification past any clamp).
 struct LodDerivatives {
   int32_t dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;  // Q8.24 texture widths / heights per pixel

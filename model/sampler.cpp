@@ -11,11 +11,14 @@ namespace tex {
 Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPaths paths)
     : config_(config),
       channel_bits_(pyramid.levels[0].channel_bits),
+      border_(stage::border_texel(config.border_unorm16(), pyramid.levels[0].channel_bits)),
       log2_w0_(pyramid.log2_w0()),
       log2_h0_(pyramid.log2_h0()),
       last_level_(int(pyramid.levels.size()) - 1) {
   if (paths == SamplerPaths::FastOnly && channel_bits_ != 8)
     throw Error("sampler: the fast path takes 8-bit channels; this texture has " + std::to_string(channel_bits_));
+  if (paths == SamplerPaths::FastOnly && !fast_path_takes(config))
+    throw Error("sampler: the fast path takes neither clamp to border nor a magnification filter of its own");
   if (paths == SamplerPaths::Both) memory_.emplace(pyramid);
   if (channel_bits_ == 8)
     for (const Image& img : pyramid.levels) {
@@ -26,6 +29,10 @@ Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPat
       }
       packed_.push_back(std::move(p));
     }
+}
+
+bool Sampler::fast_path_takes(const SamplerConfig& config) {
+  return !config.uses_border() && config.filter.mag == config.filter.texel;
 }
 
 void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t) {
@@ -79,7 +86,8 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   const stage::LevelSelect sel =
       stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
   const int32_t su = stage::scale(r.u, log2_w0_), sv = stage::scale(r.v, log2_h0_);
-  const bool linear = config_.filter.texel == TexelFilter::Linear;
+  const TexelFilter texel_filter = stage::texel_filter(sel, config_.filter);
+  const bool linear = texel_filter == TexelFilter::Linear;
 
   // Slot 0 is level d, slot 1 level d1 (fetched only when the filter blends two levels: with
   // f = 0 the blend returns slot 0 exactly).
@@ -88,12 +96,12 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   for (int s = 0; s < slots; ++s) {
     const int k = s == 0 ? sel.d : sel.d1;
     const LevelShape shape = memory_->shape(k);
-    const stage::AxisTaps tu = stage::address(su, k, config_.filter.texel);
-    const stage::AxisTaps tv = stage::address(sv, k, config_.filter.texel);
+    const stage::AxisTaps tu = stage::address(su, std::min(k, log2_w0_), texel_filter);
+    const stage::AxisTaps tv = stage::address(sv, std::min(k, log2_h0_), texel_filter);
     slot[s].taps = memory_->fetch(k, stage::wrap(tu.i0, shape.log2_w, config_.wrap_u),
                                  stage::wrap(tu.i1, shape.log2_w, config_.wrap_u),
                                  stage::wrap(tv.i0, shape.log2_h, config_.wrap_v),
-                                 stage::wrap(tv.i1, shape.log2_h, config_.wrap_v), !linear);
+                                 stage::wrap(tv.i1, shape.log2_h, config_.wrap_v), !linear, border_);
     slot[s].fx = tu.w;
     slot[s].fy = tv.w;
     if (linear) multiplies_ += 3;
@@ -131,6 +139,10 @@ inline uint64_t lerp2(uint64_t a, uint64_t b, uint32_t w) { return (a << 8) + (b
 // stage::wrap for a power-of-two size given as mask = size - 1; same results.
 template <Wrap W>
 inline int32_t wrap_fast(int32_t i, int32_t mask) {
+  if constexpr (W == Wrap::MirrorClamp) {
+    const int32_t m = i < 0 ? -1 - i : i;
+    return m > mask ? mask : m;
+  }
   if constexpr (W == Wrap::Repeat) return i & mask;
   if constexpr (W == Wrap::Clamp) return i < 0 ? 0 : (i > mask ? mask : i);
   if constexpr (W == Wrap::Mirror) {
@@ -230,7 +242,10 @@ void with_wrap(Wrap w, Fn&& fn) {
     case Wrap::Repeat: return fn(std::integral_constant<Wrap, Wrap::Repeat>{});
     case Wrap::Clamp: return fn(std::integral_constant<Wrap, Wrap::Clamp>{});
     case Wrap::Mirror: return fn(std::integral_constant<Wrap, Wrap::Mirror>{});
+    case Wrap::MirrorClamp: return fn(std::integral_constant<Wrap, Wrap::MirrorClamp>{});
+    case Wrap::Border: break;  // (fast_path_takes: the reference path samples it)
   }
+  throw Error("sample_rgba8: clamp to border is sampled by the reference path (Sampler::sample)");
 }
 template <class Fn>
 void with_mip(MipMode m, Fn&& fn) {
@@ -251,6 +266,8 @@ void with_texel_filter(TexelFilter t, Fn&& fn) {
 void Sampler::sample_rgba8(const Request* requests, size_t n, uint32_t* out) const {
   if (channel_bits_ != 8)
     throw Error("sample_rgba8: texture has " + std::to_string(channel_bits_) + "-bit channels; it takes 8-bit only");
+  if (!fast_path_takes(config_))
+    throw Error("sample_rgba8: clamp to border and a magnification filter of its own take the reference path");
   // Built per call rather than stored, so a copied Sampler never points into another's texels.
   FastLevel levels[kMaxLevels];
   const int last = int(packed_.size()) - 1;

@@ -14,6 +14,8 @@
 
 namespace tex {
 
+// The sampler state (Vulkan's VkSamplerCreateInfo; docs/numerics.md): filters, address modes, LOD
+// bias and clamp, anisotropy, border colour.
 struct SamplerConfig {
   Filter filter;
   Wrap wrap_u = Wrap::Repeat;
@@ -23,8 +25,24 @@ struct SamplerConfig {
   int32_t max_lod = kLodMax;   // Q8.8
   int max_aniso = kMaxAniso;   // anisotropic filter: probes per sample at most, 1..16
   bool aniso_pow2 = false;     // anisotropic filter: probe counts rounded up to powers of two
+  BorderColor border = BorderColor::FloatTransparentBlack;  // clamp-to-border taps (GL's default)
+  Texel border_custom{};       // BorderColor::Custom: RGBA unorm16 (65535 = 1.0), linear
   // The cap tex_aniso applies: max_aniso for the anisotropic filter, else 1 (one probe).
   int probe_cap() const { return filter.anisotropic ? max_aniso : 1; }
+  // The border colour as RGBA unorm16 (stage::border_texel takes it to a level's channel width).
+  Texel border_unorm16() const {
+    switch (border) {
+      case BorderColor::FloatTransparentBlack:
+      case BorderColor::IntTransparentBlack: return {0, 0, 0, 0};
+      case BorderColor::FloatOpaqueBlack:
+      case BorderColor::IntOpaqueBlack: return {0, 0, 0, 65535};
+      case BorderColor::FloatOpaqueWhite:
+      case BorderColor::IntOpaqueWhite: return {65535, 65535, 65535, 65535};
+      case BorderColor::Custom: return border_custom;
+    }
+    return {};
+  }
+  bool uses_border() const { return wrap_u == Wrap::Border || wrap_v == Wrap::Border; }
 };
 
 // One request in the hardware's formats (docs/numerics.md). It carries either lambda or the four
@@ -70,7 +88,11 @@ enum class SamplerPaths { Both, FastOnly };
 
 class Sampler {
  public:
-  // Throws tex::Error for FastOnly with channels other than 8 bits.
+  // Whether the 8-bit fast path (sample_rgba8) takes this configuration: not with clamp to border
+  // or a magnification filter apart from the minification filter (the reference path does them).
+  static bool fast_path_takes(const SamplerConfig& config);
+  // Throws tex::Error for FastOnly with channels other than 8 bits or a configuration the fast path
+  // does not take.
   Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPaths paths = SamplerPaths::Both);
 
   // Reference path: every stage in order, counting reads and multiplies (not with FastOnly: throws
@@ -96,6 +118,7 @@ class Sampler {
   SamplerConfig config_;
   std::optional<BankedMipMemory> memory_;  // the reference path's memories (not with FastOnly)
   int channel_bits_;
+  Texel border_;  // the border colour in the levels' channel width
   int log2_w0_, log2_h0_, last_level_;
   uint64_t samples_ = 0, multiplies_ = 0;
   std::array<uint64_t, kMaxAniso + 1> probes_{};

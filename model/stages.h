@@ -25,11 +25,13 @@ struct LevelSelect {
   int d1 = 0;      // second level: min(d + 1, last)
   int f = 0;       // weight of level d1, 0..255
   bool two_levels = false;  // the filter blends two levels (trilinear minification, d < last)
+  bool magnify = false;     // lambda' <= 0: the magnification filter (Vulkan, GL 4.5+, GLES 3.2: c = 0)
 };
 
 // Levels d, d1 and the blend weight from a clamped lambda. (tex_lod clock 2)
 inline LevelSelect lod_select(int32_t lod, MipMode mip, int last_level) {
   LevelSelect s;
+  s.magnify = lod <= 0;
   if (mip != MipMode::None && lod > 0) {
     if (mip == MipMode::Nearest) {
       s.d = std::min((lod + 127) >> kLodFracBits, last_level);
@@ -47,6 +49,10 @@ inline LevelSelect lod(int32_t lambda, int32_t bias, int32_t min_lod, int32_t ma
   return lod_select(lod_clamp(lambda, bias, min_lod, max_lod), mip, last_level);
 }
 
+// The texel filter of a sample: the magnification filter where lambda' <= 0, else the
+// minification filter's. (tex_lod clock 2, beside the level select)
+inline TexelFilter texel_filter(const LevelSelect& s, const Filter& f) { return s.magnify ? f.mag : f.texel; }
+
 // ---------------------------------------------------------------- scale (tex_scale)
 
 // floor(coord * 2^log2_size0 * 512): level-0 texels with 9 fraction bits, so that level k is a
@@ -61,8 +67,11 @@ struct AxisTaps {
   int w = 0;
 };
 
-inline AxisTaps address(int32_t scaled, int level, TexelFilter filter) {
-  const int32_t t9 = scaled >> level;  // floor(u * size_level * 512)
+// `shift`: the level's shift of the level-0 scale, min(k, log2 size0) for level k: a side that
+// reached 1 texel stays 1 (its coordinate scales by 1 there, not by 2^-k). Repeat, clamp and
+// mirror map every index of a 1-texel side to 0, so only clamp to border can tell the two apart.
+inline AxisTaps address(int32_t scaled, int shift, TexelFilter filter) {
+  const int32_t t9 = scaled >> shift;  // floor(u * size_level * 512)
   AxisTaps t;
   if (filter == TexelFilter::Linear) {
     const int32_t p = (t9 - 255) >> 1;  // round-half-up((u * size - 1/2) * 256)
@@ -77,7 +86,12 @@ inline AxisTaps address(int32_t scaled, int level, TexelFilter filter) {
 
 // ---------------------------------------------------------------- wrap (tex_wrap)
 
-// OpenGL wrap of an integer texel index into [0, 2^log2_size).
+// What wrap gives for a clamp-to-border tap outside the level: the tap reads no texel and takes the
+// border colour.
+constexpr int32_t kBorderTap = -1;
+
+// The address mode of an integer texel index, into [0, 2^log2_size) or kBorderTap (GL 4.6 Table
+// 8.20, Vulkan "Wrapping Operation"; docs/numerics.md stage 3).
 inline int32_t wrap(int32_t i, int log2_size, Wrap mode) {
   const int32_t n = 1 << log2_size;
   switch (mode) {
@@ -87,8 +101,20 @@ inline int32_t wrap(int32_t i, int log2_size, Wrap mode) {
       const int32_t m = i & (2 * n - 1);
       return m < n ? m : 2 * n - 1 - m;
     }
+    case Wrap::Border: return i >= 0 && i < n ? i : kBorderTap;
+    case Wrap::MirrorClamp: return std::min(i < 0 ? -1 - i : i, n - 1);  // mirror(i) = -(1 + i) below 0
   }
   return 0;
+}
+
+// The border colour in a level's channel width: the sampler's unorm16 value c as
+// round(c * (2^CW - 1) / 65535), exact (CW = 16: c itself). An sRGB texture's filter takes linear
+// unorm16 texels, so its border colour is linear, never decoded. (tex_border)
+inline Texel border_texel(const Texel& unorm16, int channel_bits) {
+  Texel t;
+  const uint32_t max = (1u << channel_bits) - 1;
+  for (size_t c = 0; c < 4; ++c) t[c] = uint16_t((uint32_t(unorm16[c]) * max + 32767) / 65535);
+  return t;
 }
 
 // ---------------------------------------------------------------- fetch (tex_fetch, tex_bank)

@@ -137,19 +137,20 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     if (!sl.needed) continue;
     const int k = sl.level;
     const LevelShape shape = level_shape(log2_w0, log2_h0, k);
-    const stage::AxisTaps tu = stage::address(su, k, config_.filter.texel);
-    const stage::AxisTaps tv = stage::address(sv, k, config_.filter.texel);
-    // The taps whose weight is not 0: (x0, y0) always, x1 / y1 when their weight is not 0.
-    const uint32_t x[2] = {uint32_t(stage::wrap(tu.i0, shape.log2_w, t.wrap_u)),
-                           uint32_t(stage::wrap(tu.i1, shape.log2_w, t.wrap_u))};
-    const uint32_t y[2] = {uint32_t(stage::wrap(tv.i0, shape.log2_h, t.wrap_v)),
-                           uint32_t(stage::wrap(tv.i1, shape.log2_h, t.wrap_v))};
+    const TexelFilter texel_filter = stage::texel_filter(sel, config_.filter);
+    const stage::AxisTaps tu = stage::address(su, std::min(k, log2_w0), texel_filter);
+    const stage::AxisTaps tv = stage::address(sv, std::min(k, log2_h0), texel_filter);
+    // The taps whose weight is not 0: (x0, y0) always, x1 / y1 when their weight is not 0; a
+    // clamp-to-border tap outside the level (stage::kBorderTap) reads no line.
+    const int32_t x[2] = {stage::wrap(tu.i0, shape.log2_w, t.wrap_u), stage::wrap(tu.i1, shape.log2_w, t.wrap_u)};
+    const int32_t y[2] = {stage::wrap(tv.i0, shape.log2_h, t.wrap_v), stage::wrap(tv.i1, shape.log2_h, t.wrap_v)};
     const int nx = tu.w != 0 ? 2 : 1, ny = tv.w != 0 ? 2 : 1;
     // Distinct blocks by parity (two distinct blocks of a footprint differ in a parity).
     uint32_t bx_of[4] = {}, by_of[4] = {};
     for (int j = 0; j < nx; ++j)
       for (int i = 0; i < ny; ++i) {
-        const uint32_t bx = x[j] >> layout.log2_block_w(), by = y[i] >> layout.log2_block_h();
+        if (x[j] == stage::kBorderTap || y[i] == stage::kBorderTap) continue;
+        const uint32_t bx = uint32_t(x[j]) >> layout.log2_block_w(), by = uint32_t(y[i]) >> layout.log2_block_h();
         const int p = int((by & 1) << 1 | (bx & 1));
         sl.block_mask |= uint8_t(1 << p);
         bx_of[p] = bx;

@@ -77,6 +77,7 @@ module tex_axil_config #(
   output logic [tex_pkg::FORMAT_W-1:0]      cfg_desc_format,
   output logic                              cfg_desc_srgb,
   output logic                              cfg_texel_linear,
+  output logic                              cfg_mag_linear,
   output logic [tex_pkg::MIP_W-1:0]         cfg_mip_mode,
   output logic signed [tex_pkg::LOD_W-1:0]  cfg_lod_bias,
   output logic signed [tex_pkg::LOD_W-1:0]  cfg_min_lod,
@@ -201,8 +202,8 @@ module tex_axil_config #(
   logic                             desc_we;
   logic [tex_pkg::TEX_ID_W-1:0]     desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]   desc_base;
-  logic [15:0]                      desc_attr;  // {srgb, format, wrap_v, wrap_u, log2_h, log2_w}
-  logic [12:0]                      filter;     // {pow2, aniso_m1, 2'b0, mip_mode, 3'b0, linear}
+  logic [19:0]                      desc_attr;  // {srgb, format, 0, wrap_v, 0, wrap_u, log2_h, log2_w}
+  logic [12:0]                      filter;     // {pow2, aniso_m1, 2'b0, mip_mode, 2'b0, mag, linear}
   logic signed [tex_pkg::LOD_W-1:0] lod_bias, min_lod, max_lod;
   logic                             block_morton;
   logic [SETS_W-1:0]                log2_sets;
@@ -215,8 +216,17 @@ module tex_axil_config #(
   logic                         attr_srgb;
   assign attr_log2_w = desc_attr[3:0];
   assign attr_log2_h = desc_attr[7:4];
-  assign attr_format = desc_attr[14:12];
-  assign attr_srgb   = desc_attr[15];
+  assign attr_format = desc_attr[18:16];
+  assign attr_srgb   = desc_attr[19];
+  logic [tex_pkg::WRAP_W-1:0] attr_wrap_u, attr_wrap_v;
+  assign attr_wrap_u = desc_attr[10:8];
+  assign attr_wrap_v = desc_attr[14:12];
+  // The address modes tex_unit_cached has: repeat, clamp, mirror, mirror-clamp (clamp to border
+  // not yet: its taps would read lines; 5..7 are no mode).
+  function automatic logic wrap_ok(input logic [tex_pkg::WRAP_W-1:0] m);
+    wrap_ok = m == tex_pkg::WRAP_REPEAT || m == tex_pkg::WRAP_CLAMP || m == tex_pkg::WRAP_MIRROR
+           || m == tex_pkg::WRAP_MIRROR_CLAMP;
+  endfunction
 
   // Write decode: which register, and whether the write is allowed (else SLVERR, no change).
   logic sel_control, sel_cache, sel_fifo, sel_filter, sel_bias, sel_min, sel_max;
@@ -230,6 +240,7 @@ module tex_axil_config #(
     // DESC_COMMIT: what tex_unit_cached's simulation checks, the sizes and a line-aligned base
     desc_ok = 32'(wd[3:0]) < TEXTURES
               && 32'(attr_log2_w) <= MAX_LOG2_W && 32'(attr_log2_h) <= MAX_LOG2_H
+              && wrap_ok(attr_wrap_u) && wrap_ok(attr_wrap_v)
               && (attr_format == tex_pkg::FMT_RGBA8 || (BLOCK_FORMATS != 0 && attr_format != 3'd6))
               && (!attr_srgb || (SRGB != 0 && attr_format != tex_pkg::FMT_BC4
                                  && attr_format != tex_pkg::FMT_BC5))
@@ -284,7 +295,7 @@ module tex_axil_config #(
       desc_index     <= '0;
       desc_base      <= '0;
       desc_attr      <= '0;
-      filter         <= 13'h021;  // linear texels, MIP_LINEAR
+      filter         <= 13'h023;  // linear texels (minification and magnification), MIP_LINEAR
       lod_bias       <= '0;
       min_lod        <= 16'sh8000;
       max_lod        <= 16'sh7FFF;
@@ -297,12 +308,12 @@ module tex_axil_config #(
       if (wr_en && sel_control) {ctl_freeze, ctl_unit_reset} <= wd[1:0];
       if (wr_en && sel_cache) {log2_ways, log2_sets, block_morton} <= {wd[17:16], wd[12:8], wd[0]};
       if (wr_en && sel_fifo)   fifo_limit <= wd[FLW-1:0];
-      if (wr_en && sel_filter) filter <= wd[12:0] & 13'h1F31;
+      if (wr_en && sel_filter) filter <= wd[12:0] & 13'h1F33;
       if (wr_en && sel_bias)   lod_bias <= wd[15:0];
       if (wr_en && sel_min)    min_lod <= wd[15:0];
       if (wr_en && sel_max)    max_lod <= wd[15:0];
       if (wr_en && sel_base)   desc_base <= wd;
-      if (wr_en && sel_attr)   desc_attr <= wd[15:0];
+      if (wr_en && sel_attr)   desc_attr <= wd[19:0] & 20'hF77FF;
       if (wr_en && sel_commit) desc_index <= wd[3:0];
     end
   end
@@ -313,11 +324,12 @@ module tex_axil_config #(
   assign cfg_desc_base    = desc_base;
   assign cfg_desc_log2_w  = attr_log2_w;
   assign cfg_desc_log2_h  = attr_log2_h;
-  assign cfg_desc_wrap_u  = desc_attr[9:8];
-  assign cfg_desc_wrap_v  = desc_attr[11:10];
+  assign cfg_desc_wrap_u  = attr_wrap_u;
+  assign cfg_desc_wrap_v  = attr_wrap_v;
   assign cfg_desc_format  = attr_format;
   assign cfg_desc_srgb    = attr_srgb;
   assign cfg_texel_linear = filter[0];
+  assign cfg_mag_linear   = filter[1];
   assign cfg_mip_mode     = filter[5:4];
   assign cfg_max_aniso_m1 = filter[11:8];
   assign cfg_aniso_pow2   = filter[12];
@@ -405,7 +417,7 @@ module tex_axil_config #(
         R_MIN_LOD:     rd_data = {16'd0, min_lod};
         R_MAX_LOD:     rd_data = {16'd0, max_lod};
         R_DESC_BASE:   rd_data = desc_base;
-        R_DESC_ATTR:   rd_data = {16'd0, desc_attr};
+        R_DESC_ATTR:   rd_data = {12'd0, desc_attr};
         R_DESC_COMMIT: rd_data = {28'd0, desc_index};
         default:       rd_ok = 1'b0;
       endcase
@@ -453,10 +465,10 @@ module tex_axil_config #(
   logic [1:0]    f_bresp_q;
   logic [33:0]   f_r_q;                  // {rresp, rdata}, last clock
   localparam int FCW = 2 + tex_pkg::TEX_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::LEVEL_W
-                       + 2 * tex_pkg::WRAP_W + tex_pkg::FORMAT_W + 2 + tex_pkg::MIP_W
+                       + 2 * tex_pkg::WRAP_W + tex_pkg::FORMAT_W + 3 + tex_pkg::MIP_W
                        + 3 * tex_pkg::LOD_W + 4 + 2 + SETS_W + WAYS_W + FLW;
   logic [FCW-1:0] f_cfg, f_cfg_q;        // unit_rst and every cfg_* output but cfg_desc_we
-  logic [47:0]   f_desc, f_desc_q;       // the staged descriptor (cfg_desc_base .. _srgb)
+  logic [49:0]   f_desc, f_desc_q;       // the staged descriptor (cfg_desc_base .. _srgb)
   logic          f_desc_we_q, f_clear_q;
   logic          f_b_new, f_r_new;       // a B (R) response that was not there last clock
   logic          f_b_take, f_r_take;
@@ -476,7 +488,7 @@ module tex_axil_config #(
 
   assign f_cfg = {unit_rst, cfg_desc_index, cfg_desc_base, cfg_desc_log2_w, cfg_desc_log2_h,
                   cfg_desc_wrap_u, cfg_desc_wrap_v, cfg_desc_format, cfg_desc_srgb, cfg_texel_linear,
-                  cfg_mip_mode, cfg_lod_bias, cfg_min_lod, cfg_max_lod, cfg_max_aniso_m1,
+                  cfg_mag_linear, cfg_mip_mode, cfg_lod_bias, cfg_min_lod, cfg_max_lod, cfg_max_aniso_m1,
                   cfg_aniso_pow2, cfg_block_morton, cfg_log2_sets, cfg_log2_ways, cfg_fifo_limit};
   assign f_desc = {cfg_desc_base, cfg_desc_srgb, cfg_desc_format, cfg_desc_wrap_v, cfg_desc_wrap_u,
                    cfg_desc_log2_h, cfg_desc_log2_w};

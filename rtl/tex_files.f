@@ -5,6 +5,7 @@ rtl/tex_lod.sv
 rtl/tex_scale.sv
 rtl/tex_address.sv
 rtl/tex_wrap.sv
+rtl/tex_border.sv
 rtl/tex_front.sv
 rtl/tex_lambda.sv
 rtl/tex_aniso.sv

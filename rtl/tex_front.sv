@@ -14,6 +14,8 @@
 //   req_u, req_v          : signed Q8.24; req_lod: signed Q8.8 (before bias and clamp)
 //   req_log2_w, req_log2_h: integers, level 0's size of the request's texture
 //   req_wrap_u, req_wrap_v: its wrap modes (tex_pkg::WRAP_*); cfg_* as tex_unit's pins
+//                           (cfg_texel_linear: the minification filter's texel filter;
+//                           cfg_mag_linear: the magnification filter, where lambda' <= 0)
 //   level                 : slot s at [s*LEVEL_W +: LEVEL_W], integer level (clock 4)
 //   f                     : unsigned WEIGHT_BITS, weight of slot 1 in 1/256 (clock 4)
 //   w                     : slot s axis a (0 x, 1 y) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS],
@@ -22,6 +24,8 @@
 //                           level size along the axis (clock 4)
 //   x, y                  : wrapped texel indices, unsigned XW (YW) bits; slot s tap j (0: i0,
 //                           1: i0 + 1) at [(s*2 + j)*XW +: XW]; each inside its level
+//   border_x, border_y    : slot s tap j at [s*2 + j]: the tap is outside its level in address
+//                           mode border (tex_wrap's border; x, y are then don't-care indices)
 module tex_front #(
   parameter int XW = 10,  // bits of a wrapped x index: max(MAX_LOG2_W, 1)
   parameter int YW = 10
@@ -36,6 +40,7 @@ module tex_front #(
   input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_v,
   input  logic                                   cfg_texel_linear,
+  input  logic                                   cfg_mag_linear,
   input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
@@ -45,7 +50,9 @@ module tex_front #(
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
   output logic [4*tex_pkg::LEVEL_W-1:0]          log2_size,
   output logic [4*XW-1:0]                        x,
-  output logic [4*YW-1:0]                        y
+  output logic [4*YW-1:0]                        y,
+  output logic [3:0]                             border_x,
+  output logic [3:0]                             border_y
 );
   localparam int VW = tex_pkg::LEVEL_W;
   localparam int WB = tex_pkg::WEIGHT_BITS;
@@ -56,10 +63,11 @@ module tex_front #(
 
   // ---------------------------------------------------------------- cfg registers
   logic [tex_pkg::MIP_W-1:0]        cfg_mip_mode_q;
-  logic                             cfg_texel_linear_q;
+  logic                             cfg_texel_linear_q, cfg_mag_linear_q;
   logic signed [tex_pkg::LOD_W-1:0] cfg_lod_bias_q, cfg_min_lod_q, cfg_max_lod_q;
   always_ff @(posedge clk) begin
     cfg_texel_linear_q <= cfg_texel_linear;
+    cfg_mag_linear_q   <= cfg_mag_linear;
     cfg_mip_mode_q     <= cfg_mip_mode;
     cfg_lod_bias_q     <= cfg_lod_bias;
     cfg_min_lod_q      <= cfg_min_lod;
@@ -97,11 +105,14 @@ module tex_front #(
 
   logic [2*VW-1:0] level_s3;       // slot s at [s*VW +: VW]: slot 0 = d, slot 1 = d1
   logic [WB-1:0]   f_s3;
+  logic            minify_s3;      // lambda' > 0: the minification filter, else the magnification
   tex_lod u_lod (
     .clk(clk), .en(en), .lod(lod_s1), .bias(cfg_lod_bias_q), .min_lod(cfg_min_lod_q),
     .max_lod(cfg_max_lod_q), .mip_mode(cfg_mip_mode_q), .last_level(last_level),
-    .level(level_s3), .f(f_s3)
+    .level(level_s3), .f(f_s3), .minify(minify_s3)
   );
+  logic linear_s3;  // the sample's texel filter (the model's stage::texel_filter)
+  assign linear_s3 = minify_s3 ? cfg_texel_linear_q : cfg_mag_linear_q;
 
   // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the scaled
   // coordinate, held one clock while tex_lod selects the levels.
@@ -132,9 +143,15 @@ module tex_front #(
         logic [VW-1:0]                      log2_size_s3, log2_size_s4;  // the slot's level size
         logic [IW-1:0]                      mask_s4;       // its size - 1, for tex_wrap
         logic [OW-1:0]                      t0, t1;        // wrapped taps i0, i0 + 1
+        logic                               b0, b1;        // their border flags
+        // The level's shift of the level-0 scale: min(level, log2 size0), so that a side that
+        // reached 1 texel scales by 1 (model stage::address; only clamp to border can tell).
+        logic [VW-1:0]                      shift_s3;
+        assign shift_s3 = (level_s3[s*VW +: VW] < size_s3[a*VW +: VW]) ? level_s3[s*VW +: VW]
+                                                                        : size_s3[a*VW +: VW];
         tex_address #(.SW(SW), .IW(IW)) u_address (
-          .clk(clk), .en(en), .scaled(scaled_s3[a*SW +: SW]), .level(level_s3[s*VW +: VW]),
-          .linear(cfg_texel_linear_q), .i0(i0_s4), .i1(i1_s4), .w(w[(s*2 + a)*WB +: WB])
+          .clk(clk), .en(en), .scaled(scaled_s3[a*SW +: SW]), .level(shift_s3),
+          .linear(linear_s3), .i0(i0_s4), .i1(i1_s4), .w(w[(s*2 + a)*WB +: WB])
         );
         // max(log2_size0 - level, 0): a side that reaches 1 texel stays 1. (The borrow masks the
         // difference: no data-dependent branch in Verilator's C++.)
@@ -150,15 +167,17 @@ module tex_front #(
         end
         assign log2_size[(s*2 + a)*VW +: VW] = log2_size_s4;
         tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap0 (.i(i0_s4), .mask(mask_s4),
-                                        .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t0));
+                                        .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t0), .border(b0));
         tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap1 (.i(i1_s4), .mask(mask_s4),
-                                        .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t1));
+                                        .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t1), .border(b1));
         if (a == 0) begin : g_x
           assign x[(s*2 + 0)*XW +: XW] = t0;
           assign x[(s*2 + 1)*XW +: XW] = t1;
+          assign border_x[s*2 +: 2]    = {b1, b0};
         end else begin : g_y
           assign y[(s*2 + 0)*YW +: YW] = t0;
           assign y[(s*2 + 1)*YW +: YW] = t1;
+          assign border_y[s*2 +: 2]    = {b1, b0};
         end
       end
     end

@@ -10,6 +10,8 @@
 //   level      : 2 slots of LEVEL_W bits, slot s at [s*LEVEL_W +: LEVEL_W]: slot 0 = d,
 //                slot 1 = d1 = min(d + 1, q); integers 0..q
 //   f          : unsigned WEIGHT_BITS, weight of level d1 in 1/256 (0 unless linear mip below q)
+//   minify     : lambda' > 0 (clock 3, beside level): the minification filter's texel filter applies,
+//                else the magnification filter's (the model's LevelSelect::magnify, inverted)
 module tex_lod (
   input  logic                                 clk,
   input  logic                                 en,
@@ -20,7 +22,8 @@ module tex_lod (
   input  logic [tex_pkg::MIP_W-1:0]            mip_mode,
   input  logic [tex_pkg::LEVEL_W-1:0]          last_level,
   output logic [2*tex_pkg::LEVEL_W-1:0]        level,
-  output logic [tex_pkg::WEIGHT_BITS-1:0]      f
+  output logic [tex_pkg::WEIGHT_BITS-1:0]      f,
+  output logic                                 minify
 );
   localparam int LW    = tex_pkg::LOD_W;
   localparam int LF    = tex_pkg::LOD_FRAC;
@@ -45,20 +48,20 @@ module tex_lod (
   always_ff @(posedge clk) if (en) lambda_s2 <= lambda_next;
 
   // ---- clock 3: level select
-  logic          minify;          // lambda' > 0
+  logic          minify_next;     // lambda' > 0
   logic [IW-1:0] floor_level;     // lambda' >> 8 (lambda' > 0, so at most 127)
   logic [IW-1:0] nearest_level;   // (lambda' + 127) >> 8, at most 128
   logic [IW-1:0] last_wide;
   logic [VW-1:0] d_next;          // slot 0's level
   logic [WB-1:0] f_next;
-  assign minify        = !lambda_s2[LW-1] && (lambda_s2 != '0);
+  assign minify_next   = !lambda_s2[LW-1] && (lambda_s2 != '0);
   assign floor_level   = IW'(lambda_s2[LW-2:0] >> LF);
   assign nearest_level = IW'(({1'b0, lambda_s2[LW-2:0]} + LW'((1 << (LF - 1)) - 1)) >> LF);
   assign last_wide     = IW'(last_level);
   always_comb begin
     d_next = '0;
     f_next = '0;
-    if (mip_mode != tex_pkg::MIP_NONE && minify) begin
+    if (mip_mode != tex_pkg::MIP_NONE && minify_next) begin
       if (mip_mode == tex_pkg::MIP_NEAREST) begin
         d_next = (nearest_level < last_wide) ? nearest_level[VW-1:0] : last_level;
       end else if (floor_level < last_wide) begin  // MIP_LINEAR (and the unused code 3)
@@ -71,8 +74,9 @@ module tex_lod (
   end
   always_ff @(posedge clk) begin
     if (en) begin
-      level <= {(d_next == last_level) ? last_level : d_next + VW'(1), d_next};
-      f     <= f_next;
+      level  <= {(d_next == last_level) ? last_level : d_next + VW'(1), d_next};
+      f      <= f_next;
+      minify <= minify_next;
     end
   end
 endmodule

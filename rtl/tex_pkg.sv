@@ -28,10 +28,12 @@ package tex_pkg;
   localparam int TEX_ID_W      = 4;   // req_tex: a texture descriptor-table entry, 0..15
 
   // ---- cfg_wrap_u / cfg_wrap_v
-  localparam int WRAP_W = 2;
-  localparam logic [WRAP_W-1:0] WRAP_REPEAT = 2'd0;
-  localparam logic [WRAP_W-1:0] WRAP_CLAMP  = 2'd1;  // CLAMP_TO_EDGE
-  localparam logic [WRAP_W-1:0] WRAP_MIRROR = 2'd2;  // MIRRORED_REPEAT
+  localparam int WRAP_W = 3;
+  localparam logic [WRAP_W-1:0] WRAP_REPEAT       = 3'd0;
+  localparam logic [WRAP_W-1:0] WRAP_CLAMP        = 3'd1;  // CLAMP_TO_EDGE
+  localparam logic [WRAP_W-1:0] WRAP_MIRROR       = 3'd2;  // MIRRORED_REPEAT
+  localparam logic [WRAP_W-1:0] WRAP_BORDER       = 3'd3;  // CLAMP_TO_BORDER
+  localparam logic [WRAP_W-1:0] WRAP_MIRROR_CLAMP = 3'd4;  // MIRROR_CLAMP_TO_EDGE
 
   // ---- cfg_mip_mode
   localparam int MIP_W = 2;

@@ -16,7 +16,9 @@
 //   cfg_min_lod, cfg_max_lod signed Q8.8; req_deriv selects req_lod (0) or the derivatives
 //   req_dudx, req_dvdx, req_dudy, req_dvdy (1, signed Q8.24 texture widths per pixel);
 //   cfg_max_aniso_m1 the probes per sample at most less one (0..15; 0 = trilinear),
-//   cfg_aniso_pow2 probe counts rounded up to powers of two; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
+//   cfg_aniso_pow2 probe counts rounded up to powers of two; cfg_texel_linear the minification
+//   filter's texel filter, cfg_mag_linear the magnification filter (where lambda' <= 0);
+//   cfg_border_rgba the border colour of address mode border, {A, B, G, R} unorm16; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   cfg_log2_w/h integer <= MAX_LOG2_W/H; wr_level, wr_x, wr_y unsigned integers.
 // Inputs are only ever registered: no logic depends combinationally on an input pin.
 //   cfg_* are registered every clock (in tex_probe and tex_front) and must be static while
@@ -47,12 +49,14 @@ module tex_unit #(
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_v,
   input  logic                                   cfg_texel_linear,
+  input  logic                                   cfg_mag_linear,
   input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
   input  logic [3:0]                             cfg_max_aniso_m1,
   input  logic                                   cfg_aniso_pow2,
+  input  logic [63:0]                            cfg_border_rgba,
 
   input  logic                                   wr_en,
   input  logic [tex_pkg::LEVEL_W-1:0]            wr_level,
@@ -195,12 +199,16 @@ module tex_unit #(
   logic [4*VW-1:0] log2_size_s4;       // (the level memories have fixed sizes: unused)
   logic [4*XW-1:0] x;                  // wrapped x taps: slot s tap j at [(s*2 + j)*XW +: XW]
   logic [4*YW-1:0] y;
+  logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside the level (border)
+  logic [3:0]      border_x_s5, border_y_s5, border_x_s6, border_y_s6;
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
     .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h), .req_wrap_u(cfg_wrap_u),
-    .req_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
+    .req_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mag_linear(cfg_mag_linear),
+    .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
-    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y)
+    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
+    .border_x(border_x), .border_y(border_y)
   );
   logic [4*VW-1:0] log2_size_unused;
   assign log2_size_unused = log2_size_s4;  // (log2_*_unused: likewise)
@@ -211,6 +219,10 @@ module tex_unit #(
       w_s5 <= w_s4;
       f_s6 <= f_s5;
       w_s6 <= w_s5;
+      border_x_s5 <= border_x;
+      border_y_s5 <= border_y;
+      border_x_s6 <= border_x_s5;
+      border_y_s6 <= border_y_s5;
     end
   end
 
@@ -222,10 +234,26 @@ module tex_unit #(
     .level(level_s4), .x(x), .y(y), .taps(taps_s6)
   );
 
+  // Address mode border: a tap outside its level takes the border colour, before the filter
+  // (model BankedMipMemory::fetch). Tap t of a slot is (x_(t & 1), y_(t >> 1)).
+  logic [63:0]       cfg_border_q;      // registered every clock, like the other cfg_* pins
+  logic [4*CWD-1:0]  border_rgba;       // in the filter's channel width (tex_border)
+  logic [32*CWD-1:0] taps_b_s6;
+  always_ff @(posedge clk) cfg_border_q <= cfg_border_rgba;
+  tex_border #(.CW(CWD)) u_border (.rgba16(cfg_border_q), .rgba(border_rgba));
+  always_comb begin
+    for (int t = 0; t < 8; t++) begin
+      if (border_x_s6[(t / 4) * 2 + (t % 2)] || border_y_s6[(t / 4) * 2 + (t % 4) / 2])
+        taps_b_s6[t*4*CWD +: 4*CWD] = border_rgba;
+      else
+        taps_b_s6[t*4*CWD +: 4*CWD] = taps_s6[t*4*CWD +: 4*CWD];
+    end
+  end
+
   // ---------------------------------------------------------------- clocks 7-9: filter
   logic [4*(CWD+24)-1:0] blend_s9;
   tex_filter #(.CW(CWD)) u_filter (
-    .clk(clk), .en(en), .taps(taps_s6), .w(w_s6), .f(f_s6), .blend(blend_s9)
+    .clk(clk), .en(en), .taps(taps_b_s6), .w(w_s6), .f(f_s6), .blend(blend_s9)
   );
 
   // ---------------------------------------------------------------- clocks 10-11: tex_accum

@@ -99,7 +99,7 @@ module tex_unit_axi #(
   localparam int LINE_BYTES = BLOCK_W * BLOCK_H * ((CW > 8 && SRGB == 0) ? 8 : 4);
 
   logic                              unit_rst;
-  logic                              cfg_desc_we, cfg_desc_srgb, cfg_texel_linear, cfg_aniso_pow2;
+  logic                              cfg_desc_we, cfg_desc_srgb, cfg_texel_linear, cfg_mag_linear, cfg_aniso_pow2;
   logic [tex_pkg::TEX_ID_W-1:0]      cfg_desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base;
   logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_log2_w, cfg_desc_log2_h;
@@ -133,7 +133,7 @@ module tex_unit_axi #(
     .cfg_desc_log2_w(cfg_desc_log2_w), .cfg_desc_log2_h(cfg_desc_log2_h),
     .cfg_desc_wrap_u(cfg_desc_wrap_u), .cfg_desc_wrap_v(cfg_desc_wrap_v),
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
-    .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
+    .cfg_texel_linear(cfg_texel_linear), .cfg_mag_linear(cfg_mag_linear), .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
     .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
@@ -156,7 +156,7 @@ module tex_unit_axi #(
     .cfg_desc_log2_w(cfg_desc_log2_w), .cfg_desc_log2_h(cfg_desc_log2_h),
     .cfg_desc_wrap_u(cfg_desc_wrap_u), .cfg_desc_wrap_v(cfg_desc_wrap_v),
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
-    .cfg_texel_linear(cfg_texel_linear), .cfg_mip_mode(cfg_mip_mode),
+    .cfg_texel_linear(cfg_texel_linear), .cfg_mag_linear(cfg_mag_linear), .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
     .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),

@@ -55,7 +55,8 @@ for p in "${bad_cached[@]}"; do
   fi
 done
 echo "lint: verilator -Wall clean for ${#cached[@]} tex_unit_cached configurations; parameter checks fire for ${bad_cached[*]}"
-# The LOD unit on its own (not yet in tex_unit); alone it uses few of tex_pkg's constants.
+# The LOD unit on its own (its own test bench; in the units it sits inside tex_probe); alone it uses
+# few of tex_pkg's constants.
 if ! out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_lambda.sv \
              --top-module tex_lambda 2>&1) || [ -n "$out" ]; then
   echo "$out" >&2

@@ -16,6 +16,7 @@ module tex_unit_formal #(
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_v,
   input  logic                                   cfg_texel_linear,
+  input  logic                                   cfg_mag_linear,
   input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
@@ -36,6 +37,7 @@ module tex_unit_formal #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
   input  logic [3:0]                             cfg_max_aniso_m1,
   input  logic                                   cfg_aniso_pow2,
+  input  logic [63:0]                            cfg_border_rgba,
   input  logic [TAG_W-1:0]                       req_tag,
   input  logic                                   rsp_ready
 );

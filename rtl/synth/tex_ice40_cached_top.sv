@@ -72,7 +72,8 @@ module tex_ice40_cached_top #(
   localparam int O_FORMAT  = O_WRAP_V + WW;
   localparam int O_SRGB    = O_FORMAT + tex_pkg::FORMAT_W;
   localparam int O_LINEAR  = O_SRGB + 1;
-  localparam int O_MIP     = O_LINEAR + 1;
+  localparam int O_MAG     = O_LINEAR + 1;
+  localparam int O_MIP     = O_MAG + 1;
   localparam int O_BIAS    = O_MIP + MW;
   localparam int O_MIN_LOD = O_BIAS + LW;
   localparam int O_MAX_LOD = O_MIN_LOD + LW;
@@ -117,7 +118,8 @@ module tex_ice40_cached_top #(
     .cfg_desc_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_desc_wrap_v(in_bits[O_WRAP_V +: WW]),
     .cfg_desc_format(in_bits[O_FORMAT +: tex_pkg::FORMAT_W]), .cfg_desc_srgb(in_bits[O_SRGB]),
     .cfg_desc_base(in_bits[O_BASE +: AW]), .req_tex(in_bits[O_TEX +: XW]),
-    .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mip_mode(in_bits[O_MIP +: MW]),
+    .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mag_linear(in_bits[O_MAG]),
+    .cfg_mip_mode(in_bits[O_MIP +: MW]),
     .cfg_lod_bias(in_bits[O_BIAS +: LW]), .cfg_min_lod(in_bits[O_MIN_LOD +: LW]),
     .cfg_max_lod(in_bits[O_MAX_LOD +: LW]),
     .cfg_block_morton(in_bits[O_MORTON]),

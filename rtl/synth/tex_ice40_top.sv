@@ -35,7 +35,8 @@ module tex_ice40_top #(
   localparam int O_WRAP_U  = O_LOG2_H + VW;
   localparam int O_WRAP_V  = O_WRAP_U + WW;
   localparam int O_LINEAR  = O_WRAP_V + WW;
-  localparam int O_MIP     = O_LINEAR + 1;
+  localparam int O_MAG     = O_LINEAR + 1;
+  localparam int O_MIP     = O_MAG + 1;
   localparam int O_BIAS    = O_MIP + MW;
   localparam int O_MIN_LOD = O_BIAS + LW;
   localparam int O_MAX_LOD = O_MIN_LOD + LW;
@@ -50,14 +51,15 @@ module tex_ice40_top #(
   localparam int O_LOD     = O_V + UW;
   localparam int O_TAG     = O_LOD + LW;
   localparam int O_READY   = O_TAG + TAG_W;
-  localparam int O_DERIV   = O_READY + 1;      // with DERIV only: req_deriv, the 4 derivatives,
+  localparam int O_BORDER  = O_READY + 1;      // cfg_border_rgba
+  localparam int O_DERIV   = O_BORDER + 64;    // with DERIV only: req_deriv, the 4 derivatives,
   localparam int O_DUDX    = O_DERIV + 1;      // cfg_max_aniso_m1, cfg_aniso_pow2
   localparam int O_DVDX    = O_DUDX + UW;
   localparam int O_DUDY    = O_DVDX + UW;
   localparam int O_DVDY    = O_DUDY + UW;
   localparam int O_ANISO   = O_DVDY + UW;
   localparam int O_POW2    = O_ANISO + 4;
-  localparam int NIN       = DERIV != 0 ? O_POW2 + 1 : O_READY + 1;
+  localparam int NIN       = DERIV != 0 ? O_POW2 + 1 : O_BORDER + 64;
 
   logic [NIN-1:0] in_bits;
   always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
@@ -86,7 +88,8 @@ module tex_ice40_top #(
     .clk(clk), .rst(rst),
     .cfg_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_log2_h(in_bits[O_LOG2_H +: VW]),
     .cfg_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_wrap_v(in_bits[O_WRAP_V +: WW]),
-    .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mip_mode(in_bits[O_MIP +: MW]),
+    .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mag_linear(in_bits[O_MAG]),
+    .cfg_mip_mode(in_bits[O_MIP +: MW]),
     .cfg_lod_bias(in_bits[O_BIAS +: LW]), .cfg_min_lod(in_bits[O_MIN_LOD +: LW]),
     .cfg_max_lod(in_bits[O_MAX_LOD +: LW]),
     .wr_en(in_bits[O_WR_EN]), .wr_level(in_bits[O_WR_LVL +: VW]), .wr_x(in_bits[O_WR_X +: XW]),
@@ -95,6 +98,7 @@ module tex_ice40_top #(
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
+    .cfg_border_rgba(in_bits[O_BORDER +: 64]),
     .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag)
   );
   always_ff @(posedge clk) sout <= ^{rsp_rgba, rsp_tag};

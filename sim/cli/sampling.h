@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -64,6 +65,7 @@ struct SamplingOptions {
   CLI::Option* max_aniso_opt = nullptr;
   std::string wrap = "repeat";
   std::string wrap_u, wrap_v;
+  std::string mag_filter, min_filter, mipmap_mode, border_color;
   std::string pyramid = "exact";
   std::string format = "rgba8";
   bool srgb = false;
@@ -101,9 +103,18 @@ struct SamplingOptions {
     max_aniso_opt = cmd.add_option("--max-aniso", max_aniso, "anisotropic: probes per sample at most, 1..16")
                         ->capture_default_str();
     cmd.add_flag("--aniso-pow2", aniso_pow2, "anisotropic: round probe counts up to a power of two");
-    cmd.add_option("--wrap,-w", wrap, "repeat | clamp | mirror, both axes")->capture_default_str();
-    wrap_u_opt = cmd.add_option("--wrap-u", wrap_u, "wrap mode of u only (overrides --wrap)");
-    wrap_v_opt = cmd.add_option("--wrap-v", wrap_v, "wrap mode of v only (overrides --wrap)");
+    cmd.add_option("--mag-filter", mag_filter,
+                   "nearest | linear: the texel filter where lambda <= 0 (default: --filter's own texel filter)");
+    cmd.add_option("--min-filter", min_filter,
+                   "nearest | linear, or a GL minification filter (nearest_mipmap_linear, ...: sets the mipmap "
+                   "mode too): overrides --filter's minification");
+    cmd.add_option("--mipmap-mode", mipmap_mode, "none (base level only) | nearest | linear: overrides --filter's");
+    cmd.add_option("--wrap,-w", wrap, std::string(kWrapNames) + ", both axes")->capture_default_str();
+    wrap_u_opt = cmd.add_option("--wrap-u", wrap_u, "address mode of u only (overrides --wrap)");
+    wrap_v_opt = cmd.add_option("--wrap-v", wrap_v, "address mode of v only (overrides --wrap)");
+    cmd.add_option("--border-color", border_color,
+                   "clamp to border's colour: transparent-black (default) | opaque-black | opaque-white (also "
+                   "int-... and Vulkan names) | R,G,B,A in 0..1 (linear)");
     cmd.add_option("--pyramid", pyramid, "exact (mean of the level-0 footprint) | cascade")->capture_default_str();
     format_opt = cmd.add_option("--format", format,
                                 texel_format_names() + ": how memory holds an image file or pattern (each level "
@@ -175,18 +186,58 @@ struct SamplingOptions {
       throw Error("--max-aniso and --aniso-pow2 apply to --filter anisotropic, not " + quote_clipped(filter));
     c.max_aniso = max_aniso;
     c.aniso_pow2 = aniso_pow2;
+    if (!min_filter.empty()) {
+      Filter gl;
+      if (parse_texel_filter(min_filter, c.filter.texel)) {
+      } else if (parse_filter(min_filter, gl) && min_filter.find("mipmap") != std::string::npos) {
+        c.filter.texel = gl.texel;
+        c.filter.mip = gl.mip;
+      } else {
+        throw Error("--min-filter " + quote_clipped(min_filter) +
+                    " is not nearest, linear or a GL minification filter (nearest_mipmap_nearest, ...)");
+      }
+    }
+    if (!mipmap_mode.empty() && !parse_mip_mode(mipmap_mode, c.filter.mip))
+      throw Error("--mipmap-mode " + quote_clipped(mipmap_mode) + " is not none, nearest or linear");
+    if (!mag_filter.empty() && !parse_texel_filter(mag_filter, c.filter.mag))
+      throw Error("--mag-filter " + quote_clipped(mag_filter) + " is not nearest or linear");
     Wrap w;
-    if (!parse_wrap(wrap, w)) throw Error("unknown wrap mode " + quote_clipped(wrap) + " (repeat, clamp, mirror)");
+    if (!parse_wrap(wrap, w)) throw Error("unknown wrap mode " + quote_clipped(wrap) + " (" + kWrapNames + ")");
     c.wrap_u = c.wrap_v = w;
     if (wrap_u_opt->count() && !parse_wrap(wrap_u, c.wrap_u))
-      throw Error("--wrap-u: unknown wrap mode " + quote_clipped(wrap_u) + " (repeat, clamp, mirror)");
+      throw Error("--wrap-u: unknown wrap mode " + quote_clipped(wrap_u) + " (" + kWrapNames + ")");
     if (wrap_v_opt->count() && !parse_wrap(wrap_v, c.wrap_v))
-      throw Error("--wrap-v: unknown wrap mode " + quote_clipped(wrap_v) + " (repeat, clamp, mirror)");
+      throw Error("--wrap-v: unknown wrap mode " + quote_clipped(wrap_v) + " (" + kWrapNames + ")");
+    if (!border_color.empty()) parse_border(c);
     if (!to_lod_fixed(lod_bias, c.lod_bias)) throw Error("--lod-bias " + std::to_string(lod_bias) + " is outside [-128, 128)");
     if (!to_lod_fixed(min_lod, c.min_lod)) throw Error("--min-lod " + std::to_string(min_lod) + " is outside [-128, 128)");
     if (!to_lod_fixed(max_lod, c.max_lod)) throw Error("--max-lod " + std::to_string(max_lod) + " is outside [-128, 128)");
     if (c.min_lod > c.max_lod) throw Error("--min-lod is greater than --max-lod");
     return c;
+  }
+
+  // --border-color: a name, or R,G,B,A (each 0..1, linear) as a custom colour in unorm16.
+  void parse_border(SamplerConfig& c) const {
+    if (parse_border_color(border_color, c.border)) return;
+    std::vector<double> v;
+    size_t at = 0;
+    for (;;) {
+      const size_t comma = border_color.find(',', at);
+      const std::string item = border_color.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+      double x = 0;
+      const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), x);
+      if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !(x >= 0 && x <= 1))
+        throw Error("--border-color " + quote_clipped(border_color) + ": " + quote_clipped(item) +
+                    " is not a number from 0 to 1 (or use transparent-black, opaque-black, opaque-white)");
+      v.push_back(x);
+      if (comma == std::string::npos) break;
+      at = comma + 1;
+    }
+    if (v.size() != 4)
+      throw Error("--border-color " + quote_clipped(border_color) + " has " + std::to_string(v.size()) +
+                  " values: give R,G,B,A or a name (transparent-black, opaque-black, opaque-white)");
+    c.border = BorderColor::Custom;
+    for (size_t i = 0; i < 4; ++i) c.border_custom[i] = uint16_t(std::lround(v[i] * 65535));
   }
 
   PyramidMode pyramid_mode() const {

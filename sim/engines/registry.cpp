@@ -133,14 +133,17 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
                 "use --memory cached, whose descriptor table holds up to " + std::to_string(kMaxTextures));
   const bool cached = options.memory == Memory::Cached;
   bool fast = !options.count_reads;  // the fast path: 8-bit textures only
-  for (const BoundTexture& t : textures) fast = fast && t.pyramid->levels[0].channel_bits == 8;
-  std::vector<Sampler> samplers;  // one per descriptor-table entry, with its wrap modes
+  std::vector<SamplerConfig> configs;  // one per descriptor-table entry, with its wrap modes
   for (const BoundTexture& t : textures) {
     SamplerConfig c = config;
     c.wrap_u = t.wrap_u;
     c.wrap_v = t.wrap_v;
-    samplers.emplace_back(*t.pyramid, c, fast ? SamplerPaths::FastOnly : SamplerPaths::Both);
+    configs.push_back(c);
+    fast = fast && t.pyramid->levels[0].channel_bits == 8 && Sampler::fast_path_takes(c);
   }
+  std::vector<Sampler> samplers;
+  for (size_t i = 0; i < textures.size(); ++i)
+    samplers.emplace_back(*textures[i].pyramid, configs[i], fast ? SamplerPaths::FastOnly : SamplerPaths::Both);
   std::optional<TextureCache> cache;
   if (cached) {
     cache.emplace(texture_descriptors(textures, options), options.cache, config);

@@ -36,9 +36,16 @@ struct Measured {
 
 // Off grid: u, v, lambda are arbitrary doubles; the model rounds them to Q8.24 / Q8.8 first.
 // On grid: u = k / 2^24 and lambda = j / 256 exactly, so model and reference see the same inputs.
+// The border colour of the clamp-to-border cases: k * 257 in unorm16 is k in 8 bits.
+constexpr Texel kBorder16 = {64 * 257, 128 * 257, 255 * 257, 191 * 257};
+
 Measured measure(const Pyramid& pyr, Filter filter, Wrap wrap, bool on_grid, uint32_t seed) {
-  Sampler model(pyr, {filter, wrap, wrap});
+  SamplerConfig cfg{filter, wrap, wrap};
+  cfg.border = BorderColor::Custom;
+  cfg.border_custom = kBorder16;
+  Sampler model(pyr, cfg);
   ref::GlSampler gl;
+  gl.border = {64, 128, 255, 191};
   gl.levels = &pyr.levels;
   gl.texel = filter.texel;
   gl.mip = filter.mip;
@@ -112,7 +119,7 @@ TEST(Accuracy, EveryFilterAndWrapAgainstDoubleGlReference) {
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   uint32_t seed = 1;
   for (auto [name, filter] : filters)
-    for (Wrap wrap : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror})
+    for (Wrap wrap : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp})
       for (bool on_grid : {false, true}) {
         const Measured m = measure(pyr, filter, wrap, on_grid, seed++);
         std::printf("| %s | %s | %s | %d | %d (%.3f%%) | %.4f | %.4f | %.4f | %d | %.4f | %.2f%% |\n", name,
@@ -143,11 +150,15 @@ TEST(Accuracy, SrgbTexturesAgainstDoubleDecodeAndFilter) {
   std::printf("  sRGB, in 8-bit steps of full scale: filter, wrap: max, mean error (queries, excluded)\n");
   for (const char* name : {"nearest", "linear", "nearest_mipmap_nearest", "linear_mipmap_nearest",
                            "nearest_mipmap_linear", "linear_mipmap_linear"})  // GL's six
-    for (Wrap wrap : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror}) {
+    for (Wrap wrap : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp}) {
       Filter filter;
       ASSERT_TRUE(parse_filter(name, filter)) << name;
-      Sampler model(pyr, {filter, wrap, wrap});
+      SamplerConfig cfg{filter, wrap, wrap};
+      cfg.border = BorderColor::Custom;
+      cfg.border_custom = kBorder16;  // linear: the filter takes it undecoded
+      Sampler model(pyr, cfg);
       ref::GlSampler gl;
+      for (int c = 0; c < 4; ++c) gl.border[size_t(c)] = kBorder16[size_t(c)] / 65535.0;
       gl.levels = &pyr.codes;
       gl.texel = filter.texel;
       gl.mip = filter.mip;

@@ -89,6 +89,8 @@ TEST(Params, RtlPackageAgreesWithModel) {
       {"WRAP_REPEAT", int(Wrap::Repeat)},
       {"WRAP_CLAMP", int(Wrap::Clamp)},
       {"WRAP_MIRROR", int(Wrap::Mirror)},
+      {"WRAP_BORDER", int(Wrap::Border)},
+      {"WRAP_MIRROR_CLAMP", int(Wrap::MirrorClamp)},
       {"MIP_NONE", int(MipMode::None)},
       {"MIP_NEAREST", int(MipMode::Nearest)},
       {"MIP_LINEAR", int(MipMode::Linear)},

@@ -9,13 +9,14 @@
 
 #include "model/image.h"
 #include "model/sampler.h"
+#include "model/srgb.h"
 #include "reference/gl_reference.h"
 
 using namespace tex;
 
 namespace {
 
-constexpr Wrap kWraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror};
+constexpr Wrap kWraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
 
 Request request(double u, double v, double lambda) {
   Request r;
@@ -81,7 +82,7 @@ TEST(Sampler, PointSamplingIsTexelAtFloorUW) {
   const Pyramid pyr = build_pyramid(make_pattern("noise", 64, 16));
   std::mt19937 rng(9);
   std::uniform_int_distribution<int32_t> coord(INT32_MIN, INT32_MAX);
-  for (Wrap w : kWraps) {
+  for (Wrap w : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::MirrorClamp}) {  // (border: below)
     Sampler s(pyr, {{TexelFilter::Nearest, MipMode::None}, w, w});
     for (int n = 0; n < 50000; ++n) {
       Request r;
@@ -136,4 +137,96 @@ TEST(Sampler, NearestLevelSelection) {
       const int y = int(std::floor(std::ldexp(double(r.v), -24) * lvl.height));
       ASSERT_EQ(s.sample(r), lvl.at(x, y)) << "lambda=" << lambda << " level " << level;
     }
+}
+
+// Clamp to border (GL 4.6 §8.14.2, Vulkan "Texel Replacement"): a tap outside the level takes the
+// border colour before filtering, so the edge blends into it; the reference substitutes it in its
+// own texel lookup. Colours k * 257 in unorm16 are exactly k in 8 bits. Every level, both texel
+// filters, one axis or both, each of Vulkan's named colours and a custom one.
+TEST(Sampler, BorderColourIsATapBeforeFiltering) {
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 16, 8));
+  std::mt19937 rng(12);
+  struct Colour {
+    BorderColor kind;
+    Texel custom;
+    ref::Rgba want;  // in 8-bit steps
+  };
+  const Colour colours[] = {
+      {BorderColor::FloatTransparentBlack, {}, {0, 0, 0, 0}},
+      {BorderColor::IntOpaqueBlack, {}, {0, 0, 0, 255}},
+      {BorderColor::FloatOpaqueWhite, {}, {255, 255, 255, 255}},
+      {BorderColor::Custom, {64 * 257, 128 * 257, 255 * 257, 191 * 257}, {64, 128, 255, 191}},
+  };
+  int outside = 0;
+  for (const Colour& colour : colours)
+    for (TexelFilter tf : {TexelFilter::Nearest, TexelFilter::Linear})
+      for (Wrap wv : {Wrap::Border, Wrap::Repeat}) {
+        SamplerConfig cfg{{tf, MipMode::Nearest}, Wrap::Border, wv};
+        cfg.border = colour.kind;
+        cfg.border_custom = colour.custom;
+        Sampler s(pyr, cfg);
+        ref::GlSampler g = reference(pyr, cfg.filter, Wrap::Border, wv);
+        g.border = colour.want;
+        for (int k = 0; k <= pyr.last_level(); ++k) {
+          const LevelShape sh = level_shape(4, 3, k);
+          for (int n = 0; n < 2000; ++n) {
+            const int64_t i = int64_t(rng() % (3 * sh.width() + 4)) - sh.width() - 2;
+            const int64_t j = int64_t(rng() % (3 * sh.height() + 4)) - sh.height() - 2;
+            const double u = on_grid(i, int(rng() & 255), sh.log2_w), v = on_grid(j, int(rng() & 255), sh.log2_h);
+            outside += i < 0 || i >= sh.width();
+            ASSERT_EQ(s.sample(request(u, v, k)), rounded(g.sample(u, v, k)))
+                << border_color_name(colour.kind) << " " << texel_filter_name(tf) << " v " << wrap_name(wv)
+                << " level " << k << " u=" << u << " v=" << v;
+          }
+        }
+      }
+  EXPECT_GT(outside, 20000);
+}
+
+// The border colour of an sRGB texture is linear: the filter takes it as it is, never decoded
+// (GL 4.6 §8.24: only texels fetched from the texture are decoded).
+TEST(Sampler, SrgbBorderColourIsLinear) {
+  const Pyramid pyr = build_srgb_pyramid(make_pattern("noise", 8, 8), PyramidMode::Exact);
+  SamplerConfig cfg{{TexelFilter::Nearest, MipMode::None}, Wrap::Border, Wrap::Border};
+  cfg.border = BorderColor::Custom;
+  cfg.border_custom = {1000, 30000, 65535, 12345};
+  Sampler s(pyr, cfg);
+  EXPECT_EQ(s.sample(request(-0.5, 0.5, 0)), (Texel{1000, 30000, 65535, 12345}));
+  EXPECT_EQ(s.sample(request(0.5, 1.5, 0)), (Texel{1000, 30000, 65535, 12345}));
+  EXPECT_EQ(s.sample(request(0.5, 0.5, 0)), pyr.levels[0].at(4, 4));
+}
+
+// The magnification filter applies where lambda' <= 0 and only there (Vulkan, GL 4.5+, GLES 3.2:
+// c = 0), the minification filter above; bias and clamp decide lambda' first.
+TEST(Sampler, MagnificationFilterAppliesAtLambdaZeroAndBelow) {
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 32, 16));
+  std::mt19937 rng(13);
+  int magnified = 0, minified = 0;
+  for (TexelFilter mag : {TexelFilter::Nearest, TexelFilter::Linear})
+    for (const char* min : {"linear", "nearest", "linear_mipmap_linear", "nearest_mipmap_nearest"}) {
+      SamplerConfig cfg;
+      ASSERT_TRUE(parse_filter(min, cfg.filter));
+      cfg.filter.mag = mag;
+      cfg.lod_bias = int32_t(rng() % 512) - 256;
+      Sampler s(pyr, cfg);
+      ref::GlSampler g = reference(pyr, cfg.filter, Wrap::Repeat, Wrap::Repeat);
+      g.mag = mag;
+      g.lod_bias = cfg.lod_bias / 256.0;
+      for (int n = 0; n < 4000; ++n) {
+        // Levels 0..3 at most (lambda' < 3): u on the 1/1024 grid and v on the 1/512 grid are on
+        // the 1/256-texel grid of each, so the double filter is exact.
+        const double u = (int(rng() % 4096) - 2048) / 1024.0, v = (int(rng() % 2048) - 1024) / 512.0;
+        const double lambda = (int(rng() % 1024) - 512) / 256.0;
+        const double l = lambda + g.lod_bias;
+        (l <= 0 ? magnified : minified) += 1;
+        ref::Choice c, nudged;  // (nearest level: a level boundary at the input is either side)
+        const ref::Rgba want = g.sample(u, v, lambda, &c);
+        g.sample(u + 1e-9, v + 1e-9, lambda + 1e-9, &nudged);
+        if (!(c == nudged)) continue;
+        ASSERT_EQ(s.sample(request(u, v, lambda)), rounded(want))
+            << "mag " << texel_filter_name(mag) << " min " << min << " lambda'=" << l << " u=" << u << " v=" << v;
+      }
+    }
+  EXPECT_GT(magnified, 10000);
+  EXPECT_GT(minified, 10000);
 }

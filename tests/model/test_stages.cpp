@@ -22,8 +22,13 @@ int64_t gl_wrap(int64_t coord, int64_t size, Wrap w) {
     case Wrap::Repeat: return gl_mod(coord, size);
     case Wrap::Clamp: return std::min(std::max(coord, int64_t(0)), size - 1);
     case Wrap::Mirror: return (size - 1) - gl_mirror(gl_mod(coord, 2 * size) - size);
+    case Wrap::Border: {  // clamp(coord, -1, size); -1 and size are the border texel
+      const int64_t c = std::min(std::max(coord, int64_t(-1)), size);
+      return c < 0 || c == size ? stage::kBorderTap : c;
+    }
+    case Wrap::MirrorClamp: return std::min(std::max(gl_mirror(coord), int64_t(0)), size - 1);
   }
-  return -1;
+  return -2;
 }
 
 }  // namespace
@@ -175,7 +180,7 @@ TEST(Stages, ScaleAndAddressMatchRealTexelCoordinate) {
 TEST(Stages, WrapEqualsGl46AtEveryLevelSize) {
   for (int lw = 0; lw <= kMaxLog2Size; ++lw) {
     const int64_t n = int64_t(1) << lw;
-    for (Wrap w : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror}) {
+    for (Wrap w : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp}) {
       for (int64_t i = -5 * n - 3; i <= 5 * n + 3; ++i)
         ASSERT_EQ(stage::wrap(int32_t(i), lw, w), gl_wrap(i, n, w)) << "i=" << i << " n=" << n << " wrap=" << int(w);
       // Far indices (the extremes axis_taps can produce from Q8.24 coordinates).
@@ -184,9 +189,25 @@ TEST(Stages, WrapEqualsGl46AtEveryLevelSize) {
         ASSERT_EQ(stage::wrap(int32_t(i), lw, w), gl_wrap(i, n, w)) << "i=" << i << " n=" << n;
     }
   }
-  // n = 1: every index maps to texel 0 in every mode.
-  for (Wrap w : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror})
+  // n = 1: every index maps to texel 0 in every mode but clamp to border (only index 0 is inside).
+  for (Wrap w : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::MirrorClamp})
     for (int32_t i = -9; i <= 9; ++i) EXPECT_EQ(stage::wrap(i, 0, w), 0);
+  for (int32_t i = -9; i <= 9; ++i) EXPECT_EQ(stage::wrap(i, 0, Wrap::Border), i == 0 ? 0 : stage::kBorderTap);
+}
+
+// The border colour in a channel width (stage::border_texel, round(c (2^CW - 1) / 65535)) against
+// real arithmetic, and the division tex_border does without a divider, x = c (2^CW - 1) + 32767,
+// floor(x / 65535) = (x + (x >> 16) + 1) >> 16, for every 16-bit c and every CW.
+TEST(Stages, BorderColourInEveryChannelWidth) {
+  for (int cw = 1; cw <= 16; ++cw)
+    for (uint32_t c = 0; c < 65536; ++c) {
+      const uint32_t max = (1u << cw) - 1;
+      const uint16_t got = stage::border_texel({uint16_t(c), 0, 0, 65535}, cw)[0];
+      ASSERT_EQ(got, uint16_t(std::floor(double(c) * max / 65535.0 + 0.5))) << "c " << c << " CW " << cw;
+      const uint64_t x = uint64_t(c) * max + 32767;
+      ASSERT_EQ(got, uint16_t((x + (x >> 16) + 1) >> 16)) << "c " << c << " CW " << cw;
+      ASSERT_EQ(stage::border_texel({0, 0, 0, 65535}, cw)[3], max);
+    }
 }
 
 TEST(Stages, BankIsParity) {

@@ -285,6 +285,14 @@ TEST(TextureCache, WrapAtTheEdgesStraddlesTheLastAndFirstBlockColumns) {
   // The same down the side: rows 15 and 0.
   EXPECT_EQ(run(Wrap::Repeat, Wrap::Repeat, 2.5, 16), (Misses{0, 3 * 4 * 64}));
   EXPECT_EQ(run(Wrap::Repeat, Wrap::Clamp, 2.5, 16), (Misses{3 * 4 * 64}));
+  // Clamp to border: a tap outside the level reads no line; mirror clamp to edge: -1 -> 0, 16 -> 15.
+  EXPECT_EQ(run(Wrap::Border, Wrap::Repeat, 16, 2.5), (Misses{3 * 64}));
+  EXPECT_EQ(run(Wrap::Border, Wrap::Repeat, 0, 2.5), (Misses{0}));
+  EXPECT_EQ(run(Wrap::Border, Wrap::Border, 0, 0), (Misses{0}));  // three of the four taps outside
+  EXPECT_EQ(run(Wrap::Border, Wrap::Repeat, -8, 2.5), (Misses{}));  // the whole footprint outside
+  EXPECT_EQ(run(Wrap::MirrorClamp, Wrap::Repeat, 16, 2.5), (Misses{3 * 64}));
+  EXPECT_EQ(run(Wrap::MirrorClamp, Wrap::Repeat, 0, 2.5), (Misses{0}));
+  EXPECT_EQ(run(Wrap::MirrorClamp, Wrap::Repeat, -20, 2.5), (Misses{3 * 64}));  // mirrored once, then clamped
 }
 
 TEST(TextureCache, ASecondPassOverASmallTextureNeverMisses) {
@@ -398,7 +406,8 @@ class Reference {
     const int last = std::max(lw_, lh_);
     const stage::LevelSelect sel = stage::lod(r.lod, cfg_.lod_bias, cfg_.min_lod, cfg_.max_lod, cfg_.filter.mip, last);
     const int32_t su = stage::scale(r.u, lw_), sv = stage::scale(r.v, lh_);
-    const bool linear = cfg_.filter.texel == TexelFilter::Linear;
+    const TexelFilter tf = sel.magnify ? cfg_.filter.mag : cfg_.filter.texel;
+    const bool linear = tf == TexelFilter::Linear;
     for (int s = 0; s < 2; ++s) {
       Slot& o = out[s];
       o = Slot{};
@@ -407,8 +416,8 @@ class Reference {
       if (!o.needed) continue;
       const int k = o.level;
       const int lwk = std::max(lw_ - k, 0), lhk = std::max(lh_ - k, 0);
-      const stage::AxisTaps tu = stage::address(su, k, cfg_.filter.texel);
-      const stage::AxisTaps tv = stage::address(sv, k, cfg_.filter.texel);
+      const stage::AxisTaps tu = stage::address(su, std::min(k, lw_), tf);
+      const stage::AxisTaps tv = stage::address(sv, std::min(k, lh_), tf);
       const int x0 = stage::wrap(tu.i0, lwk, cfg_.wrap_u), x1 = stage::wrap(tu.i1, lwk, cfg_.wrap_u);
       const int y0 = stage::wrap(tv.i0, lhk, cfg_.wrap_v), y1 = stage::wrap(tv.i1, lhk, cfg_.wrap_v);
       std::vector<std::pair<int, int>> taps = {{x0, y0}};
@@ -416,7 +425,8 @@ class Reference {
       if (linear && tv.w != 0) taps.push_back({x0, y1});
       if (linear && tu.w != 0 && tv.w != 0) taps.push_back({x1, y1});
       std::set<std::pair<int, int>> distinct;
-      for (const auto& [x, y] : taps) distinct.insert({x / p_.block_w, y / p_.block_h});
+      for (const auto& [x, y] : taps)
+        if (x >= 0 && y >= 0) distinct.insert({x / p_.block_w, y / p_.block_h});  // (a border tap reads nothing)
       std::vector<std::pair<int, int>> blocks(distinct.begin(), distinct.end());
       auto parity = [](const std::pair<int, int>& b) { return (b.second & 1) * 2 + (b.first & 1); };
       std::sort(blocks.begin(), blocks.end(), [&](const auto& a, const auto& b) { return parity(a) < parity(b); });
@@ -516,14 +526,15 @@ TEST(TextureCache, AgreesWithABruteForceReferenceOnRandomRequests) {
   };
   const TexelFilter texels[] = {TexelFilter::Nearest, TexelFilter::Linear};
   const MipMode mips[] = {MipMode::None, MipMode::Nearest, MipMode::Linear};
-  const Wrap wraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror};
+  const Wrap wraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
   constexpr int kRequestsPerConfig = 100000;
   uint64_t total_misses = 0, total_lookups = 0;
   int run = 0;
   for (const Config& cf : configs) {
     for (int fi = 0; fi < 6; ++fi, ++run) {
       RequestMaker maker(cf.lw, cf.lh, 1000 + uint64_t(run));
-      SamplerConfig cfg = filter(texels[fi % 2], mips[fi / 2], wraps[run % 3], wraps[(run / 3) % 3]);
+      SamplerConfig cfg = filter(texels[fi % 2], mips[fi / 2], wraps[run % 5], wraps[(run / 5) % 5]);
+      if (maker.pick(0, 2) == 0) cfg.filter.mag = texels[1 - fi % 2];  // a magnification filter of its own
       if (maker.pick(0, 3) == 0) {  // bias and lod clamps now and then
         cfg.lod_bias = maker.pick(-256, 256);
         cfg.min_lod = maker.pick(-256, 256);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <sstream>
 
 #include "lockstep.h"
@@ -28,7 +29,8 @@ size_t CoverGroup::reachable_hit() const {
 
 namespace {
 
-const Wrap kWraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror};
+const Wrap kWraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
+constexpr size_t kNumWraps = std::size(kWraps);
 const TexelFilter kTexelFilters[] = {TexelFilter::Nearest, TexelFilter::Linear};
 
 // Level-select cases, per mip mode (exclusive: every request is in exactly one).
@@ -50,10 +52,12 @@ bool level_case_applies(MipMode m, int c) {
 enum TapCase { kInterior, kEdgePair, kEvenPeriod, kOddPeriod, kOneTexel, kTapCases };
 const char* const kTapCaseNames[] = {"interior (period 0)", "pair across a period edge",
                                      "outside, even period", "outside, odd period", "1-texel level"};
-const char* const kTapCaseMeaning[3][kTapCases] = {
-    {"", "seam: taps n-1 and 0", "wrap-around", "wrap-around", ""},       // repeat
-    {"", "edge: one tap clamped", "beyond edge", "beyond edge", ""},      // clamp
-    {"", "boundary: both taps one texel", "repeat", "reflected", ""}};    // mirror
+const char* const kTapCaseMeaning[kNumWraps][kTapCases] = {
+    {"", "seam: taps n-1 and 0", "wrap-around", "wrap-around", ""},                  // repeat
+    {"", "edge: one tap clamped", "beyond edge", "beyond edge", ""},                 // clamp
+    {"", "boundary: both taps one texel", "repeat", "reflected", ""},                // mirror
+    {"", "edge: one tap the border colour", "border colour", "border colour", ""},   // border
+    {"", "edge: one tap clamped or folded", "clamped", "folded (period -1) or clamped", ""}};    // mirror-clamp
 
 size_t fi_of(Filter f) { return size_t(f.texel) * 3 + size_t(f.mip); }  // all_filters() order
 
@@ -120,6 +124,11 @@ Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log
   for (const Filter& f : filters) group(g_deriv_).add(filter_name(f));
   group(g_deriv_).add("anisotropic");
 
+  g_mag_ = make("magnification filter x minification texel filter, magnified and minified");
+  for (const char* mag : {"mag nearest", "mag linear"})
+    for (const char* min : {"min nearest", "min linear"})
+      for (const char* side : {"magnified", "minified"}) group(g_mag_).add(std::string(mag) + " " + min + " " + side);
+
   g_aniso_ = make("anisotropic: probes N x major axis");
   for (int n = 1; n <= kMaxAniso; ++n)
     for (const char* axis : {"along u", "along v", "diagonal"}) group(g_aniso_).add("N = " + std::to_string(n) + " " + axis);
@@ -127,7 +136,7 @@ Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log
 
 void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Request& q) {
   const size_t fi = fi_of(cfg.filter);
-  ++group(g_filter_wrap_).hits[(fi * 3 + size_t(cfg.wrap_u)) * 3 + size_t(cfg.wrap_v)];
+  ++group(g_filter_wrap_).hits[(fi * kNumWraps + size_t(cfg.wrap_u)) * kNumWraps + size_t(cfg.wrap_v)];
   ++group(g_pyramid_).hits[size_t(pyr.mode)];
   const Probes p = tex_probe(q, cfg, pyr.log2_w0(), pyr.log2_h0());
   if (q.has_derivatives) {
@@ -160,6 +169,8 @@ void Coverage::sample_probe(const Pyramid& pyr, const SamplerConfig& cfg, const 
     }
   }
   ++group(g_level_case_).hits[level_case_bin_[fi][lc]];
+  ++group(g_mag_).hits[(size_t(cfg.filter.mag) * 2 + size_t(cfg.filter.texel)) * 2 + (lod > 0)];
+  const TexelFilter texel_filter = stage::texel_filter(s, cfg.filter);  // the sample's
   if (cfg.filter.mip != MipMode::None) ++group(g_level_d_).hits[size_t(s.d)];
 
   // Taps of every level read: d, and d1 when two levels are blended.
@@ -170,13 +181,14 @@ void Coverage::sample_probe(const Pyramid& pyr, const SamplerConfig& cfg, const 
     const LevelShape shape = level_shape(pyr.log2_w0(), pyr.log2_h0(), level);
     const int log2_sizes[2] = {shape.log2_w, shape.log2_h};
     for (int axis = 0; axis < 2; ++axis) {
-      const int c = tap_case(coords[axis], log2_sizes[axis], cfg.filter.texel);
-      const size_t bin = ((size_t(axis) * 2 + size_t(cfg.filter.texel)) * 3 + size_t(wraps[axis])) * kTapCases + size_t(c);
+      const int c = tap_case(coords[axis], log2_sizes[axis], texel_filter);
+      const size_t bin =
+          ((size_t(axis) * 2 + size_t(texel_filter)) * kNumWraps + size_t(wraps[axis])) * kTapCases + size_t(c);
       ++group(g_taps_).hits[bin];
     }
   }
   for (int axis = 0; axis < 2; ++axis)
-    ++group(g_sign_).hits[(size_t(axis) * 3 + size_t(wraps[axis])) * 2 + (coords[axis] < 0)];
+    ++group(g_sign_).hits[(size_t(axis) * kNumWraps + size_t(wraps[axis])) * 2 + (coords[axis] < 0)];
 }
 
 void Coverage::timing(const rtl::StreamStats& st) {

@@ -30,6 +30,10 @@ std::string describe(const SamplerConfig& c) {
   std::ostringstream o;
   o << filter_name(c.filter) << " wrap " << wrap_name(c.wrap_u) << "/" << wrap_name(c.wrap_v) << " bias "
     << c.lod_bias << " min " << c.min_lod << " max " << c.max_lod << " (Q8.8)";
+  if (c.uses_border()) {
+    const Texel b = c.border_unorm16();
+    o << " border " << border_color_name(c.border) << " (" << b[0] << "," << b[1] << "," << b[2] << "," << b[3] << ")";
+  }
   return o.str();
 }
 
@@ -220,6 +224,21 @@ void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c) {
   c.filter = {TexelFilter::Linear, MipMode::Linear, true};
   c.max_aniso = rng() % 2 ? kMaxAniso : int(rng() % kMaxAniso) + 1;
   c.aniso_pow2 = rng() % 4 == 0;
+}
+
+Wrap random_wrap(std::mt19937_64& rng, bool cached) {
+  if (!cached) return Wrap(rng() % kWrapModes);
+  const Wrap modes[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::MirrorClamp};  // (no border yet)
+  return modes[rng() % 4];
+}
+
+void randomize_border(std::mt19937_64& rng, SamplerConfig& c) {
+  c.border = BorderColor(rng() % kBorderColors);
+  for (uint16_t& v : c.border_custom) v = uint16_t(rng());
+}
+
+void randomize_mag_filter(std::mt19937_64& rng, SamplerConfig& c) {
+  if (rng() % 3 == 0) c.filter.mag = TexelFilter(1 - int(c.filter.texel));  // a third: apart
 }
 
 void randomize_lod_controls(std::mt19937_64& rng, SamplerConfig& c) {

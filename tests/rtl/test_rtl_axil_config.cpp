@@ -60,7 +60,7 @@ struct Events {
 struct Reference {
   uint32_t control = 1;                      // unit_reset after reset
   uint32_t cache = (2u << 16) | (6u << 8);   // 4 ways, 64 sets (LINES / MAX_WAYS), row-major
-  uint32_t fifo_limit = 0, filter = 0x21, lod_bias = 0, min_lod = 0x8000, max_lod = 0x7FFF;
+  uint32_t fifo_limit = 0, filter = 0x23, lod_bias = 0, min_lod = 0x8000, max_lod = 0x7FFF;
   uint32_t desc_base = 0, desc_attr = 0, desc_index = 0;
   std::array<uint64_t, kCounters> counters{};
   Events ev_q;  // the registered events (counted at the next edge)
@@ -74,9 +74,11 @@ struct Reference {
   }
   bool descriptor_ok(uint32_t d) const {
     const uint32_t index = d & 15, log2_w = desc_attr & 15, log2_h = (desc_attr >> 4) & 15;
-    const uint32_t format = (desc_attr >> 12) & 7;
-    const bool srgb = (desc_attr >> 15) & 1;
-    return index < kTextures && log2_w <= kMaxLog2W && log2_h <= kMaxLog2H &&
+    const uint32_t format = (desc_attr >> 16) & 7, wrap_u = (desc_attr >> 8) & 7, wrap_v = (desc_attr >> 12) & 7;
+    const bool srgb = (desc_attr >> 19) & 1;
+    // The cached unit's address modes: repeat, clamp, mirror, mirror-clamp (not border, nor 5..7).
+    auto wrap_ok = [](uint32_t w) { return w <= 2 || w == 4; };
+    return index < kTextures && log2_w <= kMaxLog2W && log2_h <= kMaxLog2H && wrap_ok(wrap_u) && wrap_ok(wrap_v) &&
            (format == 0 || (kBlockFormats && format != 6)) && (!srgb || (kSrgb && format != 4 && format != 5)) &&
            desc_base % kLineBytes == 0;
   }
@@ -95,12 +97,12 @@ struct Reference {
       case kControl: control = d & 3; break;
       case kCache: cache = d & 0x31F01; break;
       case kFifoLimit: fifo_limit = d & ((1u << kFifoLimitBits) - 1); break;
-      case kFilter: filter = d & 0x1F31; break;
+      case kFilter: filter = d & 0x1F33; break;
       case kLodBias: lod_bias = d & 0xFFFF; break;
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
       case kDescBase: desc_base = d; break;
-      case kDescAttr: desc_attr = d & 0xFFFF; break;
+      case kDescAttr: desc_attr = d & 0xF77FF; break;
       case kDescCommit: desc_index = d & 15; break;
     }
   }
@@ -418,11 +420,12 @@ class Slave {
     EXPECT_EQ(t.cfg_desc_base, r.desc_base);
     EXPECT_EQ(t.cfg_desc_log2_w, r.desc_attr & 15);
     EXPECT_EQ(t.cfg_desc_log2_h, (r.desc_attr >> 4) & 15);
-    EXPECT_EQ(t.cfg_desc_wrap_u, (r.desc_attr >> 8) & 3);
-    EXPECT_EQ(t.cfg_desc_wrap_v, (r.desc_attr >> 10) & 3);
-    EXPECT_EQ(t.cfg_desc_format, (r.desc_attr >> 12) & 7);
-    EXPECT_EQ(t.cfg_desc_srgb, (r.desc_attr >> 15) & 1);
+    EXPECT_EQ(t.cfg_desc_wrap_u, (r.desc_attr >> 8) & 7);
+    EXPECT_EQ(t.cfg_desc_wrap_v, (r.desc_attr >> 12) & 7);
+    EXPECT_EQ(t.cfg_desc_format, (r.desc_attr >> 16) & 7);
+    EXPECT_EQ(t.cfg_desc_srgb, (r.desc_attr >> 19) & 1);
     EXPECT_EQ(t.cfg_texel_linear, r.filter & 1);
+    EXPECT_EQ(t.cfg_mag_linear, (r.filter >> 1) & 1);
     EXPECT_EQ(t.cfg_mip_mode, (r.filter >> 4) & 3);
     EXPECT_EQ(t.cfg_max_aniso_m1, (r.filter >> 8) & 15);
     EXPECT_EQ(t.cfg_aniso_pow2, (r.filter >> 12) & 1);
@@ -464,7 +467,7 @@ TEST(RtlAxilConfig, IdVersionCapabilitiesAndResetValues) {
   EXPECT_EQ(s.read(kControl).data, 1u);
   EXPECT_TRUE(s.top().unit_rst);
   EXPECT_EQ(s.read(kCache).data, (2u << 16) | (6u << 8));
-  EXPECT_EQ(s.read(kFilter).data, 0x21u);
+  EXPECT_EQ(s.read(kFilter).data, 0x23u);
   EXPECT_EQ(s.read(kMinLod).data, 0x8000u);
   EXPECT_EQ(s.read(kMaxLod).data, 0x7FFFu);
   for (uint32_t a : defined_registers()) EXPECT_EQ(s.read(a).resp, kOkay) << std::hex << a;
@@ -484,7 +487,8 @@ TEST(RtlAxilConfig, EveryRegisterWrittenAndReadBack) {
       if (a == kCache || a == kControl) continue;
       uint32_t d = uint32_t(rng());
       if (a == kDescCommit) {  // a valid descriptor: RGBA, line-aligned base
-        ASSERT_EQ(s.write(kDescAttr, uint32_t(rng() & 0x0FFF & ~0xFFu) | 3u << 4 | 5u), kOkay);
+        const uint32_t wraps[] = {0, 1, 2, 4};  // the cached unit's address modes
+        ASSERT_EQ(s.write(kDescAttr, wraps[rng() % 4] << 12 | wraps[rng() % 4] << 8 | 3u << 4 | 5u), kOkay);
         ASSERT_EQ(s.write(kDescBase, uint32_t(rng()) & ~63u), kOkay);
         d = (d & ~15u) | uint32_t(rng() % kTextures);
       }
@@ -540,12 +544,13 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   // DESC_COMMIT while in reset (the unit drops cfg_desc_we under rst) and of invalid descriptors
   EXPECT_EQ(s.write(kDescCommit, 1), kSlverr);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
-  const uint32_t bad_attr[] = {11u, 10u << 4, 6u << 12, 1u << 15 | 4u << 12, 1u << 15 | 5u << 12};
+  const uint32_t bad_attr[] = {11u,          10u << 4,     6u << 16, 1u << 19 | 4u << 16, 1u << 19 | 5u << 16,
+                               3u << 8,      3u << 12,     5u << 8,  7u << 12};  // border, no mode
   for (uint32_t attr : bad_attr) {
     ASSERT_EQ(s.write(kDescAttr, attr), kOkay);
     EXPECT_EQ(s.write(kDescCommit, 2), kSlverr) << std::hex << attr;
   }
-  ASSERT_EQ(s.write(kDescAttr, 0x8135), kOkay);  // sRGB RGBA 32x8, valid
+  ASSERT_EQ(s.write(kDescAttr, 0x84135), kOkay);  // sRGB RGBA 32x8, wrap clamp / mirror-clamp: valid
   EXPECT_EQ(s.write(kDescCommit, kTextures), kSlverr);  // index beyond the table
   ASSERT_EQ(s.write(kDescBase, 0x1000 + 32), kOkay);     // not line-aligned
   EXPECT_EQ(s.write(kDescCommit, 2), kSlverr);
@@ -596,7 +601,7 @@ TEST(RtlAxilConfig, ResponsesHeldUnderBackpressureBothChannelsAtOnce) {
       if ((w.addr & ~3u) == kCache) w.data = uint32_t(rng() % 3) << 16 | uint32_t(rng() % 8) << 8 | (w.data & 1);
       if ((w.addr & ~3u) == kControl) w.data &= (rng() % 8 == 0) ? 7 : 3;  // a clear now and then
       if ((w.addr & ~3u) == kDescBase && rng() % 2) w.data &= ~63u;
-      if ((w.addr & ~3u) == kDescAttr) w.data &= 0xF0FF & ~0xEEu;        // mostly valid sizes
+      if ((w.addr & ~3u) == kDescAttr) w.data &= 0xF3311u;  // mostly valid sizes and address modes
       w.strb = rng() % 10 == 0 ? uint8_t(rng() % 16) : 0xF;
       w.order = WriteOp::Order(rng() % 3);
       w.gap = int(rng() % 3);
@@ -616,7 +621,7 @@ TEST(RtlAxilConfig, DescriptorCommitPulsesOnce) {
   Slave s(6);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
   ASSERT_EQ(s.write(kDescBase, 0x12340040), kOkay);
-  ASSERT_EQ(s.write(kDescAttr, 1u << 15 | 7u << 12 | 2u << 10 | 1u << 8 | 9u << 4 | 10u), kOkay);  // BC7 sRGB
+  ASSERT_EQ(s.write(kDescAttr, 1u << 19 | 7u << 16 | 2u << 12 | 1u << 8 | 9u << 4 | 10u), kOkay);  // BC7 sRGB
   EXPECT_EQ(s.desc_pulses, 0);
   // the pulse: exactly the clock after the commit's edge (checked by the monitor), with the staged
   // descriptor on the pins

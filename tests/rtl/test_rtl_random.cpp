@@ -105,24 +105,26 @@ void run_suite(const RandomSuite& suite) {
     const TextureSpec& ts = suite.textures[ti];
     const bool port_load = ti % 2;  // half through the write port, half by the backdoor: the same samples
     std::optional<Pyramid> pyr;
-    for (int wu = 0; wu < 3; ++wu)
-      for (int wv = 0; wv < 3; ++wv) {
-        auto wraps = [&](SamplerConfig& cfg) {
+    for (int wu = 0; wu < kWrapModes; ++wu)
+      for (int wv = 0; wv < kWrapModes; ++wv) {
+        auto wraps = [&](std::mt19937_64& rng, SamplerConfig& cfg) {
           cfg.wrap_u = Wrap(wu);
           cfg.wrap_v = Wrap(wv);
+          randomize_border(rng, cfg);
         };
         for (size_t fi = 0; fi < filters.size(); ++fi) {
-          const uint64_t seed = mix64(base + ((ti * 6 + fi) * 3 + wu) * 3 + wv);
-          if (!run_case(ts, pyr, port_load, seed, false, [&](std::mt19937_64&, SamplerConfig& cfg) {
+          const uint64_t seed = mix64(base + ((ti * 6 + fi) * kWrapModes + wu) * kWrapModes + wv);
+          if (!run_case(ts, pyr, port_load, seed, false, [&](std::mt19937_64& rng, SamplerConfig& cfg) {
                 cfg.filter = filters[fi];
-                wraps(cfg);
+                if ((wu + wv + fi) % 2) cfg.filter.mag = TexelFilter(1 - int(cfg.filter.texel));  // magnifies apart
+                wraps(rng, cfg);
               }))
             return;
         }
         // the anisotropic filter, once per wrap pair
-        const uint64_t seed = mix64(base + 0xA5A5 + (ti * 3 + wu) * 3 + wv);
+        const uint64_t seed = mix64(base + 0xA5A5 + (ti * kWrapModes + wu) * kWrapModes + wv);
         if (!run_case(ts, pyr, port_load, seed, true, [&](std::mt19937_64& rng, SamplerConfig& cfg) {
-              wraps(cfg);
+              wraps(rng, cfg);
               randomize_aniso(rng, cfg);
             }))
           return;
@@ -140,7 +142,7 @@ void run_suite(const RandomSuite& suite) {
     EXPECT_EQ(totals.rounds, 1u) << "TEX_SEED=" << *only << " is not a case of " << suite.name;
     return;
   }
-  EXPECT_EQ(totals.rounds, suite.textures.size() * (54 + 9));
+  EXPECT_EQ(totals.rounds, suite.textures.size() * (6 + 1) * kWrapModes * kWrapModes);  // 6 filters, anisotropic
   // Every reachable bin of the functional coverage was exercised, and no bin declared unreachable was.
   for (const std::string& hole : coverage.holes()) ADD_FAILURE() << suite.name << " coverage: " << hole;
   EXPECT_GE(totals.longest_latency, 100u) << "no long stall happened";

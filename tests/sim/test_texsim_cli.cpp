@@ -92,7 +92,7 @@ TEST_F(TexsimCli, UnknownOptionFilterWrap) {
   queries("u,v,lod\n0.5,0.5,0\n");
   expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --bogus-option", "r.csv", {"bogus-option"});
   expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --filter cubic", "r.csv", {"cubic"});
-  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --wrap border", "r.csv", {"border"});
+  expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --wrap bordered", "r.csv", {"bordered"});
   expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --wrap-v tile", "r.csv", {"tile"});
   expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv --pyramid gauss", "r.csv", {"gauss"});
   expect_clean_failure("sample -t nosuchpattern:8x8 -q q.csv -o r.csv", "r.csv", {"nosuchpattern"});
@@ -695,4 +695,61 @@ TEST_F(TexsimCli, MemoryErrorsNameTheFlaggedSamples) {
                        {"--mem-error-at", "--memory cached"});
   expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --memory cached --mem-error-at 2 -e systemc-model",
                        "x.csv", {"--mem-error-at", "systemc-model"});
+}
+
+// Sampler state on the command line (docs/numerics.md stages 1 and 3): a clamp-to-border tap takes
+// the border colour (a name or R,G,B,A), mirror clamp mirrors once, the magnification filter
+// applies at lambda <= 0 (in every engine); GL and Vulkan names are accepted; bad values and
+// units without the mode fail before any work, with one line naming the option and the value.
+TEST_F(TexsimCli, SamplerStateOptions) {
+  // 4x4: texel (x, y) = (x * 60, y * 60, 7, 255).
+  write_image(dir / "ramp.png", 4, 4, 4, [](int x, int y, int c) { return c == 0 ? x * 60 : c == 1 ? y * 60 : c == 2 ? 7 : 255; });
+  // Point samples of texel column -1 (outside), 0 and 5 (outside); a bilinear sample half a texel
+  // left of the edge; one at lambda 0 between texels 0 and 1.
+  queries("u,v,lod\n-0.125,0.375,0\n0.125,0.375,0\n1.375,0.375,0\n0,0.375,0\n0.25,0.375,0\n");
+  auto rows = [&](const std::string& options) {
+    fs::remove(dir / "r.csv");  // (a failed run must not leave the last one's rows to read)
+    const Result r = run("sample -t ramp.png -q q.csv -o r.csv " + options);
+    EXPECT_EQ(r.exit_code, 0) << options << ": " << r.err;
+    std::string header;
+    return read_csv_rows(dir / "r.csv", header);
+  };
+  // Point, border (opaque white by its Vulkan name): texel -1 and 5 are the border colour.
+  auto p = rows("--filter point --wrap VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER --border-color VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE");
+  ASSERT_EQ(p.size(), 5u);
+  EXPECT_EQ(p[0], (std::vector<int>{255, 255, 255, 255}));
+  EXPECT_EQ(p[1], (std::vector<int>{0, 60, 7, 255}));
+  EXPECT_EQ(p[2], (std::vector<int>{255, 255, 255, 255}));
+  // Bilinear at u = 0, border colour (1, 0.5, 0, 0.2) = 255, 128, 0, 51: half the border, half texel 0.
+  p = rows("--filter bilinear --wrap-u border --wrap-v clamp --border-color 1,0.50196,0,0.2");
+  EXPECT_EQ(p[3], (std::vector<int>{128, 94, 4, 153}));  // (255+0)/2 rounded up, (128+60)/2, (0+7)/2 up, (51+255)/2
+  // Mirror clamp (GL name): -1 -> 0, 5 -> 3.
+  p = rows("--filter point --wrap GL_MIRROR_CLAMP_TO_EDGE");
+  EXPECT_EQ(p[0][0], 0);
+  EXPECT_EQ(p[2][0], 180);
+  // At lambda 0, u between texels 0 and 1: the magnification filter decides.
+  EXPECT_EQ(rows("--filter trilinear --mag-filter nearest")[4][0], 60);     // texel 1 (u = 0.25 is its left edge)
+  EXPECT_EQ(rows("--filter trilinear --mag-filter GL_LINEAR")[4][0], 30);   // between texel 0 and 1
+  EXPECT_EQ(rows("--min-filter nearest_mipmap_linear --mag-filter linear")[4][0], 30);
+  // The RTL has the magnification filter (--verify: bit for bit the model's).
+  EXPECT_EQ(rows("--filter trilinear --mag-filter nearest -e rtl --verify")[4][0], 60);
+  EXPECT_EQ(rows("--filter point --mag-filter linear -e rtl --memory cached --cache-kib 4 --verify")[4][0], 30);
+  // Bad values: one line naming the option and the value, nothing written.
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --wrap clamp_to_nowhere", "bad.csv", {"clamp_to_nowhere", "border"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --mag-filter cubic", "bad.csv", {"--mag-filter", "cubic"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --min-filter trilinear", "bad.csv", {"--min-filter", "trilinear"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --mipmap-mode cubic", "bad.csv", {"--mipmap-mode", "cubic"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --border-color 1,0,0", "bad.csv", {"--border-color", "3 values"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --border-color 1,0,2,1", "bad.csv", {"--border-color", "\"2\""});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --border-color pink", "bad.csv", {"--border-color", "pink"});
+  // The on-chip RTL has every address mode and the border colour (--verify: the model's bits).
+  EXPECT_EQ(rows("--filter bilinear --wrap-u border --wrap-v clamp --border-color 1,0.50196,0,0.2 -e rtl --verify")[3],
+            (std::vector<int>{128, 94, 4, 153}));
+  EXPECT_EQ(rows("--filter point --wrap mirror-clamp -e systemc --verify")[2][0], 180);
+  EXPECT_EQ(rows("--filter point --wrap mirror-clamp -e rtl --memory cached --cache-kib 4 --verify")[2][0], 180);
+  // The cached unit has no border colour path yet: refused with one line naming the mode.
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv -e rtl --memory cached --wrap border", "bad.csv",
+                       {"border", "cached"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv -e systemc --memory cached --wrap-v border", "bad.csv",
+                       {"border (v)", "cached"});
 }

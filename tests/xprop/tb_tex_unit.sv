@@ -36,6 +36,7 @@ module tb_tex_unit #(
   logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w = 'x, cfg_log2_h = 'x;
   logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u = 'x, cfg_wrap_v = 'x;
   logic                                   cfg_texel_linear = 'x;
+  logic                                   cfg_mag_linear = 'x;
   logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode = 'x;
   logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias = 'x, cfg_min_lod = 'x, cfg_max_lod = 'x;
   logic                                   wr_en = 1'b0;
@@ -52,6 +53,7 @@ module tb_tex_unit #(
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx = 'x, req_dvdx = 'x, req_dudy = 'x, req_dvdy = 'x;
   logic [3:0]                             cfg_max_aniso_m1 = 'x;
   logic                                   cfg_aniso_pow2 = 'x;
+  logic [63:0]                            cfg_border_rgba = 'x;
   logic [TAG_W-1:0]                       req_tag = 'x;
   logic                                   rsp_valid;
   logic                                   rsp_ready = 1'b0;
@@ -280,7 +282,7 @@ module tb_tex_unit #(
   // ---------------------------------------------------------------- main
   initial begin : main
     byte op;
-    int a0, a1, a2, a3, a4, a5, a6, a7, a8;
+    int a0, a1, a2, a3, a4, a5, a6, a7, a8, a9;
     logic [63:0] h0, h1;
     logic signed [31:0] s0, s1;
     bit done;
@@ -311,7 +313,7 @@ module tb_tex_unit #(
         fail(2, "stimulus.txt ends without E");
         done = 1;
       end else if (op == "C") begin
-        r = $fscanf(stim_fd, "%d %d %d %d %d %d %d %d %d", a0, a1, a2, a3, a4, a5, a6, a7, a8);
+        r = $fscanf(stim_fd, "%d %d %d %d %d %d %d %d %d %d %h", a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, h0);
         if (accepted != answered) fail(2, "stimulus: cfg changed with requests in flight");
         cfg_log2_w = a0;
         cfg_log2_h = a1;
@@ -322,6 +324,8 @@ module tb_tex_unit #(
         cfg_lod_bias = a6;
         cfg_min_lod = a7;
         cfg_max_lod = a8;
+        cfg_mag_linear = a9[0];
+        cfg_border_rgba = h0;
         configs++;
       end else if (op == "W") begin
         r = $fscanf(stim_fd, "%d %d %d %h", a0, a1, a2, h0);

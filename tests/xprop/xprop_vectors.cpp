@@ -7,7 +7,8 @@
 //   params.txt     MAX_LOG2_W=.., MAX_LOG2_H=.., CW=.., TAG_W=..: the bench's parameters (-P)
 //   stimulus.txt   one command per line, in order (numbers decimal unless marked hex):
 //     H max_log2_w max_log2_h cw tag_w requests ready_len   header (checked by the bench)
-//     C log2_w log2_h wrap_u wrap_v texel_linear mip_mode lod_bias min_lod max_lod
+//     C log2_w log2_h wrap_u wrap_v texel_linear mip_mode lod_bias min_lod max_lod mag_linear
+//       border(hex, {A, B, G, R} unorm16)
 //                    the cfg pins from now on (only after a drain: nothing in flight)
 //     W level x y data(hex)                       one clock with wr_en high
 //     I clocks                                    idle clocks (req_valid and wr_en low)
@@ -25,8 +26,10 @@
 // Content: textures of several sizes and shapes up to 2^MAX_LOG2_W x 2^MAX_LOG2_H (smaller and
 // non-square ones first, so that memory words past the texture are still unwritten, X, while they
 // are sampled), random texels, exact or cascade pyramid, loaded through the write port with
-// random idle clocks; for each texture all 6 filters x 3 x 3 wrap modes, plus two cases with the
-// reserved codes cfg_mip_mode = 3 and cfg_wrap_* = 3 (random lod bias and clamps), random requests: coordinates far outside [0, 1), near the texel edges and centres of
+// random idle clocks; for each texture all 6 filters x 5 x 5 address modes (a random border colour
+// each), half of them with a
+// magnification filter apart from the minification filter, plus two cases with the reserved code
+// cfg_mip_mode = 3 (random lod bias and clamps), random requests: coordinates far outside [0, 1), near the texel edges and centres of
 // every level, any 32-bit value; lambda across every level, on the level and rounding boundaries,
 // below 0, past the last level and any 16-bit value; random input gaps; rewrites of texels with
 // their own value while requests stream; resets with requests in flight.
@@ -127,7 +130,13 @@ struct Gen {
   void cfg_line(const Pyramid& p, const SamplerConfig& c) {
     stim << "C " << p.log2_w0() << ' ' << p.log2_h0() << ' ' << int(c.wrap_u) << ' ' << int(c.wrap_v) << ' '
          << (c.filter.texel == TexelFilter::Linear ? 1 : 0) << ' ' << int(c.filter.mip) << ' ' << c.lod_bias << ' '
-         << c.min_lod << ' ' << c.max_lod << '\n';
+         << c.min_lod << ' ' << c.max_lod << ' ' << (c.filter.mag == TexelFilter::Linear ? 1 : 0) << ' ';
+    const Texel b = c.border_unorm16();
+    char hex[24];
+    std::snprintf(hex, sizeof hex, "%llx",
+                  static_cast<unsigned long long>(uint64_t(b[0]) | uint64_t(b[1]) << 16 | uint64_t(b[2]) << 32 |
+                                                  uint64_t(b[3]) << 48));
+    stim << hex << '\n';
   }
 
   void write_line(int level, int x, int y, uint64_t data) {
@@ -216,10 +225,13 @@ int run(const Options& opt) {
   };
   std::vector<Case> cases;
   for (const Filter& f : filters)
-    for (int wu = 0; wu < 3; ++wu)
-      for (int wv = 0; wv < 3; ++wv) cases.push_back({f, Wrap(wu), Wrap(wv)});
-  // Plus two cases per texture with the reserved codes (docs/rtl.md: cfg_mip_mode = 3 acts as
-  // linear, cfg_wrap_* = 3 maps every index to 0, as the model's code does); drawn per texture.
+    for (int wu = 0; wu < kWrapModes; ++wu)
+      for (int wv = 0; wv < kWrapModes; ++wv) {
+        cases.push_back({f, Wrap(wu), Wrap(wv)});
+        if ((wu + wv) % 2) cases.back().filter.mag = TexelFilter(1 - int(f.texel));  // magnifies apart
+      }
+  // Plus two cases per texture with the reserved code (docs/rtl.md: cfg_mip_mode = 3 acts as
+  // linear, as the model's code does); drawn per texture.
   constexpr size_t kReservedCases = 2;
   const size_t cases_per_texture = cases.size() + kReservedCases;
   const int per_case = std::max(4, opt.requests / int(textures.size() * cases_per_texture));
@@ -243,14 +255,16 @@ int run(const Options& opt) {
     g.cfg_line(pyr, c);
     g.load(pyr);
     std::vector<Case> list = cases;
-    list.push_back({{TexelFilter(g.below(2)), MipMode(3)}, Wrap(g.below(4)), Wrap(g.below(4))});
-    list.push_back({filters[g.below(filters.size())], Wrap(3), Wrap(g.below(4))});
-    if (g.below(2)) std::swap(list.back().wu, list.back().wv);
+    list.push_back({{TexelFilter(g.below(2)), MipMode(3)}, Wrap(g.below(kWrapModes)), Wrap(g.below(kWrapModes))});
+    list.push_back({{TexelFilter(g.below(2)), MipMode(3)}, Wrap(g.below(kWrapModes)), Wrap(g.below(kWrapModes))});
+    list.back().filter.mag = TexelFilter(g.below(2));
     std::shuffle(list.begin(), list.end(), g.rng);
     for (const Case& k : list) {
       c.filter = k.filter;
       c.wrap_u = k.wu;
       c.wrap_v = k.wv;
+      c.border = BorderColor(g.below(kBorderColors));
+      for (uint16_t& v : c.border_custom) v = uint16_t(g.below(65536));
       c.lod_bias = g.below(2) ? 0 : int32_t(g.between(-768, 768));  // [-3, 3] levels
       if (g.below(2)) {
         c.min_lod = kLodMin;

@@ -138,6 +138,12 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_tex = r.texture;
 }
 
+void check_wrap_pins(Wrap w, const char* axis, bool cached) {
+  if (cached && w == Wrap::Border)
+    throw Error(std::string("wrap mode border (") + axis +
+                "): the cached RTL has no border colour path yet (use --memory onchip, or engine model)");
+}
+
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
   CfgPins c;
   c.log2_w = uint8_t(log2_w);
@@ -145,12 +151,15 @@ CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
   c.wrap_u = uint8_t(config.wrap_u);
   c.wrap_v = uint8_t(config.wrap_v);
   c.texel_linear = config.filter.texel == TexelFilter::Linear;
+  c.mag_linear = config.filter.mag == TexelFilter::Linear;
   c.mip_mode = uint8_t(config.filter.mip);
   c.lod_bias = int16_t(config.lod_bias);
   c.min_lod = int16_t(config.min_lod);
   c.max_lod = int16_t(config.max_lod);
   c.max_aniso_m1 = uint8_t(config.probe_cap() - 1);
   c.aniso_pow2 = config.aniso_pow2;
+  const Texel b = config.border_unorm16();
+  c.border_rgba = uint64_t(b[0]) | uint64_t(b[1]) << 16 | uint64_t(b[2]) << 32 | uint64_t(b[3]) << 48;
   return c;
 }
 
@@ -273,7 +282,11 @@ void Driver::load_textures(const TextureTable& textures) {
   if (textures.size() > size_t(config_.textures))
     throw Error(std::to_string(textures.size()) + " textures: " + config_.name + "'s descriptor table holds " +
                 std::to_string(config_.textures));
-  for (const BoundTexture& t : textures) check_inputs(config_, *t.pyramid, {});
+  for (const BoundTexture& t : textures) {
+    check_inputs(config_, *t.pyramid, {});
+    check_wrap_pins(t.wrap_u, "u", true);
+    check_wrap_pins(t.wrap_v, "v", true);
+  }
   const CachePins pins = cache_pins(config_, options_.layout, options_.cache, options_.fifo_depth);
   EngineOptions eo;
   eo.layout = options_.layout;
