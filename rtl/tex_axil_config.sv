@@ -84,6 +84,7 @@ module tex_axil_config #(
   output logic signed [tex_pkg::LOD_W-1:0]  cfg_max_lod,
   output logic [3:0]                        cfg_max_aniso_m1,
   output logic                              cfg_aniso_pow2,
+  output logic [63:0]                       cfg_border_rgba,
   output logic                              cfg_block_morton,
   output logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets,
   output logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways,
@@ -158,6 +159,8 @@ module tex_axil_config #(
   localparam logic [WA-1:0] R_DESC_BASE   = WA'('h040 >> 2);
   localparam logic [WA-1:0] R_DESC_ATTR   = WA'('h044 >> 2);
   localparam logic [WA-1:0] R_DESC_COMMIT = WA'('h048 >> 2);
+  localparam logic [WA-1:0] R_BORDER_RG   = WA'('h050 >> 2);  // border colour: {G, R} unorm16
+  localparam logic [WA-1:0] R_BORDER_BA   = WA'('h054 >> 2);  //                {A, B}
   // Counters: counter i's LO word at 0x080 + 8 i, HI at 0x084 + 8 i (words 0x20 .. 0x3F).
   localparam int NCNT = 9;  // CYCLES, SAMPLES, SAMPLE_ERRORS, LOOKUPS, MISSES, MEM_BYTES,
                             // OUT_STALL, MEM_WAIT, REQ_STALL
@@ -204,6 +207,7 @@ module tex_axil_config #(
   logic [tex_pkg::MEM_ADDR_W-1:0]   desc_base;
   logic [19:0]                      desc_attr;  // {srgb, format, 0, wrap_v, 0, wrap_u, log2_h, log2_w}
   logic [12:0]                      filter;     // {pow2, aniso_m1, 2'b0, mip_mode, 2'b0, mag, linear}
+  logic [63:0]                      border;     // {A, B, G, R} unorm16
   logic signed [tex_pkg::LOD_W-1:0] lod_bias, min_lod, max_lod;
   logic                             block_morton;
   logic [SETS_W-1:0]                log2_sets;
@@ -221,16 +225,14 @@ module tex_axil_config #(
   logic [tex_pkg::WRAP_W-1:0] attr_wrap_u, attr_wrap_v;
   assign attr_wrap_u = desc_attr[10:8];
   assign attr_wrap_v = desc_attr[14:12];
-  // The address modes tex_unit_cached has: repeat, clamp, mirror, mirror-clamp (clamp to border
-  // not yet: its taps would read lines; 5..7 are no mode).
+  // The address modes: repeat, clamp, mirror, border, mirror-clamp (5..7 are no mode).
   function automatic logic wrap_ok(input logic [tex_pkg::WRAP_W-1:0] m);
-    wrap_ok = m == tex_pkg::WRAP_REPEAT || m == tex_pkg::WRAP_CLAMP || m == tex_pkg::WRAP_MIRROR
-           || m == tex_pkg::WRAP_MIRROR_CLAMP;
+    wrap_ok = m <= tex_pkg::WRAP_MIRROR_CLAMP;
   endfunction
 
   // Write decode: which register, and whether the write is allowed (else SLVERR, no change).
   logic sel_control, sel_cache, sel_fifo, sel_filter, sel_bias, sel_min, sel_max;
-  logic sel_base, sel_attr, sel_commit;
+  logic sel_base, sel_attr, sel_commit, sel_border_rg, sel_border_ba;
   logic wr_ok, wr_en;
   logic geometry_ok, desc_ok;
   always_comb begin
@@ -248,7 +250,7 @@ module tex_axil_config #(
   end
   always_comb begin
     {sel_control, sel_cache, sel_fifo, sel_filter, sel_bias, sel_min, sel_max} = '0;
-    {sel_base, sel_attr, sel_commit} = '0;
+    {sel_base, sel_attr, sel_commit, sel_border_rg, sel_border_ba} = '0;
     wr_ok = ws == 4'hF;
     case (wa)
       R_CONTROL:     sel_control = 1'b1;
@@ -261,6 +263,8 @@ module tex_axil_config #(
       R_DESC_BASE:   sel_base = 1'b1;
       R_DESC_ATTR:   sel_attr = 1'b1;
       R_DESC_COMMIT: begin sel_commit = 1'b1; if (ctl_unit_reset || !desc_ok) wr_ok = 1'b0; end
+      R_BORDER_RG:   sel_border_rg = 1'b1;
+      R_BORDER_BA:   sel_border_ba = 1'b1;
       default:       wr_ok = 1'b0;  // undefined or read-only
     endcase
   end
@@ -295,6 +299,7 @@ module tex_axil_config #(
       desc_index     <= '0;
       desc_base      <= '0;
       desc_attr      <= '0;
+      border         <= '0;
       filter         <= 13'h023;  // linear texels (minification and magnification), MIP_LINEAR
       lod_bias       <= '0;
       min_lod        <= 16'sh8000;
@@ -314,6 +319,8 @@ module tex_axil_config #(
       if (wr_en && sel_max)    max_lod <= wd[15:0];
       if (wr_en && sel_base)   desc_base <= wd;
       if (wr_en && sel_attr)   desc_attr <= wd[19:0] & 20'hF77FF;
+      if (wr_en && sel_border_rg) border[31:0]  <= wd;
+      if (wr_en && sel_border_ba) border[63:32] <= wd;
       if (wr_en && sel_commit) desc_index <= wd[3:0];
     end
   end
@@ -333,6 +340,7 @@ module tex_axil_config #(
   assign cfg_mip_mode     = filter[5:4];
   assign cfg_max_aniso_m1 = filter[11:8];
   assign cfg_aniso_pow2   = filter[12];
+  assign cfg_border_rgba  = border;
   assign cfg_lod_bias     = lod_bias;
   assign cfg_min_lod      = min_lod;
   assign cfg_max_lod      = max_lod;
@@ -419,6 +427,8 @@ module tex_axil_config #(
         R_DESC_BASE:   rd_data = desc_base;
         R_DESC_ATTR:   rd_data = {12'd0, desc_attr};
         R_DESC_COMMIT: rd_data = {28'd0, desc_index};
+        R_BORDER_RG:   rd_data = border[31:0];
+        R_BORDER_BA:   rd_data = border[63:32];
         default:       rd_ok = 1'b0;
       endcase
     end
@@ -466,7 +476,7 @@ module tex_axil_config #(
   logic [33:0]   f_r_q;                  // {rresp, rdata}, last clock
   localparam int FCW = 2 + tex_pkg::TEX_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::LEVEL_W
                        + 2 * tex_pkg::WRAP_W + tex_pkg::FORMAT_W + 3 + tex_pkg::MIP_W
-                       + 3 * tex_pkg::LOD_W + 4 + 2 + SETS_W + WAYS_W + FLW;
+                       + 3 * tex_pkg::LOD_W + 4 + 2 + SETS_W + WAYS_W + FLW + 64;
   logic [FCW-1:0] f_cfg, f_cfg_q;        // unit_rst and every cfg_* output but cfg_desc_we
   logic [49:0]   f_desc, f_desc_q;       // the staged descriptor (cfg_desc_base .. _srgb)
   logic          f_desc_we_q, f_clear_q;
@@ -480,7 +490,7 @@ module tex_axil_config #(
     f_writable = a == WA'('h10 >> 2) || a == WA'('h20 >> 2) || a == WA'('h24 >> 2)
               || a == WA'('h30 >> 2) || a == WA'('h34 >> 2) || a == WA'('h38 >> 2)
               || a == WA'('h3C >> 2) || a == WA'('h40 >> 2) || a == WA'('h44 >> 2)
-              || a == WA'('h48 >> 2);
+              || a == WA'('h48 >> 2) || a == WA'('h50 >> 2) || a == WA'('h54 >> 2);
   endfunction
   function automatic logic f_readable(input logic [WA-1:0] a);
     f_readable = f_writable(a) || 32'(a) < 4 || (32'(a) >= 'h80 / 4 && 32'(a) < 'h80 / 4 + 2 * NCNT);
@@ -489,7 +499,8 @@ module tex_axil_config #(
   assign f_cfg = {unit_rst, cfg_desc_index, cfg_desc_base, cfg_desc_log2_w, cfg_desc_log2_h,
                   cfg_desc_wrap_u, cfg_desc_wrap_v, cfg_desc_format, cfg_desc_srgb, cfg_texel_linear,
                   cfg_mag_linear, cfg_mip_mode, cfg_lod_bias, cfg_min_lod, cfg_max_lod, cfg_max_aniso_m1,
-                  cfg_aniso_pow2, cfg_block_morton, cfg_log2_sets, cfg_log2_ways, cfg_fifo_limit};
+                  cfg_aniso_pow2, cfg_block_morton, cfg_log2_sets, cfg_log2_ways, cfg_fifo_limit,
+                  cfg_border_rgba};
   assign f_desc = {cfg_desc_base, cfg_desc_srgb, cfg_desc_format, cfg_desc_wrap_v, cfg_desc_wrap_u,
                    cfg_desc_log2_h, cfg_desc_log2_w};
   assign f_b_take = s_axi_bvalid && s_axi_bready;

@@ -31,6 +31,9 @@
 // Ports (formats as tex_front's; XW, YW wrapped index bits):
 //   front_valid, front_tag          : the clock-4 register holds a request, and its tag
 //   level, f, w, log2_size, x, y    : tex_front's outputs
+//   border_x, border_y              : tex_front's too: a tap outside its level in address mode
+//                                     border looks no line up and takes the border colour
+//   cfg_border_rgba                 : the border colour, {A, B, G, R} unorm16 (static)
 //   front_tex                       : the sample's texture descriptor-table entry (clock 4)
 //   desc_we, desc_index, desc_base, desc_log2_w, desc_log2_h : a descriptor write: entry
 //                                     desc_index's level 0 is at byte address desc_base (a
@@ -92,6 +95,9 @@ module tex_cached_fetch #(
   input  logic [4*tex_pkg::LEVEL_W-1:0]     log2_size,
   input  logic [4*XW-1:0]                   x,
   input  logic [4*YW-1:0]                   y,
+  input  logic [3:0]                        border_x,
+  input  logic [3:0]                        border_y,
+  input  logic [63:0]                       cfg_border_rgba,
 
   input  logic                              desc_we,
   input  logic [TXW-1:0]                    desc_index,
@@ -270,6 +276,7 @@ module tex_cached_fetch #(
         logic [XW-1:0] x0, x1, bx0, bx1, bx;
         logic [YW-1:0] y0, y1, by0, by1, by;
         logic          nx1, ny1;     // the second tap along x (y) is needed: its weight != 0
+        logic          nx0, ny0;     // the first tap along x (y) is inside its level (not a border tap)
         logic          has_x, has_y;
         logic [LNW-1:0] index;       // a block's number in its level
         logic [LNW-1:0] level_base;  // the level's first line (one table read per slot)
@@ -279,7 +286,7 @@ module tex_cached_fetch #(
         logic [4:0]    pq;                  // the parity bit's position + 1
         // (temporaries too: a value on every path, no latch)
         {lev, lw, lh, lnbx, lnby, m, x0, x1, bx0, bx1, bx, y0, y1, by0, by1, by} = '0;
-        {nx1, ny1, has_x, has_y, index, level_base, xs, ys, px0, py0, pq} = '0;
+        {nx0, ny0, nx1, ny1, has_x, has_y, index, level_base, xs, ys, px0, py0, pq} = '0;
         look[s]        = '0;
         look_line[s]   = '0;
         look_set_hi[s] = '0;
@@ -303,8 +310,11 @@ module tex_cached_fetch #(
           bx1  = x1 >> lbw;
           by0  = y0 >> lbh;
           by1  = y1 >> lbh;
-          nx1  = w[(s*2 + 0)*WB +: WB] != '0;
-          ny1  = w[(s*2 + 1)*WB +: WB] != '0;
+          // A border tap reads no line (model TextureCache::lookup).
+          nx0  = !border_x[s*2];
+          ny0  = !border_y[s*2];
+          nx1  = w[(s*2 + 0)*WB +: WB] != '0 && !border_x[s*2 + 1];
+          ny1  = w[(s*2 + 1)*WB +: WB] != '0 && !border_y[s*2 + 1];
           tap_low[s] = {PB'(y1), PB'(y0), PB'(x1), PB'(x0)};
           pq  = blk ? 5'd3 : 5'd1;
           px0 = 1'(32'(x0) >> (pq - 5'd1));
@@ -312,10 +322,10 @@ module tex_cached_fetch #(
           for (int q = 0; q < 4; q++) begin
             // The needed x taps whose block has x parity q[0] (likewise y): bx0 if its parity
             // matches, else bx1 (two distinct blocks of a footprint differ in parity).
-            has_x = (bx0[0] == q[0]) || (nx1 && bx1[0] == q[0]);
-            has_y = (by0[0] == q[1]) || (ny1 && by1[0] == q[1]);
-            bx    = (bx0[0] == q[0]) ? bx0 : bx1;
-            by    = (by0[0] == q[1]) ? by0 : by1;
+            has_x = (nx0 && bx0[0] == q[0]) || (nx1 && bx1[0] == q[0]);
+            has_y = (ny0 && by0[0] == q[1]) || (ny1 && by1[0] == q[1]);
+            bx    = (nx0 && bx0[0] == q[0]) ? bx0 : bx1;
+            by    = (ny0 && by0[0] == q[1]) ? by0 : by1;
             look[s][q] = has_x && has_y;
             if (!cfg_block_morton) begin
               index = (LNW'(by) << lnbx) | LNW'(bx);
@@ -550,14 +560,19 @@ module tex_cached_fetch #(
 `endif
 
   // ---------------------------------------------------------------- sample FIFO
-  // An entry: {tag, w, f, sRGB, format, c0, needed bank reads, taps' low coordinate bits (slot 1,
-  // slot 0), bank reads, fills}.
+  // An entry: {tag, w, f, border taps, sRGB, format, c0, needed bank reads, taps' low coordinate
+  // bits (slot 1, slot 0), bank reads, fills}.
   localparam int P_TAPS = 4 + 8*RD;          // field positions
   localparam int P_NEED = P_TAPS + 8*PB;
   localparam int P_C0   = P_NEED + 8;
   localparam int P_FMT  = P_C0 + 1;
   localparam int P_SRGB = P_FMT + FW;
-  localparam int EW     = P_SRGB + 1 + 5*WB + TAG_W;
+  localparam int P_BORD = P_SRGB + 1;
+  localparam int EW     = P_BORD + 8 + 5*WB + TAG_W;
+  // Tap i = slot * 4 + t is outside its level in mode border when its x (t bit 0) or y (t bit 1) is.
+  logic [7:0] border_tap;
+  always_comb
+    for (int i = 0; i < 8; i++) border_tap[i] = border_x[i/4*2 + i%2] || border_y[i/4*2 + i%4/2];
   localparam int FPW = $clog2(FIFO_DEPTH);
   logic [EW-1:0]  fifo [FIFO_DEPTH];
   logic [FPW-1:0] fifo_wr, fifo_rd;
@@ -566,7 +581,7 @@ module tex_cached_fetch #(
   logic [FCW-1:0] fifo_next;
   logic [MCW-1:0] ring_next;
   always_ff @(posedge clk) begin
-    if (push) fifo[fifo_wr] <= {front_tag, w, f, srgb, fmt, c0, need, tap_low[1], tap_low[0], reads, fills};
+    if (push) fifo[fifo_wr] <= {front_tag, w, f, border_tap, srgb, fmt, c0, need, tap_low[1], tap_low[0], reads, fills};
   end
   assign fifo_next = fifo_count + FCW'(push) - FCW'(fifo_pop);
   logic [FCW-1:0] fifo_limit;  // the FIFO's depth in use
@@ -788,13 +803,34 @@ module tex_cached_fetch #(
     end
   endgenerate
 
+  // Address mode border: a tap outside its level takes the border colour (model
+  // BankedMipMemory::fetch), in the filter's width: CW bits (tex_border); SRGB: an sRGB
+  // texture's filter takes 16-bit linear channels, a linear texture's 8-bit ones zero-extended.
+  logic [63:0]     cfg_border_q;  // registered every clock, like the other cfg_* pins
+  logic [DW-1:0]   border_texel;
+  always_ff @(posedge clk) cfg_border_q <= cfg_border_rgba;
+  generate
+    if (SRGB != 0) begin : g_border_srgb
+      logic [31:0] b8;
+      tex_border #(.CW(8)) u_border8 (.rgba16(cfg_border_q), .rgba(b8));
+      assign border_texel = t_entry[P_SRGB] ? DW'(cfg_border_q)
+                                            : DW'({8'd0, b8[24 +: 8], 8'd0, b8[16 +: 8], 8'd0, b8[8 +: 8], 8'd0, b8[0 +: 8]});
+    end else begin : g_border
+      tex_border #(.CW(CW)) u_border (.rgba16(cfg_border_q), .rgba(border_texel));
+    end
+  endgenerate
+  logic [8*DW-1:0] t_taps;
+  always_comb
+    for (int i = 0; i < 8; i++)
+      t_taps[i*DW +: DW] = t_entry[P_BORD + i] ? border_texel : widened[i*DW +: DW];
+
   always_ff @(posedge clk) begin
     if (rst) out_valid <= 1'b0;
     else if (en_back) out_valid <= t_valid;
     if (en_back && t_valid) begin
       {out_tag, out_w, out_f} <= t_entry[EW-1 -: TAG_W + 5*WB];
       out_error <= t_err;
-      taps <= widened;
+      taps <= t_taps;
     end
   end
 endmodule

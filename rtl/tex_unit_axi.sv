@@ -108,6 +108,7 @@ module tex_unit_axi #(
   logic [tex_pkg::MIP_W-1:0]         cfg_mip_mode;
   logic signed [tex_pkg::LOD_W-1:0]  cfg_lod_bias, cfg_min_lod, cfg_max_lod;
   logic [3:0]                        cfg_max_aniso_m1;
+  logic [63:0]                       cfg_border_rgba;
   logic                              cfg_block_morton;
   logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets;
   logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways;
@@ -135,7 +136,7 @@ module tex_unit_axi #(
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
     .cfg_texel_linear(cfg_texel_linear), .cfg_mag_linear(cfg_mag_linear), .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
-    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
+    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2), .cfg_border_rgba(cfg_border_rgba),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     // the counters' events, at the unit's ports
@@ -158,7 +159,7 @@ module tex_unit_axi #(
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
     .cfg_texel_linear(cfg_texel_linear), .cfg_mag_linear(cfg_mag_linear), .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
-    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
+    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2), .cfg_border_rgba(cfg_border_rgba),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v),

@@ -22,7 +22,8 @@
 //   outstanding. Memory traffic is a function of the requests and the
 //   cache configuration alone (docs/memory.md §2).
 // Ports: as tex_unit (req_u, req_v signed Q8.24; req_lod, cfg_lod_bias, cfg_min_lod,
-//   cfg_max_lod signed Q8.8; req_deriv, req_dudx .. req_dvdy, cfg_max_aniso_m1, cfg_aniso_pow2;
+//   cfg_max_lod signed Q8.8; req_deriv, req_dudx .. req_dvdy, cfg_max_aniso_m1, cfg_aniso_pow2,
+//   cfg_border_rgba (the border colour of address mode border, {A, B, G, R} unorm16);
 //   rsp_rgba {A, B, G, R} CW-bit unsigned) but for the texture, which a request names, plus
 //   req_tex          : the request's texture descriptor-table entry, 0..TEXTURES-1
 //   cfg_desc_*       : a descriptor write (cfg_desc_we high for one clock): entry cfg_desc_index
@@ -88,6 +89,7 @@ module tex_unit_cached #(
   input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
   input  logic [3:0]                             cfg_max_aniso_m1,
   input  logic                                   cfg_aniso_pow2,
+  input  logic [63:0]                            cfg_border_rgba,
   input  logic                                   cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]        cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]        cfg_log2_ways,
@@ -300,9 +302,7 @@ module tex_unit_cached #(
   logic [4*VW-1:0] log2_size_s4;
   logic [4*XW-1:0] x;
   logic [4*YW-1:0] y;
-  // Address mode border is not in this unit yet (tex_axil_config refuses the descriptor, the
-  // harness the sampler state): the border flags go nowhere; the taps read the repeat index.
-  logic [7:0]      border_unused;
+  logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside its level (mode border)
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
     .req_log2_w(probe_size[0 +: VW]), .req_log2_h(probe_size[VW +: VW]),
@@ -311,7 +311,7 @@ module tex_unit_cached #(
     .cfg_mip_mode(cfg_mip_mode),
     .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
     .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
-    .border_x(border_unused[3:0]), .border_y(border_unused[7:4])
+    .border_x(border_x), .border_y(border_y)
   );
 
   // ---------------------------------------------------------------- AXI4 read master
@@ -353,6 +353,7 @@ module tex_unit_cached #(
     .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
     .front_valid(valid_f[4]), .front_tag(tag_f4), .front_tex(tex_f[3*TXW +: TXW]), .level(level_s4),
     .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
+    .border_x(border_x), .border_y(border_y), .cfg_border_rgba(cfg_border_rgba),
     .desc_we(desc_we_q), .desc_index(desc_index_q), .desc_base(desc_base_q),
     .desc_log2_w(desc_size_q[0 +: VW]), .desc_log2_h(desc_size_q[VW +: VW]), .desc_format(desc_format_q),
     .desc_srgb(desc_srgb_q),

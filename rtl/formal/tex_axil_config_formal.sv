@@ -46,7 +46,7 @@ module tex_axil_config_formal #(
     .unit_rst(), .cfg_desc_we(), .cfg_desc_index(), .cfg_desc_base(), .cfg_desc_log2_w(),
     .cfg_desc_log2_h(), .cfg_desc_wrap_u(), .cfg_desc_wrap_v(), .cfg_desc_format(),
     .cfg_desc_srgb(), .cfg_texel_linear(), .cfg_mag_linear(), .cfg_mip_mode(), .cfg_lod_bias(), .cfg_min_lod(),
-    .cfg_max_lod(), .cfg_max_aniso_m1(), .cfg_aniso_pow2(), .cfg_block_morton(),
+    .cfg_max_lod(), .cfg_max_aniso_m1(), .cfg_aniso_pow2(), .cfg_border_rgba(), .cfg_block_morton(),
     .cfg_log2_sets(), .cfg_log2_ways(), .cfg_fifo_limit(),
     .stat_sample, .stat_sample_error, .stat_lookups, .stat_misses, .stat_mem_beat,
     .stat_out_stall, .stat_mem_wait, .stat_req_stall

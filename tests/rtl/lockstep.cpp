@@ -226,11 +226,7 @@ void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c) {
   c.aniso_pow2 = rng() % 4 == 0;
 }
 
-Wrap random_wrap(std::mt19937_64& rng, bool cached) {
-  if (!cached) return Wrap(rng() % kWrapModes);
-  const Wrap modes[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::MirrorClamp};  // (no border yet)
-  return modes[rng() % 4];
-}
+Wrap random_wrap(std::mt19937_64& rng) { return Wrap(rng() % kWrapModes); }
 
 void randomize_border(std::mt19937_64& rng, SamplerConfig& c) {
   c.border = BorderColor(rng() % kBorderColors);

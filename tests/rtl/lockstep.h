@@ -64,8 +64,8 @@ Request random_footprint(std::mt19937_64& rng, int lw, int lh, int probes, int a
 // two in a quarter of the cases.
 void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c);
 // Random bias and clamps (half of the cases keep the full range).
-// A random address mode of the unit: all five on chip; the cached unit has no clamp to border yet.
-Wrap random_wrap(std::mt19937_64& rng, bool cached);
+// One of the five address modes.
+Wrap random_wrap(std::mt19937_64& rng);
 // One of the border colours (Vulkan's six or a random custom one).
 void randomize_border(std::mt19937_64& rng, SamplerConfig& c);
 // A third of the time, a magnification filter apart from the minification filter's texel filter.

@@ -66,6 +66,7 @@ constexpr int kLineBytes = kBlockW * kBlockH * 4, kBeatBytes = kMemW / 8, kBeats
 constexpr uint32_t kId = 0x000, kVersion = 0x004, kCaps0 = 0x008, kCaps1 = 0x00C, kControl = 0x010;
 constexpr uint32_t kCache = 0x020, kFifoLimit = 0x024, kFilter = 0x030, kLodBias = 0x034, kMinLod = 0x038;
 constexpr uint32_t kMaxLod = 0x03C, kDescBase = 0x040, kDescAttr = 0x044, kDescCommit = 0x048;
+constexpr uint32_t kBorderRg = 0x050, kBorderBa = 0x054;
 constexpr uint32_t kCounterBase = 0x080;  // counter i: LO at 0x080 + 8 i, HI at + 4
 constexpr uint32_t kUnitReset = 1, kFreeze = 2, kClear = 4;  // CONTROL
 constexpr int kCounters = 9;
@@ -606,9 +607,7 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
   for (int i = 0; i < n; ++i) {
     const int lw = i == 0 ? kMaxLog2W : int(rng() % (kMaxLog2W + 1)), lh = i == 0 ? kMaxLog2H : int(rng() % (kMaxLog2H + 1));
     c.pyramids.push_back(random_pyramid(lw, lh, rng()));
-    // The cached unit's address modes (clamp to border: not in it yet).
-    const Wrap modes[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::MirrorClamp};
-    c.table.push_back({&c.pyramids.back(), modes[rng() % 4], modes[rng() % 4]});
+    c.table.push_back({&c.pyramids.back(), Wrap(rng() % kWrapModes), Wrap(rng() % kWrapModes)});
   }
   const Filter filters[] = {{TexelFilter::Nearest, MipMode::None},   {TexelFilter::Nearest, MipMode::Nearest},
                             {TexelFilter::Nearest, MipMode::Linear}, {TexelFilter::Linear, MipMode::None},
@@ -620,6 +619,8 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
     c.cfg.aniso_pow2 = rng() % 4 == 0;
   }
   if (rng() % 3 == 0) c.cfg.filter.mag = TexelFilter(1 - int(c.cfg.filter.texel));  // magnifies apart
+  c.cfg.border = BorderColor(rng() % kBorderColors);
+  for (uint16_t& v : c.cfg.border_custom) v = uint16_t(rng());
   c.cfg.lod_bias = rng() % 2 ? 0 : int32_t(int64_t(rng() % 1537) - 768);
   if (rng() % 2) {
     c.cfg.min_lod = int32_t(int64_t(rng() % 1537) - 512);
@@ -699,8 +700,12 @@ void program(AxiTop& top, const Case& c, const std::vector<TextureDescriptor>& d
   expect_write(kLodBias, uint16_t(c.cfg.lod_bias), kOkay, "LOD_BIAS");
   expect_write(kMinLod, uint16_t(c.cfg.min_lod), kOkay, "MIN_LOD");
   expect_write(kMaxLod, uint16_t(c.cfg.max_lod), kOkay, "MAX_LOD");
+  const Texel b = c.cfg.border_unorm16();
+  expect_write(kBorderRg, uint32_t(b[0]) | uint32_t(b[1]) << 16, kOkay, "BORDER_RG");
+  expect_write(kBorderBa, uint32_t(b[2]) | uint32_t(b[3]) << 16, kOkay, "BORDER_BA");
   expect_read(kFilter, filter_register(c.cfg), "FILTER");
   expect_read(kMinLod, uint16_t(c.cfg.min_lod), "MIN_LOD");
+  expect_read(kBorderBa, uint32_t(b[2]) | uint32_t(b[3]) << 16, "BORDER_BA");
   // A commit while the unit is in reset would be lost: refused.
   expect_write(kDescCommit, 0, kSlverr, "DESC_COMMIT in reset");
   // The geometry, then the release as soon as allowed (BREADY high at once: the CONTROL write's

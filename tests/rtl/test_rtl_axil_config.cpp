@@ -36,12 +36,14 @@ constexpr int kFifoLimitBits = 9;  // $clog2(FIFO_DEPTH + 1)
 constexpr uint32_t kId = 0x000, kVersion = 0x004, kCaps0 = 0x008, kCaps1 = 0x00C, kControl = 0x010;
 constexpr uint32_t kCache = 0x020, kFifoLimit = 0x024, kFilter = 0x030, kLodBias = 0x034, kMinLod = 0x038;
 constexpr uint32_t kMaxLod = 0x03C, kDescBase = 0x040, kDescAttr = 0x044, kDescCommit = 0x048;
+constexpr uint32_t kBorderRg = 0x050, kBorderBa = 0x054;
 constexpr uint32_t kCounterBase = 0x080;  // counter i: LO at 0x080 + 8 i, HI at + 4
 constexpr int kCounters = 9;
 enum Counter { kCycles, kSamples, kSampleErrors, kLookups, kMisses, kMemBytes, kOutStall, kMemWait, kReqStall };
 constexpr uint32_t kOkay = 0, kSlverr = 2;
-constexpr std::array<uint32_t, 10> kWritable = {kControl, kCache, kFifoLimit, kFilter, kLodBias,
-                                                kMinLod,  kMaxLod, kDescBase, kDescAttr, kDescCommit};
+constexpr std::array<uint32_t, 12> kWritable = {kControl, kCache, kFifoLimit, kFilter, kLodBias,
+                                                kMinLod,  kMaxLod, kDescBase, kDescAttr, kDescCommit,
+                                                kBorderRg, kBorderBa};
 
 int log2i(int v) {
   int k = 0;
@@ -61,7 +63,7 @@ struct Reference {
   uint32_t control = 1;                      // unit_reset after reset
   uint32_t cache = (2u << 16) | (6u << 8);   // 4 ways, 64 sets (LINES / MAX_WAYS), row-major
   uint32_t fifo_limit = 0, filter = 0x23, lod_bias = 0, min_lod = 0x8000, max_lod = 0x7FFF;
-  uint32_t desc_base = 0, desc_attr = 0, desc_index = 0;
+  uint32_t desc_base = 0, desc_attr = 0, desc_index = 0, border_rg = 0, border_ba = 0;
   std::array<uint64_t, kCounters> counters{};
   Events ev_q;  // the registered events (counted at the next edge)
   bool snap_valid = false;
@@ -76,8 +78,7 @@ struct Reference {
     const uint32_t index = d & 15, log2_w = desc_attr & 15, log2_h = (desc_attr >> 4) & 15;
     const uint32_t format = (desc_attr >> 16) & 7, wrap_u = (desc_attr >> 8) & 7, wrap_v = (desc_attr >> 12) & 7;
     const bool srgb = (desc_attr >> 19) & 1;
-    // The cached unit's address modes: repeat, clamp, mirror, mirror-clamp (not border, nor 5..7).
-    auto wrap_ok = [](uint32_t w) { return w <= 2 || w == 4; };
+    auto wrap_ok = [](uint32_t w) { return w <= 4; };  // the five address modes (5..7: none)
     return index < kTextures && log2_w <= kMaxLog2W && log2_h <= kMaxLog2H && wrap_ok(wrap_u) && wrap_ok(wrap_v) &&
            (format == 0 || (kBlockFormats && format != 6)) && (!srgb || (kSrgb && format != 4 && format != 5)) &&
            desc_base % kLineBytes == 0;
@@ -103,6 +104,8 @@ struct Reference {
       case kMaxLod: max_lod = d & 0xFFFF; break;
       case kDescBase: desc_base = d; break;
       case kDescAttr: desc_attr = d & 0xF77FF; break;
+      case kBorderRg: border_rg = d; break;
+      case kBorderBa: border_ba = d; break;
       case kDescCommit: desc_index = d & 15; break;
     }
   }
@@ -144,6 +147,8 @@ struct Reference {
       case kMaxLod: return {max_lod, kOkay};
       case kDescBase: return {desc_base, kOkay};
       case kDescAttr: return {desc_attr, kOkay};
+      case kBorderRg: return {border_rg, kOkay};
+      case kBorderBa: return {border_ba, kOkay};
       case kDescCommit: return {desc_index, kOkay};
     }
     return {0, kSlverr};
@@ -424,6 +429,7 @@ class Slave {
     EXPECT_EQ(t.cfg_desc_wrap_v, (r.desc_attr >> 12) & 7);
     EXPECT_EQ(t.cfg_desc_format, (r.desc_attr >> 16) & 7);
     EXPECT_EQ(t.cfg_desc_srgb, (r.desc_attr >> 19) & 1);
+    EXPECT_EQ(t.cfg_border_rgba, uint64_t(r.border_rg) | uint64_t(r.border_ba) << 32);
     EXPECT_EQ(t.cfg_texel_linear, r.filter & 1);
     EXPECT_EQ(t.cfg_mag_linear, (r.filter >> 1) & 1);
     EXPECT_EQ(t.cfg_mip_mode, (r.filter >> 4) & 3);
@@ -487,8 +493,7 @@ TEST(RtlAxilConfig, EveryRegisterWrittenAndReadBack) {
       if (a == kCache || a == kControl) continue;
       uint32_t d = uint32_t(rng());
       if (a == kDescCommit) {  // a valid descriptor: RGBA, line-aligned base
-        const uint32_t wraps[] = {0, 1, 2, 4};  // the cached unit's address modes
-        ASSERT_EQ(s.write(kDescAttr, wraps[rng() % 4] << 12 | wraps[rng() % 4] << 8 | 3u << 4 | 5u), kOkay);
+        ASSERT_EQ(s.write(kDescAttr, uint32_t(rng() % 5) << 12 | uint32_t(rng() % 5) << 8 | 3u << 4 | 5u), kOkay);
         ASSERT_EQ(s.write(kDescBase, uint32_t(rng()) & ~63u), kOkay);
         d = (d & ~15u) | uint32_t(rng() % kTextures);
       }
@@ -513,7 +518,7 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
     EXPECT_TRUE(r.control == before.control && r.cache == before.cache && r.fifo_limit == before.fifo_limit &&
                 r.filter == before.filter && r.lod_bias == before.lod_bias && r.min_lod == before.min_lod &&
                 r.max_lod == before.max_lod && r.desc_base == before.desc_base && r.desc_attr == before.desc_attr &&
-                r.desc_index == before.desc_index)
+                r.desc_index == before.desc_index && r.border_rg == before.border_rg && r.border_ba == before.border_ba)
         << what;
     EXPECT_EQ(s.desc_pulses, pulses) << what;
   };
@@ -545,12 +550,12 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   EXPECT_EQ(s.write(kDescCommit, 1), kSlverr);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
   const uint32_t bad_attr[] = {11u,          10u << 4,     6u << 16, 1u << 19 | 4u << 16, 1u << 19 | 5u << 16,
-                               3u << 8,      3u << 12,     5u << 8,  7u << 12};  // border, no mode
+                               5u << 8,      7u << 12};  // no address mode
   for (uint32_t attr : bad_attr) {
     ASSERT_EQ(s.write(kDescAttr, attr), kOkay);
     EXPECT_EQ(s.write(kDescCommit, 2), kSlverr) << std::hex << attr;
   }
-  ASSERT_EQ(s.write(kDescAttr, 0x84135), kOkay);  // sRGB RGBA 32x8, wrap clamp / mirror-clamp: valid
+  ASSERT_EQ(s.write(kDescAttr, 0x84335), kOkay);  // sRGB RGBA 32x8, wrap border / mirror-clamp: valid
   EXPECT_EQ(s.write(kDescCommit, kTextures), kSlverr);  // index beyond the table
   ASSERT_EQ(s.write(kDescBase, 0x1000 + 32), kOkay);     // not line-aligned
   EXPECT_EQ(s.write(kDescCommit, 2), kSlverr);
@@ -601,7 +606,7 @@ TEST(RtlAxilConfig, ResponsesHeldUnderBackpressureBothChannelsAtOnce) {
       if ((w.addr & ~3u) == kCache) w.data = uint32_t(rng() % 3) << 16 | uint32_t(rng() % 8) << 8 | (w.data & 1);
       if ((w.addr & ~3u) == kControl) w.data &= (rng() % 8 == 0) ? 7 : 3;  // a clear now and then
       if ((w.addr & ~3u) == kDescBase && rng() % 2) w.data &= ~63u;
-      if ((w.addr & ~3u) == kDescAttr) w.data &= 0xF3311u;  // mostly valid sizes and address modes
+      if ((w.addr & ~3u) == kDescAttr) w.data &= 0xF3311u | (rng() % 4 ? 0u : 0x4400u);  // mostly valid
       w.strb = rng() % 10 == 0 ? uint8_t(rng() % 16) : 0xF;
       w.order = WriteOp::Order(rng() % 3);
       w.gap = int(rng() % 3);

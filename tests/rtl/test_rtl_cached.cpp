@@ -283,8 +283,9 @@ void run_suite(const CachedSuite& suite) {
     if (ci % 3 != 2) cfg.filter = Filter{TexelFilter::Linear, MipMode::Linear};  // most cases trilinear
     if (ci % 5 == 4) randomize_aniso(rng, cfg);  // a fifth anisotropic (the probes go through the caches)
     randomize_mag_filter(rng, cfg);
-    cfg.wrap_u = random_wrap(rng, true);
-    cfg.wrap_v = random_wrap(rng, true);
+    cfg.wrap_u = random_wrap(rng);
+    cfg.wrap_v = random_wrap(rng);
+    randomize_border(rng, cfg);
     randomize_lod_controls(rng, cfg);
     const LayoutParams layout = random_layout(rng, rc);
     const CacheParams cache = random_cache(rng, rc);
@@ -402,12 +403,13 @@ void run_descriptor_tables(const std::string& config, int cases) {
       pyramids.push_back(random_pyramid(rc, format, lw, lh, srgb, rng()));
       block_textures += blocks;
       srgb_textures += pyramids.back().srgb;
-      table.push_back({&pyramids.back(), random_wrap(rng, true), random_wrap(rng, true)});
+      table.push_back({&pyramids.back(), random_wrap(rng), random_wrap(rng)});
     }
     SamplerConfig cfg;
     cfg.filter = ci % 3 == 2 ? filters[rng() % filters.size()] : Filter{TexelFilter::Linear, MipMode::Linear};
     if (ci % 5 == 4) randomize_aniso(rng, cfg);
     randomize_mag_filter(rng, cfg);
+    randomize_border(rng, cfg);
     randomize_lod_controls(rng, cfg);
     const LayoutParams layout = random_layout(rng, rc);
     const CacheParams cache = random_cache(rng, rc);

@@ -699,8 +699,8 @@ TEST_F(TexsimCli, MemoryErrorsNameTheFlaggedSamples) {
 
 // Sampler state on the command line (docs/numerics.md stages 1 and 3): a clamp-to-border tap takes
 // the border colour (a name or R,G,B,A), mirror clamp mirrors once, the magnification filter
-// applies at lambda <= 0 (in every engine); GL and Vulkan names are accepted; bad values and
-// units without the mode fail before any work, with one line naming the option and the value.
+// applies at lambda <= 0 (in every engine, both RTL units included); GL and Vulkan names are
+// accepted; bad values fail before any work, with one line naming the option and the value.
 TEST_F(TexsimCli, SamplerStateOptions) {
   // 4x4: texel (x, y) = (x * 60, y * 60, 7, 255).
   write_image(dir / "ramp.png", 4, 4, 4, [](int x, int y, int c) { return c == 0 ? x * 60 : c == 1 ? y * 60 : c == 2 ? 7 : 255; });
@@ -742,14 +742,12 @@ TEST_F(TexsimCli, SamplerStateOptions) {
   expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --border-color 1,0,0", "bad.csv", {"--border-color", "3 values"});
   expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --border-color 1,0,2,1", "bad.csv", {"--border-color", "\"2\""});
   expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --border-color pink", "bad.csv", {"--border-color", "pink"});
-  // The on-chip RTL has every address mode and the border colour (--verify: the model's bits).
+  // Both RTL units have every address mode and the border colour (--verify: the model's bits).
   EXPECT_EQ(rows("--filter bilinear --wrap-u border --wrap-v clamp --border-color 1,0.50196,0,0.2 -e rtl --verify")[3],
             (std::vector<int>{128, 94, 4, 153}));
   EXPECT_EQ(rows("--filter point --wrap mirror-clamp -e systemc --verify")[2][0], 180);
   EXPECT_EQ(rows("--filter point --wrap mirror-clamp -e rtl --memory cached --cache-kib 4 --verify")[2][0], 180);
-  // The cached unit has no border colour path yet: refused with one line naming the mode.
-  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv -e rtl --memory cached --wrap border", "bad.csv",
-                       {"border", "cached"});
-  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv -e systemc --memory cached --wrap-v border", "bad.csv",
-                       {"border (v)", "cached"});
+  EXPECT_EQ(rows("--filter bilinear --wrap-u border --wrap-v clamp --border-color 1,0.50196,0,0.2 -e rtl "
+                 "--memory cached --cache-kib 4 --verify")[3],
+            (std::vector<int>{128, 94, 4, 153}));
 }

@@ -138,12 +138,6 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_tex = r.texture;
 }
 
-void check_wrap_pins(Wrap w, const char* axis, bool cached) {
-  if (cached && w == Wrap::Border)
-    throw Error(std::string("wrap mode border (") + axis +
-                "): the cached RTL has no border colour path yet (use --memory onchip, or engine model)");
-}
-
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
   CfgPins c;
   c.log2_w = uint8_t(log2_w);
@@ -282,11 +276,7 @@ void Driver::load_textures(const TextureTable& textures) {
   if (textures.size() > size_t(config_.textures))
     throw Error(std::to_string(textures.size()) + " textures: " + config_.name + "'s descriptor table holds " +
                 std::to_string(config_.textures));
-  for (const BoundTexture& t : textures) {
-    check_inputs(config_, *t.pyramid, {});
-    check_wrap_pins(t.wrap_u, "u", true);
-    check_wrap_pins(t.wrap_v, "v", true);
-  }
+  for (const BoundTexture& t : textures) check_inputs(config_, *t.pyramid, {});
   const CachePins pins = cache_pins(config_, options_.layout, options_.cache, options_.fifo_depth);
   EngineOptions eo;
   eo.layout = options_.layout;

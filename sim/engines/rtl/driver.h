@@ -143,12 +143,9 @@ struct CfgPins {
   int16_t lod_bias = 0, min_lod = 0, max_lod = 0;
   uint8_t max_aniso_m1 = 0;  // probes per sample at most, less one (0: trilinear)
   bool aniso_pow2 = false;
-  uint64_t border_rgba = 0;  // on-chip unit: the border colour, {A, B, G, R} unorm16
+  uint64_t border_rgba = 0;  // the border colour, {A, B, G, R} unorm16
 };
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h);
-// Throws tex::Error for an address mode the unit has not got: clamp to border in the cached unit
-// (its border colour path is the on-chip unit's only, so far).
-void check_wrap_pins(Wrap w, const char* axis, bool cached);
 
 // Texel <-> packed {A, B, G, R} of cw bits each (R in the low bits).
 uint64_t pack_rgba(const Texel& t, int cw);

@@ -63,10 +63,6 @@ class RtlEngine final : public Engine {
     SamplerConfig config = sampling;  // the on-chip unit's wrap pins: its one texture's
     config.wrap_u = textures[0].wrap_u;
     config.wrap_v = textures[0].wrap_v;
-    for (const BoundTexture& t : textures) {  // an address mode the unit has not got: before any work
-      check_wrap_pins(t.wrap_u, "u", cached);
-      check_wrap_pins(t.wrap_v, "v", cached);
-    }
     const RtlConfig& rc =
         smallest_config_for(textures, options_.memory, options_.layout.block_w, options_.layout.block_h);
     for (const BoundTexture& t : textures) check_inputs(rc, *t.pyramid);

@@ -130,8 +130,8 @@ class VerilatedTexUnit final : public Driver {
       t.cfg_log2_h = c.log2_h;
       t.cfg_wrap_u = c.wrap_u;
       t.cfg_wrap_v = c.wrap_v;
-      t.cfg_border_rgba = c.border_rgba;
     }
+    t.cfg_border_rgba = c.border_rgba;
     t.cfg_texel_linear = c.texel_linear;
     t.cfg_mag_linear = c.mag_linear;
     t.cfg_mip_mode = c.mip_mode;

@@ -204,10 +204,6 @@ class SystemcEngine final : public Engine {
                   format_info(pyramid.format).name + (pyramid.srgb ? " sRGB" : "") +
                   " texture in cached memory; the SystemC memory socket carries RGBA lines only so far "
                   "(use --engine rtl or model, or --memory onchip)");
-    if (backend_ == Backend::Rtl) {  // an address mode the RTL has not got: before any work
-      rtl::check_wrap_pins(config.wrap_u, "u", options_.engine.memory == Memory::Cached);
-      rtl::check_wrap_pins(config.wrap_v, "v", options_.engine.memory == Memory::Cached);
-    }
     return run_systemc(backend_, pyramid, config, source, sink, options_);
   }
 
