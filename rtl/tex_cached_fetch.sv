@@ -806,17 +806,22 @@ module tex_cached_fetch #(
   // Address mode border: a tap outside its level takes the border colour (model
   // BankedMipMemory::fetch), in the filter's width: CW bits (tex_border); SRGB: an sRGB
   // texture's filter takes 16-bit linear channels, a linear texture's 8-bit ones zero-extended.
-  logic [63:0]     cfg_border_q;  // registered every clock, like the other cfg_* pins
+  // The colour is static: the pin is registered, converted, and the result registered again (the
+  // conversion's adders are not in front of the filter in one clock).
+  logic [63:0]     cfg_border_q;
   logic [DW-1:0]   border_texel;
   always_ff @(posedge clk) cfg_border_q <= cfg_border_rgba;
   generate
     if (SRGB != 0) begin : g_border_srgb
-      logic [31:0] b8;
-      tex_border #(.CW(8)) u_border8 (.rgba16(cfg_border_q), .rgba(b8));
+      logic [31:0] b8_next, b8;
+      tex_border #(.CW(8)) u_border8 (.rgba16(cfg_border_q), .rgba(b8_next));
+      always_ff @(posedge clk) b8 <= b8_next;
       assign border_texel = t_entry[P_SRGB] ? DW'(cfg_border_q)
                                             : DW'({8'd0, b8[24 +: 8], 8'd0, b8[16 +: 8], 8'd0, b8[8 +: 8], 8'd0, b8[0 +: 8]});
     end else begin : g_border
-      tex_border #(.CW(CW)) u_border (.rgba16(cfg_border_q), .rgba(border_texel));
+      logic [DW-1:0] border_next;
+      tex_border #(.CW(CW)) u_border (.rgba16(cfg_border_q), .rgba(border_next));
+      always_ff @(posedge clk) border_texel <= border_next;
     end
   endgenerate
   logic [8*DW-1:0] t_taps;

@@ -236,11 +236,16 @@ module tex_unit #(
 
   // Address mode border: a tap outside its level takes the border colour, before the filter
   // (model BankedMipMemory::fetch). Tap t of a slot is (x_(t & 1), y_(t >> 1)).
-  logic [63:0]       cfg_border_q;      // registered every clock, like the other cfg_* pins
-  logic [4*CWD-1:0]  border_rgba;       // in the filter's channel width (tex_border)
+  // The colour is static: the pin is registered, converted, and the result registered again, so
+  // that the conversion's adders are not in front of the filter in one clock (Fmax).
+  logic [63:0]       cfg_border_q;
+  logic [4*CWD-1:0]  border_next, border_rgba;  // in the filter's channel width (tex_border)
   logic [32*CWD-1:0] taps_b_s6;
-  always_ff @(posedge clk) cfg_border_q <= cfg_border_rgba;
-  tex_border #(.CW(CWD)) u_border (.rgba16(cfg_border_q), .rgba(border_rgba));
+  tex_border #(.CW(CWD)) u_border (.rgba16(cfg_border_q), .rgba(border_next));
+  always_ff @(posedge clk) begin
+    cfg_border_q <= cfg_border_rgba;
+    border_rgba  <= border_next;
+  end
   always_comb begin
     for (int t = 0; t < 8; t++) begin
       if (border_x_s6[(t / 4) * 2 + (t % 2)] || border_y_s6[(t / 4) * 2 + (t % 4) / 2])
