@@ -49,7 +49,6 @@ bool parse_filter(const std::string& name, Filter& out) {
   return false;
 }
 
-
 std::string filter_name(Filter f) {
   const TexelFilter mag = f.mag;
   f.mag = f.texel;
@@ -79,15 +78,6 @@ bool parse_mip_mode(const std::string& name, MipMode& out) {
   else if (k == "linear") out = MipMode::Linear;
   else return false;
   return true;
-}
-
-std::string mip_mode_name(MipMode m) {
-  switch (m) {
-    case MipMode::None: return "none";
-    case MipMode::Nearest: return "nearest";
-    case MipMode::Linear: return "linear";
-  }
-  return "?";
 }
 
 bool parse_wrap(const std::string& name, Wrap& out) {

@@ -50,7 +50,7 @@ inline LevelSelect lod(int32_t lambda, int32_t bias, int32_t min_lod, int32_t ma
 }
 
 // The texel filter of a sample: the magnification filter where lambda' <= 0, else the
-// minification filter's. (tex_lod clock 2, beside the level select)
+// minification filter's. (tex_lod's minify, clock 3; tex_front picks the filter by it)
 inline TexelFilter texel_filter(const LevelSelect& s, const Filter& f) { return s.magnify ? f.mag : f.texel; }
 
 // ---------------------------------------------------------------- scale (tex_scale)
