@@ -15,7 +15,8 @@
 namespace tex {
 
 // The sampler state (Vulkan's VkSamplerCreateInfo; docs/numerics.md): filters, address modes, LOD
-// bias and clamp, anisotropy, border colour.
+// bias and clamp, anisotropy, border colour. One entry of the cached unit's sampler table, field
+// for field the RTL's cfg_smp_* (docs/rtl-interface.md); the on-chip unit has one.
 struct SamplerConfig {
   Filter filter;
   Wrap wrap_u = Wrap::Repeat;
@@ -44,6 +45,8 @@ struct SamplerConfig {
   }
   bool uses_border() const { return wrap_u == Wrap::Border || wrap_v == Wrap::Border; }
 };
+// A frame's samplers: requests name an entry by Request::sampler (1..kMaxSamplers entries).
+using SamplerTable = std::vector<SamplerConfig>;
 
 // One request in the hardware's formats (docs/numerics.md). It carries either lambda or the four
 // derivatives (then the LOD unit computes lambda, and with the anisotropic filter the probes).
@@ -52,6 +55,7 @@ struct Request {
   int32_t lod = 0;       // Q8.8, before bias and clamp (requests without derivatives)
   uint32_t tag = 0;
   uint8_t texture = 0;   // cached unit: the descriptor-table entry sampled (0..kMaxTextures-1)
+  uint8_t sampler = 0;   // cached unit: the sampler-table entry it is sampled with (0..kMaxSamplers-1)
   bool has_derivatives = false;
   LodDerivatives deriv;  // Q8.24 texture widths per pixel (requests with derivatives)
 };

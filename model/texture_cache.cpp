@@ -23,7 +23,7 @@ std::vector<MemoryLayout> pack_layouts(const std::vector<std::pair<int, int>>& s
 
 TextureCache::TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config,
                            int log2_w0, int log2_h0)
-    : TextureCache({TextureDescriptor{layout, config.wrap_u, config.wrap_v}}, params, config) {
+    : TextureCache({TextureDescriptor{layout}}, params, SamplerTable{config}) {
   if (log2_w0 != layout.log2_w0() || log2_h0 != layout.log2_h0())
     throw Error("texture cache: the texture is 2^" + std::to_string(log2_w0) + " x 2^" + std::to_string(log2_h0) +
                 " texels, its memory layout 2^" + std::to_string(layout.log2_w0()) + " x 2^" +
@@ -31,11 +31,14 @@ TextureCache::TextureCache(const MemoryLayout& layout, const CacheParams& params
 }
 
 TextureCache::TextureCache(std::vector<TextureDescriptor> textures, const CacheParams& params,
-                           const SamplerConfig& config)
-    : textures_(std::move(textures)), config_(config), ways_(params.ways) {
+                           SamplerTable samplers)
+    : textures_(std::move(textures)), samplers_(std::move(samplers)), ways_(params.ways) {
   if (textures_.empty() || textures_.size() > size_t(kMaxTextures))
     throw Error("texture cache: " + std::to_string(textures_.size()) + " textures; the descriptor table holds 1 to " +
                 std::to_string(kMaxTextures));
+  if (samplers_.empty() || samplers_.size() > size_t(kMaxSamplers))
+    throw Error("texture cache: " + std::to_string(samplers_.size()) + " samplers; the sampler table holds 1 to " +
+                std::to_string(kMaxSamplers));
   const MemoryLayout& layout0 = textures_[0].layout;
   line_bytes_ = layout0.line_bytes();
   for (const TextureDescriptor& t : textures_)
@@ -101,6 +104,11 @@ void TextureCache::bad_texture(const Request& r) const {
               std::to_string(textures_.size()));
 }
 
+void TextureCache::bad_sampler(const Request& r) const {
+  throw Error("texture cache: request names sampler " + std::to_string(r.sampler) + "; the table holds " +
+              std::to_string(samplers_.size()));
+}
+
 
 RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>* misses) {
   const MemoryLayout& layout = texture(r).layout;
@@ -111,7 +119,7 @@ RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>*
     w.error = l.error();
     return w;
   }
-  const Probes p = tex_probe(r, config_, layout.log2_w0(), layout.log2_h0());
+  const Probes p = tex_probe(r, sampler(r), layout.log2_w0(), layout.log2_h0());
   w.probes = uint8_t(p.n);
   for (int i = 0; i < p.n; ++i) {
     const SampleLookup l = lookup(p.at[size_t(i)], misses);
@@ -123,11 +131,11 @@ RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>*
 
 SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misses) {
   if (r.has_derivatives) throw Error("texture cache: lookup() takes a probe; use lookup_sample() for a request");
-  const TextureDescriptor& t = texture(r);
-  const MemoryLayout& layout = t.layout;
+  const MemoryLayout& layout = texture(r).layout;
+  const SamplerConfig& smp = sampler(r);
   const int log2_w0 = layout.log2_w0(), log2_h0 = layout.log2_h0();
   const stage::LevelSelect sel =
-      stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, layout.levels() - 1);
+      stage::lod(r.lod, smp.lod_bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);
   const int32_t su = stage::scale(r.u, log2_w0), sv = stage::scale(r.v, log2_h0);
   SampleLookup out;
   for (int s = 0; s < 2; ++s) {
@@ -137,13 +145,13 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     if (!sl.needed) continue;
     const int k = sl.level;
     const LevelShape shape = level_shape(log2_w0, log2_h0, k);
-    const TexelFilter texel_filter = stage::texel_filter(sel, config_.filter);
+    const TexelFilter texel_filter = stage::texel_filter(sel, smp.filter);
     const stage::AxisTaps tu = stage::address(su, std::min(k, log2_w0), texel_filter);
     const stage::AxisTaps tv = stage::address(sv, std::min(k, log2_h0), texel_filter);
     // The taps whose weight is not 0: (x0, y0) always, x1 / y1 when their weight is not 0; a
     // clamp-to-border tap outside the level (stage::kBorderTap) reads no line.
-    const int32_t x[2] = {stage::wrap(tu.i0, shape.log2_w, t.wrap_u), stage::wrap(tu.i1, shape.log2_w, t.wrap_u)};
-    const int32_t y[2] = {stage::wrap(tv.i0, shape.log2_h, t.wrap_v), stage::wrap(tv.i1, shape.log2_h, t.wrap_v)};
+    const int32_t x[2] = {stage::wrap(tu.i0, shape.log2_w, smp.wrap_u), stage::wrap(tu.i1, shape.log2_w, smp.wrap_u)};
+    const int32_t y[2] = {stage::wrap(tv.i0, shape.log2_h, smp.wrap_v), stage::wrap(tv.i1, shape.log2_h, smp.wrap_v)};
     const int nx = tu.w != 0 ? 2 : 1, ny = tv.w != 0 ? 2 : 1;
     // Distinct blocks by parity (two distinct blocks of a footprint differ in a parity).
     uint32_t bx_of[4] = {}, by_of[4] = {};

@@ -44,10 +44,10 @@ struct CacheStats {
 };
 
 // One entry of the cached unit's texture descriptor table (docs/memory.md §1): the texture's
-// pyramid in memory (its layout: base address, log2 sizes, levels) and its wrap modes.
+// pyramid in memory (its layout: base address, log2 sizes, levels, format). How it is sampled is
+// the sampler table's business (SamplerTable, Request::sampler).
 struct TextureDescriptor {
   MemoryLayout layout;
-  Wrap wrap_u = Wrap::Repeat, wrap_v = Wrap::Repeat;
 };
 
 // Layouts of several pyramids of `channel_bits` texels packed one after another from params.base
@@ -60,9 +60,10 @@ class TextureCache {
  public:
   // Throws tex::Error naming a geometry the hardware cannot have (ways not 1/2/4, sets not a
   // power of two >= 4, size not a whole number of lines), more than kMaxTextures textures, or
-  // layouts of different line sizes. Requests name a texture by Request::texture.
-  TextureCache(std::vector<TextureDescriptor> textures, const CacheParams& params, const SamplerConfig& config);
-  // One texture with the configuration's wrap modes (the size must be the layout's).
+  // layouts of different line sizes, no sampler or more than kMaxSamplers. Requests name a texture
+  // by Request::texture and a sampler by Request::sampler.
+  TextureCache(std::vector<TextureDescriptor> textures, const CacheParams& params, SamplerTable samplers);
+  // One texture and one sampler (the size must be the layout's).
   TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config, int log2_w0,
                int log2_h0);
 
@@ -116,9 +117,14 @@ class TextureCache {
     return textures_[r.texture];
   }
   [[noreturn]] void bad_texture(const Request& r) const;
+  const SamplerConfig& sampler(const Request& r) const {
+    if (r.sampler >= samplers_.size()) [[unlikely]] bad_sampler(r);
+    return samplers_[r.sampler];
+  }
+  [[noreturn]] void bad_sampler(const Request& r) const;
 
   std::vector<TextureDescriptor> textures_;
-  SamplerConfig config_;
+  SamplerTable samplers_;
   int line_bytes_;
   int sets_, ways_;
   int log2_sets_hi_ = 0;             // k = log2(SETS / 4)

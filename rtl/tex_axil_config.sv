@@ -1,6 +1,7 @@
 // tex_axil_config: AXI4-Lite slave holding tex_unit_cached's configuration and its performance
 // counters (register map, soft reset and descriptor commit: docs/rtl-interface.md, "AXI4-Lite
-// configuration (tex_unit_axi)").
+// configuration (tex_unit_axi)"): a texture descriptor and a sampler are each staged in registers
+// and written into tex_unit_cached's tables by a commit naming the entry.
 // Handshake: AXI4-Lite, one transaction at a time per direction; reads and writes independent.
 //   AW and W are taken in either order or together: AWREADY (WREADY) is a register, high while no
 //   address (data) is held and no B response waits. The write happens at the clock edge where
@@ -11,8 +12,9 @@
 //   edge to RVALID. Throughput: one write and one read every 2 clocks (BREADY, RREADY high).
 // Errors: SLVERR (2'b10), and the write changes nothing, for a write to an undefined or
 //   read-only address, with WSTRB other than 4'b1111 (registers are written whole), to CACHE
-//   while the unit runs or with a geometry the caches lack, and a DESC_COMMIT of a descriptor
-//   tex_unit_cached has no use for (or while the unit is in reset: the pulse would be lost).
+//   while the unit runs or with a geometry the caches lack, and a DESC_COMMIT (SMP_COMMIT) of a
+//   descriptor (sampler) tex_unit_cached has no use for, or while the unit is in reset (the
+//   pulse would be lost).
 //   A read of an undefined address: SLVERR with RDATA 0. AWPROT, ARPROT, address bits 1:0 and
 //   reserved bits of a register are ignored (reserved bits read 0).
 // Counters: 64 bits, unsigned, wrap. An event is registered, then counted one clock later.
@@ -25,6 +27,8 @@
 //   cfg_*         : tex_unit_cached's pins, registers (its formats; lod fields signed Q8.8)
 //   cfg_desc_we   : high for the one clock after an accepted DESC_COMMIT write, with
 //                   cfg_desc_index and the staging registers (cfg_desc_base .. _srgb) stable
+//   cfg_smp_we    : likewise after an accepted SMP_COMMIT write, with cfg_smp_index and the
+//                   staged sampler (cfg_smp_wrap_u .. cfg_smp_border_rgba)
 //   stat_*        : events of this clock: stat_sample (a response handshake), stat_sample_error
 //                   (of those, with rsp_error), stat_lookups, stat_misses (unsigned 0..8),
 //                   stat_mem_beat (a memory read beat taken: BEAT_BYTES bytes), stat_out_stall
@@ -38,6 +42,7 @@ module tex_axil_config #(
   parameter int MAX_WAYS      = 4,
   parameter int FIFO_DEPTH    = 256,
   parameter int TEXTURES      = 16,
+  parameter int SAMPLERS      = 16,
   parameter int BLOCK_FORMATS = 1,
   parameter int SRGB          = 0,
   parameter int LINE_BYTES    = 64,   // bytes of a cache line: descriptor bases are multiples
@@ -72,19 +77,21 @@ module tex_axil_config #(
   output logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base,
   output logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_log2_w,
   output logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_log2_h,
-  output logic [tex_pkg::WRAP_W-1:0]        cfg_desc_wrap_u,
-  output logic [tex_pkg::WRAP_W-1:0]        cfg_desc_wrap_v,
   output logic [tex_pkg::FORMAT_W-1:0]      cfg_desc_format,
   output logic                              cfg_desc_srgb,
-  output logic                              cfg_texel_linear,
-  output logic                              cfg_mag_linear,
-  output logic [tex_pkg::MIP_W-1:0]         cfg_mip_mode,
-  output logic signed [tex_pkg::LOD_W-1:0]  cfg_lod_bias,
-  output logic signed [tex_pkg::LOD_W-1:0]  cfg_min_lod,
-  output logic signed [tex_pkg::LOD_W-1:0]  cfg_max_lod,
-  output logic [3:0]                        cfg_max_aniso_m1,
-  output logic                              cfg_aniso_pow2,
-  output logic [63:0]                       cfg_border_rgba,
+  output logic                              cfg_smp_we,
+  output logic [tex_pkg::SMP_ID_W-1:0]      cfg_smp_index,
+  output logic [tex_pkg::WRAP_W-1:0]        cfg_smp_wrap_u,
+  output logic [tex_pkg::WRAP_W-1:0]        cfg_smp_wrap_v,
+  output logic                              cfg_smp_min_linear,
+  output logic                              cfg_smp_mag_linear,
+  output logic [tex_pkg::MIP_W-1:0]         cfg_smp_mip_mode,
+  output logic signed [tex_pkg::LOD_W-1:0]  cfg_smp_lod_bias,
+  output logic signed [tex_pkg::LOD_W-1:0]  cfg_smp_min_lod,
+  output logic signed [tex_pkg::LOD_W-1:0]  cfg_smp_max_lod,
+  output logic [3:0]                        cfg_smp_max_aniso_m1,
+  output logic                              cfg_smp_aniso_pow2,
+  output logic [63:0]                       cfg_smp_border_rgba,
   output logic                              cfg_block_morton,
   output logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets,
   output logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways,
@@ -127,6 +134,9 @@ module tex_axil_config #(
     if (TEXTURES < 1 || TEXTURES > (1 << tex_pkg::TEX_ID_W) || (TEXTURES & (TEXTURES - 1)) != 0) begin : g_bad_textures
       `TEX_PARAM_ERROR("tex_axil_config: parameter TEXTURES must be a power of two from 1 to 16 (tex_pkg::TEX_ID_W)")
     end
+    if (SAMPLERS < 1 || SAMPLERS > (1 << tex_pkg::SMP_ID_W) || (SAMPLERS & (SAMPLERS - 1)) != 0) begin : g_bad_samplers
+      `TEX_PARAM_ERROR("tex_axil_config: parameter SAMPLERS must be a power of two from 1 to 16 (tex_pkg::SMP_ID_W)")
+    end
     if (!(BLOCK_FORMATS == 0 || BLOCK_FORMATS == 1)) begin : g_bad_block_formats
       `TEX_PARAM_ERROR("tex_axil_config: parameter BLOCK_FORMATS must be 0 or 1")
     end
@@ -152,7 +162,8 @@ module tex_axil_config #(
   localparam logic [WA-1:0] R_CONTROL     = WA'('h010 >> 2);
   localparam logic [WA-1:0] R_CACHE       = WA'('h020 >> 2);
   localparam logic [WA-1:0] R_FIFO_LIMIT  = WA'('h024 >> 2);
-  localparam logic [WA-1:0] R_FILTER      = WA'('h030 >> 2);
+  localparam logic [WA-1:0] R_FILTER      = WA'('h030 >> 2);  // the staged sampler: 0x030 .. 0x03C,
+                                                              //   0x050 .. 0x058
   localparam logic [WA-1:0] R_LOD_BIAS    = WA'('h034 >> 2);
   localparam logic [WA-1:0] R_MIN_LOD     = WA'('h038 >> 2);
   localparam logic [WA-1:0] R_MAX_LOD     = WA'('h03C >> 2);
@@ -161,11 +172,13 @@ module tex_axil_config #(
   localparam logic [WA-1:0] R_DESC_COMMIT = WA'('h048 >> 2);
   localparam logic [WA-1:0] R_BORDER_RG   = WA'('h050 >> 2);  // border colour: {G, R} unorm16
   localparam logic [WA-1:0] R_BORDER_BA   = WA'('h054 >> 2);  //                {A, B}
+  localparam logic [WA-1:0] R_WRAP        = WA'('h058 >> 2);  // {wrap_v, 0, wrap_u}
+  localparam logic [WA-1:0] R_SMP_COMMIT  = WA'('h05C >> 2);
   // Counters: counter i's LO word at 0x080 + 8 i, HI at 0x084 + 8 i (words 0x20 .. 0x3F).
   localparam int NCNT = 9;  // CYCLES, SAMPLES, SAMPLE_ERRORS, LOOKUPS, MISSES, MEM_BYTES,
                             // OUT_STALL, MEM_WAIT, REQ_STALL
   localparam logic [31:0] ID      = 32'h5445_5855;  // "TEXU"
-  localparam logic [31:0] VERSION = 32'h0001_0000;  // major 1, minor 0
+  localparam logic [31:0] VERSION = 32'h0002_0000;  // major 2 (the sampler table), minor 0
 
   localparam int FLW       = $clog2(FIFO_DEPTH + 1);
   localparam int SETS_W    = tex_pkg::LOG2_SETS_W;
@@ -173,8 +186,8 @@ module tex_axil_config #(
   localparam int LOG2_LINES = $clog2(LINES);
   localparam int LOG2_WAYS  = $clog2(MAX_WAYS);
   localparam logic [1:0] OKAY = 2'b00, SLVERR = 2'b10;
-  localparam logic [31:0] CAPS0 = {14'd0, 1'(SRGB), 1'(BLOCK_FORMATS), 3'd0, 5'(TEXTURES),
-                                   4'(MAX_LOG2_H), 4'(MAX_LOG2_W)};
+  localparam logic [31:0] CAPS0 = {7'd0, 5'(SAMPLERS), 2'd0, 1'(SRGB), 1'(BLOCK_FORMATS), 3'd0,
+                                   5'(TEXTURES), 4'(MAX_LOG2_H), 4'(MAX_LOG2_W)};
   localparam logic [31:0] CAPS1 = {4'($clog2(BEAT_BYTES)), 4'($clog2(LINE_BYTES)), 3'd0,
                                    5'($clog2(FIFO_DEPTH)), 5'd0, 3'(MAX_WAYS), 3'd0, 5'(LOG2_LINES)};
 
@@ -205,7 +218,10 @@ module tex_axil_config #(
   logic                             desc_we;
   logic [tex_pkg::TEX_ID_W-1:0]     desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]   desc_base;
-  logic [19:0]                      desc_attr;  // {srgb, format, 0, wrap_v, 0, wrap_u, log2_h, log2_w}
+  logic [19:0]                      desc_attr;  // {srgb, format, 8'b0, log2_h, log2_w}
+  logic                             smp_we;
+  logic [tex_pkg::SMP_ID_W-1:0]     smp_index;
+  logic [6:0]                       wrap;       // {wrap_v, 0, wrap_u}
   logic [12:0]                      filter;     // {pow2, aniso_m1, 2'b0, mip_mode, 2'b0, mag, linear}
   logic [63:0]                      border;     // {A, B, G, R} unorm16
   logic signed [tex_pkg::LOD_W-1:0] lod_bias, min_lod, max_lod;
@@ -222,9 +238,9 @@ module tex_axil_config #(
   assign attr_log2_h = desc_attr[7:4];
   assign attr_format = desc_attr[18:16];
   assign attr_srgb   = desc_attr[19];
-  logic [tex_pkg::WRAP_W-1:0] attr_wrap_u, attr_wrap_v;
-  assign attr_wrap_u = desc_attr[10:8];
-  assign attr_wrap_v = desc_attr[14:12];
+  logic [tex_pkg::WRAP_W-1:0] wrap_u, wrap_v;
+  assign wrap_u = wrap[2:0];
+  assign wrap_v = wrap[6:4];
   // The address modes: repeat, clamp, mirror, border, mirror-clamp (5..7 are no mode).
   function automatic logic wrap_ok(input logic [tex_pkg::WRAP_W-1:0] m);
     wrap_ok = m <= tex_pkg::WRAP_MIRROR_CLAMP;
@@ -232,9 +248,9 @@ module tex_axil_config #(
 
   // Write decode: which register, and whether the write is allowed (else SLVERR, no change).
   logic sel_control, sel_cache, sel_fifo, sel_filter, sel_bias, sel_min, sel_max;
-  logic sel_base, sel_attr, sel_commit, sel_border_rg, sel_border_ba;
+  logic sel_base, sel_attr, sel_commit, sel_border_rg, sel_border_ba, sel_wrap, sel_smp_commit;
   logic wr_ok, wr_en;
-  logic geometry_ok, desc_ok;
+  logic geometry_ok, desc_ok, smp_ok;
   always_comb begin
     // CACHE: ways <= MAX_WAYS, sets >= 4, sets * ways <= LINES (tex_cache_tags)
     geometry_ok = 32'(wd[17:16]) <= LOG2_WAYS && 32'(wd[12:8]) >= 2
@@ -242,15 +258,16 @@ module tex_axil_config #(
     // DESC_COMMIT: what tex_unit_cached's simulation checks, the sizes and a line-aligned base
     desc_ok = 32'(wd[3:0]) < TEXTURES
               && 32'(attr_log2_w) <= MAX_LOG2_W && 32'(attr_log2_h) <= MAX_LOG2_H
-              && wrap_ok(attr_wrap_u) && wrap_ok(attr_wrap_v)
               && (attr_format == tex_pkg::FMT_RGBA8 || (BLOCK_FORMATS != 0 && attr_format != 3'd6))
               && (!attr_srgb || (SRGB != 0 && attr_format != tex_pkg::FMT_BC4
                                  && attr_format != tex_pkg::FMT_BC5))
               && (desc_base & 32'(LINE_BYTES - 1)) == '0;
+    // SMP_COMMIT: an entry of the table, address modes and a mip mode the unit has
+    smp_ok = 32'(wd[3:0]) < SAMPLERS && wrap_ok(wrap_u) && wrap_ok(wrap_v) && filter[5:4] != 2'd3;
   end
   always_comb begin
     {sel_control, sel_cache, sel_fifo, sel_filter, sel_bias, sel_min, sel_max} = '0;
-    {sel_base, sel_attr, sel_commit, sel_border_rg, sel_border_ba} = '0;
+    {sel_base, sel_attr, sel_commit, sel_border_rg, sel_border_ba, sel_wrap, sel_smp_commit} = '0;
     wr_ok = ws == 4'hF;
     case (wa)
       R_CONTROL:     sel_control = 1'b1;
@@ -265,6 +282,8 @@ module tex_axil_config #(
       R_DESC_COMMIT: begin sel_commit = 1'b1; if (ctl_unit_reset || !desc_ok) wr_ok = 1'b0; end
       R_BORDER_RG:   sel_border_rg = 1'b1;
       R_BORDER_BA:   sel_border_ba = 1'b1;
+      R_WRAP:        sel_wrap = 1'b1;
+      R_SMP_COMMIT:  begin sel_smp_commit = 1'b1; if (ctl_unit_reset || !smp_ok) wr_ok = 1'b0; end
       default:       wr_ok = 1'b0;  // undefined or read-only
     endcase
   end
@@ -299,6 +318,9 @@ module tex_axil_config #(
       desc_index     <= '0;
       desc_base      <= '0;
       desc_attr      <= '0;
+      smp_we         <= 1'b0;
+      smp_index      <= '0;
+      wrap           <= '0;
       border         <= '0;
       filter         <= 13'h023;  // linear texels (minification and magnification), MIP_LINEAR
       lod_bias       <= '0;
@@ -310,6 +332,7 @@ module tex_axil_config #(
       fifo_limit     <= '0;
     end else begin
       desc_we <= wr_en && sel_commit;
+      smp_we  <= wr_en && sel_smp_commit;
       if (wr_en && sel_control) {ctl_freeze, ctl_unit_reset} <= wd[1:0];
       if (wr_en && sel_cache) {log2_ways, log2_sets, block_morton} <= {wd[17:16], wd[12:8], wd[0]};
       if (wr_en && sel_fifo)   fifo_limit <= wd[FLW-1:0];
@@ -318,7 +341,9 @@ module tex_axil_config #(
       if (wr_en && sel_min)    min_lod <= wd[15:0];
       if (wr_en && sel_max)    max_lod <= wd[15:0];
       if (wr_en && sel_base)   desc_base <= wd;
-      if (wr_en && sel_attr)   desc_attr <= wd[19:0] & 20'hF77FF;
+      if (wr_en && sel_attr)   desc_attr <= wd[19:0] & 20'hF00FF;
+      if (wr_en && sel_wrap)   wrap <= wd[6:0] & 7'h77;
+      if (wr_en && sel_smp_commit) smp_index <= wd[3:0];
       if (wr_en && sel_border_rg) border[31:0]  <= wd;
       if (wr_en && sel_border_ba) border[63:32] <= wd;
       if (wr_en && sel_commit) desc_index <= wd[3:0];
@@ -331,19 +356,21 @@ module tex_axil_config #(
   assign cfg_desc_base    = desc_base;
   assign cfg_desc_log2_w  = attr_log2_w;
   assign cfg_desc_log2_h  = attr_log2_h;
-  assign cfg_desc_wrap_u  = attr_wrap_u;
-  assign cfg_desc_wrap_v  = attr_wrap_v;
   assign cfg_desc_format  = attr_format;
   assign cfg_desc_srgb    = attr_srgb;
-  assign cfg_texel_linear = filter[0];
-  assign cfg_mag_linear   = filter[1];
-  assign cfg_mip_mode     = filter[5:4];
-  assign cfg_max_aniso_m1 = filter[11:8];
-  assign cfg_aniso_pow2   = filter[12];
-  assign cfg_border_rgba  = border;
-  assign cfg_lod_bias     = lod_bias;
-  assign cfg_min_lod      = min_lod;
-  assign cfg_max_lod      = max_lod;
+  assign cfg_smp_we       = smp_we;
+  assign cfg_smp_index    = smp_index;
+  assign cfg_smp_wrap_u   = wrap_u;
+  assign cfg_smp_wrap_v   = wrap_v;
+  assign cfg_smp_min_linear = filter[0];
+  assign cfg_smp_mag_linear   = filter[1];
+  assign cfg_smp_mip_mode     = filter[5:4];
+  assign cfg_smp_max_aniso_m1 = filter[11:8];
+  assign cfg_smp_aniso_pow2   = filter[12];
+  assign cfg_smp_border_rgba  = border;
+  assign cfg_smp_lod_bias     = lod_bias;
+  assign cfg_smp_min_lod      = min_lod;
+  assign cfg_smp_max_lod      = max_lod;
   assign cfg_block_morton = block_morton;
   assign cfg_log2_sets    = log2_sets;
   assign cfg_log2_ways    = log2_ways;
@@ -429,6 +456,8 @@ module tex_axil_config #(
         R_DESC_COMMIT: rd_data = {28'd0, desc_index};
         R_BORDER_RG:   rd_data = border[31:0];
         R_BORDER_BA:   rd_data = border[63:32];
+        R_WRAP:        rd_data = {25'd0, wrap};
+        R_SMP_COMMIT:  rd_data = {28'd0, smp_index};
         default:       rd_ok = 1'b0;
       endcase
     end
@@ -474,12 +503,13 @@ module tex_axil_config #(
   logic          f_b_stall_q, f_r_stall_q;  // bvalid && !bready (rvalid && !rready), last clock
   logic [1:0]    f_bresp_q;
   logic [33:0]   f_r_q;                  // {rresp, rdata}, last clock
-  localparam int FCW = 2 + tex_pkg::TEX_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::LEVEL_W
-                       + 2 * tex_pkg::WRAP_W + tex_pkg::FORMAT_W + 3 + tex_pkg::MIP_W
-                       + 3 * tex_pkg::LOD_W + 4 + 2 + SETS_W + WAYS_W + FLW + 64;
-  logic [FCW-1:0] f_cfg, f_cfg_q;        // unit_rst and every cfg_* output but cfg_desc_we
-  logic [49:0]   f_desc, f_desc_q;       // the staged descriptor (cfg_desc_base .. _srgb)
-  logic          f_desc_we_q, f_clear_q;
+  localparam int FSW = 2 * tex_pkg::WRAP_W + 2 + tex_pkg::MIP_W + 3 * tex_pkg::LOD_W + 5 + 64;
+  localparam int FCW = 1 + tex_pkg::TEX_ID_W + tex_pkg::SMP_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::LEVEL_W
+                       + tex_pkg::FORMAT_W + 2 + SETS_W + WAYS_W + FLW + FSW;
+  logic [FCW-1:0] f_cfg, f_cfg_q;        // unit_rst and every cfg_* output but the two we pulses
+  logic [43:0]   f_desc, f_desc_q;       // the staged descriptor (cfg_desc_base .. _srgb)
+  logic [FSW-1:0] f_smp, f_smp_q;        // the staged sampler (cfg_smp_wrap_u .. _border_rgba)
+  logic          f_desc_we_q, f_smp_we_q, f_clear_q;
   logic          f_b_new, f_r_new;       // a B (R) response that was not there last clock
   logic          f_b_take, f_r_take;
 
@@ -490,19 +520,20 @@ module tex_axil_config #(
     f_writable = a == WA'('h10 >> 2) || a == WA'('h20 >> 2) || a == WA'('h24 >> 2)
               || a == WA'('h30 >> 2) || a == WA'('h34 >> 2) || a == WA'('h38 >> 2)
               || a == WA'('h3C >> 2) || a == WA'('h40 >> 2) || a == WA'('h44 >> 2)
-              || a == WA'('h48 >> 2) || a == WA'('h50 >> 2) || a == WA'('h54 >> 2);
+              || a == WA'('h48 >> 2) || a == WA'('h50 >> 2) || a == WA'('h54 >> 2)
+              || a == WA'('h58 >> 2) || a == WA'('h5C >> 2);
   endfunction
   function automatic logic f_readable(input logic [WA-1:0] a);
     f_readable = f_writable(a) || 32'(a) < 4 || (32'(a) >= 'h80 / 4 && 32'(a) < 'h80 / 4 + 2 * NCNT);
   endfunction
 
-  assign f_cfg = {unit_rst, cfg_desc_index, cfg_desc_base, cfg_desc_log2_w, cfg_desc_log2_h,
-                  cfg_desc_wrap_u, cfg_desc_wrap_v, cfg_desc_format, cfg_desc_srgb, cfg_texel_linear,
-                  cfg_mag_linear, cfg_mip_mode, cfg_lod_bias, cfg_min_lod, cfg_max_lod, cfg_max_aniso_m1,
-                  cfg_aniso_pow2, cfg_block_morton, cfg_log2_sets, cfg_log2_ways, cfg_fifo_limit,
-                  cfg_border_rgba};
-  assign f_desc = {cfg_desc_base, cfg_desc_srgb, cfg_desc_format, cfg_desc_wrap_v, cfg_desc_wrap_u,
-                   cfg_desc_log2_h, cfg_desc_log2_w};
+  assign f_cfg = {unit_rst, cfg_desc_index, cfg_smp_index, cfg_desc_base, cfg_desc_log2_w, cfg_desc_log2_h,
+                  cfg_desc_format, cfg_desc_srgb, cfg_block_morton, cfg_log2_sets, cfg_log2_ways,
+                  cfg_fifo_limit, f_smp};
+  assign f_desc = {cfg_desc_base, cfg_desc_srgb, cfg_desc_format, cfg_desc_log2_h, cfg_desc_log2_w};
+  assign f_smp  = {cfg_smp_wrap_u, cfg_smp_wrap_v, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_mip_mode,
+                   cfg_smp_lod_bias, cfg_smp_min_lod, cfg_smp_max_lod, cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2,
+                   cfg_smp_border_rgba};
   assign f_b_take = s_axi_bvalid && s_axi_bready;
   assign f_r_take = s_axi_rvalid && s_axi_rready;
   assign f_b_new  = s_axi_bvalid && !f_b_stall_q;
@@ -515,6 +546,8 @@ module tex_axil_config #(
     f_cfg_q     <= f_cfg;
     f_desc_q    <= f_desc;
     f_desc_we_q <= !rst && cfg_desc_we;
+    f_smp_q     <= f_smp;
+    f_smp_we_q  <= !rst && cfg_smp_we;
     f_clear_q   <= cnt_clear;
     if (aw_take) f_aw_addr <= s_axi_awaddr[ADDR_W-1:2];
     if (w_take) begin
@@ -560,7 +593,7 @@ module tex_axil_config #(
       // an answered SLVERR changed nothing at its edge: no configuration output, no descriptor
       // write, no counter clear
       if (f_b_new && s_axi_bresp == SLVERR)
-        p_nochange_1: assert (f_cfg == f_cfg_q && !cfg_desc_we && !f_clear_q);
+        p_nochange_1: assert (f_cfg == f_cfg_q && !cfg_desc_we && !cfg_smp_we && !f_clear_q);
       // cfg_desc_we: one clock, exactly at each accepted DESC_COMMIT write (OKAY), with its index
       // and the staged descriptor unchanged
       if (cfg_desc_we)
@@ -568,6 +601,12 @@ module tex_axil_config #(
                           && cfg_desc_index == f_w_data[tex_pkg::TEX_ID_W-1:0] && f_desc == f_desc_q);
       if (f_b_new && s_axi_bresp == OKAY && f_aw_addr == R_DESC_COMMIT) p_desc_2: assert (cfg_desc_we);
       if (f_desc_we_q) p_desc_3: assert (!cfg_desc_we);
+      // cfg_smp_we: likewise at each accepted SMP_COMMIT, with the staged sampler unchanged
+      if (cfg_smp_we)
+        p_smp_1: assert (f_b_new && s_axi_bresp == OKAY && f_aw_addr == R_SMP_COMMIT
+                         && cfg_smp_index == f_w_data[tex_pkg::SMP_ID_W-1:0] && f_smp == f_smp_q);
+      if (f_b_new && s_axi_bresp == OKAY && f_aw_addr == R_SMP_COMMIT) p_smp_2: assert (cfg_smp_we);
+      if (f_smp_we_q) p_smp_3: assert (!cfg_smp_we);
     end
   end
 `endif

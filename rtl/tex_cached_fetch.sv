@@ -33,8 +33,11 @@
 //   level, f, w, log2_size, x, y    : tex_front's outputs
 //   border_x, border_y              : tex_front's too: a tap outside its level in address mode
 //                                     border looks no line up and takes the border colour
-//   cfg_border_rgba                 : the border colour, {A, B, G, R} unorm16 (static)
 //   front_tex                       : the sample's texture descriptor-table entry (clock 4)
+//   front_smp                       : and its sampler-table entry: its border colour
+//   smp_we, smp_index, smp_border_rgba : a sampler write: entry smp_index's border colour is
+//                                     smp_border_rgba, {A, B, G, R} unorm16 (kept here in the
+//                                     filter's width, converted once at the write)
 //   desc_we, desc_index, desc_base, desc_log2_w, desc_log2_h : a descriptor write: entry
 //                                     desc_index's level 0 is at byte address desc_base (a
 //                                     multiple of the line size) and has 2^desc_log2_w x
@@ -73,13 +76,15 @@ module tex_cached_fetch #(
   parameter int FILL_DEPTH = 4,    // lines received, not yet written (power of two)
   parameter int MEM_W      = 128,  // bits of a memory response beat
   parameter int TEXTURES   = 16,   // descriptor-table entries (power of two, 1..16)
+  parameter int SAMPLERS   = 16,   // sampler-table entries (power of two, 1..16)
   parameter int BLOCK_FORMATS = 0, // 1: block-format textures too (needs 8-bit memory channels and
                                    //    >= 16 texels per line)
   parameter int SRGB       = 0,    // 1: memory holds 8-bit channels, the taps are CW = 16 bits: sRGB
                                    //    textures' R, G, B decoded to linear by tex_srgb_decode
   parameter int XW         = (MAX_LOG2_W > 0) ? MAX_LOG2_W : 1,  // derived, do not override
   parameter int YW         = (MAX_LOG2_H > 0) ? MAX_LOG2_H : 1,
-  parameter int TXW        = (TEXTURES > 1) ? $clog2(TEXTURES) : 1
+  parameter int TXW        = (TEXTURES > 1) ? $clog2(TEXTURES) : 1,
+  parameter int SXW        = (SAMPLERS > 1) ? $clog2(SAMPLERS) : 1
 ) (
   input  logic                              clk,
   input  logic                              rst,
@@ -89,6 +94,7 @@ module tex_cached_fetch #(
   input  logic                              front_valid,
   input  logic [TAG_W-1:0]                  front_tag,
   input  logic [TXW-1:0]                    front_tex,
+  input  logic [SXW-1:0]                    front_smp,
   input  logic [2*tex_pkg::LEVEL_W-1:0]     level,
   input  logic [tex_pkg::WEIGHT_BITS-1:0]   f,
   input  logic [4*tex_pkg::WEIGHT_BITS-1:0] w,
@@ -97,7 +103,10 @@ module tex_cached_fetch #(
   input  logic [4*YW-1:0]                   y,
   input  logic [3:0]                        border_x,
   input  logic [3:0]                        border_y,
-  input  logic [63:0]                       cfg_border_rgba,
+
+  input  logic                              smp_we,
+  input  logic [SXW-1:0]                    smp_index,
+  input  logic [63:0]                       smp_border_rgba,
 
   input  logic                              desc_we,
   input  logic [TXW-1:0]                    desc_index,
@@ -560,15 +569,16 @@ module tex_cached_fetch #(
 `endif
 
   // ---------------------------------------------------------------- sample FIFO
-  // An entry: {tag, w, f, border taps, sRGB, format, c0, needed bank reads, taps' low coordinate
-  // bits (slot 1, slot 0), bank reads, fills}.
+  // An entry: {tag, w, f, sampler, border taps, sRGB, format, c0, needed bank reads, taps' low
+  // coordinate bits (slot 1, slot 0), bank reads, fills}.
   localparam int P_TAPS = 4 + 8*RD;          // field positions
   localparam int P_NEED = P_TAPS + 8*PB;
   localparam int P_C0   = P_NEED + 8;
   localparam int P_FMT  = P_C0 + 1;
   localparam int P_SRGB = P_FMT + FW;
   localparam int P_BORD = P_SRGB + 1;
-  localparam int EW     = P_BORD + 8 + 5*WB + TAG_W;
+  localparam int P_SMP  = P_BORD + 8;
+  localparam int EW     = P_SMP + SXW + 5*WB + TAG_W;
   // Tap i = slot * 4 + t is outside its level in mode border when its x (t bit 0) or y (t bit 1) is.
   logic [7:0] border_tap;
   always_comb
@@ -581,7 +591,7 @@ module tex_cached_fetch #(
   logic [FCW-1:0] fifo_next;
   logic [MCW-1:0] ring_next;
   always_ff @(posedge clk) begin
-    if (push) fifo[fifo_wr] <= {front_tag, w, f, border_tap, srgb, fmt, c0, need, tap_low[1], tap_low[0], reads, fills};
+    if (push) fifo[fifo_wr] <= {front_tag, w, f, front_smp, border_tap, srgb, fmt, c0, need, tap_low[1], tap_low[0], reads, fills};
   end
   assign fifo_next = fifo_count + FCW'(push) - FCW'(fifo_pop);
   logic [FCW-1:0] fifo_limit;  // the FIFO's depth in use
@@ -803,27 +813,40 @@ module tex_cached_fetch #(
     end
   endgenerate
 
-  // Address mode border: a tap outside its level takes the border colour (model
+  // Address mode border: a tap outside its level takes its sampler's border colour (model
   // BankedMipMemory::fetch), in the filter's width: CW bits (tex_border); SRGB: an sRGB
   // texture's filter takes 16-bit linear channels, a linear texture's 8-bit ones zero-extended.
-  // The colour is static: the pin is registered, converted, and the result registered again (the
-  // conversion's adders are not in front of the filter in one clock).
-  logic [63:0]     cfg_border_q;
-  logic [DW-1:0]   border_texel;
-  always_ff @(posedge clk) cfg_border_q <= cfg_border_rgba;
+  // The table holds each colour converted (tex_border at the write, off the sample path); the
+  // sample's colour is read in R and registered into T beside its bank words.
+  localparam int BCW = (SRGB != 0) ? 64 + 32 : DW;  // SRGB: {8-bit, 16-bit}
+  logic [BCW-1:0] border_table [SAMPLERS];
+  logic [BCW-1:0] border_write;
   generate
     if (SRGB != 0) begin : g_border_srgb
-      logic [31:0] b8_next, b8;
-      tex_border #(.CW(8)) u_border8 (.rgba16(cfg_border_q), .rgba(b8_next));
-      always_ff @(posedge clk) b8 <= b8_next;
-      assign border_texel = t_entry[P_SRGB] ? DW'(cfg_border_q)
-                                            : DW'({8'd0, b8[24 +: 8], 8'd0, b8[16 +: 8], 8'd0, b8[8 +: 8], 8'd0, b8[0 +: 8]});
+      logic [31:0] b8;
+      tex_border #(.CW(8)) u_border8 (.rgba16(smp_border_rgba), .rgba(b8));
+      assign border_write = {b8, smp_border_rgba};
     end else begin : g_border
-      logic [DW-1:0] border_next;
-      tex_border #(.CW(CW)) u_border (.rgba16(cfg_border_q), .rgba(border_next));
-      always_ff @(posedge clk) border_texel <= border_next;
+      tex_border #(.CW(CW)) u_border (.rgba16(smp_border_rgba), .rgba(border_write));
     end
   endgenerate
+  always_ff @(posedge clk)
+    if (smp_we) border_table[smp_index] <= border_write;
+  logic [BCW-1:0] r_border;      // the sample in R's border colour
+  logic [DW-1:0]  r_border_texel;
+  logic [DW-1:0]  border_texel;  // the sample in T's
+  assign r_border = border_table[r_entry[P_SMP +: SXW]];
+  generate
+    if (SRGB != 0) begin : g_border_srgb_read
+      assign r_border_texel = r_entry[P_SRGB] ? DW'(r_border[63:0])
+                                              : DW'({8'd0, r_border[64+24 +: 8], 8'd0, r_border[64+16 +: 8],
+                                                     8'd0, r_border[64+8 +: 8], 8'd0, r_border[64 +: 8]});
+    end else begin : g_border_read
+      assign r_border_texel = DW'(r_border);
+    end
+  endgenerate
+  always_ff @(posedge clk)
+    if (en_back && r_valid) border_texel <= r_border_texel;
   logic [8*DW-1:0] t_taps;
   always_comb
     for (int i = 0; i < 8; i++)

@@ -4,18 +4,20 @@
 //   clock 1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_scale  3 tex_lod level select
 //   4 tex_address per slot and axis; then tex_wrap, combinational on the clock-4 registers
 // Handshake: stall-enable; every register loads when en is high (the valid bits and tags are
-//   the top's). The texture's size and wrap modes (req_log2_*, req_wrap_*) are the request's,
-//   taken with it at clock 1 and carried along; the cfg_* pins are registered here every clock,
-//   without enable (cfg_*_q). The datapath reads only registers: no logic depends
-//   combinationally on a pin.
+//   the top's). The texture's size (req_log2_*) and the sampler's fields (req_wrap_*, req_min_linear
+//   .. req_max_lod: the request's sampler-table entry, or the on-chip unit's one sampler) are the
+//   request's, taken with it at clock 1 and carried to the clock that uses them. The datapath
+//   reads only registers: no logic depends combinationally on a pin.
 // Latency: 4 clocks from the request pins to the clock-4 registers; x, y are combinational on
 //   them. Throughput: 1 per clock.
 // Ports:
 //   req_u, req_v          : signed Q8.24; req_lod: signed Q8.8 (before bias and clamp)
 //   req_log2_w, req_log2_h: integers, level 0's size of the request's texture
-//   req_wrap_u, req_wrap_v: its wrap modes (tex_pkg::WRAP_*); cfg_* as tex_unit's pins
-//                           (cfg_texel_linear: the minification filter's texel filter;
-//                           cfg_mag_linear: the magnification filter, where lambda' <= 0)
+//   req_wrap_u .. req_max_lod: the request's sampler, as tex_unit's cfg_smp_* pins: wrap modes
+//                           (tex_pkg::WRAP_*), req_min_linear the minification filter's texel
+//                           filter, req_mag_linear the magnification filter (where lambda' <= 0),
+//                           req_mip_mode (tex_pkg::MIP_*), req_lod_bias, req_min_lod, req_max_lod
+//                           signed Q8.8
 //   level                 : slot s at [s*LEVEL_W +: LEVEL_W], integer level (clock 4)
 //   f                     : unsigned WEIGHT_BITS, weight of slot 1 in 1/256 (clock 4)
 //   w                     : slot s axis a (0 x, 1 y) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS],
@@ -39,12 +41,12 @@ module tex_front #(
   input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_h,
   input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_v,
-  input  logic                                   cfg_texel_linear,
-  input  logic                                   cfg_mag_linear,
-  input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
-  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
-  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
-  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
+  input  logic                                   req_min_linear,
+  input  logic                                   req_mag_linear,
+  input  logic [tex_pkg::MIP_W-1:0]              req_mip_mode,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_lod_bias,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_min_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_max_lod,
   output logic [2*tex_pkg::LEVEL_W-1:0]          level,
   output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
@@ -61,35 +63,30 @@ module tex_front #(
   localparam int SW = 17 + ML;               // tex_scale's result
   localparam int IW = 10 + ML;               // tex_address's unwrapped index
 
-  // ---------------------------------------------------------------- cfg registers
-  logic [tex_pkg::MIP_W-1:0]        cfg_mip_mode_q;
-  logic                             cfg_texel_linear_q, cfg_mag_linear_q;
-  logic signed [tex_pkg::LOD_W-1:0] cfg_lod_bias_q, cfg_min_lod_q, cfg_max_lod_q;
-  always_ff @(posedge clk) begin
-    cfg_texel_linear_q <= cfg_texel_linear;
-    cfg_mag_linear_q   <= cfg_mag_linear;
-    cfg_mip_mode_q     <= cfg_mip_mode;
-    cfg_lod_bias_q     <= cfg_lod_bias;
-    cfg_min_lod_q      <= cfg_min_lod;
-    cfg_max_lod_q      <= cfg_max_lod;
-  end
-
   // ---------------------------------------------------------------- clock 1: capture
-  // The texture's {log2 h, log2 w} and {wrap v, wrap u} ride along, clock k's at
-  // [(k-1)*width +: width]: tex_scale reads clock 1's size, tex_lod's level select clock 2's,
-  // the level sizes clock 3's; tex_wrap clock 4's wrap modes.
-  localparam int ZW = 2 * VW, MW = 2 * tex_pkg::WRAP_W;
+  // The texture's {log2 h, log2 w}, the sampler's {wrap v, wrap u} and its filters ride along,
+  // clock k's at [(k-1)*width +: width]: tex_scale reads clock 1's size, tex_lod the LOD fields
+  // of clock 1 and the mip mode and level-select size of clock 2, the level sizes and texel
+  // filters clock 3's; tex_wrap clock 4's wrap modes.
+  localparam int ZW = 2 * VW, MW = 2 * tex_pkg::WRAP_W, LW = tex_pkg::LOD_W, PW = tex_pkg::MIP_W;
   logic signed [tex_pkg::REQ_COORD_W-1:0] u_s1, v_s1;
-  logic signed [tex_pkg::LOD_W-1:0]       lod_s1;
+  logic signed [LW-1:0]                   lod_s1, lod_bias_s1, min_lod_s1, max_lod_s1;
   logic [3*ZW-1:0]                        size_q;
   logic [4*MW-1:0]                        wrap_q;
+  logic [2*PW-1:0]                        mip_q;     // clocks 1, 2
+  logic [3*2-1:0]                         linear_q;  // {mag, min} at clocks 1..3
   always_ff @(posedge clk) begin
     if (en) begin
-      u_s1   <= req_u;
-      v_s1   <= req_v;
-      lod_s1 <= req_lod;
-      size_q <= {size_q[0 +: 2*ZW], req_log2_h, req_log2_w};
-      wrap_q <= {wrap_q[0 +: 3*MW], req_wrap_v, req_wrap_u};
+      u_s1        <= req_u;
+      v_s1        <= req_v;
+      lod_s1      <= req_lod;
+      lod_bias_s1 <= req_lod_bias;
+      min_lod_s1  <= req_min_lod;
+      max_lod_s1  <= req_max_lod;
+      size_q   <= {size_q[0 +: 2*ZW], req_log2_h, req_log2_w};
+      wrap_q   <= {wrap_q[0 +: 3*MW], req_wrap_v, req_wrap_u};
+      mip_q    <= {mip_q[0 +: PW], req_mip_mode};
+      linear_q <= {linear_q[0 +: 2*2], req_mag_linear, req_min_linear};
     end
   end
   logic [ZW-1:0]              size_s1, size_s2, size_s3;  // {log2 h0, log2 w0} at clock k
@@ -107,12 +104,12 @@ module tex_front #(
   logic [WB-1:0]   f_s3;
   logic            minify_s3;      // lambda' > 0: the minification filter, else the magnification
   tex_lod u_lod (
-    .clk(clk), .en(en), .lod(lod_s1), .bias(cfg_lod_bias_q), .min_lod(cfg_min_lod_q),
-    .max_lod(cfg_max_lod_q), .mip_mode(cfg_mip_mode_q), .last_level(last_level),
+    .clk(clk), .en(en), .lod(lod_s1), .bias(lod_bias_s1), .min_lod(min_lod_s1),
+    .max_lod(max_lod_s1), .mip_mode(mip_q[PW +: PW]), .last_level(last_level),
     .level(level_s3), .f(f_s3), .minify(minify_s3)
   );
   logic linear_s3;  // the sample's texel filter (the model's stage::texel_filter)
-  assign linear_s3 = minify_s3 ? cfg_texel_linear_q : cfg_mag_linear_q;
+  assign linear_s3 = minify_s3 ? linear_q[2*2] : linear_q[2*2 + 1];
 
   // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the scaled
   // coordinate, held one clock while tex_lod selects the levels.

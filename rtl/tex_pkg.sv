@@ -26,8 +26,9 @@ package tex_pkg;
   localparam int LOG2_SETS_W   = 5;   // cfg_log2_sets: sets per cache, 4 .. 2^(2^5 - 1)
   localparam int LOG2_WAYS_W   = 2;   // cfg_log2_ways: 0, 1, 2 = 1, 2, 4 ways
   localparam int TEX_ID_W      = 4;   // req_tex: a texture descriptor-table entry, 0..15
+  localparam int SMP_ID_W      = 4;   // req_sampler: a sampler-table entry, 0..15
 
-  // ---- cfg_wrap_u / cfg_wrap_v
+  // ---- cfg_smp_wrap_u / cfg_smp_wrap_v
   localparam int WRAP_W = 3;
   localparam logic [WRAP_W-1:0] WRAP_REPEAT       = 3'd0;
   localparam logic [WRAP_W-1:0] WRAP_CLAMP        = 3'd1;  // CLAMP_TO_EDGE
@@ -35,7 +36,7 @@ package tex_pkg;
   localparam logic [WRAP_W-1:0] WRAP_BORDER       = 3'd3;  // CLAMP_TO_BORDER
   localparam logic [WRAP_W-1:0] WRAP_MIRROR_CLAMP = 3'd4;  // MIRROR_CLAMP_TO_EDGE
 
-  // ---- cfg_mip_mode
+  // ---- cfg_smp_mip_mode
   localparam int MIP_W = 2;
   localparam logic [MIP_W-1:0] MIP_NONE    = 2'd0;
   localparam logic [MIP_W-1:0] MIP_NEAREST = 2'd1;

@@ -14,8 +14,8 @@
 //   req_u, req_v     : signed Q8.24; req_lod: signed Q8.8 (req_deriv = 0)
 //   req_dudx .. dvdy : signed Q8.24 texture widths (heights) per pixel (req_deriv = 1)
 //   req_log2_w/h     : the request's texture's level-0 size (integers), taken with the request
-//   cfg_max_aniso_m1 : probes at most less one (0..15); cfg_aniso_pow2: probe counts rounded up
-//                      to powers of two. Registered every clock.
+//   req_max_aniso_m1 : the request's sampler: probes at most less one (0..15); req_aniso_pow2:
+//                      probe counts rounded up to powers of two. Taken with the request.
 //   probe_u, probe_v : signed Q8.24; probe_lod: signed Q8.8 (lambda', before bias and clamp)
 //   probe_first, probe_last : the request's first / last probe; probe_n: its probes, 1..16
 module tex_probe #(
@@ -24,8 +24,6 @@ module tex_probe #(
   input  logic                                   clk,
   input  logic                                   rst,
   input  logic                                   en,
-  input  logic [3:0]                             cfg_max_aniso_m1,
-  input  logic                                   cfg_aniso_pow2,
   input  logic                                   req_valid,
   output logic                                   req_ready,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
@@ -38,6 +36,8 @@ module tex_probe #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
   input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_w,
   input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_h,
+  input  logic [3:0]                             req_max_aniso_m1,
+  input  logic                                   req_aniso_pow2,
   input  logic [TAG_W-1:0]                       req_tag,
   output logic                                   probe_valid,
   output logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u,
@@ -60,14 +60,6 @@ module tex_probe #(
   assign en_up = en && !hold;
   assign req_ready = en_up;
 
-  // ---------------------------------------------------------------- cfg registers
-  logic [3:0]                  max_aniso_m1_q;
-  logic                        pow2_q;
-  always_ff @(posedge clk) begin
-    max_aniso_m1_q <= cfg_max_aniso_m1;
-    pow2_q         <= cfg_aniso_pow2;
-  end
-
   // ---------------------------------------------------------------- clocks 1-4: request registers
   // Clock 1 captures the pins; u, v, lod, the mode and the tag ride along while tex_aniso works.
   logic [4:1]                       valid;
@@ -80,6 +72,8 @@ module tex_probe #(
   logic [4*TAG_W-1:0]               tag_q;
   logic signed [DW-1:0]             dudx_s1, dvdx_s1, dudy_s1, dvdy_s1;
   logic [tex_pkg::LEVEL_W-1:0]      log2_w_s1, log2_h_s1;  // the texture's size, for tex_aniso's clock 1
+  logic [3:0]                       max_aniso_m1_s1;       // and the sampler's cap
+  logic                             pow2_s1;
   always_ff @(posedge clk) begin
     if (rst) valid <= '0;
     else if (en_up) valid <= {valid[3:1], req_valid};
@@ -95,6 +89,8 @@ module tex_probe #(
       dvdy_s1    <= req_dvdy;
       log2_w_s1  <= req_log2_w;
       log2_h_s1  <= req_log2_h;
+      max_aniso_m1_s1 <= req_max_aniso_m1;
+      pow2_s1    <= req_aniso_pow2;
     end
   end
 
@@ -108,7 +104,7 @@ module tex_probe #(
   logic signed [DW-1:0] step_u, step_v;
   tex_aniso u_aniso (
     .clk(clk), .en(aniso_en), .dudx(dudx_s1), .dvdx(dvdx_s1), .dudy(dudy_s1), .dvdy(dvdy_s1),
-    .log2_w(log2_w_s1), .log2_h(log2_h_s1), .max_aniso_m1(max_aniso_m1_q), .pow2(pow2_q),
+    .log2_w(log2_w_s1), .log2_h(log2_h_s1), .max_aniso_m1(max_aniso_m1_s1), .pow2(pow2_s1),
     .n(aniso_n), .lambda(aniso_lambda), .step_u(step_u), .step_v(step_v)
 `ifdef FORMAL
     , .f_n_s2(f_aniso_n_s2)

@@ -12,17 +12,18 @@
 // Throughput: 1 probe per clock sustained (8 texel reads per clock: a 2x2 footprint in each of
 //   levels d and d1): 1 sample per clock for lambda requests and isotropic footprints, 1 per N
 //   clocks for an anisotropic sample of N probes; under backpressure the unit adds no bubbles.
-// Ports (see docs/rtl-interface.md): req_u, req_v signed Q8.24; req_lod, cfg_lod_bias,
-//   cfg_min_lod, cfg_max_lod signed Q8.8; req_deriv selects req_lod (0) or the derivatives
+// Ports (see docs/rtl-interface.md): req_u, req_v signed Q8.24; req_lod, cfg_smp_lod_bias,
+//   cfg_smp_min_lod, cfg_smp_max_lod signed Q8.8; req_deriv selects req_lod (0) or the derivatives
 //   req_dudx, req_dvdx, req_dudy, req_dvdy (1, signed Q8.24 texture widths per pixel);
-//   cfg_max_aniso_m1 the probes per sample at most less one (0..15; 0 = trilinear),
-//   cfg_aniso_pow2 probe counts rounded up to powers of two; cfg_texel_linear the minification
-//   filter's texel filter, cfg_mag_linear the magnification filter (where lambda' <= 0);
-//   cfg_border_rgba the border colour of address mode border, {A, B, G, R} unorm16; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
+//   cfg_smp_max_aniso_m1 the probes per sample at most less one (0..15; 0 = trilinear),
+//   cfg_smp_aniso_pow2 probe counts rounded up to powers of two; cfg_smp_min_linear the minification
+//   filter's texel filter, cfg_smp_mag_linear the magnification filter (where lambda' <= 0);
+//   cfg_smp_border_rgba the border colour of address mode border, {A, B, G, R} unorm16; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   cfg_log2_w/h integer <= MAX_LOG2_W/H; wr_level, wr_x, wr_y unsigned integers.
 // Inputs are only ever registered: no logic depends combinationally on an input pin.
-//   cfg_* are registered every clock (in tex_probe and tex_front) and must be static while
-//   requests are in flight.
+//   cfg_* are taken with each request (in tex_probe and tex_front; the border colour registered
+//   every clock) and must be static while requests are in flight. The cfg_smp_* pins are the
+//   unit's one sampler: the fields of an entry of tex_unit_cached's sampler table.
 //   wr_* are registered (wr_*_q) and written one clock later: a texel on the write pins in cycle
 //   t is in its memory from cycle t + 2 on, and is seen by every request accepted in cycle t - 6
 //   or later (the memories are read in a probe's clock 5, the request's clock 9 for its first).
@@ -46,17 +47,17 @@ module tex_unit #(
 
   input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w,
   input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_h,
-  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u,
-  input  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_v,
-  input  logic                                   cfg_texel_linear,
-  input  logic                                   cfg_mag_linear,
-  input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
-  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
-  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
-  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
-  input  logic [3:0]                             cfg_max_aniso_m1,
-  input  logic                                   cfg_aniso_pow2,
-  input  logic [63:0]                            cfg_border_rgba,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_u,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_v,
+  input  logic                                   cfg_smp_min_linear,
+  input  logic                                   cfg_smp_mag_linear,
+  input  logic [tex_pkg::MIP_W-1:0]              cfg_smp_mip_mode,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_smp_lod_bias,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_smp_min_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_smp_max_lod,
+  input  logic [3:0]                             cfg_smp_max_aniso_m1,
+  input  logic                                   cfg_smp_aniso_pow2,
+  input  logic [63:0]                            cfg_smp_border_rgba,
 
   input  logic                                   wr_en,
   input  logic [tex_pkg::LEVEL_W-1:0]            wr_level,
@@ -140,10 +141,10 @@ module tex_unit #(
 `endif
   tex_probe #(.TAG_W(TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en),
-    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
-    .req_dvdy(req_dvdy), .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h), .req_tag(req_tag),
+    .req_dvdy(req_dvdy), .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h),
+    .req_max_aniso_m1(cfg_smp_max_aniso_m1), .req_aniso_pow2(cfg_smp_aniso_pow2), .req_tag(req_tag),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag(probe_tag),
     .held(probe_held)
@@ -203,10 +204,10 @@ module tex_unit #(
   logic [3:0]      border_x_s5, border_y_s5, border_x_s6, border_y_s6;
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
-    .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h), .req_wrap_u(cfg_wrap_u),
-    .req_wrap_v(cfg_wrap_v), .cfg_texel_linear(cfg_texel_linear), .cfg_mag_linear(cfg_mag_linear),
-    .cfg_mip_mode(cfg_mip_mode),
-    .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
+    .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h), .req_wrap_u(cfg_smp_wrap_u),
+    .req_wrap_v(cfg_smp_wrap_v), .req_min_linear(cfg_smp_min_linear), .req_mag_linear(cfg_smp_mag_linear),
+    .req_mip_mode(cfg_smp_mip_mode), .req_lod_bias(cfg_smp_lod_bias), .req_min_lod(cfg_smp_min_lod),
+    .req_max_lod(cfg_smp_max_lod),
     .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
     .border_x(border_x), .border_y(border_y)
   );
@@ -243,7 +244,7 @@ module tex_unit #(
   logic [32*CWD-1:0] taps_b_s6;
   tex_border #(.CW(CWD)) u_border (.rgba16(cfg_border_q), .rgba(border_next));
   always_ff @(posedge clk) begin
-    cfg_border_q <= cfg_border_rgba;
+    cfg_border_q <= cfg_smp_border_rgba;
     border_rgba  <= border_next;
   end
   always_comb begin

@@ -11,7 +11,7 @@
 //   configuration write reaches the unit's pins 1 clock after the write's edge (BVALID with it).
 // Throughput: tex_unit_cached's (1 probe per clock while lines hit).
 // Ports: req_* / rsp_* as tex_unit_cached (req_u, req_v, req_dudx .. req_dvdy signed Q8.24;
-//   req_lod signed Q8.8; req_tex a descriptor entry; rsp_rgba {A, B, G, R} CW-bit unsigned;
+//   req_lod signed Q8.8; req_tex a descriptor entry, req_sampler a sampler entry; rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   rsp_error: the sample read a line the memory answered with an error, rsp_rgba 0);
 //   s_axi_* 32-bit data, ADDR_W-bit byte addresses; m_axi_* MEM_W-bit data,
 //   tex_pkg::MEM_ADDR_W-bit byte addresses, AXI_ID_W-bit IDs.
@@ -30,6 +30,7 @@ module tex_unit_axi #(
   parameter int MEM_W         = 128,  // AXI4 read data width, 32..256
   parameter int AXI_ID_W      = 1,
   parameter int TEXTURES      = 16,
+  parameter int SAMPLERS      = 16,
   parameter int BLOCK_FORMATS = 1,
   parameter int SRGB          = 0,
   parameter int ADDR_W        = 12    // AXI4-Lite byte address bits, 8..32 (tex_axil_config)
@@ -70,6 +71,7 @@ module tex_unit_axi #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
   input  logic [tex_pkg::TEX_ID_W-1:0]           req_tex,
+  input  logic [tex_pkg::SMP_ID_W-1:0]           req_sampler,
   input  logic [TAG_W-1:0]                       req_tag,
   output logic                                   rsp_valid,
   input  logic                                   rsp_ready,
@@ -99,16 +101,18 @@ module tex_unit_axi #(
   localparam int LINE_BYTES = BLOCK_W * BLOCK_H * ((CW > 8 && SRGB == 0) ? 8 : 4);
 
   logic                              unit_rst;
-  logic                              cfg_desc_we, cfg_desc_srgb, cfg_texel_linear, cfg_mag_linear, cfg_aniso_pow2;
+  logic                              cfg_desc_we, cfg_desc_srgb, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_aniso_pow2;
   logic [tex_pkg::TEX_ID_W-1:0]      cfg_desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base;
   logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_log2_w, cfg_desc_log2_h;
-  logic [tex_pkg::WRAP_W-1:0]        cfg_desc_wrap_u, cfg_desc_wrap_v;
+  logic                              cfg_smp_we;
+  logic [tex_pkg::SMP_ID_W-1:0]      cfg_smp_index;
+  logic [tex_pkg::WRAP_W-1:0]        cfg_smp_wrap_u, cfg_smp_wrap_v;
   logic [tex_pkg::FORMAT_W-1:0]      cfg_desc_format;
-  logic [tex_pkg::MIP_W-1:0]         cfg_mip_mode;
-  logic signed [tex_pkg::LOD_W-1:0]  cfg_lod_bias, cfg_min_lod, cfg_max_lod;
-  logic [3:0]                        cfg_max_aniso_m1;
-  logic [63:0]                       cfg_border_rgba;
+  logic [tex_pkg::MIP_W-1:0]         cfg_smp_mip_mode;
+  logic signed [tex_pkg::LOD_W-1:0]  cfg_smp_lod_bias, cfg_smp_min_lod, cfg_smp_max_lod;
+  logic [3:0]                        cfg_smp_max_aniso_m1;
+  logic [63:0]                       cfg_smp_border_rgba;
   logic                              cfg_block_morton;
   logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets;
   logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways;
@@ -118,7 +122,7 @@ module tex_unit_axi #(
 
   tex_axil_config #(
     .ADDR_W(ADDR_W), .MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .LINES(LINES),
-    .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .TEXTURES(TEXTURES),
+    .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .TEXTURES(TEXTURES), .SAMPLERS(SAMPLERS),
     .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB), .LINE_BYTES(LINE_BYTES), .BEAT_BYTES(MEM_W / 8)
   ) u_config (
     .clk(clk), .rst(rst),
@@ -132,11 +136,12 @@ module tex_unit_axi #(
     .unit_rst(unit_rst),
     .cfg_desc_we(cfg_desc_we), .cfg_desc_index(cfg_desc_index), .cfg_desc_base(cfg_desc_base),
     .cfg_desc_log2_w(cfg_desc_log2_w), .cfg_desc_log2_h(cfg_desc_log2_h),
-    .cfg_desc_wrap_u(cfg_desc_wrap_u), .cfg_desc_wrap_v(cfg_desc_wrap_v),
+    .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
+    .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
-    .cfg_texel_linear(cfg_texel_linear), .cfg_mag_linear(cfg_mag_linear), .cfg_mip_mode(cfg_mip_mode),
-    .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
-    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2), .cfg_border_rgba(cfg_border_rgba),
+    .cfg_smp_min_linear(cfg_smp_min_linear), .cfg_smp_mag_linear(cfg_smp_mag_linear), .cfg_smp_mip_mode(cfg_smp_mip_mode),
+    .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
+    .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     // the counters' events, at the unit's ports
@@ -150,21 +155,22 @@ module tex_unit_axi #(
     .MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W),
     .BLOCK_W(BLOCK_W), .BLOCK_H(BLOCK_H), .LINES(LINES), .MAX_WAYS(MAX_WAYS),
     .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH), .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W),
-    .AXI_ID_W(AXI_ID_W), .TEXTURES(TEXTURES), .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB)
+    .AXI_ID_W(AXI_ID_W), .TEXTURES(TEXTURES), .SAMPLERS(SAMPLERS), .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB)
   ) u_unit (
     .clk(clk), .rst(rst || unit_rst),  // (rst too: unit_rst is a register, random in the first clock)
     .cfg_desc_we(cfg_desc_we), .cfg_desc_index(cfg_desc_index), .cfg_desc_base(cfg_desc_base),
     .cfg_desc_log2_w(cfg_desc_log2_w), .cfg_desc_log2_h(cfg_desc_log2_h),
-    .cfg_desc_wrap_u(cfg_desc_wrap_u), .cfg_desc_wrap_v(cfg_desc_wrap_v),
+    .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
+    .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
-    .cfg_texel_linear(cfg_texel_linear), .cfg_mag_linear(cfg_mag_linear), .cfg_mip_mode(cfg_mip_mode),
-    .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
-    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2), .cfg_border_rgba(cfg_border_rgba),
+    .cfg_smp_min_linear(cfg_smp_min_linear), .cfg_smp_mag_linear(cfg_smp_mag_linear), .cfg_smp_mip_mode(cfg_smp_mip_mode),
+    .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
+    .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v),
     .req_lod(req_lod), .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx),
-    .req_dudy(req_dudy), .req_dvdy(req_dvdy), .req_tex(req_tex), .req_tag(req_tag),
+    .req_dudy(req_dudy), .req_dvdy(req_dvdy), .req_tex(req_tex), .req_sampler(req_sampler), .req_tag(req_tag),
     .rsp_valid(rsp_valid), .rsp_ready(rsp_ready), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag),
     .rsp_error(rsp_error),
     .m_axi_arvalid(m_axi_arvalid), .m_axi_arready(m_axi_arready), .m_axi_araddr(m_axi_araddr),

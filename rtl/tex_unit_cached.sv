@@ -21,16 +21,21 @@
 //   isotropic footprints); the FIFO (FIFO_DEPTH probes) keeps requests flowing while misses are
 //   outstanding. Memory traffic is a function of the requests and the
 //   cache configuration alone (docs/memory.md §2).
-// Ports: as tex_unit (req_u, req_v signed Q8.24; req_lod, cfg_lod_bias, cfg_min_lod,
-//   cfg_max_lod signed Q8.8; req_deriv, req_dudx .. req_dvdy, cfg_max_aniso_m1, cfg_aniso_pow2,
-//   cfg_border_rgba (the border colour of address mode border, {A, B, G, R} unorm16);
-//   rsp_rgba {A, B, G, R} CW-bit unsigned) but for the texture, which a request names, plus
+// Ports: as tex_unit (req_u, req_v signed Q8.24; req_lod signed Q8.8; req_deriv, req_dudx ..
+//   req_dvdy; rsp_rgba {A, B, G, R} CW-bit unsigned) but for the texture and the sampler, which a
+//   request names (tables, as Vulkan and D3D12 keep image views and samplers apart), plus
 //   req_tex          : the request's texture descriptor-table entry, 0..TEXTURES-1
+//   req_sampler      : the request's sampler-table entry, 0..SAMPLERS-1
+//   cfg_smp_*        : a sampler write (cfg_smp_we high for one clock): entry cfg_smp_index gets
+//                      the fields of tex_unit's cfg_smp_* pins (filters, mip mode, LOD bias and
+//                      clamp signed Q8.8, anisotropy cap, wrap modes, border colour {A, B, G, R}
+//                      unorm16). Written before the requests that name the entry; requests of
+//                      different samplers interleave freely (no flush: the fields ride with
+//                      each request).
 //   cfg_desc_*       : a descriptor write (cfg_desc_we high for one clock): entry cfg_desc_index
 //                      is the pyramid at byte address cfg_desc_base (MEM_ADDR_W bits, line
 //                      aligned) of 2^cfg_desc_log2_w x 2^cfg_desc_log2_h texels (a full chain of
-//                      levels, docs/memory.md §1) with wrap modes cfg_desc_wrap_u, cfg_desc_wrap_v,
-//                      in format cfg_desc_format (tex_pkg::FMT_*: RGBA, or with BLOCK_FORMATS a
+//                      levels, docs/memory.md §1) in format cfg_desc_format (tex_pkg::FMT_*: RGBA, or with BLOCK_FORMATS a
 //                      block format, decoded after the cache to unorm8 texels; docs/memory.md §1),
 //                      its R, G, B sRGB-encoded if cfg_desc_srgb (SRGB only; not BC4, BC5).
 //                      Written before the requests that name the entry (and rewritten between
@@ -45,8 +50,8 @@
 //   rsp_error        : the sample read a line the memory answered with an error; rsp_rgba is 0
 //   stat_lookups, stat_misses : lines looked up in this clock (0..8) and of those missing, unsigned
 //   stat_mem_wait    : the FIFO's head waits for memory in this clock (for counters)
-// cfg_* are registered every clock and must be static while requests are in flight;
-//   cfg_log2_sets, cfg_log2_ways, cfg_block_morton change only under reset (the caches are
+// cfg_* are registered every clock; a descriptor or sampler entry must not be rewritten while a
+//   request that names it is in flight; cfg_log2_sets, cfg_log2_ways, cfg_block_morton change only under reset (the caches are
 //   emptied by rst), a texture in memory only with its descriptor (and no request of it in flight).
 module tex_unit_cached #(
   parameter int MAX_LOG2_W = 10,   // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H, each 0..13
@@ -63,6 +68,7 @@ module tex_unit_cached #(
   parameter int MEM_W      = 128,  // AXI data width: bits of a beat (32..256, divides the line)
   parameter int AXI_ID_W   = 1,    // AXI ID width (1..16; the unit uses ID 0)
   parameter int TEXTURES   = 16,   // texture descriptor-table entries (power of two, 1..16)
+  parameter int SAMPLERS   = 16,   // sampler-table entries (power of two, 1..16)
   parameter int BLOCK_FORMATS = 1, // 1: BC1-BC5 and BC7 textures too, 8 decoders after the cache
                                    // (needs 8-bit memory channels and lines of at least 64 bytes)
   parameter int SRGB       = 0     // 1: sRGB textures too: memory holds 8-bit channels, CW = 16;
@@ -77,19 +83,21 @@ module tex_unit_cached #(
   input  logic [tex_pkg::MEM_ADDR_W-1:0]         cfg_desc_base,
   input  logic [tex_pkg::LEVEL_W-1:0]            cfg_desc_log2_w,
   input  logic [tex_pkg::LEVEL_W-1:0]            cfg_desc_log2_h,
-  input  logic [tex_pkg::WRAP_W-1:0]             cfg_desc_wrap_u,
-  input  logic [tex_pkg::WRAP_W-1:0]             cfg_desc_wrap_v,
   input  logic [tex_pkg::FORMAT_W-1:0]           cfg_desc_format,
   input  logic                                   cfg_desc_srgb,
-  input  logic                                   cfg_texel_linear,
-  input  logic                                   cfg_mag_linear,
-  input  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode,
-  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias,
-  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_min_lod,
-  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_max_lod,
-  input  logic [3:0]                             cfg_max_aniso_m1,
-  input  logic                                   cfg_aniso_pow2,
-  input  logic [63:0]                            cfg_border_rgba,
+  input  logic                                   cfg_smp_we,
+  input  logic [tex_pkg::SMP_ID_W-1:0]           cfg_smp_index,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_u,
+  input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_v,
+  input  logic                                   cfg_smp_min_linear,
+  input  logic                                   cfg_smp_mag_linear,
+  input  logic [tex_pkg::MIP_W-1:0]              cfg_smp_mip_mode,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_smp_lod_bias,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_smp_min_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       cfg_smp_max_lod,
+  input  logic [3:0]                             cfg_smp_max_aniso_m1,
+  input  logic                                   cfg_smp_aniso_pow2,
+  input  logic [63:0]                            cfg_smp_border_rgba,
   input  logic                                   cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]        cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]        cfg_log2_ways,
@@ -106,6 +114,7 @@ module tex_unit_cached #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
   input  logic [tex_pkg::TEX_ID_W-1:0]           req_tex,
+  input  logic [tex_pkg::SMP_ID_W-1:0]           req_sampler,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -196,6 +205,9 @@ module tex_unit_cached #(
     if (TEXTURES < 1 || TEXTURES > (1 << tex_pkg::TEX_ID_W) || (TEXTURES & (TEXTURES - 1)) != 0) begin : g_bad_textures
       `TEX_PARAM_ERROR("tex_unit_cached: parameter TEXTURES must be a power of two from 1 to 16 (tex_pkg::TEX_ID_W)")
     end
+    if (SAMPLERS < 1 || SAMPLERS > (1 << tex_pkg::SMP_ID_W) || (SAMPLERS & (SAMPLERS - 1)) != 0) begin : g_bad_samplers
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter SAMPLERS must be a power of two from 1 to 16 (tex_pkg::SMP_ID_W)")
+    end
     if (!(SRGB == 0 || (SRGB == 1 && CW == 16))) begin : g_bad_srgb
       `TEX_PARAM_ERROR("tex_unit_cached: parameter SRGB must be 0, or 1 with CW = 16")
     end
@@ -206,7 +218,7 @@ module tex_unit_cached #(
 `undef TEX_PARAM_ERROR
 
   // ---------------------------------------------------------------- input registers
-  // (the sampling cfg_* pins are registered in tex_front; these here)
+  // (the descriptor and sampler writes are registered with their tables below; these here)
   logic                               cfg_block_morton_q;
   logic [tex_pkg::LOG2_SETS_W-1:0]    cfg_log2_sets_q;
   logic [tex_pkg::LOG2_WAYS_W-1:0]    cfg_log2_ways_q;
@@ -219,35 +231,58 @@ module tex_unit_cached #(
   end
 
   // ---------------------------------------------------------------- texture descriptors
-  // A descriptor write is registered, then written: the size and wrap modes here (read by the
-  // request port and by the front), the level bases in tex_cached_fetch.
+  // A descriptor write is registered, then written: the size here (read by the request port and
+  // by the front), the level bases in tex_cached_fetch.
   localparam int TXW = (TEXTURES > 1) ? $clog2(TEXTURES) : 1;
-  localparam int ZW = 2*VW, MW = 2*tex_pkg::WRAP_W;
+  localparam int ZW = 2*VW;
   logic                           desc_we_q;
   logic [TXW-1:0]                 desc_index_q;
   logic [tex_pkg::MEM_ADDR_W-1:0] desc_base_q;
   logic [ZW-1:0]                  desc_size_q;             // {log2 h, log2 w}
-  logic [MW-1:0]                  desc_wrap_q;             // {wrap v, wrap u}
   logic [tex_pkg::FORMAT_W-1:0]   desc_format_q;
   logic                           desc_srgb_q;
   logic [ZW-1:0]                  desc_size [TEXTURES];
-  logic [MW-1:0]                  desc_wrap [TEXTURES];
   always_ff @(posedge clk) begin
     desc_we_q    <= !rst && cfg_desc_we;
     desc_index_q <= TXW'(cfg_desc_index);
     desc_base_q  <= cfg_desc_base;
     desc_size_q  <= {cfg_desc_log2_h, cfg_desc_log2_w};
-    desc_wrap_q  <= {cfg_desc_wrap_v, cfg_desc_wrap_u};
     desc_format_q <= cfg_desc_format;
     desc_srgb_q   <= cfg_desc_srgb;
-    if (desc_we_q) begin
-      desc_size[desc_index_q] <= desc_size_q;
-      desc_wrap[desc_index_q] <= desc_wrap_q;
-    end
+    if (desc_we_q) desc_size[desc_index_q] <= desc_size_q;
   end
   // The request's entry: its texture's size for tex_probe's LOD unit (taken with the request).
   logic [ZW-1:0] req_size;
   assign req_size = desc_size[TXW'(req_tex)];
+
+  // ---------------------------------------------------------------- sampler table
+  // A sampler write is registered, then written, in three parts by the clock that reads them:
+  // the anisotropy cap at the request port (tex_probe), the filters, LOD fields and wrap modes at
+  // the front's clock 1 (tex_front), the border colour after the FIFO (tex_cached_fetch's table).
+  localparam int SXW = (SAMPLERS > 1) ? $clog2(SAMPLERS) : 1;
+  localparam int LW  = tex_pkg::LOD_W, PW = tex_pkg::MIP_W, WW = tex_pkg::WRAP_W;
+  localparam int FRW = 2*WW + 2 + PW + 3*LW;  // the front's fields
+  logic            smp_we_q;
+  logic [SXW-1:0]  smp_index_q;
+  logic [4:0]      smp_aniso_q;    // {pow2, max_aniso_m1}
+  logic [FRW-1:0]  smp_front_q;    // {max, min, bias, mip mode, mag linear, min linear, wrap v, wrap u}
+  logic [63:0]     smp_border_q;
+  logic [4:0]      smp_aniso [SAMPLERS];
+  logic [FRW-1:0]  smp_front [SAMPLERS];
+  always_ff @(posedge clk) begin
+    smp_we_q     <= !rst && cfg_smp_we;
+    smp_index_q  <= SXW'(cfg_smp_index);
+    smp_aniso_q  <= {cfg_smp_aniso_pow2, cfg_smp_max_aniso_m1};
+    smp_front_q  <= {cfg_smp_max_lod, cfg_smp_min_lod, cfg_smp_lod_bias, cfg_smp_mip_mode, cfg_smp_mag_linear,
+                     cfg_smp_min_linear, cfg_smp_wrap_v, cfg_smp_wrap_u};
+    smp_border_q <= cfg_smp_border_rgba;
+    if (smp_we_q) begin
+      smp_aniso[smp_index_q] <= smp_aniso_q;
+      smp_front[smp_index_q] <= smp_front_q;
+    end
+  end
+  logic [4:0] req_aniso;  // the request's sampler's cap, taken with the request
+  assign req_aniso = smp_aniso[SXW'(req_sampler)];
 
   // ---------------------------------------------------------------- requests 1-4: tex_probe
   logic en_front, en_back;
@@ -257,24 +292,26 @@ module tex_unit_cached #(
   logic signed [tex_pkg::LOD_W-1:0]       probe_lod;
   logic [TGW-1:0]                         probe_tag;
   logic [TXW-1:0]                         probe_tex;   // the probe's texture (with the tag)
+  logic [SXW-1:0]                         probe_smp;   // and its sampler
   logic [2:0]                             probe_held;  // requests in tex_probe
-  tex_probe #(.TAG_W(TXW + TGW)) u_probe (
+  tex_probe #(.TAG_W(SXW + TXW + TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front),
-    .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_log2_w(req_size[0 +: VW]), .req_log2_h(req_size[VW +: VW]),
-    .req_tag({TXW'(req_tex), req_tag}),
+    .req_max_aniso_m1(req_aniso[3:0]), .req_aniso_pow2(req_aniso[4]),
+    .req_tag({SXW'(req_sampler), TXW'(req_tex), req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n),
-    .probe_tag({probe_tex, probe_tag}),
+    .probe_tag({probe_smp, probe_tex, probe_tag}),
     .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
   );
-  // The probe's entry: its texture's size and wrap modes for the front (taken at its clock 1).
-  logic [ZW-1:0] probe_size;
-  logic [MW-1:0] probe_wrap;
-  assign probe_size = desc_size[probe_tex];
-  assign probe_wrap = desc_wrap[probe_tex];
+  // The probe's entries: its texture's size and its sampler's fields for the front (taken at its
+  // clock 1).
+  logic [ZW-1:0]  probe_size;
+  logic [FRW-1:0] probe_smp_front;
+  assign probe_size      = desc_size[probe_tex];
+  assign probe_smp_front = smp_front[probe_smp];
 
   // ---------------------------------------------------------------- front: probe clocks 1-4
   // A probe's tag carries its place in the sample, {n, last, first, tag}, through the FIFO.
@@ -284,6 +321,7 @@ module tex_unit_cached #(
   logic [4:1] valid_f;             // the front's clock-n register holds a probe
   logic [SW-1:0] tag_f1, tag_f2, tag_f3, tag_f4;  // clock n's probe
   logic [4*TXW-1:0] tex_f;         // clock n's texture at [(n-1)*TXW +: TXW] (for the level bases)
+  logic [4*SXW-1:0] smp_f;         // and its sampler (for the border colour)
   always_ff @(posedge clk) begin
     if (rst) valid_f <= '0;
     else if (en_front) valid_f <= {valid_f[3:1], probe_valid};
@@ -293,6 +331,7 @@ module tex_unit_cached #(
       tag_f3 <= tag_f2;
       tag_f4 <= tag_f3;
       tex_f  <= {tex_f[0 +: 3*TXW], probe_tex};
+      smp_f  <= {smp_f[0 +: 3*SXW], probe_smp};
     end
   end
 
@@ -306,10 +345,11 @@ module tex_unit_cached #(
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
     .req_log2_w(probe_size[0 +: VW]), .req_log2_h(probe_size[VW +: VW]),
-    .req_wrap_u(probe_wrap[0 +: tex_pkg::WRAP_W]), .req_wrap_v(probe_wrap[tex_pkg::WRAP_W +: tex_pkg::WRAP_W]),
-    .cfg_texel_linear(cfg_texel_linear), .cfg_mag_linear(cfg_mag_linear),
-    .cfg_mip_mode(cfg_mip_mode),
-    .cfg_lod_bias(cfg_lod_bias), .cfg_min_lod(cfg_min_lod), .cfg_max_lod(cfg_max_lod),
+    .req_wrap_u(probe_smp_front[0 +: WW]), .req_wrap_v(probe_smp_front[WW +: WW]),
+    .req_min_linear(probe_smp_front[2*WW]), .req_mag_linear(probe_smp_front[2*WW + 1]),
+    .req_mip_mode(probe_smp_front[2*WW + 2 +: PW]), .req_lod_bias(probe_smp_front[2*WW + 2 + PW +: LW]),
+    .req_min_lod(probe_smp_front[2*WW + 2 + PW + LW +: LW]),
+    .req_max_lod(probe_smp_front[2*WW + 2 + PW + 2*LW +: LW]),
     .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
     .border_x(border_x), .border_y(border_y)
   );
@@ -347,13 +387,16 @@ module tex_unit_cached #(
   tex_cached_fetch #(
     .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .CW(CWD), .TAG_W(SW), .BW(BLOCK_W), .BH(BLOCK_H),
     .LINES(LINES), .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH),
-    .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES), .BLOCK_FORMATS(BLOCK_FORMATS),
+    .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES), .SAMPLERS(SAMPLERS),
+    .BLOCK_FORMATS(BLOCK_FORMATS),
     .SRGB(SRGB)
   ) u_fetch (
     .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
-    .front_valid(valid_f[4]), .front_tag(tag_f4), .front_tex(tex_f[3*TXW +: TXW]), .level(level_s4),
+    .front_valid(valid_f[4]), .front_tag(tag_f4), .front_tex(tex_f[3*TXW +: TXW]),
+    .front_smp(smp_f[3*SXW +: SXW]), .level(level_s4),
     .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
-    .border_x(border_x), .border_y(border_y), .cfg_border_rgba(cfg_border_rgba),
+    .border_x(border_x), .border_y(border_y),
+    .smp_we(smp_we_q), .smp_index(smp_index_q), .smp_border_rgba(smp_border_q),
     .desc_we(desc_we_q), .desc_index(desc_index_q), .desc_base(desc_base_q),
     .desc_log2_w(desc_size_q[0 +: VW]), .desc_log2_h(desc_size_q[VW +: VW]), .desc_format(desc_format_q),
     .desc_srgb(desc_srgb_q),
@@ -431,6 +474,7 @@ module tex_unit_cached #(
   logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [tex_pkg::TEX_ID_W-1:0]           req_tex_q;
+  logic [tex_pkg::SMP_ID_W-1:0]           req_sampler_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
   logic                                   rsp_error_q;
   logic [31:0]                            r_beat, bursts_open;
@@ -467,6 +511,7 @@ module tex_unit_cached #(
       req_lod_q <= req_lod;
       req_tag_q <= req_tag;
       req_tex_q <= req_tex;
+      req_sampler_q <= req_sampler;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
     end
     if (rsp_valid && !rsp_ready) begin
@@ -488,12 +533,20 @@ module tex_unit_cached #(
       assert (SRGB != 0 && cfg_desc_format != tex_pkg::FMT_BC4 && cfg_desc_format != tex_pkg::FMT_BC5)
         else $error("tex_unit_cached: cfg_desc_srgb for format %0d (SRGB = %0d; BC4 and BC5 have no sRGB)",
                     cfg_desc_format, SRGB);
+    if (!rst && cfg_smp_we)
+      assert (32'(cfg_smp_index) < SAMPLERS)
+        else $error("tex_unit_cached: cfg_smp_index %0d is beyond the sampler table (SAMPLERS = %0d)",
+                    cfg_smp_index, SAMPLERS);
+    if (!rst && req_valid)
+      assert (32'(req_sampler) < SAMPLERS)
+        else $error("tex_unit_cached: req_sampler %0d is beyond the sampler table (SAMPLERS = %0d)",
+                    req_sampler, SAMPLERS);
     if (!rst && req_valid)
       assert (32'(req_tex) < TEXTURES)
         else $error("tex_unit_cached: req_tex %0d is beyond the descriptor table (TEXTURES = %0d)", req_tex, TEXTURES);
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q
-              && req_tag == req_tag_q && req_tex == req_tex_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
+              && req_tag == req_tag_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin

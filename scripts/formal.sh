@@ -277,6 +277,8 @@ mutant axil_desc "tex_axil_config pulses cfg_desc_we on a DESC_ATTR write too" \
   desc tex_axil_config.sv 's/desc_we <= wr_en \&\& sel_commit;/desc_we <= wr_en \&\& (sel_commit || sel_attr);/'
 mutant axil_desc_held "tex_axil_config holds cfg_desc_we high after a commit" \
   desc tex_axil_config.sv 's/desc_we <= wr_en \&\& sel_commit;/desc_we <= desc_we || (wr_en \&\& sel_commit);/'
+mutant axil_smp "tex_axil_config pulses cfg_smp_we on a FILTER write too (a half-staged sampler written)" \
+  smp tex_axil_config.sv 's/smp_we  <= wr_en \&\& sel_smp_commit;/smp_we  <= wr_en \&\& (sel_smp_commit || sel_filter);/'
 mutant axil_comb "tex_axil_config AWREADY = !aw_full && (!bvalid || BREADY) (combinational path)" \
   comb-axil tex_axil_config.sv 's/assign s_axi_awready = !aw_full \&\& !bvalid;/assign s_axi_awready = !aw_full \&\& (!bvalid || s_axi_bready);/'
 mutant cached_arhold "tex_cached_fetch reads the newest miss's bank, not the oldest's (ARADDR moves while stalled)" \

@@ -34,7 +34,7 @@ cached=("-GMAX_LOG2_W=6 -GMAX_LOG2_H=3" "-GCW=16 -GMAX_LOG2_W=5 -GMAX_LOG2_H=4 -
         "-GMAX_LOG2_W=0 -GMAX_LOG2_H=0" "-GBLOCK_W=8 -GBLOCK_H=2 -GMAX_WAYS=1 -GLINES=16 -GFILL_DEPTH=1"
         "-GMAX_LOG2_W=13 -GMAX_LOG2_H=13 -GLINES=1024 -GFIFO_DEPTH=1024 -GMEM_W=256 -GAXI_ID_W=4"
         "-GBLOCK_W=8 -GBLOCK_H=8 -GMEM_W=256" "-GBLOCK_W=2 -GBLOCK_H=4 -GBLOCK_FORMATS=0"
-        "-GMAX_LOG2_W=13 -GMAX_LOG2_H=0 -GCW=16 -GTEXTURES=1 -GBLOCK_FORMATS=0" "-GTEXTURES=2"
+        "-GMAX_LOG2_W=13 -GMAX_LOG2_H=0 -GCW=16 -GTEXTURES=1 -GSAMPLERS=1 -GBLOCK_FORMATS=0" "-GTEXTURES=2 -GSAMPLERS=4"
         "-GMAX_LOG2_W=6 -GMAX_LOG2_H=3 -GCW=16 -GSRGB=1" "-GCW=16 -GSRGB=1 -GBLOCK_FORMATS=0")
 for cfg in "${cached[@]}"; do
   if ! out=$(lint_cached $cfg) || [ -n "$out" ]; then
@@ -44,7 +44,7 @@ for cfg in "${cached[@]}"; do
   fi
 done
 bad_cached=("MAX_LOG2_W=14" "BLOCK_W=3" "BLOCK_H=16" "MAX_WAYS=3" "LINES=24" "FIFO_DEPTH=3" "MISS_DEPTH=8" "MEM_W=1024" "MEM_W=16" "AXI_ID_W=0"
-            "TEXTURES=3" "TEXTURES=32" "BLOCK_FORMATS=2" "CW=16" "SRGB=2" "SRGB=1")
+            "TEXTURES=3" "TEXTURES=32" "SAMPLERS=0" "SAMPLERS=12" "SAMPLERS=32" "BLOCK_FORMATS=2" "CW=16" "SRGB=2" "SRGB=1")
 for p in "${bad_cached[@]}"; do
   name=${p%%=*}
   [ "$p" = CW=16 ] && name=BLOCK_FORMATS  # the decoders take 8-bit memory channels (CW 8, or SRGB)
@@ -89,7 +89,7 @@ echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7) and tex_srgb_
 # constants; inside tex_unit_axi below it is linted with all warnings), and the AXI top.
 lint_axil() { verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_axil_config.sv \
                 --top-module tex_axil_config "$@" 2>&1; }
-axil=("" "-GADDR_W=8 -GTEXTURES=1 -GMAX_WAYS=1 -GLINES=16 -GFIFO_DEPTH=2 -GBEAT_BYTES=1 -GLINE_BYTES=1"
+axil=("" "-GADDR_W=8 -GTEXTURES=1 -GSAMPLERS=1 -GMAX_WAYS=1 -GLINES=16 -GFIFO_DEPTH=2 -GBEAT_BYTES=1 -GLINE_BYTES=1"
       "-GADDR_W=32 -GFIFO_DEPTH=1024 -GBEAT_BYTES=64 -GSRGB=1 -GBLOCK_FORMATS=0 -GMAX_LOG2_W=13 -GMAX_LOG2_H=0")
 for cfg in "${axil[@]}"; do
   if ! out=$(lint_axil $cfg) || [ -n "$out" ]; then
@@ -99,7 +99,7 @@ for cfg in "${axil[@]}"; do
   fi
 done
 bad_axil=("ADDR_W=7" "ADDR_W=33" "MAX_LOG2_W=14" "MAX_LOG2_H=-1" "LINES=24" "MAX_WAYS=3" "FIFO_DEPTH=3" "TEXTURES=3"
-          "BLOCK_FORMATS=2" "SRGB=2" "LINE_BYTES=48" "BEAT_BYTES=128")
+          "SAMPLERS=5" "BLOCK_FORMATS=2" "SRGB=2" "LINE_BYTES=48" "BEAT_BYTES=128")
 for p in "${bad_axil[@]}"; do
   if out=$(lint_axil -G"$p") || ! grep -q "tex_axil_config: parameter ${p%%=*} must" <<< "$out"; then
     echo "$out" >&2

@@ -32,10 +32,10 @@ module tex_axil_config_formal #(
   logic [1:0] s_axi_bresp, s_axi_rresp;
   logic [31:0] s_axi_rdata;
 
-  // A small unit: 4 textures, 16 lines of at most 2 ways, a 4-sample FIFO.
+  // A small unit: 4 textures, 4 samplers, 16 lines of at most 2 ways, a 4-sample FIFO.
   tex_axil_config #(
     .ADDR_W(ADDR_W), .MAX_LOG2_W(3), .MAX_LOG2_H(2), .LINES(16), .MAX_WAYS(2), .FIFO_DEPTH(4),
-    .TEXTURES(4), .BLOCK_FORMATS(1), .SRGB(1), .LINE_BYTES(64), .BEAT_BYTES(16)
+    .TEXTURES(4), .SAMPLERS(4), .BLOCK_FORMATS(1), .SRGB(1), .LINE_BYTES(64), .BEAT_BYTES(16)
   ) dut (
     .clk, .rst,
     .s_axi_awvalid, .s_axi_awready, .s_axi_awaddr, .s_axi_awprot,
@@ -44,9 +44,10 @@ module tex_axil_config_formal #(
     .s_axi_arvalid, .s_axi_arready, .s_axi_araddr, .s_axi_arprot,
     .s_axi_rvalid, .s_axi_rready, .s_axi_rdata, .s_axi_rresp,
     .unit_rst(), .cfg_desc_we(), .cfg_desc_index(), .cfg_desc_base(), .cfg_desc_log2_w(),
-    .cfg_desc_log2_h(), .cfg_desc_wrap_u(), .cfg_desc_wrap_v(), .cfg_desc_format(),
-    .cfg_desc_srgb(), .cfg_texel_linear(), .cfg_mag_linear(), .cfg_mip_mode(), .cfg_lod_bias(), .cfg_min_lod(),
-    .cfg_max_lod(), .cfg_max_aniso_m1(), .cfg_aniso_pow2(), .cfg_border_rgba(), .cfg_block_morton(),
+    .cfg_desc_log2_h(), .cfg_desc_format(), .cfg_desc_srgb(), .cfg_smp_we(), .cfg_smp_index(),
+    .cfg_smp_wrap_u(), .cfg_smp_wrap_v(), .cfg_smp_min_linear(), .cfg_smp_mag_linear(), .cfg_smp_mip_mode(),
+    .cfg_smp_lod_bias(), .cfg_smp_min_lod(), .cfg_smp_max_lod(), .cfg_smp_max_aniso_m1(), .cfg_smp_aniso_pow2(),
+    .cfg_smp_border_rgba(), .cfg_block_morton(),
     .cfg_log2_sets(), .cfg_log2_ways(), .cfg_fifo_limit(),
     .stat_sample, .stat_sample_error, .stat_lookups, .stat_misses, .stat_mem_beat,
     .stat_out_stall, .stat_mem_wait, .stat_req_stall

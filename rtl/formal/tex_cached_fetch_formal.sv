@@ -18,9 +18,11 @@ module tex_cached_fetch_formal #(
   parameter int FILL_DEPTH = 1,
   parameter int MEM_W      = 64,
   parameter int TEXTURES   = 1,
+  parameter int SAMPLERS   = 1,
   parameter int XW         = MAX_LOG2_W,
   parameter int YW         = MAX_LOG2_H,
-  parameter int TXW        = 1
+  parameter int TXW        = 1,
+  parameter int SXW        = 1
 ) (
   input  logic                              clk,
   input  logic                              rst,
@@ -28,6 +30,7 @@ module tex_cached_fetch_formal #(
   input  logic                              front_valid,
   input  logic [TAG_W-1:0]                  front_tag,
   input  logic [TXW-1:0]                    front_tex,
+  input  logic [SXW-1:0]                    front_smp,
   input  logic [2*tex_pkg::LEVEL_W-1:0]     level,
   input  logic [tex_pkg::WEIGHT_BITS-1:0]   f,
   input  logic [4*tex_pkg::WEIGHT_BITS-1:0] w,
@@ -36,7 +39,9 @@ module tex_cached_fetch_formal #(
   input  logic [4*YW-1:0]                   y,
   input  logic [3:0]                        border_x,
   input  logic [3:0]                        border_y,
-  input  logic [63:0]                       cfg_border_rgba,
+  input  logic                              smp_we,
+  input  logic [SXW-1:0]                    smp_index,
+  input  logic [63:0]                       smp_border_rgba,
   input  logic                              desc_we,
   input  logic [TXW-1:0]                    desc_index,
   input  logic [tex_pkg::MEM_ADDR_W-1:0]    desc_base,
@@ -64,7 +69,7 @@ module tex_cached_fetch_formal #(
   tex_cached_fetch #(
     .MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W), .BW(BW), .BH(BH), .LINES(LINES),
     .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH), .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W),
-    .TEXTURES(TEXTURES)
+    .TEXTURES(TEXTURES), .SAMPLERS(SAMPLERS)
   ) dut (.*);
 
   always_comb if ($initstate) assume (rst);

@@ -67,11 +67,13 @@ module tex_ice40_cached_top #(
   localparam int O_DINDEX  = O_DWE + 1;
   localparam int O_LOG2_W  = O_DINDEX + XW;
   localparam int O_LOG2_H  = O_LOG2_W + VW;
-  localparam int O_WRAP_U  = O_LOG2_H + VW;
-  localparam int O_WRAP_V  = O_WRAP_U + WW;
-  localparam int O_FORMAT  = O_WRAP_V + WW;
+  localparam int O_FORMAT  = O_LOG2_H + VW;
   localparam int O_SRGB    = O_FORMAT + tex_pkg::FORMAT_W;
-  localparam int O_LINEAR  = O_SRGB + 1;
+  localparam int O_SWE     = O_SRGB + 1;
+  localparam int O_SINDEX  = O_SWE + 1;
+  localparam int O_WRAP_U  = O_SINDEX + tex_pkg::SMP_ID_W;
+  localparam int O_WRAP_V  = O_WRAP_U + WW;
+  localparam int O_LINEAR  = O_WRAP_V + WW;
   localparam int O_MAG     = O_LINEAR + 1;
   localparam int O_MIP     = O_MAG + 1;
   localparam int O_BIAS    = O_MIP + MW;
@@ -80,7 +82,9 @@ module tex_ice40_cached_top #(
   localparam int O_BASE    = O_MAX_LOD + LW;
   localparam int O_MORTON  = O_BASE + AW;
   localparam int O_TEX     = O_MORTON + 1;
-  localparam int O_SETS    = O_TEX + XW;
+  localparam int O_SMP     = O_TEX + XW;
+  localparam int O_BORDER  = O_SMP + tex_pkg::SMP_ID_W;
+  localparam int O_SETS    = O_BORDER + 64;
   localparam int O_WAYS    = O_SETS + SW;
   localparam int O_FIFO    = O_WAYS + YW;
   localparam int O_VALID   = O_FIFO + FW;
@@ -115,13 +119,16 @@ module tex_ice40_cached_top #(
     .clk(clk), .rst(rst),
     .cfg_desc_we(in_bits[O_DWE]), .cfg_desc_index(in_bits[O_DINDEX +: XW]),
     .cfg_desc_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_desc_log2_h(in_bits[O_LOG2_H +: VW]),
-    .cfg_desc_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_desc_wrap_v(in_bits[O_WRAP_V +: WW]),
     .cfg_desc_format(in_bits[O_FORMAT +: tex_pkg::FORMAT_W]), .cfg_desc_srgb(in_bits[O_SRGB]),
     .cfg_desc_base(in_bits[O_BASE +: AW]), .req_tex(in_bits[O_TEX +: XW]),
-    .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mag_linear(in_bits[O_MAG]),
-    .cfg_mip_mode(in_bits[O_MIP +: MW]),
-    .cfg_lod_bias(in_bits[O_BIAS +: LW]), .cfg_min_lod(in_bits[O_MIN_LOD +: LW]),
-    .cfg_max_lod(in_bits[O_MAX_LOD +: LW]),
+    .req_sampler(in_bits[O_SMP +: tex_pkg::SMP_ID_W]),
+    .cfg_smp_we(in_bits[O_SWE]), .cfg_smp_index(in_bits[O_SINDEX +: tex_pkg::SMP_ID_W]),
+    .cfg_smp_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_smp_wrap_v(in_bits[O_WRAP_V +: WW]),
+    .cfg_smp_border_rgba(in_bits[O_BORDER +: 64]),
+    .cfg_smp_min_linear(in_bits[O_LINEAR]), .cfg_smp_mag_linear(in_bits[O_MAG]),
+    .cfg_smp_mip_mode(in_bits[O_MIP +: MW]),
+    .cfg_smp_lod_bias(in_bits[O_BIAS +: LW]), .cfg_smp_min_lod(in_bits[O_MIN_LOD +: LW]),
+    .cfg_smp_max_lod(in_bits[O_MAX_LOD +: LW]),
     .cfg_block_morton(in_bits[O_MORTON]),
     .cfg_log2_sets(in_bits[O_SETS +: SW]), .cfg_log2_ways(in_bits[O_WAYS +: YW]),
     .cfg_fifo_limit(in_bits[O_FIFO +: FW]),
@@ -130,7 +137,7 @@ module tex_ice40_cached_top #(
     // Lambda requests only (the LOD / anisotropy unit is tied off and optimized away: a fit
     // of the probe datapath on the HX8K is not measured here).
     .req_deriv(1'b0), .req_dudx('0), .req_dvdx('0), .req_dudy('0), .req_dvdy('0),
-    .cfg_max_aniso_m1(4'd0), .cfg_aniso_pow2(1'b0),
+    .cfg_smp_max_aniso_m1(4'd0), .cfg_smp_aniso_pow2(1'b0),
     .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag),
     .rsp_error(rsp_error),
     .m_axi_arvalid(arvalid), .m_axi_arready(in_bits[O_MREADY]), .m_axi_araddr(araddr),

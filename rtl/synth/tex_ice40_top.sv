@@ -51,9 +51,9 @@ module tex_ice40_top #(
   localparam int O_LOD     = O_V + UW;
   localparam int O_TAG     = O_LOD + LW;
   localparam int O_READY   = O_TAG + TAG_W;
-  localparam int O_BORDER  = O_READY + 1;      // cfg_border_rgba
+  localparam int O_BORDER  = O_READY + 1;      // cfg_smp_border_rgba
   localparam int O_DERIV   = O_BORDER + 64;    // with DERIV only: req_deriv, the 4 derivatives,
-  localparam int O_DUDX    = O_DERIV + 1;      // cfg_max_aniso_m1, cfg_aniso_pow2
+  localparam int O_DUDX    = O_DERIV + 1;      // cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2
   localparam int O_DVDX    = O_DUDX + UW;
   localparam int O_DUDY    = O_DVDX + UW;
   localparam int O_DVDY    = O_DUDY + UW;
@@ -66,39 +66,39 @@ module tex_ice40_top #(
 
   logic [4*CW-1:0]  rsp_rgba;
   logic [TAG_W-1:0] rsp_tag;
-  logic             req_deriv, cfg_aniso_pow2;
+  logic             req_deriv, cfg_smp_aniso_pow2;
   logic [UW-1:0]    req_dudx, req_dvdx, req_dudy, req_dvdy;
-  logic [3:0]       cfg_max_aniso_m1;
+  logic [3:0]       cfg_smp_max_aniso_m1;
   if (DERIV != 0) begin : g_deriv
     assign req_deriv        = in_bits[O_DERIV];
     assign req_dudx         = in_bits[O_DUDX +: UW];
     assign req_dvdx         = in_bits[O_DVDX +: UW];
     assign req_dudy         = in_bits[O_DUDY +: UW];
     assign req_dvdy         = in_bits[O_DVDY +: UW];
-    assign cfg_max_aniso_m1 = in_bits[O_ANISO +: 4];
-    assign cfg_aniso_pow2   = in_bits[O_POW2];
+    assign cfg_smp_max_aniso_m1 = in_bits[O_ANISO +: 4];
+    assign cfg_smp_aniso_pow2   = in_bits[O_POW2];
   end else begin : g_no_deriv
     // λ requests only: the LOD / anisotropy unit is optimized away.
     assign req_deriv        = 1'b0;
     assign {req_dudx, req_dvdx, req_dudy, req_dvdy} = '0;
-    assign cfg_max_aniso_m1 = 4'd0;
-    assign cfg_aniso_pow2   = 1'b0;
+    assign cfg_smp_max_aniso_m1 = 4'd0;
+    assign cfg_smp_aniso_pow2   = 1'b0;
   end
   tex_unit #(.MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W)) u_unit (
     .clk(clk), .rst(rst),
     .cfg_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_log2_h(in_bits[O_LOG2_H +: VW]),
-    .cfg_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_wrap_v(in_bits[O_WRAP_V +: WW]),
-    .cfg_texel_linear(in_bits[O_LINEAR]), .cfg_mag_linear(in_bits[O_MAG]),
-    .cfg_mip_mode(in_bits[O_MIP +: MW]),
-    .cfg_lod_bias(in_bits[O_BIAS +: LW]), .cfg_min_lod(in_bits[O_MIN_LOD +: LW]),
-    .cfg_max_lod(in_bits[O_MAX_LOD +: LW]),
+    .cfg_smp_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_smp_wrap_v(in_bits[O_WRAP_V +: WW]),
+    .cfg_smp_min_linear(in_bits[O_LINEAR]), .cfg_smp_mag_linear(in_bits[O_MAG]),
+    .cfg_smp_mip_mode(in_bits[O_MIP +: MW]),
+    .cfg_smp_lod_bias(in_bits[O_BIAS +: LW]), .cfg_smp_min_lod(in_bits[O_MIN_LOD +: LW]),
+    .cfg_smp_max_lod(in_bits[O_MAX_LOD +: LW]),
     .wr_en(in_bits[O_WR_EN]), .wr_level(in_bits[O_WR_LVL +: VW]), .wr_x(in_bits[O_WR_X +: XW]),
     .wr_y(in_bits[O_WR_Y +: XW]), .wr_data(in_bits[O_WR_DATA +: 4*CW]),
     .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
-    .req_dvdy(req_dvdy), .cfg_max_aniso_m1(cfg_max_aniso_m1), .cfg_aniso_pow2(cfg_aniso_pow2),
-    .cfg_border_rgba(in_bits[O_BORDER +: 64]),
+    .req_dvdy(req_dvdy), .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2),
+    .cfg_smp_border_rgba(in_bits[O_BORDER +: 64]),
     .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag)
   );
   always_ff @(posedge clk) sout <= ^{rsp_rgba, rsp_tag};

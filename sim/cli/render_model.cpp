@@ -69,6 +69,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   std::vector<Pyramid> pyramids;
   pyramids.reserve(scene.textures.size());
   TextureTable table;
+  SamplerTable samplers;  // entry i: texture i's (the options' sampler with its wrap modes)
   for (const SceneTexture& t : scene.textures) {
     // --format for every texture; sRGB where the file says so (glTF 2 base colour) or --srgb.
     TextureOptions topts = o.texture_options();
@@ -78,7 +79,13 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
     } catch (const Error& e) {
       throw Error(t.source + " (" + t.material + (t.srgb ? ", sRGB base colour" : "") + "): " + e.what());
     }
-    table.push_back({&pyramids.back(), a.wrap_given ? cfg.wrap_u : t.wrap_u, a.wrap_given ? cfg.wrap_v : t.wrap_v});
+    table.push_back({&pyramids.back()});
+    SamplerConfig s = cfg;
+    if (!a.wrap_given) {
+      s.wrap_u = t.wrap_u;
+      s.wrap_v = t.wrap_v;
+    }
+    samplers.push_back(s);
   }
   const uint64_t resident = texture_bytes_resident(table, eo);  // also checks the table fits the memory
 
@@ -133,7 +140,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
     if (eo.memory == Memory::Cached) eo.miss_sink = &lines;
     VectorSource source(requests);
     VectorSink texels;
-    last_stats = run_engine(o, eo, outputs, trace, table, cfg, source, texels);
+    last_stats = run_engine(o, eo, outputs, trace, table, samplers, source, texels);
     for (size_t i = 0; i < texels.texels.size(); ++i)  // an sRGB texture's linear results back to codes
       if (table[requests[i].texture].pyramid->srgb) texels.texels[i] = encode_srgb_texel(texels.texels[i]);
     save_image(compose_frame(frame, texels.texels, 8, Texel{48, 48, 56, 255}), *images[size_t(f - first)]);
@@ -155,7 +162,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
     for (size_t t = 0; t < scene.textures.size(); ++t) {
       save_image(scene.textures[t].image, *texture_files[t]);
       std::fprintf(list, "%zu %s %s %s%s\n", t, std::filesystem::path(texture_files[t]->path()).filename().c_str(),
-                   wrap_name(table[t].wrap_u).c_str(), wrap_name(table[t].wrap_v).c_str(),
+                   wrap_name(samplers[t].wrap_u).c_str(), wrap_name(samplers[t].wrap_v).c_str(),
                    table[t].pyramid->srgb ? " srgb" : "");
     }
     list_out->close();

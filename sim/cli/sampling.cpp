@@ -25,17 +25,11 @@ namespace {
 // engine returns must equal the model's (0 for a sample its caches flag with a memory error).
 class Verifier {
  public:
-  Verifier(const TextureTable& textures, const SamplerConfig& config, const EngineOptions& options,
+  Verifier(const TextureTable& textures, const SamplerTable& samplers, const EngineOptions& options,
            RequestSource& source, TexelSink& sink, std::string engine)
-      : source_(*this, source), sink_(*this, sink), engine_(std::move(engine)) {
-    for (const BoundTexture& t : textures) {
-      SamplerConfig c = config;
-      c.wrap_u = t.wrap_u;
-      c.wrap_v = t.wrap_v;
-      samplers_.emplace_back(*t.pyramid, c);
-    }
+      : samplers_(textures, samplers), source_(*this, source), sink_(*this, sink), engine_(std::move(engine)) {
     if (!options.mem_error_reads.empty()) {
-      cache_.emplace(texture_descriptors(textures, options), options.cache, config);
+      cache_.emplace(texture_descriptors(textures, options), options.cache, samplers);
       cache_->set_error_reads(options.mem_error_reads);
     }
   }
@@ -50,7 +44,7 @@ class Verifier {
       const size_t n = inner.read(out, max);
       for (size_t i = 0; i < n; ++i) {
         const bool error = v.cache_ && v.cache_->lookup_sample(out[i], nullptr).error;
-        v.expected_.push_back(error ? Texel{} : v.samplers_.at(out[i].texture).sample(out[i]));
+        v.expected_.push_back(error ? Texel{} : v.samplers_.at(out[i]).sample(out[i]));
       }
       return n;
     }
@@ -76,7 +70,7 @@ class Verifier {
     Verifier& v;
     TexelSink& inner;
   };
-  std::vector<Sampler> samplers_;  // one per texture of the table
+  SamplerPairs samplers_;  // the model's sampler of each (texture, sampler) pair
   std::optional<TextureCache> cache_;  // memory errors: the samples they flag
   Source source_;
   Sink sink_;
@@ -123,25 +117,26 @@ static Error memory_error(const EngineStats& stats, const EngineOptions& eo) {
 }
 
 EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
-                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& input, TexelSink& output) {
+                       const TextureTable& textures, const SamplerTable& samplers, RequestSource& input,
+                       TexelSink& output) {
   const auto engine = make_engine(o.engine, eo);
   TimedSource source(input);
   TimedSink sink(output);
   // The anisotropic filter: count each request's probes on the way in.
   std::optional<ProbeCounter> counter;
-  if (cfg.filter.anisotropic) {
+  if (std::any_of(samplers.begin(), samplers.end(), [](const SamplerConfig& s) { return s.filter.anisotropic; })) {
     std::vector<std::pair<int, int>> sizes;
     for (const BoundTexture& t : textures) sizes.emplace_back(t.pyramid->log2_w0(), t.pyramid->log2_h0());
-    counter.emplace(source, cfg, sizes);
+    counter.emplace(source, samplers, sizes);
   }
   RequestSource& requests = counter ? static_cast<RequestSource&>(*counter) : source;
   try {
     EngineStats stats;
     if (!o.verify) {
-      stats = engine->run(textures, cfg, requests, sink);
+      stats = engine->run(textures, samplers, requests, sink);
     } else {
-      Verifier verifier(textures, cfg, eo, requests, sink, o.engine);
-      stats = engine->run(textures, cfg, verifier.source(), verifier.sink());
+      Verifier verifier(textures, samplers, eo, requests, sink, o.engine);
+      stats = engine->run(textures, samplers, verifier.source(), verifier.sink());
       std::printf("verify: %zu samples of engine %s are bit-identical to the golden model\n", verifier.checked(),
                   o.engine.c_str());
     }

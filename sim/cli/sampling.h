@@ -368,7 +368,8 @@ class MissTraceWriter final : public MissSink {
 // in sink.write() (write_seconds) is taken out of it (a caller whose source or sink works in a
 // thread of its own sets the two to that thread's time).
 EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, OutputSet& outputs, OutputFile* trace,
-                       const TextureTable& textures, const SamplerConfig& cfg, RequestSource& source, TexelSink& sink);
+                       const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
+                       TexelSink& sink);
 
 // The summary lines: cycle counters of a cycle-accurate engine, caches, anisotropic probes.
 void print_cycle_stats(const EngineStats& stats, const EngineOptions& options);

@@ -115,11 +115,16 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   std::vector<Pyramid> pyramids;
   pyramids.reserve(list.size());
   TextureTable table;
+  SamplerTable samplers;  // entry i: the options' sampler with list entry i's wrap modes
   for (const TextureListEntry& e : list) {
     TextureOptions entry = topts;
     entry.srgb = entry.srgb || e.srgb;
     pyramids.push_back(load_pyramid(e.path, entry));
-    table.push_back({&pyramids.back(), e.wrap_u, e.wrap_v});
+    table.push_back({&pyramids.back()});
+    SamplerConfig s = cfg;
+    s.wrap_u = e.wrap_u;
+    s.wrap_v = e.wrap_v;
+    samplers.push_back(s);
   }
   if (query_error) std::rethrow_exception(query_error);
   const bool kept = parser && parser->kept();
@@ -143,7 +148,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   CsvTexelWriter writer(result.open(), srgb ? "r16,g16,b16,a16" : "r,g,b,a");
   std::optional<WriteBehindSink> behind;
   TexelSink& sink = kept ? static_cast<TexelSink&>(behind.emplace(writer)) : writer;
-  EngineStats stats = run_engine(o, eo, outputs, trace, table, cfg, source, sink);
+  EngineStats stats = run_engine(o, eo, outputs, trace, table, samplers, source, sink);
   if (behind) {
     behind->finish();
     stats.write_seconds = behind->busy_seconds();
@@ -178,8 +183,8 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
                  filter_name(cfg.filter).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
   else
     std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
-                 count, filter_name(cfg.filter).c_str(), wrap_name(table[0].wrap_u).c_str(),
-                 wrap_name(table[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
+                 count, filter_name(cfg.filter).c_str(), wrap_name(samplers[0].wrap_u).c_str(),
+                 wrap_name(samplers[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
                  out_path.c_str(), secs);
   return 0;
 }
@@ -297,7 +302,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     const auto requests = to_requests(frame.queries, "scene " + scene);
     VectorSource source(requests);
     VectorSink texels;
-    last_stats = run_engine(o, eo, outputs, trace, {{&pyr, cfg.wrap_u, cfg.wrap_v}}, cfg, source, texels);
+    last_stats = run_engine(o, eo, outputs, trace, {{&pyr}}, {cfg}, source, texels);
     if (pyr.srgb) {  // linear results back to sRGB codes for the picture, as a display expects
       for (Texel& t : texels.texels) t = encode_srgb_texel(t);
       save_image(compose(frame, texels.texels, 8), *images[size_t(f - first)]);

@@ -177,8 +177,9 @@ EngineStats EngineStats::from_json(const nlohmann::json& j) {
 size_t ProbeCounter::read(Request* out, size_t max) {
   const size_t n = source_.read(out, max);
   for (size_t i = 0; i < n; ++i) {
-    const auto& [log2_w0, log2_h0] = sizes_.at(out[i].texture);
-    ++histogram_[size_t(tex_probe(out[i], config_, log2_w0, log2_h0).n)];
+    check_request_tables(out[i], sizes_.size(), samplers_.size());
+    const auto& [log2_w0, log2_h0] = sizes_[out[i].texture];
+    ++histogram_[size_t(tex_probe(out[i], samplers_[out[i].sampler], log2_w0, log2_h0).n)];
   }
   return n;
 }
@@ -383,15 +384,43 @@ EngineResult run_collected(const std::vector<Request>& requests,
   return r;
 }
 
-EngineStats Engine::run(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+EngineStats Engine::run(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
                         TexelSink& sink) {
-  if (textures.size() != 1)
-    throw Error("this engine (the SystemC wrapper) passes one texture per frame; the frame has " +
-                std::to_string(textures.size()) + ": use --engine model or rtl, whose cached units hold a descriptor table");
-  SamplerConfig c = config;
-  c.wrap_u = textures[0].wrap_u;
-  c.wrap_v = textures[0].wrap_v;
-  return run(*textures[0].pyramid, c, source, sink);
+  if (textures.size() != 1 || samplers.size() != 1)
+    throw Error("this engine (the SystemC wrapper) passes one texture and one sampler per frame; the frame has " +
+                std::to_string(textures.size()) + " and " + std::to_string(samplers.size()) +
+                ": use --engine model or rtl, whose cached units hold descriptor and sampler tables");
+  return run(*textures[0].pyramid, samplers[0], source, sink);
+}
+
+void check_tables(const TextureTable& textures, const SamplerTable& samplers) {
+  if (textures.empty() || textures.size() > size_t(kMaxTextures))
+    throw Error(std::to_string(textures.size()) + " textures: the descriptor table holds 1 to " +
+                std::to_string(kMaxTextures));
+  if (samplers.empty() || samplers.size() > size_t(kMaxSamplers))
+    throw Error(std::to_string(samplers.size()) + " samplers: the sampler table holds 1 to " +
+                std::to_string(kMaxSamplers));
+}
+
+void check_request_tables(const Request& r, size_t textures, size_t samplers) {
+  if (r.texture >= textures)
+    throw Error("request " + std::to_string(r.tag) + " names texture " + std::to_string(r.texture) +
+                "; the table holds " + std::to_string(textures));
+  if (r.sampler >= samplers)
+    throw Error("request " + std::to_string(r.tag) + " names sampler " + std::to_string(r.sampler) +
+                "; the table holds " + std::to_string(samplers));
+}
+
+SamplerPairs::SamplerPairs(const TextureTable& textures, const SamplerTable& samplers, SamplerPaths paths)
+    : textures_(textures), samplers_(samplers), paths_(paths), pairs_(textures.size() * samplers.size()) {
+  check_tables(textures, samplers);
+}
+
+std::vector<const Sampler*> SamplerPairs::built() const {
+  std::vector<const Sampler*> out;
+  for (const auto& p : pairs_)
+    if (p) out.push_back(p.get());
+  return out;
 }
 
 std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures, const EngineOptions& options) {
@@ -410,7 +439,7 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
   }
   const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout, formats);
   std::vector<TextureDescriptor> out;
-  for (size_t i = 0; i < textures.size(); ++i) out.push_back({layouts[i], textures[i].wrap_u, textures[i].wrap_v});
+  for (size_t i = 0; i < textures.size(); ++i) out.push_back({layouts[i]});
   return out;
 }
 

@@ -148,15 +148,16 @@ class RequestSource {
 // RTL's tex_probe implements): the probes-per-sample histogram of EngineStats.
 class ProbeCounter final : public RequestSource {
  public:
-  // sizes[t]: {log2 w0, log2 h0} of texture t (the LOD unit takes the requested texture's).
-  ProbeCounter(RequestSource& source, const SamplerConfig& config, std::vector<std::pair<int, int>> sizes)
-      : source_(source), config_(config), sizes_(std::move(sizes)) {}
+  // sizes[t]: {log2 w0, log2 h0} of texture t (the LOD unit takes the requested texture's, and the
+  // requested sampler's anisotropy cap).
+  ProbeCounter(RequestSource& source, SamplerTable samplers, std::vector<std::pair<int, int>> sizes)
+      : source_(source), samplers_(std::move(samplers)), sizes_(std::move(sizes)) {}
   size_t read(Request* out, size_t max) override;
   const std::array<uint64_t, kMaxAniso + 1>& histogram() const { return histogram_; }
 
  private:
   RequestSource& source_;
-  SamplerConfig config_;
+  SamplerTable samplers_;
   std::vector<std::pair<int, int>> sizes_;
   std::array<uint64_t, kMaxAniso + 1> histogram_{};
 };
@@ -266,13 +267,41 @@ class TexelQueue {
   std::vector<Texel> buffer_;
 };
 
-// One texture of a frame's descriptor table (real frames, docs/scenes.md): its pyramid and wrap
-// modes; requests name an entry by Request::texture.
+// One texture of a frame's descriptor table (real frames, docs/scenes.md): its pyramid; requests
+// name an entry by Request::texture, and the sampler-table entry they read it with by
+// Request::sampler (a frame's SamplerTable).
 struct BoundTexture {
   const Pyramid* pyramid = nullptr;
-  Wrap wrap_u = Wrap::Repeat, wrap_v = Wrap::Repeat;
 };
 using TextureTable = std::vector<BoundTexture>;
+
+// Throws tex::Error unless the frame's tables fit the cached unit's (1 to kMaxTextures textures,
+// 1 to kMaxSamplers samplers).
+void check_tables(const TextureTable& textures, const SamplerTable& samplers);
+// A request naming a texture or sampler beyond the tables: one line with the request's tag.
+void check_request_tables(const Request& r, size_t textures, size_t samplers);
+
+// The golden model's Sampler for each (texture, sampler) pair a frame samples, built on first use.
+class SamplerPairs {
+ public:
+  SamplerPairs(const TextureTable& textures, const SamplerTable& samplers, SamplerPaths paths = SamplerPaths::Both);
+  // Throws tex::Error for a request naming a texture or sampler beyond the tables.
+  Sampler& at(const Request& r) {
+    if (r.texture >= textures_.size() || r.sampler >= samplers_.size()) [[unlikely]]
+      check_request_tables(r, textures_.size(), samplers_.size());
+    std::unique_ptr<Sampler>& s = pairs_[size_t(r.texture) * samplers_.size() + r.sampler];
+    if (!s) [[unlikely]] s = std::make_unique<Sampler>(*textures_[r.texture].pyramid, samplers_[r.sampler], paths_);
+    return *s;
+  }
+  // Every pair built so far, for counters.
+  std::vector<const Sampler*> built() const;
+
+ private:
+  TextureTable textures_;
+  SamplerTable samplers_;
+  SamplerPaths paths_;
+  std::vector<std::unique_ptr<Sampler>> pairs_;  // [texture * samplers + sampler]
+};
 
 class Engine {
  public:
@@ -283,10 +312,10 @@ class Engine {
                           TexelSink& sink) = 0;
   // The same for requests in memory.
   EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
-  // Several textures through the cached unit's descriptor table (the table's wrap modes replace
-  // the configuration's): the model and the RTL. This default takes a table of one texture and
-  // refuses more: the SystemC wrapper passes one texture (docs/systemc.md).
-  virtual EngineStats run(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+  // Several textures and samplers through the cached unit's descriptor and sampler tables: the
+  // model and the RTL. This default takes one texture and one sampler and refuses more: the
+  // SystemC wrapper passes one of each (docs/systemc.md).
+  virtual EngineStats run(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
                           TexelSink& sink);
 };
 
@@ -313,7 +342,7 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions
 EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
                       const EngineOptions& options = {});
 EngineResult run_model(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
-EngineStats run_model(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+EngineStats run_model(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
                       TexelSink& sink, const EngineOptions& options = {});
 
 // The unit the model's timing layer clocks: the RTL configuration `--engine rtl` would run for these

@@ -21,9 +21,9 @@ class ModelEngine final : public Engine {
                   TexelSink& sink) override {
     return run_model(pyramid, config, source, sink, options_);
   }
-  EngineStats run(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+  EngineStats run(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
                   TexelSink& sink) override {
-    return run_model(textures, config, source, sink, options_);
+    return run_model(textures, samplers, source, sink, options_);
   }
 
  private:
@@ -67,7 +67,7 @@ std::unique_ptr<Engine> make_engine(const std::string& name, const EngineOptions
 
 EngineStats run_model(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source, TexelSink& sink,
                       const EngineOptions& options) {
-  return run_model(TextureTable{{&pyramid, config.wrap_u, config.wrap_v}}, config, source, sink, options);
+  return run_model(TextureTable{{&pyramid}}, SamplerTable{config}, source, sink, options);
 }
 
 UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& options, std::string& name,
@@ -122,31 +122,25 @@ std::unique_ptr<TimedStream> model_timing(const TextureTable& textures, const En
                                        options.seed ^ 0x5DEECE66DULL);  // (the RTL engine's stimulus seed)
 }
 
-EngineStats run_model(const TextureTable& textures, const SamplerConfig& config, RequestSource& source,
+EngineStats run_model(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
                       TexelSink& sink, const EngineOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (textures.empty() || textures.size() > size_t(kMaxTextures))
-    throw Error(std::to_string(textures.size()) + " textures: the descriptor table holds 1 to " +
-                std::to_string(kMaxTextures));
+  check_tables(textures, samplers);
   if (textures.size() > 1 && options.memory != Memory::Cached)
     throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one texture (the paper's design); "
                 "use --memory cached, whose descriptor table holds up to " + std::to_string(kMaxTextures));
+  if (samplers.size() > 1 && options.memory != Memory::Cached)
+    throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one sampler; "
+                "use --memory cached, whose sampler table holds up to " + std::to_string(kMaxSamplers));
   const bool cached = options.memory == Memory::Cached;
-  bool fast = !options.count_reads;  // the fast path: 8-bit textures only
-  std::vector<SamplerConfig> configs;  // one per descriptor-table entry, with its wrap modes
-  for (const BoundTexture& t : textures) {
-    SamplerConfig c = config;
-    c.wrap_u = t.wrap_u;
-    c.wrap_v = t.wrap_v;
-    configs.push_back(c);
-    fast = fast && t.pyramid->levels[0].channel_bits == 8 && Sampler::fast_path_takes(c);
-  }
-  std::vector<Sampler> samplers;
-  for (size_t i = 0; i < textures.size(); ++i)
-    samplers.emplace_back(*textures[i].pyramid, configs[i], fast ? SamplerPaths::FastOnly : SamplerPaths::Both);
+  bool fast = !options.count_reads;  // the fast path: 8-bit textures and samplers it takes only
+  for (const BoundTexture& t : textures) fast = fast && t.pyramid->levels[0].channel_bits == 8;
+  for (const SamplerConfig& s : samplers) fast = fast && Sampler::fast_path_takes(s);
+  SamplerPairs pairs(textures, samplers, fast ? SamplerPaths::FastOnly : SamplerPaths::Both);
+  pairs.at(Request{});  // the first pair's set-up is part of the load, as with one texture
   std::optional<TextureCache> cache;
   if (cached) {
-    cache.emplace(texture_descriptors(textures, options), options.cache, config);
+    cache.emplace(texture_descriptors(textures, options), options.cache, samplers);
     cache->set_error_reads(options.mem_error_reads);
   }
   std::vector<uint64_t> error_samples;  // flagged by a memory error
@@ -168,21 +162,17 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
   std::vector<uint32_t> packed(fast ? requests.size() : 0);
   uint64_t fast_samples = 0;
   while (const size_t n = source.read(requests.data(), requests.size())) {
-    for (size_t i = 0; i < n; ++i)
-      if (requests[i].texture >= samplers.size())
-        throw Error("request " + std::to_string(requests[i].tag) + " names texture " +
-                    std::to_string(requests[i].texture) + "; the table holds " + std::to_string(samplers.size()));
     if (fast) {
-      for (size_t i = 0, j = 0; i < n; i = j) {  // a batch per run of requests of one texture
-        while (j < n && requests[j].texture == requests[i].texture) ++j;
-        samplers[requests[i].texture].sample_rgba8(&requests[i], j - i, &packed[i]);
+      for (size_t i = 0, j = 0; i < n; i = j) {  // a batch per run of requests of one texture and sampler
+        while (j < n && requests[j].texture == requests[i].texture && requests[j].sampler == requests[i].sampler) ++j;
+        pairs.at(requests[i]).sample_rgba8(&requests[i], j - i, &packed[i]);
       }
       for (size_t i = 0; i < n; ++i)
         texels[i] = {uint16_t(packed[i] & 255), uint16_t(packed[i] >> 8 & 255), uint16_t(packed[i] >> 16 & 255),
                      uint16_t(packed[i] >> 24)};
       fast_samples += n;
     } else {
-      for (size_t i = 0; i < n; ++i) texels[i] = samplers[requests[i].texture].sample(requests[i]);
+      for (size_t i = 0; i < n; ++i) texels[i] = pairs.at(requests[i]).sample(requests[i]);
     }
     if (cache) {
       misses.clear();
@@ -199,7 +189,7 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
       const Pyramid& p = *textures[0].pyramid;
       for (size_t i = 0; i < n; ++i) {
         RequestWork w;
-        w.probes = uint8_t(tex_probe_count(requests[i], config, p.log2_w0(), p.log2_h0()));
+        w.probes = uint8_t(tex_probe_count(requests[i], samplers[0], p.log2_w0(), p.log2_h0()));
         timed->push(w);
       }
     }
@@ -220,8 +210,8 @@ EngineStats run_model(const TextureTable& textures, const SamplerConfig& config,
   stats.samples = fast_samples;
   stats.load_seconds = std::chrono::duration<double>(t1 - t0).count();
   stats.sample_seconds = std::chrono::duration<double>(t2 - t1).count();
-  for (const Sampler& sampler : samplers) {
-    const SamplerStats s = sampler.stats();
+  for (const Sampler* sampler : pairs.built()) {
+    const SamplerStats s = sampler->stats();
     stats.samples += s.samples;
     stats.texel_reads += s.memory.reads;
     stats.multiplies_per_channel += s.multiplies_per_channel;

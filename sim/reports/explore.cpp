@@ -91,7 +91,18 @@ struct Workload {
   std::vector<Request> requests;
   TextureTable table() const {
     TextureTable t;
-    for (size_t i = 0; i < pyramids.size(); ++i) t.push_back({&pyramids[i], wraps[i].first, wraps[i].second});
+    for (const Pyramid& p : pyramids) t.push_back({&p});
+    return t;
+  }
+  // The sampler table: entry i samples texture i (config with entry i's wrap modes).
+  SamplerTable samplers() const {
+    SamplerTable t;
+    for (const auto& [u, v] : wraps) {
+      SamplerConfig c = config;
+      c.wrap_u = u;
+      c.wrap_v = v;
+      t.push_back(c);
+    }
     return t;
   }
 };
@@ -298,7 +309,7 @@ void expand_points(Sweep& s) {
             p.layout = block;
             p.layout.order = bo;
             try {
-              TextureCache(texture_descriptors(table, engine_options(p)), cache_of(p), s.workloads[w].config);
+              TextureCache(texture_descriptors(table, engine_options(p)), cache_of(p), s.workloads[w].samplers());
             } catch (const Error& e) {
               const std::string what = std::to_string(kib) + " KiB, " + std::to_string(ways) + " ways, " +
                                        block_size_name(block) + " blocks";
@@ -396,7 +407,7 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, ModelRun>& model_
     // The RTL engine runs the model's caches beside the RTL and fails on any read they do not predict.
     VectorSource source(w.requests);
     NullSink sink;
-    rtl = make_engine("rtl", engine_options(p))->run(w.table(), w.config, source, sink);
+    rtl = make_engine("rtl", engine_options(p))->run(w.table(), w.samplers(), source, sink);
   }
   if (rtl && s.timing == TimingMode::Rtl) {
     r.timing_engine = "rtl";
@@ -408,7 +419,7 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, ModelRun>& model_
     auto [it, fresh] = model_memo.try_emplace(model_key(p));
     ModelRun& m = it->second;
     if (fresh) {
-      TextureCache cache(texture_descriptors(w.table(), engine_options(p)), cache_of(p), w.config);
+      TextureCache cache(texture_descriptors(w.table(), engine_options(p)), cache_of(p), w.samplers());
       m.work.reserve(w.requests.size());
       for (const Request& q : w.requests) m.work.push_back(cache.lookup_sample(q, nullptr));
       m.cache = cache_counters(cache);

@@ -85,6 +85,7 @@ QueryReader::QueryReader(const QueryReader& header, uint64_t begin, uint64_t end
   file_end_ = end;
   columns_ = header.columns_;
   texture_ = header.texture_;
+  sampler_ = header.sampler_;
   lod_ = header.lod_;
   quad_ = header.quad_;
 }
@@ -142,21 +143,23 @@ namespace {
 // The headers a trace may have: the columns, in order.
 struct TraceFormat {
   const char* header;
-  bool texture, lod, quad;  // a tex column; u,v,lod (else the four derivatives); quad,x,y,helper
+  // a tex column; a smp column; u,v,lod (else the four derivatives); quad,x,y,helper
+  bool texture, sampler, lod, quad;
 };
 constexpr TraceFormat kFormats[] = {
-    {"u,v,lod", false, true, false},
-    {"u,v,dudx,dvdx,dudy,dvdy", false, false, false},
-    {"tex,u,v,lod", true, true, false},
-    {"tex,u,v,dudx,dvdx,dudy,dvdy", true, false, false},
-    {kFrameTraceHeader, true, false, true},
+    {"u,v,lod", false, false, true, false},
+    {"u,v,dudx,dvdx,dudy,dvdy", false, false, false, false},
+    {"tex,u,v,lod", true, false, true, false},
+    {"tex,u,v,dudx,dvdx,dudy,dvdy", true, false, false, false},
+    {"tex,smp,u,v,lod", true, true, true, false},
+    {"tex,smp,u,v,dudx,dvdx,dudy,dvdy", true, true, false, false},
+    {kFrameTraceHeader, true, false, false, true},
 };
 constexpr int kMaxColumns = 11;
 
+// The headers of kFormats, in short: [tex,[smp,]] before u,v,lod and u,v,dudx,...
 std::string known_headers() {
-  std::string s;
-  for (const TraceFormat& f : kFormats) s += (s.empty() ? "" : " or ") + std::string(f.header);
-  return s;
+  return "[tex,[smp,]]u,v,lod or [tex,[smp,]]u,v,dudx,dvdx,dudy,dvdy or " + std::string(kFrameTraceHeader);
 }
 
 }  // namespace
@@ -251,6 +254,7 @@ void QueryReader::read_header() {
       if (header == format.header && n <= kMaxColumns) {
         columns_ = int(std::count(header.begin(), header.end(), ',')) + 1;
         texture_ = format.texture;
+        sampler_ = format.sampler;
         lod_ = format.lod;
         quad_ = format.quad;
       }
@@ -281,6 +285,7 @@ bool QueryReader::next(Query& q) {
     q.line = line_no_;
     int c = 0;
     if (texture_) q.texture = int(whole(c++, 0, kMaxTextures - 1, "texture"));
+    if (sampler_) q.sampler = int(whole(c++, 0, kMaxSamplers - 1, "sampler"));
     q.u = v[c++];
     q.v = v[c++];
     q.explicit_lod = lod_;
@@ -466,6 +471,10 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag) {
   if (q.texture < 0 || q.texture >= kMaxTextures)
     throw Error(at() + "texture " + std::to_string(q.texture) + " is outside 0.." + std::to_string(kMaxTextures - 1));
   r.texture = uint8_t(q.texture);
+  if (q.sampler >= kMaxSamplers)
+    throw Error(at() + "sampler " + std::to_string(q.sampler) + " is outside 0.." + std::to_string(kMaxSamplers - 1));
+  // No sampler column: the texture's own (entry t of a texture list is texture t and sampler t).
+  r.sampler = uint8_t(q.sampler < 0 ? q.texture : q.sampler);
   if (!to_coord_fixed(q.u, r.u)) throw Error(at() + "u = " + std::to_string(q.u) + " is outside [-128, 128)");
   if (!to_coord_fixed(q.v, r.v)) throw Error(at() + "v = " + std::to_string(q.v) + " is outside [-128, 128)");
   if (q.explicit_lod) {

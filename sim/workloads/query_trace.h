@@ -28,6 +28,7 @@ struct Query {
   // belongs to (numbered in issue order), its pixel, and whether it is a helper lane (sampled
   // for the quad's derivatives, its result not drawn).
   int texture = 0;
+  int sampler = -1;   // the sampler-table entry; -1 (no `smp` column): the texture's own, entry `texture`
   uint32_t quad = 0;
   int x = -1, y = -1;
   bool helper = false;
@@ -38,7 +39,8 @@ struct Query {
 constexpr const char* kFrameTraceHeader = "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper";
 
 // Reads a query trace line by line. Header `u,v,lod` or `u,v,dudx,dvdx,dudy,dvdy`, either with a
-// leading `tex` column (the descriptor-table entry, 0..15), or kFrameTraceHeader; `#` lines are
+// leading `tex` column (the descriptor-table entry, 0..15) or `tex,smp` columns (and the
+// sampler-table entry, 0..15), or kFrameTraceHeader; `#` lines are
 // comments, blank lines are skipped; a UTF-8 byte-order mark is skipped. A file with only the
 // header has no queries (not an error). Throws tex::Error naming the file, the line number and
 // the text of a bad line (quoted once, at most 80 characters): no header, a NUL byte (a binary
@@ -73,7 +75,7 @@ class QueryReader {
   uint64_t file_pos_ = 0, file_end_ = UINT64_MAX;  // offset of buf_[end_]; where reading stops
   bool eof_ = false;
   int line_no_ = 0, columns_ = 0;
-  bool texture_ = false, lod_ = false, quad_ = false;  // the header's columns
+  bool texture_ = false, sampler_ = false, lod_ = false, quad_ = false;  // the header's columns
 };
 
 // What a frame's queries ask for (texsim's frame figures): quads are runs of one quad number.

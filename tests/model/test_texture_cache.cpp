@@ -295,6 +295,29 @@ TEST(TextureCache, WrapAtTheEdgesStraddlesTheLastAndFirstBlockColumns) {
   EXPECT_EQ(run(Wrap::MirrorClamp, Wrap::Repeat, -20, 2.5), (Misses{3 * 64}));  // mirrored once, then clamped
 }
 
+// The sampler table: each request's sampler (Request::sampler) gives its address modes, so one
+// texture read through two samplers reads other lines at the same coordinates; a request naming a
+// sampler beyond the table is an error.
+TEST(TextureCache, EachRequestUsesTheSamplerItNames) {
+  const MemoryLayout l(4, 4, 8, LayoutParams{});  // 16x16: 4 block columns
+  TextureCache c({TextureDescriptor{l}}, {4096, 1},
+                 SamplerTable{filter(TexelFilter::Linear, MipMode::None, Wrap::Repeat, Wrap::Repeat),
+                              filter(TexelFilter::Linear, MipMode::None, Wrap::Border, Wrap::Repeat)});
+  Request r = at_texel(16, 2.5, 4, 4);  // u = 1: taps x 15 and 16
+  Misses misses;
+  c.lookup(r, &misses);
+  EXPECT_EQ(misses, (Misses{0, 3 * 64}));  // sampler 0, repeat: 16 -> 0
+  r.u = at_texel(0, 2.5, 4, 4).u;          // u = 0: taps -1 and 0, block columns 3 and 0 cached now
+  r.sampler = 1;                           // border: -1 reads nothing, 0 hits
+  misses.clear();
+  EXPECT_EQ(c.lookup(r, &misses).slot[0].blocks, 1);
+  EXPECT_EQ(misses, Misses{});
+  r.sampler = 2;
+  EXPECT_THROW(c.lookup(r, &misses), Error);
+  EXPECT_THROW(TextureCache({TextureDescriptor{l}}, {4096, 1}, SamplerTable{}), Error);
+  EXPECT_THROW(TextureCache({TextureDescriptor{l}}, {4096, 1}, SamplerTable(kMaxSamplers + 1)), Error);
+}
+
 TEST(TextureCache, ASecondPassOverASmallTextureNeverMisses) {
   // 32x32 in 4x4 blocks: levels of 8x8, 4x4, 2x2, 1, 1, 1 blocks = 87 lines, none evicted (the
   // even levels' 64 + 4 + 1 lines fall at most 3 to a set of 4 ways).

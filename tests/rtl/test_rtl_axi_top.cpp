@@ -48,6 +48,7 @@
 
 #include "Vtex_unit_axi.h"
 #include "engines/engine.h"
+#include "engines/rtl/register_map.h"
 #include "model/memory_layout.h"
 #include "model/pyramid.h"
 #include "model/sampler.h"
@@ -59,23 +60,14 @@ namespace {
 
 // ---- the Verilated build's parameters (tests/rtl/CMakeLists.txt)
 constexpr int kMaxLog2W = 6, kMaxLog2H = 3, kBlockW = 4, kBlockH = 4, kLines = 64, kMaxWays = 4;
-constexpr int kFifoDepth = 32, kMemW = 128, kTextures = 4;
+constexpr int kFifoDepth = 32, kMemW = 128, kTextures = 4, kSamplers = 8;
 constexpr int kLineBytes = kBlockW * kBlockH * 4, kBeatBytes = kMemW / 8, kBeats = kLineBytes / kBeatBytes;
 
-// ---- the register map (docs/rtl-interface.md)
-constexpr uint32_t kId = 0x000, kVersion = 0x004, kCaps0 = 0x008, kCaps1 = 0x00C, kControl = 0x010;
-constexpr uint32_t kCache = 0x020, kFifoLimit = 0x024, kFilter = 0x030, kLodBias = 0x034, kMinLod = 0x038;
-constexpr uint32_t kMaxLod = 0x03C, kDescBase = 0x040, kDescAttr = 0x044, kDescCommit = 0x048;
-constexpr uint32_t kBorderRg = 0x050, kBorderBa = 0x054;
-constexpr uint32_t kCounterBase = 0x080;  // counter i: LO at 0x080 + 8 i, HI at + 4
-constexpr uint32_t kUnitReset = 1, kFreeze = 2, kClear = 4;  // CONTROL
-constexpr int kCounters = 9;
-enum Counter { kCycles, kSamples, kSampleErrors, kLookups, kMisses, kMemBytes, kOutStall, kMemWait, kReqStall };
-const char* const kCounterNames[kCounters] = {"CYCLES",    "SAMPLES",   "SAMPLE_ERRORS", "LOOKUPS",  "MISSES",
-                                              "MEM_BYTES", "OUT_STALL", "MEM_WAIT",      "REQ_STALL"};
+// ---- the register map: sim/engines/rtl/register_map.h (checked against the RTL)
+using namespace tex::rtl::axil;
 // The counters the test sees at the pins (the others: against the model).
 bool pin_visible(int i) { return i != kLookups && i != kMisses; }
-constexpr uint32_t kOkay = 0, kSlverr = 2, kDecerr = 3;
+constexpr uint32_t kDecerr = 3;
 
 int log2i(int v) {
   int k = 0;
@@ -291,6 +283,7 @@ class AxiTop {
       t.req_dudy = uint32_t(q.deriv.dudy);
       t.req_dvdy = uint32_t(q.deriv.dvdy);
       t.req_tex = q.texture;
+      t.req_sampler = q.sampler;
       t.req_tag = uint16_t(next_req_);
     } else {
       t.req_u = junk();
@@ -302,6 +295,7 @@ class AxiTop {
       t.req_dudy = junk();
       t.req_dvdy = junk();
       t.req_tex = junk() & 15;
+      t.req_sampler = junk() & 15;
       t.req_tag = uint16_t(junk());
     }
     t.req_valid = req_valid;
@@ -504,15 +498,15 @@ class AxiTop {
 
 // ---------------------------------------------------------------- cases
 
-// One case: textures (the RTL's descriptor table), the sampler and cache configuration, the
-// memory, the stimulus, the requests.
+// One case: textures (the RTL's descriptor table), samplers (its sampler table), the cache
+// configuration, the memory, the stimulus, the requests.
 struct Case {
   Case() = default;
   Case(Case&&) = default;  // (moves keep the pyramids where the table points)
   Case(const Case&) = delete;
   std::vector<Pyramid> pyramids;
   TextureTable table;
-  SamplerConfig cfg;  // filter and LOD controls (the table's wrap modes replace its own)
+  SamplerTable samplers;
   LayoutParams layout;
   int log2_sets = 4, log2_ways = 1;
   uint32_t fifo_limit = 0;
@@ -572,11 +566,12 @@ Request footprint(std::mt19937_64& rng, int lw, int lh) {
   return r;
 }
 
-std::vector<Request> random_requests(std::mt19937_64& rng, const TextureTable& table, size_t n) {
+std::vector<Request> random_requests(std::mt19937_64& rng, const TextureTable& table, size_t samplers, size_t n) {
   std::vector<Request> out(n);
-  uint8_t tex = 0;
+  uint8_t tex = 0, smp = 0;
   for (size_t i = 0; i < n; ++i) {
     if (rng() % 4 != 0) tex = uint8_t(rng() % table.size());  // mostly a new texture, runs now and then
+    if (rng() % 4 != 0) smp = uint8_t(rng() % samplers);      // and a new sampler
     const int lw = table[tex].pyramid->log2_w0(), lh = table[tex].pyramid->log2_h0(), last = std::max(lw, lh);
     Request& r = out[i];
     if (rng() % 4 == 0) r = footprint(rng, lw, lh);
@@ -584,6 +579,7 @@ std::vector<Request> random_requests(std::mt19937_64& rng, const TextureTable& t
     r.v = coordinate(rng, lh, last);
     r.lod = lod_value(rng, last);
     r.texture = tex;
+    r.sampler = smp;
     r.tag = uint32_t(i);
   }
   return out;
@@ -597,8 +593,33 @@ Pyramid random_pyramid(int lw, int lh, uint64_t seed) {
   return build_pyramid(std::move(img), PyramidMode::Exact);
 }
 
-// A random case: 2 to 4 textures (the first of the largest size), a random filter (a third
-// anisotropic), LOD controls, block order, base, cache geometry, FIFO limit, memory and stimulus.
+// A random sampler: filters (a third anisotropic), address modes, border colour, LOD controls.
+SamplerConfig random_sampler(std::mt19937_64& rng) {
+  SamplerConfig s;
+  const Filter filters[] = {{TexelFilter::Nearest, MipMode::None},   {TexelFilter::Nearest, MipMode::Nearest},
+                            {TexelFilter::Nearest, MipMode::Linear}, {TexelFilter::Linear, MipMode::None},
+                            {TexelFilter::Linear, MipMode::Nearest}, {TexelFilter::Linear, MipMode::Linear}};
+  s.filter = rng() % 2 ? Filter{} : filters[rng() % 6];
+  if (rng() % 3 == 0) {
+    s.filter = {TexelFilter::Linear, MipMode::Linear, true};
+    s.max_aniso = 1 + int(rng() % kMaxAniso);
+    s.aniso_pow2 = rng() % 4 == 0;
+  }
+  if (rng() % 3 == 0) s.filter.mag = TexelFilter(1 - int(s.filter.texel));  // magnifies apart
+  s.wrap_u = Wrap(rng() % kWrapModes);
+  s.wrap_v = Wrap(rng() % kWrapModes);
+  s.border = BorderColor(rng() % kBorderColors);
+  for (uint16_t& v : s.border_custom) v = uint16_t(rng());
+  s.lod_bias = rng() % 2 ? 0 : int32_t(int64_t(rng() % 1537) - 768);
+  if (rng() % 2) {
+    s.min_lod = int32_t(int64_t(rng() % 1537) - 512);
+    s.max_lod = s.min_lod + int32_t(rng() % 2049);
+  }
+  return s;
+}
+
+// A random case: 2 to 4 textures (the first of the largest size), 1 to 16 random samplers, block
+// order, base, cache geometry, FIFO limit, memory and stimulus.
 Case random_case(uint64_t seed, size_t requests, bool errors) {
   std::mt19937_64 rng(seed);
   Case c;
@@ -607,25 +628,10 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
   for (int i = 0; i < n; ++i) {
     const int lw = i == 0 ? kMaxLog2W : int(rng() % (kMaxLog2W + 1)), lh = i == 0 ? kMaxLog2H : int(rng() % (kMaxLog2H + 1));
     c.pyramids.push_back(random_pyramid(lw, lh, rng()));
-    c.table.push_back({&c.pyramids.back(), Wrap(rng() % kWrapModes), Wrap(rng() % kWrapModes)});
+    c.table.push_back({&c.pyramids.back()});
   }
-  const Filter filters[] = {{TexelFilter::Nearest, MipMode::None},   {TexelFilter::Nearest, MipMode::Nearest},
-                            {TexelFilter::Nearest, MipMode::Linear}, {TexelFilter::Linear, MipMode::None},
-                            {TexelFilter::Linear, MipMode::Nearest}, {TexelFilter::Linear, MipMode::Linear}};
-  c.cfg.filter = rng() % 2 ? Filter{} : filters[rng() % 6];
-  if (rng() % 3 == 0) {
-    c.cfg.filter = {TexelFilter::Linear, MipMode::Linear, true};
-    c.cfg.max_aniso = 1 + int(rng() % kMaxAniso);
-    c.cfg.aniso_pow2 = rng() % 4 == 0;
-  }
-  if (rng() % 3 == 0) c.cfg.filter.mag = TexelFilter(1 - int(c.cfg.filter.texel));  // magnifies apart
-  c.cfg.border = BorderColor(rng() % kBorderColors);
-  for (uint16_t& v : c.cfg.border_custom) v = uint16_t(rng());
-  c.cfg.lod_bias = rng() % 2 ? 0 : int32_t(int64_t(rng() % 1537) - 768);
-  if (rng() % 2) {
-    c.cfg.min_lod = int32_t(int64_t(rng() % 1537) - 512);
-    c.cfg.max_lod = c.cfg.min_lod + int32_t(rng() % 2049);
-  }
+  const int ns = rng() % 4 == 0 ? kSamplers : 1 + int(rng() % kSamplers);
+  for (int i = 0; i < ns; ++i) c.samplers.push_back(random_sampler(rng));
   c.layout.block_w = kBlockW;
   c.layout.block_h = kBlockH;
   c.layout.order = BlockOrder(rng() % 2);
@@ -647,19 +653,10 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
   c.stim.stall_p = rng() % 2 ? 0.05 : 0.3;
   c.stim.long_stall_p = 0.002;
   c.stim.long_stall = 50 + int(rng() % 100);
-  c.requests = random_requests(rng, c.table, requests);
+  c.requests = random_requests(rng, c.table, c.samplers.size(), requests);
   return c;
 }
 
-uint32_t filter_register(const SamplerConfig& c) {
-  return uint32_t(c.filter.texel == TexelFilter::Linear) | uint32_t(c.filter.mag == TexelFilter::Linear) << 1 |
-         uint32_t(c.filter.mip) << 4 |
-         uint32_t(c.probe_cap() - 1) << 8 | uint32_t(c.aniso_pow2) << 12;
-}
-uint32_t attr_register(const MemoryLayout& l, Wrap wrap_u, Wrap wrap_v) {
-  return uint32_t(l.log2_w0()) | uint32_t(l.log2_h0()) << 4 | uint32_t(wrap_u) << 8 | uint32_t(wrap_v) << 12 |
-         0u << 16;  // RGBA8, linear
-}
 
 // Counter i as the register map defines it, for a read whose AR edge is `ar`: the events of the
 // edges from the clear's to the one before the read's (to the freeze's edge, if frozen there).
@@ -687,27 +684,18 @@ void program(AxiTop& top, const Case& c, const std::vector<TextureDescriptor>& d
   };
   expect_write(kControl, kUnitReset, kOkay, "CONTROL: hold the unit in reset");
   expect_read(kControl, kUnitReset, "CONTROL");
-  expect_read(kId, 0x54455855u, "ID");
-  expect_read(kVersion, 0x00010000u, "VERSION");
-  expect_read(kCaps0, uint32_t(kMaxLog2W | kMaxLog2H << 4 | kTextures << 8), "CAPS0");
+  expect_read(kId, kIdValue, "ID");
+  expect_read(kVersion, kVersionValue, "VERSION");
+  expect_read(kCaps0, uint32_t(kMaxLog2W | kMaxLog2H << 4 | kTextures << 8 | kSamplers << 20), "CAPS0");
   expect_read(kCaps1, uint32_t(log2i(kLines) | kMaxWays << 8 | log2i(kFifoDepth) << 16 | log2i(kLineBytes) << 24 |
                                log2i(kBeatBytes) << 28),
               "CAPS1");
   const uint32_t cache = uint32_t(c.log2_ways) << 16 | uint32_t(c.log2_sets) << 8 |
                          uint32_t(c.layout.order == BlockOrder::Morton);
   expect_write(kFifoLimit, c.fifo_limit, kOkay, "FIFO_LIMIT");
-  expect_write(kFilter, filter_register(c.cfg), kOkay, "FILTER");
-  expect_write(kLodBias, uint16_t(c.cfg.lod_bias), kOkay, "LOD_BIAS");
-  expect_write(kMinLod, uint16_t(c.cfg.min_lod), kOkay, "MIN_LOD");
-  expect_write(kMaxLod, uint16_t(c.cfg.max_lod), kOkay, "MAX_LOD");
-  const Texel b = c.cfg.border_unorm16();
-  expect_write(kBorderRg, uint32_t(b[0]) | uint32_t(b[1]) << 16, kOkay, "BORDER_RG");
-  expect_write(kBorderBa, uint32_t(b[2]) | uint32_t(b[3]) << 16, kOkay, "BORDER_BA");
-  expect_read(kFilter, filter_register(c.cfg), "FILTER");
-  expect_read(kMinLod, uint16_t(c.cfg.min_lod), "MIN_LOD");
-  expect_read(kBorderBa, uint32_t(b[2]) | uint32_t(b[3]) << 16, "BORDER_BA");
   // A commit while the unit is in reset would be lost: refused.
   expect_write(kDescCommit, 0, kSlverr, "DESC_COMMIT in reset");
+  expect_write(kSmpCommit, 0, kSlverr, "SMP_COMMIT in reset");
   // The geometry, then the release as soon as allowed (BREADY high at once: the CONTROL write's
   // edge 2 clocks after the CACHE write's when AW and W come together).
   top.bready_p = 1.0;
@@ -721,7 +709,7 @@ void program(AxiTop& top, const Case& c, const std::vector<TextureDescriptor>& d
   for (size_t i = 0; i < desc.size(); ++i) {
     const MemoryLayout& l = desc[i].layout;
     expect_write(kDescBase, l.params().base, kOkay, "DESC_BASE");
-    expect_write(kDescAttr, attr_register(l, desc[i].wrap_u, desc[i].wrap_v), kOkay, "DESC_ATTR");
+    expect_write(kDescAttr, desc_attr_word(l), kOkay, "DESC_ATTR");
     expect_write(kDescCommit, uint32_t(i), kOkay, "DESC_COMMIT");
     expect_read(kDescCommit, uint32_t(i), "DESC_COMMIT");
   }
@@ -734,6 +722,37 @@ void program(AxiTop& top, const Case& c, const std::vector<TextureDescriptor>& d
   expect_write(kDescAttr, uint32_t(kMaxLog2W + 1), kOkay, "DESC_ATTR too wide");
   expect_write(kDescCommit, 0, kSlverr, "DESC_COMMIT of a texture beyond MAX_LOG2_W");
   expect_read(kDescCommit, last, "DESC_COMMIT after the refused commits");
+  // The sampler table: each entry staged, committed and read back.
+  for (size_t i = 0; i < c.samplers.size(); ++i) {
+    const SamplerConfig& s = c.samplers[i];
+    expect_write(kFilter, filter_word(s), kOkay, "FILTER");
+    expect_write(kLodBias, uint16_t(s.lod_bias), kOkay, "LOD_BIAS");
+    expect_write(kMinLod, uint16_t(s.min_lod), kOkay, "MIN_LOD");
+    expect_write(kMaxLod, uint16_t(s.max_lod), kOkay, "MAX_LOD");
+    expect_write(kBorderRg, border_rg_word(s), kOkay, "BORDER_RG");
+    expect_write(kBorderBa, border_ba_word(s), kOkay, "BORDER_BA");
+    expect_write(kWrap, wrap_word(s), kOkay, "WRAP");
+    expect_read(kFilter, filter_word(s), "FILTER");
+    expect_read(kMinLod, uint16_t(s.min_lod), "MIN_LOD");
+    expect_read(kBorderBa, border_ba_word(s), "BORDER_BA");
+    expect_read(kWrap, wrap_word(s), "WRAP");
+    expect_write(kSmpCommit, uint32_t(i), kOkay, "SMP_COMMIT");
+    expect_read(kSmpCommit, uint32_t(i), "SMP_COMMIT");
+  }
+  // Refused sampler commits: an entry beyond the table, an address mode 5..7, mip mode 3. (The
+  // staged fields stay: the last sampler's are written back before the next case.)
+  const uint32_t last_smp = uint32_t(c.samplers.size() - 1);
+  const SamplerConfig& ls = c.samplers.back();
+  expect_write(kSmpCommit, kSamplers, kSlverr, "SMP_COMMIT beyond SAMPLERS");
+  expect_write(kWrap, 5u | 1u << 4, kOkay, "WRAP with mode 5");
+  expect_write(kSmpCommit, 0, kSlverr, "SMP_COMMIT of address mode 5");
+  expect_write(kWrap, 7u << 4, kOkay, "WRAP with mode 7");
+  expect_write(kSmpCommit, 0, kSlverr, "SMP_COMMIT of address mode 7");
+  expect_write(kWrap, wrap_word(ls), kOkay, "WRAP");
+  expect_write(kFilter, filter_word(ls) | 3u << 4, kOkay, "FILTER with mip mode 3");
+  expect_write(kSmpCommit, 0, kSlverr, "SMP_COMMIT of mip mode 3");
+  expect_write(kFilter, filter_word(ls), kOkay, "FILTER");
+  expect_read(kSmpCommit, last_smp, "SMP_COMMIT after the refused commits");
   if (top.write(kControl, kClear, &clear_edge) != kOkay) failures.push_back("CONTROL: clear refused");
   expect_read(kControl, 0, "CONTROL after the clear");
 }
@@ -741,10 +760,10 @@ void program(AxiTop& top, const Case& c, const std::vector<TextureDescriptor>& d
 // One case through the unit: programmed over AXI4-Lite, every response against the model (the
 // model's table and error reads: the RTL's unless a test plants others), the lines read against
 // the model's misses, the counters against the pins and the model.
-CaseResult run_case(AxiTop& top, const Case& c, const TextureTable* model_table_in = nullptr,
+CaseResult run_case(AxiTop& top, const Case& c, const SamplerTable* model_samplers_in = nullptr,
                     const std::vector<uint64_t>* model_errors_in = nullptr) {
   CaseResult r;
-  const TextureTable& model_table = model_table_in ? *model_table_in : c.table;
+  const SamplerTable& model_samplers = model_samplers_in ? *model_samplers_in : c.samplers;
   const std::vector<uint64_t>& model_errors = model_errors_in ? *model_errors_in : c.memory.error_reads;
   EngineOptions eo;
   eo.layout = c.layout;
@@ -760,15 +779,9 @@ CaseResult run_case(AxiTop& top, const Case& c, const TextureTable* model_table_
   top.set_memory(c.layout.base, std::move(image), c.memory);
 
   // The model: each request's value and flag, the lines it misses.
-  std::vector<Sampler> samplers;
-  for (const BoundTexture& t : model_table) {
-    SamplerConfig sc = c.cfg;
-    sc.wrap_u = t.wrap_u;
-    sc.wrap_v = t.wrap_v;
-    samplers.emplace_back(*t.pyramid, sc);
-  }
-  TextureCache model(texture_descriptors(model_table, eo),
-                     CacheParams{(1 << (c.log2_sets + c.log2_ways)) * kLineBytes, 1 << c.log2_ways}, c.cfg);
+  SamplerPairs samplers(c.table, model_samplers);
+  TextureCache model(texture_descriptors(c.table, eo),
+                     CacheParams{(1 << (c.log2_sets + c.log2_ways)) * kLineBytes, 1 << c.log2_ways}, model_samplers);
   model.set_error_reads(model_errors);
   std::vector<uint32_t> predicted;
   std::vector<uint32_t> want(c.requests.size());
@@ -777,7 +790,7 @@ CaseResult run_case(AxiTop& top, const Case& c, const TextureTable* model_table_
   for (size_t i = 0; i < c.requests.size(); ++i) {
     const Request& q = c.requests[i];
     want_error[i] = model.lookup_sample(q, &predicted).error;
-    want[i] = want_error[i] ? 0 : pack_rgba8(samplers[q.texture].sample(q));
+    want[i] = want_error[i] ? 0 : pack_rgba8(samplers.at(q).sample(q));
     want_flagged += want_error[i];
   }
 
@@ -954,23 +967,23 @@ TEST(RtlAxiTop, EndToEndAgainstModel) {
   EXPECT_GT(counter_reads, 100u);
 }
 
-// The checkers fire: the unit's descriptor 1 committed with other wrap modes than the model's
-// table gives a sample mismatch; a model that expects the memory error one line read late
-// disagrees on a flag. The same case with the model right passes.
+// The checkers fire: the unit's sampler 1 committed with other wrap modes than the model's table
+// gives a sample mismatch; a model that expects the memory error one line read late disagrees on
+// a flag. The same case with the model right passes.
 TEST(RtlAxiTop, PlantedBugsAreCaught) {
   AxiTop top(11);
   Case c = random_case(0xBAD, 1500, false);
-  c.cfg = SamplerConfig{};  // trilinear, no LOD clamp
+  c.samplers.assign(2, SamplerConfig{});  // trilinear, no LOD clamp
   c.pyramids[1] = random_pyramid(5, 2, 3);  // (in place: the table points at it)
-  c.table[1].wrap_u = Wrap::Clamp;
-  c.table[1].wrap_v = Wrap::Repeat;
+  c.samplers[1].wrap_u = Wrap::Clamp;
+  c.samplers[1].wrap_v = Wrap::Repeat;
   std::mt19937_64 rng(5);
-  c.requests = random_requests(rng, c.table, 1500);
+  c.requests = random_requests(rng, c.table, c.samplers.size(), 1500);
   const CaseResult good = run_case(top, c);
   EXPECT_EQ(good.first_mismatch, "");
   EXPECT_TRUE(good.failures.empty()) << join(good.failures);
 
-  TextureTable rewrapped = c.table;  // the model's table: texture 1 mirrored
+  SamplerTable rewrapped = c.samplers;  // the model's table: sampler 1 mirrored
   rewrapped[1].wrap_u = Wrap::Mirror;
   rewrapped[1].wrap_v = Wrap::Mirror;
   const CaseResult wrap = run_case(top, c, &rewrapped);
@@ -1002,10 +1015,7 @@ TEST(RtlAxiTop, RequestsRightAfterADescriptorCommit) {
   EngineOptions eo;
   eo.layout = c.layout;
   const std::vector<TextureDescriptor> desc = texture_descriptors(c.table, eo);
-  SamplerConfig sc = c.cfg;
-  sc.wrap_u = c.table[1].wrap_u;
-  sc.wrap_v = c.table[1].wrap_v;
-  Sampler model(*c.table[1].pyramid, sc);
+  Sampler model(*c.table[1].pyramid, c.samplers[0]);
   std::mt19937_64 rng(3);
   TextureTable one = {c.table[1]};
   for (int after = 0; after < 3; ++after) {
@@ -1014,7 +1024,7 @@ TEST(RtlAxiTop, RequestsRightAfterADescriptorCommit) {
     for (int to : {0, 1}) {
       const TextureDescriptor& e = desc[size_t(to)];
       EXPECT_EQ(top.write(kDescBase, e.layout.params().base), kOkay);
-      EXPECT_EQ(top.write(kDescAttr, attr_register(e.layout, e.wrap_u, e.wrap_v)), kOkay);
+      EXPECT_EQ(top.write(kDescAttr, desc_attr_word(e.layout)), kOkay);
       top.bready_p = to == 1 ? 1.0 : 0.7;
       EXPECT_EQ(top.write(kDescCommit, 0, &d), kOkay);
       top.bready_p = 0.7;
@@ -1024,7 +1034,7 @@ TEST(RtlAxiTop, RequestsRightAfterADescriptorCommit) {
     top.idle(after);
     // All of entry 0. The first ones carry derivatives of one texel of texture 1 (lambda 0; 3 with
     // texture 0's size, 64x8): a sample that took the entry's old size would show it.
-    std::vector<Request> requests = random_requests(rng, one, 8);
+    std::vector<Request> requests = random_requests(rng, one, 1, 8);
     for (int i = 0; i < 4; ++i) {
       requests[size_t(i)].has_derivatives = true;
       requests[size_t(i)].deriv = {(1 << 24) / 8, 0, 0, (1 << 24) / 2};

@@ -7,8 +7,8 @@
 // monitor checks the slave against the reference: each write's BRESP and each read's RDATA/RRESP
 // (computed from the reference state at the handshake edge), a stalled B or R held with its
 // payload, no response without a request, AWREADY/WREADY/ARREADY low while a response waits,
-// every cfg_* pin and unit_rst equal to the reference registers, cfg_desc_we exactly in the clock
-// after each accepted DESC_COMMIT, and the counters (events registered, counted a clock later;
+// every cfg_* pin and unit_rst equal to the reference registers, cfg_desc_we (cfg_smp_we) exactly
+// in the clock after each accepted DESC_COMMIT (SMP_COMMIT), and the counters (events registered, counted a clock later;
 // clear, freeze, the LO-then-HI latch) through every counter read.
 #include <gtest/gtest.h>
 
@@ -16,34 +16,33 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <memory>
 #include <optional>
 #include <random>
+#include <regex>
+#include <string>
 #include <tuple>
 #include <vector>
 
 #include "Vtex_axil_config.h"
 #include "Vtex_axil_config___024root.h"
+#include "engines/rtl/register_map.h"
 
 namespace {
 
 // ---- the Verilated build's parameters (tests/rtl/CMakeLists.txt)
 constexpr int kAddrW = 12, kMaxLog2W = 10, kMaxLog2H = 9, kLines = 256, kMaxWays = 4, kFifoDepth = 256;
-constexpr int kTextures = 8, kBlockFormats = 1, kSrgb = 1, kLineBytes = 64, kBeatBytes = 16;
+constexpr int kTextures = 8, kSamplers = 4, kBlockFormats = 1, kSrgb = 1, kLineBytes = 64, kBeatBytes = 16;
 constexpr int kFifoLimitBits = 9;  // $clog2(FIFO_DEPTH + 1)
 
-// ---- the register map
-constexpr uint32_t kId = 0x000, kVersion = 0x004, kCaps0 = 0x008, kCaps1 = 0x00C, kControl = 0x010;
-constexpr uint32_t kCache = 0x020, kFifoLimit = 0x024, kFilter = 0x030, kLodBias = 0x034, kMinLod = 0x038;
-constexpr uint32_t kMaxLod = 0x03C, kDescBase = 0x040, kDescAttr = 0x044, kDescCommit = 0x048;
-constexpr uint32_t kBorderRg = 0x050, kBorderBa = 0x054;
-constexpr uint32_t kCounterBase = 0x080;  // counter i: LO at 0x080 + 8 i, HI at + 4
-constexpr int kCounters = 9;
-enum Counter { kCycles, kSamples, kSampleErrors, kLookups, kMisses, kMemBytes, kOutStall, kMemWait, kReqStall };
-constexpr uint32_t kOkay = 0, kSlverr = 2;
-constexpr std::array<uint32_t, 12> kWritable = {kControl, kCache, kFifoLimit, kFilter, kLodBias,
+// ---- the register map: sim/engines/rtl/register_map.h (RegisterMapHeaderMatchesTheRtl)
+using namespace tex::rtl::axil;
+constexpr std::array<uint32_t, 14> kWritable = {kControl, kCache, kFifoLimit, kFilter, kLodBias,
                                                 kMinLod,  kMaxLod, kDescBase, kDescAttr, kDescCommit,
-                                                kBorderRg, kBorderBa};
+                                                kBorderRg, kBorderBa, kWrap, kSmpCommit};
 
 int log2i(int v) {
   int k = 0;
@@ -63,7 +62,7 @@ struct Reference {
   uint32_t control = 1;                      // unit_reset after reset
   uint32_t cache = (2u << 16) | (6u << 8);   // 4 ways, 64 sets (LINES / MAX_WAYS), row-major
   uint32_t fifo_limit = 0, filter = 0x23, lod_bias = 0, min_lod = 0x8000, max_lod = 0x7FFF;
-  uint32_t desc_base = 0, desc_attr = 0, desc_index = 0, border_rg = 0, border_ba = 0;
+  uint32_t desc_base = 0, desc_attr = 0, desc_index = 0, border_rg = 0, border_ba = 0, wrap = 0, smp_index = 0;
   std::array<uint64_t, kCounters> counters{};
   Events ev_q;  // the registered events (counted at the next edge)
   bool snap_valid = false;
@@ -76,12 +75,15 @@ struct Reference {
   }
   bool descriptor_ok(uint32_t d) const {
     const uint32_t index = d & 15, log2_w = desc_attr & 15, log2_h = (desc_attr >> 4) & 15;
-    const uint32_t format = (desc_attr >> 16) & 7, wrap_u = (desc_attr >> 8) & 7, wrap_v = (desc_attr >> 12) & 7;
+    const uint32_t format = (desc_attr >> 16) & 7;
     const bool srgb = (desc_attr >> 19) & 1;
-    auto wrap_ok = [](uint32_t w) { return w <= 4; };  // the five address modes (5..7: none)
-    return index < kTextures && log2_w <= kMaxLog2W && log2_h <= kMaxLog2H && wrap_ok(wrap_u) && wrap_ok(wrap_v) &&
+    return index < kTextures && log2_w <= kMaxLog2W && log2_h <= kMaxLog2H &&
            (format == 0 || (kBlockFormats && format != 6)) && (!srgb || (kSrgb && format != 4 && format != 5)) &&
            desc_base % kLineBytes == 0;
+  }
+  bool sampler_ok(uint32_t d) const {
+    auto wrap_ok = [](uint32_t w) { return w <= 4; };  // the five address modes (5..7: none)
+    return (d & 15) < kSamplers && wrap_ok(wrap & 7) && wrap_ok((wrap >> 4) & 7) && ((filter >> 4) & 3) != 3;
   }
   // BRESP of a write (the state before its edge).
   uint32_t write_resp(uint32_t addr, uint32_t data, uint8_t strb) const {
@@ -89,6 +91,7 @@ struct Reference {
     bool ok = strb == 0xF;
     if (a == kCache) ok = ok && (control & 1) && geometry_ok(data);
     else if (a == kDescCommit) ok = ok && !(control & 1) && descriptor_ok(data);
+    else if (a == kSmpCommit) ok = ok && !(control & 1) && sampler_ok(data);
     else ok = ok && std::find(kWritable.begin(), kWritable.end(), a) != kWritable.end();
     return ok ? kOkay : kSlverr;
   }
@@ -103,13 +106,17 @@ struct Reference {
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
       case kDescBase: desc_base = d; break;
-      case kDescAttr: desc_attr = d & 0xF77FF; break;
+      case kDescAttr: desc_attr = d & 0xF00FF; break;
+      case kWrap: wrap = d & 0x77; break;
+      case kSmpCommit: smp_index = d & 15; break;
       case kBorderRg: border_rg = d; break;
       case kBorderBa: border_ba = d; break;
       case kDescCommit: desc_index = d & 15; break;
     }
   }
-  static uint32_t caps0() { return kMaxLog2W | kMaxLog2H << 4 | kTextures << 8 | kBlockFormats << 16 | kSrgb << 17; }
+  static uint32_t caps0() {
+    return kMaxLog2W | kMaxLog2H << 4 | kTextures << 8 | kBlockFormats << 16 | kSrgb << 17 | kSamplers << 20;
+  }
   static uint32_t caps1() {
     return log2i(kLines) | kMaxWays << 8 | log2i(kFifoDepth) << 16 | log2i(kLineBytes) << 24 | log2i(kBeatBytes) << 28;
   }
@@ -135,7 +142,7 @@ struct Reference {
     }
     switch (a) {
       case kId: return {0x54455855u, kOkay};
-      case kVersion: return {0x00010000u, kOkay};
+      case kVersion: return {0x00020000u, kOkay};
       case kCaps0: return {caps0(), kOkay};
       case kCaps1: return {caps1(), kOkay};
       case kControl: return {control, kOkay};
@@ -150,6 +157,8 @@ struct Reference {
       case kBorderRg: return {border_rg, kOkay};
       case kBorderBa: return {border_ba, kOkay};
       case kDescCommit: return {desc_index, kOkay};
+      case kWrap: return {wrap, kOkay};
+      case kSmpCommit: return {smp_index, kOkay};
     }
     return {0, kSlverr};
   }
@@ -237,6 +246,7 @@ class Slave {
   std::vector<uint32_t> bresps;        // every write's BRESP, in order
   std::vector<ReadResult> rresults;    // every read's RDATA, RRESP, in order
   int desc_pulses = 0;                 // clocks with cfg_desc_we high
+  int smp_pulses = 0;                  // clocks with cfg_smp_we high
   const Reference& ref() const { return ref_; }
   Vtex_axil_config& top() { return *top_; }
 
@@ -407,6 +417,7 @@ class Slave {
     const uint32_t wreg = wop.addr & ~3u;
     const bool clear = write_ok && wreg == kControl && (wop.data & 4);
     const bool commit = write_ok && wreg == kDescCommit;
+    const bool smp_commit = write_ok && wreg == kSmpCommit;
     ref_.count(clear, ev);  // (with CONTROL's freeze bit of before the edge)
     if (write_ok) ref_.apply_write(wop.addr, wop.data);
     if (clear) ref_.snap_valid = false;
@@ -414,6 +425,8 @@ class Slave {
     else if (snap.consume) ref_.snap_valid = false;
     EXPECT_EQ(bool(t.cfg_desc_we), commit) << "cfg_desc_we is the clock after an accepted DESC_COMMIT";
     desc_pulses += t.cfg_desc_we;
+    EXPECT_EQ(bool(t.cfg_smp_we), smp_commit) << "cfg_smp_we is the clock after an accepted SMP_COMMIT";
+    smp_pulses += t.cfg_smp_we;
     check_pins();
   }
 
@@ -425,19 +438,20 @@ class Slave {
     EXPECT_EQ(t.cfg_desc_base, r.desc_base);
     EXPECT_EQ(t.cfg_desc_log2_w, r.desc_attr & 15);
     EXPECT_EQ(t.cfg_desc_log2_h, (r.desc_attr >> 4) & 15);
-    EXPECT_EQ(t.cfg_desc_wrap_u, (r.desc_attr >> 8) & 7);
-    EXPECT_EQ(t.cfg_desc_wrap_v, (r.desc_attr >> 12) & 7);
+    EXPECT_EQ(t.cfg_smp_index, r.smp_index);
+    EXPECT_EQ(t.cfg_smp_wrap_u, r.wrap & 7);
+    EXPECT_EQ(t.cfg_smp_wrap_v, (r.wrap >> 4) & 7);
     EXPECT_EQ(t.cfg_desc_format, (r.desc_attr >> 16) & 7);
     EXPECT_EQ(t.cfg_desc_srgb, (r.desc_attr >> 19) & 1);
-    EXPECT_EQ(t.cfg_border_rgba, uint64_t(r.border_rg) | uint64_t(r.border_ba) << 32);
-    EXPECT_EQ(t.cfg_texel_linear, r.filter & 1);
-    EXPECT_EQ(t.cfg_mag_linear, (r.filter >> 1) & 1);
-    EXPECT_EQ(t.cfg_mip_mode, (r.filter >> 4) & 3);
-    EXPECT_EQ(t.cfg_max_aniso_m1, (r.filter >> 8) & 15);
-    EXPECT_EQ(t.cfg_aniso_pow2, (r.filter >> 12) & 1);
-    EXPECT_EQ(t.cfg_lod_bias, r.lod_bias);
-    EXPECT_EQ(t.cfg_min_lod, r.min_lod);
-    EXPECT_EQ(t.cfg_max_lod, r.max_lod);
+    EXPECT_EQ(t.cfg_smp_border_rgba, uint64_t(r.border_rg) | uint64_t(r.border_ba) << 32);
+    EXPECT_EQ(t.cfg_smp_min_linear, r.filter & 1);
+    EXPECT_EQ(t.cfg_smp_mag_linear, (r.filter >> 1) & 1);
+    EXPECT_EQ(t.cfg_smp_mip_mode, (r.filter >> 4) & 3);
+    EXPECT_EQ(t.cfg_smp_max_aniso_m1, (r.filter >> 8) & 15);
+    EXPECT_EQ(t.cfg_smp_aniso_pow2, (r.filter >> 12) & 1);
+    EXPECT_EQ(t.cfg_smp_lod_bias, r.lod_bias);
+    EXPECT_EQ(t.cfg_smp_min_lod, r.min_lod);
+    EXPECT_EQ(t.cfg_smp_max_lod, r.max_lod);
     EXPECT_EQ(t.cfg_block_morton, r.cache & 1);
     EXPECT_EQ(t.cfg_log2_sets, (r.cache >> 8) & 31);
     EXPECT_EQ(t.cfg_log2_ways, (r.cache >> 16) & 3);
@@ -466,8 +480,8 @@ std::vector<uint32_t> defined_registers() {
 TEST(RtlAxilConfig, IdVersionCapabilitiesAndResetValues) {
   Slave s(1);
   EXPECT_EQ(s.read(kId).data, 0x54455855u);  // "TEXU"
-  EXPECT_EQ(s.read(kVersion).data, 0x00010000u);
-  EXPECT_EQ(s.read(kCaps0).data, uint32_t(10 | 9 << 4 | 8 << 8 | 1 << 16 | 1 << 17));
+  EXPECT_EQ(s.read(kVersion).data, 0x00020000u);
+  EXPECT_EQ(s.read(kCaps0).data, uint32_t(10 | 9 << 4 | 8 << 8 | 1 << 16 | 1 << 17 | 4 << 20));
   EXPECT_EQ(s.read(kCaps1).data, uint32_t(8 | 4 << 8 | 8 << 16 | 6 << 24 | 4 << 28));
   // reset: the unit held in reset, the whole cache of 4 ways, trilinear, no LOD clamp
   EXPECT_EQ(s.read(kControl).data, 1u);
@@ -493,15 +507,21 @@ TEST(RtlAxilConfig, EveryRegisterWrittenAndReadBack) {
       if (a == kCache || a == kControl) continue;
       uint32_t d = uint32_t(rng());
       if (a == kDescCommit) {  // a valid descriptor: RGBA, line-aligned base
-        ASSERT_EQ(s.write(kDescAttr, uint32_t(rng() % 5) << 12 | uint32_t(rng() % 5) << 8 | 3u << 4 | 5u), kOkay);
+        ASSERT_EQ(s.write(kDescAttr, 3u << 4 | 5u), kOkay);
         ASSERT_EQ(s.write(kDescBase, uint32_t(rng()) & ~63u), kOkay);
         d = (d & ~15u) | uint32_t(rng() % kTextures);
+      }
+      if (a == kSmpCommit) {  // a valid sampler: address modes 0..4, mip mode 0..2
+        ASSERT_EQ(s.write(kWrap, uint32_t(rng() % 5) << 4 | uint32_t(rng() % 5)), kOkay);
+        ASSERT_EQ(s.write(kFilter, (uint32_t(rng()) & 0x1F03) | uint32_t(rng() % 3) << 4), kOkay);
+        d = (d & ~15u) | uint32_t(rng() % kSamplers);
       }
       ASSERT_EQ(s.write(a, d), kOkay) << std::hex << a;
     }
     for (uint32_t a : defined_registers()) s.read(a);  // checked against the reference by the monitor
   }
   EXPECT_EQ(s.desc_pulses, 20);
+  EXPECT_EQ(s.smp_pulses, 20);
 }
 
 TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
@@ -512,15 +532,17 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   ASSERT_EQ(s.write(kControl, 0), kOkay);
   for (uint32_t a : {kFifoLimit, kFilter, kLodBias, kMinLod, kMaxLod, kDescBase}) ASSERT_EQ(s.write(a, 0x1240), kOkay);
   const Reference before = s.ref();
-  const int pulses = s.desc_pulses;
+  const int pulses = s.desc_pulses, smp_pulses = s.smp_pulses;
   auto unchanged = [&](const char* what) {
     const Reference& r = s.ref();
     EXPECT_TRUE(r.control == before.control && r.cache == before.cache && r.fifo_limit == before.fifo_limit &&
                 r.filter == before.filter && r.lod_bias == before.lod_bias && r.min_lod == before.min_lod &&
                 r.max_lod == before.max_lod && r.desc_base == before.desc_base && r.desc_attr == before.desc_attr &&
-                r.desc_index == before.desc_index && r.border_rg == before.border_rg && r.border_ba == before.border_ba)
+                r.desc_index == before.desc_index && r.border_rg == before.border_rg && r.border_ba == before.border_ba &&
+                r.wrap == before.wrap && r.smp_index == before.smp_index)
         << what;
     EXPECT_EQ(s.desc_pulses, pulses) << what;
+    EXPECT_EQ(s.smp_pulses, smp_pulses) << what;
   };
   // undefined and read-only words of the whole 4 KiB window: writes SLVERR, undefined reads SLVERR
   // with data 0 (the monitor checks the pins every clock, and every read against the reference)
@@ -549,13 +571,12 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   // DESC_COMMIT while in reset (the unit drops cfg_desc_we under rst) and of invalid descriptors
   EXPECT_EQ(s.write(kDescCommit, 1), kSlverr);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
-  const uint32_t bad_attr[] = {11u,          10u << 4,     6u << 16, 1u << 19 | 4u << 16, 1u << 19 | 5u << 16,
-                               5u << 8,      7u << 12};  // no address mode
+  const uint32_t bad_attr[] = {11u, 10u << 4, 6u << 16, 1u << 19 | 4u << 16, 1u << 19 | 5u << 16};
   for (uint32_t attr : bad_attr) {
     ASSERT_EQ(s.write(kDescAttr, attr), kOkay);
     EXPECT_EQ(s.write(kDescCommit, 2), kSlverr) << std::hex << attr;
   }
-  ASSERT_EQ(s.write(kDescAttr, 0x84335), kOkay);  // sRGB RGBA 32x8, wrap border / mirror-clamp: valid
+  ASSERT_EQ(s.write(kDescAttr, 0x84335), kOkay);  // sRGB RGBA 32x8 (bits 14:8 reserved, ignored): valid
   EXPECT_EQ(s.write(kDescCommit, kTextures), kSlverr);  // index beyond the table
   ASSERT_EQ(s.write(kDescBase, 0x1000 + 32), kOkay);     // not line-aligned
   EXPECT_EQ(s.write(kDescCommit, 2), kSlverr);
@@ -563,6 +584,24 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   ASSERT_EQ(s.write(kDescBase, 0x1000), kOkay);
   EXPECT_EQ(s.write(kDescCommit, 2), kOkay);
   EXPECT_EQ(s.desc_pulses, pulses + 1);
+  // SMP_COMMIT of samplers the unit cannot take: address modes 5..7, mip mode 3, an entry beyond
+  // the table; in reset (the pulse would be lost)
+  ASSERT_EQ(s.write(kFilter, 0x23), kOkay);
+  for (uint32_t w : {5u, 6u << 4, 7u, 7u << 4 | 7u}) {
+    ASSERT_EQ(s.write(kWrap, w), kOkay);
+    EXPECT_EQ(s.write(kSmpCommit, 1), kSlverr) << std::hex << w;
+  }
+  ASSERT_EQ(s.write(kWrap, 4u << 4 | 3u), kOkay);  // mirror-clamp / border: valid
+  ASSERT_EQ(s.write(kFilter, 0x33), kOkay);        // mip mode 3
+  EXPECT_EQ(s.write(kSmpCommit, 1), kSlverr);
+  ASSERT_EQ(s.write(kFilter, 0x23), kOkay);
+  EXPECT_EQ(s.write(kSmpCommit, kSamplers), kSlverr);
+  ASSERT_EQ(s.write(kControl, 1), kOkay);
+  EXPECT_EQ(s.write(kSmpCommit, 1), kSlverr);
+  ASSERT_EQ(s.write(kControl, 0), kOkay);
+  EXPECT_EQ(s.smp_pulses, smp_pulses);
+  EXPECT_EQ(s.write(kSmpCommit, kSamplers - 1), kOkay);
+  EXPECT_EQ(s.smp_pulses, smp_pulses + 1);
 }
 
 TEST(RtlAxilConfig, WriteChannelInEitherOrder) {
@@ -576,7 +615,7 @@ TEST(RtlAxilConfig, WriteChannelInEitherOrder) {
         s.run();
         EXPECT_EQ(s.bresps.back(), kOkay);
         EXPECT_EQ(s.read(kLodBias).data, op.data);
-        EXPECT_EQ(s.top().cfg_lod_bias, op.data);
+        EXPECT_EQ(s.top().cfg_smp_lod_bias, op.data);
       }
   EXPECT_EQ(s.bresps.size(), 45u);  // one B per write
 }
@@ -606,7 +645,9 @@ TEST(RtlAxilConfig, ResponsesHeldUnderBackpressureBothChannelsAtOnce) {
       if ((w.addr & ~3u) == kCache) w.data = uint32_t(rng() % 3) << 16 | uint32_t(rng() % 8) << 8 | (w.data & 1);
       if ((w.addr & ~3u) == kControl) w.data &= (rng() % 8 == 0) ? 7 : 3;  // a clear now and then
       if ((w.addr & ~3u) == kDescBase && rng() % 2) w.data &= ~63u;
-      if ((w.addr & ~3u) == kDescAttr) w.data &= 0xF3311u | (rng() % 4 ? 0u : 0x4400u);  // mostly valid
+      if ((w.addr & ~3u) == kDescAttr) w.data &= 0xF3311u;
+      if ((w.addr & ~3u) == kWrap) w.data &= 0x33u | (rng() % 4 ? 0u : 0x44u);  // mostly valid
+      if ((w.addr & ~3u) == kSmpCommit && rng() % 2) w.data &= 3u;
       w.strb = rng() % 10 == 0 ? uint8_t(rng() % 16) : 0xF;
       w.order = WriteOp::Order(rng() % 3);
       w.gap = int(rng() % 3);
@@ -619,6 +660,7 @@ TEST(RtlAxilConfig, ResponsesHeldUnderBackpressureBothChannelsAtOnce) {
     EXPECT_EQ(s.bresps.size(), 3000u);
     EXPECT_EQ(s.rresults.size(), 3000u);
     EXPECT_GT(s.desc_pulses, 0);
+    EXPECT_GT(s.smp_pulses, 0);
   }
 }
 
@@ -626,7 +668,7 @@ TEST(RtlAxilConfig, DescriptorCommitPulsesOnce) {
   Slave s(6);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
   ASSERT_EQ(s.write(kDescBase, 0x12340040), kOkay);
-  ASSERT_EQ(s.write(kDescAttr, 1u << 19 | 7u << 16 | 2u << 12 | 1u << 8 | 9u << 4 | 10u), kOkay);  // BC7 sRGB
+  ASSERT_EQ(s.write(kDescAttr, 1u << 19 | 7u << 16 | 9u << 4 | 10u), kOkay);  // BC7 sRGB
   EXPECT_EQ(s.desc_pulses, 0);
   // the pulse: exactly the clock after the commit's edge (checked by the monitor), with the staged
   // descriptor on the pins
@@ -708,3 +750,37 @@ TEST(RtlAxilConfig, SixtyFourBitReadIsConsistentAcrossACarry) {
 }
 
 }  // namespace
+
+// The one C++ copy of the register map (sim/engines/rtl/register_map.h, used by the drivers and
+// tests) against the RTL's own: every R_<name> offset of tex_axil_config.sv, the ID and VERSION
+// values and the counter count, read out of the source, equal the header's, and each side has
+// every register of the other.
+TEST(RtlAxilConfig, RegisterMapHeaderMatchesTheRtl) {
+  std::ifstream in(std::string(TEX_RTL_DIR) + "/tex_axil_config.sv");
+  ASSERT_TRUE(in) << TEX_RTL_DIR << "/tex_axil_config.sv";
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::map<std::string, uint32_t> rtl;
+  const std::regex reg(R"(localparam logic \[WA-1:0\] R_(\w+)\s*=\s*WA'\('h([0-9A-Fa-f]+) >> 2\);)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), reg); it != std::sregex_iterator(); ++it)
+    rtl[(*it)[1]] = uint32_t(std::stoul((*it)[2], nullptr, 16));
+  ASSERT_GE(rtl.size(), 10u) << "the pattern no longer finds tex_axil_config's registers";
+  std::map<std::string, uint32_t> header;
+  for (const Register& r : kRegisters) header[r.name] = r.offset;
+  EXPECT_EQ(rtl, header);
+  auto value = [&](const std::string& name) -> uint64_t {
+    std::smatch m;
+    const std::regex v("localparam logic \\[31:0\\] " + name + R"(\s*=\s*32'h([0-9A-Fa-f_]+);)");
+    if (!std::regex_search(text, m, v)) return ~uint64_t(0);
+    std::string digits = m[1];
+    digits.erase(std::remove(digits.begin(), digits.end(), '_'), digits.end());
+    return std::stoull(digits, nullptr, 16);
+  };
+  EXPECT_EQ(value("ID"), kIdValue);
+  EXPECT_EQ(value("VERSION"), kVersionValue);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(text, m, std::regex(R"(localparam int NCNT = (\d+);)")));
+  EXPECT_EQ(std::stoi(m[1]), kCounters);
+  // Planted: a header with one offset moved is caught by the same comparison.
+  header["WRAP"] += 4;
+  EXPECT_NE(rtl, header);
+}

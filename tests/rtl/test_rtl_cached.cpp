@@ -105,42 +105,39 @@ struct CaseResult {
   std::string failure;
 };
 
-// One case over a descriptor table (requests name its textures): every response against the
-// model's sampler of that texture, every line read against the model's caches.
-CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerConfig& cfg, const LayoutParams& layout,
+// One case over a descriptor table and a sampler table (requests name a texture and a sampler):
+// every response against the model's sampler of that pair, every line read against the model's
+// caches.
+CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerTable& smp, const LayoutParams& layout,
                     const CacheParams& cache, const rtl::MemoryTiming& timing, const std::vector<Request>& requests,
                     const rtl::Timing& stim, uint64_t seed, CacheCoverage* coverage,
                     const CacheParams* model_cache = nullptr, int poke_texel = -1, uint32_t fifo_depth = 0,
                     const TextureTable* model_table = nullptr, const std::vector<uint64_t>& error_reads = {},
-                    const std::vector<uint64_t>* model_error_reads = nullptr) {
+                    const std::vector<uint64_t>* model_error_reads = nullptr,
+                    const SamplerTable* model_samplers = nullptr) {
   CaseResult r;
   const Pyramid& pyr = *table[0].pyramid;
   unit.set_memory(layout, cache, timing, fifo_depth);
   unit.set_memory_errors(error_reads);
   unit.load_textures(table);
-  unit.configure(cfg, pyr);
+  unit.configure(smp);
   if (poke_texel >= 0) {  // planted bug: one byte of the image is wrong
     const MemoryLayout ml(pyr.log2_w0(), pyr.log2_h0(), pyr.memory_channel_bits(), layout, pyr.format);
     unit.memory()->poke(ml.line_address(0, 0, 0) + uint32_t(poke_texel), 0x5A ^ uint8_t(pyr.levels[0].at(0, 0)[0]));
   }
-  // The model's table: the RTL's, unless a test plants another.
+  // The model's tables: the RTL's, unless a test plants others.
   const TextureTable& mt = model_table ? *model_table : table;
-  std::vector<Sampler> samplers;
-  for (const BoundTexture& t : mt) {
-    SamplerConfig c = cfg;
-    c.wrap_u = t.wrap_u;
-    c.wrap_v = t.wrap_v;
-    samplers.emplace_back(*t.pyramid, c);
-  }
+  const SamplerTable& ms = model_samplers ? *model_samplers : smp;
+  SamplerPairs samplers(mt, ms);
   EngineOptions eo;
   eo.layout = layout;
-  TextureCache model(texture_descriptors(mt, eo), model_cache ? *model_cache : cache, cfg);
+  TextureCache model(texture_descriptors(mt, eo), model_cache ? *model_cache : cache, ms);
   model.set_error_reads(model_error_reads ? *model_error_reads : error_reads);
   std::vector<uint32_t> predicted;
   std::vector<RequestWork> work;  // each request's probes and their misses: what its timing depends on
   for (const Request& q : requests) {
     const Pyramid& t = *mt.at(q.texture).pyramid;
-    const Probes p = tex_probe(q, cfg, t.log2_w0(), t.log2_h0());
+    const Probes p = tex_probe(q, ms.at(q.sampler), t.log2_w0(), t.log2_h0());
     RequestWork& w = work.emplace_back();
     w.probes = uint8_t(p.n);
     for (int i = 0; i < p.n; ++i) {
@@ -158,7 +155,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
       clocks[i] = response_clock(unit);
       // A sample the model's caches flag answers 0 with rsp_error.
       const bool error = work[i].error, got_error = unit.last_response_error();
-      const Texel want = error ? Texel{} : samplers[requests[i].texture].sample(requests[i]);
+      const Texel want = error ? Texel{} : samplers.at(requests[i]).sample(requests[i]);
       const Texel got = rtl::unpack_rgba(rgba, unit.config().cw);
       r.flagged += got_error;
       if (got_error != error && mismatches++ == 0)
@@ -198,12 +195,12 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerC
   return r;
 }
 
-// One texture with the configuration's wrap modes.
+// One texture and one sampler.
 CaseResult run_case(rtl::Driver& unit, const Pyramid& pyr, const SamplerConfig& cfg, const LayoutParams& layout,
                     const CacheParams& cache, const rtl::MemoryTiming& timing, const std::vector<Request>& requests,
                     const rtl::Timing& stim, uint64_t seed, CacheCoverage* coverage,
                     const CacheParams* model_cache = nullptr, int poke_texel = -1, uint32_t fifo_depth = 0) {
-  return run_case(unit, TextureTable{{&pyr, cfg.wrap_u, cfg.wrap_v}}, cfg, layout, cache, timing, requests, stim, seed,
+  return run_case(unit, TextureTable{{&pyr}}, SamplerTable{cfg}, layout, cache, timing, requests, stim, seed,
                   coverage, model_cache, poke_texel, fifo_depth);
 }
 
@@ -296,7 +293,7 @@ void run_suite(const CachedSuite& suite) {
     // A quarter of the cases use a shallower FIFO (cfg_fifo_limit), down to 1 sample.
     const uint32_t fifo_depth = rng() % 4 == 0 ? 1 + uint32_t(rng() % uint64_t(rc.fifo_depth)) : 0;
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
-    const CaseResult r = run_case(*unit, TextureTable{{&pyr, cfg.wrap_u, cfg.wrap_v}}, cfg, layout, cache, memory,
+    const CaseResult r = run_case(*unit, TextureTable{{&pyr}}, SamplerTable{cfg}, layout, cache, memory,
                                   requests, stim, rng(), &coverage, nullptr, -1, fifo_depth, nullptr, errors);
     samples += r.samples;
     flagged += r.flagged;
@@ -383,8 +380,8 @@ void run_descriptor_tables(const std::string& config, int cases) {
   auto unit = rtl::Driver::create(rc, {});
   unit->reset();
   const std::vector<Filter> filters = all_filters();
-  uint64_t samples = 0, switches = 0, reads = 0, flagged = 0;
-  int full_tables = 0, failures = 0, block_textures = 0, srgb_textures = 0;
+  uint64_t samples = 0, switches = 0, sampler_switches = 0, reads = 0, flagged = 0;
+  int full_tables = 0, full_samplers = 0, failures = 0, block_textures = 0, srgb_textures = 0;
   for (int ci = 0; ci < cases * scale(); ++ci) {
     const uint64_t seed = mix64(base + uint64_t(ci));
     if (only && *only != seed) continue;
@@ -403,14 +400,22 @@ void run_descriptor_tables(const std::string& config, int cases) {
       pyramids.push_back(random_pyramid(rc, format, lw, lh, srgb, rng()));
       block_textures += blocks;
       srgb_textures += pyramids.back().srgb;
-      table.push_back({&pyramids.back(), random_wrap(rng), random_wrap(rng)});
+      table.push_back({&pyramids.back()});
     }
-    SamplerConfig cfg;
-    cfg.filter = ci % 3 == 2 ? filters[rng() % filters.size()] : Filter{TexelFilter::Linear, MipMode::Linear};
-    if (ci % 5 == 4) randomize_aniso(rng, cfg);
-    randomize_mag_filter(rng, cfg);
-    randomize_border(rng, cfg);
-    randomize_lod_controls(rng, cfg);
+    // The sampler table: 1 to 16 entries (a quarter full), every field random.
+    const int ns = ci % 4 == 1 ? kMaxSamplers : 1 + int(rng() % kMaxSamplers);
+    full_samplers += ns == kMaxSamplers;
+    SamplerTable samplers;
+    for (int k = 0; k < ns; ++k) {
+      SamplerConfig& cfg = samplers.emplace_back();
+      cfg.filter = rng() % 3 == 2 ? filters[rng() % filters.size()] : Filter{TexelFilter::Linear, MipMode::Linear};
+      if (rng() % 5 == 4) randomize_aniso(rng, cfg);
+      randomize_mag_filter(rng, cfg);
+      cfg.wrap_u = random_wrap(rng);
+      cfg.wrap_v = random_wrap(rng);
+      randomize_border(rng, cfg);
+      randomize_lod_controls(rng, cfg);
+    }
     const LayoutParams layout = random_layout(rng, rc);
     const CacheParams cache = random_cache(rng, rc);
     std::string memory_name, timing_name;
@@ -419,37 +424,41 @@ void run_descriptor_tables(const std::string& config, int cases) {
     std::vector<Request> requests = random_requests(rng, 6, 3, 4000);
     for (size_t i = 0; i < requests.size(); ++i) {
       requests[i].texture = uint8_t(rng() % uint64_t(n));
+      requests[i].sampler = uint8_t(rng() % uint64_t(ns));
       switches += i > 0 && requests[i].texture != requests[i - 1].texture;
+      sampler_switches += i > 0 && requests[i].sampler != requests[i - 1].sampler;
     }
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
-    const CaseResult r = run_case(*unit, table, cfg, layout, cache, memory, requests, stim, rng(), nullptr, nullptr, -1,
-                                  0, nullptr, errors);
+    const CaseResult r = run_case(*unit, table, samplers, layout, cache, memory, requests, stim, rng(), nullptr, nullptr,
+                                  -1, 0, nullptr, errors);
     samples += r.samples;
     reads += r.reads;
     flagged += r.flagged;
     if (!r.failure.empty()) {
-      ADD_FAILURE() << "case " << ci << " (replay: TEX_SEED=" << seed << "): " << n << " textures, " << describe(cfg)
-                    << ", " << cache.size_bytes << " B x " << cache.ways << " ways, " << memory_name << ", stimulus "
+      ADD_FAILURE() << "case " << ci << " (replay: TEX_SEED=" << seed << "): " << n << " textures, " << ns
+                    << " samplers (0: " << describe(samplers[0]) << "), " << cache.size_bytes << " B x " << cache.ways << " ways, " << memory_name << ", stimulus "
                     << timing_name << ": " << r.failure;
       unit->reset();
       if (++failures >= 3) break;
     }
   }
-  std::printf("[ cached   ] descriptor table: %llu samples (%llu flagged by memory errors), %llu texture switches "
-              "between consecutive requests, %llu lines read, %d full tables of %d, %d block-format textures, %d sRGB "
-              "(%s)\n",
+  std::printf("[ cached   ] descriptor and sampler tables: %llu samples (%llu flagged by memory errors), %llu "
+              "texture and %llu sampler switches between consecutive requests, %llu lines read, %d full descriptor "
+              "tables of %d, %d full sampler tables of %d, %d block-format textures, %d sRGB (%s)\n",
               (unsigned long long)samples, (unsigned long long)flagged, (unsigned long long)switches,
-              (unsigned long long)reads, full_tables,
-              kMaxTextures, block_textures, srgb_textures, config.c_str());
+              (unsigned long long)sampler_switches, (unsigned long long)reads, full_tables, kMaxTextures,
+              full_samplers, kMaxSamplers, block_textures, srgb_textures, config.c_str());
   if (only) return;
   EXPECT_GT(full_tables, 0);
+  EXPECT_GT(full_samplers, 0);
+  EXPECT_GT(sampler_switches, samples / 2);
   EXPECT_GT(flagged, 0u);
   EXPECT_EQ(block_textures > 0, rc.formats);
   EXPECT_EQ(srgb_textures > 0, rc.formats);
   EXPECT_GT(switches, samples / 2);
 }
 
-TEST(RtlCached, DescriptorTableInterleavesTextures) { run_descriptor_tables("Vtex_cached_6x3", 40); }
+TEST(RtlCached, DescriptorAndSamplerTablesInterleave) { run_descriptor_tables("Vtex_cached_6x3", 40); }
 
 // With the sRGB tables (CW 16 filter, 8-bit memory): sRGB and linear textures of every format mixed
 // in one table; a model that filters an sRGB texture's codes as linear values is caught.
@@ -467,16 +476,17 @@ TEST(RtlCached, DescriptorTableMixesSrgbAndLinear) {
       for (uint16_t& c : t) c = uint16_t(c * 257);
   }
   const std::vector<Request> requests = random_requests(rng, 6, 3, 2000);
-  const TextureTable table = {{&srgb, Wrap::Repeat, Wrap::Repeat}}, wrong = {{&codes, Wrap::Repeat, Wrap::Repeat}};
+  const TextureTable table = {{&srgb}}, wrong = {{&codes}};
   const CacheParams cache{2048, 2};
-  EXPECT_EQ(run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr).failure, "");
+  EXPECT_EQ(run_case(*unit, table, SamplerTable{SamplerConfig{}}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr).failure, "");
   const CaseResult planted =
-      run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr, -1, 0, &wrong);
+      run_case(*unit, table, SamplerTable{SamplerConfig{}}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr, -1, 0, &wrong);
   EXPECT_EQ(planted.failure.rfind("sample ", 0), 0u) << planted.failure;
 }
 
-// Planted bugs: a model whose table has the entries' wrap modes swapped, or its entries in the
-// other order (each request then names the other texture), sees other samples.
+// Planted bugs: a model whose sampler table has the entries' wrap modes swapped, whose border
+// colours differ, or whose descriptor table has its entries in the other order (each request then
+// names the other texture), sees other samples.
 TEST(RtlCached, DescriptorTableCheckersCatchPlantedBugs) {
   const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
   auto unit = rtl::Driver::create(rc, {});
@@ -485,19 +495,35 @@ TEST(RtlCached, DescriptorTableCheckersCatchPlantedBugs) {
   const Pyramid a = build_pyramid(random_texture(64, 8, 8, 1), PyramidMode::Exact);
   const Pyramid b = build_pyramid(random_texture(32, 4, 8, 2), PyramidMode::Exact);
   std::vector<Request> requests = random_requests(rng, 6, 3, 2000);
-  for (Request& q : requests) q.texture = uint8_t(rng() % 2);
-  const TextureTable table = {{&a, Wrap::Repeat, Wrap::Clamp}, {&b, Wrap::Mirror, Wrap::Repeat}};
-  const TextureTable rewrapped = {{&a, Wrap::Mirror, Wrap::Repeat}, {&b, Wrap::Repeat, Wrap::Clamp}};
+  for (Request& q : requests) {
+    q.texture = uint8_t(rng() % 2);
+    q.sampler = uint8_t(rng() % 2);
+  }
+  const TextureTable table = {{&a}, {&b}};
+  SamplerTable samplers(2);
+  samplers[0].wrap_u = Wrap::Repeat;
+  samplers[0].wrap_v = Wrap::Clamp;
+  samplers[1].wrap_u = Wrap::Mirror;
+  samplers[1].wrap_v = Wrap::Border;
+  samplers[1].border = BorderColor::FloatOpaqueWhite;
+  SamplerTable rewrapped = samplers;
+  std::swap(rewrapped[0].wrap_u, rewrapped[1].wrap_u);
+  SamplerTable recoloured = samplers;
+  recoloured[1].border = BorderColor::FloatOpaqueBlack;
   const CacheParams cache{2048, 2};
-  const CaseResult good = run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr);
+  const CaseResult good = run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr);
   EXPECT_EQ(good.failure, "");
-  const CaseResult wrap =
-      run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr, -1, 0, &rewrapped);
+  const CaseResult wrap = run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr,
+                                   -1, 0, nullptr, {}, nullptr, &rewrapped);
   EXPECT_EQ(wrap.failure.rfind("sample ", 0), 0u) << wrap.failure;
   unit->reset();
+  const CaseResult colour = run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr,
+                                     -1, 0, nullptr, {}, nullptr, &recoloured);
+  EXPECT_EQ(colour.failure.rfind("sample ", 0), 0u) << colour.failure;
+  unit->reset();
   const TextureTable reordered = {table[1], table[0]};
-  const CaseResult order =
-      run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr, -1, 0, &reordered);
+  const CaseResult order = run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr,
+                                    -1, 0, &reordered);
   EXPECT_EQ(order.failure.rfind("sample ", 0), 0u) << order.failure;
 }
 
@@ -528,10 +554,10 @@ TEST(RtlCached, CheckersCatchPlantedBugs) {
   unit->reset();
   const Pyramid bc3 = random_block_texture(TexelFormat::Bc3, 6, 3, 5);
   const Pyramid as_bc2 = pyramid_of_blocks(TexelFormat::Bc2, 6, 3, bc3.blocks);
-  const TextureTable rtl_table = {{&bc3, Wrap::Repeat, Wrap::Repeat}}, model_table = {{&as_bc2, Wrap::Repeat, Wrap::Repeat}};
-  const CaseResult same = run_case(*unit, rtl_table, cfg, layout, cache, memory, requests, {}, 1, nullptr);
+  const TextureTable rtl_table = {{&bc3}}, model_table = {{&as_bc2}};
+  const CaseResult same = run_case(*unit, rtl_table, SamplerTable{cfg}, layout, cache, memory, requests, {}, 1, nullptr);
   EXPECT_EQ(same.failure, "");
-  const CaseResult misread = run_case(*unit, rtl_table, cfg, layout, cache, memory, requests, {}, 1, nullptr, nullptr, -1,
+  const CaseResult misread = run_case(*unit, rtl_table, SamplerTable{cfg}, layout, cache, memory, requests, {}, 1, nullptr, nullptr, -1,
                                     0, &model_table);
   EXPECT_EQ(misread.failure.rfind("sample ", 0), 0u) << misread.failure;
 }
@@ -547,24 +573,24 @@ TEST(RtlCached, MemoryErrorsFlagTheSamplesThatReadTheLine) {
   const Pyramid pyr = build_pyramid(random_texture(64, 8, 8, 9), PyramidMode::Exact);
   std::mt19937_64 rng(13);
   const std::vector<Request> requests = random_requests(rng, 6, 3, 3000);
-  const TextureTable table = {{&pyr, Wrap::Repeat, Wrap::Repeat}};
+  const TextureTable table = {{&pyr}};
   const CacheParams cache{2048, 2};
   rtl::MemoryTiming memory;
   memory.jitter = 40;
   memory.request_stall_prob = memory.response_stall_prob = 0.2;
   const std::vector<uint64_t> fifth = {5}, sixth = {6}, none = {};
-  const CaseResult good = run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, memory, requests, {}, 1,
+  const CaseResult good = run_case(*unit, table, SamplerTable{SamplerConfig{}}, LayoutParams{}, cache, memory, requests, {}, 1,
                                    nullptr, nullptr, -1, 0, nullptr, fifth);
   EXPECT_EQ(good.failure, "");
   EXPECT_EQ(good.samples, requests.size());
   EXPECT_GT(good.flagged, 0u);
   EXPECT_LT(good.flagged, requests.size() / 10);
   unit->reset();
-  const CaseResult late = run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, memory, requests, {}, 1,
+  const CaseResult late = run_case(*unit, table, SamplerTable{SamplerConfig{}}, LayoutParams{}, cache, memory, requests, {}, 1,
                                    nullptr, nullptr, -1, 0, nullptr, fifth, &sixth);
   EXPECT_NE(late.failure.find("rsp_error"), std::string::npos) << late.failure;
   unit->reset();
-  const CaseResult unseen = run_case(*unit, table, SamplerConfig{}, LayoutParams{}, cache, memory, requests, {}, 1,
+  const CaseResult unseen = run_case(*unit, table, SamplerTable{SamplerConfig{}}, LayoutParams{}, cache, memory, requests, {}, 1,
                                      nullptr, nullptr, -1, 0, nullptr, fifth, &none);
   EXPECT_NE(unseen.failure.find("RTL rsp_error 1, model 0"), std::string::npos) << unseen.failure;
 }

@@ -232,6 +232,7 @@ class FakeUnit : public rtl::Driver {
   void apply_cfg(const rtl::CfgPins&) override {}
   void apply_cache_pins(const rtl::CachePins&) override {}
   void apply_descriptor(const rtl::DescriptorPins&, bool) override {}
+  void apply_sampler(const rtl::SamplerPins&, bool) override {}
   void backdoor_write(int, int, uint32_t, uint64_t) override {}
   uint64_t backdoor_read(int, int, uint32_t) const override { return 0; }
   void close_trace_impl() override {}

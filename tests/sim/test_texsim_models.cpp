@@ -229,3 +229,35 @@ TEST_F(TexsimModels, CameraPathRendersEveryFrame) {
   EXPECT_NE(r.out.find("frame 2: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("total: "), std::string::npos) << r.out;
 }
+
+// A trace's `smp` column names the sampler of each request: texture 0 read through its own
+// sampler (repeat) and through list line 1's (clamp to border, red), interleaved, by the model and
+// the cached RTL, with the same results. A sampler beyond the list stops the run, nothing written.
+TEST_F(TexsimModels, TraceSamplerColumnPicksTheSampler) {
+  textured_quad("a", 3);
+  write_text(dir / "list.txt", "0 a.png repeat repeat\n1 a.png border border\n");
+  queries("tex,smp,u,v,lod\n0,0,-0.4,-0.4,0\n0,1,-0.4,-0.4,0\n0,0,-0.4,-0.4,0\n0,1,0.6,0.6,0\n");
+  const std::string common = "sample --textures list.txt --queries q.csv --memory cached --cache-kib 2 --min-filter nearest "
+                             "--mag-filter nearest --border-color 1,0,0,1 ";
+  for (const char* engine : {"model", "rtl"}) {
+    const Result r = run(common + "--engine " + engine + " --out " + engine + ".csv");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const std::string got = read_text(dir / "model.csv");
+  EXPECT_EQ(got, read_text(dir / "rtl.csv"));
+  // u = v = -0.4 of a 4x4 texture at level 0: texel -1.6 -> -2 (nearest), outside the texture.
+  // Repeat reads texel (2, 2); border gives the colour.
+  std::vector<std::string> img;  // the header, then one line per request
+  std::istringstream in(got);
+  for (std::string l; std::getline(in, l);) img.push_back(l);
+  ASSERT_EQ(img.size(), 5u) << got;
+  const int t22 = (3 * 37 + 2 * 11 + 2 * 5) & 255;  // textured_quad's texel (2, 2), red channel
+  EXPECT_EQ(img[1].substr(0, img[1].find(',')), std::to_string(t22)) << got;
+  EXPECT_EQ(img[2], "255,0,0,255") << got;
+  EXPECT_EQ(img[3], img[1]) << got;
+  EXPECT_NE(img[4], "255,0,0,255") << got;  // (0.6, 0.6) is inside: the texel, not the border
+  queries("tex,smp,u,v,lod\n0,2,0.5,0.5,0\n");
+  expect_clean_failure(common + "--out r.csv", "r.csv", {"sampler 2", "holds 2"});
+  queries("tex,smp,u,v,lod\n0,16,0.5,0.5,0\n");
+  expect_clean_failure(common + "--out r.csv", "r.csv", {"q.csv:2", "sampler", "16"});
+}

@@ -34,11 +34,11 @@ module tb_tex_unit #(
   logic clk = 1'b0;
   logic rst = 1'b1;
   logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w = 'x, cfg_log2_h = 'x;
-  logic [tex_pkg::WRAP_W-1:0]             cfg_wrap_u = 'x, cfg_wrap_v = 'x;
-  logic                                   cfg_texel_linear = 'x;
-  logic                                   cfg_mag_linear = 'x;
-  logic [tex_pkg::MIP_W-1:0]              cfg_mip_mode = 'x;
-  logic signed [tex_pkg::LOD_W-1:0]       cfg_lod_bias = 'x, cfg_min_lod = 'x, cfg_max_lod = 'x;
+  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_u = 'x, cfg_smp_wrap_v = 'x;
+  logic                                   cfg_smp_min_linear = 'x;
+  logic                                   cfg_smp_mag_linear = 'x;
+  logic [tex_pkg::MIP_W-1:0]              cfg_smp_mip_mode = 'x;
+  logic signed [tex_pkg::LOD_W-1:0]       cfg_smp_lod_bias = 'x, cfg_smp_min_lod = 'x, cfg_smp_max_lod = 'x;
   logic                                   wr_en = 1'b0;
   logic [tex_pkg::LEVEL_W-1:0]            wr_level = 'x;
   logic [tex_pkg::COORD_W-1:0]            wr_x = 'x, wr_y = 'x;
@@ -51,9 +51,9 @@ module tb_tex_unit #(
   // configuration (used by derivative requests only).
   logic                                   req_deriv = 'x;
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx = 'x, req_dvdx = 'x, req_dudy = 'x, req_dvdy = 'x;
-  logic [3:0]                             cfg_max_aniso_m1 = 'x;
-  logic                                   cfg_aniso_pow2 = 'x;
-  logic [63:0]                            cfg_border_rgba = 'x;
+  logic [3:0]                             cfg_smp_max_aniso_m1 = 'x;
+  logic                                   cfg_smp_aniso_pow2 = 'x;
+  logic [63:0]                            cfg_smp_border_rgba = 'x;
   logic [TAG_W-1:0]                       req_tag = 'x;
   logic                                   rsp_valid;
   logic                                   rsp_ready = 1'b0;
@@ -317,15 +317,15 @@ module tb_tex_unit #(
         if (accepted != answered) fail(2, "stimulus: cfg changed with requests in flight");
         cfg_log2_w = a0;
         cfg_log2_h = a1;
-        cfg_wrap_u = a2;
-        cfg_wrap_v = a3;
-        cfg_texel_linear = a4[0];
-        cfg_mip_mode = a5;
-        cfg_lod_bias = a6;
-        cfg_min_lod = a7;
-        cfg_max_lod = a8;
-        cfg_mag_linear = a9[0];
-        cfg_border_rgba = h0;
+        cfg_smp_wrap_u = a2;
+        cfg_smp_wrap_v = a3;
+        cfg_smp_min_linear = a4[0];
+        cfg_smp_mip_mode = a5;
+        cfg_smp_lod_bias = a6;
+        cfg_smp_min_lod = a7;
+        cfg_smp_max_lod = a8;
+        cfg_smp_mag_linear = a9[0];
+        cfg_smp_border_rgba = h0;
         configs++;
       end else if (op == "W") begin
         r = $fscanf(stim_fd, "%d %d %d %h", a0, a1, a2, h0);

@@ -29,7 +29,7 @@
 // random idle clocks; for each texture all 6 filters x 5 x 5 address modes (a random border colour
 // each), half of them with a
 // magnification filter apart from the minification filter, plus two cases with the reserved code
-// cfg_mip_mode = 3 (random lod bias and clamps), random requests: coordinates far outside [0, 1), near the texel edges and centres of
+// cfg_smp_mip_mode = 3 (random lod bias and clamps), random requests: coordinates far outside [0, 1), near the texel edges and centres of
 // every level, any 32-bit value; lambda across every level, on the level and rounding boundaries,
 // below 0, past the last level and any 16-bit value; random input gaps; rewrites of texels with
 // their own value while requests stream; resets with requests in flight.
@@ -230,7 +230,7 @@ int run(const Options& opt) {
         cases.push_back({f, Wrap(wu), Wrap(wv)});
         if ((wu + wv) % 2) cases.back().filter.mag = TexelFilter(1 - int(f.texel));  // magnifies apart
       }
-  // Plus two cases per texture with the reserved code (docs/rtl.md: cfg_mip_mode = 3 acts as
+  // Plus two cases per texture with the reserved code (docs/rtl.md: cfg_smp_mip_mode = 3 acts as
   // linear, as the model's code does); drawn per texture.
   constexpr size_t kReservedCases = 2;
   const size_t cases_per_texture = cases.size() + kReservedCases;

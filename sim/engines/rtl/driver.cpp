@@ -136,15 +136,23 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_dudy = r.deriv.dudy;
   in.req_dvdy = r.deriv.dvdy;
   in.req_tex = r.texture;
+  in.req_sampler = r.sampler;
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
   CfgPins c;
   c.log2_w = uint8_t(log2_w);
   c.log2_h = uint8_t(log2_h);
+  c.sampler = sampler_pins(config);
+  return c;
+}
+
+SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index) {
+  SamplerPins c;
+  c.index = index;
   c.wrap_u = uint8_t(config.wrap_u);
   c.wrap_v = uint8_t(config.wrap_v);
-  c.texel_linear = config.filter.texel == TexelFilter::Linear;
+  c.min_linear = config.filter.texel == TexelFilter::Linear;
   c.mag_linear = config.filter.mag == TexelFilter::Linear;
   c.mip_mode = uint8_t(config.filter.mip);
   c.lod_bias = int16_t(config.lod_bias);
@@ -249,21 +257,35 @@ void Driver::configure(const CfgPins& cfg) {
   cfg_ = cfg;
   apply_cfg(cfg);
   if (!config_.cached) return;
+  samplers_ = {cfg.sampler};
+  samplers_[0].index = 0;
   reset();  // the caches start empty under the new configuration
-  write_descriptors();
+  write_tables();
 }
 
-void Driver::write_descriptors() {
-  for (DescriptorPins d : descriptors_) {
-    if (wrap_from_cfg_) {
-      d.wrap_u = cfg_.wrap_u;
-      d.wrap_v = cfg_.wrap_v;
-    }
+void Driver::configure(const SamplerTable& samplers) {
+  if (!config_.cached) throw Error(config_.name + " has one sampler (the on-chip unit's cfg pins), no sampler table");
+  if (samplers.empty() || samplers.size() > size_t(config_.samplers))
+    throw Error(std::to_string(samplers.size()) + " samplers: " + config_.name + "'s sampler table holds 1 to " +
+                std::to_string(config_.samplers));
+  samplers_.clear();
+  for (size_t i = 0; i < samplers.size(); ++i) samplers_.push_back(sampler_pins(samplers[i], uint8_t(i)));
+  reset();
+  write_tables();
+}
+
+void Driver::write_tables() {
+  for (const DescriptorPins& d : descriptors_) {
     apply_descriptor(d, true);
     tick(PinsIn{});
     apply_descriptor(d, false);
   }
-  tick(PinsIn{});  // the last write lands in the table; requests may follow
+  for (const SamplerPins& s : samplers_) {
+    apply_sampler(s, true);
+    tick(PinsIn{});
+    apply_sampler(s, false);
+  }
+  tick(PinsIn{});  // the last write lands in its table; requests may follow
 }
 
 void Driver::load_textures(const TextureTable& textures) {
@@ -288,10 +310,8 @@ void Driver::load_textures(const TextureTable& textures) {
     const std::vector<uint8_t> bytes = build_memory_image(*textures[i].pyramid, layout);
     image.insert(image.end(), bytes.begin(), bytes.end());  // packed: each starts where the last ended
     descriptors_.push_back({uint8_t(i), layout.params().base, uint8_t(layout.log2_w0()), uint8_t(layout.log2_h0()),
-                            uint8_t(table[i].wrap_u), uint8_t(table[i].wrap_v), uint8_t(layout.format()),
-                            textures[i].pyramid->srgb});
+                            uint8_t(layout.format()), textures[i].pyramid->srgb});
   }
-  wrap_from_cfg_ = false;
   if (options_.memory_port) {
     port_ = options_.memory_port;
   } else {
@@ -302,7 +322,7 @@ void Driver::load_textures(const TextureTable& textures) {
   }
   apply_cache_pins(pins);
   reset();
-  write_descriptors();
+  write_tables();
 }
 
 void Driver::reset_counters() {
@@ -330,8 +350,7 @@ void Driver::load(const Pyramid& pyramid, LoadMethod method) {
     if (method == LoadMethod::Port)
       throw Error(config_.name + " has no texture write port: a cached unit reads its texture from memory "
                   "(use --load backdoor)");
-    load_textures({{&pyramid, Wrap(cfg_.wrap_u), Wrap(cfg_.wrap_v)}});
-    wrap_from_cfg_ = true;  // configure() sets them
+    load_textures({{&pyramid}});
     return;
   }
   if (method == LoadMethod::Backdoor) {

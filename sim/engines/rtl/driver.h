@@ -38,6 +38,7 @@ struct RtlConfig {
   // BLOCK_FORMATS = SRGB = 1: BC1-BC5 and BC7 blocks and sRGB codes decoded after the cache, 8-bit
   // channels in memory, a CW = 16 filter (a linear 8-bit texture's values enter it as they are).
   bool formats = false;
+  int samplers = 1;              // SAMPLERS: sampler-table entries (tex_unit: its one sampler)
   int memory_channel_bits() const { return formats ? 8 : cw; }
   int line_bytes() const { return block_w * block_h * (memory_channel_bits() > 8 ? 8 : 4); }
   Memory memory() const { return cached ? Memory::Cached : Memory::OnChip; }
@@ -93,6 +94,7 @@ struct PinsIn {
   int32_t req_dudx = 0, req_dvdx = 0, req_dudy = 0, req_dvdy = 0;  // Q8.24
   uint16_t req_tag = 0;
   uint8_t req_tex = 0;           // tex_unit_cached: the descriptor-table entry
+  uint8_t req_sampler = 0;       // tex_unit_cached: the sampler-table entry
   bool rsp_ready = true;
   // AXI4 read port of tex_unit_cached: driven by the driver's memory model (ignored otherwise).
   bool ar_ready = false;
@@ -128,22 +130,29 @@ struct DescriptorPins {
   uint8_t index = 0;
   uint32_t base = 0;  // byte address of level 0
   uint8_t log2_w = 0, log2_h = 0;
-  uint8_t wrap_u = 0, wrap_v = 0;
   uint8_t format = 0;  // tex_pkg::FMT_* = TexelFormat
   bool srgb = false;   // R, G, B are sRGB codes (a configuration with the formats)
 };
 
-// Static configuration pins.
-struct CfgPins {
-  uint8_t log2_w = 0, log2_h = 0;
+// One sampler, the cfg_smp_* pins (SamplerConfig field for field): tex_unit's static pins, or
+// the data of a write of tex_unit_cached's sampler table (entry `index`).
+struct SamplerPins {
+  uint8_t index = 0;
   uint8_t wrap_u = 0, wrap_v = 0;
-  bool texel_linear = true;  // the minification filter's texel filter
+  bool min_linear = true;    // the minification filter's texel filter
   bool mag_linear = true;    // the magnification filter (where lambda' <= 0)
   uint8_t mip_mode = 2;
   int16_t lod_bias = 0, min_lod = 0, max_lod = 0;
   uint8_t max_aniso_m1 = 0;  // probes per sample at most, less one (0: trilinear)
   bool aniso_pow2 = false;
   uint64_t border_rgba = 0;  // the border colour, {A, B, G, R} unorm16
+};
+SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index = 0);
+
+// Static configuration pins: tex_unit's texture size and its one sampler.
+struct CfgPins {
+  uint8_t log2_w = 0, log2_h = 0;
+  SamplerPins sampler;
 };
 CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h);
 
@@ -237,15 +246,19 @@ class Driver {
   // tex::Error for tex_unit_cached (its texels are in memory) or a texel outside the memories.
   Texel peek_texel(int level, int x, int y) const;
   // tex_unit_cached: several textures in memory (packed from the layout's base, as
-  // texture_descriptors() does) and in the descriptor table, each with its wrap modes; requests
-  // name them by Request::texture. (load() of one pyramid is a table of one whose wrap modes are
-  // the cfg pins'.) Throws tex::Error when a texture does not fit the configuration or the table.
+  // texture_descriptors() does) and in the descriptor table; requests name them by
+  // Request::texture. (load() of one pyramid is a table of one.) Throws tex::Error when a texture
+  // does not fit the configuration or the table.
   void load_textures(const TextureTable& textures);
-  // The cfg pins; a cached unit then starts empty (a reset) and its descriptors are written again.
+  // The cfg pins: tex_unit's, or tex_unit_cached's sampler table of one entry (cfg.sampler); a
+  // cached unit then starts empty (a reset) and its descriptors and samplers are written again.
   void configure(const CfgPins& cfg);
   void configure(const SamplerConfig& config, const Pyramid& pyramid) {
     configure(cfg_pins(config, pyramid.log2_w0(), pyramid.log2_h0()));
   }
+  // tex_unit_cached: the sampler table (requests name an entry by Request::sampler), after a reset
+  // with the descriptors. Throws tex::Error for tex_unit or more samplers than the table holds.
+  void configure(const SamplerTable& samplers);
 
   // One clock of the request/response protocol. `offer` is presented on the request pins (nullptr:
   // req_valid low), tagged with its sequence number mod 2^16; once offered it must be offered again
@@ -306,6 +319,8 @@ class Driver {
   virtual void apply_cache_pins(const CachePins& pins) = 0;  // tex_unit_cached only
   // tex_unit_cached: the cfg_desc_* pins, cfg_desc_we = `write` (set for one clock, then cleared).
   virtual void apply_descriptor(const DescriptorPins& pins, bool write) = 0;
+  // tex_unit_cached: the cfg_smp_* pins, cfg_smp_we = `write` (likewise).
+  virtual void apply_sampler(const SamplerPins& pins, bool write) = 0;
   // Writes one word into the bank memory of `level` holding texels of parity `bank`.
   virtual void backdoor_write(int level, int bank, uint32_t word, uint64_t data) = 0;
   virtual uint64_t backdoor_read(int level, int bank, uint32_t word) const = 0;
@@ -320,8 +335,7 @@ class Driver {
   [[noreturn]] void fail_finished();
   // An AR request's burst: one INCR burst of a whole line (a tex::SimulationError otherwise).
   void check_burst(const PinsOut& out) const;
-  void write_descriptors();   // cached: descriptors_ into the table (the wrap modes of a
-                              // single load()ed texture from cfg_), then an idle clock
+  void write_tables();  // cached: descriptors_ and samplers_ into the tables, then an idle clock
 
   uint64_t cycle_ = 0;
   uint64_t load_cycles_ = 0;
@@ -340,7 +354,7 @@ class Driver {
   MemoryCounters memory_counters_;
   CfgPins cfg_;
   std::vector<DescriptorPins> descriptors_;  // cached: the table as loaded
-  bool wrap_from_cfg_ = false;               // cached: one texture from load(): its wrap modes are cfg_'s
+  std::vector<SamplerPins> samplers_;        // cached: the sampler table as configured
 };
 
 // ---------------------------------------------------------------- stimulus

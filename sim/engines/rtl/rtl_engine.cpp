@@ -12,19 +12,24 @@ namespace tex::rtl {
 
 namespace {
 
-// Checks each request against the RTL's ports as it is read.
+// Checks each request against the RTL's ports and the frame's tables as it is read.
 class CheckedSource final : public RequestSource {
  public:
-  explicit CheckedSource(RequestSource& inner) : inner_(inner) {}
+  CheckedSource(RequestSource& inner, size_t textures, size_t samplers)
+      : inner_(inner), textures_(textures), samplers_(samplers) {}
   size_t read(Request* out, size_t max) override {
     const size_t n = inner_.read(out, max);
-    for (size_t i = 0; i < n; ++i) check_request(out[i], count_ + i);
+    for (size_t i = 0; i < n; ++i) {
+      check_request(out[i], count_ + i);
+      check_request_tables(out[i], textures_, samplers_);
+    }
     count_ += n;
     return n;
   }
 
  private:
   RequestSource& inner_;
+  size_t textures_, samplers_;
   size_t count_ = 0;
 };
 
@@ -49,27 +54,26 @@ class RtlEngine final : public Engine {
 
   EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
                   TexelSink& sink) override {
-    return run(TextureTable{{&pyramid, config.wrap_u, config.wrap_v}}, config, source, sink);
+    return run(TextureTable{{&pyramid}}, SamplerTable{config}, source, sink);
   }
 
-  EngineStats run(const TextureTable& textures, const SamplerConfig& sampling, RequestSource& source,
+  EngineStats run(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
                   TexelSink& sink) override {
     const bool cached = options_.memory == Memory::Cached;
-    if (textures.empty()) throw Error("engine rtl: no texture");
+    check_tables(textures, samplers);
     if (!cached && textures.size() > 1)
       throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one (the paper's design); "
                   "use --memory cached");
+    if (!cached && samplers.size() > 1)
+      throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one; use --memory cached");
     const Pyramid& pyramid = *textures[0].pyramid;
-    SamplerConfig config = sampling;  // the on-chip unit's wrap pins: its one texture's
-    config.wrap_u = textures[0].wrap_u;
-    config.wrap_v = textures[0].wrap_v;
     const RtlConfig& rc =
         smallest_config_for(textures, options_.memory, options_.layout.block_w, options_.layout.block_h);
     for (const BoundTexture& t : textures) check_inputs(rc, *t.pyramid);
     std::optional<TextureCache> cache;
     if (cached) {
       cache_pins(rc, options_.layout, options_.cache, options_.fifo_depth);  // the geometry fits the configuration
-      cache.emplace(texture_descriptors(textures, options_), options_.cache, config);
+      cache.emplace(texture_descriptors(textures, options_), options_.cache, samplers);
       cache->set_error_reads(options_.mem_error_reads);
     }
 
@@ -79,12 +83,16 @@ class RtlEngine final : public Engine {
     if (cached && options_.load == LoadMethod::Port)
       throw Error(rc.name + " has no texture write port: a cached unit reads its texture from memory "
                   "(use --load backdoor)");
-    if (cached) unit->load_textures(textures);
-    else unit->load(pyramid, options_.load);
-    unit->configure(config, pyramid);
+    if (cached) {
+      unit->load_textures(textures);
+      unit->configure(samplers);
+    } else {
+      unit->load(pyramid, options_.load);
+      unit->configure(samplers[0], pyramid);
+    }
     const auto t1 = std::chrono::steady_clock::now();
 
-    CheckedSource checked(source);
+    CheckedSource checked(source, textures.size(), samplers.size());
     std::optional<MissChecker> misses;
     std::optional<PredictingSource> predicting;
     if (cached) predicting.emplace(checked, misses.emplace(*cache, options_.miss_sink));

@@ -51,6 +51,7 @@ class VerilatedTexUnit final : public Driver {
     if constexpr (kCached) {
       find_statistics();
       apply_descriptor(DescriptorPins{}, false);  // no write until one is asked for (the pins start random)
+      apply_sampler(SamplerPins{}, false);
     } else {
       find_banks();
     }
@@ -76,6 +77,7 @@ class VerilatedTexUnit final : public Driver {
       t.m_axi_rlast = in.r_last;
       t.m_axi_rid = 0;
       t.req_tex = in.req_tex;
+      t.req_sampler = in.req_sampler;
     } else {
       t.wr_en = in.wr_en;
       t.wr_level = in.wr_level;
@@ -123,24 +125,42 @@ class VerilatedTexUnit final : public Driver {
     return out;
   }
 
-  void apply_cfg(const CfgPins& c) override {
+  // The cfg_smp_* pins: tex_unit's one sampler, or the data of a sampler-table write.
+  void set_sampler_pins(const SamplerPins& c) {
     Top& t = *top_;
-    if constexpr (!kCached) {  // the cached unit's texture sizes and wrap modes are its descriptors'
+    t.cfg_smp_wrap_u = c.wrap_u;
+    t.cfg_smp_wrap_v = c.wrap_v;
+    t.cfg_smp_border_rgba = c.border_rgba;
+    t.cfg_smp_min_linear = c.min_linear;
+    t.cfg_smp_mag_linear = c.mag_linear;
+    t.cfg_smp_mip_mode = c.mip_mode;
+    t.cfg_smp_lod_bias = uint16_t(c.lod_bias);
+    t.cfg_smp_min_lod = uint16_t(c.min_lod);
+    t.cfg_smp_max_lod = uint16_t(c.max_lod);
+    t.cfg_smp_max_aniso_m1 = c.max_aniso_m1;
+    t.cfg_smp_aniso_pow2 = c.aniso_pow2;
+  }
+
+  void apply_cfg(const CfgPins& c) override {
+    if constexpr (!kCached) {  // the cached unit's sizes and samplers are its tables'
+      Top& t = *top_;
       t.cfg_log2_w = c.log2_w;
       t.cfg_log2_h = c.log2_h;
-      t.cfg_wrap_u = c.wrap_u;
-      t.cfg_wrap_v = c.wrap_v;
+      set_sampler_pins(c.sampler);
+      t.eval();
     }
-    t.cfg_border_rgba = c.border_rgba;
-    t.cfg_texel_linear = c.texel_linear;
-    t.cfg_mag_linear = c.mag_linear;
-    t.cfg_mip_mode = c.mip_mode;
-    t.cfg_lod_bias = uint16_t(c.lod_bias);
-    t.cfg_min_lod = uint16_t(c.min_lod);
-    t.cfg_max_lod = uint16_t(c.max_lod);
-    t.cfg_max_aniso_m1 = c.max_aniso_m1;
-    t.cfg_aniso_pow2 = c.aniso_pow2;
-    t.eval();
+  }
+
+  void apply_sampler(const SamplerPins& s, bool write) override {
+    if constexpr (kCached) {
+      Top& t = *top_;
+      t.cfg_smp_we = write;
+      t.cfg_smp_index = s.index;
+      set_sampler_pins(s);
+      t.eval();
+    } else {
+      throw Error(config_.name + " has no sampler table");
+    }
   }
 
   void apply_descriptor(const DescriptorPins& d, bool write) override {
@@ -151,8 +171,6 @@ class VerilatedTexUnit final : public Driver {
       t.cfg_desc_base = d.base;
       t.cfg_desc_log2_w = d.log2_w;
       t.cfg_desc_log2_h = d.log2_h;
-      t.cfg_desc_wrap_u = d.wrap_u;
-      t.cfg_desc_wrap_v = d.wrap_v;
       t.cfg_desc_format = d.format;
       t.cfg_desc_srgb = d.srgb;
       t.eval();
@@ -264,7 +282,8 @@ class VerilatedTexUnit final : public Driver {
 
 const std::vector<RtlConfig>& compiled_configs() {
 #define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, formats) \
-  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, cached ? kMaxTextures : 1, 4, formats != 0},
+  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, cached ? kMaxTextures : 1, 4, \
+            formats != 0, cached ? kMaxSamplers : 1},
   static const std::vector<RtlConfig> configs = {TEX_RTL_CONFIGS(TEX_RTL_CONFIG_ENTRY)};
 #undef TEX_RTL_CONFIG_ENTRY
   return configs;
