@@ -71,6 +71,10 @@ bool parse_texel_filter(const std::string& name, TexelFilter& out) {
 
 std::string texel_filter_name(TexelFilter f) { return f == TexelFilter::Nearest ? "nearest" : "linear"; }
 
+std::string mip_mode_name(MipMode m) {
+  return m == MipMode::None ? "none" : m == MipMode::Nearest ? "nearest" : "linear";
+}
+
 bool parse_mip_mode(const std::string& name, MipMode& out) {
   const std::string k = name_key(name, "vk_sampler_mipmap_mode_");
   if (k == "none") out = MipMode::None;

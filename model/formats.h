@@ -76,6 +76,7 @@ bool parse_texel_filter(const std::string& name, TexelFilter& out);
 std::string texel_filter_name(TexelFilter f);
 // none | nearest | linear (a mipmapMode; "none": the base level only).
 bool parse_mip_mode(const std::string& name, MipMode& out);
+std::string mip_mode_name(MipMode m);
 // repeat | clamp | mirror | border | mirror-clamp, and the GL and Vulkan names (GL_CLAMP_TO_EDGE,
 // mirrored_repeat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER, ...: case and prefix ignored).
 bool parse_wrap(const std::string& name, Wrap& out);

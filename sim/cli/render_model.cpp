@@ -60,6 +60,13 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   if (scene.textures.size() > size_t(kMaxTextures))
     throw Error("the scene has " + std::to_string(scene.textures.size()) + " textures; the descriptor table holds " +
                 std::to_string(kMaxTextures));
+  // Several textures need the cached unit's descriptor table: chosen unless --memory says otherwise.
+  const bool memory_chosen = scene.textures.size() > 1 && eo.memory != Memory::Cached && !o.memory_opt->count();
+  if (memory_chosen) {
+    const std::string trace_path = eo.trace_path;
+    eo = o.engine_options(Memory::Cached);
+    eo.trace_path = trace_path;
+  }
   if (scene.textures.size() > 1 && eo.memory != Memory::Cached)
     throw Error("the scene has " + std::to_string(scene.textures.size()) +
                 " textures; the on-chip unit holds one (the paper's design): use --memory cached");
@@ -69,7 +76,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   std::vector<Pyramid> pyramids;
   pyramids.reserve(scene.textures.size());
   TextureTable table;
-  SamplerTable samplers;  // entry i: texture i's (the options' sampler with its wrap modes)
+  SamplerTable samplers;  // entry i: texture i's (the options' sampler with its file's filters and wrap modes)
   for (const SceneTexture& t : scene.textures) {
     // --format for every texture; sRGB where the file says so (glTF 2 base colour) or --srgb.
     TextureOptions topts = o.texture_options();
@@ -80,12 +87,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
       throw Error(t.source + " (" + t.material + (t.srgb ? ", sRGB base colour" : "") + "): " + e.what());
     }
     table.push_back({&pyramids.back()});
-    SamplerConfig s = cfg;
-    if (!a.wrap_given) {
-      s.wrap_u = t.wrap_u;
-      s.wrap_v = t.wrap_v;
-    }
-    samplers.push_back(s);
+    samplers.push_back(file_sampler(t, cfg, a.filter_given, a.wrap_given));
   }
   const uint64_t resident = texture_bytes_resident(table, eo);  // also checks the table fits the memory
 
@@ -157,13 +159,16 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   if (query_writer) queries_out->close();
   if (list_out) {
     std::FILE* list = list_out->open();
-    std::fprintf(list, "# texture list of %s: id file wrap_u wrap_v [srgb] (texsim sample --textures)\n",
+    std::fprintf(list, "# texture list of %s: id file wrap_u wrap_v [srgb] min= mag= mip= (texsim sample --textures)\n",
                  a.trace_queries.c_str());
     for (size_t t = 0; t < scene.textures.size(); ++t) {
       save_image(scene.textures[t].image, *texture_files[t]);
-      std::fprintf(list, "%zu %s %s %s%s\n", t, std::filesystem::path(texture_files[t]->path()).filename().c_str(),
+      const Filter& fl = samplers[t].filter;
+      std::fprintf(list, "%zu %s %s %s%s min=%s mag=%s mip=%s\n", t,
+                   std::filesystem::path(texture_files[t]->path()).filename().c_str(),
                    wrap_name(samplers[t].wrap_u).c_str(), wrap_name(samplers[t].wrap_v).c_str(),
-                   table[t].pyramid->srgb ? " srgb" : "");
+                   table[t].pyramid->srgb ? " srgb" : "", texel_filter_name(fl.texel).c_str(),
+                   texel_filter_name(fl.mag).c_str(), mip_mode_name(fl.mip).c_str());
     }
     list_out->close();
   }
@@ -176,12 +181,16 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   print_cycle_stats(last_stats, eo);
   print_probe_stats(last_stats);
   std::printf("  %s%s\n", first == last ? "" : "total: ", total.summary().c_str());
+  std::string filters;  // the samplers' filters, each once (a glTF file may give each texture its own)
+  for (const SamplerConfig& smp : samplers)
+    if (const std::string n = filter_name(smp.filter); (", " + filters + ", ").find(", " + n + ", ") == std::string::npos)
+      filters += (filters.empty() ? "" : ", ") + n;
   std::printf("texsim render: %s, %zu meshes, %zu textures, %dx%d, frame%s %d..%d of %d, %s, %s order, engine %s, "
-              "%s memory -> %s (%.2f s)\n",
+              "%s memory%s -> %s (%.2f s)\n",
               a.model.empty() ? a.scene_file.c_str() : a.model.c_str(), scene.meshes.size(), scene.textures.size(),
-              a.width, a.height, first == last ? "" : "s", first, last, a.frames, filter_name(cfg.filter).c_str(),
+              a.width, a.height, first == last ? "" : "s", first, last, a.frames, filters.c_str(),
               a.order == PixelOrder::Tiled ? "tiled" : "scanline", o.engine.c_str(), memory_name(eo.memory).c_str(),
-              a.out.c_str(), secs);
+              memory_chosen ? " (chosen: the on-chip unit holds one texture)" : "", a.out.c_str(), secs);
   return 0;
 }
 

@@ -15,6 +15,7 @@ struct ModelRenderArgs {
   int frame = 0, frames = 1;
   bool all_frames = false;            // --frames M without --frame: every frame to OUT_000.png ...
   bool wrap_given = false;            // --wrap* replace the model's wrap modes
+  bool filter_given = false;          // --filter, --min-filter, ... replace the model's (glTF) filters
   PixelOrder order = PixelOrder::Tiled;
   int tile = 8;
 };

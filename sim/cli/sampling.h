@@ -90,7 +90,7 @@ struct SamplingOptions {
   std::string miss_trace;
   std::string response_clocks;
   bool no_timing = false;
-  CLI::Option *wrap_u_opt = nullptr, *wrap_v_opt = nullptr, *texture_opt = nullptr;
+  CLI::Option *wrap_u_opt = nullptr, *wrap_v_opt = nullptr, *texture_opt = nullptr, *memory_opt = nullptr;
   std::vector<CLI::Option*> cached_opts;  // meaningful with --memory cached only
 
   void add_to(CLI::App& cmd) {
@@ -149,7 +149,7 @@ struct SamplingOptions {
                    "(engines model, rtl: the same file from both; systemc: its TLM-2.0 initiator's timing)");
     cmd.add_flag("--no-timing", no_timing,
                  "engine model: skip the timing model (no cycles, samples/clock or response clocks; faster)");
-    cmd.add_option("--memory", memory,
+    memory_opt = cmd.add_option("--memory", memory,
                    "onchip | cached: per-level memories, or the pyramid in external memory behind two caches "
                    "(engines model, rtl; docs/memory.md)")
         ->capture_default_str();
@@ -258,8 +258,9 @@ struct SamplingOptions {
     return t;
   }
 
-  // Also checks that the engine exists and can honour the options (before any work).
-  EngineOptions engine_options() const {
+  // Also checks that the engine exists and can honour the options (before any work). `memory`:
+  // the memory organisation to use instead of --memory's (a frame that needs the cached unit).
+  EngineOptions engine_options(std::optional<Memory> memory_instead = {}) const {
     EngineOptions o;
     if (!parse_stalls(stalls, o.stalls)) throw Error("unknown --stalls " + quote_clipped(stalls) + " (none, random, heavy)");
     if (!parse_load_method(load, o.load)) throw Error("unknown --load " + quote_clipped(load) + " (backdoor, port)");
@@ -275,6 +276,7 @@ struct SamplingOptions {
       if (o.trace_end < o.trace_begin) throw Error("--trace-window " + quote_clipped(trace_window) + ": LAST < FIRST");
     }
     if (!parse_memory(memory, o.memory)) throw Error("unknown --memory " + quote_clipped(memory) + " (onchip, cached)");
+    if (memory_instead) o.memory = *memory_instead;
     if (o.memory == Memory::Cached) {
       const uint64_t kib = parse_unsigned(cache_kib, "--cache-kib");
       if (kib == 0 || kib > 1024) throw Error("--cache-kib " + cache_kib + " is outside 1..1024");

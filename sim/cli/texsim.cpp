@@ -25,46 +25,83 @@ namespace {
 
 using namespace tex;
 
-// --textures FILE: one `id path [wrap_u [wrap_v [srgb]]]` per line (ids 0, 1, ... in order; paths
-// relative to the file; wrap modes default to --wrap*; `srgb`: the texels are sRGB codes), the
-// descriptor table of a frame's trace.
+// --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [min=F] [mag=F] [mip=M] [border=C]` per
+// line (ids 0, 1, ... in order; paths relative to the file; `srgb`: the texels are sRGB codes).
+// Line t is texture t of the descriptor table and sampler t of the sampler table: the options'
+// sampler with the line's wrap modes and fields (min: nearest | linear | a GL minification name;
+// mag: nearest | linear; mip: none | nearest | linear; border: a border colour name).
 struct TextureListEntry {
   std::string path;
-  Wrap wrap_u, wrap_v;
+  SamplerConfig sampler;
   bool srgb = false;
 };
 std::vector<TextureListEntry> read_texture_list(const std::string& path, const SamplerConfig& cfg) {
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (!f) throw Error(path + ": cannot open texture list");
+  const std::string form = "`id path [wrap_u [wrap_v]] [srgb] [min=F] [mag=F] [mip=M] [border=C]`";
   std::vector<TextureListEntry> out;
   char buf[4096];
   int line_no = 0;
-  while (std::fgets(buf, sizeof buf, f)) {
-    ++line_no;
-    std::istringstream line(buf);
-    std::string id, file, wu, wv, flag, extra;
-    line >> id;
-    if (id.empty() || id[0] == '#') continue;
-    line >> file >> wu >> wv >> flag >> extra;
-    const std::string at = path + ":" + std::to_string(line_no) + ": ";
-    if (id != std::to_string(out.size()))
-      throw Error(at + "texture id " + quote_clipped(id) + ": expected " + std::to_string(out.size()) + " (ids 0, 1, ... in order)");
-    if (file.empty()) throw Error(at + "expected `id path [wrap_u [wrap_v [srgb]]]`");
-    if (!flag.empty() && flag != "srgb")
-      throw Error(at + "unexpected " + quote_clipped(flag) + " after the wrap modes (srgb, or nothing)");
-    if (!extra.empty()) throw Error(at + "unexpected " + quote_clipped(extra) + " after srgb");
-    TextureListEntry e{file, cfg.wrap_u, cfg.wrap_v, flag == "srgb"};
-    if (std::filesystem::path(file).is_relative()) e.path = (std::filesystem::path(path).parent_path() / file).string();
-    if (!wu.empty() && !parse_wrap(wu, e.wrap_u)) throw Error(at + "unknown wrap mode " + quote_clipped(wu) + " (repeat, clamp, mirror)");
-    if (!wv.empty() && !parse_wrap(wv, e.wrap_v)) throw Error(at + "unknown wrap mode " + quote_clipped(wv) + " (repeat, clamp, mirror)");
-    if (wv.empty()) e.wrap_v = wu.empty() ? e.wrap_v : e.wrap_u;
-    if (out.size() == size_t(kMaxTextures))
-      throw Error(at + "more than " + std::to_string(kMaxTextures) + " textures: the descriptor table holds " +
-                  std::to_string(kMaxTextures));
-    out.push_back(e);
+  try {
+    while (std::fgets(buf, sizeof buf, f)) {
+      ++line_no;
+      std::istringstream line(buf);
+      std::string id, file;
+      line >> id;
+      if (id.empty() || id[0] == '#') continue;
+      line >> file;
+      const std::string at = path + ":" + std::to_string(line_no) + ": ";
+      if (id != std::to_string(out.size()))
+        throw Error(at + "texture id " + quote_clipped(id) + ": expected " + std::to_string(out.size()) + " (ids 0, 1, ... in order)");
+      if (file.empty()) throw Error(at + "expected " + form);
+      TextureListEntry e{file, cfg, false};
+      if (std::filesystem::path(file).is_relative()) e.path = (std::filesystem::path(path).parent_path() / file).string();
+      int wraps = 0;
+      for (std::string token; line >> token;) {
+        const size_t eq = token.find('=');
+        if (eq == std::string::npos) {
+          if (token == "srgb" && !e.srgb) {
+            e.srgb = true;
+          } else if (wraps < 2 && !e.srgb) {
+            Wrap& w = wraps == 0 ? e.sampler.wrap_u : e.sampler.wrap_v;
+            if (!parse_wrap(token, w)) throw Error(at + "unknown wrap mode " + quote_clipped(token) + " (" + kWrapNames + ")");
+            if (wraps++ == 0) e.sampler.wrap_v = w;  // one mode: both axes
+          } else {
+            throw Error(at + "unexpected " + quote_clipped(token) + " (" + form + ")");
+          }
+          continue;
+        }
+        const std::string key = token.substr(0, eq), value = token.substr(eq + 1);
+        Filter& fl = e.sampler.filter;
+        if (key == "min") {
+          Filter gl;  // a GL minification name sets the mip mode too
+          if (parse_texel_filter(value, fl.texel)) continue;
+          if (!parse_filter(value, gl) || gl.anisotropic)
+            throw Error(at + "min=" + quote_clipped(value) + ": not a minification filter (nearest, linear, or a GL name)");
+          fl.texel = gl.texel;
+          fl.mip = gl.mip;
+        } else if (key == "mag") {
+          if (!parse_texel_filter(value, fl.mag)) throw Error(at + "mag=" + quote_clipped(value) + ": not nearest or linear");
+        } else if (key == "mip") {
+          if (!parse_mip_mode(value, fl.mip)) throw Error(at + "mip=" + quote_clipped(value) + ": not none, nearest or linear");
+        } else if (key == "border") {
+          if (!parse_border_color(value, e.sampler.border))
+            throw Error(at + "border=" + quote_clipped(value) + ": not a border colour name (transparent-black, ...)");
+        } else {
+          throw Error(at + "unknown sampler field " + quote_clipped(key) + " (min, mag, mip, border)");
+        }
+      }
+      if (out.size() == size_t(kMaxTextures))
+        throw Error(at + "more than " + std::to_string(kMaxTextures) + " textures: the descriptor table holds " +
+                    std::to_string(kMaxTextures));
+      out.push_back(e);
+    }
+  } catch (...) {
+    std::fclose(f);
+    throw;
   }
   std::fclose(f);
-  if (out.empty()) throw Error(path + ": no textures listed (one `id path [wrap_u [wrap_v [srgb]]]` per line)");
+  if (out.empty()) throw Error(path + ": no textures listed (one " + form + " per line)");
   return out;
 }
 
@@ -84,7 +121,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
     for (const TextureListEntry& e : list) outputs.add_input(e.path, "--textures");
   } else {
     o.add_inputs(outputs);
-    list.push_back({o.texture, cfg.wrap_u, cfg.wrap_v});
+    list.push_back({o.texture, cfg, false});
   }
   outputs.add_input(queries_path, "--queries");
   OutputFile& result = outputs.declare(out_path, "--out");
@@ -115,16 +152,13 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   std::vector<Pyramid> pyramids;
   pyramids.reserve(list.size());
   TextureTable table;
-  SamplerTable samplers;  // entry i: the options' sampler with list entry i's wrap modes
+  SamplerTable samplers;  // entry i: list line i's
   for (const TextureListEntry& e : list) {
     TextureOptions entry = topts;
     entry.srgb = entry.srgb || e.srgb;
     pyramids.push_back(load_pyramid(e.path, entry));
     table.push_back({&pyramids.back()});
-    SamplerConfig s = cfg;
-    s.wrap_u = e.wrap_u;
-    s.wrap_v = e.wrap_v;
-    samplers.push_back(s);
+    samplers.push_back(e.sampler);
   }
   if (query_error) std::rethrow_exception(query_error);
   const bool kept = parser && parser->kept();
@@ -517,6 +551,8 @@ int main(int argc, char** argv) {
         model_args.frames = frames;
         model_args.all_frames = frames > 1 && frame_opt->count() == 0;
         model_args.wrap_given = wrap_given;
+        model_args.filter_given = render->count("--filter") + render->count("--min-filter") +
+                                      render->count("--mag-filter") + render->count("--mipmap-mode") > 0;
         model_args.order = so.order;
         model_args.tile = tile;
         return cmd_render_model(render_opts, model_args);

@@ -75,7 +75,8 @@ UnitShape model_unit_shape(const TextureTable& textures, const EngineOptions& op
   beat_bytes = 16;
   try {
     const rtl::RtlConfig& rc =
-        rtl::smallest_config_for(textures, options.memory, options.layout.block_w, options.layout.block_h);
+        rtl::smallest_config_for(textures, options.memory, options.layout.block_w, options.layout.block_h,
+                                 &options.cache, options.fifo_depth);
     if (options.memory == Memory::Cached) {
       rtl::cache_pins(rc, options.layout, options.cache, options.fifo_depth);
       if (options.mem_bytes_per_clock > uint32_t(rc.mem_bits / 8)) throw Error("wider than the configuration's beat");

@@ -346,8 +346,10 @@ void expand_points(Sweep& s) {
 std::string rtl_unavailable(const Sweep& s, const Point& p) {
   const Workload& w = s.workloads[p.workload];
   try {
-    const rtl::RtlConfig& rc = rtl::smallest_config_for(w.table(), Memory::Cached, p.layout.block_w, p.layout.block_h);
-    rtl::cache_pins(rc, p.layout, cache_of(p), p.fifo);
+    const CacheParams cache = cache_of(p);
+    const rtl::RtlConfig& rc = rtl::smallest_config_for(w.table(), Memory::Cached, p.layout.block_w, p.layout.block_h,
+                                                        &cache, p.fifo);
+    rtl::cache_pins(rc, p.layout, cache, p.fifo);
     if (p.bandwidth > uint32_t(rc.line_bytes())) throw Error("the bandwidth is more than a line per clock");
   } catch (const Error& e) {
     return e.what();

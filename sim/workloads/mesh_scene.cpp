@@ -2,6 +2,7 @@
 // (OpenImageIO). Everything the rasterizer needs is copied out of Assimp's scene here.
 #include "workloads/mesh_scene.h"
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -19,6 +20,7 @@
 #include <tuple>
 
 #include "model/error.h"
+#include "workloads/text.h"
 #include "workloads/texture_io.h"
 
 namespace tex {
@@ -85,9 +87,9 @@ class SceneTextureSet {
  public:
   explicit SceneTextureSet(MeshScene& scene) : scene_(scene) {}
 
-  // The index of the entry for (source, wrap modes, sRGB or not), or -1.
-  int find(const std::string& source, Wrap u, Wrap v, bool srgb) const {
-    const auto it = ids_.find({key(source), u, v, srgb});
+  // The index of the entry for (source, sampler of the file, sRGB or not), or -1.
+  int find(const SceneTexture& t) const {
+    const auto it = ids_.find(id_key(t));
     return it == ids_.end() ? -1 : it->second;
   }
   // An image already decoded for `source` (with other wrap modes), or null.
@@ -99,7 +101,7 @@ class SceneTextureSet {
   }
   int add(SceneTexture t) {
     const int id = int(scene_.textures.size());
-    ids_[{key(t.source), t.wrap_u, t.wrap_v, t.srgb}] = id;
+    ids_[id_key(t)] = id;
     scene_.textures.push_back(std::move(t));
     return id;
   }
@@ -111,8 +113,12 @@ class SceneTextureSet {
     const fs::path p = fs::weakly_canonical(source, ec);
     return ec ? source : p.string();
   }
+  using IdKey = std::tuple<std::string, Wrap, Wrap, int, int, std::string, bool>;
+  static IdKey id_key(const SceneTexture& t) {
+    return {key(t.source), t.wrap_u, t.wrap_v, t.gltf_mag_filter, t.gltf_min_filter, t.scene_sampler.key(), t.srgb};
+  }
   MeshScene& scene_;
-  std::map<std::tuple<std::string, Wrap, Wrap, bool>, int> ids_;
+  std::map<IdKey, int> ids_;
 };
 
 // Assimp 5.2's glTF 1.0 importer composes a node's translation, rotation and scale as R·S·T (the
@@ -259,21 +265,26 @@ class ModelLoader {
       int u = aiTextureMapMode_Wrap, v = aiTextureMapMode_Wrap;  // formats without sampler modes repeat
       mat.Get(AI_MATKEY_MAPPINGMODE_U(type, 0), u);
       mat.Get(AI_MATKEY_MAPPINGMODE_V(type, 0), v);
+      int mag = 0, min = 0;  // glTF's sampler filters (Assimp's glTF importers set them when the file has them)
+      mat.Get(AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), mag);
+      mat.Get(AI_MATKEY_GLTF_MAPPINGFILTER_MIN(type, 0), min);
       int uv_set = 0;
       if (mat.Get(AI_MATKEY_UVWSRC(type, 0), uv_set) == AI_SUCCESS && uv_set != 0)
         out_.notes.push_back(path_ + ": material " + in_quotes(material_name(material)) + " names texture coordinate set " +
                              std::to_string(uv_set) + "; set 0 is used");
-      id = texture(material, name.C_Str(), to_wrap(u), to_wrap(v), gltf2_);
+      id = texture(material, name.C_Str(), to_wrap(u), to_wrap(v), mag, min, gltf2_);
       break;
     }
     return id;
   }
 
-  int texture(unsigned material, const std::string& name, Wrap wrap_u, Wrap wrap_v, bool srgb) {
+  int texture(unsigned material, const std::string& name, Wrap wrap_u, Wrap wrap_v, int mag, int min, bool srgb) {
     SceneTexture t;
     t.material = material_name(material);
     t.wrap_u = wrap_u;
     t.wrap_v = wrap_v;
+    t.gltf_mag_filter = mag;
+    t.gltf_min_filter = min;
     t.srgb = srgb;
     const auto [embedded, embedded_index] = ai_.GetEmbeddedTextureAndIndex(name.c_str());
     if (embedded) {
@@ -285,7 +296,7 @@ class ModelLoader {
       if (!fs::exists(t.source))
         throw Error(path_ + ": material " + in_quotes(t.material) + ": texture file not found: " + t.source);
     }
-    if (const int id = textures_.find(t.source, wrap_u, wrap_v, srgb); id >= 0) return id;
+    if (const int id = textures_.find(t); id >= 0) return id;
 
     if (const SceneTexture* same = textures_.any(t.source)) {  // decoded already, other wrap modes
       t.image = same->image;
@@ -398,8 +409,9 @@ MeshScene load_models(const std::vector<ModelPlacement>& models) {
     }
     const MeshScene& model = it->second;
     std::vector<int> ids;  // the model's texture index -> the merged scene's
-    for (const SceneTexture& t : model.textures) {
-      const int id = table.find(t.source, t.wrap_u, t.wrap_v, t.srgb);
+    for (SceneTexture t : model.textures) {
+      t.scene_sampler = p.sampler;
+      const int id = table.find(t);
       ids.push_back(id >= 0 ? id : table.add(t));
     }
     const glm::dmat4 m = placement_matrix(p);
@@ -468,14 +480,94 @@ std::vector<ModelPlacement> read_scene_file(const std::string& path) {
       } else if (key == "scale") {
         p.scale = number(value, at);
         if (p.scale <= 0) fail(at, "must be greater than 0, not " + value.dump());
+      } else if (key == "sampler") {
+        if (!value.is_object()) fail(at, "must be an object {\"wrap\": ..., \"min_filter\": ..., ...}");
+        for (const auto& [field, v] : value.items()) {
+          const std::string fat = at + "." + field;
+          if (!v.is_string()) fail(fat, "must be a name, not " + one_line(v.dump()));
+          const std::string name = v.get<std::string>();
+          SamplerOverride& o = p.sampler;
+          if (field == "wrap" || field == "wrap_u" || field == "wrap_v") {
+            Wrap w;
+            if (!parse_wrap(name, w)) fail(fat, "unknown address mode " + quote_clipped(name) + " (" + kWrapNames + ")");
+            if (field != "wrap_v") o.wrap_u = w;
+            if (field != "wrap_u") o.wrap_v = w;
+          } else if (field == "min_filter") {
+            TexelFilter t;
+            Filter gl;  // a GL minification name sets the mipmap mode too
+            if (parse_texel_filter(name, t)) {
+              o.min_filter = t;
+            } else if (parse_filter(name, gl) && !gl.anisotropic) {
+              o.min_filter = gl.texel;
+              if (!o.mipmap_mode) o.mipmap_mode = gl.mip;
+            } else {
+              fail(fat, "unknown minification filter " + quote_clipped(name) + " (nearest, linear, or a GL name)");
+            }
+          } else if (field == "mag_filter") {
+            TexelFilter t;
+            if (!parse_texel_filter(name, t)) fail(fat, "unknown magnification filter " + quote_clipped(name) + " (nearest, linear)");
+            o.mag_filter = t;
+          } else if (field == "mipmap_mode") {
+            MipMode m;
+            if (!parse_mip_mode(name, m)) fail(fat, "unknown mipmap mode " + quote_clipped(name) + " (none, nearest, linear)");
+            o.mipmap_mode = m;
+          } else if (field == "border_color") {
+            BorderColor b;
+            if (!parse_border_color(name, b)) fail(fat, "unknown border colour " + quote_clipped(name) + " (transparent-black, opaque-black, opaque-white)");
+            o.border_color = b;
+          } else {
+            fail(fat, "unknown sampler field (wrap, wrap_u, wrap_v, min_filter, mag_filter, mipmap_mode, border_color)");
+          }
+        }
       } else {
-        fail(at, "unknown key (a model has file, translation, rotation, scale)");
+        fail(at, "unknown key (a model has file, translation, rotation, scale, sampler)");
       }
     }
     if (p.path.empty()) fail(where + ".file", "missing");
     out.push_back(std::move(p));
   }
   return out;
+}
+
+std::string SamplerOverride::key() const {
+  std::string k;
+  auto add = [&](bool has, int v) { k += has ? std::to_string(v) + "," : "-,"; };
+  add(wrap_u.has_value(), wrap_u ? int(*wrap_u) : 0);
+  add(wrap_v.has_value(), wrap_v ? int(*wrap_v) : 0);
+  add(min_filter.has_value(), min_filter ? int(*min_filter) : 0);
+  add(mag_filter.has_value(), mag_filter ? int(*mag_filter) : 0);
+  add(mipmap_mode.has_value(), mipmap_mode ? int(*mipmap_mode) : 0);
+  add(border_color.has_value(), border_color ? int(*border_color) : 0);
+  return k;
+}
+
+SamplerConfig file_sampler(const SceneTexture& t, SamplerConfig base, bool keep_filter, bool keep_wrap) {
+  if (!keep_wrap) {
+    base.wrap_u = t.wrap_u;
+    base.wrap_v = t.wrap_v;
+  }
+  if (!keep_filter) {
+    switch (t.gltf_mag_filter) {  // GL_NEAREST, GL_LINEAR
+      case 9728: base.filter.mag = TexelFilter::Nearest; break;
+      case 9729: base.filter.mag = TexelFilter::Linear; break;
+    }
+    const int min = t.gltf_min_filter;
+    if (min == 9728 || min == 9729) {  // no MIPMAP: level 0 only
+      base.filter.texel = min == 9728 ? TexelFilter::Nearest : TexelFilter::Linear;
+      base.filter.mip = MipMode::None;
+    } else if (min >= 9984 && min <= 9987) {  // {NEAREST, LINEAR}_MIPMAP_{NEAREST, LINEAR}
+      base.filter.texel = (min - 9984) % 2 ? TexelFilter::Linear : TexelFilter::Nearest;
+      base.filter.mip = min >= 9986 ? MipMode::Linear : MipMode::Nearest;
+    }
+  }
+  const SamplerOverride& o = t.scene_sampler;
+  if (o.wrap_u) base.wrap_u = *o.wrap_u;
+  if (o.wrap_v) base.wrap_v = *o.wrap_v;
+  if (o.min_filter) base.filter.texel = *o.min_filter;
+  if (o.mag_filter) base.filter.mag = *o.mag_filter;
+  if (o.mipmap_mode) base.filter.mip = *o.mipmap_mode;
+  if (o.border_color) base.border = *o.border_color;
+  return base;
 }
 
 }  // namespace tex

@@ -4,13 +4,25 @@
 #pragma once
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "model/formats.h"
 #include "model/image.h"
+#include "model/sampler.h"
 
 namespace tex {
+
+// A scene file's sampler for one model's textures ("sampler": {...}): each field it gives replaces
+// the model file's and the command line's.
+struct SamplerOverride {
+  std::optional<Wrap> wrap_u, wrap_v;
+  std::optional<TexelFilter> min_filter, mag_filter;
+  std::optional<MipMode> mipmap_mode;
+  std::optional<BorderColor> border_color;
+  std::string key() const;  // equal for equal overrides (textures are told apart by it)
+};
 
 // A texture of the scene: one descriptor-table entry of the hardware (its index is the texture id).
 struct SceneTexture {
@@ -20,8 +32,18 @@ struct SceneTexture {
   int file_width = 0, file_height = 0;  // as stored in the file
   bool resized = false;     // file_width/height were not powers of two
   Wrap wrap_u = Wrap::Repeat, wrap_v = Wrap::Repeat;  // glTF sampler modes; repeat where the format has none
+  // The glTF sampler's magFilter and minFilter (GL's codes: 9728 NEAREST, 9729 LINEAR, 9984..9987
+  // NEAREST_MIPMAP_NEAREST .. LINEAR_MIPMAP_LINEAR); 0 where the file has none.
+  int gltf_mag_filter = 0, gltf_min_filter = 0;
+  SamplerOverride scene_sampler;  // its model's "sampler" in the scene file
   bool srgb = false;        // its texels are sRGB codes: glTF 2's base colour (the spec says so)
 };
+
+// The sampler a texture's file gives it, over `base` (the command line's): its filters unless
+// `keep_filter` (--filter, --min-filter, --mag-filter or --mipmap-mode given), its wrap modes
+// unless `keep_wrap` (--wrap* given); then its scene file's sampler fields over all of these. A
+// minFilter without MIPMAP samples level 0 only, as in GL.
+SamplerConfig file_sampler(const SceneTexture& t, SamplerConfig base, bool keep_filter, bool keep_wrap);
 
 // One drawable mesh: triangles (three indices each) with world-space positions and texture
 // coordinates; v = 0 is the top row of the texture image (the rasterizer's and the sampler's
@@ -49,6 +71,7 @@ struct ModelPlacement {
   glm::dvec3 translation{0.0};
   glm::dvec3 rotation_deg{0.0};
   double scale = 1.0;
+  SamplerOverride sampler;  // "sampler": the sampler of the model's textures
 };
 
 // Loads one model (any format Assimp reads) with its node transforms applied. Throws tex::Error
@@ -63,7 +86,10 @@ MeshScene load_model(const std::string& path);
 MeshScene load_models(const std::vector<ModelPlacement>& models);
 
 // A scene file (JSON): {"models": [{"file": "a.gltf", "translation": [x, y, z],
-// "rotation": [rx, ry, rz], "scale": s}, ...]}; relative files are relative to the scene file.
+// "rotation": [rx, ry, rz], "scale": s, "sampler": {"wrap": "clamp", "wrap_u": ..., "wrap_v":
+// ..., "min_filter": "nearest" (or a GL minification name), "mag_filter": "linear",
+// "mipmap_mode": "none", "border_color": "opaque-white"}}, ...]} (every key but file optional);
+// relative files are relative to the scene file.
 // Throws tex::Error naming the file and the bad key or value.
 std::vector<ModelPlacement> read_scene_file(const std::string& path);
 

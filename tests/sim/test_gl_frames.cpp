@@ -11,6 +11,7 @@
 #include <GL/osmesa.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -40,8 +41,9 @@ GLint gl_wrap(int mode) {
 }
 
 // A texture file as a GL viewer uploads it: RGBA8 (gray to RGB, opaque without alpha; sRGB8_ALPHA8
-// for colour data in sRGB), sides resampled up to powers of two, the bottom row first.
-GLuint upload(const std::string& path, GLint wrap_s, GLint wrap_t, bool srgb) {
+// for colour data in sRGB), sides resampled up to powers of two, the bottom row first; the
+// material's sampler (glTF's filters, GL's codes) or trilinear.
+GLuint upload(const std::string& path, GLint wrap_s, GLint wrap_t, bool srgb, GLint min_filter, GLint mag_filter) {
   OIIO::ImageBuf src(path);
   EXPECT_TRUE(src.read(0, 0, true, OIIO::TypeDesc::UINT8)) << path;
   const int w = src.spec().width, h = src.spec().height, nc = src.spec().nchannels;
@@ -66,8 +68,8 @@ GLuint upload(const std::string& path, GLint wrap_s, GLint wrap_t, bool srgb) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, pw, ph, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min_filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, mag_filter);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap_s);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap_t);
   return id;
@@ -142,14 +144,17 @@ GlFrame render_gl(const std::string& path, bool flip_rows, bool srgb) {
     int mode_u = aiTextureMapMode_Wrap, mode_v = aiTextureMapMode_Wrap;
     mat->Get(AI_MATKEY_MAPPINGMODE_U(type, 0), mode_u);
     mat->Get(AI_MATKEY_MAPPINGMODE_V(type, 0), mode_v);
-    const GLuint id = upload(dir_of + "/" + name, gl_wrap(mode_u), gl_wrap(mode_v), srgb);
+    int min_filter = GL_LINEAR_MIPMAP_LINEAR, mag_filter = GL_LINEAR;  // glTF samplers: GL's codes
+    mat->Get(AI_MATKEY_GLTF_MAPPINGFILTER_MIN(type, 0), min_filter);
+    mat->Get(AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), mag_filter);
+    const GLuint id = upload(dir_of + "/" + name, gl_wrap(mode_u), gl_wrap(mode_v), srgb, min_filter, mag_filter);
     if (!flip_rows) {  // planted: the same texels uploaded top row first
       glDeleteTextures(1, &id);
       OIIO::ImageBuf src(dir_of + "/" + name);
       OIIO::ImageBuf flipped = OIIO::ImageBufAlgo::flip(src);
       const std::string tmp = (fs::temp_directory_path() / ("gl_flip_" + std::to_string(getpid()) + ".png")).string();
       flipped.write(tmp);
-      upload(tmp, gl_wrap(mode_u), gl_wrap(mode_v), srgb);
+      upload(tmp, gl_wrap(mode_u), gl_wrap(mode_v), srgb, min_filter, mag_filter);
       fs::remove(tmp);
     }
     int two_sided = 0;

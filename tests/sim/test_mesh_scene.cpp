@@ -272,7 +272,22 @@ TEST(MeshScene, BoxTexturedGltf2) {
   EXPECT_TRUE(s.textures[0].resized);
   EXPECT_EQ(s.textures[0].wrap_u, Wrap::Mirror);  // wrapS 33648
   EXPECT_EQ(s.textures[0].wrap_v, Wrap::Clamp);   // wrapT 33071
+  EXPECT_EQ(s.textures[0].gltf_mag_filter, 9729);  // LINEAR
+  EXPECT_EQ(s.textures[0].gltf_min_filter, 9986);  // NEAREST_MIPMAP_LINEAR
   EXPECT_TRUE(s.textures[0].srgb);  // glTF 2.0's base colour is sRGB
+  // The texture's sampler: the file's filters and wrap modes, unless the command line gives them.
+  SamplerConfig cli;
+  cli.filter = Filter(TexelFilter::Linear, MipMode::Nearest);
+  cli.wrap_u = cli.wrap_v = Wrap::Border;
+  const SamplerConfig file = file_sampler(s.textures[0], cli, false, false);
+  EXPECT_EQ(file.filter.texel, TexelFilter::Nearest);
+  EXPECT_EQ(file.filter.mip, MipMode::Linear);
+  EXPECT_EQ(file.filter.mag, TexelFilter::Linear);
+  EXPECT_EQ(file.wrap_u, Wrap::Mirror);
+  EXPECT_EQ(file.wrap_v, Wrap::Clamp);
+  const SamplerConfig kept = file_sampler(s.textures[0], cli, true, true);
+  EXPECT_EQ(kept.filter, cli.filter);
+  EXPECT_EQ(kept.wrap_u, Wrap::Border);
   for (int axis = 0; axis < 3; ++axis) {
     EXPECT_NEAR(s.bounds_min[axis], -0.5, 1e-6);
     EXPECT_NEAR(s.bounds_max[axis], 0.5, 1e-6);

@@ -510,7 +510,9 @@ TEST_F(TexsimCli, ResponseClocksAreTheSameForModelAndRtl) {
                        {"--response-clocks", "systemc-model"});
   EXPECT_FALSE(fs::exists(dir / "x.clk"));
   // The SystemC engine: the RTL's clocks under its TLM-2.0 initiator's timing, one per response.
-  const Result sc = run(cases[1] + " -e systemc -o s.csv --response-clocks s.clk");
+  std::string no_jitter = cases[1];  // (its TLM memory has a fixed latency)
+  no_jitter.erase(no_jitter.find(" --mem-jitter 40"), 16);
+  const Result sc = run(no_jitter + " -e systemc -o s.csv --response-clocks s.clk");
   ASSERT_EQ(sc.exit_code, 0) << sc.err;
   std::istringstream sin(read_text(dir / "s.clk"));
   uint64_t clock = 0, last = 0, lines = 0;
@@ -604,6 +606,10 @@ TEST_F(TexsimCli, BlockFormatsThroughTheCli) {
   // The SystemC memory socket carries RGBA lines only.
   expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --format bc1 --memory cached -e systemc", "x.csv",
                        {"engine systemc", "bc1"});
+  // Its memory target has a fixed latency: --mem-jitter is refused, not ignored.
+  for (const char* e : {"systemc", "systemc-model"})
+    expect_clean_failure(std::string("sample -t testcard:64x64 -q q.csv -o x.csv --memory cached --mem-jitter 20 -e ") + e,
+                         "x.csv", {"--mem-jitter 20", "fixed latency"});
 }
 
 // --srgb: results are linear unorm16 under their own header, the pyramid averages in linear space
@@ -673,8 +679,10 @@ TEST_F(TexsimCli, MemoryErrorsNameTheFlaggedSamples) {
   std::string flagged[3];
   for (int e = 0; e < 3; ++e) {
     const std::string engine = e == 0 ? "model" : e == 1 ? "rtl" : "systemc";
-    const Result r = run(args + " -e " + engine);
-    expect_clean_failure(args + " -e " + engine, "r.csv",
+    std::string a = args;  // systemc: no jitter (its TLM memory has a fixed latency)
+    if (e == 2) a.erase(a.find(" --mem-jitter 20"), 16);
+    const Result r = run(a + " -e " + engine);
+    expect_clean_failure(a + " -e " + engine, "r.csv",
                          {"memory error: line reads 3, 9 answered SLVERR", "samples flagged", "engine " + engine});
     EXPECT_FALSE(fs::exists(dir / "c.txt"));
     EXPECT_FALSE(fs::exists(dir / "s.json"));

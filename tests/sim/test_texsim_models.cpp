@@ -113,7 +113,15 @@ TEST_F(TexsimModels, Gltf2BaseColourIsSrgb) {
   const std::string common = "render --model " + kBox + " --memory cached --width 96 --height 72 --frames 8 --frame 1 ";
   Result r = run(common + "--out m.png --stats m.json --trace-queries trace/q.csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(read_text(dir / "trace/q.textures.txt").find(" srgb\n"), std::string::npos);
+  // The list carries the texture's glTF sampler: mirrored repeat / clamp, NEAREST_MIPMAP_LINEAR,
+  // LINEAR magnification; the summary names its filter.
+  EXPECT_NE(read_text(dir / "trace/q.textures.txt").find(" mirror clamp srgb min=nearest mag=linear mip=linear\n"),
+            std::string::npos)
+      << read_text(dir / "trace/q.textures.txt");
+  EXPECT_NE(r.out.find("nearest_mipmap_linear"), std::string::npos) << r.out;
+  const Result cli = run(common + "--filter trilinear --out t.png");
+  EXPECT_NE(cli.out.find(", trilinear,"), std::string::npos) << cli.out;
+  EXPECT_NE(read_text(dir / "t.png"), read_text(dir / "m.png")) << "--filter replaces the file's filters";
   r = run(common + "-e rtl --out r.png");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(read_text(dir / "m.png"), read_text(dir / "r.png")) << "the RTL's sRGB tables against the model";
@@ -165,8 +173,15 @@ TEST_F(TexsimModels, BadInputsFailCleanly) {
   textured_quad("a", 1);
   textured_quad("b", 2);
   write_text(dir / "two.json", R"({"models": [{"file": "a.obj"}, {"file": "b.obj", "translation": [2, 0, 0]}]})");
-  // Several textures need the cached unit's descriptor table.
-  expect_clean_failure("render --scene-file two.json --out f.png", "f.png", {"2 textures", "--memory cached"});
+  // Several textures need the cached unit's descriptor table: chosen by default (and said so),
+  // refused when --memory onchip is asked for.
+  const Result chosen = run("render --scene-file two.json --out f.png");
+  EXPECT_EQ(chosen.exit_code, 0) << chosen.err;
+  EXPECT_NE(chosen.out.find("cached memory (chosen: the on-chip unit holds one texture)"), std::string::npos)
+      << chosen.out;
+  fs::remove(dir / "f.png");
+  expect_clean_failure("render --scene-file two.json --memory onchip --out f.png", "f.png",
+                       {"2 textures", "--memory cached"});
   expect_clean_failure("render --scene-file two.json --memory cached --engine systemc --out f.png", "f.png",
                        {"2 textures", "engine systemc", "--engine model or rtl"});
   expect_clean_failure("render --model missing.obj --out f.png", "f.png", {"missing.obj"});
@@ -260,4 +275,46 @@ TEST_F(TexsimModels, TraceSamplerColumnPicksTheSampler) {
   expect_clean_failure(common + "--out r.csv", "r.csv", {"sampler 2", "holds 2"});
   queries("tex,smp,u,v,lod\n0,16,0.5,0.5,0\n");
   expect_clean_failure(common + "--out r.csv", "r.csv", {"q.csv:2", "sampler", "16"});
+}
+
+// A scene file gives each model's textures a sampler: three quads read through three samplers
+// (trilinear repeat; nearest, no mips, clamp; clamp to border, opaque white) in one frame, through
+// the cached RTL at full rate, bit for bit the model's (--verify); the samplers change the picture.
+// A bad field is one line naming it.
+TEST_F(TexsimModels, SceneFileSetsASamplerPerModel) {
+  textured_quad("a", 1);
+  textured_quad("b", 2);
+  textured_quad("c", 3);
+  const std::string models = R"({"models": [
+    {"file": "a.obj", "translation": [-1.6, -0.5, 0], "sampler": {"wrap": "repeat", "min_filter": "linear_mipmap_linear"}},
+    {"file": "b.obj", "translation": [-0.5, -0.5, 0],
+     "sampler": {"wrap": "clamp", "min_filter": "nearest", "mag_filter": "nearest", "mipmap_mode": "none"}},
+    {"file": "c.obj", "translation": [0.6, -0.5, 0], "sampler": {"wrap_u": "border", "wrap_v": "mirror-clamp",
+     "border_color": "opaque-white"}}]})";
+  write_text(dir / "three.json", models);
+  std::string plain = models;
+  for (size_t at; (at = plain.find(R"(, "sampler")")) != std::string::npos;) plain.erase(at, plain.find("}}", at) + 1 - at);
+  write_text(dir / "plain.json", plain);
+  const std::string view = " --camera 0,0,3,0,0,0,45 --width 160 --height 120 ";
+  const Result r = run("render --scene-file three.json -e rtl --verify --memory cached --mem-latency 20" + view +
+                       "--out three.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("3 textures"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("bit-identical"), std::string::npos) << r.out;
+  const size_t spc = r.out.find(" samples/clock");
+  ASSERT_NE(spc, std::string::npos) << r.out;
+  const double rate = std::stod(r.out.substr(r.out.rfind(' ', spc - 1) + 1));
+  EXPECT_GT(rate, 0.97) << r.out;
+  std::printf("[ samplers ] three models through three samplers, cached RTL: %.4f samples/clock\n", rate);
+  const Result p = run("render --scene-file plain.json" + view + "--out plain.png");
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const Result m = run("render --scene-file three.json" + view + "--out model.png");
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  EXPECT_EQ(read_text(dir / "model.png"), read_text(dir / "three.png"));
+  EXPECT_NE(read_text(dir / "plain.png"), read_text(dir / "three.png")) << "the samplers changed nothing";
+  write_text(dir / "bad.json", R"({"models": [{"file": "a.obj", "sampler": {"min_filter": "cubic"}}]})");
+  expect_clean_failure("render --scene-file bad.json --out f.png", "f.png",
+                       {"bad.json", "models[0].sampler.min_filter", "cubic"});
+  write_text(dir / "bad.json", R"({"models": [{"file": "a.obj", "sampler": {"wrapS": "clamp"}}]})");
+  expect_clean_failure("render --scene-file bad.json --out f.png", "f.png", {"models[0].sampler.wrapS", "unknown"});
 }

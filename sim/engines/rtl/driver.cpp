@@ -48,7 +48,8 @@ const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memo
               largest->max_texture() + " (use --engine model for larger textures)");
 }
 
-const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory, int block_w, int block_h) {
+const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory, int block_w, int block_h,
+                                     const CacheParams* cache, uint32_t fifo_depth) {
   int log2_w = 0, log2_h = 0, cw = 8;
   bool formats = false;  // cached: blocks or sRGB codes to decode after the cache (a CW = 16 unit)
   for (const BoundTexture& t : textures) {
@@ -58,7 +59,19 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
     formats = formats || t.pyramid->srgb || is_compressed(t.pyramid->format);
   }
   formats = formats && memory == Memory::Cached;
-  return smallest_config_for(log2_w, log2_h, formats ? 16 : cw, memory, block_w, block_h, formats);
+  const RtlConfig& fits = smallest_config_for(log2_w, log2_h, formats ? 16 : cw, memory, block_w, block_h, formats);
+  auto holds = [&](const RtlConfig& c) {
+    return cache->size_bytes / c.line_bytes() <= c.lines && fifo_depth <= uint32_t(c.fifo_depth);
+  };
+  if (memory != Memory::Cached || !cache || holds(fits)) return fits;
+  // A larger configuration of the same kind whose caches hold the geometry asked for.
+  const RtlConfig* best = nullptr;
+  for (const RtlConfig& c : compiled_configs())
+    if (c.cached && c.cw == fits.cw && c.formats == fits.formats && c.block_w == block_w && c.block_h == block_h &&
+        c.fits(log2_w, log2_h) && holds(c) &&
+        (!best || c.max_log2_w + c.max_log2_h < best->max_log2_w + best->max_log2_h))
+      best = &c;
+  return best ? *best : fits;
 }
 
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests) {

@@ -54,8 +54,11 @@ const std::vector<RtlConfig>& compiled_configs();
 const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw = 8, Memory memory = Memory::OnChip,
                                      int block_w = 4, int block_h = 4, bool formats = false);
 // The same for a descriptor table: the largest sides, the widest channels the filter takes, and,
-// cached, a configuration with the formats if any texture is block-compressed or sRGB.
-const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory, int block_w, int block_h);
+// cached, a configuration with the formats if any texture is block-compressed or sRGB, and the
+// smallest whose caches and FIFO hold `cache` and `fifo_depth` when one does (if none does, the
+// smallest that holds the textures: cache_pins() then says what does not fit).
+const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory, int block_w, int block_h,
+                                     const CacheParams* cache = nullptr, uint32_t fifo_depth = 0);
 // Everything the RTL cannot take, as one tex::Error, before any clock: a texture too large or with
 // other channel widths than the configuration's, a lambda outside the 16-bit Q8.8 port.
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests = {});

@@ -68,7 +68,8 @@ class RtlEngine final : public Engine {
       throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one; use --memory cached");
     const Pyramid& pyramid = *textures[0].pyramid;
     const RtlConfig& rc =
-        smallest_config_for(textures, options_.memory, options_.layout.block_w, options_.layout.block_h);
+        smallest_config_for(textures, options_.memory, options_.layout.block_w, options_.layout.block_h,
+                            &options_.cache, options_.fifo_depth);
     for (const BoundTexture& t : textures) check_inputs(rc, *t.pyramid);
     std::optional<TextureCache> cache;
     if (cached) {

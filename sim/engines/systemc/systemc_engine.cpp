@@ -223,14 +223,16 @@ EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerCo
   // Input errors are reported here, before any simulation, as one line.
   const EngineOptions& eo = options.engine;
   const bool cached = eo.memory == Memory::Cached;
+  if (cached && eo.mem_jitter)  // (MemoryTarget answers every read after the same latency)
+    throw Error("--mem-jitter " + std::to_string(eo.mem_jitter) +
+                ": the SystemC engines' TLM memory has a fixed latency (use --engine rtl or model for jitter)");
   if (cached) {  // the layout and the caches can be built for this texture
     const MemoryLayout layout(pyramid.log2_w0(), pyramid.log2_h0(), pyramid.levels[0].channel_bits, eo.layout);
     TextureCache(layout, eo.cache, config, pyramid.log2_w0(), pyramid.log2_h0());
   }
   if (backend == Backend::Rtl) {
-    const rtl::RtlConfig& rc = rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(),
-                                                        pyramid.levels[0].channel_bits, eo.memory,
-                                                        eo.layout.block_w, eo.layout.block_h);
+    const rtl::RtlConfig& rc = rtl::smallest_config_for(TextureTable{{&pyramid}}, eo.memory, eo.layout.block_w,
+                                                        eo.layout.block_h, &eo.cache, eo.fifo_depth);
     rtl::check_inputs(rc, pyramid);
     if (cached) rtl::cache_pins(rc, eo.layout, eo.cache, eo.fifo_depth);
   } else if (!options.engine.trace_path.empty()) {

@@ -36,8 +36,8 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyra
     socket.register_b_transport(this, &TexUnitTlm::b_transport);
     return;
   }
-  const rtl::RtlConfig& rc = rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), cw, options.memory,
-                                                      options.layout.block_w, options.layout.block_h);
+  const rtl::RtlConfig& rc = rtl::smallest_config_for(TextureTable{{&pyramid}}, options.memory, options.layout.block_w,
+                                                      options.layout.block_h, &options.cache, options.fifo_depth);
   rtl::DriverOptions d = rtl::DriverOptions::of(options);
   if (cached) {
     memory_port_ = std::make_unique<TlmMemoryPort>(memory_socket, rc.line_bytes(), rc.mem_bits / 8);
