@@ -4,7 +4,7 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test model-test bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes
+.PHONY: help deps build demo test test-suites unit-tests model-test bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes
 
 help:
 	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
@@ -43,7 +43,15 @@ demo: build
 	@echo "demo: $(OUT)/plane_point.png aliases near the horizon, $(OUT)/plane_trilinear.png blurs it grey," \
 	      "$(OUT)/plane_anisotropic.png keeps its checks"
 
-test: build lint formal xprop synth-latch model-test
+# After the build, the suites two at a time: the formal proofs (one core, about 4 minutes) beside
+# lint, xprop, synth-latch, the model alone and ctest (whose own jobs share the other core until
+# the proofs are done). Lines of the two streams interleave whole (--output-sync=line).
+test: build
+	@$(MAKE) --no-print-directory --output-sync=line -j 2 test-suites
+
+test-suites: formal lint xprop synth-latch model-test unit-tests
+
+unit-tests: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The model without any simulator or image library: its own build tree.

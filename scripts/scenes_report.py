@@ -5,8 +5,8 @@ Usage: /usr/bin/python3 scripts/scenes_report.py [--texsim build/texsim] [--out 
        [--width 640] [--height 480] [--latency 200] [--stalls none]
 
 Renders each test model of Debian's assimp-testmodels with `texsim render --model ... --engine rtl
---memory cached` (default caches, tiled order, trilinear, --verify: every sample against the golden
-model, every line read against its miss stream) and writes OUT/FRAME.png, OUT/contact_sheet.png,
+--memory cached` (default caches, tiled order, each texture's glTF sampler or trilinear, --verify:
+every sample against the golden model, every line read against its miss stream) and writes OUT/FRAME.png, OUT/contact_sheet.png,
 OUT/report.md (the table of docs/scenes.md) and OUT/index.html. Lost clocks are the clocks after the
 pipeline fill beyond one per sample; the RTL counts the clocks in which the FIFO's head waits for
 memory (the first fill's included) and those in which the FIFO is full (req_ready low). Compulsory
@@ -72,7 +72,8 @@ def main():
               "hit rate even / odd levels | bytes/sample (compulsory) | samples/clock | lost clocks | "
               "head waiting for memory | FIFO full |")
     lines = [f"Engine rtl (`{rows[0]['configuration']}`), cached, default caches ({rows[0]['cache_kib']:g} KiB x 2, "
-             f"{rows[0]['ways']} ways, {rows[0]['block']} blocks), tiled order, trilinear, {a.width}x{a.height}, memory "
+             f"{rows[0]['ways']} ways, {rows[0]['block']} blocks), tiled order, each texture's glTF sampler or else trilinear, "
+             f"{a.width}x{a.height}, memory "
              f"latency {a.latency} clocks, {rows[0]['mem_bytes_per_clock']} B/clock, stalls {a.stalls}; every sample "
              "verified against the golden model (`make scenes`, scripts/scenes_report.py).", "", header,
              "|" + "---|" * (header.count("|") - 1)]
