@@ -84,7 +84,7 @@ Texel Sampler::sample(const Request& r) {
 stage::Unrounded Sampler::sample_probe(const Request& r) {
   if (!memory_) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
   const stage::LevelSelect sel =
-      stage::lod(r.lod, config_.lod_bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
+      stage::lod(r.lod, config_.lod_bias + r.bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
   const int32_t su = stage::scale(r.u, log2_w0_), sv = stage::scale(r.v, log2_h0_);
   const TexelFilter texel_filter = stage::texel_filter(sel, config_.filter);
   const bool linear = texel_filter == TexelFilter::Linear;
@@ -216,7 +216,7 @@ void sample_batch(const FastLevel* levels, int last, int log2_w0, int log2_h0, c
       stage::Unrounded sum{};
       for (int k = 0; k < p.n; ++k) {
         const Request& q = p.at[size_t(k)];
-        const Packed2x2 t = probe_packed<TF, MM, WU, WV>(levels, last, cfg, q.u, q.v, q.lod);
+        const Packed2x2 t = probe_packed<TF, MM, WU, WV>(levels, last, cfg, q.u, q.v, q.lod + q.bias);
         sum[0] += int64_t(t.rb & 0xFFFFFFFFu);
         sum[1] += int64_t(t.ga & 0xFFFFFFFFu);
         sum[2] += int64_t(t.rb >> 32);
@@ -226,7 +226,7 @@ void sample_batch(const FastLevel* levels, int last, int log2_w0, int log2_h0, c
       out[i] = uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
       continue;
     }
-    Packed2x2 tri = probe_packed<TF, MM, WU, WV>(levels, last, cfg, r.u, r.v, r.lod);
+    Packed2x2 tri = probe_packed<TF, MM, WU, WV>(levels, last, cfg, r.u, r.v, r.lod + r.bias);
     // The one rounding, half up, of all four channels; then back to packed RGBA8.
     tri.rb = (tri.rb + kHalf) >> 24;
     tri.ga = (tri.ga + kHalf) >> 24;

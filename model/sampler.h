@@ -53,6 +53,7 @@ using SamplerTable = std::vector<SamplerConfig>;
 struct Request {
   int32_t u = 0, v = 0;  // Q8.24
   int32_t lod = 0;       // Q8.8, before bias and clamp (requests without derivatives)
+  int32_t bias = 0;      // Q8.8, the request's own LOD bias (GLSL texture(s, uv, bias)): added to the sampler's
   uint32_t tag = 0;
   uint8_t texture = 0;   // cached unit: the descriptor-table entry sampled (0..kMaxTextures-1)
   uint8_t sampler = 0;   // cached unit: the sampler-table entry it is sampled with (0..kMaxSamplers-1)

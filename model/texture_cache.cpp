@@ -135,7 +135,7 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
   const SamplerConfig& smp = sampler(r);
   const int log2_w0 = layout.log2_w0(), log2_h0 = layout.log2_h0();
   const stage::LevelSelect sel =
-      stage::lod(r.lod, smp.lod_bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);
+      stage::lod(r.lod, smp.lod_bias + r.bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);
   const int32_t su = stage::scale(r.u, log2_w0), sv = stage::scale(r.v, log2_h0);
   SampleLookup out;
   for (int s = 0; s < 2; ++s) {

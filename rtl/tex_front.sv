@@ -11,7 +11,8 @@
 // Latency: 4 clocks from the request pins to the clock-4 registers; x, y are combinational on
 //   them. Throughput: 1 per clock.
 // Ports:
-//   req_u, req_v          : signed Q8.24; req_lod: signed Q8.8 (before bias and clamp)
+//   req_u, req_v          : signed Q8.24; req_lod: signed Q8.8 (before bias and clamp); req_bias:
+//                           signed Q8.8, the request's own LOD bias (added to the sampler's)
 //   req_log2_w, req_log2_h: integers, level 0's size of the request's texture
 //   req_wrap_u .. req_max_lod: the request's sampler, as tex_unit's cfg_smp_* pins: wrap modes
 //                           (tex_pkg::WRAP_*), req_min_linear the minification filter's texel
@@ -37,6 +38,7 @@ module tex_front #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
   input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_w,
   input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_h,
   input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_u,
@@ -70,7 +72,8 @@ module tex_front #(
   // filters clock 3's; tex_wrap clock 4's wrap modes.
   localparam int ZW = 2 * VW, MW = 2 * tex_pkg::WRAP_W, LW = tex_pkg::LOD_W, PW = tex_pkg::MIP_W;
   logic signed [tex_pkg::REQ_COORD_W-1:0] u_s1, v_s1;
-  logic signed [LW-1:0]                   lod_s1, lod_bias_s1, min_lod_s1, max_lod_s1;
+  logic signed [LW-1:0]                   lod_s1, min_lod_s1, max_lod_s1;
+  logic signed [LW:0]                     lod_bias_s1;  // the sampler's + the request's, exact
   logic [3*ZW-1:0]                        size_q;
   logic [4*MW-1:0]                        wrap_q;
   logic [2*PW-1:0]                        mip_q;     // clocks 1, 2
@@ -80,7 +83,7 @@ module tex_front #(
       u_s1        <= req_u;
       v_s1        <= req_v;
       lod_s1      <= req_lod;
-      lod_bias_s1 <= req_lod_bias;
+      lod_bias_s1 <= (LW+1)'(req_lod_bias) + (LW+1)'(req_bias);
       min_lod_s1  <= req_min_lod;
       max_lod_s1  <= req_max_lod;
       size_q   <= {size_q[0 +: 2*ZW], req_log2_h, req_log2_w};

@@ -16,7 +16,7 @@ module tex_lod (
   input  logic                                 clk,
   input  logic                                 en,
   input  logic signed [tex_pkg::LOD_W-1:0]     lod,
-  input  logic signed [tex_pkg::LOD_W-1:0]     bias,
+  input  logic signed [tex_pkg::LOD_W:0]       bias,       // the sampler's plus the request's: LOD_W+1 bits
   input  logic signed [tex_pkg::LOD_W-1:0]     min_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]     max_lod,
   input  logic [tex_pkg::MIP_W-1:0]            mip_mode,
@@ -31,13 +31,13 @@ module tex_lod (
   localparam int VW    = tex_pkg::LEVEL_W;
   localparam int WB    = tex_pkg::WEIGHT_BITS;
 
-  // ---- clock 2: lambda' = clamp(lambda + bias, min, max) (GL order; exact LW+1-bit sum)
-  logic signed [LW:0]   lod_x, bias_x, min_x, max_x, biased;  // size casts sign-extend
+  // ---- clock 2: lambda' = clamp(lambda + bias, min, max) (GL order; exact LW+2-bit sum)
+  logic signed [LW+1:0] lod_x, bias_x, min_x, max_x, biased;  // size casts sign-extend
   logic signed [LW-1:0] lambda_next, lambda_s2;
-  assign lod_x  = (LW+1)'(lod);
-  assign bias_x = (LW+1)'(bias);
-  assign min_x  = (LW+1)'(min_lod);
-  assign max_x  = (LW+1)'(max_lod);
+  assign lod_x  = (LW+2)'(lod);
+  assign bias_x = (LW+2)'(bias);
+  assign min_x  = (LW+2)'(min_lod);
+  assign max_x  = (LW+2)'(max_lod);
   assign biased = lod_x + bias_x;
   always_comb begin
     // Same order as std::clamp: below min wins, then above max.

@@ -12,6 +12,8 @@
 //   outputs are combinational on the clock-4 registers). Throughput: 1 probe per clock.
 // Ports:
 //   req_u, req_v     : signed Q8.24; req_lod: signed Q8.8 (req_deriv = 0)
+//   req_bias         : signed Q8.8, the request's own LOD bias (GLSL texture(s, uv, bias)); every
+//                      probe of the request carries it (probe_bias), for tex_lod
 //   req_dudx .. dvdy : signed Q8.24 texture widths (heights) per pixel (req_deriv = 1)
 //   req_log2_w/h     : the request's texture's level-0 size (integers), taken with the request
 //   req_max_aniso_m1 : the request's sampler: probes at most less one (0..15); req_aniso_pow2:
@@ -29,6 +31,7 @@ module tex_probe #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
   input  logic                                   req_deriv,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
@@ -43,6 +46,7 @@ module tex_probe #(
   output logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u,
   output logic signed [tex_pkg::REQ_COORD_W-1:0] probe_v,
   output logic signed [tex_pkg::LOD_W-1:0]       probe_lod,
+  output logic signed [tex_pkg::LOD_W-1:0]       probe_bias,
   output logic                                   probe_first,
   output logic                                   probe_last,
   output logic [4:0]                             probe_n,
@@ -67,7 +71,7 @@ module tex_probe #(
   // cost Verilator a delayed-write shadow per element and clock).
   localparam int LW = tex_pkg::LOD_W;
   logic [4*DW-1:0]                  u_q, v_q;
-  logic [4*LW-1:0]                  lod_q;
+  logic [4*LW-1:0]                  lod_q, bias_q;
   logic [4:1]                       deriv_q;
   logic [4*TAG_W-1:0]               tag_q;
   logic signed [DW-1:0]             dudx_s1, dvdx_s1, dudy_s1, dvdy_s1;
@@ -81,6 +85,7 @@ module tex_probe #(
       u_q        <= {u_q[0 +: 3*DW], req_u};
       v_q        <= {v_q[0 +: 3*DW], req_v};
       lod_q      <= {lod_q[0 +: 3*LW], req_lod};
+      bias_q     <= {bias_q[0 +: 3*LW], req_bias};
       deriv_q    <= {deriv_q[3:1], req_deriv};
       tag_q      <= {tag_q[0 +: 3*TAG_W], req_tag};
       dudx_s1    <= req_dudx;
@@ -149,6 +154,7 @@ module tex_probe #(
   end
   assign probe_valid = valid[4];
   assign probe_lod   = deriv_q[4] ? aniso_lambda : lod_q[3*LW +: LW];
+  assign probe_bias  = bias_q[3*LW +: LW];
   assign probe_first = index == 4'd0;
   assign probe_last  = !hold;
   assign probe_n     = n;

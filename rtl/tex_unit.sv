@@ -12,7 +12,8 @@
 // Throughput: 1 probe per clock sustained (8 texel reads per clock: a 2x2 footprint in each of
 //   levels d and d1): 1 sample per clock for lambda requests and isotropic footprints, 1 per N
 //   clocks for an anisotropic sample of N probes; under backpressure the unit adds no bubbles.
-// Ports (see docs/rtl-interface.md): req_u, req_v signed Q8.24; req_lod, cfg_smp_lod_bias,
+// Ports (see docs/rtl-interface.md): req_u, req_v signed Q8.24; req_lod, req_bias (the request's
+//   own LOD bias, added to the sampler's: GLSL texture(s, uv, bias)), cfg_smp_lod_bias,
 //   cfg_smp_min_lod, cfg_smp_max_lod signed Q8.8; req_deriv selects req_lod (0) or the derivatives
 //   req_dudx, req_dvdx, req_dudy, req_dvdy (1, signed Q8.24 texture widths per pixel);
 //   cfg_smp_max_aniso_m1 the probes per sample at most less one (0..15; 0 = trilinear),
@@ -70,6 +71,7 @@ module tex_unit #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
   input  logic                                   req_deriv,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
@@ -132,7 +134,7 @@ module tex_unit #(
   logic                                   probe_valid, probe_first, probe_last;
   logic [4:0]                             probe_n;
   logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u, probe_v;
-  logic signed [tex_pkg::LOD_W-1:0]       probe_lod;
+  logic signed [tex_pkg::LOD_W-1:0]       probe_lod, probe_bias;
   logic [TGW-1:0]                         probe_tag;
   logic [2:0]                             probe_held;  // requests in tex_probe
 `ifdef FORMAL
@@ -142,10 +144,11 @@ module tex_unit #(
   tex_probe #(.TAG_W(TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
+    .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h),
     .req_max_aniso_m1(cfg_smp_max_aniso_m1), .req_aniso_pow2(cfg_smp_aniso_pow2), .req_tag(req_tag),
-    .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod),
+    .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag(probe_tag),
     .held(probe_held)
 `ifdef FORMAL
@@ -203,7 +206,7 @@ module tex_unit #(
   logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside the level (border)
   logic [3:0]      border_x_s5, border_y_s5, border_x_s6, border_y_s6;
   tex_front #(.XW(XW), .YW(YW)) u_front (
-    .clk(clk), .en(en), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
+    .clk(clk), .en(en), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
     .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h), .req_wrap_u(cfg_smp_wrap_u),
     .req_wrap_v(cfg_smp_wrap_v), .req_min_linear(cfg_smp_min_linear), .req_mag_linear(cfg_smp_mag_linear),
     .req_mip_mode(cfg_smp_mip_mode), .req_lod_bias(cfg_smp_lod_bias), .req_min_lod(cfg_smp_min_lod),
@@ -333,7 +336,7 @@ module tex_unit #(
   // channels.
   logic                                   req_stalled_q, rsp_stalled_q;
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_u_q, req_v_q;
-  logic signed [tex_pkg::LOD_W-1:0]       req_lod_q;
+  logic signed [tex_pkg::LOD_W-1:0]       req_lod_q, req_bias_q;
   logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
@@ -345,6 +348,7 @@ module tex_unit #(
       req_u_q   <= req_u;
       req_v_q   <= req_v;
       req_lod_q <= req_lod;
+      req_bias_q <= req_bias;
       req_tag_q <= req_tag;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
     end
@@ -353,7 +357,7 @@ module tex_unit #(
       rsp_rgba_q <= rsp_rgba;
     end
     if (!rst && req_stalled_q) begin
-      assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q
+      assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
               && req_tag == req_tag_q
               // (=== : a lambda request's derivative pins are don't-care, X in the 4-state run)
               && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} === req_deriv_q)

@@ -11,7 +11,7 @@
 //   configuration write reaches the unit's pins 1 clock after the write's edge (BVALID with it).
 // Throughput: tex_unit_cached's (1 probe per clock while lines hit).
 // Ports: req_* / rsp_* as tex_unit_cached (req_u, req_v, req_dudx .. req_dvdy signed Q8.24;
-//   req_lod signed Q8.8; req_tex a descriptor entry, req_sampler a sampler entry; rsp_rgba {A, B, G, R} CW-bit unsigned;
+//   req_lod, req_bias signed Q8.8; req_tex a descriptor entry, req_sampler a sampler entry; rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   rsp_error: the sample read a line the memory answered with an error, rsp_rgba 0);
 //   s_axi_* 32-bit data, ADDR_W-bit byte addresses; m_axi_* MEM_W-bit data,
 //   tex_pkg::MEM_ADDR_W-bit byte addresses, AXI_ID_W-bit IDs.
@@ -65,6 +65,7 @@ module tex_unit_axi #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
   input  logic                                   req_deriv,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
@@ -169,7 +170,7 @@ module tex_unit_axi #(
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v),
-    .req_lod(req_lod), .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx),
+    .req_lod(req_lod), .req_bias(req_bias), .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx),
     .req_dudy(req_dudy), .req_dvdy(req_dvdy), .req_tex(req_tex), .req_sampler(req_sampler), .req_tag(req_tag),
     .rsp_valid(rsp_valid), .rsp_ready(rsp_ready), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag),
     .rsp_error(rsp_error),

@@ -108,6 +108,7 @@ module tex_unit_cached #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
   input  logic                                   req_deriv,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
@@ -289,7 +290,7 @@ module tex_unit_cached #(
   logic                                   probe_valid, probe_first, probe_last;
   logic [4:0]                             probe_n;
   logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u, probe_v;
-  logic signed [tex_pkg::LOD_W-1:0]       probe_lod;
+  logic signed [tex_pkg::LOD_W-1:0]       probe_lod, probe_bias;
   logic [TGW-1:0]                         probe_tag;
   logic [TXW-1:0]                         probe_tex;   // the probe's texture (with the tag)
   logic [SXW-1:0]                         probe_smp;   // and its sampler
@@ -297,11 +298,12 @@ module tex_unit_cached #(
   tex_probe #(.TAG_W(SXW + TXW + TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
+    .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_log2_w(req_size[0 +: VW]), .req_log2_h(req_size[VW +: VW]),
     .req_max_aniso_m1(req_aniso[3:0]), .req_aniso_pow2(req_aniso[4]),
     .req_tag({SXW'(req_sampler), TXW'(req_tex), req_tag}),
-    .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod),
+    .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n),
     .probe_tag({probe_smp, probe_tex, probe_tag}),
     .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
@@ -343,7 +345,7 @@ module tex_unit_cached #(
   logic [4*YW-1:0] y;
   logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside its level (mode border)
   tex_front #(.XW(XW), .YW(YW)) u_front (
-    .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod),
+    .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
     .req_log2_w(probe_size[0 +: VW]), .req_log2_h(probe_size[VW +: VW]),
     .req_wrap_u(probe_smp_front[0 +: WW]), .req_wrap_v(probe_smp_front[WW +: WW]),
     .req_min_linear(probe_smp_front[2*WW]), .req_mag_linear(probe_smp_front[2*WW + 1]),
@@ -470,7 +472,7 @@ module tex_unit_cached #(
   logic [31:0] in_flight;
   logic        req_stalled_q, rsp_stalled_q, mreq_stalled_q;
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_u_q, req_v_q;
-  logic signed [tex_pkg::LOD_W-1:0]       req_lod_q;
+  logic signed [tex_pkg::LOD_W-1:0]       req_lod_q, req_bias_q;
   logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [tex_pkg::TEX_ID_W-1:0]           req_tex_q;
@@ -509,6 +511,7 @@ module tex_unit_cached #(
       req_u_q   <= req_u;
       req_v_q   <= req_v;
       req_lod_q <= req_lod;
+      req_bias_q <= req_bias;
       req_tag_q <= req_tag;
       req_tex_q <= req_tex;
       req_sampler_q <= req_sampler;
@@ -545,7 +548,7 @@ module tex_unit_cached #(
       assert (32'(req_tex) < TEXTURES)
         else $error("tex_unit_cached: req_tex %0d is beyond the descriptor table (TEXTURES = %0d)", req_tex, TEXTURES);
     if (!rst && req_stalled_q) begin
-      assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q
+      assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
               && req_tag == req_tag_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end

@@ -30,6 +30,7 @@ module tex_unit_formal #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
+  input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
   input  logic                                   req_deriv,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,

@@ -134,6 +134,7 @@ module tex_ice40_cached_top #(
     .cfg_fifo_limit(in_bits[O_FIFO +: FW]),
     .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
+    .req_bias('0),  // lambda requests (textureLod) have no bias of their own
     // Lambda requests only (the LOD / anisotropy unit is tied off and optimized away: a fit
     // of the probe datapath on the HX8K is not measured here).
     .req_deriv(1'b0), .req_dudx('0), .req_dvdx('0), .req_dudy('0), .req_dvdy('0),

@@ -96,6 +96,7 @@ module tex_ice40_top #(
     .wr_y(in_bits[O_WR_Y +: XW]), .wr_data(in_bits[O_WR_DATA +: 4*CW]),
     .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
+    .req_bias('0),  // lambda requests (textureLod) have no bias of their own
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2),
     .cfg_smp_border_rgba(in_bits[O_BORDER +: 64]),

@@ -86,6 +86,7 @@ QueryReader::QueryReader(const QueryReader& header, uint64_t begin, uint64_t end
   columns_ = header.columns_;
   texture_ = header.texture_;
   sampler_ = header.sampler_;
+  bias_ = header.bias_;
   lod_ = header.lod_;
   quad_ = header.quad_;
 }
@@ -143,23 +144,26 @@ namespace {
 // The headers a trace may have: the columns, in order.
 struct TraceFormat {
   const char* header;
-  // a tex column; a smp column; u,v,lod (else the four derivatives); quad,x,y,helper
-  bool texture, sampler, lod, quad;
+  // a tex column; a smp column; u,v,lod (else the four derivatives); a bias column; quad,x,y,helper
+  bool texture, sampler, lod, bias, quad;
 };
 constexpr TraceFormat kFormats[] = {
-    {"u,v,lod", false, false, true, false},
-    {"u,v,dudx,dvdx,dudy,dvdy", false, false, false, false},
-    {"tex,u,v,lod", true, false, true, false},
-    {"tex,u,v,dudx,dvdx,dudy,dvdy", true, false, false, false},
-    {"tex,smp,u,v,lod", true, true, true, false},
-    {"tex,smp,u,v,dudx,dvdx,dudy,dvdy", true, true, false, false},
-    {kFrameTraceHeader, true, false, false, true},
+    {"u,v,lod", false, false, true, false, false},
+    {"u,v,dudx,dvdx,dudy,dvdy", false, false, false, false, false},
+    {"u,v,dudx,dvdx,dudy,dvdy,bias", false, false, false, true, false},
+    {"tex,u,v,lod", true, false, true, false, false},
+    {"tex,u,v,dudx,dvdx,dudy,dvdy", true, false, false, false, false},
+    {"tex,u,v,dudx,dvdx,dudy,dvdy,bias", true, false, false, true, false},
+    {"tex,smp,u,v,lod", true, true, true, false, false},
+    {"tex,smp,u,v,dudx,dvdx,dudy,dvdy", true, true, false, false, false},
+    {"tex,smp,u,v,dudx,dvdx,dudy,dvdy,bias", true, true, false, true, false},
+    {kFrameTraceHeader, true, false, false, false, true},
 };
 constexpr int kMaxColumns = 11;
 
 // The headers of kFormats, in short: [tex,[smp,]] before u,v,lod and u,v,dudx,...
 std::string known_headers() {
-  return "[tex,[smp,]]u,v,lod or [tex,[smp,]]u,v,dudx,dvdx,dudy,dvdy or " + std::string(kFrameTraceHeader);
+  return "[tex,[smp,]]u,v,lod or [tex,[smp,]]u,v,dudx,dvdx,dudy,dvdy[,bias] or " + std::string(kFrameTraceHeader);
 }
 
 }  // namespace
@@ -255,6 +259,7 @@ void QueryReader::read_header() {
         columns_ = int(std::count(header.begin(), header.end(), ',')) + 1;
         texture_ = format.texture;
         sampler_ = format.sampler;
+        bias_ = format.bias;
         lod_ = format.lod;
         quad_ = format.quad;
       }
@@ -294,6 +299,7 @@ bool QueryReader::next(Query& q) {
     } else {
       q.deriv = {v[c], v[c + 1], v[c + 2], v[c + 3]};
       c += 4;
+      if (bias_) q.bias = v[c++];
     }
     if (quad_) {
       q.quad = uint32_t(whole(c++, 0, 4294967295.0, "quad"));
@@ -482,6 +488,7 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag) {
   } else {
     if (!to_lod_derivatives(q.deriv, r.deriv)) throw Error(at() + "a derivative is not a finite number");
     r.has_derivatives = true;
+    if (!to_lod_fixed(q.bias, r.bias)) throw Error(at() + "bias = " + std::to_string(q.bias) + " is outside [-128, 128)");
   }
   return r;
 }

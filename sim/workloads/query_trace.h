@@ -23,6 +23,7 @@ struct Query {
   bool explicit_lod = true;
   double lod = 0;     // levels, when explicit_lod
   Derivatives deriv;  // otherwise
+  double bias = 0;    // levels: the request's own LOD bias (a `bias` column after the derivatives)
   int line = 0;       // line number in the file, for error messages
   // Real frames (docs/scenes.md): the descriptor-table entry sampled, the 2x2 quad the query
   // belongs to (numbered in issue order), its pixel, and whether it is a helper lane (sampled
@@ -40,7 +41,8 @@ constexpr const char* kFrameTraceHeader = "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,
 
 // Reads a query trace line by line. Header `u,v,lod` or `u,v,dudx,dvdx,dudy,dvdy`, either with a
 // leading `tex` column (the descriptor-table entry, 0..15) or `tex,smp` columns (and the
-// sampler-table entry, 0..15), or kFrameTraceHeader; `#` lines are
+// sampler-table entry, 0..15), the derivative forms optionally with a trailing `bias` column (the
+// request's own LOD bias in levels, GLSL texture(s, uv, bias)), or kFrameTraceHeader; `#` lines are
 // comments, blank lines are skipped; a UTF-8 byte-order mark is skipped. A file with only the
 // header has no queries (not an error). Throws tex::Error naming the file, the line number and
 // the text of a bad line (quoted once, at most 80 characters): no header, a NUL byte (a binary
@@ -75,7 +77,7 @@ class QueryReader {
   uint64_t file_pos_ = 0, file_end_ = UINT64_MAX;  // offset of buf_[end_]; where reading stops
   bool eof_ = false;
   int line_no_ = 0, columns_ = 0;
-  bool texture_ = false, sampler_ = false, lod_ = false, quad_ = false;  // the header's columns
+  bool texture_ = false, sampler_ = false, lod_ = false, bias_ = false, quad_ = false;  // the header's columns
 };
 
 // What a frame's queries ask for (texsim's frame figures): quads are runs of one quad number.

@@ -171,6 +171,7 @@ std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_
     r[i].u = coordinate(rng, lw, last);
     r[i].v = coordinate(rng, lh, last);
     r[i].lod = lod_value(rng, last);
+    if (rng() % 4 == 0) r[i].bias = lod_value(rng, last);  // the request's own bias (GLSL texture(s, uv, bias))
     r[i].tag = uint32_t(i);
   }
   return r;

@@ -277,6 +277,7 @@ class AxiTop {
       t.req_u = uint32_t(q.u);
       t.req_v = uint32_t(q.v);
       t.req_lod = uint16_t(q.lod);
+      t.req_bias = uint16_t(q.bias);
       t.req_deriv = q.has_derivatives;
       t.req_dudx = uint32_t(q.deriv.dudx);
       t.req_dvdx = uint32_t(q.deriv.dvdx);
@@ -289,6 +290,7 @@ class AxiTop {
       t.req_u = junk();
       t.req_v = junk();
       t.req_lod = uint16_t(junk());
+      t.req_bias = uint16_t(junk());
       t.req_deriv = junk() & 1;
       t.req_dudx = junk();
       t.req_dvdx = junk();
@@ -578,6 +580,7 @@ std::vector<Request> random_requests(std::mt19937_64& rng, const TextureTable& t
     r.u = coordinate(rng, lw, last);
     r.v = coordinate(rng, lh, last);
     r.lod = lod_value(rng, last);
+    if (rng() % 4 == 0) r.bias = lod_value(rng, last);  // the request's own LOD bias
     r.texture = tex;
     r.sampler = smp;
     r.tag = uint32_t(i);

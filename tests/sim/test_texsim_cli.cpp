@@ -762,3 +762,37 @@ TEST_F(TexsimCli, SamplerStateOptions) {
                  "--memory cached --cache-kib 4 --verify")[3],
             (std::vector<int>{128, 94, 4, 153}));
 }
+
+// A trace's `bias` column is each request's own LOD bias (GLSL texture(s, uv, bias)), added to the
+// sampler's: a trace whose every request has bias 0.75 samples as the same trace without it
+// through --lod-bias 0.75, on the model and the RTL; a bias outside Q8.8 is refused with its line.
+TEST_F(TexsimCli, TraceBiasColumnAddsToTheSamplersBias) {
+  std::string with = "u,v,dudx,dvdx,dudy,dvdy,bias\n", without = "u,v,dudx,dvdx,dudy,dvdy\n";
+  for (int i = 0; i < 300; ++i) {
+    const std::string row = std::to_string((i % 17) / 17.0) + "," + std::to_string((i / 17) / 18.0) + "," +
+                            std::to_string(0.02 + (i % 7) * 0.015) + ",0,0," + std::to_string(0.03 + (i % 5) * 0.02);
+    with += row + "," + (i % 2 ? "0.75" : "-0.5") + "\n";
+    without += row + "\n";
+  }
+  for (const char* e : {"model", "rtl"}) {
+    // Even requests carry -0.5, odd ones 0.75: each half against its own --lod-bias run.
+    queries(with);
+    ASSERT_EQ(run(std::string("sample -t noise:64x64 -q q.csv -o b.csv -e ") + e).exit_code, 0);
+    queries(without);
+    ASSERT_EQ(run(std::string("sample -t noise:64x64 -q q.csv -o p.csv --lod-bias 0.75 -e ") + e).exit_code, 0);
+    ASSERT_EQ(run(std::string("sample -t noise:64x64 -q q.csv -o m.csv --lod-bias -0.5 -e ") + e).exit_code, 0);
+    ASSERT_EQ(run(std::string("sample -t noise:64x64 -q q.csv -o z.csv -e ") + e).exit_code, 0);
+    std::string h1, h2, h3, h4;
+    const auto b = read_csv_rows(dir / "b.csv", h1), p = read_csv_rows(dir / "p.csv", h2),
+               m = read_csv_rows(dir / "m.csv", h3), z = read_csv_rows(dir / "z.csv", h4);
+    ASSERT_EQ(b.size(), 300u);
+    size_t moved = 0;
+    for (size_t i = 0; i < b.size(); ++i) {
+      EXPECT_EQ(b[i], i % 2 ? p[i] : m[i]) << e << " request " << i;
+      moved += b[i] != z[i];
+    }
+    EXPECT_GT(moved, 100u) << e << ": the bias moved too few samples to tell";
+  }
+  queries("u,v,dudx,dvdx,dudy,dvdy,bias\n0.5,0.5,0.01,0,0,0.01,200\n");
+  expect_clean_failure("sample -t noise:64x64 -q q.csv -o r.csv", "r.csv", {"q.csv:2", "bias"});
+}

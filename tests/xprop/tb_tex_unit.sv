@@ -47,6 +47,7 @@ module tb_tex_unit #(
   logic                                   req_ready;
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_u = 'x, req_v = 'x;
   logic signed [tex_pkg::LOD_W-1:0]       req_lod = 'x;
+  logic signed [tex_pkg::LOD_W-1:0]       req_bias = 'x;
   // Lambda requests: req_deriv = 0 with every derivative pin X (don't-care), also the anisotropy
   // configuration (used by derivative requests only).
   logic                                   req_deriv = 'x;
@@ -191,6 +192,7 @@ module tb_tex_unit #(
     req_u = 'x;
     req_v = 'x;
     req_lod = 'x;
+    req_bias = 'x;
     req_deriv = 'x;
     req_tag = 'x;
   endtask
@@ -266,6 +268,7 @@ module tb_tex_unit #(
     req_u = u;
     req_v = v;
     req_lod = lod;
+    req_bias = '0;  // (the vectors' requests have no bias of their own)
     req_deriv = 1'b0;
     req_tag = tag;
     step();

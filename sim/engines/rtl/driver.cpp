@@ -98,6 +98,9 @@ void check_request(const Request& request, size_t index) {
   if (!request.has_derivatives && (request.lod < kLodMin || request.lod > kLodMax))
     throw Error("request " + std::to_string(index) + ": lod " + std::to_string(request.lod) +
                 "/256 is outside the 16-bit Q8.8 port of the RTL");
+  if (request.bias < kLodMin || request.bias > kLodMax)
+    throw Error("request " + std::to_string(index) + ": bias " + std::to_string(request.bias) +
+                "/256 is outside the 16-bit Q8.8 port of the RTL");
 }
 
 CachePins cache_pins(const RtlConfig& config, const LayoutParams& layout, const CacheParams& cache,
@@ -143,6 +146,7 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_u = r.u;
   in.req_v = r.v;
   in.req_lod = int16_t(r.lod);
+  in.req_bias = int16_t(r.bias);
   in.req_deriv = r.has_derivatives;
   in.req_dudx = r.deriv.dudx;
   in.req_dvdx = r.deriv.dvdx;

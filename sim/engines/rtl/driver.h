@@ -62,7 +62,7 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
 // Everything the RTL cannot take, as one tex::Error, before any clock: a texture too large or with
 // other channel widths than the configuration's, a lambda outside the 16-bit Q8.8 port.
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests = {});
-void check_request(const Request& request, size_t index);  // the lod fits the 16-bit Q8.8 port
+void check_request(const Request& request, size_t index);  // lod and bias fit the 16-bit Q8.8 ports
 
 // The cache pins of tex_unit_cached for a cache geometry (throws tex::Error when the
 // configuration cannot hold it).
@@ -93,6 +93,7 @@ struct PinsIn {
   bool req_valid = false;
   int32_t req_u = 0, req_v = 0;  // Q8.24
   int16_t req_lod = 0;           // Q8.8
+  int16_t req_bias = 0;          // Q8.8, the request's own LOD bias
   bool req_deriv = false;        // the derivatives below instead of req_lod
   int32_t req_dudx = 0, req_dvdx = 0, req_dudy = 0, req_dvdy = 0;  // Q8.24
   uint16_t req_tag = 0;

@@ -89,6 +89,7 @@ class VerilatedTexUnit final : public Driver {
     t.req_u = uint32_t(in.req_u);
     t.req_v = uint32_t(in.req_v);
     t.req_lod = uint16_t(in.req_lod);
+    t.req_bias = uint16_t(in.req_bias);
     t.req_deriv = in.req_deriv;
     t.req_dudx = uint32_t(in.req_dudx);
     t.req_dvdx = uint32_t(in.req_dvdx);

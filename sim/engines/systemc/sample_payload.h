@@ -22,10 +22,11 @@ struct SampleTransfer {
   uint32_t tag = 0;      // the initiator's own; returned unchanged
   uint32_t has_derivatives = 0;  // 1: the unit computes lambda (and anisotropic probes) from these, not lod
   int32_t dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;  // Q8.24 texture widths / heights per pixel
+  int32_t bias = 0;      // Q8.8, the request's own LOD bias (added to the sampler's); 16-bit RTL port
   // Response (written by the target).
   uint16_t rgba[4] = {0, 0, 0, 0};  // R, G, B, A; channel width of the texture (8 bits on the RTL)
 };
-static_assert(sizeof(SampleTransfer) == 44, "SampleTransfer is the socket's wire format");
+static_assert(sizeof(SampleTransfer) == 48, "SampleTransfer is the socket's wire format");
 
 // Debug transport (transport_dbg, TLM_READ_COMMAND) on the same socket reads texels of the unit's
 // memory view: texel (x, y) of `level` and the ones after it along x in the same row, 8 bytes each

@@ -75,6 +75,7 @@ StreamInitiator::Slot* StreamInitiator::take_slot(const Request& q, size_t index
   s->data.dvdx = q.deriv.dvdx;
   s->data.dudy = q.deriv.dudy;
   s->data.dvdy = q.deriv.dvdy;
+  s->data.bias = q.bias;
   s->set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   ++issued_;
   return s;

@@ -76,6 +76,7 @@ Request request_of(const SampleTransfer& s) {
   Request q = lambda_request(s.u, s.v, s.lod);
   q.has_derivatives = s.has_derivatives != 0;
   q.deriv = {s.dudx, s.dvdx, s.dudy, s.dvdy};
+  q.bias = s.bias;
   return q;
 }
 }  // namespace
@@ -100,7 +101,8 @@ SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
     return nullptr;
   }
   auto* s = reinterpret_cast<SampleTransfer*>(trans.get_data_ptr());
-  if (backend_ == Backend::Rtl && !s->has_derivatives && (s->lod < kLodMin || s->lod > kLodMax)) {  // the 16-bit req_lod port
+  if (backend_ == Backend::Rtl && ((!s->has_derivatives && (s->lod < kLodMin || s->lod > kLodMax)) ||
+                                   s->bias < kLodMin || s->bias > kLodMax)) {  // the 16-bit req_lod, req_bias ports
     trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return nullptr;
   }
