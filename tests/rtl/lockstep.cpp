@@ -44,6 +44,8 @@ std::string describe(const Request& r) {
     o << " dudx=" << r.deriv.dudx << " dvdx=" << r.deriv.dvdx << " dudy=" << r.deriv.dudy << " dvdy=" << r.deriv.dvdy;
   else
     o << " lod=" << r.lod << " (" << r.lod / 256.0 << ")";
+  if (r.bias) o << " bias=" << r.bias << " (" << r.bias / 256.0 << ")";
+  if (r.texture || r.sampler) o << " texture " << int(r.texture) << " sampler " << int(r.sampler);
   return o.str();
 }
 
