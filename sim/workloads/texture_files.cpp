@@ -403,10 +403,10 @@ Pyramid load_pyramid(const std::string& spec, const TextureOptions& o) {
                 " (a texture file keeps its format)");
   if (o.srgb && !file.srgb)
     throw Error(spec + ": --srgb, but the file holds " + file.format_name + ", not an sRGB format (a texture file keeps its own)");
-  return pyramid_of(file, o.mode, spec);
+  return pyramid_of(file, o.mode);
 }
 
-Pyramid pyramid_of(const TextureFile& file, PyramidMode mode, const std::string& name) {
+Pyramid pyramid_of(const TextureFile& file, PyramidMode mode) {
   auto decoded = [&](int k) {
     const LevelShape s = level_shape(log2_exact(file.width), log2_exact(file.height), k);
     if (!is_compressed(file.format)) {

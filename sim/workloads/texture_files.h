@@ -34,7 +34,7 @@ TextureFile read_texture_file(const std::string& path);
 // codes decoded to linear: model/srgb.h). A file with one level gets the rest of the chain from
 // the box filter (`mode`; in linear space for sRGB), each level compressed again
 // (compress_pyramid). Throws tex::Error.
-Pyramid pyramid_of(const TextureFile& file, PyramidMode mode, const std::string& name);
+Pyramid pyramid_of(const TextureFile& file, PyramidMode mode);
 
 // Every level of an RGBA8 pyramid compressed to `format` by libsquish (BC1-BC5, cluster fit; BC4
 // takes red, BC5 red and green) or by Mesa (BC7, through the image module), then decoded again

@@ -158,7 +158,7 @@ TEST(TextureFiles, OpenImageIoReadsTheSameLevels) {
     const auto levels = random_levels(f, 32, 32, 6, 40 + uint64_t(f));
     const fs::path p = s / "m.dds";
     save(p, f == TexelFormat::Bc7 ? dds("DX10", 98, 32, 32, levels) : dds(f == TexelFormat::Bc1 ? "DXT1" : "DXT5", 0, 32, 32, levels));
-    const Pyramid pyr = pyramid_of(read_texture_file(p.string()), PyramidMode::Exact, p.string());
+    const Pyramid pyr = pyramid_of(read_texture_file(p.string()), PyramidMode::Exact);
     ASSERT_EQ(pyr.levels.size(), 6u);
     EXPECT_EQ(pyr.format, f);
     auto in = OIIO::ImageInput::open(p.string());
@@ -218,7 +218,7 @@ TEST(TextureFiles, BadFilesNameTheProblem) {
   // on a file that is not sRGB is refused.
   save(s / "srgb.dds", dds("DX10", 72, 16, 16, bc1));
   EXPECT_TRUE(read_texture_file((s / "srgb.dds").string()).srgb);
-  const Pyramid p = pyramid_of(read_texture_file((s / "srgb.dds").string()), PyramidMode::Exact, "srgb.dds");
+  const Pyramid p = pyramid_of(read_texture_file((s / "srgb.dds").string()), PyramidMode::Exact);
   EXPECT_TRUE(p.srgb);
   EXPECT_EQ(p.blocks, bc1);
   EXPECT_EQ(p.levels[0].channel_bits, 16);
