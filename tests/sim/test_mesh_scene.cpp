@@ -454,6 +454,24 @@ TEST(MeshSceneErrors, UnreadableModels) {
   }
 }
 
+// An OFF header that claims more vertices or faces than its file can hold is refused before Assimp
+// allocates for it (Debian's invalid/OutOfMemory.off claims 353 535 235 358 vertices in 309 bytes:
+// Assimp alone grew to 7.5 GB), naming the file and the counts; a well-formed OFF still loads.
+TEST(MeshSceneErrors, OffHeaderBeyondTheFileIsRefused) {
+  const std::string oom = (kModels / "invalid/OutOfMemory.off").string();
+  expect_error([&] { load_model(oom); }, {oom, "OFF header claims 353535235358 vertices", "309 bytes"});
+  TempDir dir;
+  write_text(dir / "big.off", "OFF\n# a comment\n100 1 0\n0 0 0\n1 0 0\n1 1 0\n3 0 1 2\n");
+  expect_error([&] { load_model((dir / "big.off").string()); }, {"big.off", "100 vertices"});
+  write_text(dir / "tri.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n1 1 0\n3 0 1 2\n");
+  expect_error([&] { load_model((dir / "tri.off").string()); }, {"tri.off"});  // untextured: Assimp's or ours, not the header's
+  try {
+    load_model((dir / "tri.off").string());
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("OFF header"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MeshSceneErrors, NonFiniteVertexData) {
   TempDir dir;
   write_png(dir / "tex.png", 4, 2, kTexels4x2);
