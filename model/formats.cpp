@@ -71,6 +71,15 @@ bool parse_texel_filter(const std::string& name, TexelFilter& out) {
 
 std::string texel_filter_name(TexelFilter f) { return f == TexelFilter::Nearest ? "nearest" : "linear"; }
 
+bool parse_min_filter(const std::string& name, TexelFilter& texel, std::optional<MipMode>& mip) {
+  if (parse_texel_filter(name, texel)) return true;
+  Filter gl;
+  if (!parse_filter(name, gl) || name_key(name, "").find("mipmap") == std::string::npos) return false;
+  texel = gl.texel;
+  mip = gl.mip;
+  return true;
+}
+
 std::string mip_mode_name(MipMode m) {
   return m == MipMode::None ? "none" : m == MipMode::Nearest ? "nearest" : "linear";
 }

@@ -6,6 +6,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace tex {
@@ -74,6 +75,10 @@ std::string filter_name(Filter f);  // with "/mag-" and the mag filter when it d
 // nearest | linear (GL_NEAREST, VK_FILTER_LINEAR, ...: case and prefix ignored).
 bool parse_texel_filter(const std::string& name, TexelFilter& out);
 std::string texel_filter_name(TexelFilter f);
+// A minification filter: nearest | linear (the texel filter alone; `mip` untouched), or one of GL's
+// four *_MIPMAP_* names (any case, GL_ prefix or not), which give the mipmap mode too (`mip`).
+// The one reading of --min-filter, texture lists' min= and scene files' min_filter.
+bool parse_min_filter(const std::string& name, TexelFilter& texel, std::optional<MipMode>& mip);
 // none | nearest | linear (a mipmapMode; "none": the base level only).
 bool parse_mip_mode(const std::string& name, MipMode& out);
 std::string mip_mode_name(MipMode m);

@@ -1,7 +1,9 @@
 #include "cli/render_model.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <vector>
 
 #include "model/pyramid.h"
 #include "model/srgb.h"
@@ -181,10 +183,12 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   print_cycle_stats(last_stats, eo);
   print_probe_stats(last_stats);
   std::printf("  %s%s\n", first == last ? "" : "total: ", total.summary().c_str());
-  std::string filters;  // the samplers' filters, each once (a glTF file may give each texture its own)
+  std::vector<std::string> names;  // the samplers' filters, each once (a glTF file may give each texture its own)
   for (const SamplerConfig& smp : samplers)
-    if (const std::string n = filter_name(smp.filter); (", " + filters + ", ").find(", " + n + ", ") == std::string::npos)
-      filters += (filters.empty() ? "" : ", ") + n;
+    if (const std::string n = filter_name(smp.filter); std::find(names.begin(), names.end(), n) == names.end())
+      names.push_back(n);
+  std::string filters;
+  for (const std::string& n : names) filters += (filters.empty() ? "" : ", ") + n;
   std::printf("texsim render: %s, %zu meshes, %zu textures, %dx%d, frame%s %d..%d of %d, %s, %s order, engine %s, "
               "%s memory%s -> %s (%.2f s)\n",
               a.model.empty() ? a.scene_file.c_str() : a.model.c_str(), scene.meshes.size(), scene.textures.size(),

@@ -3,7 +3,6 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -187,16 +186,11 @@ struct SamplingOptions {
       throw Error("--max-aniso and --aniso-pow2 apply to --filter anisotropic, not " + quote_clipped(filter));
     c.max_aniso = max_aniso;
     c.aniso_pow2 = aniso_pow2;
-    if (!min_filter.empty() && !parse_texel_filter(min_filter, c.filter.texel)) {
-      // A GL minification filter (any case, GL_ prefix or not) sets the mipmap mode too.
-      std::string lower = min_filter;
-      for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-      Filter gl;
-      if (!parse_filter(min_filter, gl) || lower.find("mipmap") == std::string::npos)
+    if (std::optional<MipMode> mip; !min_filter.empty()) {
+      if (!parse_min_filter(min_filter, c.filter.texel, mip))
         throw Error("--min-filter " + quote_clipped(min_filter) +
                     " is not nearest, linear or a GL minification filter (nearest_mipmap_nearest, ...)");
-      c.filter.texel = gl.texel;
-      c.filter.mip = gl.mip;
+      if (mip) c.filter.mip = *mip;
     }
     if (!mipmap_mode.empty() && !parse_mip_mode(mipmap_mode, c.filter.mip))
       throw Error("--mipmap-mode " + quote_clipped(mipmap_mode) + " is not none, nearest or linear");

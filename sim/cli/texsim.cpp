@@ -74,12 +74,10 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
         const std::string key = token.substr(0, eq), value = token.substr(eq + 1);
         Filter& fl = e.sampler.filter;
         if (key == "min") {
-          Filter gl;  // a GL minification name sets the mip mode too
-          if (parse_texel_filter(value, fl.texel)) continue;
-          if (!parse_filter(value, gl) || gl.anisotropic)
+          std::optional<MipMode> mip;
+          if (!parse_min_filter(value, fl.texel, mip))
             throw Error(at + "min=" + quote_clipped(value) + ": not a minification filter (nearest, linear, or a GL name)");
-          fl.texel = gl.texel;
-          fl.mip = gl.mip;
+          if (mip) fl.mip = *mip;
         } else if (key == "mag") {
           if (!parse_texel_filter(value, fl.mag)) throw Error(at + "mag=" + quote_clipped(value) + ": not nearest or linear");
         } else if (key == "mip") {

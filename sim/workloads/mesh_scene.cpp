@@ -521,15 +521,11 @@ std::vector<ModelPlacement> read_scene_file(const std::string& path) {
             if (field != "wrap_u") o.wrap_v = w;
           } else if (field == "min_filter") {
             TexelFilter t;
-            Filter gl;  // a GL minification name sets the mipmap mode too
-            if (parse_texel_filter(name, t)) {
-              o.min_filter = t;
-            } else if (parse_filter(name, gl) && !gl.anisotropic) {
-              o.min_filter = gl.texel;
-              if (!o.mipmap_mode) o.mipmap_mode = gl.mip;
-            } else {
+            std::optional<MipMode> mip;  // a GL minification name gives the mipmap mode too
+            if (!parse_min_filter(name, t, mip))
               fail(fat, "unknown minification filter " + quote_clipped(name) + " (nearest, linear, or a GL name)");
-            }
+            o.min_filter = t;
+            if (mip && !o.mipmap_mode) o.mipmap_mode = mip;
           } else if (field == "mag_filter") {
             TexelFilter t;
             if (!parse_texel_filter(name, t)) fail(fat, "unknown magnification filter " + quote_clipped(name) + " (nearest, linear)");

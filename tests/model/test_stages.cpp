@@ -282,3 +282,26 @@ TEST(Stages, AddressAtLevelIsAShiftOfTheLevelZeroScale) {
     }
   }
 }
+
+// The one reading of a minification filter name (--min-filter, texture lists' min=, scene files'
+// min_filter): nearest / linear set the texel filter alone, GL's four MIPMAP names (any case, GL_
+// prefix or not) the mipmap mode too; whole-filter names (trilinear, point) are no minification
+// filter.
+TEST(Stages, MinFilterNames) {
+  TexelFilter t = TexelFilter::Linear;
+  std::optional<MipMode> mip;
+  EXPECT_TRUE(parse_min_filter("nearest", t, mip));
+  EXPECT_EQ(t, TexelFilter::Nearest);
+  EXPECT_FALSE(mip.has_value());
+  EXPECT_TRUE(parse_min_filter("GL_LINEAR_MIPMAP_NEAREST", t, mip));
+  EXPECT_EQ(t, TexelFilter::Linear);
+  EXPECT_EQ(mip, MipMode::Nearest);
+  EXPECT_TRUE(parse_min_filter("nearest_mipmap_linear", t, mip));
+  EXPECT_EQ(t, TexelFilter::Nearest);
+  EXPECT_EQ(mip, MipMode::Linear);
+  for (const char* bad : {"trilinear", "point", "cubic", "", "linear_mipmap"}) {
+    std::optional<MipMode> none;
+    EXPECT_FALSE(parse_min_filter(bad, t, none)) << bad;
+    EXPECT_FALSE(none.has_value()) << bad;
+  }
+}
