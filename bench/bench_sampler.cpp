@@ -95,7 +95,7 @@ QuerySet coherent_queries() {
       d.dudy = (xs - 0.5) * dz_dys / screen;
       d.dvdy = 0.5 * dz_dys / screen;
       int32_t lod = 0;
-      if (!tex::lod_from_derivatives(d, kLog2Size, kLog2Size, lod)) throw tex::Error("bench: bad derivatives");
+      if (!tex::lod_from_derivatives(d, {1 << kLog2Size, 1 << kLog2Size}, lod)) throw tex::Error("bench: bad derivatives");
       add_query(set, to_coord(u), to_coord(v), lod);
     }
   return set;

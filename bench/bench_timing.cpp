@@ -38,8 +38,8 @@ uint64_t run_rtl(TimingWorkload& w, std::vector<uint64_t>* clocks) {
 // The model: fresh caches, each request looked up (its probes' misses), clocked by the timing layer.
 uint64_t run_model(const TimingWorkload& w, std::vector<uint64_t>* clocks) {
   using namespace tex;
-  const MemoryLayout layout(w.pyramid->log2_w0(), w.pyramid->log2_h0(), 8, w.options.layout);
-  TextureCache cache(layout, w.options.cache, SamplerConfig{}, w.pyramid->log2_w0(), w.pyramid->log2_h0());
+  const MemoryLayout layout(w.pyramid->extent0(), 8, w.options.layout);
+  TextureCache cache(layout, w.options.cache, SamplerConfig{});
   const MemoryChannel memory(w.config->line_bytes(), w.config->mem_bits / 8, w.options.memory);
   TimedStream timed(rtl::unit_shape(*w.config), &memory, Stimulus{}, 7);
   if (clocks) clocks->clear();
@@ -72,7 +72,7 @@ std::vector<std::string> register_timing_benchmarks(
   using namespace tex;
   static std::vector<std::unique_ptr<TimingWorkload>> workloads;  // alive while the benchmarks run
   std::vector<std::string> names;
-  const rtl::RtlConfig& rc = rtl::smallest_config_for(pyramid.log2_w0(), pyramid.log2_h0(), 8, Memory::Cached);
+  const rtl::RtlConfig& rc = rtl::smallest_config_for(log2_exact(pyramid.extent0().w), log2_exact(pyramid.extent0().h), 8, Memory::Cached);
   for (const auto& [name, requests] : sets) {
     auto w = std::make_unique<TimingWorkload>();
     w->config = &rc;

@@ -9,24 +9,33 @@ namespace tex {
 BankedMipMemory::BankedMipMemory(const Pyramid& pyramid) {
   for (const Image& img : pyramid.levels) {
     Level lvl;
-    lvl.shape = {log2_exact(img.width), log2_exact(img.height)};
-    const int words = std::max(1, img.width / 2) * std::max(1, img.height / 2);
+    lvl.shape = {img.width, img.height};
+    lvl.stored_w = stored_side(img.width);
+    lvl.stored_h = stored_side(img.height);
+    const int words = ((lvl.stored_w + 1) / 2) * ((lvl.stored_h + 1) / 2);
     for (auto& b : lvl.banks) b.assign(size_t(words), Texel{});
     levels_.push_back(std::move(lvl));
     const int k = int(levels_.size()) - 1;
     for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x) levels_[k].banks[stage::bank(x, y)][word_of(k, x, y)] = img.at(x, y);
+      for (int x = 0; x < img.width; ++x) write(k, x, y, img.at(x, y));
   }
   reset_stats();
 }
 
 int BankedMipMemory::word_of(int level, int32_t x, int32_t y) const {
-  const int stride = std::max(1, levels_[level].shape.width() / 2);
+  const int stride = (levels_[size_t(level)].stored_w + 1) / 2;
   return (y >> 1) * stride + (x >> 1);
 }
 
 void BankedMipMemory::write(int level, int32_t x, int32_t y, const Texel& t) {
-  levels_[size_t(level)].banks[size_t(stage::bank(x, y))][size_t(word_of(level, x, y))] = t;
+  Level& l = levels_[size_t(level)];
+  auto put = [&](int32_t sx, int32_t sy) { l.banks[size_t(stage::bank(sx, sy))][size_t(word_of(level, sx, sy))] = t; };
+  put(x, y);
+  // Texel 0's copies past the last column and row (stored_side: the repeat seam).
+  const bool copy_x = x == 0 && l.stored_w > l.shape.w, copy_y = y == 0 && l.stored_h > l.shape.h;
+  if (copy_x) put(l.shape.w, y);
+  if (copy_y) put(x, l.shape.h);
+  if (copy_x && copy_y) put(l.shape.w, l.shape.h);
 }
 
 std::array<Texel, 4> BankedMipMemory::fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1,

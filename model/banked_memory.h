@@ -19,9 +19,11 @@ class BankedMipMemory {
   explicit BankedMipMemory(const Pyramid& pyramid);
 
   int levels() const { return int(levels_.size()); }
-  LevelShape shape(int level) const { return levels_[level].shape; }
+  Extent shape(int level) const { return levels_[level].shape; }
 
-  // Word address of texel (x, y) inside its bank (stride = half the level width, at least 1).
+  // Word address of texel (x, y) inside its bank (stride = half the stored width, rounded up). A
+  // level side n that is not a power of two is stored n + 1 wide (stored_side: index n is texel 0's
+  // copy, read by the repeat seam's second tap).
   int word_of(int level, int32_t x, int32_t y) const;
 
   // The fetch stage (RTL: tex_fetch) of one level: the 2x2 footprint {(x0,y0), (x1,y0), (x0,y1),
@@ -31,8 +33,8 @@ class BankedMipMemory {
   std::array<Texel, 4> fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1, bool only_first,
                              const Texel& border = {});
 
-  // Replaces texel (x, y) of `level` (a unit that fills its memories from elsewhere: the SystemC
-  // model backend in cached mode, from the lines it reads over the bus).
+  // Replaces texel (x, y) of `level` and its seam copies (a unit that fills its memories from
+  // elsewhere: the SystemC model backend in cached mode, from the lines it reads over the bus).
   void write(int level, int32_t x, int32_t y, const Texel& t);
 
   const BankStats& stats() const { return stats_; }
@@ -40,7 +42,8 @@ class BankedMipMemory {
 
  private:
   struct Level {
-    LevelShape shape;
+    Extent shape;
+    int stored_w = 1, stored_h = 1;  // stored_side of the shape's sides
     std::array<std::vector<Texel>, 4> banks;
   };
   std::vector<Level> levels_;

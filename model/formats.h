@@ -14,7 +14,8 @@ namespace tex {
 constexpr int kCoordFracBits = 24;  // u, v: signed Q8.24, 1.0 = one texture width
 constexpr int kLodFracBits = 8;     // lambda: signed Q8.8 in levels
 constexpr int kWeightBits = 8;      // fx, fy, f: 0..255 = 0..255/256
-constexpr int kMaxLog2Size = 13;    // 8192 texels per side at most
+constexpr int kMaxLog2Size = 13;    // 8192 texels per side at most (any size 1..8192)
+constexpr int kMaxSize = 1 << kMaxLog2Size;
 constexpr int kMaxLevels = kMaxLog2Size + 1;
 constexpr int kMaxChannelBits = 16;
 constexpr int kDefaultChannelBits = 8;
@@ -92,6 +93,23 @@ constexpr const char* kWrapNames = "repeat | clamp | mirror | border | mirror-cl
 bool parse_border_color(const std::string& name, BorderColor& out);
 std::string border_color_name(BorderColor b);
 bool parse_pyramid_mode(const std::string& name, PyramidMode& out);
+
+constexpr bool is_power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
+// ceil(log2 n) for n >= 1 (log2 n itself for a power of two).
+constexpr int log2_ceil(int n) {
+  int l = 0;
+  while ((1 << l) < n) ++l;
+  return l;
+}
+
+// A texture's or a level's size in texels (Vulkan's VkExtent2D).
+struct Extent {
+  int w = 1, h = 1;
+  int width() const { return w; }
+  int height() const { return h; }
+  bool operator==(const Extent& o) const { return w == o.w && h == o.h; }
+  bool operator!=(const Extent& o) const { return !(*this == o); }
+};
 
 // One texel: up to 4 channels of up to 16 bits (R, G, B, A).
 using Texel = std::array<uint16_t, 4>;

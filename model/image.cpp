@@ -7,14 +7,6 @@
 
 namespace tex {
 
-bool is_power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
-
-int log2_exact(int n) {
-  int l = 0;
-  while ((1 << l) < n) ++l;
-  return l;
-}
-
 const std::vector<std::string>& pattern_names() {
   static const std::vector<std::string> names = {"checker", "testcard", "noise", "gradient"};
   return names;
@@ -26,7 +18,6 @@ void check_texture_size(int w, int h, const std::string& what, const std::string
   const std::string tail = hint.empty() ? "" : " (" + hint + ")";
   if (w < 1 || h < 1) throw Error(size + " is empty: each side must be at least 1");
   if (w > max || h > max) throw Error(size + " is too large: at most " + std::to_string(max) + " per side" + tail);
-  if (!is_power_of_two(w) || !is_power_of_two(h)) throw Error(size + ": each side must be a power of two" + tail);
 }
 
 namespace {

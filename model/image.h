@@ -21,14 +21,13 @@ struct Image {
   const Texel& at(int x, int y) const { return texels[size_t(y) * width + x]; }
 };
 
-bool is_power_of_two(int n);
-int log2_exact(int n);  // n must be a power of two
+inline int log2_exact(int n) { return log2_ceil(n); }  // n must be a power of two
 
 // Names of the built-in patterns, for --help and error messages.
 const std::vector<std::string>& pattern_names();
 
-// Throws tex::Error unless both sides are powers of two from 1 to 2^kMaxLog2Size; `hint` (if any)
-// is appended in parentheses, e.g. how to resample.
+// Throws tex::Error unless both sides are 1 to kMaxSize texels; `hint` (if any) is appended in
+// parentheses, e.g. how to resample.
 void check_texture_size(int w, int h, const std::string& what, const std::string& hint = "");
 
 // A built-in pattern (pattern_names()) of w x h texels. Throws tex::Error for a bad size.

@@ -19,10 +19,10 @@ bool to_lod_derivatives(const Derivatives& d, LodDerivatives& out) {
   return true;
 }
 
-bool lod_from_derivatives(const Derivatives& d, int log2_w, int log2_h, int32_t& lod_q8) {
+bool lod_from_derivatives(const Derivatives& d, Extent size0, int32_t& lod_q8) {
   LodDerivatives q;
   if (!to_lod_derivatives(d, q)) return false;
-  lod_q8 = tex_lambda(q, log2_w, log2_h);
+  lod_q8 = tex_lambda(q, size0);
   return true;
 }
 
@@ -50,9 +50,9 @@ struct NormalizedSquares {
   uint64_t px = 0, py = 0;
   int shift = 0;
 };
-NormalizedSquares normalized_squares(const LodDerivatives& d, int log2_w, int log2_h) {
-  auto texels = [](int32_t v, int log2_size) { return uint64_t(v < 0 ? -int64_t(v) : int64_t(v)) << log2_size; };
-  uint64_t a[4] = {texels(d.dudx, log2_w), texels(d.dvdx, log2_h), texels(d.dudy, log2_w), texels(d.dvdy, log2_h)};
+NormalizedSquares normalized_squares(const LodDerivatives& d, Extent size0) {
+  auto texels = [](int32_t v, int size) { return uint64_t(v < 0 ? -int64_t(v) : int64_t(v)) * uint64_t(size); };
+  uint64_t a[4] = {texels(d.dudx, size0.w), texels(d.dvdx, size0.h), texels(d.dudy, size0.w), texels(d.dvdy, size0.h)};
   const uint64_t m = std::max(std::max(a[0], a[1]), std::max(a[2], a[3]));
   NormalizedSquares q;
   if (m == 0) return q;
@@ -82,13 +82,11 @@ static int32_t lambda_of(const NormalizedSquares& q) {
   return int32_t((lambda_q16 + 128) >> 8);
 }
 
-int32_t tex_lambda(const LodDerivatives& d, int log2_w, int log2_h) {
-  return lambda_of(normalized_squares(d, log2_w, log2_h));
-}
+int32_t tex_lambda(const LodDerivatives& d, Extent size0) { return lambda_of(normalized_squares(d, size0)); }
 
-AnisoSetup tex_aniso(const LodDerivatives& d, int log2_w, int log2_h, int max_aniso, bool pow2) {
+AnisoSetup tex_aniso(const LodDerivatives& d, Extent size0, int max_aniso, bool pow2) {
   AnisoSetup a;
-  const NormalizedSquares q = normalized_squares(d, log2_w, log2_h);
+  const NormalizedSquares q = normalized_squares(d, size0);
   a.lambda = lambda_of(q);
   const uint64_t pmax = std::max(q.px, q.py), pmin = std::min(q.px, q.py);
   int cap = std::clamp(max_aniso, 1, kMaxAniso);

@@ -2,6 +2,8 @@
 #pragma once
 #include <cstdint>
 
+#include "formats.h"
+
 namespace tex {
 
 // Derivatives of normalized (u, v) per screen pixel.
@@ -9,23 +11,23 @@ struct Derivatives {
   double dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
 };
 
-// lambda in Q8.8 for a texture of 2^log2_w x 2^log2_h level-0 texels: the derivatives in the LOD
+// lambda in Q8.8 for a texture of size0 level-0 texels: the derivatives in the LOD
 // unit's Q8.24 format (to_lod_derivatives), then tex_lambda (docs/numerics.md, stage 1b). Returns
 // false when a derivative is not finite.
-bool lod_from_derivatives(const Derivatives& d, int log2_w, int log2_h, int32_t& lod_q8);
+bool lod_from_derivatives(const Derivatives& d, Extent size0, int32_t& lod_q8);
 
 // ------------------------------------------------------------------ tex_lambda (docs/numerics.md, stage 1b)
 // The hardware LOD unit's specification (the RTL module of the same name is to follow it bit for
 // bit; scenes and derivative traces take their lambda from it): lambda from the four derivatives of normalized (u, v) per screen pixel, each signed Q8.24
 // like u and v (2^-24 .. 128 texture widths per pixel; a converter saturates beyond). Scaled to
-// level-0 texels, normalized as a block (the largest magnitude to 16 bits), squared exactly,
+// level-0 texels (|d| * w0 or * h0: a multiply, the paper's shift where the size is a power of two), normalized as a block (the largest magnitude to 16 bits), squared exactly,
 // rho^2 = max(|d(u,v)/dx|^2, |d(u,v)/dy|^2) (no square-root approximation), and log2 by a leading-
 // one detector plus a 33-entry table (32 intervals) with linear interpolation. Result: lambda in Q8.8, rounded to
 // nearest; all derivatives 0 gives kLodMin (magnification past any clamp).
 struct LodDerivatives {
   int32_t dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;  // Q8.24 texture widths / heights per pixel
 };
-int32_t tex_lambda(const LodDerivatives& d, int log2_w, int log2_h);
+int32_t tex_lambda(const LodDerivatives& d, Extent size0);
 
 // ------------------------------------------------------------------ tex_aniso (docs/numerics.md, stage 1c)
 // EXT_texture_filter_anisotropic from the same normalized squares as tex_lambda:
@@ -41,7 +43,7 @@ struct AnisoSetup {
   int32_t lambda = 0;      // Q8.8, lambda' (before bias and clamp)
   int32_t step_u = 0, step_v = 0;  // Q8.24, spacing of the probes
 };
-AnisoSetup tex_aniso(const LodDerivatives& d, int log2_w, int log2_h, int max_aniso, bool pow2);
+AnisoSetup tex_aniso(const LodDerivatives& d, Extent size0, int max_aniso, bool pow2);
 int32_t aniso_probe_coord(int32_t coord, int32_t step, int i, int n);
 // The tables the RTL holds as constants (tests/model/test_lod.cpp checks them against their definitions).
 int aniso_log2_q8(int n);     // round(256 * log2 n), n = 1..16

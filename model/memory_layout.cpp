@@ -34,12 +34,11 @@ bool parse_block_size(const std::string& text, LayoutParams& out) {
 }
 std::string block_size_name(const LayoutParams& p) { return std::to_string(p.block_w) + "x" + std::to_string(p.block_h); }
 
-MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params, TexelFormat format)
-    : params_(params), log2_w0_(log2_w0), log2_h0_(log2_h0), channel_bits_(channel_bits), format_(format) {
-  for (const int s : {log2_w0, log2_h0})
-    if (s < 0 || s > kMaxLog2Size)
-      throw Error("texture side 2^" + std::to_string(s) + ": must be 1 to " + std::to_string(1 << kMaxLog2Size) +
-                  " texels");
+MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format)
+    : params_(params), size0_(size0), channel_bits_(channel_bits), format_(format) {
+  for (const int s : {size0.w, size0.h})
+    if (s < 1 || s > kMaxSize)
+      throw Error("texture side " + std::to_string(s) + " texels: must be 1 to " + std::to_string(kMaxSize));
   if (channel_bits < 1 || channel_bits > kMaxChannelBits)
     throw Error("channel width " + std::to_string(channel_bits) + " bits: must be 1 to " +
                 std::to_string(kMaxChannelBits));
@@ -63,15 +62,27 @@ MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const Lay
   if (params.base % uint32_t(line_bytes_) != 0)
     throw Error("memory base address " + std::to_string(params.base) + " is not a multiple of the " +
                 std::to_string(line_bytes_) + "-byte line");
+  // The seam copy's index along a side n: none for a power of two, else n (texels) or n rounded up
+  // to the 4x4 block (a block format), and the texels a level row then spans.
+  const uint32_t seam_align = block_bytes_ ? 4 : 1;
+  auto seam_of = [&](int n) { return is_power_of_two(n) ? 0u : (uint32_t(n) + seam_align - 1) / seam_align * seam_align; };
+  auto span_of = [&](int n) { return is_power_of_two(n) ? uint32_t(n) : seam_of(n) + seam_align; };
   uint64_t at = params.base;
-  for (int k = 0; k < level_count(log2_w0, log2_h0); ++k) {
-    const LevelShape s = level_shape(log2_w0, log2_h0, k);
+  for (int k = 0; k < level_count(size0); ++k) {
     Level l;
-    l.log2_bx = std::max(s.log2_w - log2_bw_, 0);
-    l.log2_by = std::max(s.log2_h - log2_bh_, 0);
+    l.size = level_extent(size0, k);
+    l.seam_x = seam_of(l.size.w);
+    l.seam_y = seam_of(l.size.h);
+    l.nbx = std::max(1u, (span_of(l.size.w) + (1u << log2_bw_) - 1) >> log2_bw_);
+    l.nby = std::max(1u, (span_of(l.size.h) + (1u << log2_bh_) - 1) >> log2_bh_);
+    l.log2_bx = log2_ceil(int(l.nbx));
+    l.log2_by = log2_ceil(int(l.nby));
     l.base = uint32_t(at);
-    at += uint64_t(line_bytes_) << (l.log2_bx + l.log2_by);
+    const uint64_t blocks = params.order == BlockOrder::RowMajor ? uint64_t(l.nbx) * l.nby
+                                                                 : uint64_t(1) << (l.log2_bx + l.log2_by);
+    at += uint64_t(line_bytes_) * blocks;
     levels_.push_back(l);
+    if (at > (uint64_t(1) << 32)) break;  // (reported below)
   }
   // The last byte must have a 32-bit address: the image may end exactly at 2^32.
   if (at > (uint64_t(1) << 32))
@@ -82,7 +93,7 @@ MemoryLayout::MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const Lay
 
 uint32_t MemoryLayout::block_index(int level, uint32_t bx, uint32_t by) const {
   const Level& l = levels_[size_t(level)];
-  if (params_.order == BlockOrder::RowMajor) return by << l.log2_bx | bx;
+  if (params_.order == BlockOrder::RowMajor) return by * l.nbx + bx;
   // The square part interleaved; the longer side's remaining bits above it.
   const int m = std::min(l.log2_bx, l.log2_by);
   const uint32_t low = (1u << m) - 1;
@@ -96,12 +107,13 @@ bool MemoryLayout::locate_line(uint32_t address, int& level, uint32_t& bx, uint3
   if (level < 0) return false;
   const Level& l = levels_[size_t(level)];
   const uint32_t index = (address - l.base) / uint32_t(line_bytes_);
-  if (index >> (l.log2_bx + l.log2_by)) return false;  // beyond the last level
   if (params_.order == BlockOrder::RowMajor) {
-    bx = index & ((1u << l.log2_bx) - 1);
-    by = index >> l.log2_bx;
+    if (index >= l.nbx * l.nby) return false;  // beyond the last level
+    bx = index % l.nbx;
+    by = index / l.nbx;
     return true;
   }
+  if (index >> (l.log2_bx + l.log2_by)) return false;  // beyond the last level
   // Inverse of block_index: the interleaved square part, then the longer side's bits above it.
   const int m = std::min(l.log2_bx, l.log2_by);
   bx = by = 0;
@@ -112,7 +124,7 @@ bool MemoryLayout::locate_line(uint32_t address, int& level, uint32_t& bx, uint3
   const uint32_t high = index >> (2 * m);
   if (l.log2_bx > l.log2_by) bx |= high << m;
   else by |= high << m;
-  return true;
+  return bx < l.nbx && by < l.nby;  // (a Morton grid rounded up to powers of two has holes)
 }
 
 bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
@@ -121,12 +133,12 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
   uint32_t bx = 0, by = 0;
   if (!layout.locate_line(address, level, bx, by)) return false;
   const int bw = layout.block_w(), bh = layout.block_h(), tb = layout.texel_bytes();
-  const uint32_t w = std::max(1u, (1u << layout.log2_w0()) >> level), h = std::max(1u, (1u << layout.log2_h0()) >> level);
+  const uint32_t w = uint32_t(layout.level_size(level).w), h = uint32_t(layout.level_size(level).h);
   const bool blocks = is_compressed(layout.format());
   for (int ty = 0; ty < bh; ++ty)
     for (int tx = 0; tx < bw; ++tx) {
       const uint32_t x = bx * uint32_t(bw) + uint32_t(tx), y = by * uint32_t(bh) + uint32_t(ty);
-      if (x >= w || y >= h) continue;
+      if (x >= w || y >= h) continue;  // padding and seam copies
       const uint8_t* at = line + layout.texel_offset(x, y);
       Texel t{};
       if (blocks) {
@@ -141,11 +153,10 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
 }
 
 std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout) {
-  if (pyramid.log2_w0() != layout.log2_w0() || pyramid.log2_h0() != layout.log2_h0() ||
-      pyramid.memory_channel_bits() != layout.channel_bits() || int(pyramid.levels.size()) != layout.levels() ||
-      pyramid.format != layout.format())
-    throw Error("the memory layout is for a " + std::to_string(1 << layout.log2_w0()) + "x" +
-                std::to_string(1 << layout.log2_h0()) + " texture of " + std::to_string(layout.channel_bits()) +
+  if (pyramid.extent0() != layout.size0() || pyramid.memory_channel_bits() != layout.channel_bits() ||
+      int(pyramid.levels.size()) != layout.levels() || pyramid.format != layout.format())
+    throw Error("the memory layout is for a " + std::to_string(layout.size0().w) + "x" +
+                std::to_string(layout.size0().h) + " texture of " + std::to_string(layout.channel_bits()) +
                 "-bit channels; the pyramid is " + std::to_string(pyramid.levels[0].width) + "x" +
                 std::to_string(pyramid.levels[0].height) + ", " + std::to_string(pyramid.memory_channel_bits()) +
                 "-bit, " + std::to_string(pyramid.levels.size()) + " levels" +
@@ -153,27 +164,37 @@ std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayo
                                                          format_info(layout.format()).name
                                                    : std::string()));
   std::vector<uint8_t> image(size_t(layout.image_bytes()), 0);
+  const uint32_t base = layout.params().base;
+  // Where stored texel (x, y) of level k goes, and each place it goes: itself, and for column (row)
+  // 0 of a side with a seam its copy (a block format: the block's, at the seam block column).
+  auto each_place = [&](int k, uint32_t x, uint32_t y, auto&& put) {
+    const Extent e = layout.level_size(k);
+    const bool cx = x == 0 && !is_power_of_two(e.w), cy = y == 0 && !is_power_of_two(e.h);
+    put(x, y);
+    if (cx) put(layout.seam_x(k), y);
+    if (cy) put(x, layout.seam_y(k));
+    if (cx && cy) put(layout.seam_x(k), layout.seam_y(k));
+  };
   if (is_compressed(layout.format())) {  // each 4x4 block where its top-left texel goes
     const size_t bytes = size_t(format_info(layout.format()).block_bytes);
     for (int k = 0; k < layout.levels(); ++k) {
       const Image& img = pyramid.levels[size_t(k)];
       const int nbx = (img.width + 3) / 4, nby = (img.height + 3) / 4;
       for (int by = 0; by < nby; ++by)
-        for (int bx = 0; bx < nbx; ++bx) {
-          const uint32_t x = uint32_t(bx) * 4, y = uint32_t(by) * 4;
-          std::copy_n(&pyramid.blocks[size_t(k)][(size_t(by) * size_t(nbx) + size_t(bx)) * bytes], bytes,
-                      &image[layout.line_address(k, x, y) - layout.params().base + layout.texel_offset(x, y)]);
-        }
+        for (int bx = 0; bx < nbx; ++bx)
+          each_place(k, uint32_t(bx) * 4, uint32_t(by) * 4, [&](uint32_t x, uint32_t y) {
+            std::copy_n(&pyramid.blocks[size_t(k)][(size_t(by) * size_t(nbx) + size_t(bx)) * bytes], bytes,
+                        &image[layout.line_address(k, x, y) - base + layout.texel_offset(x, y)]);
+          });
     }
     return image;
   }
   const int tb = layout.texel_bytes();
-  const uint32_t base = layout.params().base;
   for (int k = 0; k < layout.levels(); ++k) {
     const Image& img = pyramid.srgb ? pyramid.codes[size_t(k)] : pyramid.levels[size_t(k)];  // what memory holds
     for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x) {
-        const uint32_t ux = uint32_t(x), uy = uint32_t(y);
+      for (int x = 0; x < img.width; ++x)
+        each_place(k, uint32_t(x), uint32_t(y), [&](uint32_t ux, uint32_t uy) {
         uint8_t* at = &image[layout.line_address(k, ux, uy) - base + layout.texel_offset(ux, uy)];
         const Texel& t = img.at(x, y);
         for (size_t c = 0; c < 4; ++c) {
@@ -184,7 +205,7 @@ std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayo
             at[2 * c + 1] = uint8_t(t[c] >> 8);
           }
         }
-      }
+        });
   }
   return image;
 }
@@ -199,10 +220,10 @@ std::vector<uint8_t> memory_image_file(const Pyramid& pyramid, const MemoryLayou
   auto u64 = [&](uint64_t v) {
     for (int i = 0; i < 8; ++i) out.push_back(uint8_t(v >> (8 * i)));
   };
-  for (const char c : std::string("TEXMEM02")) out.push_back(uint8_t(c));
+  for (const char c : std::string("TEXMEM03")) out.push_back(uint8_t(c));
   u32(uint32_t(72 + 8 * layout.levels()));
-  u32(uint32_t(layout.log2_w0()));
-  u32(uint32_t(layout.log2_h0()));
+  u32(uint32_t(layout.size0().w));
+  u32(uint32_t(layout.size0().h));
   u32(uint32_t(layout.levels()));
   u32(uint32_t(layout.channel_bits()));
   u32(is_compressed(layout.format()) ? 0u : uint32_t(layout.texel_bytes()));

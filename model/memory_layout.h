@@ -1,6 +1,8 @@
 // The pyramid in external memory (docs/memory.md §1): each level cut into blocks of BW x BH texels,
 // one block per cache line, blocks in row-major or Morton order, levels one after another from a
-// base address. The model builds the memory image the cached RTL reads. A block-compressed texture
+// base address. A level side that is not a power of two carries the repeat seam's copy of texel
+// column (row) 0 after its last one (seam_x: at the side itself, or for a block format a whole
+// 4x4-block column at the side rounded up to 4). The model builds the memory image the cached RTL reads. A block-compressed texture
 // (model/block_formats.h) has lines of the same bytes, holding whole 4x4 blocks: a BC1 line of 64
 // bytes holds 4 x 2 blocks (16 x 8 texels), a BC7 line 2 x 2 blocks (8 x 8 texels).
 #pragma once
@@ -45,12 +47,11 @@ class MemoryLayout {
   // Throws tex::Error naming the bad value: a texture size or channel width the unit cannot have,
   // a block side, a base not aligned to the line, an image ending beyond the 32-bit address space,
   // a block format with channels other than 8 bits or a line smaller than one of its blocks.
-  MemoryLayout(int log2_w0, int log2_h0, int channel_bits, const LayoutParams& params,
-               TexelFormat format = TexelFormat::Rgba8);
+  MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format = TexelFormat::Rgba8);
 
   const LayoutParams& params() const { return params_; }
-  int log2_w0() const { return log2_w0_; }
-  int log2_h0() const { return log2_h0_; }
+  Extent size0() const { return size0_; }
+  Extent level_size(int level) const { return levels_[size_t(level)].size; }
   int channel_bits() const { return channel_bits_; }
   int levels() const { return int(levels_.size()); }
   TexelFormat format() const { return format_; }
@@ -61,9 +62,25 @@ class MemoryLayout {
   int block_h() const { return 1 << log2_bh_; }
   int log2_block_w() const { return log2_bw_; }
   int log2_block_h() const { return log2_bh_; }
-  // The block grid of a level: NBX_k x NBY_k blocks, each at least 1.
-  uint32_t blocks_x(int level) const { return 1u << levels_[size_t(level)].log2_bx; }
-  uint32_t blocks_y(int level) const { return 1u << levels_[size_t(level)].log2_by; }
+  // The block grid of a level: NBX_k x NBY_k blocks, each at least 1, covering the level and its
+  // seam copies (row-major: the row pitch; Morton orders the grid rounded up to powers of two).
+  uint32_t blocks_x(int level) const { return levels_[size_t(level)].nbx; }
+  uint32_t blocks_y(int level) const { return levels_[size_t(level)].nby; }
+  // Where a level keeps texel column 0's copy that the repeat seam's second tap reads (stage::wrap's
+  // index w_k on a side that is not a power of two): w_k for texels, w_k rounded up to a whole 4x4
+  // block for a block format (a copy of block column 0: no block is re-encoded). A power-of-two side
+  // has none (its seam tap is index 0).
+  uint32_t seam_x(int level) const { return levels_[size_t(level)].seam_x; }
+  uint32_t seam_y(int level) const { return levels_[size_t(level)].seam_y; }
+  // The stored column (row) of a wrapped tap index: the seam index w_k moves to seam_x.
+  uint32_t stored_x(int level, uint32_t x) const {
+    const Level& l = levels_[size_t(level)];
+    return x == uint32_t(l.size.w) ? l.seam_x : x;
+  }
+  uint32_t stored_y(int level, uint32_t y) const {
+    const Level& l = levels_[size_t(level)];
+    return y == uint32_t(l.size.h) ? l.seam_y : y;
+  }
   uint32_t level_base(int level) const { return levels_[size_t(level)].base; }
   uint64_t image_bytes() const { return image_bytes_; }  // from base to the end of the last level
 
@@ -73,7 +90,7 @@ class MemoryLayout {
   uint32_t block_address(int level, uint32_t bx, uint32_t by) const {
     return level_base(level) + block_index(level, bx, by) * uint32_t(line_bytes_);
   }
-  // Byte address of the line holding texel (x, y) of `level`.
+  // Byte address of the line holding stored texel (x, y) of `level` (stored_x/y of a tap index).
   uint32_t line_address(int level, uint32_t x, uint32_t y) const {
     return block_address(level, x >> log2_bw_, y >> log2_bh_);
   }
@@ -88,11 +105,15 @@ class MemoryLayout {
 
  private:
   struct Level {
-    int log2_bx = 0, log2_by = 0;  // log2 of the block grid
+    Extent size;
+    uint32_t nbx = 1, nby = 1;     // the block grid
+    int log2_bx = 0, log2_by = 0;  // Morton: log2 of the grid rounded up to powers of two
+    uint32_t seam_x = 0, seam_y = 0;
     uint32_t base = 0;
   };
   LayoutParams params_;
-  int log2_w0_, log2_h0_, channel_bits_;
+  Extent size0_;
+  int channel_bits_;
   TexelFormat format_;
   int texel_bytes_, line_bytes_, log2_bw_, log2_bh_;
   int block_bytes_ = 0;  // a block format's bytes per 4x4 block; 0 for RGBA

@@ -1,5 +1,6 @@
 #include "pyramid.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -58,24 +59,83 @@ Image to_image(const SumImage& s, int count, int channel_bits) {
 
 }  // namespace
 
+AxisWeights axis_weights(int src, int dst) {
+  AxisWeights a;
+  for (int i = 0; i < dst; ++i) {
+    const int64_t lo = int64_t(i) * src, hi = int64_t(i + 1) * src;
+    const int j0 = int(lo / dst), j1 = int((hi - 1) / dst);
+    a.first.push_back(j0);
+    std::vector<uint32_t> w;
+    for (int j = j0; j <= j1; ++j) w.push_back(uint32_t(std::min(hi, int64_t(j + 1) * dst) - std::max(lo, int64_t(j) * dst)));
+    a.weight.push_back(std::move(w));
+  }
+  return a;
+}
+
+Image area_reduce(const Image& src, int w, int h) {
+  const AxisWeights ax = axis_weights(src.width, w), ay = axis_weights(src.height, h);
+  // Every output texel's weights sum to src.width * src.height: the mean is S / D, rounded half up
+  // as floor((2S + D) / 2D) (D may be odd). Rows pass along x first, each source row once or twice.
+  const uint64_t d = uint64_t(src.width) * uint64_t(src.height);
+  Image out(w, h, src.channel_bits);
+  std::vector<std::array<uint64_t, 4>> row(static_cast<size_t>(w)), acc(static_cast<size_t>(w));
+  int row_y = -1;
+  for (int oy = 0; oy < h; ++oy) {
+    for (auto& a : acc) a = {};
+    for (size_t l = 0; l < ay.weight[size_t(oy)].size(); ++l) {
+      const int y = ay.first[size_t(oy)] + int(l);
+      if (y != row_y) {  // the x pass of source row y
+        row_y = y;
+        for (int ox = 0; ox < w; ++ox) {
+          std::array<uint64_t, 4> sum{};
+          const auto& wx = ax.weight[size_t(ox)];
+          for (size_t k = 0; k < wx.size(); ++k) {
+            const Texel& t = src.at(ax.first[size_t(ox)] + int(k), y);
+            for (size_t c = 0; c < 4; ++c) sum[c] += uint64_t(wx[k]) * t[c];
+          }
+          row[size_t(ox)] = sum;
+        }
+      }
+      const uint64_t wy = ay.weight[size_t(oy)][l];
+      for (int ox = 0; ox < w; ++ox)
+        for (size_t c = 0; c < 4; ++c) acc[size_t(ox)][c] += wy * row[size_t(ox)][c];
+    }
+    for (int ox = 0; ox < w; ++ox)
+      for (size_t c = 0; c < 4; ++c) out.at(ox, oy)[c] = uint16_t((2 * acc[size_t(ox)][c] + d) / (2 * d));
+  }
+  return out;
+}
+
 Pyramid build_pyramid(Image level0_in, PyramidMode mode) {
   Pyramid p;
   p.mode = mode;
-  const int lw0 = log2_exact(level0_in.width), lh0 = log2_exact(level0_in.height);
-  p.levels.reserve(size_t(level_count(lw0, lh0)));  // (`level0` stays valid as levels are added)
+  const Extent e0{level0_in.width, level0_in.height};
+  const int levels = level_count(e0);
+  p.levels.reserve(size_t(levels));  // (`level0` stays valid as levels are added)
   p.levels.push_back(std::move(level0_in));
   const Image& level0 = p.levels[0];
+  if (!is_power_of_two(e0.w) || !is_power_of_two(e0.h)) {
+    // Not a power of two: each level the area mean of level 0 (exact) or of its parent (cascade).
+    for (int k = 1; k < levels; ++k) {
+      const Extent shape = level_extent(e0, k);
+      p.levels.push_back(area_reduce(mode == PyramidMode::Exact ? level0 : p.levels.back(), shape.w, shape.h));
+    }
+    return p;
+  }
+  // Powers of two: the same means (area_reduce gives them too; tests check it), from 2x2 sums
+  // carried level to level, which costs a third of the work.
   SumImage sums;
-  for (int k = 1; k < level_count(lw0, lh0); ++k) {
-    const LevelShape shape = level_shape(lw0, lh0, k);
+  for (int k = 1; k < levels; ++k) {
+    const Extent shape = level_extent(e0, k);
+    const int lw = log2_exact(shape.w), lh = log2_exact(shape.h);
     if (mode == PyramidMode::Exact) {
       // footprint sums carried exactly
-      sums = k == 1 ? reduce(level0, shape.log2_w, shape.log2_h) : reduce(sums, shape.log2_w, shape.log2_h);
+      sums = k == 1 ? reduce(level0, lw, lh) : reduce(sums, lw, lh);
       const int count = (level0.width / shape.width()) * (level0.height / shape.height());
       p.levels.push_back(to_image(sums, count, level0.channel_bits));
     } else {
       const Image& parent = p.levels.back();
-      SumImage s = reduce(parent, shape.log2_w, shape.log2_h);
+      SumImage s = reduce(parent, lw, lh);
       const int count = (parent.width / shape.width()) * (parent.height / shape.height());
       p.levels.push_back(to_image(s, count, level0.channel_bits));
     }
@@ -87,15 +147,15 @@ Pyramid build_pyramid(Image level0_in, PyramidMode mode) {
 
 namespace tex {
 
-Pyramid pyramid_of_blocks(TexelFormat format, int log2_w0, int log2_h0, std::vector<std::vector<uint8_t>> blocks) {
+Pyramid pyramid_of_blocks(TexelFormat format, Extent e0, std::vector<std::vector<uint8_t>> blocks) {
   if (!is_compressed(format)) throw Error("pyramid_of_blocks: RGBA8 has no blocks");
-  if (int(blocks.size()) != level_count(log2_w0, log2_h0))
+  if (int(blocks.size()) != level_count(e0))
     throw Error("pyramid_of_blocks: " + std::to_string(blocks.size()) + " levels of blocks, a full chain has " +
-                std::to_string(level_count(log2_w0, log2_h0)));
+                std::to_string(level_count(e0)));
   Pyramid p;
   p.format = format;
   for (int k = 0; k < int(blocks.size()); ++k) {
-    const LevelShape s = level_shape(log2_w0, log2_h0, k);
+    const Extent s = level_extent(e0, k);
     if (blocks[size_t(k)].size() != level_bytes(format, s.width(), s.height()))
       throw Error("pyramid_of_blocks: level " + std::to_string(k) + " has " + std::to_string(blocks[size_t(k)].size()) +
                   " bytes, not " + std::to_string(level_bytes(format, s.width(), s.height())));

@@ -9,16 +9,18 @@
 
 namespace tex {
 
-// Level geometry of docs/numerics.md: a side that reaches 1 stays 1.
-struct LevelShape {
-  int log2_w = 0, log2_h = 0;
-  int width() const { return 1 << log2_w; }
-  int height() const { return 1 << log2_h; }
-};
-inline int level_count(int log2_w0, int log2_h0) { return (log2_w0 > log2_h0 ? log2_w0 : log2_h0) + 1; }
-inline LevelShape level_shape(int log2_w0, int log2_h0, int k) {
-  return {log2_w0 > k ? log2_w0 - k : 0, log2_h0 > k ? log2_h0 - k : 0};
+// Level geometry of docs/numerics.md (GL's): level k is max(1, floor(w0 / 2^k)) x max(1, floor(h0 / 2^k))
+// texels, floor(log2 max(w0, h0)) + 1 levels; a side that reaches 1 stays 1.
+inline int level_count(Extent e0) {
+  int n = 1;
+  for (int m = e0.w > e0.h ? e0.w : e0.h; m > 1; m >>= 1) ++n;
+  return n;
 }
+inline Extent level_extent(Extent e0, int k) { return {e0.w >> k > 1 ? e0.w >> k : 1, e0.h >> k > 1 ? e0.h >> k : 1}; }
+// The repeat seam (docs/numerics.md stage 3): a side n that is not a power of two is stored with
+// one more texel, a copy of texel 0 at index n, which the second tap of the seam pair (n-1, 0) reads
+// so that the pair sits in two parity banks. Memory side of a level side n:
+inline int stored_side(int n) { return is_power_of_two(n) ? n : n + 1; }
 
 struct Pyramid {
   std::vector<Image> levels;  // levels[0] is the texture (a compressed texture's levels decoded)
@@ -33,20 +35,36 @@ struct Pyramid {
   std::vector<Image> codes;  // an sRGB RGBA8 texture's levels as stored
   // Bits per channel in memory: 8 for a block format or an sRGB texture, else the levels' own.
   int memory_channel_bits() const { return srgb || is_compressed(format) ? 8 : levels[0].channel_bits; }
-  int log2_w0() const { return log2_exact(levels[0].width); }
-  int log2_h0() const { return log2_exact(levels[0].height); }
+  Extent extent0() const { return {levels[0].width, levels[0].height}; }
   int last_level() const { return int(levels.size()) - 1; }
 };
 
-// exact: every texel is the rounded mean of its whole level-0 footprint (maketx --filter box).
-// cascade: every level from its rounded parent, as a simple hardware generator does.
+// exact: every texel is the rounded mean of its whole level-0 footprint (maketx --filter box),
+// weighted by area where a side is not a power of two (docs/numerics.md, the pyramid).
+// cascade: every level from its rounded parent, as a simple hardware generator does (a 2-tap box,
+// or for an odd parent side the 3-tap polyphase box of the area weights).
 // Takes level 0 by value: pass a temporary (or std::move) to build without copying it.
 Pyramid build_pyramid(Image level0, PyramidMode mode = PyramidMode::Exact);
 
 // A block-format texture as stored: one vector of blocks per level of a full chain (level k of
 // level_bytes(format, w_k, h_k) bytes), each level decoded into `levels`. Throws tex::Error for an
 // RGBA8 format, a missing level or a level of the wrong size.
-Pyramid pyramid_of_blocks(TexelFormat format, int log2_w0, int log2_h0, std::vector<std::vector<uint8_t>> blocks);
+Pyramid pyramid_of_blocks(TexelFormat format, Extent extent0, std::vector<std::vector<uint8_t>> blocks);
+
+// One axis of an area mean from `src` texels to `dst`: output texel i covers source texels
+// first[i] .. first[i] + weight[i].size() - 1 with integer weights, the overlaps of [i*src, (i+1)*src)
+// and [j*dst, (j+1)*dst), which sum to src (a power-of-two ratio: equal weights; an odd source side:
+// the 3-tap polyphase box (dst - i, dst, i + 1)).
+struct AxisWeights {
+  std::vector<int> first;
+  std::vector<std::vector<uint32_t>> weight;
+};
+AxisWeights axis_weights(int src, int dst);
+
+// The area-weighted mean of `src` over each texel of a w x h image covering the same square (each
+// output texel the exact mean of the source area under it, rounded half up): the box filter of any
+// sizes. Exposed for tests.
+Image area_reduce(const Image& src, int w, int h);
 
 }  // namespace tex
 

@@ -12,8 +12,7 @@ Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPat
     : config_(config),
       channel_bits_(pyramid.levels[0].channel_bits),
       border_(stage::border_texel(config.border_unorm16(), pyramid.levels[0].channel_bits)),
-      log2_w0_(pyramid.log2_w0()),
-      log2_h0_(pyramid.log2_h0()),
+      size0_(pyramid.extent0()),
       last_level_(int(pyramid.levels.size()) - 1) {
   if (paths == SamplerPaths::FastOnly && channel_bits_ != 8)
     throw Error("sampler: the fast path takes 8-bit channels; this texture has " + std::to_string(channel_bits_));
@@ -22,13 +21,24 @@ Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPat
   if (paths == SamplerPaths::Both) memory_.emplace(pyramid);
   if (channel_bits_ == 8)
     for (const Image& img : pyramid.levels) {
-      BigVector<uint32_t> p(img.texels.size());
-      for (size_t i = 0; i < p.size(); ++i) {
-        const Texel& t = img.texels[i];
-        p[i] = uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
-      }
-      packed_.push_back(std::move(p));
+      packed_.emplace_back(size_t(stored_side(img.width)) * size_t(stored_side(img.height)));
+      const int k = int(packed_.size()) - 1;
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) write_packed(k, x, y, img.at(x, y));
     }
+}
+
+void Sampler::write_packed(int level, int32_t x, int32_t y, const Texel& t) {
+  const Extent e = level_extent(size0_, level);
+  const int sw = stored_side(e.w), sh = stored_side(e.h);
+  const uint32_t v = uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
+  BigVector<uint32_t>& p = packed_[size_t(level)];
+  p[size_t(y) * size_t(sw) + size_t(x)] = v;
+  // Texel 0's copies past the last column and row (the repeat seam, as BankedMipMemory stores them).
+  const bool copy_x = x == 0 && sw > e.w, copy_y = y == 0 && sh > e.h;
+  if (copy_x) p[size_t(y) * size_t(sw) + size_t(e.w)] = v;
+  if (copy_y) p[size_t(e.h) * size_t(sw) + size_t(x)] = v;
+  if (copy_x && copy_y) p[size_t(e.h) * size_t(sw) + size_t(e.w)] = v;
 }
 
 bool Sampler::fast_path_takes(const SamplerConfig& config) {
@@ -37,21 +47,19 @@ bool Sampler::fast_path_takes(const SamplerConfig& config) {
 
 void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t) {
   if (memory_) memory_->write(level, x, y, t);
-  if (channel_bits_ == 8)
-    packed_[size_t(level)][(size_t(y) << level_shape(log2_w0_, log2_h0_, level).log2_w) + size_t(x)] =
-        uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
+  if (channel_bits_ == 8) write_packed(level, x, y, t);
 }
 
-Probes tex_probe(const Request& r, const SamplerConfig& config, int log2_w0, int log2_h0) {
+Probes tex_probe(const Request& r, const SamplerConfig& config, Extent size0) {
   Probes p;
   p.at[0] = r;
   p.at[0].has_derivatives = false;
   if (!r.has_derivatives) return p;
   if (config.probe_cap() == 1) {  // one probe at tex_lambda (what tex_aniso gives with a cap of 1)
-    p.at[0].lod = tex_lambda(r.deriv, log2_w0, log2_h0);
+    p.at[0].lod = tex_lambda(r.deriv, size0);
     return p;
   }
-  const AnisoSetup a = tex_aniso(r.deriv, log2_w0, log2_h0, config.probe_cap(), config.aniso_pow2);
+  const AnisoSetup a = tex_aniso(r.deriv, size0, config.probe_cap(), config.aniso_pow2);
   p.n = a.n;
   for (int i = 0; i < a.n; ++i) {
     Request& q = p.at[size_t(i)];
@@ -63,14 +71,14 @@ Probes tex_probe(const Request& r, const SamplerConfig& config, int log2_w0, int
   return p;
 }
 
-int tex_probe_count(const Request& r, const SamplerConfig& config, int log2_w0, int log2_h0) {
+int tex_probe_count(const Request& r, const SamplerConfig& config, Extent size0) {
   if (!r.has_derivatives || config.probe_cap() == 1) return 1;
-  return tex_aniso(r.deriv, log2_w0, log2_h0, config.probe_cap(), config.aniso_pow2).n;
+  return tex_aniso(r.deriv, size0, config.probe_cap(), config.aniso_pow2).n;
 }
 
 // The stages in pipeline order, as the RTL runs them (model/stages.h, docs/architecture.md).
 Texel Sampler::sample(const Request& r) {
-  const Probes p = tex_probe(r, config_, log2_w0_, log2_h0_);
+  const Probes p = tex_probe(r, config_, size0_);
   stage::Unrounded sum{};
   for (int i = 0; i < p.n; ++i) {
     const stage::Unrounded t = sample_probe(p.at[size_t(i)]);
@@ -85,7 +93,7 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   if (!memory_) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
   const stage::LevelSelect sel =
       stage::lod(r.lod, config_.lod_bias + r.bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
-  const int32_t su = stage::scale(r.u, log2_w0_), sv = stage::scale(r.v, log2_h0_);
+  const int32_t ru = stage::reduce(r.u, config_.wrap_u), rv = stage::reduce(r.v, config_.wrap_v);
   const TexelFilter texel_filter = stage::texel_filter(sel, config_.filter);
   const bool linear = texel_filter == TexelFilter::Linear;
 
@@ -95,13 +103,12 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   const int slots = sel.two_levels ? 2 : 1;
   for (int s = 0; s < slots; ++s) {
     const int k = s == 0 ? sel.d : sel.d1;
-    const LevelShape shape = memory_->shape(k);
-    const stage::AxisTaps tu = stage::address(su, std::min(k, log2_w0_), texel_filter);
-    const stage::AxisTaps tv = stage::address(sv, std::min(k, log2_h0_), texel_filter);
-    slot[s].taps = memory_->fetch(k, stage::wrap(tu.i0, shape.log2_w, config_.wrap_u),
-                                 stage::wrap(tu.i1, shape.log2_w, config_.wrap_u),
-                                 stage::wrap(tv.i0, shape.log2_h, config_.wrap_v),
-                                 stage::wrap(tv.i1, shape.log2_h, config_.wrap_v), !linear, border_);
+    const Extent e = memory_->shape(k);
+    const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w), texel_filter);
+    const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h), texel_filter);
+    slot[s].taps = memory_->fetch(k, stage::wrap(tu.i0, e.w, config_.wrap_u), stage::wrap(tu.i1, e.w, config_.wrap_u, true),
+                                 stage::wrap(tv.i0, e.h, config_.wrap_v), stage::wrap(tv.i1, e.h, config_.wrap_v, true),
+                                 !linear, border_);
     slot[s].fx = tu.w;
     slot[s].fy = tv.w;
     if (linear) multiplies_ += 3;
@@ -123,10 +130,10 @@ namespace {
 //   the negative (b - a) terms borrow across the halves, but the exact sum has no negative half.
 
 struct FastLevel {
-  const uint32_t* texels;  // row-major packed RGBA8
-  int log2_w;              // row stride is 1 << log2_w
-  int shift_u, shift_v;    // stage 2: t9 = coord >> (15 - log2_size)
-  int32_t mask_w, mask_h;  // size - 1
+  const uint32_t* texels;  // row-major packed RGBA8 of the stored sides
+  size_t stride;           // stored width (stored_side)
+  int32_t w, h;            // the level's sides
+  int32_t seam_w, seam_h;  // the second repeat tap at the seam: 0 (a power of two) or the copy at w (h)
 };
 
 // R and B (bytes 0 and 2) in the low and high 32-bit halves; G and A likewise.
@@ -136,20 +143,27 @@ inline uint64_t spread_ga(uint32_t t) { return (t >> 8 & 0xFFu) | uint64_t(t >> 
 // stage::lerp on two packed channels, exact (see above).
 inline uint64_t lerp2(uint64_t a, uint64_t b, uint32_t w) { return (a << 8) + (b - a) * w; }
 
-// stage::wrap for a power-of-two size given as mask = size - 1; same results.
+// stage::wrap of an index of a reduced coordinate (stage::reduce): repeat indices are in [-1, n],
+// mirror in [-1, 2n], so compares replace the modulo; same results. `seam`: FastLevel::seam_w/h.
 template <Wrap W>
-inline int32_t wrap_fast(int32_t i, int32_t mask) {
+inline int32_t wrap_first(int32_t i, int32_t n) {
   if constexpr (W == Wrap::MirrorClamp) {
     const int32_t m = i < 0 ? -1 - i : i;
-    return m > mask ? mask : m;
+    return m > n - 1 ? n - 1 : m;
   }
-  if constexpr (W == Wrap::Repeat) return i & mask;
-  if constexpr (W == Wrap::Clamp) return i < 0 ? 0 : (i > mask ? mask : i);
+  if constexpr (W == Wrap::Repeat) return i < 0 ? n - 1 : i;  // (a first tap is never n)
+  if constexpr (W == Wrap::Clamp) return i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
   if constexpr (W == Wrap::Mirror) {
-    const int32_t m = i & (2 * mask + 1);
-    return m <= mask ? m : 2 * mask + 1 - m;  // (2n - 1) - m: counts back down from the far edge
+    const int32_t m = i < 0 ? -1 - i : i;                  // -1 -> 0
+    const int32_t f = m < n ? m : 2 * n - 1 - m;           // counts back down from the far edge
+    return f < 0 ? 0 : f;                                  // 2n -> -1 -> 0
   }
   return 0;
+}
+template <Wrap W>
+inline int32_t wrap_second(int32_t i, int32_t n, int32_t seam) {
+  if constexpr (W == Wrap::Repeat) return i == n || i == 0 ? seam : i;  // (a second tap is never -1)
+  return wrap_first<W>(i, n);
 }
 
 // Bilinear (or nearest) of one level: CW.16 per channel, R|B in rb, G|A in ga.
@@ -157,21 +171,23 @@ struct Packed2x2 {
   uint64_t rb, ga;
 };
 
+// `u`, `v`: stage::reduce of the probe's coordinates.
 template <TexelFilter TF, Wrap WU, Wrap WV>
 inline Packed2x2 filter_level(const FastLevel& lv, int32_t u, int32_t v) {
+  const int32_t tu = stage::scale(u, lv.w), tv = stage::scale(v, lv.h);
   if constexpr (TF == TexelFilter::Nearest) {
     // i0 = floor(u * size) = t9 >> 9; weights are 0, so the result is texel a, scaled to CW.16.
-    const int32_t x = wrap_fast<WU>((u >> lv.shift_u) >> 9, lv.mask_w);
-    const int32_t y = wrap_fast<WV>((v >> lv.shift_v) >> 9, lv.mask_h);
-    const uint32_t a = lv.texels[(size_t(y) << lv.log2_w) + size_t(x)];
+    const int32_t x = wrap_first<WU>(tu >> 9, lv.w);
+    const int32_t y = wrap_first<WV>(tv >> 9, lv.h);
+    const uint32_t a = lv.texels[size_t(y) * lv.stride + size_t(x)];
     return {spread_rb(a) << 16, spread_ga(a) << 16};
   } else {
-    const int32_t pu = ((u >> lv.shift_u) - 255) >> 1, pv = ((v >> lv.shift_v) - 255) >> 1;
+    const int32_t pu = (tu - 255) >> 1, pv = (tv - 255) >> 1;
     const uint32_t wx = uint32_t(pu & 255), wy = uint32_t(pv & 255);
-    const int32_t x0 = wrap_fast<WU>(pu >> 8, lv.mask_w), x1 = wrap_fast<WU>((pu >> 8) + 1, lv.mask_w);
-    const int32_t y0 = wrap_fast<WV>(pv >> 8, lv.mask_h), y1 = wrap_fast<WV>((pv >> 8) + 1, lv.mask_h);
-    const uint32_t* row0 = lv.texels + (size_t(y0) << lv.log2_w);
-    const uint32_t* row1 = lv.texels + (size_t(y1) << lv.log2_w);
+    const int32_t x0 = wrap_first<WU>(pu >> 8, lv.w), x1 = wrap_second<WU>((pu >> 8) + 1, lv.w, lv.seam_w);
+    const int32_t y0 = wrap_first<WV>(pv >> 8, lv.h), y1 = wrap_second<WV>((pv >> 8) + 1, lv.h, lv.seam_h);
+    const uint32_t* row0 = lv.texels + size_t(y0) * lv.stride;
+    const uint32_t* row1 = lv.texels + size_t(y1) * lv.stride;
     const uint32_t a = row0[x0], b = row0[x1], c = row1[x0], e = row1[x1];
     const uint64_t top_rb = lerp2(spread_rb(a), spread_rb(b), wx), bot_rb = lerp2(spread_rb(c), spread_rb(e), wx);
     const uint64_t top_ga = lerp2(spread_ga(a), spread_ga(b), wx), bot_ga = lerp2(spread_ga(c), spread_ga(e), wx);
@@ -181,8 +197,9 @@ inline Packed2x2 filter_level(const FastLevel& lv, int32_t u, int32_t v) {
 
 // One probe: the trilinear (or nearest-level) value before rounding, CW.24 per channel.
 template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
-inline Packed2x2 probe_packed(const FastLevel* levels, int last, const SamplerConfig& cfg, int32_t u, int32_t v,
+inline Packed2x2 probe_packed(const FastLevel* levels, int last, const SamplerConfig& cfg, int32_t u_in, int32_t v_in,
                               int32_t lambda) {
+  const int32_t u = stage::reduce(u_in, WU), v = stage::reduce(v_in, WV);
   const int32_t lod = stage::lod_clamp(lambda, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
   if constexpr (MM == MipMode::Linear) {
     // stage::lod_select without branches: lod <= 0 gives d = 0, f = 0; past the last level
@@ -205,14 +222,14 @@ inline Packed2x2 probe_packed(const FastLevel* levels, int last, const SamplerCo
 }
 
 template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
-void sample_batch(const FastLevel* levels, int last, int log2_w0, int log2_h0, const SamplerConfig& cfg,
+void sample_batch(const FastLevel* levels, int last, Extent size0, const SamplerConfig& cfg,
                   const Request* requests, size_t n, uint32_t* out) {
   constexpr uint64_t kHalf = (uint64_t(1) << 23) | (uint64_t(1) << 55);  // rounding of both channels
   for (size_t i = 0; i < n; ++i) {
     const Request& r = requests[i];
     if (r.has_derivatives) {
       // The probes of tex_probe, summed per channel (16 probes of CW.24 need 36 bits: unpacked).
-      const Probes p = tex_probe(r, cfg, log2_w0, log2_h0);
+      const Probes p = tex_probe(r, cfg, size0);
       stage::Unrounded sum{};
       for (int k = 0; k < p.n; ++k) {
         const Request& q = p.at[size_t(k)];
@@ -272,9 +289,9 @@ void Sampler::sample_rgba8(const Request* requests, size_t n, uint32_t* out) con
   FastLevel levels[kMaxLevels];
   const int last = int(packed_.size()) - 1;
   for (int k = 0; k <= last; ++k) {
-    const LevelShape s = level_shape(log2_w0_, log2_h0_, k);
-    levels[k] = {packed_[size_t(k)].data(), s.log2_w, 15 - s.log2_w, 15 - s.log2_h, (1 << s.log2_w) - 1,
-                 (1 << s.log2_h) - 1};
+    const Extent e = level_extent(size0_, k);
+    levels[k] = {packed_[size_t(k)].data(), size_t(stored_side(e.w)), e.w, e.h, is_power_of_two(e.w) ? 0 : e.w,
+                 is_power_of_two(e.h) ? 0 : e.h};
   }
   const SamplerConfig& cfg = config_;
   with_texel_filter(cfg.filter.texel, [&](auto tf) {
@@ -282,7 +299,7 @@ void Sampler::sample_rgba8(const Request* requests, size_t n, uint32_t* out) con
       with_wrap(cfg.wrap_u, [&](auto wu) {
         with_wrap(cfg.wrap_v, [&](auto wv) {
           sample_batch<decltype(tf)::value, decltype(mm)::value, decltype(wu)::value, decltype(wv)::value>(
-              levels, last, log2_w0_, log2_h0_, cfg, requests, n, out);
+              levels, last, size0_, cfg, requests, n, out);
         });
       });
     });

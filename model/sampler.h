@@ -76,9 +76,9 @@ struct Probes {
   int n = 1;
   std::array<Request, kMaxAniso> at;
 };
-Probes tex_probe(const Request& r, const SamplerConfig& config, int log2_w0, int log2_h0);
+Probes tex_probe(const Request& r, const SamplerConfig& config, Extent size0);
 // Only the probe count N of tex_probe (what the on-chip unit's timing depends on).
-int tex_probe_count(const Request& r, const SamplerConfig& config, int log2_w0, int log2_h0);
+int tex_probe_count(const Request& r, const SamplerConfig& config, Extent size0);
 
 struct SamplerStats {
   uint64_t samples = 0;
@@ -120,14 +120,18 @@ class Sampler {
   int channel_bits() const { return channel_bits_; }
 
  private:
+  void write_packed(int level, int32_t x, int32_t y, const Texel& t);
+
   SamplerConfig config_;
   std::optional<BankedMipMemory> memory_;  // the reference path's memories (not with FastOnly)
   int channel_bits_;
   Texel border_;  // the border colour in the levels' channel width
-  int log2_w0_, log2_h0_, last_level_;
+  Extent size0_;
+  int last_level_;
   uint64_t samples_ = 0, multiplies_ = 0;
   std::array<uint64_t, kMaxAniso + 1> probes_{};
-  std::vector<BigVector<uint32_t>> packed_;  // per level, row-major RGBA8 (fast path only)
+  // Per level, row-major RGBA8 of the stored sides (stored_side: with the seam copies), fast path only.
+  std::vector<BigVector<uint32_t>> packed_;
 };
 
 }  // namespace tex

@@ -26,7 +26,6 @@ std::vector<Image> srgb_box_levels(const Image& level0, PyramidMode mode) {
   if (level0.channel_bits != 8) throw Error("an sRGB texture holds 8-bit codes, not " + std::to_string(level0.channel_bits) + "-bit channels");
   // Alpha and the level shapes as build_pyramid makes them; R, G, B replaced below.
   std::vector<Image> levels = build_pyramid(level0, mode).levels;
-  const int lw0 = log2_exact(level0.width), lh0 = log2_exact(level0.height);
   // Decoded level 0 (or, in cascade mode, the previous level) in double.
   auto decode = [](const Image& img) {
     std::vector<std::array<double, 3>> d(img.texels.size());
@@ -38,15 +37,20 @@ std::vector<Image> srgb_box_levels(const Image& level0, PyramidMode mode) {
   int src_w = level0.width, src_h = level0.height;
   for (int k = 1; k < int(levels.size()); ++k) {
     Image& out = levels[size_t(k)];
-    const LevelShape s = level_shape(lw0, lh0, k);
-    const int fx = src_w / s.width(), fy = src_h / s.height();
+    const Extent s = level_extent({level0.width, level0.height}, k);
+    // The area weights of build_pyramid (a box where the sides are powers of two).
+    const AxisWeights ax = axis_weights(src_w, s.width()), ay = axis_weights(src_h, s.height());
+    const double area = double(src_w) * double(src_h);
     for (int y = 0; y < s.height(); ++y)
       for (int x = 0; x < s.width(); ++x) {
         std::array<double, 3> sum{};
-        for (int dy = 0; dy < fy; ++dy)
-          for (int dx = 0; dx < fx; ++dx)
-            for (int c = 0; c < 3; ++c) sum[size_t(c)] += source[size_t(y * fy + dy) * size_t(src_w) + size_t(x * fx + dx)][size_t(c)];
-        for (int c = 0; c < 3; ++c) out.at(x, y)[size_t(c)] = encode_srgb8(sum[size_t(c)] / double(fx * fy));
+        for (size_t dy = 0; dy < ay.weight[size_t(y)].size(); ++dy)
+          for (size_t dx = 0; dx < ax.weight[size_t(x)].size(); ++dx) {
+            const double w = double(ay.weight[size_t(y)][dy]) * double(ax.weight[size_t(x)][dx]);
+            const size_t at = size_t(ay.first[size_t(y)] + int(dy)) * size_t(src_w) + size_t(ax.first[size_t(x)] + int(dx));
+            for (int c = 0; c < 3; ++c) sum[size_t(c)] += w * source[at][size_t(c)];
+          }
+        for (int c = 0; c < 3; ++c) out.at(x, y)[size_t(c)] = encode_srgb8(sum[size_t(c)] / area);
       }
     if (mode == PyramidMode::Cascade) {  // the next level from this one's codes
       source = decode(out);

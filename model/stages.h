@@ -55,23 +55,37 @@ inline TexelFilter texel_filter(const LevelSelect& s, const Filter& f) { return 
 
 // ---------------------------------------------------------------- scale (tex_scale)
 
-// floor(coord * 2^log2_size0 * 512): level-0 texels with 9 fraction bits, so that level k is a
-// FIXED shift (scaled >> k) of it: the paper's binary shift (floors of arithmetic shifts compose).
-inline int32_t scale(int32_t coord, int log2_size0) { return coord >> (kCoordFracBits - 9 - log2_size0); }
+// The coordinate brought into one period of its address mode before it is scaled: repeat keeps
+// u mod 1, mirrored repeat u mod 2 (masks of Q8.24's integer bits), the clamping modes (clamp to
+// edge, to border, mirror clamp) clamp(u, -2, 2). Every tap then reads the texel it would read
+// without this step (repeat and mirror are periodic in u; beyond +-2 the clamping modes give only
+// edge or border taps), the texel indices stay within [-2n - 1, 2n], and u * n is a 27 x 14-bit
+// product. (docs/numerics.md stage 2)
+inline int32_t reduce(int32_t coord, Wrap mode) {
+  constexpr int32_t kOne = int32_t(1) << kCoordFracBits;
+  switch (mode) {
+    case Wrap::Repeat: return coord & (kOne - 1);
+    case Wrap::Mirror: return coord & (2 * kOne - 1);
+    default: return std::clamp(coord, -2 * kOne, 2 * kOne);
+  }
+}
+
+// floor(u * n * 512) for a level n texels wide along this axis: the level's texels with 9 fraction
+// bits. `reduced` is reduce(u); where n is a power of two 2^a this is the paper's binary shift
+// u >> (15 - a), and level k's value the shift of level 0's by k (floors of shifts compose).
+inline int32_t scale(int32_t reduced, int n) { return int32_t((int64_t(reduced) * n) >> (kCoordFracBits - 9)); }
 
 // ---------------------------------------------------------------- address (tex_address)
 
-// The two integer texel indices along one axis at `level` and the weight of the second.
+// The two integer texel indices along one axis at one level and the weight of the second.
 struct AxisTaps {
   int32_t i0 = 0, i1 = 0;
   int w = 0;
 };
 
-// `shift`: the level's shift of the level-0 scale, min(k, log2 size0) for level k: a side that
-// reached 1 texel stays 1 (its coordinate scales by 1 there, not by 2^-k). Repeat, clamp and
+// `t9`: scale() at this level. A side that reached 1 texel scales by 1 there: repeat, clamp and
 // mirror map every index of a 1-texel side to 0, so only clamp to border can tell the two apart.
-inline AxisTaps address(int32_t scaled, int shift, TexelFilter filter) {
-  const int32_t t9 = scaled >> shift;  // floor(u * size_level * 512)
+inline AxisTaps address(int32_t t9, TexelFilter filter) {
   AxisTaps t;
   if (filter == TexelFilter::Linear) {
     const int32_t p = (t9 - 255) >> 1;  // round-half-up((u * size - 1/2) * 256)
@@ -90,15 +104,21 @@ inline AxisTaps address(int32_t scaled, int shift, TexelFilter filter) {
 // border colour.
 constexpr int32_t kBorderTap = -1;
 
-// The address mode of an integer texel index, into [0, 2^log2_size) or kBorderTap (GL 4.6 Table
-// 8.20, Vulkan "Wrapping Operation"; docs/numerics.md stage 3).
-inline int32_t wrap(int32_t i, int log2_size, Wrap mode) {
-  const int32_t n = 1 << log2_size;
+// The address mode of an integer texel index on a side of n texels, into [0, n) or kBorderTap
+// (GL 4.6 Table 8.20, Vulkan "Wrapping Operation"; docs/numerics.md stage 3). `second`: the index
+// is the second tap of a pair (i1 = i0 + 1). The repeat seam of a side that is not a power of two:
+// the pair (n-1, 0) gives (n-1, n), index n naming texel 0's copy stored after the last texel
+// (stored_side), so the two taps sit in different parity banks (n - 1 and 0 are both even when n
+// is odd) and, in the cached unit, in neighbouring blocks.
+inline int32_t wrap(int32_t i, int32_t n, Wrap mode, bool second = false) {
   switch (mode) {
-    case Wrap::Repeat: return i & (n - 1);
+    case Wrap::Repeat: {
+      const int32_t m = (i % n + n) % n;
+      return second && m == 0 && !is_power_of_two(n) ? n : m;
+    }
     case Wrap::Clamp: return std::clamp(i, 0, n - 1);
     case Wrap::Mirror: {
-      const int32_t m = i & (2 * n - 1);
+      const int32_t m = (i % (2 * n) + 2 * n) % (2 * n);
       return m < n ? m : 2 * n - 1 - m;
     }
     case Wrap::Border: return i >= 0 && i < n ? i : kBorderTap;

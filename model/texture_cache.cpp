@@ -1,34 +1,30 @@
 #include "texture_cache.h"
 
+#include <stdexcept>
+
 #include "error.h"
 #include "stages.h"
 
 namespace tex {
 
-std::vector<MemoryLayout> pack_layouts(const std::vector<std::pair<int, int>>& sizes, int channel_bits,
+std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int channel_bits,
                                        const LayoutParams& params, const std::vector<TexelFormat>& formats) {
   std::vector<MemoryLayout> out;
   LayoutParams p = params;
   uint64_t next = params.base;
-  for (const auto& [log2_w, log2_h] : sizes) {
+  for (const Extent& size : sizes) {
     if (next > 0xFFFFFFFFull)
       throw Error("textures: " + std::to_string(sizes.size()) + " pyramids do not fit the 32-bit address space");
     p.base = uint32_t(next);
     const TexelFormat f = out.size() < formats.size() ? formats[out.size()] : TexelFormat::Rgba8;
-    out.emplace_back(log2_w, log2_h, channel_bits, p, f);  // throws when it ends beyond 2^32
+    out.emplace_back(size, channel_bits, p, f);  // throws when it ends beyond 2^32
     next += out.back().image_bytes();                   // a whole number of lines
   }
   return out;
 }
 
-TextureCache::TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config,
-                           int log2_w0, int log2_h0)
-    : TextureCache({TextureDescriptor{layout}}, params, SamplerTable{config}) {
-  if (log2_w0 != layout.log2_w0() || log2_h0 != layout.log2_h0())
-    throw Error("texture cache: the texture is 2^" + std::to_string(log2_w0) + " x 2^" + std::to_string(log2_h0) +
-                " texels, its memory layout 2^" + std::to_string(layout.log2_w0()) + " x 2^" +
-                std::to_string(layout.log2_h0()));
-}
+TextureCache::TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config)
+    : TextureCache({TextureDescriptor{layout}}, params, SamplerTable{config}) {}
 
 TextureCache::TextureCache(std::vector<TextureDescriptor> textures, const CacheParams& params,
                            SamplerTable samplers)
@@ -119,7 +115,7 @@ RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>*
     w.error = l.error();
     return w;
   }
-  const Probes p = tex_probe(r, sampler(r), layout.log2_w0(), layout.log2_h0());
+  const Probes p = tex_probe(r, sampler(r), layout.size0());
   w.probes = uint8_t(p.n);
   for (int i = 0; i < p.n; ++i) {
     const SampleLookup l = lookup(p.at[size_t(i)], misses);
@@ -133,10 +129,9 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
   if (r.has_derivatives) throw Error("texture cache: lookup() takes a probe; use lookup_sample() for a request");
   const MemoryLayout& layout = texture(r).layout;
   const SamplerConfig& smp = sampler(r);
-  const int log2_w0 = layout.log2_w0(), log2_h0 = layout.log2_h0();
   const stage::LevelSelect sel =
       stage::lod(r.lod, smp.lod_bias + r.bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);
-  const int32_t su = stage::scale(r.u, log2_w0), sv = stage::scale(r.v, log2_h0);
+  const int32_t ru = stage::reduce(r.u, smp.wrap_u), rv = stage::reduce(r.v, smp.wrap_v);
   SampleLookup out;
   for (int s = 0; s < 2; ++s) {
     SlotLookup& sl = out.slot[size_t(s)];
@@ -144,22 +139,27 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     sl.needed = s == 0 || sel.f != 0;
     if (!sl.needed) continue;
     const int k = sl.level;
-    const LevelShape shape = level_shape(log2_w0, log2_h0, k);
+    const Extent e = layout.level_size(k);
     const TexelFilter texel_filter = stage::texel_filter(sel, smp.filter);
-    const stage::AxisTaps tu = stage::address(su, std::min(k, log2_w0), texel_filter);
-    const stage::AxisTaps tv = stage::address(sv, std::min(k, log2_h0), texel_filter);
+    const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w), texel_filter);
+    const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h), texel_filter);
     // The taps whose weight is not 0: (x0, y0) always, x1 / y1 when their weight is not 0; a
     // clamp-to-border tap outside the level (stage::kBorderTap) reads no line.
-    const int32_t x[2] = {stage::wrap(tu.i0, shape.log2_w, smp.wrap_u), stage::wrap(tu.i1, shape.log2_w, smp.wrap_u)};
-    const int32_t y[2] = {stage::wrap(tv.i0, shape.log2_h, smp.wrap_v), stage::wrap(tv.i1, shape.log2_h, smp.wrap_v)};
+    const int32_t x[2] = {stage::wrap(tu.i0, e.w, smp.wrap_u), stage::wrap(tu.i1, e.w, smp.wrap_u, true)};
+    const int32_t y[2] = {stage::wrap(tv.i0, e.h, smp.wrap_v), stage::wrap(tv.i1, e.h, smp.wrap_v, true)};
     const int nx = tu.w != 0 ? 2 : 1, ny = tv.w != 0 ? 2 : 1;
     // Distinct blocks by parity (two distinct blocks of a footprint differ in a parity).
     uint32_t bx_of[4] = {}, by_of[4] = {};
     for (int j = 0; j < nx; ++j)
       for (int i = 0; i < ny; ++i) {
         if (x[j] == stage::kBorderTap || y[i] == stage::kBorderTap) continue;
-        const uint32_t bx = uint32_t(x[j]) >> layout.log2_block_w(), by = uint32_t(y[i]) >> layout.log2_block_h();
+        const uint32_t bx = layout.stored_x(k, uint32_t(x[j])) >> layout.log2_block_w();
+        const uint32_t by = layout.stored_y(k, uint32_t(y[i])) >> layout.log2_block_h();
         const int p = int((by & 1) << 1 | (bx & 1));
+        // Two blocks of one parity would need two lookups in one set group: the layout (the
+        // seam copies included) rules it out.
+        if ((sl.block_mask >> p & 1) && (bx_of[p] != bx || by_of[p] != by))
+          throw std::logic_error("texture cache: two blocks of one parity in a footprint");
         sl.block_mask |= uint8_t(1 << p);
         bx_of[p] = bx;
         by_of[p] = by;

@@ -51,9 +51,9 @@ struct TextureDescriptor {
 };
 
 // Layouts of several pyramids of `channel_bits` texels packed one after another from params.base
-// (each starts on a line); sizes are {log2 w0, log2 h0}, formats one per pyramid (none: all RGBA).
+// (each starts on a line); sizes are level 0's, formats one per pyramid (none: all RGBA).
 // Throws tex::Error when they do not fit the 32-bit address space.
-std::vector<MemoryLayout> pack_layouts(const std::vector<std::pair<int, int>>& sizes, int channel_bits,
+std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int channel_bits,
                                        const LayoutParams& params, const std::vector<TexelFormat>& formats = {});
 
 class TextureCache {
@@ -63,9 +63,8 @@ class TextureCache {
   // layouts of different line sizes, no sampler or more than kMaxSamplers. Requests name a texture
   // by Request::texture and a sampler by Request::sampler.
   TextureCache(std::vector<TextureDescriptor> textures, const CacheParams& params, SamplerTable samplers);
-  // One texture and one sampler (the size must be the layout's).
-  TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config, int log2_w0,
-               int log2_h0);
+  // One texture and one sampler.
+  TextureCache(const MemoryLayout& layout, const CacheParams& params, const SamplerConfig& config);
 
   // One probe (a request without derivatives, as tex_probe gives them): looks its needed blocks up
   // in request order, updates the LRU state, and appends the line address of every miss to

@@ -125,8 +125,8 @@ EngineStats run_engine(const SamplingOptions& o, const EngineOptions& eo, Output
   // The anisotropic filter: count each request's probes on the way in.
   std::optional<ProbeCounter> counter;
   if (std::any_of(samplers.begin(), samplers.end(), [](const SamplerConfig& s) { return s.filter.anisotropic; })) {
-    std::vector<std::pair<int, int>> sizes;
-    for (const BoundTexture& t : textures) sizes.emplace_back(t.pyramid->log2_w0(), t.pyramid->log2_h0());
+    std::vector<Extent> sizes;
+    for (const BoundTexture& t : textures) sizes.push_back(t.pyramid->extent0());
     counter.emplace(source, samplers, sizes);
   }
   RequestSource& requests = counter ? static_cast<RequestSource&>(*counter) : source;

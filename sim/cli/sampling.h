@@ -127,7 +127,7 @@ struct SamplingOptions {
     cmd.add_option("--lod-bias", lod_bias, "added to lambda before the clamp, in levels")->capture_default_str();
     cmd.add_option("--min-lod", min_lod, "lambda clamp, in levels")->capture_default_str();
     cmd.add_option("--max-lod", max_lod, "lambda clamp, in levels")->capture_default_str();
-    cmd.add_flag("--resize", resize, "resample a texture whose sides are not powers of two");
+    cmd.add_flag("--resize", resize, "resample a texture whose sides are not powers of two to the nearest ones (the model samples any size; the RTL engines take powers of two)");
     cmd.add_option("--stalls", stalls,
                    "none | random | heavy: input gaps and output stalls of cycle-accurate engines (none = ideal "
                    "timing, what the hardware sustains)")
@@ -295,7 +295,7 @@ struct SamplingOptions {
       if (!mem_error_at.empty()) o.mem_error_reads = parse_error_reads(mem_error_at);
       // The geometry must be one the caches can have (the texture's channel width sets the line
       // size; 8-bit lines are checked here, the engine checks again with the real texture).
-      TextureCache(MemoryLayout(0, 0, 8, o.layout), o.cache, SamplerConfig{}, 0, 0);
+      TextureCache(MemoryLayout(Extent{}, 8, o.layout), o.cache, SamplerConfig{});
     } else {
       for (const CLI::Option* opt : cached_opts)
         if (opt->count()) throw Error(opt->get_name() + " needs --memory cached (the on-chip memories have no cache)");

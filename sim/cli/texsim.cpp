@@ -258,7 +258,7 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
   std::vector<uint8_t> image_bytes;
   if (image_out)  // (the layout checks the block, base and size before anything is written)
     image_bytes = memory_image_file(
-        pyr, MemoryLayout(pyr.log2_w0(), pyr.log2_h0(), pyr.memory_channel_bits(), memory_layout, pyr.format));
+        pyr, MemoryLayout(pyr.extent0(), pyr.memory_channel_bits(), memory_layout, pyr.format));
   if (!dump_dir.empty()) {
     outputs.make_directory(dump_dir, "--dump-levels");
     std::vector<OutputFile*> levels;
@@ -385,7 +385,7 @@ int main(int argc, char** argv) {
   mip->add_option("--texture,-t", mip_texture, "image file, DDS/KTX/KTX2 texture file, or pattern NAME[:WxH]")
       ->capture_default_str();
   mip->add_option("--pyramid", mip_mode, "exact | cascade")->capture_default_str();
-  mip->add_flag("--resize", mip_resize, "resample a texture whose sides are not powers of two");
+  mip->add_flag("--resize", mip_resize, "resample a texture whose sides are not powers of two to the nearest ones (the model samples any size; the RTL engines take powers of two)");
   mip->add_flag("--srgb", mip_srgb, "the texture's R, G, B are sRGB codes: the pyramid averaged in linear space, "
                 "levels and memory image in sRGB codes");
   CLI::Option* mip_format_opt = mip->add_option("--format", mip_format,

@@ -178,8 +178,7 @@ size_t ProbeCounter::read(Request* out, size_t max) {
   const size_t n = source_.read(out, max);
   for (size_t i = 0; i < n; ++i) {
     check_request_tables(out[i], sizes_.size(), samplers_.size());
-    const auto& [log2_w0, log2_h0] = sizes_[out[i].texture];
-    ++histogram_[size_t(tex_probe(out[i], samplers_[out[i].sampler], log2_w0, log2_h0).n)];
+    ++histogram_[size_t(tex_probe(out[i], samplers_[out[i].sampler], sizes_[out[i].texture]).n)];
   }
   return n;
 }
@@ -427,14 +426,14 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
   if (textures.empty() || textures.size() > size_t(kMaxTextures))
     throw Error(std::to_string(textures.size()) + " textures: the descriptor table holds 1 to " +
                 std::to_string(kMaxTextures));
-  std::vector<std::pair<int, int>> sizes;
+  std::vector<Extent> sizes;
   std::vector<TexelFormat> formats;
   const int bits = textures[0].pyramid->memory_channel_bits();
   for (const BoundTexture& t : textures) {
     if (t.pyramid->memory_channel_bits() != bits)
       throw Error("textures of one frame must have the same channel width in memory (" + std::to_string(bits) +
                   " and " + std::to_string(t.pyramid->memory_channel_bits()) + " bits)");
-    sizes.emplace_back(t.pyramid->log2_w0(), t.pyramid->log2_h0());
+    sizes.push_back(t.pyramid->extent0());
     formats.push_back(t.pyramid->format);
   }
   const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout, formats);

@@ -148,9 +148,9 @@ class RequestSource {
 // RTL's tex_probe implements): the probes-per-sample histogram of EngineStats.
 class ProbeCounter final : public RequestSource {
  public:
-  // sizes[t]: {log2 w0, log2 h0} of texture t (the LOD unit takes the requested texture's, and the
-  // requested sampler's anisotropy cap).
-  ProbeCounter(RequestSource& source, SamplerTable samplers, std::vector<std::pair<int, int>> sizes)
+  // sizes[t]: level 0 of texture t (the LOD unit takes the requested texture's, and the requested
+  // sampler's anisotropy cap).
+  ProbeCounter(RequestSource& source, SamplerTable samplers, std::vector<Extent> sizes)
       : source_(source), samplers_(std::move(samplers)), sizes_(std::move(sizes)) {}
   size_t read(Request* out, size_t max) override;
   const std::array<uint64_t, kMaxAniso + 1>& histogram() const { return histogram_; }
@@ -158,7 +158,7 @@ class ProbeCounter final : public RequestSource {
  private:
   RequestSource& source_;
   SamplerTable samplers_;
-  std::vector<std::pair<int, int>> sizes_;
+  std::vector<Extent> sizes_;
   std::array<uint64_t, kMaxAniso + 1> histogram_{};
 };
 

@@ -190,7 +190,7 @@ EngineStats run_model(const TextureTable& textures, const SamplerTable& samplers
       const Pyramid& p = *textures[0].pyramid;
       for (size_t i = 0; i < n; ++i) {
         RequestWork w;
-        w.probes = uint8_t(tex_probe_count(requests[i], samplers[0], p.log2_w0(), p.log2_h0()));
+        w.probes = uint8_t(tex_probe_count(requests[i], samplers[0], p.extent0()));
         timed->push(w);
       }
     }

@@ -153,17 +153,16 @@ const Known& known(const Known (&table)[N], uint32_t code, const std::string& ki
 
 // Checks the sizes and the level count, common to every container; returns the level count.
 int check_shape(const Reader& r, TextureFile& t, uint32_t width, uint32_t height, uint32_t levels) {
-  if (width == 0 || height == 0 || width > (1u << kMaxLog2Size) || height > (1u << kMaxLog2Size) ||
-      !is_power_of_two(int(width)) || !is_power_of_two(int(height)))
-    r.fail(std::to_string(width) + "x" + std::to_string(height) + ": the unit takes sides that are powers of two from 1 to " +
-           std::to_string(1 << kMaxLog2Size));
+  if (width == 0 || height == 0 || width > uint32_t(kMaxSize) || height > uint32_t(kMaxSize))
+    r.fail(std::to_string(width) + "x" + std::to_string(height) + ": the unit takes sides from 1 to " +
+           std::to_string(kMaxSize));
   t.width = int(width);
   t.height = int(height);
   if (is_compressed(t.format) && (width % 4 || height % 4))
     r.fail(std::to_string(width) + "x" + std::to_string(height) + ": a " + format_info(t.format).name +
            " texture needs sides that are multiples of 4 at level 0");
   if (t.srgb && !format_info(t.format).srgb_allowed) r.fail("sRGB " + std::string(format_info(t.format).name) + " does not exist");
-  const int full = level_count(log2_exact(t.width), log2_exact(t.height));
+  const int full = level_count({t.width, t.height});
   if (levels == 0) levels = 1;
   if (int64_t(levels) != 1 && int64_t(levels) != full)
     r.fail(std::to_string(levels) + " mip levels: a partial chain (a " + std::to_string(width) + "x" + std::to_string(height) +
@@ -172,7 +171,7 @@ int check_shape(const Reader& r, TextureFile& t, uint32_t width, uint32_t height
 }
 
 uint64_t bytes_of_level(const TextureFile& t, int k) {
-  const LevelShape s = level_shape(log2_exact(t.width), log2_exact(t.height), k);
+  const Extent s = level_extent({t.width, t.height}, k);
   return level_bytes(t.format, s.width(), s.height());
 }
 
@@ -408,7 +407,7 @@ Pyramid load_pyramid(const std::string& spec, const TextureOptions& o) {
 
 Pyramid pyramid_of(const TextureFile& file, PyramidMode mode) {
   auto decoded = [&](int k) {
-    const LevelShape s = level_shape(log2_exact(file.width), log2_exact(file.height), k);
+    const Extent s = level_extent({file.width, file.height}, k);
     if (!is_compressed(file.format)) {
       Image img(s.width(), s.height(), 8);
       for (size_t i = 0; i < img.texels.size(); ++i)

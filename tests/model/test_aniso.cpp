@@ -61,12 +61,12 @@ TEST(TexAniso, ProbeCountIsTheCeilingOfTheAxisRatio) {
   for (const Case& c : cases) {
     for (bool along_x : {true, false}) {
       const LodDerivatives d = along_x ? texels(c.major, 0, 0, c.minor) : texels(0, c.minor, c.major, 0);
-      const AnisoSetup a = tex_aniso(d, 10, 10, c.cap, c.pow2);
+      const AnisoSetup a = tex_aniso(d, {1024, 1024}, c.cap, c.pow2);
       EXPECT_EQ(a.n, c.n) << c.major << "/" << c.minor << " cap " << c.cap << " pow2 " << c.pow2;
     }
   }
   // All derivatives 0: one probe at the most negative lambda, like tex_lambda.
-  const AnisoSetup zero = tex_aniso({}, 10, 10, 16, false);
+  const AnisoSetup zero = tex_aniso({}, {1024, 1024}, 16, false);
   EXPECT_EQ(zero.n, 1);
   EXPECT_EQ(zero.lambda, kLodMin);
 }
@@ -91,7 +91,7 @@ TEST(TexAniso, RandomFootprintsAgainstRealArithmetic) {
     const double qy = std::hypot(d.dudy * w, d.dvdy * h) / 16777216.0;
     const double pmax = std::max(qx, qy), pmin = std::min(qx, qy);
     const int cap = int(rng() % 16) + 1;
-    const AnisoSetup a = tex_aniso(d, log2_w, log2_h, cap, false);
+    const AnisoSetup a = tex_aniso(d, {1 << log2_w, 1 << log2_h}, cap, false);
     // N: the least n with n^2 >= ratio^2 * 63/64, checked where the 16-bit normalization of the
     // minor axis (about ratio / 2^15 relative) cannot decide it.
     const double r2 = (pmax / pmin) * (pmax / pmin) * 63 / 64, root = std::sqrt(r2);
@@ -122,19 +122,19 @@ TEST(TexAniso, ProbesSpreadEvenlyAlongTheMajorAxis) {
   r.v = 5 << 21;
   r.has_derivatives = true;
   r.deriv = texels(1, 0, 0, 8);  // major axis: y, along v, 8 texels: 8 probes
-  const Probes p = tex_probe(r, cfg, 10, 10);
+  const Probes p = tex_probe(r, cfg, {1024, 1024});
   ASSERT_EQ(p.n, 8);
   for (int i = 0; i < p.n; ++i) {
     const Request& q = p.at[size_t(i)];
     EXPECT_EQ(q.u, r.u) << i;
     EXPECT_NEAR(q.v - r.v, (2 * i + 1 - 8) / 16.0 * r.deriv.dvdy, 4) << i;
     EXPECT_FALSE(q.has_derivatives);
-    EXPECT_EQ(q.lod, tex_lambda(r.deriv, 10, 10) - 3 * 256) << i;  // lambda' = log2(8 / 8) = 0
+    EXPECT_EQ(q.lod, tex_lambda(r.deriv, {1024, 1024}) - 3 * 256) << i;  // lambda' = log2(8 / 8) = 0
   }
   EXPECT_EQ(p.at[7].lod, 0);
   // A request without derivatives: one probe, itself.
   Request plain = lambda_request(1, 2, 300, 9);
-  const Probes one = tex_probe(plain, cfg, 10, 10);
+  const Probes one = tex_probe(plain, cfg, {1024, 1024});
   ASSERT_EQ(one.n, 1);
   EXPECT_EQ(one.at[0].u, 1);
   EXPECT_EQ(one.at[0].lod, 300);
@@ -190,11 +190,11 @@ TEST(AnisoSampler, IsotropicIsTrilinearAndFastPathEqualsReference) {
     } else {
       r.deriv = {deriv(rng), deriv(rng), deriv(rng) >> (rng() % 8), deriv(rng) >> (rng() % 8)};
     }
-    r.lod = tex_lambda(r.deriv, 7, 6);
+    r.lod = tex_lambda(r.deriv, {128, 64});
     const Texel t = s_tri.sample(lambda_request(r.u, r.v, r.lod));
     EXPECT_EQ(s_an1.sample(r), t) << i;
     if (i % 4 == 0) {
-      EXPECT_EQ(tex_probe(r, aniso, 7, 6).n, 1) << i;
+      EXPECT_EQ(tex_probe(r, aniso, {128, 64}).n, 1) << i;
       EXPECT_EQ(s_an.sample(r), t) << i;
     }
   }

@@ -1,6 +1,6 @@
 // The one fast-path equivalence test: Sampler::sample_rgba8 against the reference path
 // Sampler::sample, bit for bit, on random requests: the six GL filters x every wrap pair x random
-// LOD bias and clamps, on random textures of many shapes (square, wide, tall, 1xN, 2048x2), with
+// LOD bias and clamps, on random textures of many shapes (square, wide, tall, 1xN, 2048x2, odd), with
 // coordinates far outside [0, 1).
 #include <gtest/gtest.h>
 
@@ -69,7 +69,9 @@ TEST(FastPathEquivalence, SixGlFiltersEveryWrapAndLodRange) {
                            "nearest_mipmap_linear", "linear_mipmap_linear"};
   // Every address mode the fast path takes (clamp to border takes the reference path).
   const Wrap wraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::MirrorClamp};
-  const int shapes[][2] = {{64, 64}, {128, 16}, {8, 256}, {1, 32}, {32, 1}, {1, 1}, {2, 2}, {256, 256}, {2048, 2}};
+  // Powers of two and not (odd sides, primes: the repeat seam's copies).
+  const int shapes[][2] = {{64, 64}, {128, 16}, {8, 256}, {1, 32}, {32, 1}, {1, 1}, {2, 2}, {256, 256}, {2048, 2},
+                           {5, 3}, {7, 1}, {1, 9}, {100, 60}, {33, 127}};
   constexpr int kRequestsPerConfig = 4000;
 
   std::mt19937 rng(20240611);

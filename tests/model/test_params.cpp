@@ -122,7 +122,7 @@ TEST(Params, RtlPackageAgreesWithModel) {
   int32_t lo = 0, hi = 0;
   for (int32_t u : {INT32_MIN, INT32_MAX})
     for (TexelFilter f : {TexelFilter::Nearest, TexelFilter::Linear}) {
-      const stage::AxisTaps t = stage::address(stage::scale(u, kMaxLog2Size), 0, f);
+      const stage::AxisTaps t = stage::address(stage::scale(u, kMaxSize), f);  // (unreduced: the RTL's range)
       lo = std::min({lo, t.i0, t.i1});
       hi = std::max({hi, t.i0, t.i1});
     }

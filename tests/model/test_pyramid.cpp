@@ -2,7 +2,10 @@
 // mode against its parent (the maketx comparison is in tests/sim/test_pyramid_maketx.cpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <string>
+#include <vector>
 
 #include "model/image.h"
 #include "model/pyramid.h"
@@ -97,3 +100,74 @@ TEST(Pyramid, CascadeModeIsRoundedMeanOfParent) {
   EXPECT_EQ(build_pyramid(img, PyramidMode::Exact).levels[2].at(0, 0)[0], 0);
   EXPECT_EQ(build_pyramid(img, PyramidMode::Cascade).levels[2].at(0, 0)[0], 1);
 }
+
+namespace {
+// Level k of a side-0 of n texels: max(1, n >> k) (GL).
+int side(int n, int k) { return std::max(1, n >> k); }
+
+// The area mean, brute force from the source texels' side: each source texel spreads over the
+// output texels its area overlaps (source texel j spans [j * out, (j + 1) * out), output texel i
+// spans [i * src, (i + 1) * src) in units of 1 / (src * out) of the side), then the exact rounding
+// half up of S / (src_w * src_h) in integers.
+Image brute_area_mean(const Image& src, int w, int h) {
+  std::vector<std::array<uint64_t, 4>> sum(size_t(w) * h);
+  auto overlap = [](int64_t a0, int64_t a1, int64_t b0, int64_t b1) { return std::max<int64_t>(0, std::min(a1, b1) - std::max(a0, b0)); };
+  for (int yy = 0; yy < src.height; ++yy)
+    for (int xx = 0; xx < src.width; ++xx)
+      for (int y = 0; y < h; ++y) {
+        const int64_t oy = overlap(int64_t(yy) * h, int64_t(yy + 1) * h, int64_t(y) * src.height, int64_t(y + 1) * src.height);
+        if (!oy) continue;
+        for (int x = 0; x < w; ++x) {
+          const int64_t ox = overlap(int64_t(xx) * w, int64_t(xx + 1) * w, int64_t(x) * src.width, int64_t(x + 1) * src.width);
+          for (int c = 0; c < 4; ++c) sum[size_t(y) * w + x][size_t(c)] += uint64_t(ox * oy) * src.at(xx, yy)[size_t(c)];
+        }
+      }
+  Image out(w, h, src.channel_bits);
+  const uint64_t d = uint64_t(src.width) * uint64_t(src.height);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 4; ++c) out.at(x, y)[size_t(c)] = uint16_t((2 * sum[size_t(y) * w + x][size_t(c)] + d) / (2 * d));
+  return out;
+}
+}  // namespace
+
+// Sides that are not powers of two (docs/numerics.md "Pyramid"): GL's level sizes max(1, n >> k)
+// and level count floor(log2 max) + 1; exact mode the area mean of level 0, cascade the area mean of
+// the parent, both against the brute-force mean.
+TEST(Pyramid, NonPowerOfTwoLevelsAreAreaMeans) {
+  const std::pair<int, int> sizes[] = {{3, 1}, {1, 5}, {3, 3}, {5, 3}, {7, 2}, {6, 10}, {13, 7}, {31, 17}, {100, 60}, {1, 127}};
+  for (auto [w0, h0] : sizes)
+    for (PyramidMode mode : {PyramidMode::Exact, PyramidMode::Cascade}) {
+      const Image l0 = random_image(w0, h0, uint32_t(w0 * 977 + h0));
+      const Pyramid p = build_pyramid(l0, mode);
+      int levels = 1;
+      while ((std::max(w0, h0) >> levels) > 0) ++levels;
+      ASSERT_EQ(int(p.levels.size()), levels) << w0 << "x" << h0;
+      for (size_t k = 1; k < p.levels.size(); ++k) {
+        const Image& lvl = p.levels[k];
+        ASSERT_EQ(lvl.width, side(w0, int(k)));
+        ASSERT_EQ(lvl.height, side(h0, int(k)));
+        const Image expected = brute_area_mean(mode == PyramidMode::Exact ? l0 : p.levels[k - 1], lvl.width, lvl.height);
+        ASSERT_EQ(lvl.texels, expected.texels) << w0 << "x" << h0 << " level " << k << (mode == PyramidMode::Exact ? " exact" : " cascade");
+      }
+    }
+}
+
+// The area mean is the box of the power-of-two pyramid: area_reduce of level 0 gives every level
+// build_pyramid carries from 2x2 sums; and an odd side's weights are the 3-tap polyphase box.
+TEST(Pyramid, AreaMeanIsTheBoxOfPowersOfTwoAndThePolyphaseBoxOfOddSides) {
+  for (auto [w, h] : kSizes) {
+    const Image l0 = random_image(w, h, uint32_t(w * 7 + h));
+    const Pyramid p = build_pyramid(l0, PyramidMode::Exact);
+    for (size_t k = 1; k < p.levels.size(); ++k)
+      ASSERT_EQ(area_reduce(l0, p.levels[k].width, p.levels[k].height).texels, p.levels[k].texels) << w << "x" << h << " " << k;
+  }
+  for (int m = 1; m < 40; ++m) {
+    const AxisWeights a = axis_weights(2 * m + 1, m);
+    for (int i = 0; i < m; ++i) {
+      ASSERT_EQ(a.first[size_t(i)], 2 * i);
+      ASSERT_EQ(a.weight[size_t(i)], (std::vector<uint32_t>{uint32_t(m - i), uint32_t(m), uint32_t(i + 1)})) << m << " " << i;
+    }
+  }
+}
+

@@ -43,9 +43,9 @@ ref::GlSampler reference(const Pyramid& p, Filter f, Wrap ws, Wrap wt) {
   return g;
 }
 
-// A normalized coordinate whose texel coordinate at a level of 2^lw texels is (i + a/256) + 1/2:
+// A normalized coordinate whose texel coordinate at a level of n = 2^k texels is (i + a/256) + 1/2:
 // exactly representable in Q8.24, so the bilinear weight is exactly a/256.
-double on_grid(int64_t i, int a, int lw) { return (double(i) + a / 256.0 + 0.5) / double(1 << lw); }
+double on_grid(int64_t i, int a, int n) { return (double(i) + a / 256.0 + 0.5) / double(n); }
 
 std::string name_of(Filter f, Wrap wu, Wrap wv) { return filter_name(f) + "/" + wrap_name(wu) + "/" + wrap_name(wv); }
 
@@ -62,12 +62,12 @@ TEST(Sampler, WrapAtEveryLevelIncludingOneTexelLevels) {
         Sampler s(pyr, {f, wu, wv});
         const ref::GlSampler g = reference(pyr, f, wu, wv);
         for (int k = 0; k <= pyr.last_level(); ++k) {
-          const LevelShape sh = level_shape(5, 2, k);
+          const Extent sh = level_extent({32, 4}, k);
           for (int n = 0; n < 3000; ++n) {
             // Texel coordinates from -3 to +3 level widths: every wrap period and both edges.
             const int64_t i = int64_t(rng() % (6 * sh.width() + 2)) - 3 * sh.width() - 1;
             const int64_t j = int64_t(rng() % (6 * sh.height() + 2)) - 3 * sh.height() - 1;
-            const double u = on_grid(i, int(rng() & 255), sh.log2_w), v = on_grid(j, int(rng() & 255), sh.log2_h);
+            const double u = on_grid(i, int(rng() & 255), sh.w), v = on_grid(j, int(rng() & 255), sh.h);
             const double lambda = k;  // nearest level: exactly level k
             const Texel got = s.sample(request(u, v, lambda));
             ASSERT_EQ(got, rounded(g.sample(u, v, lambda)))
@@ -76,6 +76,37 @@ TEST(Sampler, WrapAtEveryLevelIncludingOneTexelLevels) {
           }
         }
       }
+}
+
+// Sides that are not powers of two (docs/numerics.md stages 2 and 3): every address mode, both texel
+// filters and every mip mode, at every level, against the real-valued GL reference. Coordinates
+// u = K / 256 make u * n * 256 an integer at every level, so every weight is exact and the model
+// must equal the reference's rounding; K spans three periods on either side (the repeat seam of
+// odd levels, mirrored periods, the border).
+TEST(Sampler, NonPowerOfTwoSidesMatchTheGlReference) {
+  const std::pair<int, int> sizes[] = {{5, 3}, {7, 1}, {1, 9}, {13, 6}, {31, 17}, {100, 60}};
+  std::mt19937 rng(39);
+  size_t checked = 0;
+  for (auto [w, h] : sizes) {
+    const Pyramid pyr = build_pyramid(make_pattern("noise", w, h));
+    for (Wrap wu : kWraps)
+      for (Wrap wv : kWraps)
+        for (TexelFilter tf : {TexelFilter::Nearest, TexelFilter::Linear})
+          for (MipMode mm : {MipMode::None, MipMode::Nearest, MipMode::Linear}) {
+            const Filter f{tf, mm};
+            Sampler s(pyr, {f, wu, wv});
+            const ref::GlSampler g = reference(pyr, f, wu, wv);
+            for (int n = 0; n < 300; ++n) {
+              const double u = double(int(rng() % (7 * 256)) - 3 * 256) / 256;
+              const double v = double(int(rng() % (7 * 256)) - 3 * 256) / 256;
+              const double lambda = double(int(rng() % (256 * (pyr.last_level() + 2))) - 256) / 256;
+              ASSERT_EQ(s.sample(request(u, v, lambda)), rounded(g.sample(u, v, lambda)))
+                  << w << "x" << h << " " << name_of(f, wu, wv) << " u=" << u << " v=" << v << " lambda=" << lambda;
+              ++checked;
+            }
+          }
+  }
+  EXPECT_EQ(checked, 6u * 25 * 2 * 3 * 300);
 }
 
 TEST(Sampler, PointSamplingIsTexelAtFloorUW) {
@@ -168,11 +199,11 @@ TEST(Sampler, BorderColourIsATapBeforeFiltering) {
         ref::GlSampler g = reference(pyr, cfg.filter, Wrap::Border, wv);
         g.border = colour.want;
         for (int k = 0; k <= pyr.last_level(); ++k) {
-          const LevelShape sh = level_shape(4, 3, k);
+          const Extent sh = level_extent({16, 8}, k);
           for (int n = 0; n < 2000; ++n) {
             const int64_t i = int64_t(rng() % (3 * sh.width() + 4)) - sh.width() - 2;
             const int64_t j = int64_t(rng() % (3 * sh.height() + 4)) - sh.height() - 2;
-            const double u = on_grid(i, int(rng() & 255), sh.log2_w), v = on_grid(j, int(rng() & 255), sh.log2_h);
+            const double u = on_grid(i, int(rng() & 255), sh.w), v = on_grid(j, int(rng() & 255), sh.h);
             outside += i < 0 || i >= sh.width();
             ASSERT_EQ(s.sample(request(u, v, k)), rounded(g.sample(u, v, k)))
                 << border_color_name(colour.kind) << " " << texel_filter_name(tf) << " v " << wrap_name(wv)

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <vector>
 
 #include "model/stages.h"
 
@@ -145,54 +146,122 @@ TEST(Stages, LodSelectBoundaries) {
 // ---------------------------------------------------------------- stage 2: axis taps
 
 namespace {
-void check_taps(int32_t u, int lw) {
-  const double x = std::ldexp(double(u), lw - kCoordFracBits);  // u * w exactly (|u*w| < 2^42)
+// scale and address against real arithmetic on the reduced coordinate, at a level n texels wide.
+void check_taps(int32_t u, int n, Wrap mode) {
+  const int32_t r = stage::reduce(u, mode);
+  const double x = std::ldexp(double(r), -kCoordFracBits) * n;  // r * n exactly (|r * n| < 2^39)
   // Linear: texel centres at half-integers; p = round-half-up((u*w - 1/2) * 256).
-  const stage::AxisTaps lin = stage::address(stage::scale(u, lw), 0, TexelFilter::Linear);
+  const stage::AxisTaps lin = stage::address(stage::scale(r, n), TexelFilter::Linear);
   const double p = std::floor((x - 0.5) * 256 + 0.5);
-  ASSERT_EQ(lin.i0, int32_t(std::floor(p / 256))) << "u=" << u << " lw=" << lw;
-  ASSERT_EQ(lin.w, int(p - 256 * std::floor(p / 256))) << "u=" << u << " lw=" << lw;
+  ASSERT_EQ(lin.i0, int32_t(std::floor(p / 256))) << "u=" << u << " n=" << n;
+  ASSERT_EQ(lin.w, int(p - 256 * std::floor(p / 256))) << "u=" << u << " n=" << n;
   ASSERT_EQ(lin.i1, lin.i0 + 1);
   // Nearest: floor(u * w), no weight.
-  const stage::AxisTaps near = stage::address(stage::scale(u, lw), 0, TexelFilter::Nearest);
-  ASSERT_EQ(near.i0, int32_t(std::floor(x))) << "u=" << u << " lw=" << lw;
+  const stage::AxisTaps near = stage::address(stage::scale(r, n), TexelFilter::Nearest);
+  ASSERT_EQ(near.i0, int32_t(std::floor(x))) << "u=" << u << " n=" << n;
   ASSERT_EQ(near.w, 0);
   ASSERT_EQ(near.i1, near.i0 + 1);
+}
+
+// What the unit reads for coordinate u on a side of n texels (reduce, scale, address, wrap; the
+// seam index n read as texel 0) against GL's definition on the whole coordinate, in exact integer
+// arithmetic: the same two texels, and the same weight unless both taps are one texel (then the
+// weight changes nothing: lerp(a, a, w) = a).
+void check_reduce_keeps_taps(int32_t u, int n, Wrap mode, TexelFilter f) {
+  const stage::AxisTaps t = stage::address(stage::scale(stage::reduce(u, mode), n), f);
+  auto seam = [&](int32_t x) { return x == n ? 0 : x; };
+  const int64_t x0 = stage::wrap(t.i0, n, mode), x1 = seam(stage::wrap(t.i1, n, mode, true));
+  // GL on the whole coordinate: t9 = floor(u * n * 512), then the same rounding, then gl_wrap.
+  const int64_t t9 = (int64_t(u) * n) >> (kCoordFracBits - 9);
+  int64_t i0, w;
+  if (f == TexelFilter::Linear) {
+    const int64_t q = (t9 - 255) >> 1;
+    i0 = q >> 8;
+    w = q & 255;
+  } else {
+    i0 = t9 >> 9;
+    w = 0;
+  }
+  const int64_t g0 = gl_wrap(i0, n, mode), g1 = gl_wrap(i0 + 1, n, mode);
+  ASSERT_EQ(x0, g0) << "u=" << u << " n=" << n << " wrap=" << int(mode);
+  if (f == TexelFilter::Nearest) return;
+  ASSERT_EQ(x1, g1) << "u=" << u << " n=" << n << " wrap=" << int(mode);
+  if (g0 != g1) ASSERT_EQ(t.w, w) << "u=" << u << " n=" << n << " wrap=" << int(mode);
 }
 }  // namespace
 
 TEST(Stages, ScaleAndAddressMatchRealTexelCoordinate) {
   std::mt19937 rng(7);
   std::uniform_int_distribution<int32_t> any(INT32_MIN, INT32_MAX);
-  for (int lw = 0; lw <= kMaxLog2Size; ++lw) {
-    for (int32_t u = -(1 << 25); u < (1 << 25); u += 9973) check_taps(u, lw);
-    for (int i = 0; i < 100000; ++i) check_taps(any(rng), lw);  // the whole Q8.24 range
-    for (int32_t u : {INT32_MIN, INT32_MIN + 1, -1, 0, 1, INT32_MAX - 1, INT32_MAX}) check_taps(u, lw);
-    // Around every rounding boundary of the linear weight and every texel edge of the first texels.
-    const int32_t step = int32_t(1) << (kCoordFracBits - lw - 9);  // 1/512 texel
-    for (int32_t k = -600; k <= 600; ++k)
-      for (int32_t d = -2; d <= 2; ++d) check_taps(k * step + d, lw);
-  }
+  std::vector<int> sizes;
+  for (int lw = 0; lw <= kMaxLog2Size; ++lw) sizes.push_back(1 << lw);
+  for (int n : {3, 5, 7, 600, 1000, 4095, 8191}) sizes.push_back(n);
+  for (int n : sizes)
+    for (Wrap mode : {Wrap::Repeat, Wrap::Mirror, Wrap::Clamp}) {
+      for (int32_t u = -(1 << 25); u < (1 << 25); u += 99991) check_taps(u, n, mode);
+      for (int i = 0; i < 20000; ++i) check_taps(any(rng), n, mode);  // the whole Q8.24 range
+      for (int32_t u : {INT32_MIN, INT32_MIN + 1, -1, 0, 1, INT32_MAX - 1, INT32_MAX}) check_taps(u, n, mode);
+      // Around every rounding boundary of the linear weight and every texel edge of the first texels.
+      const int32_t step = int32_t((int64_t(1) << (kCoordFracBits - 9)) / n);  // about 1/512 texel
+      for (int32_t k = -300; k <= 300; ++k)
+        for (int32_t d = -2; d <= 2; ++d) check_taps(k * step + d, n, mode);
+    }
+}
+
+// reduce() is invisible: every address mode reads the texels GL's definition names on the whole
+// coordinate, at every size (powers of two, odd, primes, up to 8192) and over the whole Q8.24 range.
+TEST(Stages, ReducedCoordinateReadsTheTexelsOfTheWholeOne) {
+  std::mt19937_64 rng(11);
+  const int sizes[] = {1, 2, 3, 4, 5, 7, 8, 9, 31, 64, 125, 600, 1000, 1021, 4096, 8191, 8192};
+  for (int n : sizes)
+    for (Wrap mode : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp})
+      for (TexelFilter f : {TexelFilter::Linear, TexelFilter::Nearest}) {
+        for (int i = 0; i < 20000; ++i) {
+          // Half anywhere in Q8.24, half within a few periods of 0 (where the edges are).
+          const int32_t u = i % 2 ? int32_t(uint32_t(rng())) : int32_t(int64_t(rng() % (1u << 28)) - (1 << 27));
+          check_reduce_keeps_taps(u, n, mode, f);
+        }
+        for (int32_t u : {INT32_MIN, -(1 << 25) - 1, -(1 << 25), -(1 << 24), -1, 0, 1, (1 << 24) - 1, 1 << 24,
+                          (1 << 25) - 1, 1 << 25, (1 << 25) + 1, INT32_MAX})
+          check_reduce_keeps_taps(u, n, mode, f);
+      }
 }
 
 // ---------------------------------------------------------------- stage 3: wrap
 
 TEST(Stages, WrapEqualsGl46AtEveryLevelSize) {
-  for (int lw = 0; lw <= kMaxLog2Size; ++lw) {
-    const int64_t n = int64_t(1) << lw;
+  std::vector<int> sizes;
+  for (int n = 1; n <= 70; ++n) sizes.push_back(n);
+  for (int n : {125, 600, 1000, 1021, 4095, 4096, 8191, 8192}) sizes.push_back(n);
+  for (int n : sizes) {
     for (Wrap w : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp}) {
-      for (int64_t i = -5 * n - 3; i <= 5 * n + 3; ++i)
-        ASSERT_EQ(stage::wrap(int32_t(i), lw, w), gl_wrap(i, n, w)) << "i=" << i << " n=" << n << " wrap=" << int(w);
+      for (int64_t i = -3 * n - 3; i <= 3 * n + 3; ++i) {
+        ASSERT_EQ(stage::wrap(int32_t(i), n, w), gl_wrap(i, n, w)) << "i=" << i << " n=" << n << " wrap=" << int(w);
+        // The second tap: the same texel, except at the repeat seam of a side that is not a power
+        // of two, where texel 0 is read as its copy at index n.
+        const int64_t second = w == Wrap::Repeat && !is_power_of_two(n) && gl_wrap(i, n, w) == 0 ? n : gl_wrap(i, n, w);
+        ASSERT_EQ(stage::wrap(int32_t(i), n, w, true), second) << "i=" << i << " n=" << n << " wrap=" << int(w);
+      }
       // Far indices (the extremes axis_taps can produce from Q8.24 coordinates).
       for (int64_t i : {int64_t(-(1 << 18)) - 1, int64_t(-(1 << 18)), int64_t(1 << 18), int64_t((1 << 18) + 1),
                         int64_t(-123457), int64_t(98765)})
-        ASSERT_EQ(stage::wrap(int32_t(i), lw, w), gl_wrap(i, n, w)) << "i=" << i << " n=" << n;
+        ASSERT_EQ(stage::wrap(int32_t(i), n, w), gl_wrap(i, n, w)) << "i=" << i << " n=" << n;
     }
   }
   // n = 1: every index maps to texel 0 in every mode but clamp to border (only index 0 is inside).
   for (Wrap w : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::MirrorClamp})
-    for (int32_t i = -9; i <= 9; ++i) EXPECT_EQ(stage::wrap(i, 0, w), 0);
-  for (int32_t i = -9; i <= 9; ++i) EXPECT_EQ(stage::wrap(i, 0, Wrap::Border), i == 0 ? 0 : stage::kBorderTap);
+    for (int32_t i = -9; i <= 9; ++i) EXPECT_EQ(stage::wrap(i, 1, w, i % 2 != 0), 0);
+  for (int32_t i = -9; i <= 9; ++i) EXPECT_EQ(stage::wrap(i, 1, Wrap::Border), i == 0 ? 0 : stage::kBorderTap);
+}
+
+// The repeat seam's pair sits in two parity banks at every size: (x0, x1) of neighbouring taps
+// differ in parity or are one texel.
+TEST(Stages, RepeatSeamPairsTakeTwoBanks) {
+  for (int n = 1; n <= 300; ++n)
+    for (int32_t i0 = -1; i0 < n; ++i0) {
+      const int32_t x0 = stage::wrap(i0, n, Wrap::Repeat), x1 = stage::wrap(i0 + 1, n, Wrap::Repeat, true);
+      ASSERT_TRUE(x0 == x1 || ((x0 ^ x1) & 1)) << "n=" << n << " i0=" << i0 << ": " << x0 << ", " << x1;
+    }
 }
 
 // The border colour in a channel width (stage::border_texel, round(c (2^CW - 1) / 65535)) against
@@ -260,24 +329,26 @@ TEST(Stages, BilerpAndBlendMatchDouble) {
   EXPECT_EQ(stage::blend_and_round(0, int64_t(1) << 16, 127), 0u);
 }
 
-// The paper's binary shift: level k's texel coordinate is a fixed shift of the one scale computes
-// at level 0, equal to scaling directly by level k's size; past the axis's last level both wrap to 0.
+// The paper's binary shift: where the sides are powers of two, scaling by level k's size is level
+// 0's scale shifted by k; past the axis's last level (a 1-texel side) every address mode but
+// border gives texel 0.
 TEST(Stages, AddressAtLevelIsAShiftOfTheLevelZeroScale) {
   std::mt19937_64 rng(77);
   for (int i = 0; i < 200000; ++i) {
-    const int32_t u = int32_t(uint32_t(rng()));
+    const int32_t u = stage::reduce(int32_t(uint32_t(rng())), Wrap::Clamp);
     const int log2_size0 = int(rng() % 12), k = int(rng() % 12);
     const TexelFilter f = rng() % 2 ? TexelFilter::Linear : TexelFilter::Nearest;
-    const stage::AxisTaps shifted = stage::address(stage::scale(u, log2_size0), k, f);
-    const int log2_k = std::max(log2_size0 - k, 0);
-    const stage::AxisTaps direct = stage::address(stage::scale(u, log2_k), 0, f);
+    const int32_t level0 = stage::scale(u, 1 << log2_size0);
+    const int nk = std::max((1 << log2_size0) >> k, 1);
+    const stage::AxisTaps direct = stage::address(stage::scale(u, nk), f);
     if (k <= log2_size0) {
+      const stage::AxisTaps shifted = stage::address(level0 >> k, f);
       ASSERT_EQ(shifted.i0, direct.i0) << u << " " << log2_size0 << " " << k;
       ASSERT_EQ(shifted.w, direct.w) << u << " " << log2_size0 << " " << k;
     } else {
       for (Wrap w : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror}) {
-        ASSERT_EQ(stage::wrap(shifted.i0, 0, w), 0);
-        ASSERT_EQ(stage::wrap(shifted.i1, 0, w), 0);
+        ASSERT_EQ(stage::wrap(direct.i0, 1, w), 0);
+        ASSERT_EQ(stage::wrap(direct.i1, 1, w, true), 0);
       }
     }
   }

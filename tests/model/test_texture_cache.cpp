@@ -32,6 +32,13 @@ Request at_texel(double x, double y, int lw, int lh, double lod = 0) {
   EXPECT_TRUE(to_lod_fixed(lod, r.lod));
   return r;
 }
+// The same on a texture of any size.
+Request at_size(double x, double y, Extent e) {
+  Request r;
+  EXPECT_TRUE(to_coord_fixed(x / e.w, r.u));
+  EXPECT_TRUE(to_coord_fixed(y / e.h, r.v));
+  return r;
+}
 
 SamplerConfig filter(TexelFilter t, MipMode m, Wrap wu = Wrap::Repeat, Wrap wv = Wrap::Repeat) {
   SamplerConfig c;
@@ -45,11 +52,11 @@ const SamplerConfig kBilinear = filter(TexelFilter::Linear, MipMode::None);
 const SamplerConfig kTrilinear = filter(TexelFilter::Linear, MipMode::Linear);
 
 // 64x64 RGBA8 in 4x4 row-major blocks: 16 blocks per row of level 0, 64-byte lines; level 1 at 16384.
-const MemoryLayout k64 = MemoryLayout(6, 6, 8, LayoutParams{});
+const MemoryLayout k64 = MemoryLayout({64, 64}, 8, LayoutParams{});
 uint32_t block0(int bx, int by) { return uint32_t(by * 16 + bx) * 64; }
 uint32_t block1(int bx, int by) { return 16384 + uint32_t(by * 8 + bx) * 64; }
 
-TextureCache cache64(int size, int ways, const SamplerConfig& cfg) { return TextureCache(k64, {size, ways}, cfg, 6, 6); }
+TextureCache cache64(int size, int ways, const SamplerConfig& cfg) { return TextureCache(k64, {size, ways}, cfg); }
 
 void expect_way(const TextureCache& c, int cache, int set, int way, bool valid, uint32_t tag, int age) {
   const TextureCache::Way w = c.way(cache, set, way);
@@ -60,9 +67,9 @@ void expect_way(const TextureCache& c, int cache, int set, int way, bool valid, 
   EXPECT_EQ(w.age, age) << "cache " << cache << " set " << set << " way " << way;
 }
 
-std::string cache_error(const MemoryLayout& l, CacheParams p, int lw, int lh) {
+std::string cache_error(const MemoryLayout& l, CacheParams p) {
   try {
-    TextureCache(l, p, SamplerConfig{}, lw, lh);
+    TextureCache(l, p, SamplerConfig{});
   } catch (const Error& e) {
     return e.what();
   }
@@ -268,9 +275,9 @@ TEST(TextureCache, MissOrderIsLevelDThenD1EachInParityOrder) {
 }
 
 TEST(TextureCache, WrapAtTheEdgesStraddlesTheLastAndFirstBlockColumns) {
-  const MemoryLayout l(4, 4, 8, LayoutParams{});  // 16x16: 4 block columns
+  const MemoryLayout l({16, 16}, 8, LayoutParams{});  // 16x16: 4 block columns
   auto run = [&](Wrap wu, Wrap wv, double x, double y) {
-    TextureCache c(l, {4096, 1}, filter(TexelFilter::Linear, MipMode::None, wu, wv), 4, 4);
+    TextureCache c(l, {4096, 1}, filter(TexelFilter::Linear, MipMode::None, wu, wv));
     Misses misses;
     c.lookup(at_texel(x, y, 4, 4), &misses);
     return misses;
@@ -295,11 +302,60 @@ TEST(TextureCache, WrapAtTheEdgesStraddlesTheLastAndFirstBlockColumns) {
   EXPECT_EQ(run(Wrap::MirrorClamp, Wrap::Repeat, -20, 2.5), (Misses{3 * 64}));  // mirrored once, then clamped
 }
 
+// The repeat seam of a side that is not a power of two: 12 texels in 4-wide blocks is 3 block
+// columns (0, 1, 2), and taps 11 and 0 would be block columns 2 and 0, both even: one set group
+// asked for two lines. The second tap reads texel 0's copy at column 12, block column 3 (odd).
+TEST(TextureCache, NonPowerOfTwoRepeatSeamReadsTheCopyColumn) {
+  const MemoryLayout l({12, 16}, 8, LayoutParams{});
+  ASSERT_EQ(l.blocks_x(0), 4u);  // 13 texel columns
+  TextureCache c(l, {4096, 1}, filter(TexelFilter::Linear, MipMode::None));
+  Misses misses;
+  c.lookup(at_size(12, 2.5, {12, 16}), &misses);  // u = 1: taps 11 and 12 (the copy)
+  EXPECT_EQ(misses, (Misses{2 * 64, 3 * 64}));     // block columns 2 (parity 0) and 3 (parity 1)
+  misses.clear();
+  c.lookup(at_size(0, 2.5, {12, 16}), &misses);  // u = 0: taps -1 -> 11 and 0 -> the copy at 12
+  EXPECT_EQ(misses, (Misses{}));                 // the same two lines
+}
+
+// Random footprints on sides that are not powers of two (odd, primes, 1xN), every address mode,
+// RGBA and block formats, both orders and every block shape: no two distinct blocks of one level's
+// footprint share a parity (TextureCache::lookup throws std::logic_error if they do).
+TEST(TextureCache, NonPowerOfTwoFootprintsNeverShareAParity) {
+  std::mt19937_64 rng(39);
+  const Extent sizes[] = {{5, 3}, {7, 1}, {1, 9}, {12, 20}, {100, 60}, {1000, 600}, {127, 31}};
+  const int shapes[][2] = {{4, 4}, {2, 2}, {8, 4}, {2, 8}};
+  size_t probes = 0;
+  for (const Extent& e : sizes)
+    for (TexelFormat f : {TexelFormat::Rgba8, TexelFormat::Bc1, TexelFormat::Bc7})
+      for (const auto& sh : shapes) {
+        if (f != TexelFormat::Rgba8 && (e.w % 4 || e.h % 4 || sh[0] * sh[1] < 16)) continue;
+        LayoutParams lp;
+        lp.block_w = sh[0];
+        lp.block_h = sh[1];
+        lp.order = rng() & 1 ? BlockOrder::Morton : BlockOrder::RowMajor;
+        const MemoryLayout l(e, 8, lp, f);
+        for (Wrap wu : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp})
+          for (Wrap wv : {Wrap::Repeat, Wrap::Mirror, Wrap::MirrorClamp}) {
+            TextureCache c(l, {4096, 2}, filter(TexelFilter::Linear, MipMode::Linear, wu, wv));
+            for (int i = 0; i < 200; ++i) {
+              Request r;
+              r.u = int32_t(int64_t(rng() % (6u << 24)) - (3 << 24));
+              r.v = int32_t(int64_t(rng() % (6u << 24)) - (3 << 24));
+              r.lod = int32_t(rng() % uint64_t(256 * (l.levels() + 1)));
+              ASSERT_NO_THROW(c.lookup(r, nullptr)) << e.w << "x" << e.h << " " << format_info(f).name << " " << sh[0]
+                                                    << "x" << sh[1] << " u " << r.u << " v " << r.v << " lod " << r.lod;
+              ++probes;
+            }
+          }
+      }
+  EXPECT_GT(probes, 100000u);
+}
+
 // The sampler table: each request's sampler (Request::sampler) gives its address modes, so one
 // texture read through two samplers reads other lines at the same coordinates; a request naming a
 // sampler beyond the table is an error.
 TEST(TextureCache, EachRequestUsesTheSamplerItNames) {
-  const MemoryLayout l(4, 4, 8, LayoutParams{});  // 16x16: 4 block columns
+  const MemoryLayout l({16, 16}, 8, LayoutParams{});  // 16x16: 4 block columns
   TextureCache c({TextureDescriptor{l}}, {4096, 1},
                  SamplerTable{filter(TexelFilter::Linear, MipMode::None, Wrap::Repeat, Wrap::Repeat),
                               filter(TexelFilter::Linear, MipMode::None, Wrap::Border, Wrap::Repeat)});
@@ -321,8 +377,8 @@ TEST(TextureCache, EachRequestUsesTheSamplerItNames) {
 TEST(TextureCache, ASecondPassOverASmallTextureNeverMisses) {
   // 32x32 in 4x4 blocks: levels of 8x8, 4x4, 2x2, 1, 1, 1 blocks = 87 lines, none evicted (the
   // even levels' 64 + 4 + 1 lines fall at most 3 to a set of 4 ways).
-  const MemoryLayout l(5, 5, 8, LayoutParams{});
-  TextureCache c(l, {32768, 4}, kTrilinear, 5, 5);
+  const MemoryLayout l({32, 32}, 8, LayoutParams{});
+  TextureCache c(l, {32768, 4}, kTrilinear);
   std::vector<Request> rs;
   for (int lod = 0; lod <= 5; ++lod)
     for (int y = 0; y < 32; ++y)
@@ -354,19 +410,18 @@ TEST(TextureCache, CountsEvictionsOfTheLinesThePreviousSampleUsed) {
 }
 
 TEST(TextureCache, GeometryTheHardwareCannotHaveIsAnError) {
-  const MemoryLayout l(5, 5, 8, LayoutParams{});  // 64-byte lines
-  EXPECT_NE(cache_error(l, {8192, 3}, 5, 5).find("ways 3"), std::string::npos);
-  EXPECT_NE(cache_error(l, {8192, 8}, 5, 5).find("ways 8"), std::string::npos);
-  EXPECT_NE(cache_error(l, {100, 1}, 5, 5).find("100"), std::string::npos);
-  EXPECT_NE(cache_error(l, {3 * 64 * 4, 1}, 5, 5).find("12 sets"), std::string::npos);
-  EXPECT_NE(cache_error(l, {128, 1}, 5, 5).find("2 sets"), std::string::npos);
-  EXPECT_NE(cache_error(l, {512, 4}, 5, 5).find("2 sets"), std::string::npos);  // 8 lines in 4 ways: too few
-  EXPECT_EQ(cache_error(l, {1024, 4}, 5, 5), "(no error)");
-  EXPECT_EQ(cache_error(l, {1024, 2}, 5, 5), "(no error)");
-  EXPECT_NE(cache_error(l, {8192, 2}, 5, 4).find("2^4"), std::string::npos);  // not the layout's texture
-  const MemoryLayout wide(5, 5, 16, LayoutParams{});  // 128-byte lines: 8 KiB is fine, 8 KiB + 64 is not
-  EXPECT_EQ(cache_error(wide, {8192, 4}, 5, 5), "(no error)");
-  EXPECT_NE(cache_error(wide, {8192 + 64, 4}, 5, 5).find("8256"), std::string::npos);
+  const MemoryLayout l({32, 32}, 8, LayoutParams{});  // 64-byte lines
+  EXPECT_NE(cache_error(l, {8192, 3}).find("ways 3"), std::string::npos);
+  EXPECT_NE(cache_error(l, {8192, 8}).find("ways 8"), std::string::npos);
+  EXPECT_NE(cache_error(l, {100, 1}).find("100"), std::string::npos);
+  EXPECT_NE(cache_error(l, {3 * 64 * 4, 1}).find("12 sets"), std::string::npos);
+  EXPECT_NE(cache_error(l, {128, 1}).find("2 sets"), std::string::npos);
+  EXPECT_NE(cache_error(l, {512, 4}).find("2 sets"), std::string::npos);  // 8 lines in 4 ways: too few
+  EXPECT_EQ(cache_error(l, {1024, 4}), "(no error)");
+  EXPECT_EQ(cache_error(l, {1024, 2}), "(no error)");
+  const MemoryLayout wide({32, 32}, 16, LayoutParams{});  // 128-byte lines: 8 KiB is fine, 8 KiB + 64 is not
+  EXPECT_EQ(cache_error(wide, {8192, 4}), "(no error)");
+  EXPECT_NE(cache_error(wide, {8192 + 64, 4}).find("8256"), std::string::npos);
 }
 
 // ---------------------------------------------------------------- brute-force reference
@@ -428,7 +483,7 @@ class Reference {
   bool lookup(const Request& r, Slot out[2], Misses& misses, std::string& why) {
     const int last = std::max(lw_, lh_);
     const stage::LevelSelect sel = stage::lod(r.lod, cfg_.lod_bias, cfg_.min_lod, cfg_.max_lod, cfg_.filter.mip, last);
-    const int32_t su = stage::scale(r.u, lw_), sv = stage::scale(r.v, lh_);
+    const int32_t ru = stage::reduce(r.u, cfg_.wrap_u), rv = stage::reduce(r.v, cfg_.wrap_v);
     const TexelFilter tf = sel.magnify ? cfg_.filter.mag : cfg_.filter.texel;
     const bool linear = tf == TexelFilter::Linear;
     for (int s = 0; s < 2; ++s) {
@@ -438,11 +493,11 @@ class Reference {
       o.needed = s == 0 || sel.f != 0;
       if (!o.needed) continue;
       const int k = o.level;
-      const int lwk = std::max(lw_ - k, 0), lhk = std::max(lh_ - k, 0);
-      const stage::AxisTaps tu = stage::address(su, std::min(k, lw_), tf);
-      const stage::AxisTaps tv = stage::address(sv, std::min(k, lh_), tf);
-      const int x0 = stage::wrap(tu.i0, lwk, cfg_.wrap_u), x1 = stage::wrap(tu.i1, lwk, cfg_.wrap_u);
-      const int y0 = stage::wrap(tv.i0, lhk, cfg_.wrap_v), y1 = stage::wrap(tv.i1, lhk, cfg_.wrap_v);
+      const int nw = 1 << std::max(lw_ - k, 0), nh = 1 << std::max(lh_ - k, 0);
+      const stage::AxisTaps tu = stage::address(stage::scale(ru, nw), tf);
+      const stage::AxisTaps tv = stage::address(stage::scale(rv, nh), tf);
+      const int x0 = stage::wrap(tu.i0, nw, cfg_.wrap_u), x1 = stage::wrap(tu.i1, nw, cfg_.wrap_u, true);
+      const int y0 = stage::wrap(tv.i0, nh, cfg_.wrap_v), y1 = stage::wrap(tv.i1, nh, cfg_.wrap_v, true);
       std::vector<std::pair<int, int>> taps = {{x0, y0}};
       if (linear && tu.w != 0) taps.push_back({x1, y0});
       if (linear && tv.w != 0) taps.push_back({x0, y1});
@@ -576,7 +631,7 @@ TEST(TextureCache, AgreesWithABruteForceReferenceOnRandomRequests) {
                                std::to_string(cp.size_bytes) + " B x " + std::to_string(cf.ways) + " ways, " +
                                filter_name(cfg.filter) + " " + wrap_name(cfg.wrap_u) + "/" + wrap_name(cfg.wrap_v);
       SCOPED_TRACE(name);
-      TextureCache cache(MemoryLayout(cf.lw, cf.lh, cf.bits, lp), cp, cfg, cf.lw, cf.lh);
+      TextureCache cache(MemoryLayout({1 << cf.lw, 1 << cf.lh}, cf.bits, lp), cp, cfg);
       Reference ref(cf.lw, cf.lh, cf.bits, lp, cp, cfg);
       Misses got, want;
       uint64_t misses = 0;

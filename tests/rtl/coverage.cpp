@@ -61,11 +61,13 @@ const char* const kTapCaseMeaning[kNumWraps][kTapCases] = {
 
 size_t fi_of(Filter f) { return size_t(f.texel) * 3 + size_t(f.mip); }  // all_filters() order
 
-int tap_case(int32_t coord, int log2_size, TexelFilter filter) {
-  if (log2_size == 0) return kOneTexel;
-  const stage::AxisTaps t = stage::address(stage::scale(coord, log2_size), 0, filter);
-  const int32_t p0 = t.i0 >> log2_size;
-  const int32_t p1 = filter == TexelFilter::Linear ? t.i1 >> log2_size : p0;
+// The period of the whole (unreduced) coordinate each tap falls in, on a side of n texels.
+int tap_case(int32_t coord, int n, TexelFilter filter) {
+  if (n == 1) return kOneTexel;
+  const stage::AxisTaps t = stage::address(stage::scale(coord, n), filter);
+  auto period = [&](int32_t i) { return i >= 0 ? i / n : -((-i + n - 1) / n); };
+  const int32_t p0 = period(t.i0);
+  const int32_t p1 = filter == TexelFilter::Linear ? period(t.i1) : p0;
   if (p0 != p1) return kEdgePair;
   if (p0 == 0) return kInterior;
   return (p0 & 1) ? kOddPeriod : kEvenPeriod;
@@ -138,12 +140,12 @@ void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Reques
   const size_t fi = fi_of(cfg.filter);
   ++group(g_filter_wrap_).hits[(fi * kNumWraps + size_t(cfg.wrap_u)) * kNumWraps + size_t(cfg.wrap_v)];
   ++group(g_pyramid_).hits[size_t(pyr.mode)];
-  const Probes p = tex_probe(q, cfg, pyr.log2_w0(), pyr.log2_h0());
+  const Probes p = tex_probe(q, cfg, pyr.extent0());
   if (q.has_derivatives) {
     ++group(g_deriv_).hits[cfg.filter.anisotropic ? group(g_deriv_).bins.size() - 1 : fi];
     if (cfg.filter.anisotropic) {
       // The major axis in level-0 texels: along u or v when the other component is under 1/4 of it.
-      const double w = std::ldexp(1.0, pyr.log2_w0()), h = std::ldexp(1.0, pyr.log2_h0());
+      const double w = double(pyr.extent0().w), h = double(pyr.extent0().h);
       const double xu = q.deriv.dudx * w, xv = q.deriv.dvdx * h, yu = q.deriv.dudy * w, yv = q.deriv.dvdy * h;
       const bool x_major = xu * xu + xv * xv >= yu * yu + yv * yv;
       const double mu = std::abs(x_major ? xu : yu), mv = std::abs(x_major ? xv : yv);
@@ -178,10 +180,10 @@ void Coverage::sample_probe(const Pyramid& pyr, const SamplerConfig& cfg, const 
   const int32_t coords[2] = {q.u, q.v};
   for (int k = 0; k < (s.two_levels ? 2 : 1); ++k) {
     const int level = k == 0 ? s.d : s.d1;
-    const LevelShape shape = level_shape(pyr.log2_w0(), pyr.log2_h0(), level);
-    const int log2_sizes[2] = {shape.log2_w, shape.log2_h};
+    const Extent shape = level_extent(pyr.extent0(), level);
+    const int sizes[2] = {shape.w, shape.h};
     for (int axis = 0; axis < 2; ++axis) {
-      const int c = tap_case(coords[axis], log2_sizes[axis], texel_filter);
+      const int c = tap_case(coords[axis], sizes[axis], texel_filter);
       const size_t bin =
           ((size_t(axis) * 2 + size_t(texel_filter)) * kNumWraps + size_t(wraps[axis])) * kTapCases + size_t(c);
       ++group(g_taps_).hits[bin];

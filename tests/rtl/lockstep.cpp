@@ -88,7 +88,7 @@ LockstepResult lockstep(rtl::Driver& unit, const Pyramid& pyramid, const Sampler
   std::vector<RequestWork> work(requests.size());
   for (size_t i = 0; i < requests.size(); ++i) {
     expected[i] = rtl::pack_rgba(model.sample(requests[i]), cw);
-    work[i].probes = uint8_t(tex_probe_count(requests[i], config, pyramid.log2_w0(), pyramid.log2_h0()));
+    work[i].probes = uint8_t(tex_probe_count(requests[i], config, pyramid.extent0()));
   }
   const std::vector<uint64_t> want_clocks = model_clocks(unit, 0, work, timing, seed);
   std::vector<uint64_t> clocks(requests.size());
@@ -183,8 +183,8 @@ Pyramid random_block_texture(TexelFormat format, int lw, int lh, uint64_t seed) 
   std::mt19937_64 rng(seed);
   std::vector<std::vector<uint8_t>> blocks;
   const int bytes = format_info(format).block_bytes;
-  for (int k = 0; k < level_count(lw, lh); ++k) {
-    const LevelShape s = level_shape(lw, lh, k);
+  for (int k = 0; k < level_count({1 << lw, 1 << lh}); ++k) {
+    const Extent s = level_extent({1 << lw, 1 << lh}, k);
     std::vector<uint8_t>& level = blocks.emplace_back(level_bytes(format, s.width(), s.height()));
     for (uint8_t& b : level) b = uint8_t(rng());
     if (format == TexelFormat::Bc7)
@@ -193,7 +193,7 @@ Pyramid random_block_texture(TexelFormat format, int lw, int lh, uint64_t seed) 
         level[i] = r == 15 ? 0 : uint8_t((level[i] << (mode + 1)) | (1 << mode));
       }
   }
-  return pyramid_of_blocks(format, lw, lh, std::move(blocks));
+  return pyramid_of_blocks(format, {1 << lw, 1 << lh}, std::move(blocks));
 }
 
 Request random_footprint(std::mt19937_64& rng, int lw, int lh, int probes, int axis) {

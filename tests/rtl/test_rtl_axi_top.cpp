@@ -574,7 +574,7 @@ std::vector<Request> random_requests(std::mt19937_64& rng, const TextureTable& t
   for (size_t i = 0; i < n; ++i) {
     if (rng() % 4 != 0) tex = uint8_t(rng() % table.size());  // mostly a new texture, runs now and then
     if (rng() % 4 != 0) smp = uint8_t(rng() % samplers);      // and a new sampler
-    const int lw = table[tex].pyramid->log2_w0(), lh = table[tex].pyramid->log2_h0(), last = std::max(lw, lh);
+    const int lw = log2_exact(table[tex].pyramid->extent0().w), lh = log2_exact(table[tex].pyramid->extent0().h), last = std::max(lw, lh);
     Request& r = out[i];
     if (rng() % 4 == 0) r = footprint(rng, lw, lh);
     r.u = coordinate(rng, lw, last);

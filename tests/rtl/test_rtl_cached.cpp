@@ -122,7 +122,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerT
   unit.load_textures(table);
   unit.configure(smp);
   if (poke_texel >= 0) {  // planted bug: one byte of the image is wrong
-    const MemoryLayout ml(pyr.log2_w0(), pyr.log2_h0(), pyr.memory_channel_bits(), layout, pyr.format);
+    const MemoryLayout ml(pyr.extent0(), pyr.memory_channel_bits(), layout, pyr.format);
     unit.memory()->poke(ml.line_address(0, 0, 0) + uint32_t(poke_texel), 0x5A ^ uint8_t(pyr.levels[0].at(0, 0)[0]));
   }
   // The model's tables: the RTL's, unless a test plants others.
@@ -137,7 +137,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerT
   std::vector<RequestWork> work;  // each request's probes and their misses: what its timing depends on
   for (const Request& q : requests) {
     const Pyramid& t = *mt.at(q.texture).pyramid;
-    const Probes p = tex_probe(q, ms.at(q.sampler), t.log2_w0(), t.log2_h0());
+    const Probes p = tex_probe(q, ms.at(q.sampler), t.extent0());
     RequestWork& w = work.emplace_back();
     w.probes = uint8_t(p.n);
     for (int i = 0; i < p.n; ++i) {
@@ -553,7 +553,7 @@ TEST(RtlCached, CheckersCatchPlantedBugs) {
   unit = rtl::Driver::create(config_named("Vtex_cached_13x13_formats"), {});
   unit->reset();
   const Pyramid bc3 = random_block_texture(TexelFormat::Bc3, 6, 3, 5);
-  const Pyramid as_bc2 = pyramid_of_blocks(TexelFormat::Bc2, 6, 3, bc3.blocks);
+  const Pyramid as_bc2 = pyramid_of_blocks(TexelFormat::Bc2, {64, 8}, bc3.blocks);
   const TextureTable rtl_table = {{&bc3}}, model_table = {{&as_bc2}};
   const CaseResult same = run_case(*unit, rtl_table, SamplerTable{cfg}, layout, cache, memory, requests, {}, 1, nullptr);
   EXPECT_EQ(same.failure, "");

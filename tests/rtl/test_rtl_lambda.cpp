@@ -59,7 +59,7 @@ void check_stream(const std::vector<Input>& inputs, double stall, uint64_t seed)
     const Input in = next < inputs.size() ? inputs[next] : Input{};
     const int32_t out = unit.clock(in, en);
     if (en) {
-      expected.push_back(tex_lambda(in.d, in.log2_w, in.log2_h));
+      expected.push_back(tex_lambda(in.d, {1 << in.log2_w, 1 << in.log2_h}));
       ++next;
       if (++enabled >= 2) {
         const Input& src = inputs[checked < inputs.size() ? checked : 0];

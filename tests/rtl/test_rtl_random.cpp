@@ -70,7 +70,7 @@ void run_suite(const RandomSuite& suite) {
     randomize_lod_controls(rng, cfg);
     std::string timing_name;
     const rtl::Timing timing = random_timing(rng, timing_name);
-    const int lw = pyr->log2_w0(), lh = pyr->log2_h0();
+    const int lw = log2_exact(pyr->extent0().w), lh = log2_exact(pyr->extent0().h);
     auto reqs = random_requests(rng, lw, lh, suite.requests_per_case * scale() / (aniso ? 4 : 1));
     if (aniso)
       for (Request& q : reqs) {

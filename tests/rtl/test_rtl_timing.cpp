@@ -74,7 +74,7 @@ TEST(RtlTiming, AnisotropicSampleTakesOneClockPerProbe) {
       Request r = random_footprint(rng, s.w, s.h, n, int(rng() % 3));
       r.u = int32_t(rng());
       r.v = int32_t(rng());
-      if (tex_probe(r, cfg, s.w, s.h).n != n) continue;
+      if (tex_probe(r, cfg, {1 << s.w, 1 << s.h}).n != n) continue;
       r.tag = uint32_t(reqs.size());
       reqs.push_back(r);
       probes += uint64_t(n);

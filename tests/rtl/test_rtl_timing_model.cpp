@@ -38,7 +38,7 @@ TEST(TimingModel, OnChipCatchesAPlantedOneClockError) {
   const std::vector<Request> requests = random_requests(rng, 4, 4, 3000);
   std::vector<RequestWork> work(requests.size());
   for (size_t i = 0; i < requests.size(); ++i)
-    work[i].probes = uint8_t(tex_probe_count(requests[i], cfg, 4, 4));
+    work[i].probes = uint8_t(tex_probe_count(requests[i], cfg, {16, 16}));
   const rtl::Timing stim = rtl::Timing::of(Stalls::Random);
   const std::vector<uint64_t> want = model_clocks(*unit, 0, work, stim, 21);
   const std::vector<uint64_t> got = rtl_clocks(*unit, requests, stim, 21);
@@ -73,7 +73,7 @@ TEST(TimingModel, CachedCatchesAPlantedOneClockError) {
   unit->configure(cfg, pyr);
   std::mt19937_64 rng(4);
   const std::vector<Request> requests = random_requests(rng, 6, 3, 3000);
-  TextureCache cache(MemoryLayout(6, 3, 8, o.layout), o.cache, cfg, 6, 3);
+  TextureCache cache(MemoryLayout({64, 8}, 8, o.layout), o.cache, cfg);
   std::vector<RequestWork> work;
   for (const Request& r : requests) work.push_back(cache.lookup_sample(r, nullptr));
   const rtl::Timing stim = rtl::Timing::of(Stalls::Random);

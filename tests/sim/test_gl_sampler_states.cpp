@@ -2,7 +2,8 @@
 // model's own pyramid (every level uploaded, so both filter the same texels) with textureLod in a
 // fragment shader, one query per pixel, under each sampler state: magnification and minification
 // filters apart, mipmap modes, the five address modes per axis and border colours (named and
-// custom, on RGBA8 and sRGB textures). The golden model samples the same queries; the two must
+// custom, on RGBA8 and sRGB textures, with sides that are powers of two and sides that are not:
+// odd, so the repeat seams of odd levels and the area-mean pyramid are compared too). The golden model samples the same queries; the two must
 // agree within the precision GLES 3.0 allows an RGBA8 texture (4 LSB for filtered lookups, the
 // conformance suite's threshold): here at most 2 LSB (8-bit steps of full scale), 0.3 on average,
 // and nearest filters exact, away from texel and level edges.
@@ -225,11 +226,13 @@ TEST(GlSamplerStates, LlvmpipeAgreesWithTheModelOnEverySamplerState) {
   ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
   const Pyramid rgba = build_pyramid(make_pattern("noise", 32, 16));
   const Pyramid srgb = build_srgb_pyramid(make_pattern("testcard", 16, 32), PyramidMode::Exact);
+  const Pyramid rgba_npot = build_pyramid(make_pattern("noise", 37, 23));  // 37x23, 18x11, 9x5, 4x2, 2x1, 1x1
+  const Pyramid srgb_npot = build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact);
   std::mt19937 rng(39);
   const Wrap wraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
   int states = 0, compared = 0, worst = 0;
   double mean_sum = 0;
-  for (const Pyramid* pyr : {&rgba, &srgb}) {
+  for (const Pyramid* pyr : {&rgba, &srgb, &rgba_npot, &srgb_npot}) {
     gl.upload(*pyr);
     for (int mip = 0; mip < 3; ++mip)
       for (int texel = 0; texel < 2; ++texel)
@@ -243,7 +246,8 @@ TEST(GlSamplerStates, LlvmpipeAgreesWithTheModelOnEverySamplerState) {
             const Outcome o = compare(gl, *pyr, cfg, uint32_t(states));
             ++states;
             compared += o.compared;
-            SCOPED_TRACE((pyr->srgb ? "sRGB, " : "RGBA8, ") + name_of(cfg));
+            SCOPED_TRACE((pyr->srgb ? "sRGB " : "RGBA8 ") + std::to_string(pyr->extent0().w) + "x" +
+                         std::to_string(pyr->extent0().h) + ", " + name_of(cfg));
             const double mean = o.sum / (4.0 * o.compared);
             EXPECT_GT(o.compared, kW * kH / 2) << o.excluded << " excluded";
             // Nearest filters take the same texel (RGBA8: exact but for a custom border colour,
@@ -261,7 +265,7 @@ TEST(GlSamplerStates, LlvmpipeAgreesWithTheModelOnEverySamplerState) {
             mean_sum += mean;
           }
   }
-  EXPECT_EQ(states, 120);
+  EXPECT_EQ(states, 240);
   std::printf("  %d sampler states, %d lookups compared with llvmpipe: max %.2f LSB, mean %.3f LSB\n", states,
               compared, worst / 100.0, mean_sum / states);
 }

@@ -42,11 +42,17 @@ TEST_F(TexsimCli, CorruptImage) {
   expect_clean_failure("mip -t bad.png --layout lay.png", "lay.png", {"bad.png"});
 }
 
-TEST_F(TexsimCli, NonPowerOfTwoNamesSizeAndResizeWorks) {
+// A file of any size is sampled as it is (the model); the RTL names the size it cannot take;
+// --resize resamples to powers of two.
+TEST_F(TexsimCli, NonPowerOfTwoIsSampledOrNamedAndResizeWorks) {
   write_image(dir / "npot.png", 12, 5, 3, [](int x, int y, int c) { return (x * 20 + y * 7 + c * 50) & 255; });
   queries("u,v,lod\n0.5,0.5,0\n0.25,0.75,1\n");
-  expect_clean_failure("sample -t npot.png -q q.csv -o r.csv", "r.csv", {"npot.png", "12x5"});
-  const Result r = run("sample -t npot.png --resize -q q.csv -o r.csv");
+  const Result m = run("sample -t npot.png -q q.csv -o m.csv");
+  EXPECT_EQ(m.exit_code, 0) << m.err;
+  std::string mh;
+  EXPECT_EQ(read_csv_rows(dir / "m.csv", mh).size(), 2u);
+  expect_clean_failure("sample -t npot.png -q q.csv -o r.csv -e rtl", "r.csv", {"12x5", "powers of two"});
+  const Result r = run("sample -t npot.png --resize -q q.csv -o r.csv -e rtl");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   std::string header;
   EXPECT_EQ(read_csv_rows(dir / "r.csv", header).size(), 2u);
@@ -402,7 +408,7 @@ TEST_F(TexsimCli, MipMemoryImageIsTheModelsImage) {
   p.block_h = 2;
   p.order = BlockOrder::Morton;
   p.base = 2048;
-  const MemoryLayout layout(6, 4, 8, p);
+  const MemoryLayout layout({64, 16}, 8, p);
   EXPECT_EQ(file, memory_image_file(pyr, layout));
   // 7 levels: 8x8 + 4x4 + 2x2 + 1x1 + 1x1 + 1x1 + 1x1 blocks of 64 bytes after a 72 + 7*8 byte header.
   ASSERT_EQ(file.size(), 128u + (64u + 16u + 4u + 4u) * 64u);
@@ -589,7 +595,7 @@ TEST_F(TexsimCli, BlockFormatsThroughTheCli) {
   ASSERT_EQ(m.exit_code, 0) << m.err;
   const std::string image = read_text(dir / "m.bin");
   ASSERT_GT(image.size(), 72u);
-  EXPECT_EQ(image.substr(0, 8), "TEXMEM02");
+  EXPECT_EQ(image.substr(0, 8), "TEXMEM03");
   EXPECT_EQ(uint8_t(image[64]), 7);  // format: BC7
   EXPECT_EQ(uint8_t(image[28]), 0);  // no texel bytes: blocks
   expect_clean_failure("sample -t testcard:64x64 -q q.csv -o x.csv --format bc6", "x.csv", {"--format", "bc6", "bc7"});

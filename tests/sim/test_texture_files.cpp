@@ -43,7 +43,7 @@ std::vector<std::vector<uint8_t>> random_levels(TexelFormat f, int w, int h, int
   std::mt19937_64 rng(seed);
   std::vector<std::vector<uint8_t>> levels;
   for (int k = 0; k < count; ++k) {
-    const LevelShape s = level_shape(log2_exact(w), log2_exact(h), k);
+    const Extent s = level_extent({w, h}, k);
     std::vector<uint8_t> l(level_bytes(f, s.width(), s.height()));
     for (uint8_t& b : l) b = uint8_t(rng());
     if (f == TexelFormat::Bc7)
@@ -200,7 +200,11 @@ TEST(TextureFiles, BadFilesNameTheProblem) {
   expect_error("bc6.ktx", ktx1(0x8E8F, 16, 16, bc1), "GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT is not supported");
   expect_error("partial.dds", dds("DXT1", 0, 16, 16, {bc1[0], bc1[1], bc1[2]}), "3 mip levels: a partial chain");
   expect_error("partial.ktx", ktx1(0x83F1, 16, 16, {bc1[0], bc1[1]}), "2 mip levels: a partial chain");
-  expect_error("npot.dds", dds("DXT1", 0, 12, 16, {bc1[0]}), "12x16: the unit takes sides that are powers of two");
+  expect_error("huge.dds", dds("DXT1", 0, 8196, 16, {bc1[0]}), "8196x16: the unit takes sides from 1 to 8192");
+  // A side that is not a power of two is a texture like any other (GL's level sizes).
+  const auto npot = random_levels(TexelFormat::Bc1, 12, 20, 5, 2);  // 12x20, 6x10, 3x5, 1x2, 1x1
+  save(s / "npot.dds", dds("DXT1", 0, 12, 20, npot));
+  EXPECT_EQ(error_of(s / "npot.dds"), "");
   expect_error("small.dds", dds("DXT1", 0, 2, 2, {bc1[4]}), "2x2: a bc1 texture needs sides that are multiples of 4");
   expect_error("fourcc.dds", dds("DXT2", 0, 16, 16, bc1), "FourCC 'DXT2' is not supported");
   std::vector<uint8_t> zstd = ktx2(133, 16, 16, bc1);

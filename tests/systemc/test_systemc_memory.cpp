@@ -78,7 +78,7 @@ EngineResult custom_platform(Backend backend, const Workload& w, const EngineOpt
     TexUnitTlm unit("unit", backend, w.pyramid, w.config, period, o);
     StreamInitiator bench("bench", source, sink, backend == Backend::Rtl, period, InitiatorTiming{});
     bench.socket.bind(unit.socket);
-    const MemoryLayout layout(w.pyramid.log2_w0(), w.pyramid.log2_h0(), w.pyramid.levels[0].channel_bits, o.layout);
+    const MemoryLayout layout(w.pyramid.extent0(), w.pyramid.levels[0].channel_bits, o.layout);
     std::vector<uint8_t> image = build_memory_image(w.pyramid, layout);
     corrupt(image);
     MemoryTarget memory("memory", image, target_base, period, MemoryTargetTiming{});
@@ -149,7 +149,7 @@ TEST(SystemcMemory, TexelsComeOverTheBus) {
   const EngineOptions o = cached(50);
   Misses misses;
   const EngineResult model = model_run(w, o, misses);
-  const MemoryLayout layout(6, 6, 8, o.layout);
+  const MemoryLayout layout({64, 64}, 8, o.layout);
   // Planted: every byte of the first line read flipped in the target's memory.
   const uint32_t first = misses.lines.at(0);
   auto corrupt = [&](std::vector<uint8_t>& image) {
@@ -210,7 +210,7 @@ TEST(SystemcMemory, DebugTransportReadsTheUnitsMemoryView) {
         TexUnitTlm unit("unit", b, w.pyramid, w.config, period, o);
         std::unique_ptr<MemoryTarget> memory;
         if (m == Memory::Cached) {
-          const MemoryLayout layout(6, 5, 8, o.layout);
+          const MemoryLayout layout({64, 32}, 8, o.layout);
           memory = std::make_unique<MemoryTarget>("memory", build_memory_image(w.pyramid, layout), 0, period,
                                                   MemoryTargetTiming{});
           unit.memory_socket.bind(memory->socket);

@@ -128,7 +128,7 @@ struct Gen {
   }
 
   void cfg_line(const Pyramid& p, const SamplerConfig& c) {
-    stim << "C " << p.log2_w0() << ' ' << p.log2_h0() << ' ' << int(c.wrap_u) << ' ' << int(c.wrap_v) << ' '
+    stim << "C " << log2_exact(p.extent0().w) << ' ' << log2_exact(p.extent0().h) << ' ' << int(c.wrap_u) << ' ' << int(c.wrap_v) << ' '
          << (c.filter.texel == TexelFilter::Linear ? 1 : 0) << ' ' << int(c.filter.mip) << ' ' << c.lod_bias << ' '
          << c.min_lod << ' ' << c.max_lod << ' ' << (c.filter.mag == TexelFilter::Linear ? 1 : 0) << ' ';
     const Texel b = c.border_unorm16();
@@ -163,8 +163,8 @@ struct Gen {
     const int last = p.last_level();
     for (int i = 0; i < n; ++i) {
       Request r;
-      r.u = coordinate(p.log2_w0(), last);
-      r.v = coordinate(p.log2_h0(), last);
+      r.u = coordinate(log2_exact(p.extent0().w), last);
+      r.v = coordinate(log2_exact(p.extent0().h), last);
       r.lod = lod(last);
       const uint64_t tag = issued++ & ((uint64_t(1) << kTagBits) - 1);
       // Input gaps: none in about 60% of the requests, else 1..3, now and then up to 12.

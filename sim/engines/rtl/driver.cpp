@@ -53,8 +53,8 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
   int log2_w = 0, log2_h = 0, cw = 8;
   bool formats = false;  // cached: blocks or sRGB codes to decode after the cache (a CW = 16 unit)
   for (const BoundTexture& t : textures) {
-    log2_w = std::max(log2_w, t.pyramid->log2_w0());
-    log2_h = std::max(log2_h, t.pyramid->log2_h0());
+    log2_w = std::max(log2_w, log2_ceil(t.pyramid->extent0().w));
+    log2_h = std::max(log2_h, log2_ceil(t.pyramid->extent0().h));
     cw = std::max(cw, t.pyramid->levels[0].channel_bits);
     formats = formats || t.pyramid->srgb || is_compressed(t.pyramid->format);
   }
@@ -75,8 +75,12 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
 }
 
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests) {
-  if (!config.fits(pyramid.log2_w0(), pyramid.log2_h0()))
-    throw Error("texture " + size_text(pyramid.log2_w0(), pyramid.log2_h0()) + " does not fit " + config.name +
+  const Extent e = pyramid.extent0();
+  if (!is_power_of_two(e.w) || !is_power_of_two(e.h))
+    throw Error("texture " + std::to_string(e.w) + "x" + std::to_string(e.h) +
+                ": the RTL takes sides that are powers of two (--engine model samples any size)");
+  if (!config.fits(log2_exact(e.w), log2_exact(e.h)))
+    throw Error("texture " + size_text(log2_exact(e.w), log2_exact(e.h)) + " does not fit " + config.name +
                 " (at most " + config.max_texture() + ")");
   // A unit with the formats filters 16-bit channels: an sRGB texture's decoded ones, or a linear
   // 8-bit texture's as they are; memory holds 8-bit channels (or blocks) for both.
@@ -326,7 +330,8 @@ void Driver::load_textures(const TextureTable& textures) {
     const MemoryLayout& layout = table[i].layout;
     const std::vector<uint8_t> bytes = build_memory_image(*textures[i].pyramid, layout);
     image.insert(image.end(), bytes.begin(), bytes.end());  // packed: each starts where the last ended
-    descriptors_.push_back({uint8_t(i), layout.params().base, uint8_t(layout.log2_w0()), uint8_t(layout.log2_h0()),
+    descriptors_.push_back({uint8_t(i), layout.params().base, uint8_t(log2_exact(layout.size0().w)),
+                            uint8_t(log2_exact(layout.size0().h)),
                             uint8_t(layout.format()), textures[i].pyramid->srgb});
   }
   if (options_.memory_port) {

@@ -258,7 +258,7 @@ class Driver {
   // cached unit then starts empty (a reset) and its descriptors and samplers are written again.
   void configure(const CfgPins& cfg);
   void configure(const SamplerConfig& config, const Pyramid& pyramid) {
-    configure(cfg_pins(config, pyramid.log2_w0(), pyramid.log2_h0()));
+    configure(cfg_pins(config, log2_exact(pyramid.extent0().w), log2_exact(pyramid.extent0().h)));
   }
   // tex_unit_cached: the sampler table (requests name an entry by Request::sampler), after a reset
   // with the descriptors. Throws tex::Error for tex_unit or more samplers than the table holds.

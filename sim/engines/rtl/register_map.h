@@ -60,7 +60,7 @@ inline uint32_t border_ba_word(const SamplerConfig& c) {
 }
 // The staged descriptor's DESC_ATTR for a texture's layout (size, format) and sRGB flag.
 inline uint32_t desc_attr_word(const MemoryLayout& l, bool srgb = false) {
-  return uint32_t(l.log2_w0()) | uint32_t(l.log2_h0()) << 4 | uint32_t(l.format()) << 16 | uint32_t(srgb) << 19;
+  return uint32_t(log2_exact(l.size0().w)) | uint32_t(log2_exact(l.size0().h)) << 4 | uint32_t(l.format()) << 16 | uint32_t(srgb) << 19;
 }
 
 }  // namespace tex::rtl::axil

@@ -19,8 +19,8 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyra
   const bool cached = options.memory == Memory::Cached;
   const int cw = pyramid.levels[0].channel_bits;
   if (cached) {
-    layout_.emplace(pyramid.log2_w0(), pyramid.log2_h0(), cw, options.layout);
-    cache_.emplace(*layout_, options.cache, config, pyramid.log2_w0(), pyramid.log2_h0());
+    layout_.emplace(pyramid.extent0(), cw, options.layout);
+    cache_.emplace(*layout_, options.cache, config);
     cache_->set_error_reads(options.mem_error_reads);  // the flags the RTL backend must give
   }
   if (backend == Backend::Model) {

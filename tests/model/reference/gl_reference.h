@@ -47,7 +47,7 @@ struct Choice {
 };
 
 struct GlSampler {
-  const std::vector<tex::Image>* levels = nullptr;  // levels[0] is the base level, each 2^k per side
+  const std::vector<tex::Image>* levels = nullptr;  // levels[0] is the base level, level k max(1, n >> k) per side
   tex::TexelFilter texel = tex::TexelFilter::Linear;  // TEXTURE_MIN_FILTER's texel filter
   tex::MipMode mip = tex::MipMode::Linear;
   std::optional<tex::TexelFilter> mag;  // TEXTURE_MAG_FILTER; none: the same as `texel`
