@@ -9,7 +9,7 @@
 // Ports:
 //   dudx, dvdx, dudy, dvdy : signed Q8.24 texture widths (heights) per pixel; must be registers
 //                            (tex_lambda's first clock is combinational on them)
-//   log2_w, log2_h         : log2 of the level-0 size, integers 0..MAX_LOG2_SIZE
+//   w, h                   : the level-0 size, unsigned SIZE_W bits, 1..2^MAX_LOG2_SIZE
 //   max_aniso_m1           : the cap less one, unsigned 0..15 (cap 1..16)
 //   pow2                   : probe counts are powers of two (the cap rounds down to one)
 //   n                      : probes, unsigned 1..16 (5 bits)
@@ -22,8 +22,8 @@ module tex_aniso (
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] dvdx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] dvdy,
-  input  logic [tex_pkg::LEVEL_W-1:0]            log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]            log2_h,
+  input  logic [tex_pkg::SIZE_W-1:0]             w,
+  input  logic [tex_pkg::SIZE_W-1:0]             h,
   input  logic [3:0]                             max_aniso_m1,
   input  logic                                   pow2,
   output logic [4:0]                             n,
@@ -41,8 +41,8 @@ module tex_aniso (
   logic signed [tex_pkg::LOD_W-1:0] lambda_s2;
   logic [PW-1:0] px_s1, py_s1;
   tex_lambda u_lambda (
-    .clk(clk), .en(en), .dudx(dudx), .dvdx(dvdx), .dudy(dudy), .dvdy(dvdy), .log2_w(log2_w),
-    .log2_h(log2_h), .lambda(lambda_s2), .px_s1(px_s1), .py_s1(py_s1)
+    .clk(clk), .en(en), .dudx(dudx), .dvdx(dvdx), .dudy(dudy), .dvdy(dvdy), .w(w),
+    .h(h), .lambda(lambda_s2), .px_s1(px_s1), .py_s1(py_s1)
   );
   logic signed [DW-1:0] dudx_s1, dvdx_s1, dudy_s1, dvdy_s1;
   logic [3:0]           cap_m1_s1;

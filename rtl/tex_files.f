@@ -2,6 +2,7 @@ rtl/tex_pkg.sv
 rtl/tex_lerp.sv
 rtl/tex_skid.sv
 rtl/tex_lod.sv
+rtl/tex_reduce.sv
 rtl/tex_scale.sv
 rtl/tex_address.sv
 rtl/tex_wrap.sv

@@ -1,10 +1,11 @@
-// tex_front: the model's stages lod, scale, address and wrap (docs/numerics.md stages 1-3) for
-// both levels a sample reads (slot 0 = level d, slot 1 = level d1): everything before the texel
-// fetch, shared by tex_unit (on-chip level memories) and tex_unit_cached (texture caches).
-//   clock 1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_scale  3 tex_lod level select
-//   4 tex_address per slot and axis; then tex_wrap, combinational on the clock-4 registers
+// tex_front: the model's stages lod, reduce, scale, address and wrap (docs/numerics.md stages 1-3)
+// for both levels a sample reads (slot 0 = level d, slot 1 = level d1): everything before the
+// texel fetch, shared by tex_unit (on-chip level memories) and tex_unit_cached (texture caches).
+//   clock 1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_reduce  3 tex_lod level select
+//   4 per slot and axis: the level's size, tex_scale (u' * size) and tex_address; then tex_wrap,
+//   combinational on the clock-4 registers
 // Handshake: stall-enable; every register loads when en is high (the valid bits and tags are
-//   the top's). The texture's size (req_log2_*) and the sampler's fields (req_wrap_*, req_min_linear
+//   the top's). The texture's size (req_w, req_h) and the sampler's fields (req_wrap_*, req_min_linear
 //   .. req_max_lod: the request's sampler-table entry, or the on-chip unit's one sampler) are the
 //   request's, taken with it at clock 1 and carried to the clock that uses them. The datapath
 //   reads only registers: no logic depends combinationally on a pin.
@@ -13,7 +14,8 @@
 // Ports:
 //   req_u, req_v          : signed Q8.24; req_lod: signed Q8.8 (before bias and clamp); req_bias:
 //                           signed Q8.8, the request's own LOD bias (added to the sampler's)
-//   req_log2_w, req_log2_h: integers, level 0's size of the request's texture
+//   req_w, req_h          : unsigned SIZE_W bits, level 0's size of the request's texture, each
+//                           1..2^max(XW, YW) (any value: GL's sizes)
 //   req_wrap_u .. req_max_lod: the request's sampler, as tex_unit's cfg_smp_* pins: wrap modes
 //                           (tex_pkg::WRAP_*), req_min_linear the minification filter's texel
 //                           filter, req_mag_linear the magnification filter (where lambda' <= 0),
@@ -23,15 +25,17 @@
 //   f                     : unsigned WEIGHT_BITS, weight of slot 1 in 1/256 (clock 4)
 //   w                     : slot s axis a (0 x, 1 y) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS],
 //                           weight of the +1 tap in 1/256 (clock 4)
-//   log2_size             : slot s axis a at [(s*2 + a)*LEVEL_W +: LEVEL_W], log2 of the slot's
-//                           level size along the axis (clock 4)
+//   size                  : slot s axis a at [(s*2 + a)*SIZE_W +: SIZE_W], the slot's level size
+//                           along the axis, max(1, size0 >> level) (clock 4)
 //   x, y                  : wrapped texel indices, unsigned XW (YW) bits; slot s tap j (0: i0,
-//                           1: i0 + 1) at [(s*2 + j)*XW +: XW]; each inside its level
+//                           1: i0 + 1) at [(s*2 + j)*XW +: XW]; each inside its level, or the
+//                           repeat seam's index = size (texel 0's copy, a side that is not a
+//                           power of two; docs/numerics.md stage 3)
 //   border_x, border_y    : slot s tap j at [s*2 + j]: the tap is outside its level in address
 //                           mode border (tex_wrap's border; x, y are then don't-care indices)
 module tex_front #(
   parameter int XW = 10,  // bits of a wrapped x index: max(MAX_LOG2_W, 1)
-  parameter int YW = 10
+  parameter int YW = 10   // (sizes up to 2^XW x 2^YW)
 ) (
   input  logic                                   clk,
   input  logic                                   en,
@@ -39,8 +43,8 @@ module tex_front #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
-  input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_h,
+  input  logic [tex_pkg::SIZE_W-1:0]             req_w,
+  input  logic [tex_pkg::SIZE_W-1:0]             req_h,
   input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_v,
   input  logic                                   req_min_linear,
@@ -52,7 +56,7 @@ module tex_front #(
   output logic [2*tex_pkg::LEVEL_W-1:0]          level,
   output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
-  output logic [4*tex_pkg::LEVEL_W-1:0]          log2_size,
+  output logic [4*tex_pkg::SIZE_W-1:0]           size,
   output logic [4*XW-1:0]                        x,
   output logic [4*YW-1:0]                        y,
   output logic [3:0]                             border_x,
@@ -60,17 +64,19 @@ module tex_front #(
 );
   localparam int VW = tex_pkg::LEVEL_W;
   localparam int WB = tex_pkg::WEIGHT_BITS;
-  // Widths for this unit's largest texture (tex_pkg's SCALED_W, INDEX_W are for 2^MAX_LOG2_SIZE).
+  localparam int NW = tex_pkg::SIZE_W;
+  // Widths for this unit's largest texture.
   localparam int ML = (XW > YW) ? XW : YW;   // >= the largest log2 size on either axis
-  localparam int SW = 17 + ML;               // tex_scale's result
-  localparam int IW = 10 + ML;               // tex_address's unwrapped index
+  localparam int RW = tex_pkg::COORD_FRAC + 3;  // tex_reduce's result
+  localparam int TW = ML + 12;               // tex_scale's
+  localparam int IW = ML + 4;                // tex_address's unwrapped index: [-2n-1, 2n]
 
   // ---------------------------------------------------------------- clock 1: capture
-  // The texture's {log2 h, log2 w}, the sampler's {wrap v, wrap u} and its filters ride along,
-  // clock k's at [(k-1)*width +: width]: tex_scale reads clock 1's size, tex_lod the LOD fields
-  // of clock 1 and the mip mode and level-select size of clock 2, the level sizes and texel
-  // filters clock 3's; tex_wrap clock 4's wrap modes.
-  localparam int ZW = 2 * VW, MW = 2 * tex_pkg::WRAP_W, LW = tex_pkg::LOD_W, PW = tex_pkg::MIP_W;
+  // The texture's {h, w}, the sampler's {wrap v, wrap u} and its filters ride along, clock k's at
+  // [(k-1)*width +: width]: tex_reduce reads clock 1's wrap modes, tex_lod the LOD fields of
+  // clock 1 and the mip mode and level-select size of clock 2, the level sizes and texel filters
+  // clock 3's; tex_wrap clock 4's wrap modes.
+  localparam int ZW = 2 * NW, MW = 2 * tex_pkg::WRAP_W, LW = tex_pkg::LOD_W, PW = tex_pkg::MIP_W;
   logic signed [tex_pkg::REQ_COORD_W-1:0] u_s1, v_s1;
   logic signed [LW-1:0]                   lod_s1, min_lod_s1, max_lod_s1;
   logic signed [LW:0]                     lod_bias_s1;  // the sampler's + the request's, exact
@@ -86,22 +92,29 @@ module tex_front #(
       lod_bias_s1 <= (LW+1)'(req_lod_bias) + (LW+1)'(req_bias);
       min_lod_s1  <= req_min_lod;
       max_lod_s1  <= req_max_lod;
-      size_q   <= {size_q[0 +: 2*ZW], req_log2_h, req_log2_w};
+      size_q   <= {size_q[0 +: 2*ZW], req_h, req_w};
       wrap_q   <= {wrap_q[0 +: 3*MW], req_wrap_v, req_wrap_u};
       mip_q    <= {mip_q[0 +: PW], req_mip_mode};
       linear_q <= {linear_q[0 +: 2*2], req_mag_linear, req_min_linear};
     end
   end
-  logic [ZW-1:0]              size_s1, size_s2, size_s3;  // {log2 h0, log2 w0} at clock k
-  logic [tex_pkg::WRAP_W-1:0] wrap_u_s4, wrap_v_s4;
-  assign size_s1 = size_q[0*ZW +: ZW];
+  logic [ZW-1:0]              size_s2, size_s3;  // {h0, w0} at clock k
+  logic [tex_pkg::WRAP_W-1:0] wrap_u_s1, wrap_v_s1, wrap_u_s4, wrap_v_s4;
   assign size_s2 = size_q[1*ZW +: ZW];
   assign size_s3 = size_q[2*ZW +: ZW];
+  assign {wrap_v_s1, wrap_u_s1} = wrap_q[0*MW +: MW];
   assign {wrap_v_s4, wrap_u_s4} = wrap_q[3*MW +: MW];
 
   // ---------------------------------------------------------------- clocks 2-3: lod, scale
-  logic [VW-1:0] last_level;  // clock 2's texture: tex_lod selects the levels in clock 3
-  assign last_level = (size_s2[0 +: VW] > size_s2[VW +: VW]) ? size_s2[0 +: VW] : size_s2[VW +: VW];
+  // The last level, floor(log2 max(w0, h0)): the leading one of the larger side (clock 2's
+  // texture: tex_lod selects the levels in clock 3).
+  logic [NW-1:0] larger_s2;
+  logic [VW-1:0] last_level;
+  assign larger_s2 = (size_s2[0 +: NW] > size_s2[NW +: NW]) ? size_s2[0 +: NW] : size_s2[NW +: NW];
+  always_comb begin
+    last_level = '0;
+    for (int b = 1; b < NW; b++) if (larger_s2[b]) last_level = VW'(b);
+  end
 
   logic [2*VW-1:0] level_s3;       // slot s at [s*VW +: VW]: slot 0 = d, slot 1 = d1
   logic [WB-1:0]   f_s3;
@@ -114,17 +127,17 @@ module tex_front #(
   logic linear_s3;  // the sample's texel filter (the model's stage::texel_filter)
   assign linear_s3 = minify_s3 ? linear_q[2*2] : linear_q[2*2 + 1];
 
-  // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the scaled
+  // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the reduced
   // coordinate, held one clock while tex_lod selects the levels.
-  logic [2*SW-1:0] scaled_s2, scaled_s3;
+  logic [2*RW-1:0] reduced_s2, reduced_s3;
   genvar a, s;
   generate
     for (a = 0; a < 2; a = a + 1) begin : g_axis
-      tex_scale #(.MAX_LOG2(ML)) u_scale (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
-                         .log2_size0(size_s1[a*VW +: VW]), .scaled(scaled_s2[a*SW +: SW]));
+      tex_reduce u_reduce (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
+                           .mode((a == 0) ? wrap_u_s1 : wrap_v_s1), .reduced(reduced_s2[a*RW +: RW]));
     end
   endgenerate
-  always_ff @(posedge clk) if (en) scaled_s3 <= scaled_s2;
+  always_ff @(posedge clk) if (en) reduced_s3 <= reduced_s2;
 
   // ---------------------------------------------------------------- clock 4: per slot
   // Slot s = level d (s = 0) or d1 (s = 1): the texel coordinates of both axes at that level
@@ -139,36 +152,32 @@ module tex_front #(
     for (s = 0; s < 2; s = s + 1) begin : g_slot
       for (a = 0; a < 2; a = a + 1) begin : g_axis
         localparam int OW = (a == 0) ? XW : YW;
-        logic signed [IW-1:0] i0_s4, i1_s4;                // the taps, unwrapped
-        logic [VW-1:0]                      log2_size_s3, log2_size_s4;  // the slot's level size
-        logic [IW-1:0]                      mask_s4;       // its size - 1, for tex_wrap
-        logic [OW-1:0]                      t0, t1;        // wrapped taps i0, i0 + 1
-        logic                               b0, b1;        // their border flags
-        // The level's shift of the level-0 scale: min(level, log2 size0), so that a side that
-        // reached 1 texel scales by 1 (model stage::address; only clamp to border can tell).
-        logic [VW-1:0]                      shift_s3;
-        assign shift_s3 = (level_s3[s*VW +: VW] < size_s3[a*VW +: VW]) ? level_s3[s*VW +: VW]
-                                                                        : size_s3[a*VW +: VW];
-        tex_address #(.SW(SW), .IW(IW)) u_address (
-          .clk(clk), .en(en), .scaled(scaled_s3[a*SW +: SW]), .level(shift_s3),
-          .linear(linear_s3), .i0(i0_s4), .i1(i1_s4), .w(w[(s*2 + a)*WB +: WB])
+        logic signed [IW-1:0] i0_s4, i1_s4;  // the taps, unwrapped
+        logic [NW-1:0]        n_s3, n_s4;    // the slot's level size along the axis
+        logic                 pow2_s4;       // it is a power of two (no seam copy)
+        logic signed [TW-1:0] t9_s3;
+        logic [OW-1:0]        t0, t1;        // wrapped taps i0, i0 + 1
+        logic                 b0, b1;        // their border flags
+        // max(1, size0 >> level): a side that reaches 1 texel stays 1 (GL's level sizes).
+        logic [NW-1:0] shifted;
+        assign shifted = size_s3[a*NW +: NW] >> level_s3[s*VW +: VW];
+        assign n_s3    = (shifted == '0) ? NW'(1) : shifted;
+        tex_scale #(.ML(ML), .RW(RW)) u_scale (.reduced(reduced_s3[a*RW +: RW]), .n(n_s3), .t9(t9_s3));
+        tex_address #(.TW(TW), .IW(IW)) u_address (
+          .clk(clk), .en(en), .t9(t9_s3), .linear(linear_s3), .i0(i0_s4), .i1(i1_s4),
+          .w(w[(s*2 + a)*WB +: WB])
         );
-        // max(log2_size0 - level, 0): a side that reaches 1 texel stays 1. (The borrow masks the
-        // difference: no data-dependent branch in Verilator's C++.)
-        logic [VW:0] size_diff;
-        assign size_diff = {1'b0, size_s3[a*VW +: VW]} - {1'b0, level_s3[s*VW +: VW]};
-        assign log2_size_s3 = size_diff[VW-1:0] & ~{VW{size_diff[VW]}};
-        // The mask is registered here rather than made in clock 5 (a decoder, no carry chain).
+        // The size and its power-of-two flag are registered here rather than made in clock 5.
         always_ff @(posedge clk) begin
           if (en) begin
-            log2_size_s4 <= log2_size_s3;
-            mask_s4      <= ~({IW{1'b1}} << log2_size_s3);
+            n_s4    <= n_s3;
+            pow2_s4 <= (n_s3 & (n_s3 - NW'(1))) == '0;
           end
         end
-        assign log2_size[(s*2 + a)*VW +: VW] = log2_size_s4;
-        tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap0 (.i(i0_s4), .mask(mask_s4),
+        assign size[(s*2 + a)*NW +: NW] = n_s4;
+        tex_wrap #(.OUT_W(OW), .IW(IW), .SECOND(1'b0)) u_wrap0 (.i(i0_s4), .n(n_s4), .pow2(pow2_s4),
                                         .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t0), .border(b0));
-        tex_wrap #(.OUT_W(OW), .IW(IW)) u_wrap1 (.i(i1_s4), .mask(mask_s4),
+        tex_wrap #(.OUT_W(OW), .IW(IW), .SECOND(1'b1)) u_wrap1 (.i(i1_s4), .n(n_s4), .pow2(pow2_s4),
                                         .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t1), .border(b1));
         if (a == 0) begin : g_x
           assign x[(s*2 + 0)*XW +: XW] = t0;

@@ -7,7 +7,7 @@
 // Latency: 2 clocks (clock 1: normalize and square; clock 2: log2 and round). Throughput: 1 per clock.
 // Ports:
 //   dudx, dvdx, dudy, dvdy : signed Q8.24 texture widths (heights) per pixel (REQ_COORD_W bits)
-//   log2_w, log2_h         : log2 of the level-0 size, integers 0..MAX_LOG2_SIZE (LEVEL_W bits)
+//   w, h                   : the level-0 size, unsigned SIZE_W bits, 1..2^MAX_LOG2_SIZE (any value)
 //   lambda                 : signed Q8.8 (LOD_W bits); all derivatives 0 gives -128.0
 //   px_s1, py_s1           : the clock-1 squared lengths (33 bits, unsigned, the block's scale)
 module tex_lambda (
@@ -17,8 +17,8 @@ module tex_lambda (
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] dvdx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] dvdy,
-  input  logic [tex_pkg::LEVEL_W-1:0]            log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]            log2_h,
+  input  logic [tex_pkg::SIZE_W-1:0]             w,
+  input  logic [tex_pkg::SIZE_W-1:0]             h,
   output logic signed [tex_pkg::LOD_W-1:0]       lambda,
   output logic [2*16:0]                          px_s1,   // clock 1: |d(u,v)/dx|^2, normalized
   output logic [2*16:0]                          py_s1    //          |d(u,v)/dy|^2 (same scale)
@@ -34,7 +34,8 @@ module tex_lambda (
   // Each clock's logic sits inside its register enable: the hardware is the same as combinational
   // logic in front of enabled registers, and Verilator evaluates it only in a clock with en high
   // (tex_aniso's en is low unless a derivative request is in it).
-  // {px, py, s}: the texel-space magnitudes |d| << log2 size, shifted right by s so that the
+  // {px, py, s}: the texel-space magnitudes |d| * size (the paper's shift |d| << log2 size where
+  // the size is a power of two; a 32 x 14-bit multiply), shifted right by s so that the
   // largest keeps 16 bits, squared and summed per screen axis. Written out, not a function: an
   // inlined function's wide temporaries are cleared in every clock by Verilator, called or not.
   logic [PW-1:0] p_s1;
@@ -46,11 +47,13 @@ module tex_lambda (
       logic [4*PW-1:0] square;
       logic [TW-1:0]   largest;
       logic [DW-1:0]   value;
+      logic [tex_pkg::SIZE_W-1:0] size;
       logic [SW-1:0]   shift;
       for (int i = 0; i < 4; i++) begin
         value = (i == 0) ? dudx : (i == 1) ? dvdx : (i == 2) ? dudy : dvdy;
         if (value[DW-1]) value = -value;  // |INT32_MIN| = 2^31 fits unsigned
-        mag[i*TW +: TW] = {{(TW - DW){1'b0}}, value} << ((i % 2 == 0) ? log2_w : log2_h);
+        size  = (i % 2 == 0) ? w : h;
+        mag[i*TW +: TW] = TW'(value) * TW'(size);  // < 2^31 * 2^13
       end
       largest = mag[0 +: TW];
       for (int i = 1; i < 4; i++) if (mag[i*TW +: TW] > largest) largest = mag[i*TW +: TW];

@@ -14,12 +14,9 @@ package tex_pkg;
   // ---- sizes, levels, texel indices
   localparam int MAX_LOG2_SIZE   = 13;  // 8192 texels per side at most (tex_unit_cached)
   localparam int MAX_LOG2_ONCHIP = 11;  // tex_unit's per-level memories: 2048 per side at most
-  localparam int LEVEL_W       = 4;   // a level index or a log2 size (0..13): cfg_log2_w, wr_level
+  localparam int LEVEL_W       = 4;   // a level index or a log2 size (0..13): wr_level, cfg_desc_log2_w
+  localparam int SIZE_W        = 14;  // a texture's or a level's side, 1..8192: cfg_w, cfg_h
   localparam int COORD_W       = 13;  // bits of a wrapped texel index / write coordinate
-  localparam int INDEX_W       = 23;  // signed unwrapped texel index (|u| < 128 at 8192 texels)
-  localparam int SCALED_W      = 30;  // u >>> (15 - log2_w0): 32 - minimum shift of 2
-  // (INDEX_W and SCALED_W are the widths at 2^MAX_LOG2_SIZE; tex_front narrows both to its
-  // unit's largest texture: 10 + ML and 17 + ML bits.)
 
   // ---- cached memory (docs/memory.md)
   localparam int MEM_ADDR_W    = 32;  // byte address of a line in external memory

@@ -15,7 +15,7 @@
 //   req_bias         : signed Q8.8, the request's own LOD bias (GLSL texture(s, uv, bias)); every
 //                      probe of the request carries it (probe_bias), for tex_lod
 //   req_dudx .. dvdy : signed Q8.24 texture widths (heights) per pixel (req_deriv = 1)
-//   req_log2_w/h     : the request's texture's level-0 size (integers), taken with the request
+//   req_w, req_h     : the request's texture's level-0 size (unsigned SIZE_W bits, 1..8192), taken with the request
 //   req_max_aniso_m1 : the request's sampler: probes at most less one (0..15); req_aniso_pow2:
 //                      probe counts rounded up to powers of two. Taken with the request.
 //   probe_u, probe_v : signed Q8.24; probe_lod: signed Q8.8 (lambda', before bias and clamp)
@@ -37,8 +37,8 @@ module tex_probe #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
-  input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]            req_log2_h,
+  input  logic [tex_pkg::SIZE_W-1:0]             req_w,
+  input  logic [tex_pkg::SIZE_W-1:0]             req_h,
   input  logic [3:0]                             req_max_aniso_m1,
   input  logic                                   req_aniso_pow2,
   input  logic [TAG_W-1:0]                       req_tag,
@@ -75,7 +75,7 @@ module tex_probe #(
   logic [4:1]                       deriv_q;
   logic [4*TAG_W-1:0]               tag_q;
   logic signed [DW-1:0]             dudx_s1, dvdx_s1, dudy_s1, dvdy_s1;
-  logic [tex_pkg::LEVEL_W-1:0]      log2_w_s1, log2_h_s1;  // the texture's size, for tex_aniso's clock 1
+  logic [tex_pkg::SIZE_W-1:0]       w_s1, h_s1;            // the texture's size, for tex_aniso's clock 1
   logic [3:0]                       max_aniso_m1_s1;       // and the sampler's cap
   logic                             pow2_s1;
   always_ff @(posedge clk) begin
@@ -92,8 +92,8 @@ module tex_probe #(
       dvdx_s1    <= req_dvdx;
       dudy_s1    <= req_dudy;
       dvdy_s1    <= req_dvdy;
-      log2_w_s1  <= req_log2_w;
-      log2_h_s1  <= req_log2_h;
+      w_s1       <= req_w;
+      h_s1       <= req_h;
       max_aniso_m1_s1 <= req_max_aniso_m1;
       pow2_s1    <= req_aniso_pow2;
     end
@@ -109,7 +109,7 @@ module tex_probe #(
   logic signed [DW-1:0] step_u, step_v;
   tex_aniso u_aniso (
     .clk(clk), .en(aniso_en), .dudx(dudx_s1), .dvdx(dvdx_s1), .dudy(dudy_s1), .dvdy(dvdy_s1),
-    .log2_w(log2_w_s1), .log2_h(log2_h_s1), .max_aniso_m1(max_aniso_m1_s1), .pow2(pow2_s1),
+    .w(w_s1), .h(h_s1), .max_aniso_m1(max_aniso_m1_s1), .pow2(pow2_s1),
     .n(aniso_n), .lambda(aniso_lambda), .step_u(step_u), .step_v(step_v)
 `ifdef FORMAL
     , .f_n_s2(f_aniso_n_s2)

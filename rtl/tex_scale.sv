@@ -1,31 +1,26 @@
-// tex_scale: the model's `scale` stage (docs/numerics.md stage 2): the one configuration-dependent
-// shift of a coordinate,
-//   scaled = coord >>> (15 - log2_size0)
-// so that level k's t9 = scaled >>> k (tex_address) is a shift by the level alone: the paper's
-// binary shift (floors of arithmetic shifts compose). Levels past the last one along this axis
-// are 1 texel wide and wrap to index 0 whatever t9 is.
-// Handshake: stall-enable; the register loads when en is high.
-// Latency: 1 clock (tex_unit clock 2). Throughput: 1 per clock.
+// tex_scale: the model's `scale` stage (docs/numerics.md stage 2): a reduced coordinate in one
+// level's texels,
+//   t9 = (reduced * n) >>> 15       = floor(u' * n * 512), 9 sub-texel bits
+// n the level's size along the axis, any value 1..2^ML. Where n is a power of two 2^a this is
+// the paper's binary shift u' >>> (15 - a); a side that is not one takes the multiply (GL's
+// u * w_k). tex_front computes n = max(1, size0 >> level) for each slot.
+// Handshake: none (combinational: it feeds tex_address's clock-4 registers). Latency: 0.
+// Throughput: 1 per clock.
 // Ports:
-//   coord      : signed Q8.24 (REQ_COORD_W bits, u or v), normalized
-//   log2_size0 : integer 0..MAX_LOG2, level-0 size along this axis (larger values act as MAX_LOG2)
-//   scaled     : signed SW = 17 + MAX_LOG2 bits: floor(coord * 2^log2_size0 * 512), 9 fraction
-//                bits (|coord| < 128: |scaled| < 2^(16 + MAX_LOG2))
+//   reduced : signed Q2.24 (RW bits), tex_reduce's
+//   n       : unsigned SIZE_W bits, 1..2^ML texels
+//   t9      : signed TW = ML + 12 bits (|t9| <= 2^(ML + 10))
 module tex_scale #(
-  parameter int MAX_LOG2 = tex_pkg::MAX_LOG2_SIZE,  // the unit's largest log2 size, 0..MAX_LOG2_SIZE
-  parameter int SW       = 17 + MAX_LOG2            // derived
+  parameter int ML = tex_pkg::MAX_LOG2_SIZE,          // the unit's largest log2 size
+  parameter int RW = tex_pkg::COORD_FRAC + 3,         // tex_reduce's width
+  parameter int TW = ML + 12                          // derived: do not override
 ) (
-  input  logic                                   clk,
-  input  logic                                   en,
-  input  logic signed [tex_pkg::REQ_COORD_W-1:0] coord,
-  input  logic [tex_pkg::LEVEL_W-1:0]            log2_size0,
-  output logic signed [SW-1:0]                   scaled
+  input  logic signed [RW-1:0]           reduced,
+  input  logic [tex_pkg::SIZE_W-1:0]     n,
+  output logic signed [TW-1:0]           t9
 );
-  localparam int VW = tex_pkg::LEVEL_W;
-  // 15 = COORD_FRAC - 9: the result keeps 9 fraction bits of a level-0 texel.
-  localparam logic [VW-1:0] ML     = VW'(MAX_LOG2);
-  localparam logic [VW-1:0] SHIFT0 = VW'(tex_pkg::COORD_FRAC - 9);
-  logic [VW-1:0] shift;  // 15 - MAX_LOG2 .. 15
-  assign shift = SHIFT0 - ((log2_size0 > ML) ? ML : log2_size0);
-  always_ff @(posedge clk) if (en) scaled <= SW'(coord >>> shift);
+  localparam int PW = RW + tex_pkg::SIZE_W + 1;  // the signed product
+  logic signed [PW-1:0] product;
+  assign product = PW'(reduced) * $signed({1'b0, n});
+  assign t9      = TW'(product >>> (tex_pkg::COORD_FRAC - 9));
 endmodule

@@ -20,7 +20,10 @@
 //   cfg_smp_aniso_pow2 probe counts rounded up to powers of two; cfg_smp_min_linear the minification
 //   filter's texel filter, cfg_smp_mag_linear the magnification filter (where lambda' <= 0);
 //   cfg_smp_border_rgba the border colour of address mode border, {A, B, G, R} unorm16; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
-//   cfg_log2_w/h integer <= MAX_LOG2_W/H; wr_level, wr_x, wr_y unsigned integers.
+//   cfg_w, cfg_h the texture's size, unsigned SIZE_W bits, 1..2^MAX_LOG2_W (2^MAX_LOG2_H), any
+//   value (GL's level sizes; a side that is not a power of two is loaded with its repeat seam's
+//   copy of texel column (row) 0 at index w (h) of every level: docs/numerics.md stage 3);
+//   wr_level, wr_x, wr_y unsigned integers.
 // Inputs are only ever registered: no logic depends combinationally on an input pin.
 //   cfg_* are taken with each request (in tex_probe and tex_front; the border colour registered
 //   every clock) and must be static while requests are in flight. The cfg_smp_* pins are the
@@ -32,13 +35,13 @@
 // Pipeline (register at the end of each clock; names carry _s<clock> counted from a probe's
 // capture in tex_front, docs/rtl.md):
 //   request 1-4 tex_probe (capture, tex_aniso: lambda, N, steps; the sequencer issues probes)
-//   probe   1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_scale  3 tex_lod level select
-//   (slots: 0 = level d, 1 = level d1)  4 tex_address per slot and axis  5 tex_wrap
+//   probe   1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_reduce  3 tex_lod level select
+//   (slots: 0 = level d, 1 = level d1)  4 tex_scale and tex_address per slot and axis  5 tex_wrap
 //   (combinational); tex_fetch: the memories of levels d and d1 read (4 banks each)
 //   6 tex_fetch: bank words -> 8 taps  7 top/bot lerps  8 bilinear lerps  9 level blend
 //   10 tex_accum: sum of the probes  11 mean and rounding  12 tex_skid (output register)
 module tex_unit #(
-  parameter int MAX_LOG2_W = 10,  // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H, each 0..11
+  parameter int MAX_LOG2_W = 10,  // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H (any size up to it), each 0..11
   parameter int MAX_LOG2_H = 10,
   parameter int CW         = 8,   // bits per channel, 1..16
   parameter int TAG_W      = 16   // >= 1
@@ -46,8 +49,8 @@ module tex_unit #(
   input  logic                                   clk,
   input  logic                                   rst,
 
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_h,
+  input  logic [tex_pkg::SIZE_W-1:0]             cfg_w,
+  input  logic [tex_pkg::SIZE_W-1:0]             cfg_h,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_v,
   input  logic                                   cfg_smp_min_linear,
@@ -146,7 +149,7 @@ module tex_unit #(
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
-    .req_dvdy(req_dvdy), .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h),
+    .req_dvdy(req_dvdy), .req_w(cfg_w), .req_h(cfg_h),
     .req_max_aniso_m1(cfg_smp_max_aniso_m1), .req_aniso_pow2(cfg_smp_aniso_pow2), .req_tag(req_tag),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag(probe_tag),
@@ -200,22 +203,22 @@ module tex_unit #(
   logic [2*VW-1:0] level_s4;           // slot s at [s*VW +: VW]: slot 0 = d, slot 1 = d1
   logic [WB-1:0]   f_s4, f_s5, f_s6;
   logic [4*WB-1:0] w_s4, w_s5, w_s6;   // slot s axis a weight at [(s*2 + a)*WB +: WB]
-  logic [4*VW-1:0] log2_size_s4;       // (the level memories have fixed sizes: unused)
+  logic [4*tex_pkg::SIZE_W-1:0] size_s4;  // (the level memories have fixed strides: unused)
   logic [4*XW-1:0] x;                  // wrapped x taps: slot s tap j at [(s*2 + j)*XW +: XW]
   logic [4*YW-1:0] y;
   logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside the level (border)
   logic [3:0]      border_x_s5, border_y_s5, border_x_s6, border_y_s6;
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
-    .req_log2_w(cfg_log2_w), .req_log2_h(cfg_log2_h), .req_wrap_u(cfg_smp_wrap_u),
+    .req_w(cfg_w), .req_h(cfg_h), .req_wrap_u(cfg_smp_wrap_u),
     .req_wrap_v(cfg_smp_wrap_v), .req_min_linear(cfg_smp_min_linear), .req_mag_linear(cfg_smp_mag_linear),
     .req_mip_mode(cfg_smp_mip_mode), .req_lod_bias(cfg_smp_lod_bias), .req_min_lod(cfg_smp_min_lod),
     .req_max_lod(cfg_smp_max_lod),
-    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
+    .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .border_x(border_x), .border_y(border_y)
   );
-  logic [4*VW-1:0] log2_size_unused;
-  assign log2_size_unused = log2_size_s4;  // (log2_*_unused: likewise)
+  logic [4*tex_pkg::SIZE_W-1:0] size_unused;
+  assign size_unused = size_s4;  // (*_unused: likewise)
 
   always_ff @(posedge clk) begin
     if (en) begin

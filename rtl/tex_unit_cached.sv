@@ -253,6 +253,8 @@ module tex_unit_cached #(
     if (desc_we_q) desc_size[desc_index_q] <= desc_size_q;
   end
   // The request's entry: its texture's size for tex_probe's LOD unit (taken with the request).
+  // The table keeps log2 sizes (power-of-two textures); tex_probe and tex_front take sizes.
+  localparam int NW = tex_pkg::SIZE_W;
   logic [ZW-1:0] req_size;
   assign req_size = desc_size[TXW'(req_tex)];
 
@@ -300,7 +302,7 @@ module tex_unit_cached #(
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
-    .req_dvdy(req_dvdy), .req_log2_w(req_size[0 +: VW]), .req_log2_h(req_size[VW +: VW]),
+    .req_dvdy(req_dvdy), .req_w(NW'(1) << req_size[0 +: VW]), .req_h(NW'(1) << req_size[VW +: VW]),
     .req_max_aniso_m1(req_aniso[3:0]), .req_aniso_pow2(req_aniso[4]),
     .req_tag({SXW'(req_sampler), TXW'(req_tex), req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
@@ -340,21 +342,27 @@ module tex_unit_cached #(
   logic [2*VW-1:0] level_s4;
   logic [WB-1:0]   f_s4;
   logic [4*WB-1:0] w_s4;
-  logic [4*VW-1:0] log2_size_s4;
+  logic [4*NW-1:0] size_s4;       // the slots' level sizes (powers of two here)
+  logic [4*VW-1:0] log2_size_s4;   // their log2, for the tag stage's block arithmetic
   logic [4*XW-1:0] x;
   logic [4*YW-1:0] y;
   logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside its level (mode border)
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
-    .req_log2_w(probe_size[0 +: VW]), .req_log2_h(probe_size[VW +: VW]),
+    .req_w(NW'(1) << probe_size[0 +: VW]), .req_h(NW'(1) << probe_size[VW +: VW]),
     .req_wrap_u(probe_smp_front[0 +: WW]), .req_wrap_v(probe_smp_front[WW +: WW]),
     .req_min_linear(probe_smp_front[2*WW]), .req_mag_linear(probe_smp_front[2*WW + 1]),
     .req_mip_mode(probe_smp_front[2*WW + 2 +: PW]), .req_lod_bias(probe_smp_front[2*WW + 2 + PW +: LW]),
     .req_min_lod(probe_smp_front[2*WW + 2 + PW + LW +: LW]),
     .req_max_lod(probe_smp_front[2*WW + 2 + PW + 2*LW +: LW]),
-    .level(level_s4), .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
+    .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .border_x(border_x), .border_y(border_y)
   );
+  always_comb begin  // log2 of a power of two: the position of its one bit
+    log2_size_s4 = '0;
+    for (int i = 0; i < 4; i++)
+      for (int b = 1; b < NW; b++) if (size_s4[i*NW + b]) log2_size_s4[i*VW +: VW] = VW'(b);
+  end
 
   // ---------------------------------------------------------------- AXI4 read master
   // The miss ring's line reads and the fill FIFO's beats are the AR and R channels: one INCR burst

@@ -1,52 +1,57 @@
 // tex_wrap: the model's `wrap` stage (docs/numerics.md stage 3): the address mode of one integer
-// texel index, n = 2^log2_n, given as its mask n - 1.
-//   repeat: i & (n-1)   clamp: min(max(i, 0), n-1)   mirror: m = i & (2n-1); m < n ? m : 2n-1-m
-//   border: i & (n-1), and border = (i < 0 || i >= n): the tap takes the border colour
-//   mirror-clamp: min(i < 0 ? -1-i : i, n-1) (mirrored once about 0, then clamped)
-//   (the unused codes 5..7 give 0). n = 1 maps every index to 0 (border: every index but 0 is
-//   the border). No carry chain: the mask comes registered (tex_front, clock 4), n is one bit past
-//   it, -1-i is ~i.
+// texel index on a side of n texels (any size 1..2^ML), for an index of a reduced coordinate
+// (tex_reduce: repeat indices lie in [-1, n], mirror in [-1, 2n], the clamping modes in
+// [-2n-1, 2n]), so compares replace the modulo:
+//   repeat: i < 0 ? n-1 : i; the second tap (SECOND = 1) of the seam, i = 0 or n: 0 on a
+//           power-of-two side, else n (texel 0's copy stored after the last texel, so that the
+//           pair n-1, copy sits in two parity banks)
+//   clamp: min(max(i, 0), n-1)      mirror: m = i < 0 ? -1-i : i; m < n ? m : max(2n-1-m, 0)
+//   border: min(max(i, 0), n-1), and border = (i < 0 || i >= n): the tap takes the border colour
+//   mirror-clamp: min(i < 0 ? -1-i : i, n-1)     (the unused codes 5..7 give 0)
 // Handshake: none (combinational; tex_unit clock 5). Latency: 0. Throughput: 1 per clock.
 // Ports:
-//   i      : signed IW bits, unwrapped integer texel index
-//   mask   : unsigned IW bits, n - 1 (ones below bit log2_n; n must fit OUT_W bits)
+//   i      : signed IW bits, unwrapped integer texel index (tex_address)
+//   n      : unsigned SIZE_W bits, the level's side, 1..2^ML (registered, tex_front clock 4)
+//   pow2   : n is a power of two (registered beside it)
 //   mode   : tex_pkg::WRAP_*
-//   o      : unsigned OUT_W bits, wrapped index in [0, n)
-//   border : 1 bit, the tap is outside the level in mode border (o is then the repeat index, a
-//            word the memories hold, never read as a texel)
+//   o      : unsigned OUT_W bits, the wrapped index: [0, n), or n at a repeat seam
+//   border : 1 bit, the tap is outside the level in mode border (o is then a don't-care index
+//            inside the level, never read as a texel)
 module tex_wrap #(
-  parameter int OUT_W = tex_pkg::COORD_W,
-  parameter int IW    = tex_pkg::INDEX_W   // from tex_address
+  parameter int OUT_W  = tex_pkg::COORD_W,
+  parameter int IW     = tex_pkg::MAX_LOG2_SIZE + 4,  // from tex_address
+  parameter bit SECOND = 1'b0                         // the second tap of a pair (i0 + 1)
 ) (
   input  logic signed [IW-1:0]               i,
-  input  logic [IW-1:0]                      mask,
+  input  logic [tex_pkg::SIZE_W-1:0]         n,
+  input  logic                               pow2,
   input  logic [tex_pkg::WRAP_W-1:0]         mode,
   output logic [OUT_W-1:0]                   o,
   output logic                               border
 );
-  logic [IW-1:0]    n;                // 2^log2_n: the lowest bit that is not in the mask
-  logic [IW-1:0]    folded;           // i, or -1-i = ~i below 0 (mirror clamp)
-  logic [OUT_W-1:0] mask_o, low;      // n - 1 and i & (n - 1), in the output width
-  logic             negative, beyond, odd_period, folded_beyond;
-  assign n             = ~mask & {mask[IW-2:0], 1'b1};
-  assign mask_o        = OUT_W'(mask);
-  assign low           = OUT_W'(i) & mask_o;
+  localparam int XW = IW + 1;  // signed room for n, 2n and 2n-1-m
+  logic signed [XW-1:0] ix, nx, folded, mirrored;
+  logic                 negative, beyond, folded_beyond;
+  assign ix            = XW'(i);
+  assign nx            = XW'($signed({1'b0, n}));
   assign negative      = i[IW-1];
-  assign beyond        = |(i & ~mask);         // i >= n, for non-negative i
-  assign odd_period    = |(i & n);             // m >= n: the mirrored half of the period 2n
-  assign folded        = negative ? ~i : i;
-  assign folded_beyond = |(folded & ~mask);
+  assign beyond        = ix >= nx;                     // i >= n
+  assign folded        = negative ? ~ix : ix;          // -1-i below 0
+  assign folded_beyond = folded >= nx;
+  assign mirrored      = folded_beyond ? (nx + nx - XW'(1) - folded) : folded;
   always_comb begin
     border = 1'b0;
     case (mode)
-      tex_pkg::WRAP_REPEAT:       o = low;
-      tex_pkg::WRAP_CLAMP:        o = negative ? '0 : (beyond ? mask_o : low);
-      tex_pkg::WRAP_MIRROR:       o = odd_period ? (~low & mask_o) : low;  // 2n-1-m = ~m in lw bits
+      tex_pkg::WRAP_REPEAT:
+        if (SECOND) o = (i == '0 || beyond) ? (pow2 ? '0 : OUT_W'(n)) : OUT_W'(i);
+        else        o = negative ? OUT_W'(n - 1'b1) : OUT_W'(i);
+      tex_pkg::WRAP_CLAMP:        o = negative ? '0 : (beyond ? OUT_W'(n - 1'b1) : OUT_W'(i));
+      tex_pkg::WRAP_MIRROR:       o = mirrored[XW-1] ? '0 : OUT_W'(mirrored);
       tex_pkg::WRAP_BORDER: begin
-        o      = low;
+        o      = negative ? '0 : (beyond ? OUT_W'(n - 1'b1) : OUT_W'(i));
         border = negative || beyond;
       end
-      tex_pkg::WRAP_MIRROR_CLAMP: o = folded_beyond ? mask_o : OUT_W'(folded);
+      tex_pkg::WRAP_MIRROR_CLAMP: o = folded_beyond ? OUT_W'(n - 1'b1) : OUT_W'(folded);
       default:                    o = '0;
     endcase
   end

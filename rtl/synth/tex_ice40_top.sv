@@ -30,9 +30,10 @@ module tex_ice40_top #(
   localparam int XW = tex_pkg::COORD_W;
   localparam int UW = tex_pkg::REQ_COORD_W;
   // Field offsets in the input shift register, in port order.
-  localparam int O_LOG2_W  = 0;
-  localparam int O_LOG2_H  = O_LOG2_W + VW;
-  localparam int O_WRAP_U  = O_LOG2_H + VW;
+  localparam int NW = tex_pkg::SIZE_W;
+  localparam int O_SIZE_W  = 0;
+  localparam int O_SIZE_H  = O_SIZE_W + NW;
+  localparam int O_WRAP_U  = O_SIZE_H + NW;
   localparam int O_WRAP_V  = O_WRAP_U + WW;
   localparam int O_LINEAR  = O_WRAP_V + WW;
   localparam int O_MAG     = O_LINEAR + 1;
@@ -86,7 +87,7 @@ module tex_ice40_top #(
   end
   tex_unit #(.MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W)) u_unit (
     .clk(clk), .rst(rst),
-    .cfg_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_log2_h(in_bits[O_LOG2_H +: VW]),
+    .cfg_w(in_bits[O_SIZE_W +: NW]), .cfg_h(in_bits[O_SIZE_H +: NW]),
     .cfg_smp_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_smp_wrap_v(in_bits[O_WRAP_V +: WW]),
     .cfg_smp_min_linear(in_bits[O_LINEAR]), .cfg_smp_mag_linear(in_bits[O_MAG]),
     .cfg_smp_mip_mode(in_bits[O_MIP +: MW]),

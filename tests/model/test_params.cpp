@@ -103,8 +103,8 @@ TEST(Params, RtlPackageAgreesWithModel) {
       {"FMT_BC5", int(TexelFormat::Bc5)},
       {"FMT_BC7", int(TexelFormat::Bc7)},
       {"TEX_ID_W", std::bit_width(unsigned(kMaxTextures - 1))},
-      // u >> (15 - log2 w): the smallest shift (2, at 8192 texels) leaves 32 - 2 bits.
-      {"SCALED_W", 32 - (15 - kMaxLog2Size)},
+      // cfg_w, cfg_h hold every side 1..kMaxSize.
+      {"SIZE_W", std::bit_width(unsigned(kMaxSize))},
   };
   for (const auto& [name, value] : expected) {
     const auto it = p.find(name);
@@ -112,21 +112,27 @@ TEST(Params, RtlPackageAgreesWithModel) {
     EXPECT_EQ(it->second, value) << name << " in " << path;
   }
   // Widths that must hold the model's extreme values.
-  ASSERT_TRUE(p.count("COORD_W") && p.count("INDEX_W")) << path << " lacks COORD_W or INDEX_W";
+  ASSERT_TRUE(p.count("COORD_W")) << path << " lacks COORD_W";
   ASSERT_TRUE(p.count("LOD_W") && p.count("LEVEL_W")) << path << " lacks LOD_W or LEVEL_W";
   // lambda, bias and the clamps are LOD_W-bit signed on the pins: exactly the model's range.
   EXPECT_EQ(-(int64_t(1) << (p.at("LOD_W") - 1)), kLodMin) << "LOD_W";
   EXPECT_EQ((int64_t(1) << (p.at("LOD_W") - 1)) - 1, kLodMax) << "LOD_W";
   EXPECT_GE(int64_t(1) << p.at("LEVEL_W"), int64_t(kMaxLevels)) << "LEVEL_W cannot index every level";
   EXPECT_GE(int64_t(1) << p.at("COORD_W"), int64_t(1) << kMaxLog2Size) << "COORD_W cannot index 2^kMaxLog2Size texels";
+  // tex_front's unwrapped index is ML + 4 bits signed (ML the unit's largest log2 size): it must
+  // hold every index of a reduced coordinate, [-2n - 1, 2n] (2n + 1: the nearest filter's unused
+  // second tap), at the largest size.
   int32_t lo = 0, hi = 0;
-  for (int32_t u : {INT32_MIN, INT32_MAX})
-    for (TexelFilter f : {TexelFilter::Nearest, TexelFilter::Linear}) {
-      const stage::AxisTaps t = stage::address(stage::scale(u, kMaxSize), f);  // (unreduced: the RTL's range)
-      lo = std::min({lo, t.i0, t.i1});
-      hi = std::max({hi, t.i0, t.i1});
-    }
-  const int64_t half = int64_t(1) << (p.at("INDEX_W") - 1);
-  EXPECT_GE(lo, -half) << "INDEX_W too narrow for " << lo;
-  EXPECT_LT(hi, half) << "INDEX_W too narrow for " << hi;
+  for (int32_t u : {INT32_MIN, -(1 << 25) - 1, -1, 0, (1 << 24) - 1, (1 << 25) - 1, INT32_MAX})
+    for (Wrap w : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp})
+      for (TexelFilter f : {TexelFilter::Nearest, TexelFilter::Linear}) {
+        const stage::AxisTaps t = stage::address(stage::scale(stage::reduce(u, w), kMaxSize), f);
+        lo = std::min({lo, t.i0, t.i1});
+        hi = std::max({hi, t.i0, t.i1});
+      }
+  const int64_t half = int64_t(1) << (kMaxLog2Size + 4 - 1);
+  EXPECT_EQ(lo, -2 * kMaxSize - 1);
+  EXPECT_EQ(hi, 2 * kMaxSize + 1);
+  EXPECT_GE(lo, -half) << "tex_front's index (ML + 4 bits) too narrow for " << lo;
+  EXPECT_LT(hi, half) << "tex_front's index (ML + 4 bits) too narrow for " << hi;
 }

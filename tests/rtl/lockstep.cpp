@@ -126,7 +126,8 @@ std::vector<Filter> all_filters() {
 
 namespace {
 
-int32_t coordinate(std::mt19937_64& rng, int log2_size, int last_level) {
+// A coordinate for a side of `size` texels (any size).
+int32_t coordinate(std::mt19937_64& rng, int size, int last_level) {
   const int kind = int(rng() % 100);
   const int64_t one = int64_t(1) << kCoordFracBits;
   if (kind < 35) {  // far outside [0, 1): [-100, 100)
@@ -134,10 +135,9 @@ int32_t coordinate(std::mt19937_64& rng, int log2_size, int last_level) {
   }
   if (kind < 65) {  // near a texel edge or centre of some level, a few raw units off
     const int k = int(rng() % uint64_t(last_level + 1));
-    const int lk = std::max(log2_size - k, 0);
-    const int64_t n = int64_t(1) << lk;
+    const int64_t n = std::max(size >> k, 1);
     const int64_t j = int64_t(rng() % uint64_t(n + 5)) - 2 + (rng() % 4 == 0 ? n * (int64_t(rng() % 7) - 3) : 0);
-    const int64_t texel = one >> lk;
+    const int64_t texel = one / n;  // (exact for a power of two)
     int64_t u = j * texel + ((rng() & 1) ? texel / 2 : 0);
     const int64_t jitter = int64_t(rng() % 257) - 128;
     u += (rng() % 3 == 0) ? 0 : jitter;
@@ -165,13 +165,13 @@ int32_t lod_value(std::mt19937_64& rng, int last_level) {
 
 }  // namespace
 
-std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_t n) {
-  const int last = std::max(lw, lh);
+std::vector<Request> random_requests(std::mt19937_64& rng, Extent size, size_t n) {
+  const int last = level_count(size) - 1;
   std::vector<Request> r(n);
   for (size_t i = 0; i < n; ++i) {
-    if (rng() % 4 == 0) r[i] = random_footprint(rng, lw, lh, int(rng() % 16) + 1, int(rng() % 3));
-    r[i].u = coordinate(rng, lw, last);
-    r[i].v = coordinate(rng, lh, last);
+    if (rng() % 4 == 0) r[i] = random_footprint(rng, size, int(rng() % 16) + 1, int(rng() % 3));
+    r[i].u = coordinate(rng, size.w, last);
+    r[i].v = coordinate(rng, size.h, last);
     r[i].lod = lod_value(rng, last);
     if (rng() % 4 == 0) r[i].bias = lod_value(rng, last);  // the request's own bias (GLSL texture(s, uv, bias))
     r[i].tag = uint32_t(i);
@@ -196,7 +196,7 @@ Pyramid random_block_texture(TexelFormat format, int lw, int lh, uint64_t seed) 
   return pyramid_of_blocks(format, {1 << lw, 1 << lh}, std::move(blocks));
 }
 
-Request random_footprint(std::mt19937_64& rng, int lw, int lh, int probes, int axis) {
+Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis) {
   Request r;
   r.has_derivatives = true;
   if (rng() % 16 == 0) {
@@ -206,13 +206,13 @@ Request random_footprint(std::mt19937_64& rng, int lw, int lh, int probes, int a
   // Lengths in level-0 texels: the major one from 1/8 texel to 4x the texture, the minor one so
   // that major / minor lies in (probes - 1, probes] (1: equal lengths).
   std::uniform_real_distribution<double> unit(0, 1);
-  const double major = std::exp2(-3 + unit(rng) * (std::max(lw, lh) + 5));
+  const double major = std::exp2(-3 + unit(rng) * (level_count(size) + 4));
   const double ratio = probes == 1 ? 1.0 : probes - 0.9 * unit(rng);
   const double minor = major / ratio;
   const double a = axis == 0 ? 0.0 : axis == 1 ? M_PI / 2 : M_PI / 4 + (unit(rng) - 0.5) * 0.5;
   const double flip = rng() % 2 ? M_PI : 0.0;
   const double ax = a + flip, ay = a + M_PI / 2;  // the minor axis is perpendicular
-  const double w = std::ldexp(1.0, lw), h = std::ldexp(1.0, lh);
+  const double w = size.w, h = size.h;
   auto q = [](double x) { return int32_t(std::clamp(std::lround(x * 16777216.0), -2147483647L, 2147483647L)); };
   Request f;
   f.has_derivatives = true;

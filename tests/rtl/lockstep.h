@@ -55,11 +55,17 @@ std::string describe(const Texel& t);
 // edges and centres of every level, in [0, 1), and any 32-bit value; lambda from -2 to past the
 // last level, on level and rounding boundaries, and any 16-bit value.
 // A quarter of them carry derivatives instead (random_footprint: lambda from the LOD unit).
-std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_t n);
+std::vector<Request> random_requests(std::mt19937_64& rng, Extent size, size_t n);
+inline std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_t n) {
+  return random_requests(rng, Extent{1 << lw, 1 << lh}, n);
+}
 // A request with derivatives whose footprint takes `probes` probes (1..16) under a cap of 16, its
 // major axis along u (axis 0), v (1) or diagonal (2), from magnification to past the last level;
 // 1 in 16 has raw 32-bit derivatives (the format's saturating ends).
-Request random_footprint(std::mt19937_64& rng, int lw, int lh, int probes, int axis);
+Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis);
+inline Request random_footprint(std::mt19937_64& rng, int lw, int lh, int probes, int axis) {
+  return random_footprint(rng, Extent{1 << lw, 1 << lh}, probes, axis);
+}
 // Anisotropic filter cases: cap 16 half of the time, else 1..16; probe counts rounded to powers of
 // two in a quarter of the cases.
 void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c);

@@ -18,7 +18,7 @@ namespace {
 
 struct Input {
   LodDerivatives d;
-  int log2_w = 0, log2_h = 0;
+  int w = 1, h = 1;  // the level-0 size, any value 1..8192
 };
 
 class Unit {
@@ -30,8 +30,8 @@ class Unit {
     top_->dvdx = uint32_t(in.d.dvdx);
     top_->dudy = uint32_t(in.d.dudy);
     top_->dvdy = uint32_t(in.d.dvdy);
-    top_->log2_w = uint8_t(in.log2_w);
-    top_->log2_h = uint8_t(in.log2_h);
+    top_->w = uint16_t(in.w);
+    top_->h = uint16_t(in.h);
     top_->en = en;
     top_->clk = 0;
     top_->eval();
@@ -59,13 +59,12 @@ void check_stream(const std::vector<Input>& inputs, double stall, uint64_t seed)
     const Input in = next < inputs.size() ? inputs[next] : Input{};
     const int32_t out = unit.clock(in, en);
     if (en) {
-      expected.push_back(tex_lambda(in.d, {1 << in.log2_w, 1 << in.log2_h}));
+      expected.push_back(tex_lambda(in.d, {in.w, in.h}));
       ++next;
       if (++enabled >= 2) {
         const Input& src = inputs[checked < inputs.size() ? checked : 0];
         ASSERT_EQ(out, expected.front()) << "input " << checked << ": " << src.d.dudx << " " << src.d.dvdx << " "
-                                         << src.d.dudy << " " << src.d.dvdy << " sizes 2^" << src.log2_w << " x 2^"
-                                         << src.log2_h;
+                                         << src.d.dudy << " " << src.d.dvdy << " size " << src.w << "x" << src.h;
         expected.pop_front();
         ++checked;
         last = out;
@@ -102,8 +101,9 @@ TEST(RtlLambda, RandomDerivativesBitExactUnderStalls) {
       return int32_t(rng() & 1 ? -std::min<int64_t>(mag, INT32_MAX) : std::min<int64_t>(mag, INT32_MAX));
     };
     in.d = {value(), value(), value(), value()};
-    in.log2_w = int(rng() % 14);
-    in.log2_h = int(rng() % 14);
+    // Sides: half powers of two 1..8192, half any size 1..8192.
+    in.w = rng() & 1 ? 1 << int(rng() % 14) : int(rng() % 8192) + 1;
+    in.h = rng() & 1 ? 1 << int(rng() % 14) : int(rng() % 8192) + 1;
   }
   check_stream(inputs, 0.3, 7);
 }

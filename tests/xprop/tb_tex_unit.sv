@@ -33,7 +33,7 @@ module tb_tex_unit #(
 
   logic clk = 1'b0;
   logic rst = 1'b1;
-  logic [tex_pkg::LEVEL_W-1:0]            cfg_log2_w = 'x, cfg_log2_h = 'x;
+  logic [tex_pkg::SIZE_W-1:0]             cfg_w = 'x, cfg_h = 'x;
   logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_u = 'x, cfg_smp_wrap_v = 'x;
   logic                                   cfg_smp_min_linear = 'x;
   logic                                   cfg_smp_mag_linear = 'x;
@@ -318,8 +318,8 @@ module tb_tex_unit #(
       end else if (op == "C") begin
         r = $fscanf(stim_fd, "%d %d %d %d %d %d %d %d %d %d %h", a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, h0);
         if (accepted != answered) fail(2, "stimulus: cfg changed with requests in flight");
-        cfg_log2_w = a0;
-        cfg_log2_h = a1;
+        cfg_w = a0;
+        cfg_h = a1;
         cfg_smp_wrap_u = a2;
         cfg_smp_wrap_v = a3;
         cfg_smp_min_linear = a4[0];

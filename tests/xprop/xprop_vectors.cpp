@@ -7,7 +7,7 @@
 //   params.txt     MAX_LOG2_W=.., MAX_LOG2_H=.., CW=.., TAG_W=..: the bench's parameters (-P)
 //   stimulus.txt   one command per line, in order (numbers decimal unless marked hex):
 //     H max_log2_w max_log2_h cw tag_w requests ready_len   header (checked by the bench)
-//     C log2_w log2_h wrap_u wrap_v texel_linear mip_mode lod_bias min_lod max_lod mag_linear
+//     C w h wrap_u wrap_v texel_linear mip_mode lod_bias min_lod max_lod mag_linear
 //       border(hex, {A, B, G, R} unorm16)
 //                    the cfg pins from now on (only after a drain: nothing in flight)
 //     W level x y data(hex)                       one clock with wr_en high
@@ -128,7 +128,7 @@ struct Gen {
   }
 
   void cfg_line(const Pyramid& p, const SamplerConfig& c) {
-    stim << "C " << log2_exact(p.extent0().w) << ' ' << log2_exact(p.extent0().h) << ' ' << int(c.wrap_u) << ' ' << int(c.wrap_v) << ' '
+    stim << "C " << p.extent0().w << ' ' << p.extent0().h << ' ' << int(c.wrap_u) << ' ' << int(c.wrap_v) << ' '
          << (c.filter.texel == TexelFilter::Linear ? 1 : 0) << ' ' << int(c.filter.mip) << ' ' << c.lod_bias << ' '
          << c.min_lod << ' ' << c.max_lod << ' ' << (c.filter.mag == TexelFilter::Linear ? 1 : 0) << ' ';
     const Texel b = c.border_unorm16();

@@ -76,11 +76,11 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
 
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests) {
   const Extent e = pyramid.extent0();
-  if (!is_power_of_two(e.w) || !is_power_of_two(e.h))
-    throw Error("texture " + std::to_string(e.w) + "x" + std::to_string(e.h) +
-                ": the RTL takes sides that are powers of two (--engine model samples any size)");
-  if (!config.fits(log2_exact(e.w), log2_exact(e.h)))
-    throw Error("texture " + size_text(log2_exact(e.w), log2_exact(e.h)) + " does not fit " + config.name +
+  if (config.cached && (!is_power_of_two(e.w) || !is_power_of_two(e.h)))
+    throw Error("texture " + std::to_string(e.w) + "x" + std::to_string(e.h) + ": " + config.name +
+                " takes sides that are powers of two (the on-chip unit and --engine model take any size)");
+  if (!config.fits(log2_ceil(e.w), log2_ceil(e.h)))
+    throw Error("texture " + std::to_string(e.w) + "x" + std::to_string(e.h) + " does not fit " + config.name +
                 " (at most " + config.max_texture() + ")");
   // A unit with the formats filters 16-bit channels: an sRGB texture's decoded ones, or a linear
   // 8-bit texture's as they are; memory holds 8-bit channels (or blocks) for both.
@@ -160,10 +160,10 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_sampler = r.sampler;
 }
 
-CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h) {
+CfgPins cfg_pins(const SamplerConfig& config, Extent size) {
   CfgPins c;
-  c.log2_w = uint8_t(log2_w);
-  c.log2_h = uint8_t(log2_h);
+  c.w = uint16_t(size.w);
+  c.h = uint16_t(size.h);
   c.sampler = sampler_pins(config);
   return c;
 }
@@ -363,6 +363,17 @@ Texel Driver::peek_texel(int level, int x, int y) const {
                      config_.cw);
 }
 
+namespace {
+// Every texel a level memory holds, in row order: the level's, and on a side that is not a power
+// of two the repeat seam's copies of column (row) 0 at index w (h) (docs/numerics.md stage 3).
+template <class Fn>
+void each_stored_texel(const Image& img, Fn&& fn) {
+  const int sw = stored_side(img.width), sh = stored_side(img.height);
+  for (int y = 0; y < sh; ++y)
+    for (int x = 0; x < sw; ++x) fn(x, y, img.at(x == img.width ? 0 : x, y == img.height ? 0 : y));
+}
+}  // namespace
+
 void Driver::load(const Pyramid& pyramid, LoadMethod method) {
   check_inputs(config_, pyramid, {});
   const int cw = config_.cw;
@@ -379,13 +390,11 @@ void Driver::load(const Pyramid& pyramid, LoadMethod method) {
     // The layout of tex_level_mem: bank = parity (y & 1) * 2 + (x & 1), word (y >> 1) * stride +
     // (x >> 1) with the stride of the largest level this memory can hold.
     for (size_t k = 0; k < pyramid.levels.size(); ++k) {
-      const Image& img = pyramid.levels[k];
       const int xb = std::max(config_.max_log2_w - int(k), 0);
       const uint32_t stride = xb > 1 ? 1u << (xb - 1) : 1u;
-      for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-          backdoor_write(int(k), (y & 1) * 2 + (x & 1), uint32_t(y >> 1) * stride + uint32_t(x >> 1),
-                         pack_rgba(img.at(x, y), cw));
+      each_stored_texel(pyramid.levels[k], [&](int x, int y, const Texel& t) {
+        backdoor_write(int(k), (y & 1) * 2 + (x & 1), uint32_t(y >> 1) * stride + uint32_t(x >> 1), pack_rgba(t, cw));
+      });
     }
     return;
   }
@@ -396,13 +405,12 @@ void Driver::load(const Pyramid& pyramid, LoadMethod method) {
   for (size_t k = 0; k < pyramid.levels.size(); ++k) {
     const Image& img = pyramid.levels[k];
     in.wr_level = uint8_t(k);
-    for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x) {
-        in.wr_x = uint16_t(x);
-        in.wr_y = uint16_t(y);
-        in.wr_data = pack_rgba(img.at(x, y), cw);
-        tick(in);
-      }
+    each_stored_texel(img, [&](int x, int y, const Texel& t) {
+      in.wr_x = uint16_t(x);
+      in.wr_y = uint16_t(y);
+      in.wr_data = pack_rgba(t, cw);
+      tick(in);
+    });
   }
   tick(PinsIn{});  // the last write lands; requests may follow
   load_cycles_ += cycle_ - start;

@@ -153,12 +153,13 @@ struct SamplerPins {
 };
 SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index = 0);
 
-// Static configuration pins: tex_unit's texture size and its one sampler.
+// Static configuration pins: tex_unit's texture size (cfg_w, cfg_h: any size up to the
+// configuration's) and its one sampler.
 struct CfgPins {
-  uint8_t log2_w = 0, log2_h = 0;
+  uint16_t w = 1, h = 1;
   SamplerPins sampler;
 };
-CfgPins cfg_pins(const SamplerConfig& config, int log2_w, int log2_h);
+CfgPins cfg_pins(const SamplerConfig& config, Extent size);
 
 // Texel <-> packed {A, B, G, R} of cw bits each (R in the low bits).
 uint64_t pack_rgba(const Texel& t, int cw);
@@ -258,7 +259,7 @@ class Driver {
   // cached unit then starts empty (a reset) and its descriptors and samplers are written again.
   void configure(const CfgPins& cfg);
   void configure(const SamplerConfig& config, const Pyramid& pyramid) {
-    configure(cfg_pins(config, log2_exact(pyramid.extent0().w), log2_exact(pyramid.extent0().h)));
+    configure(cfg_pins(config, pyramid.extent0()));
   }
   // tex_unit_cached: the sampler table (requests name an entry by Request::sampler), after a reset
   // with the descriptors. Throws tex::Error for tex_unit or more samplers than the table holds.

@@ -145,8 +145,8 @@ class VerilatedTexUnit final : public Driver {
   void apply_cfg(const CfgPins& c) override {
     if constexpr (!kCached) {  // the cached unit's sizes and samplers are its tables'
       Top& t = *top_;
-      t.cfg_log2_w = c.log2_w;
-      t.cfg_log2_h = c.log2_h;
+      t.cfg_w = c.w;
+      t.cfg_h = c.h;
       set_sampler_pins(c.sampler);
       t.eval();
     }
