@@ -40,8 +40,9 @@ demo: build
 	$(TEXSIM) render --scene plane --texture checker --filter point --engine rtl --verify --out $(OUT)/plane_point.png
 	$(TEXSIM) render --scene plane --texture checker --filter trilinear --engine rtl --verify --out $(OUT)/plane_trilinear.png
 	$(TEXSIM) render --scene plane --texture checker --filter anisotropic --engine rtl --verify --out $(OUT)/plane_anisotropic.png
+	$(TEXSIM) render --scene plane --texture testcard:1000x600 --filter trilinear --wrap mirror --engine rtl --verify --out $(OUT)/plane_1000x600_mirror.png
 	@echo "demo: $(OUT)/plane_point.png aliases near the horizon, $(OUT)/plane_trilinear.png blurs it grey," \
-	      "$(OUT)/plane_anisotropic.png keeps its checks"
+	      "$(OUT)/plane_anisotropic.png keeps its checks; $(OUT)/plane_1000x600_mirror.png: a texture of no power-of-two size"
 
 # After the build, the suites two at a time: the formal proofs (one core, about 4 minutes) beside
 # lint, xprop, synth-latch, the model alone and ctest (whose own jobs share the other core until

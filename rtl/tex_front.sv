@@ -70,13 +70,16 @@ module tex_front #(
   localparam int RW = tex_pkg::COORD_FRAC + 3;  // tex_reduce's result
   localparam int TW = ML + 12;               // tex_scale's
   localparam int IW = ML + 4;                // tex_address's unwrapped index: [-2n-1, 2n]
+  // A size, 1..2^ML: NB bits (of the pins' SIZE_W: the unit's sizes are at most 2^ML, the
+  // driver and the configuration port check), the multipliers' and compares' width.
+  localparam int NB = ML + 1;
 
   // ---------------------------------------------------------------- clock 1: capture
   // The texture's {h, w}, the sampler's {wrap v, wrap u} and its filters ride along, clock k's at
   // [(k-1)*width +: width]: tex_reduce reads clock 1's wrap modes, tex_lod the LOD fields of
   // clock 1 and the mip mode and level-select size of clock 2, the level sizes and texel filters
   // clock 3's; tex_wrap clock 4's wrap modes.
-  localparam int ZW = 2 * NW, MW = 2 * tex_pkg::WRAP_W, LW = tex_pkg::LOD_W, PW = tex_pkg::MIP_W;
+  localparam int ZW = 2 * NB, MW = 2 * tex_pkg::WRAP_W, LW = tex_pkg::LOD_W, PW = tex_pkg::MIP_W;
   logic signed [tex_pkg::REQ_COORD_W-1:0] u_s1, v_s1;
   logic signed [LW-1:0]                   lod_s1, min_lod_s1, max_lod_s1;
   logic signed [LW:0]                     lod_bias_s1;  // the sampler's + the request's, exact
@@ -92,28 +95,40 @@ module tex_front #(
       lod_bias_s1 <= (LW+1)'(req_lod_bias) + (LW+1)'(req_bias);
       min_lod_s1  <= req_min_lod;
       max_lod_s1  <= req_max_lod;
-      size_q   <= {size_q[0 +: 2*ZW], req_h, req_w};
+      size_q   <= {size_q[0 +: 2*ZW], NB'(req_h), NB'(req_w)};  // (at most 2^ML: NB bits)
       wrap_q   <= {wrap_q[0 +: 3*MW], req_wrap_v, req_wrap_u};
       mip_q    <= {mip_q[0 +: PW], req_mip_mode};
       linear_q <= {linear_q[0 +: 2*2], req_mag_linear, req_min_linear};
     end
   end
-  logic [ZW-1:0]              size_s2, size_s3;  // {h0, w0} at clock k
+  generate
+    if (NB < NW) begin : g_size_high  // zero for every size this unit takes (1..2^ML)
+      logic unused_size_high;
+      assign unused_size_high = ^{req_w[NW-1:NB], req_h[NW-1:NB]};
+    end
+  endgenerate
+  logic [ZW-1:0]              size_s3;  // {h0, w0} at clock 3
   logic [tex_pkg::WRAP_W-1:0] wrap_u_s1, wrap_v_s1, wrap_u_s4, wrap_v_s4;
-  assign size_s2 = size_q[1*ZW +: ZW];
   assign size_s3 = size_q[2*ZW +: ZW];
   assign {wrap_v_s1, wrap_u_s1} = wrap_q[0*MW +: MW];
   assign {wrap_v_s4, wrap_u_s4} = wrap_q[3*MW +: MW];
 
   // ---------------------------------------------------------------- clocks 2-3: lod, scale
-  // The last level, floor(log2 max(w0, h0)): the leading one of the larger side (clock 2's
-  // texture: tex_lod selects the levels in clock 3).
-  logic [NW-1:0] larger_s2;
+  // The last level, floor(log2 max(w0, h0)) = the larger of the sides' leading ones, from clock
+  // 1's size and registered in clock 2 (tex_lod selects the levels in clock 3: the leading-one
+  // detectors stay out of that clock).
   logic [VW-1:0] last_level;
-  assign larger_s2 = (size_s2[0 +: NW] > size_s2[NW +: NW]) ? size_s2[0 +: NW] : size_s2[NW +: NW];
-  always_comb begin
-    last_level = '0;
-    for (int b = 1; b < NW; b++) if (larger_s2[b]) last_level = VW'(b);
+  always_ff @(posedge clk) begin
+    if (en) begin
+      logic [VW-1:0] lead_w, lead_h;
+      lead_w = '0;
+      lead_h = '0;
+      for (int b = 1; b < NB; b++) begin
+        if (size_q[b]) lead_w = VW'(b);
+        if (size_q[NB + b]) lead_h = VW'(b);
+      end
+      last_level <= (lead_w > lead_h) ? lead_w : lead_h;
+    end
   end
 
   logic [2*VW-1:0] level_s3;       // slot s at [s*VW +: VW]: slot 0 = d, slot 1 = d1
@@ -153,15 +168,15 @@ module tex_front #(
       for (a = 0; a < 2; a = a + 1) begin : g_axis
         localparam int OW = (a == 0) ? XW : YW;
         logic signed [IW-1:0] i0_s4, i1_s4;  // the taps, unwrapped
-        logic [NW-1:0]        n_s3, n_s4;    // the slot's level size along the axis
+        logic [NB-1:0]        n_s3, n_s4;    // the slot's level size along the axis
         logic                 pow2_s4;       // it is a power of two (no seam copy)
         logic signed [TW-1:0] t9_s3;
         logic [OW-1:0]        t0, t1;        // wrapped taps i0, i0 + 1
         logic                 b0, b1;        // their border flags
         // max(1, size0 >> level): a side that reaches 1 texel stays 1 (GL's level sizes).
-        logic [NW-1:0] shifted;
-        assign shifted = size_s3[a*NW +: NW] >> level_s3[s*VW +: VW];
-        assign n_s3    = (shifted == '0) ? NW'(1) : shifted;
+        logic [NB-1:0] shifted;
+        assign shifted = size_s3[a*NB +: NB] >> level_s3[s*VW +: VW];
+        assign n_s3    = (shifted == '0) ? NB'(1) : shifted;
         tex_scale #(.ML(ML), .RW(RW)) u_scale (.reduced(reduced_s3[a*RW +: RW]), .n(n_s3), .t9(t9_s3));
         tex_address #(.TW(TW), .IW(IW)) u_address (
           .clk(clk), .en(en), .t9(t9_s3), .linear(linear_s3), .i0(i0_s4), .i1(i1_s4),
@@ -171,13 +186,13 @@ module tex_front #(
         always_ff @(posedge clk) begin
           if (en) begin
             n_s4    <= n_s3;
-            pow2_s4 <= (n_s3 & (n_s3 - NW'(1))) == '0;
+            pow2_s4 <= (n_s3 & (n_s3 - NB'(1))) == '0;
           end
         end
-        assign size[(s*2 + a)*NW +: NW] = n_s4;
-        tex_wrap #(.OUT_W(OW), .IW(IW), .SECOND(1'b0)) u_wrap0 (.i(i0_s4), .n(n_s4), .pow2(pow2_s4),
+        assign size[(s*2 + a)*NW +: NW] = NW'(n_s4);
+        tex_wrap #(.OUT_W(OW), .IW(IW), .NB(NB), .SECOND(1'b0)) u_wrap0 (.i(i0_s4), .n(n_s4), .pow2(pow2_s4),
                                         .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t0), .border(b0));
-        tex_wrap #(.OUT_W(OW), .IW(IW), .SECOND(1'b1)) u_wrap1 (.i(i1_s4), .n(n_s4), .pow2(pow2_s4),
+        tex_wrap #(.OUT_W(OW), .IW(IW), .NB(NB), .SECOND(1'b1)) u_wrap1 (.i(i1_s4), .n(n_s4), .pow2(pow2_s4),
                                         .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t1), .border(b1));
         if (a == 0) begin : g_x
           assign x[(s*2 + 0)*XW +: XW] = t0;

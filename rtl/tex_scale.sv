@@ -8,7 +8,7 @@
 // Throughput: 1 per clock.
 // Ports:
 //   reduced : signed Q2.24 (RW bits), tex_reduce's
-//   n       : unsigned SIZE_W bits, 1..2^ML texels
+//   n       : unsigned ML + 1 bits, 1..2^ML texels
 //   t9      : signed TW = ML + 12 bits (|t9| <= 2^(ML + 10))
 module tex_scale #(
   parameter int ML = tex_pkg::MAX_LOG2_SIZE,          // the unit's largest log2 size
@@ -16,10 +16,10 @@ module tex_scale #(
   parameter int TW = ML + 12                          // derived: do not override
 ) (
   input  logic signed [RW-1:0]           reduced,
-  input  logic [tex_pkg::SIZE_W-1:0]     n,
+  input  logic [ML:0]                    n,
   output logic signed [TW-1:0]           t9
 );
-  localparam int PW = RW + tex_pkg::SIZE_W + 1;  // the signed product
+  localparam int PW = RW + ML + 2;  // the signed product
   logic signed [PW-1:0] product;
   assign product = PW'(reduced) * $signed({1'b0, n});
   assign t9      = TW'(product >>> (tex_pkg::COORD_FRAC - 9));

@@ -11,7 +11,7 @@
 // Handshake: none (combinational; tex_unit clock 5). Latency: 0. Throughput: 1 per clock.
 // Ports:
 //   i      : signed IW bits, unwrapped integer texel index (tex_address)
-//   n      : unsigned SIZE_W bits, the level's side, 1..2^ML (registered, tex_front clock 4)
+//   n      : unsigned NB bits, the level's side, 1..2^(NB-1) (registered, tex_front clock 4)
 //   pow2   : n is a power of two (registered beside it)
 //   mode   : tex_pkg::WRAP_*
 //   o      : unsigned OUT_W bits, the wrapped index: [0, n), or n at a repeat seam
@@ -20,10 +20,11 @@
 module tex_wrap #(
   parameter int OUT_W  = tex_pkg::COORD_W,
   parameter int IW     = tex_pkg::MAX_LOG2_SIZE + 4,  // from tex_address
+  parameter int NB     = tex_pkg::SIZE_W,             // bits of a size: the unit's largest log2 + 1
   parameter bit SECOND = 1'b0                         // the second tap of a pair (i0 + 1)
 ) (
   input  logic signed [IW-1:0]               i,
-  input  logic [tex_pkg::SIZE_W-1:0]         n,
+  input  logic [NB-1:0]                      n,
   input  logic                               pow2,
   input  logic [tex_pkg::WRAP_W-1:0]         mode,
   output logic [OUT_W-1:0]                   o,

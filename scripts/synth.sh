@@ -210,7 +210,7 @@ done
 # on-chip unit that places on the HX8K (λ requests only: tex_ice40_top with DERIV = 0 ties the
 # derivative inputs off and the LOD/anisotropy unit is optimized away), from larger to smaller.
 if [ "${SYNTH_REFERENCE:-1}" != 0 ]; then
-  for cfg in "3 3 2" "3 3 1" "2 2 1"; do
+  for cfg in "3 3 2" "3 3 1" "2 2 1" "2 1 1" "1 1 1"; do
     set -- $cfg
     tag="ref_w$1_h$2_c$3" t0=$(date +%s)
     echo "synth: iCE40 reference: tex_unit $1x$2, CW $3, λ requests only ..."
