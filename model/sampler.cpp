@@ -173,7 +173,7 @@ struct Packed2x2 {
 
 // `u`, `v`: stage::reduce of the probe's coordinates.
 template <TexelFilter TF, Wrap WU, Wrap WV>
-inline Packed2x2 filter_level(const FastLevel& lv, int32_t u, int32_t v) {
+[[gnu::always_inline]] inline Packed2x2 filter_level(const FastLevel& lv, int32_t u, int32_t v) {
   const int32_t tu = stage::scale(u, lv.w), tv = stage::scale(v, lv.h);
   if constexpr (TF == TexelFilter::Nearest) {
     // i0 = floor(u * size) = t9 >> 9; weights are 0, so the result is texel a, scaled to CW.16.
@@ -197,7 +197,7 @@ inline Packed2x2 filter_level(const FastLevel& lv, int32_t u, int32_t v) {
 
 // One probe: the trilinear (or nearest-level) value before rounding, CW.24 per channel.
 template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
-inline Packed2x2 probe_packed(const FastLevel* levels, int last, const SamplerConfig& cfg, int32_t u_in, int32_t v_in,
+[[gnu::always_inline]] inline Packed2x2 probe_packed(const FastLevel* levels, int last, const SamplerConfig& cfg, int32_t u_in, int32_t v_in,
                               int32_t lambda) {
   const int32_t u = stage::reduce(u_in, WU), v = stage::reduce(v_in, WV);
   const int32_t lod = stage::lod_clamp(lambda, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
