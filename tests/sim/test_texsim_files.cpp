@@ -310,6 +310,8 @@ TEST_F(TexsimCli, SizesAreNamedRight) {
   for (const char* engine : {"rtl", "systemc"})
     expect_clean_failure(std::string("sample -t noise:100x63 -q q.csv -o r2.csv --memory cached -e ") + engine, "r2.csv",
                          {"100x63", "powers of two", "--engine model"});
+  // Too large for every compiled unit: the error names the size as given, not rounded up.
+  expect_clean_failure("sample -t noise:2000x1000 -q q.csv -o r4.csv -e rtl", "r4.csv", {"2000x1000", "does not fit"});
   // A pattern has the size it is given: no --resize hint, with or without --resize.
   const Result r = run("sample -t noise:100x64 --resize -q q.csv -o r3.csv -e rtl --memory cached");
   EXPECT_NE(r.exit_code, 0);

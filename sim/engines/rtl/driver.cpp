@@ -20,7 +20,7 @@ std::string size_text(int log2_w, int log2_h) { return std::to_string(1 << log2_
 std::string RtlConfig::max_texture() const { return size_text(max_log2_w, max_log2_h); }
 
 const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memory, int block_w, int block_h,
-                                     bool formats) {
+                                     bool formats, Extent size) {
   const RtlConfig* best = nullptr;
   const RtlConfig* largest = nullptr;
   const bool cached = memory == Memory::Cached;
@@ -44,22 +44,27 @@ const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memo
     throw Error("no " + memory_name(memory) + " RTL configuration is built for " + std::to_string(cw) +
                 "-bit channels" + (formats ? " with the block decoders and sRGB tables" : ""));
   }
-  throw Error("texture " + size_text(log2_w, log2_h) + " does not fit the RTL: the largest compiled tex_unit takes " +
+  const std::string named = size.w > 1 || size.h > 1 ? std::to_string(size.w) + "x" + std::to_string(size.h)
+                                                      : size_text(log2_w, log2_h);
+  throw Error("texture " + named + " does not fit the RTL: the largest compiled tex_unit takes " +
               largest->max_texture() + " (use --engine model for larger textures)");
 }
 
 const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory, int block_w, int block_h,
                                      const CacheParams* cache, uint32_t fifo_depth) {
   int log2_w = 0, log2_h = 0, cw = 8;
+  Extent largest_size;  // the largest sides, as the error names them
   bool formats = false;  // cached: blocks or sRGB codes to decode after the cache (a CW = 16 unit)
   for (const BoundTexture& t : textures) {
     log2_w = std::max(log2_w, log2_ceil(t.pyramid->extent0().w));
     log2_h = std::max(log2_h, log2_ceil(t.pyramid->extent0().h));
+    largest_size = {std::max(largest_size.w, t.pyramid->extent0().w), std::max(largest_size.h, t.pyramid->extent0().h)};
     cw = std::max(cw, t.pyramid->levels[0].channel_bits);
     formats = formats || t.pyramid->srgb || is_compressed(t.pyramid->format);
   }
   formats = formats && memory == Memory::Cached;
-  const RtlConfig& fits = smallest_config_for(log2_w, log2_h, formats ? 16 : cw, memory, block_w, block_h, formats);
+  const RtlConfig& fits =
+      smallest_config_for(log2_w, log2_h, formats ? 16 : cw, memory, block_w, block_h, formats, largest_size);
   auto holds = [&](const RtlConfig& c) {
     return cache->size_bytes / c.line_bytes() <= c.lines && fifo_depth <= uint32_t(c.fifo_depth);
   };

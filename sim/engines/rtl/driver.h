@@ -50,9 +50,9 @@ struct RtlConfig {
 const std::vector<RtlConfig>& compiled_configs();
 // The smallest configuration of that memory organisation with cw-bit channels that holds the
 // pyramid (cached: with the block shape asked for, and the formats if `formats`); throws tex::Error
-// naming the largest one when none does.
+// naming the largest one when none does (and the texture: `size` if given, else 2^log2_w x 2^log2_h).
 const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw = 8, Memory memory = Memory::OnChip,
-                                     int block_w = 4, int block_h = 4, bool formats = false);
+                                     int block_w = 4, int block_h = 4, bool formats = false, Extent size = {});
 // The same for a descriptor table: the largest sides, the widest channels the filter takes, and,
 // cached, a configuration with the formats if any texture is block-compressed or sRGB, and the
 // smallest whose caches and FIFO hold `cache` and `fifo_depth` when one does (if none does, the
