@@ -29,13 +29,9 @@ int BankedMipMemory::word_of(int level, int32_t x, int32_t y) const {
 
 void BankedMipMemory::write(int level, int32_t x, int32_t y, const Texel& t) {
   Level& l = levels_[size_t(level)];
-  auto put = [&](int32_t sx, int32_t sy) { l.banks[size_t(stage::bank(sx, sy))][size_t(word_of(level, sx, sy))] = t; };
-  put(x, y);
-  // Texel 0's copies past the last column and row (stored_side: the repeat seam).
-  const bool copy_x = x == 0 && l.stored_w > l.shape.w, copy_y = y == 0 && l.stored_h > l.shape.h;
-  if (copy_x) put(l.shape.w, y);
-  if (copy_y) put(x, l.shape.h);
-  if (copy_x && copy_y) put(l.shape.w, l.shape.h);
+  with_seam_copies(x, y, seam_copy(l.shape.w), seam_copy(l.shape.h), [&](int32_t sx, int32_t sy) {
+    l.banks[size_t(stage::bank(sx, sy))][size_t(word_of(level, sx, sy))] = t;
+  });
 }
 
 std::array<Texel, 4> BankedMipMemory::fetch(int level, int32_t x0, int32_t x1, int32_t y0, int32_t y1,

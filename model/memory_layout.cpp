@@ -165,15 +165,11 @@ std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayo
                                                    : std::string()));
   std::vector<uint8_t> image(size_t(layout.image_bytes()), 0);
   const uint32_t base = layout.params().base;
-  // Where stored texel (x, y) of level k goes, and each place it goes: itself, and for column (row)
-  // 0 of a side with a seam its copy (a block format: the block's, at the seam block column).
+  // Each place texel (x, y) of level k goes: itself, and for column (row) 0 of a side with a seam
+  // its copy (a block format: the block's, at the seam block column).
   auto each_place = [&](int k, uint32_t x, uint32_t y, auto&& put) {
-    const Extent e = layout.level_size(k);
-    const bool cx = x == 0 && !is_power_of_two(e.w), cy = y == 0 && !is_power_of_two(e.h);
-    put(x, y);
-    if (cx) put(layout.seam_x(k), y);
-    if (cy) put(x, layout.seam_y(k));
-    if (cx && cy) put(layout.seam_x(k), layout.seam_y(k));
+    with_seam_copies(int(x), int(y), int(layout.seam_x(k)), int(layout.seam_y(k)),
+                     [&](int sx, int sy) { put(uint32_t(sx), uint32_t(sy)); });
   };
   if (is_compressed(layout.format())) {  // each 4x4 block where its top-left texel goes
     const size_t bytes = size_t(format_info(layout.format()).block_bytes);

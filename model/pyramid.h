@@ -21,6 +21,20 @@ inline Extent level_extent(Extent e0, int k) { return {e0.w >> k > 1 ? e0.w >> k
 // one more texel, a copy of texel 0 at index n, which the second tap of the seam pair (n-1, 0) reads
 // so that the pair sits in two parity banks. Memory side of a level side n:
 inline int stored_side(int n) { return is_power_of_two(n) ? n : n + 1; }
+// Where that copy sits in a level's memory: index n, or 0 where the side has none.
+inline int seam_copy(int n) { return is_power_of_two(n) ? 0 : n; }
+// Calls put(x, y) for texel (x, y) of a level and again for each of its repeat-seam copies: where
+// x (y) is 0 and the side has a copy, at column copy_x (row copy_y); 0: the side has none. (Every
+// store of a level writes through this: the model's memories with seam_copy, the external memory
+// image with MemoryLayout::seam_x/y, the on-chip RTL's loader.)
+template <class Put>
+void with_seam_copies(int x, int y, int copy_x, int copy_y, Put&& put) {
+  put(x, y);
+  const bool cx = x == 0 && copy_x != 0, cy = y == 0 && copy_y != 0;
+  if (cx) put(copy_x, y);
+  if (cy) put(x, copy_y);
+  if (cx && cy) put(copy_x, copy_y);
+}
 
 struct Pyramid {
   std::vector<Image> levels;  // levels[0] is the texture (a compressed texture's levels decoded)

@@ -30,15 +30,11 @@ Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPat
 
 void Sampler::write_packed(int level, int32_t x, int32_t y, const Texel& t) {
   const Extent e = level_extent(size0_, level);
-  const int sw = stored_side(e.w), sh = stored_side(e.h);
+  const size_t stride = size_t(stored_side(e.w));
   const uint32_t v = uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
   BigVector<uint32_t>& p = packed_[size_t(level)];
-  p[size_t(y) * size_t(sw) + size_t(x)] = v;
-  // Texel 0's copies past the last column and row (the repeat seam, as BankedMipMemory stores them).
-  const bool copy_x = x == 0 && sw > e.w, copy_y = y == 0 && sh > e.h;
-  if (copy_x) p[size_t(y) * size_t(sw) + size_t(e.w)] = v;
-  if (copy_y) p[size_t(e.h) * size_t(sw) + size_t(x)] = v;
-  if (copy_x && copy_y) p[size_t(e.h) * size_t(sw) + size_t(e.w)] = v;
+  with_seam_copies(x, y, seam_copy(e.w), seam_copy(e.h),
+                   [&](int32_t sx, int32_t sy) { p[size_t(sy) * stride + size_t(sx)] = v; });
 }
 
 bool Sampler::fast_path_takes(const SamplerConfig& config) {

@@ -369,13 +369,14 @@ Texel Driver::peek_texel(int level, int x, int y) const {
 }
 
 namespace {
-// Every texel a level memory holds, in row order: the level's, and on a side that is not a power
-// of two the repeat seam's copies of column (row) 0 at index w (h) (docs/numerics.md stage 3).
+// Every texel a level memory holds: the level's, and on a side that is not a power of two the
+// repeat seam's copies of column (row) 0 at index w (h) (docs/numerics.md stage 3).
 template <class Fn>
 void each_stored_texel(const Image& img, Fn&& fn) {
-  const int sw = stored_side(img.width), sh = stored_side(img.height);
-  for (int y = 0; y < sh; ++y)
-    for (int x = 0; x < sw; ++x) fn(x, y, img.at(x == img.width ? 0 : x, y == img.height ? 0 : y));
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      with_seam_copies(x, y, seam_copy(img.width), seam_copy(img.height),
+                       [&](int sx, int sy) { fn(sx, sy, img.at(x, y)); });
 }
 }  // namespace
 
