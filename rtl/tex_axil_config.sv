@@ -5,7 +5,9 @@
 // Handshake: AXI4-Lite, one transaction at a time per direction; reads and writes independent.
 //   AW and W are taken in either order or together: AWREADY (WREADY) is a register, high while no
 //   address (data) is held and no B response waits. The write happens at the clock edge where
-//   both are held; BVALID rises at that edge and stays, with BRESP, until BREADY. ARREADY is
+//   both are held (a DESC_COMMIT also waits, held, while tex_unit_cached sets up the last
+//   descriptor: cfg_desc_ready low or cfg_desc_we high); BVALID rises at that edge and stays, with
+//   BRESP, until BREADY. ARREADY is
 //   high while no R response waits; RVALID rises at the AR edge and stays, with RDATA and RRESP,
 //   until RREADY. Every output is a register.
 // Latency: 1 clock from the edge that takes the later of AW and W to BVALID, and from the AR
@@ -27,6 +29,7 @@
 //   cfg_*         : tex_unit_cached's pins, registers (its formats; lod fields signed Q8.8)
 //   cfg_desc_we   : high for the one clock after an accepted DESC_COMMIT write, with
 //                   cfg_desc_index and the staging registers (cfg_desc_base .. _srgb) stable
+//   cfg_desc_ready: tex_unit_cached takes a descriptor write (it has set up the last one)
 //   cfg_smp_we    : likewise after an accepted SMP_COMMIT write, with cfg_smp_index and the
 //                   staged sampler (cfg_smp_wrap_u .. cfg_smp_border_rgba)
 //   stat_*        : events of this clock: stat_sample (a response handshake), stat_sample_error
@@ -75,10 +78,11 @@ module tex_axil_config #(
   output logic                              cfg_desc_we,
   output logic [tex_pkg::TEX_ID_W-1:0]      cfg_desc_index,
   output logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base,
-  output logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_log2_w,
-  output logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_log2_h,
+  output logic [tex_pkg::SIZE_W-1:0]        cfg_desc_w,
+  output logic [tex_pkg::SIZE_W-1:0]        cfg_desc_h,
   output logic [tex_pkg::FORMAT_W-1:0]      cfg_desc_format,
   output logic                              cfg_desc_srgb,
+  input  logic                              cfg_desc_ready,
   output logic                              cfg_smp_we,
   output logic [tex_pkg::SMP_ID_W-1:0]      cfg_smp_index,
   output logic [tex_pkg::WRAP_W-1:0]        cfg_smp_wrap_u,
@@ -170,6 +174,7 @@ module tex_axil_config #(
   localparam logic [WA-1:0] R_DESC_BASE   = WA'('h040 >> 2);
   localparam logic [WA-1:0] R_DESC_ATTR   = WA'('h044 >> 2);
   localparam logic [WA-1:0] R_DESC_COMMIT = WA'('h048 >> 2);
+  localparam logic [WA-1:0] R_DESC_SIZE   = WA'('h04C >> 2);  // {height, width} texels, 16 bits each
   localparam logic [WA-1:0] R_BORDER_RG   = WA'('h050 >> 2);  // border colour: {G, R} unorm16
   localparam logic [WA-1:0] R_BORDER_BA   = WA'('h054 >> 2);  //                {A, B}
   localparam logic [WA-1:0] R_WRAP        = WA'('h058 >> 2);  // {wrap_v, 0, wrap_u}
@@ -178,7 +183,7 @@ module tex_axil_config #(
   localparam int NCNT = 9;  // CYCLES, SAMPLES, SAMPLE_ERRORS, LOOKUPS, MISSES, MEM_BYTES,
                             // OUT_STALL, MEM_WAIT, REQ_STALL
   localparam logic [31:0] ID      = 32'h5445_5855;  // "TEXU"
-  localparam logic [31:0] VERSION = 32'h0002_0000;  // major 2 (the sampler table), minor 0
+  localparam logic [31:0] VERSION = 32'h0003_0000;  // major 3 (any texture size: DESC_SIZE), minor 0
 
   localparam int FLW       = $clog2(FIFO_DEPTH + 1);
   localparam int SETS_W    = tex_pkg::LOG2_SETS_W;
@@ -208,8 +213,10 @@ module tex_axil_config #(
   assign s_axi_bresp   = bresp;
   assign aw_take  = s_axi_awvalid && s_axi_awready;
   assign w_take   = s_axi_wvalid && s_axi_wready;
-  assign do_write = (aw_full || aw_take) && (w_full || w_take);  // (never with bvalid high)
+  logic              desc_wait;         // a DESC_COMMIT waits while the unit sets up a descriptor
   assign wa = aw_full ? aw_addr_q : s_axi_awaddr[ADDR_W-1:2];
+  assign desc_wait = wa == R_DESC_COMMIT && (!cfg_desc_ready || cfg_desc_we);
+  assign do_write = (aw_full || aw_take) && (w_full || w_take) && !desc_wait;  // (never with bvalid high)
   assign wd = w_full ? w_data_q : s_axi_wdata;
   assign ws = w_full ? w_strb_q : s_axi_wstrb;
 
@@ -218,7 +225,8 @@ module tex_axil_config #(
   logic                             desc_we;
   logic [tex_pkg::TEX_ID_W-1:0]     desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]   desc_base;
-  logic [19:0]                      desc_attr;  // {srgb, format, 8'b0, log2_h, log2_w}
+  logic [3:0]                       desc_attr;  // {srgb, format} (DESC_ATTR bits 19:16)
+  logic [tex_pkg::SIZE_W-1:0]       desc_w, desc_h;
   logic                             smp_we;
   logic [tex_pkg::SMP_ID_W-1:0]     smp_index;
   logic [6:0]                       wrap;       // {wrap_v, 0, wrap_u}
@@ -231,13 +239,10 @@ module tex_axil_config #(
   logic [FLW-1:0]                   fifo_limit;
 
   // The staged descriptor as DESC_COMMIT checks it
-  logic [tex_pkg::LEVEL_W-1:0]  attr_log2_w, attr_log2_h;
   logic [tex_pkg::FORMAT_W-1:0] attr_format;
   logic                         attr_srgb;
-  assign attr_log2_w = desc_attr[3:0];
-  assign attr_log2_h = desc_attr[7:4];
-  assign attr_format = desc_attr[18:16];
-  assign attr_srgb   = desc_attr[19];
+  assign attr_format = desc_attr[2:0];
+  assign attr_srgb   = desc_attr[3];
   logic [tex_pkg::WRAP_W-1:0] wrap_u, wrap_v;
   assign wrap_u = wrap[2:0];
   assign wrap_v = wrap[6:4];
@@ -248,7 +253,7 @@ module tex_axil_config #(
 
   // Write decode: which register, and whether the write is allowed (else SLVERR, no change).
   logic sel_control, sel_cache, sel_fifo, sel_filter, sel_bias, sel_min, sel_max;
-  logic sel_base, sel_attr, sel_commit, sel_border_rg, sel_border_ba, sel_wrap, sel_smp_commit;
+  logic sel_base, sel_attr, sel_size, sel_commit, sel_border_rg, sel_border_ba, sel_wrap, sel_smp_commit;
   logic wr_ok, wr_en;
   logic geometry_ok, desc_ok, smp_ok;
   always_comb begin
@@ -257,7 +262,8 @@ module tex_axil_config #(
                   && 32'(wd[12:8]) + 32'(wd[17:16]) <= LOG2_LINES;
     // DESC_COMMIT: what tex_unit_cached's simulation checks, the sizes and a line-aligned base
     desc_ok = 32'(wd[3:0]) < TEXTURES
-              && 32'(attr_log2_w) <= MAX_LOG2_W && 32'(attr_log2_h) <= MAX_LOG2_H
+              && desc_w != '0 && 32'(desc_w) <= (1 << MAX_LOG2_W)
+              && desc_h != '0 && 32'(desc_h) <= (1 << MAX_LOG2_H)
               && (attr_format == tex_pkg::FMT_RGBA8 || (BLOCK_FORMATS != 0 && attr_format != 3'd6))
               && (!attr_srgb || (SRGB != 0 && attr_format != tex_pkg::FMT_BC4
                                  && attr_format != tex_pkg::FMT_BC5))
@@ -267,7 +273,7 @@ module tex_axil_config #(
   end
   always_comb begin
     {sel_control, sel_cache, sel_fifo, sel_filter, sel_bias, sel_min, sel_max} = '0;
-    {sel_base, sel_attr, sel_commit, sel_border_rg, sel_border_ba, sel_wrap, sel_smp_commit} = '0;
+    {sel_base, sel_attr, sel_size, sel_commit, sel_border_rg, sel_border_ba, sel_wrap, sel_smp_commit} = '0;
     wr_ok = ws == 4'hF;
     case (wa)
       R_CONTROL:     sel_control = 1'b1;
@@ -279,6 +285,7 @@ module tex_axil_config #(
       R_MAX_LOD:     sel_max = 1'b1;
       R_DESC_BASE:   sel_base = 1'b1;
       R_DESC_ATTR:   sel_attr = 1'b1;
+      R_DESC_SIZE:   sel_size = 1'b1;
       R_DESC_COMMIT: begin sel_commit = 1'b1; if (ctl_unit_reset || !desc_ok) wr_ok = 1'b0; end
       R_BORDER_RG:   sel_border_rg = 1'b1;
       R_BORDER_BA:   sel_border_ba = 1'b1;
@@ -318,6 +325,8 @@ module tex_axil_config #(
       desc_index     <= '0;
       desc_base      <= '0;
       desc_attr      <= '0;
+      desc_w         <= tex_pkg::SIZE_W'(1);
+      desc_h         <= tex_pkg::SIZE_W'(1);
       smp_we         <= 1'b0;
       smp_index      <= '0;
       wrap           <= '0;
@@ -341,7 +350,8 @@ module tex_axil_config #(
       if (wr_en && sel_min)    min_lod <= wd[15:0];
       if (wr_en && sel_max)    max_lod <= wd[15:0];
       if (wr_en && sel_base)   desc_base <= wd;
-      if (wr_en && sel_attr)   desc_attr <= wd[19:0] & 20'hF00FF;
+      if (wr_en && sel_attr)   desc_attr <= wd[19:16];
+      if (wr_en && sel_size)   {desc_h, desc_w} <= {wd[16 +: tex_pkg::SIZE_W], wd[0 +: tex_pkg::SIZE_W]};
       if (wr_en && sel_wrap)   wrap <= wd[6:0] & 7'h77;
       if (wr_en && sel_smp_commit) smp_index <= wd[3:0];
       if (wr_en && sel_border_rg) border[31:0]  <= wd;
@@ -354,8 +364,8 @@ module tex_axil_config #(
   assign cfg_desc_we      = desc_we;
   assign cfg_desc_index   = desc_index;
   assign cfg_desc_base    = desc_base;
-  assign cfg_desc_log2_w  = attr_log2_w;
-  assign cfg_desc_log2_h  = attr_log2_h;
+  assign cfg_desc_w       = desc_w;
+  assign cfg_desc_h       = desc_h;
   assign cfg_desc_format  = attr_format;
   assign cfg_desc_srgb    = attr_srgb;
   assign cfg_smp_we       = smp_we;
@@ -452,7 +462,8 @@ module tex_axil_config #(
         R_MIN_LOD:     rd_data = {16'd0, min_lod};
         R_MAX_LOD:     rd_data = {16'd0, max_lod};
         R_DESC_BASE:   rd_data = desc_base;
-        R_DESC_ATTR:   rd_data = {12'd0, desc_attr};
+        R_DESC_ATTR:   rd_data = {12'd0, desc_attr, 16'd0};
+        R_DESC_SIZE:   rd_data = {2'd0, desc_h, 2'd0, desc_w};
         R_DESC_COMMIT: rd_data = {28'd0, desc_index};
         R_BORDER_RG:   rd_data = border[31:0];
         R_BORDER_BA:   rd_data = border[63:32];
@@ -504,12 +515,12 @@ module tex_axil_config #(
   logic [1:0]    f_bresp_q;
   logic [33:0]   f_r_q;                  // {rresp, rdata}, last clock
   localparam int FSW = 2 * tex_pkg::WRAP_W + 2 + tex_pkg::MIP_W + 3 * tex_pkg::LOD_W + 5 + 64;
-  localparam int FCW = 1 + tex_pkg::TEX_ID_W + tex_pkg::SMP_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::LEVEL_W
+  localparam int FCW = 1 + tex_pkg::TEX_ID_W + tex_pkg::SMP_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::SIZE_W
                        + tex_pkg::FORMAT_W + 2 + SETS_W + WAYS_W + FLW + FSW;
   logic [FCW-1:0] f_cfg, f_cfg_q;        // unit_rst and every cfg_* output but the two we pulses
-  logic [43:0]   f_desc, f_desc_q;       // the staged descriptor (cfg_desc_base .. _srgb)
+  logic [2*tex_pkg::SIZE_W+35:0] f_desc, f_desc_q;  // the staged descriptor (cfg_desc_base .. _srgb)
   logic [FSW-1:0] f_smp, f_smp_q;        // the staged sampler (cfg_smp_wrap_u .. _border_rgba)
-  logic          f_desc_we_q, f_smp_we_q, f_clear_q;
+  logic          f_desc_we_q, f_smp_we_q, f_clear_q, f_desc_ready_q;
   logic          f_b_new, f_r_new;       // a B (R) response that was not there last clock
   logic          f_b_take, f_r_take;
 
@@ -520,17 +531,17 @@ module tex_axil_config #(
     f_writable = a == WA'('h10 >> 2) || a == WA'('h20 >> 2) || a == WA'('h24 >> 2)
               || a == WA'('h30 >> 2) || a == WA'('h34 >> 2) || a == WA'('h38 >> 2)
               || a == WA'('h3C >> 2) || a == WA'('h40 >> 2) || a == WA'('h44 >> 2)
-              || a == WA'('h48 >> 2) || a == WA'('h50 >> 2) || a == WA'('h54 >> 2)
+              || a == WA'('h48 >> 2) || a == WA'('h4C >> 2) || a == WA'('h50 >> 2) || a == WA'('h54 >> 2)
               || a == WA'('h58 >> 2) || a == WA'('h5C >> 2);
   endfunction
   function automatic logic f_readable(input logic [WA-1:0] a);
     f_readable = f_writable(a) || 32'(a) < 4 || (32'(a) >= 'h80 / 4 && 32'(a) < 'h80 / 4 + 2 * NCNT);
   endfunction
 
-  assign f_cfg = {unit_rst, cfg_desc_index, cfg_smp_index, cfg_desc_base, cfg_desc_log2_w, cfg_desc_log2_h,
+  assign f_cfg = {unit_rst, cfg_desc_index, cfg_smp_index, cfg_desc_base, cfg_desc_w, cfg_desc_h,
                   cfg_desc_format, cfg_desc_srgb, cfg_block_morton, cfg_log2_sets, cfg_log2_ways,
                   cfg_fifo_limit, f_smp};
-  assign f_desc = {cfg_desc_base, cfg_desc_srgb, cfg_desc_format, cfg_desc_log2_h, cfg_desc_log2_w};
+  assign f_desc = {cfg_desc_base, cfg_desc_srgb, cfg_desc_format, cfg_desc_h, cfg_desc_w};
   assign f_smp  = {cfg_smp_wrap_u, cfg_smp_wrap_v, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_mip_mode,
                    cfg_smp_lod_bias, cfg_smp_min_lod, cfg_smp_max_lod, cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2,
                    cfg_smp_border_rgba};
@@ -546,6 +557,7 @@ module tex_axil_config #(
     f_cfg_q     <= f_cfg;
     f_desc_q    <= f_desc;
     f_desc_we_q <= !rst && cfg_desc_we;
+    f_desc_ready_q <= cfg_desc_ready;
     f_smp_q     <= f_smp;
     f_smp_we_q  <= !rst && cfg_smp_we;
     f_clear_q   <= cnt_clear;
@@ -574,7 +586,10 @@ module tex_axil_config #(
       // without a request, none twice), and one as soon as both are taken; at most one of each
       // open (the held halves are the open ones)
       p_bone_1: assert (f_aw_open <= 2'd1 && f_w_open <= 2'd1);
-      p_bone_2: assert (s_axi_bvalid == (f_aw_open == 2'd1 && f_w_open == 2'd1));
+      // (but a DESC_COMMIT, both halves held, may wait for cfg_desc_ready)
+      p_bone_2: assert (s_axi_bvalid ? (f_aw_open == 2'd1 && f_w_open == 2'd1)
+                        : (f_aw_open != 2'd1 || f_w_open != 2'd1
+                           || (aw_full && w_full && aw_addr_q == R_DESC_COMMIT)));
       p_bone_3: assert (aw_full == (f_aw_open == 2'd1 && !s_axi_bvalid)
                         && (!aw_full || aw_addr_q == f_aw_addr));
       p_bone_4: assert (w_full == (f_w_open == 2'd1 && !s_axi_bvalid)
@@ -601,6 +616,8 @@ module tex_axil_config #(
                           && cfg_desc_index == f_w_data[tex_pkg::TEX_ID_W-1:0] && f_desc == f_desc_q);
       if (f_b_new && s_axi_bresp == OKAY && f_aw_addr == R_DESC_COMMIT) p_desc_2: assert (cfg_desc_we);
       if (f_desc_we_q) p_desc_3: assert (!cfg_desc_we);
+      // and only when the unit takes it: cfg_desc_ready high in the clock of the write
+      if (cfg_desc_we) p_desc_4: assert (f_desc_ready_q);
       // cfg_smp_we: likewise at each accepted SMP_COMMIT, with the staged sampler unchanged
       if (cfg_smp_we)
         p_smp_1: assert (f_b_new && s_axi_bresp == OKAY && f_aw_addr == R_SMP_COMMIT

@@ -30,20 +30,18 @@
 //   hit; a sample with k fills occupies H for max(k, 1) clocks.
 // Ports (formats as tex_front's; XW, YW wrapped index bits):
 //   front_valid, front_tag          : the clock-4 register holds a request, and its tag
-//   level, f, w, log2_size, x, y    : tex_front's outputs
+//   level_odd, f, w, size, x, y     : tex_front's outputs (level_odd: bit 0 of slot 0's level)
 //   border_x, border_y              : tex_front's too: a tap outside its level in address mode
 //                                     border looks no line up and takes the border colour
-//   front_tex                       : the sample's texture descriptor-table entry (clock 4)
-//   front_smp                       : and its sampler-table entry: its border colour
+//   front_line, front_pitch, front_square : per slot, its level's entry in tex_desc_table: the
+//                                     first line, the block grid's pitch NBX, the Morton square
+//   front_format, front_srgb, front_log2_lw, front_log2_lh : the sample's texture's format
+//                                     (tex_pkg::FMT_*; FMT_RGBA8 unless BLOCK_FORMATS), sRGB flag
+//                                     (SRGB only) and line shape (log2 texels across, down)
+//   front_smp                       : the sample's sampler-table entry: its border colour
 //   smp_we, smp_index, smp_border_rgba : a sampler write: entry smp_index's border colour is
 //                                     smp_border_rgba, {A, B, G, R} unorm16 (kept here in the
 //                                     filter's width, converted once at the write)
-//   desc_we, desc_index, desc_base, desc_log2_w, desc_log2_h : a descriptor write: entry
-//                                     desc_index's level 0 is at byte address desc_base (a
-//                                     multiple of the line size) and has 2^desc_log2_w x
-//                                     2^desc_log2_h texels in format desc_format (tex_pkg::FMT_*;
-//                                     FMT_RGBA8 unless BLOCK_FORMATS), sRGB if desc_srgb (SRGB only);
-//                                     its level bases are computed here
 //   cfg_block_morton                : 0 row-major, 1 Morton order of the blocks of a level
 //   cfg_log2_sets, cfg_log2_ways    : cache geometry (both caches), see tex_cache_tags
 //   cfg_fifo_limit                  : samples the FIFO holds at most (0 or > FIFO_DEPTH: FIFO_DEPTH)
@@ -75,7 +73,6 @@ module tex_cached_fetch #(
   parameter int MISS_DEPTH = 64,   // misses not yet written into the cache (power of two, >= 8)
   parameter int FILL_DEPTH = 4,    // lines received, not yet written (power of two)
   parameter int MEM_W      = 128,  // bits of a memory response beat
-  parameter int TEXTURES   = 16,   // descriptor-table entries (power of two, 1..16)
   parameter int SAMPLERS   = 16,   // sampler-table entries (power of two, 1..16)
   parameter int BLOCK_FORMATS = 0, // 1: block-format textures too (needs 8-bit memory channels and
                                    //    >= 16 texels per line)
@@ -83,8 +80,9 @@ module tex_cached_fetch #(
                                    //    textures' R, G, B decoded to linear by tex_srgb_decode
   parameter int XW         = (MAX_LOG2_W > 0) ? MAX_LOG2_W : 1,  // derived, do not override
   parameter int YW         = (MAX_LOG2_H > 0) ? MAX_LOG2_H : 1,
-  parameter int TXW        = (TEXTURES > 1) ? $clog2(TEXTURES) : 1,
-  parameter int SXW        = (SAMPLERS > 1) ? $clog2(SAMPLERS) : 1
+  parameter int SXW        = (SAMPLERS > 1) ? $clog2(SAMPLERS) : 1,
+  parameter int PTW        = ((MAX_LOG2_W > MAX_LOG2_H) ? MAX_LOG2_W : MAX_LOG2_H) + 1,  // tex_desc_table's
+  parameter int LNW        = tex_pkg::MEM_ADDR_W - $clog2(BW * BH * (((SRGB == 0) && CW > 8) ? 8 : 4))
 ) (
   input  logic                              clk,
   input  logic                              rst,
@@ -93,12 +91,11 @@ module tex_cached_fetch #(
 
   input  logic                              front_valid,
   input  logic [TAG_W-1:0]                  front_tag,
-  input  logic [TXW-1:0]                    front_tex,
   input  logic [SXW-1:0]                    front_smp,
-  input  logic [2*tex_pkg::LEVEL_W-1:0]     level,
+  input  logic                              level_odd,
   input  logic [tex_pkg::WEIGHT_BITS-1:0]   f,
   input  logic [4*tex_pkg::WEIGHT_BITS-1:0] w,
-  input  logic [4*tex_pkg::LEVEL_W-1:0]     log2_size,
+  input  logic [4*tex_pkg::SIZE_W-1:0]      size,
   input  logic [4*XW-1:0]                   x,
   input  logic [4*YW-1:0]                   y,
   input  logic [3:0]                        border_x,
@@ -108,13 +105,13 @@ module tex_cached_fetch #(
   input  logic [SXW-1:0]                    smp_index,
   input  logic [63:0]                       smp_border_rgba,
 
-  input  logic                              desc_we,
-  input  logic [TXW-1:0]                    desc_index,
-  input  logic [tex_pkg::MEM_ADDR_W-1:0]    desc_base,
-  input  logic [tex_pkg::LEVEL_W-1:0]       desc_log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]       desc_log2_h,
-  input  logic [tex_pkg::FORMAT_W-1:0]      desc_format,
-  input  logic                              desc_srgb,
+  input  logic [2*LNW-1:0]                  front_line,
+  input  logic [2*PTW-1:0]                  front_pitch,
+  input  logic [2*tex_pkg::LEVEL_W-1:0]     front_square,
+  input  logic [tex_pkg::FORMAT_W-1:0]      front_format,
+  input  logic                              front_srgb,
+  input  logic [tex_pkg::LEVEL_W-1:0]       front_log2_lw,
+  input  logic [tex_pkg::LEVEL_W-1:0]       front_log2_lh,
   input  logic                              cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways,
@@ -141,7 +138,6 @@ module tex_cached_fetch #(
 );
   localparam int VW   = tex_pkg::LEVEL_W;
   localparam int WB   = tex_pkg::WEIGHT_BITS;
-  localparam int AW   = tex_pkg::MEM_ADDR_W;
   localparam int DW   = 4 * CW;                     // a tap's texel
   localparam int CCW  = (SRGB != 0) ? 8 : CW;       // bits of a channel in the cache
   localparam int DWC  = 4 * CCW;                    // a texel in the cache
@@ -150,7 +146,7 @@ module tex_cached_fetch #(
   localparam int LBH  = $clog2(BH);
   localparam int LINE_BITS = BW * BH * TB * 8;
   localparam int LOG2_LB   = $clog2(BW * BH * TB);  // log2 line bytes
-  localparam int LNW  = AW - LOG2_LB;               // bits of a line number
+  localparam int NW   = tex_pkg::SIZE_W;
   localparam int SLW  = $clog2(LINES);              // bits of a line slot
   localparam int SHW  = SLW - 2;                    // bits of a set >> 2
   localparam int OFW  = (LBW + LBH - 2 > 0) ? LBW + LBH - 2 : 1;  // texel offset in a bank word
@@ -165,15 +161,6 @@ module tex_cached_fetch #(
   localparam int WW   = LINE_BITS / 4;              // bits of a bank word
   localparam int KW   = 2;                          // a line's kind in the banks (tex_cache_data)
 
-  // A texture format's line, in texels: log2 width and height. RGBA: the BW x BH block; a block
-  // format: its 4x4 blocks, 2^a x 2^b of them (a = b or b + 1) in the line's bytes (model
-  // MemoryLayout).
-  function automatic logic [2*VW-1:0] line_shape(input logic [FW-1:0] fmt);
-    int lb;  // log2 of the line's blocks
-    lb = (fmt == tex_pkg::FMT_BC1 || fmt == tex_pkg::FMT_BC4) ? LOG2_LB - 3 : LOG2_LB - 4;
-    if (BLOCK_FORMATS == 0 || fmt == tex_pkg::FMT_RGBA8) line_shape = {VW'(LBH), VW'(LBW)};
-    else line_shape = {VW'(2 + lb / 2), VW'(2 + (lb + 1) / 2)};
-  endfunction
   // Its kind in the data banks: 0 texels, 1 8-byte blocks, 2 16-byte blocks.
   function automatic logic [KW-1:0] line_kind(input logic [FW-1:0] fmt);
     if (BLOCK_FORMATS == 0 || fmt == tex_pkg::FMT_RGBA8) line_kind = 2'd0;
@@ -181,59 +168,28 @@ module tex_cached_fetch #(
     else line_kind = 2'd2;
   endfunction
 
-  // ---------------------------------------------------------------- formats, sRGB flags
-  logic [FW-1:0] desc_fmt [TEXTURES];
-  logic          desc_srgb_of [TEXTURES];
-  generate
-    if (BLOCK_FORMATS != 0) begin : g_formats
-      always_ff @(posedge clk)
-        if (desc_we) desc_fmt[desc_index] <= desc_format;
-    end else begin : g_rgba_only
-      always_comb for (int t = 0; t < TEXTURES; t++) desc_fmt[t] = tex_pkg::FMT_RGBA8;
-      logic unused_format;
-      assign unused_format = ^desc_format;
-    end
-    if (SRGB != 0) begin : g_srgb_flags
-      always_ff @(posedge clk)
-        if (desc_we) desc_srgb_of[desc_index] <= desc_srgb;
-    end else begin : g_linear_only
-      always_comb for (int t = 0; t < TEXTURES; t++) desc_srgb_of[t] = 1'b0;
-      logic unused_srgb;
-      assign unused_srgb = desc_srgb;
-    end
-  endgenerate
-
-  // ---------------------------------------------------------------- level bases in memory
-  // base_line[t * 2^LEVEL_W + k] = texture t's level 0 + the lines of its levels 0..k-1
-  // (docs/memory.md §1), as line numbers, written for all of a texture's levels when its
-  // descriptor is written. All 2^LEVEL_W entries per texture, so that any level index is in range
-  // (those past the last level are never used).
-  logic [LNW-1:0] base_line [TEXTURES << VW];
-  always_ff @(posedge clk) begin
-    if (desc_we) begin
-      logic [LNW-1:0] acc;
-      logic [VW-1:0]  sw, sh;  // the format's line, log2 texels
-      acc = LNW'(desc_base >> LOG2_LB);
-      {sh, sw} = line_shape((BLOCK_FORMATS != 0) ? desc_format : tex_pkg::FMT_RGBA8);
-      for (int k = 0; k < (1 << VW); k++) begin
-        logic [VW:0] lw, lh, lbx, lby;
-        base_line[(32'(desc_index) << VW) + k] <= acc;
-        lw  = ({1'b0, desc_log2_w} > (VW+1)'(k)) ? {1'b0, desc_log2_w} - (VW+1)'(k) : '0;
-        lh  = ({1'b0, desc_log2_h} > (VW+1)'(k)) ? {1'b0, desc_log2_h} - (VW+1)'(k) : '0;
-        lbx = (lw > {1'b0, sw}) ? lw - {1'b0, sw} : '0;
-        lby = (lh > {1'b0, sh}) ? lh - {1'b0, sh} : '0;
-        acc = acc + (LNW'(1) << (lbx + lby));
-      end
-    end
-  end
-
   // ---------------------------------------------------------------- tag stage
+  // A tap's stored coordinate has one bit more than its index: a block format keeps the repeat
+  // seam's copy of a side n < 2^XW at n rounded up to 4, which may be 2^XW.
+  localparam int XSW = XW + 1, YSW = YW + 1;
   // Morton interleave: a bit 0 at bit 0, b bit 0 at bit 1, a bit 1 at bit 2, ...
-  localparam int MCW2 = 2 * ((XW > YW) ? XW : YW);
-  function automatic logic [MCW2-1:0] interleave(input logic [XW-1:0] a, input logic [YW-1:0] b);
+  localparam int MCW2 = 2 * ((XSW > YSW) ? XSW : YSW);
+  function automatic logic [MCW2-1:0] interleave(input logic [XSW-1:0] a, input logic [YSW-1:0] b);
     interleave = '0;
-    for (int i = 0; i < XW; i++) interleave[2*i]     = a[i];
-    for (int i = 0; i < YW; i++) interleave[2*i + 1] = b[i];
+    for (int i = 0; i < XSW; i++) interleave[2*i]     = a[i];
+    for (int i = 0; i < YSW; i++) interleave[2*i + 1] = b[i];
+  endfunction
+  // The stored coordinate of a second tap (the only one the repeat seam moves: stage::wrap gives
+  // it index n on a side n that is not a power of two): a block format's copy is at n rounded up
+  // to a whole 4x4 block; texels keep theirs at n.
+  function automatic logic [NW:0] block_seam(input logic [NW-1:0] n);
+    block_seam = ({1'b0, n} + (NW+1)'(3)) & ~(NW+1)'(3);
+  endfunction
+  function automatic logic [XSW-1:0] stored_x(input logic [XW-1:0] i, input logic [NW-1:0] n, input logic bc);
+    stored_x = (bc && (NW+1)'(i) == {1'b0, n}) ? XSW'(block_seam(n)) : XSW'(i);
+  endfunction
+  function automatic logic [YSW-1:0] stored_y(input logic [YW-1:0] i, input logic [NW-1:0] n, input logic bc);
+    stored_y = (bc && (NW+1)'(i) == {1'b0, n}) ? YSW'(block_seam(n)) : YSW'(i);
   endfunction
   // The set index >> 2 (docs/memory.md §2): (xh ^ reverse_k(yh mod 2^k) ^ (yh >> k)) mod 2^k with
   // xh = bx >> 1, yh = by >> 1, k = log2(sets) - 2; rows, columns and neighbouring block rows
@@ -241,12 +197,12 @@ module tex_cached_fetch #(
   // then shifting down by SHW - k.
   logic [tex_pkg::LOG2_SETS_W-1:0] set_k;
   assign set_k = cfg_log2_sets - tex_pkg::LOG2_SETS_W'(2);
-  function automatic logic [SHW-1:0] set_high(input logic [XW-1:0] a, input logic [YW-1:0] b,
+  function automatic logic [SHW-1:0] set_high(input logic [XSW-1:0] a, input logic [YSW-1:0] b,
                                               input logic [tex_pkg::LOG2_SETS_W-1:0] k);
-    logic [YW+SHW-1:0] yh;  // wide enough for any YW against SHW
+    logic [YSW+SHW-1:0] yh;  // wide enough for any YSW against SHW
     logic [SHW-1:0]    xh, yl, rev;
-    xh = SHW'((XW+SHW)'(a) >> 1);
-    yh = (YW+SHW)'(b) >> 1;
+    xh = SHW'((XSW+SHW)'(a) >> 1);
+    yh = (YSW+SHW)'(b) >> 1;
     yl = SHW'(yh);
     for (int i = 0; i < SHW; i++) rev[i] = yl[SHW-1-i];
     set_high = SHW'(xh) ^ (rev >> (32'(SHW) - 32'(k))) ^ SHW'(yh >> k);
@@ -259,16 +215,17 @@ module tex_cached_fetch #(
   logic push;
   assign push = en_front && front_valid;
   logic c0;                 // the cache of slot 0 (level d's parity); slot 1 uses the other
-  assign c0 = level[0];
-  // The sample's texture format, its line shape and bank kind.
+  assign c0 = level_odd;
+  // The sample's texture format, its line shape and bank kind (tex_desc_table's entry).
   logic [FW-1:0] fmt;
   logic [VW-1:0] lbw, lbh;  // log2 of the line's texels across, down
   logic          blk;       // a block format: banks by 4x4-block parity, not texel parity
-  assign fmt        = push ? desc_fmt[front_tex] : tex_pkg::FMT_RGBA8;
-  assign {lbh, lbw} = line_shape(fmt);
+  assign fmt        = push ? front_format : tex_pkg::FMT_RGBA8;
+  assign lbw        = front_log2_lw;
+  assign lbh        = front_log2_lh;
   assign blk        = fmt != tex_pkg::FMT_RGBA8;
   logic srgb;               // the sample's texture is sRGB
-  assign srgb       = push && desc_srgb_of[front_tex];
+  assign srgb       = push && front_srgb;
 
   // Per slot s and block parity p = {y parity, x parity}: the lookup, its line number and set.
   logic [3:0]       look [2];
@@ -281,20 +238,23 @@ module tex_cached_fetch #(
   generate
     for (s = 0; s < 2; s = s + 1) begin : g_slot
       always_comb begin : p_lookups
-        logic [VW-1:0] lev, lw, lh, lnbx, lnby, m;
-        logic [XW-1:0] x0, x1, bx0, bx1, bx;
-        logic [YW-1:0] y0, y1, by0, by1, by;
+        logic [VW-1:0]  m;            // Morton: the interleaved square's log2
+        logic [PTW-1:0] pitch;        // row-major: blocks per block row
+        logic [NW-1:0]  nw, nh;       // the level's size
+        logic [XSW-1:0] x0, x1, bx0, bx1, bx;
+        logic [YSW-1:0] y0, y1, by0, by1, by;
+        logic [LNW-1:0] row0, row1;   // row-major: the first block of by0's (by1's) row
         logic          nx1, ny1;     // the second tap along x (y) is needed: its weight != 0
         logic          nx0, ny0;     // the first tap along x (y) is inside its level (not a border tap)
         logic          has_x, has_y;
         logic [LNW-1:0] index;       // a block's number in its level
-        logic [LNW-1:0] level_base;  // the level's first line (one table read per slot)
-        logic [XW-1:0] xs;
-        logic [YW-1:0] ys;
+        logic [LNW-1:0] level_base;  // the level's first line
+        logic [XSW-1:0] xs;
+        logic [YSW-1:0] ys;
         logic          px0, py0;  // tap 0's bank parity: of its texel (bit 0) or 4x4 block (bit 2)
         logic [4:0]    pq;                  // the parity bit's position + 1
         // (temporaries too: a value on every path, no latch)
-        {lev, lw, lh, lnbx, lnby, m, x0, x1, bx0, bx1, bx, y0, y1, by0, by1, by} = '0;
+        {m, pitch, nw, nh, x0, x1, bx0, bx1, bx, y0, y1, by0, by1, by, row0, row1} = '0;
         {nx0, ny0, nx1, ny1, has_x, has_y, index, level_base, xs, ys, px0, py0, pq} = '0;
         look[s]        = '0;
         look_line[s]   = '0;
@@ -304,21 +264,23 @@ module tex_cached_fetch #(
         tap_low[s]     = '0;
         // level d always; d1 when f != 0
         if (push && (s == 0 || f != '0)) begin
-          lev  = level[s*VW +: VW];
-          level_base = base_line[(32'(front_tex) << VW) + 32'(lev)];
-          lw   = log2_size[(s*2 + 0)*VW +: VW];
-          lh   = log2_size[(s*2 + 1)*VW +: VW];
-          lnbx = (lw > lbw) ? lw - lbw : '0;
-          lnby = (lh > lbh) ? lh - lbh : '0;
-          m    = (lnbx < lnby) ? lnbx : lnby;
-          x0   = x[(s*2 + 0)*XW +: XW];
-          x1   = x[(s*2 + 1)*XW +: XW];
-          y0   = y[(s*2 + 0)*YW +: YW];
-          y1   = y[(s*2 + 1)*YW +: YW];
+          level_base = front_line[s*LNW +: LNW];
+          pitch = front_pitch[s*PTW +: PTW];
+          m     = front_square[s*VW +: VW];
+          nw    = size[(s*2 + 0)*NW +: NW];
+          nh    = size[(s*2 + 1)*NW +: NW];
+          x0    = XSW'(x[(s*2 + 0)*XW +: XW]);
+          x1    = stored_x(x[(s*2 + 1)*XW +: XW], nw, blk);
+          y0    = YSW'(y[(s*2 + 0)*YW +: YW]);
+          y1    = stored_y(y[(s*2 + 1)*YW +: YW], nh, blk);
           bx0  = x0 >> lbw;
           bx1  = x1 >> lbw;
           by0  = y0 >> lbh;
           by1  = y1 >> lbh;
+          if (!cfg_block_morton) begin
+            row0 = LNW'(by0) * LNW'(pitch);
+            row1 = LNW'(by1) * LNW'(pitch);
+          end
           // A border tap reads no line (model TextureCache::lookup).
           nx0  = !border_x[s*2];
           ny0  = !border_y[s*2];
@@ -337,9 +299,9 @@ module tex_cached_fetch #(
             by    = (ny0 && by0[0] == q[1]) ? by0 : by1;
             look[s][q] = has_x && has_y;
             if (!cfg_block_morton) begin
-              index = (LNW'(by) << lnbx) | LNW'(bx);
+              index = ((ny0 && by0[0] == q[1]) ? row0 : row1) + LNW'(bx);
             end else begin
-              index = LNW'(interleave(bx & XW'((1 << m) - 1), by & YW'((1 << m) - 1)))
+              index = LNW'(interleave(bx & XSW'((1 << m) - 1), by & YSW'((1 << m) - 1)))
                     | (((LNW'(bx) >> m) | (LNW'(by) >> m)) << (2 * m));
             end
             look_line[s][q*LNW +: LNW]   = level_base + index;
@@ -350,8 +312,8 @@ module tex_cached_fetch #(
             // one if both are equal; as masks: Verilator's C++ would branch on data), the parity
             // of its line (which tag bank has its line slot) and its offset in the bank word (of
             // the texel, or of the 4x4 block: docs/memory.md §2, tex_cache_data).
-            xs = x0 ^ ({XW{px0 ^ k[0]}} & (x0 ^ x1));
-            ys = y0 ^ ({YW{py0 ^ k[1]}} & (y0 ^ y1));
+            xs = x0 ^ ({XSW{px0 ^ k[0]}} & (x0 ^ x1));
+            ys = y0 ^ ({YSW{py0 ^ k[1]}} & (y0 ^ y1));
             bank_block[s][k*2 +: 2] = {(py0 == k[1]) ? by0[0] : by1[0], (px0 == k[0]) ? bx0[0] : bx1[0]};
             bank_offset[s][k*OFW +: OFW] =
                 OFW'((((32'(ys) >> pq) & ((32'd1 << (lbh - VW'(pq))) - 1)) << (lbw - VW'(pq)))
@@ -544,7 +506,7 @@ module tex_cached_fetch #(
   //                    bursts open are those accepted less those fully received (accounting)
   //   r_ready        - a beat is taken only with room for its line (at most FILL_DEPTH lines held)
   logic             f_req_stalled;
-  logic [AW-1:0]    f_req_addr;
+  logic [tex_pkg::MEM_ADDR_W-1:0] f_req_addr;
   logic [MCW:0]     f_open;  // bursts accepted, last beat not yet taken
   always_ff @(posedge clk) begin
     f_req_stalled <= !rst && mem_req_valid && !mem_req_ready;

@@ -25,6 +25,7 @@ rtl/tex_bc7.sv
 rtl/tex_bc_decode.sv
 rtl/tex_srgb_decode.sv
 rtl/tex_cache_data.sv
+rtl/tex_desc_table.sv
 rtl/tex_cached_fetch.sv
 rtl/tex_unit_cached.sv
 rtl/tex_axil_config.sv

@@ -105,7 +105,8 @@ module tex_unit_axi #(
   logic                              cfg_desc_we, cfg_desc_srgb, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_aniso_pow2;
   logic [tex_pkg::TEX_ID_W-1:0]      cfg_desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base;
-  logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_log2_w, cfg_desc_log2_h;
+  logic [tex_pkg::SIZE_W-1:0]        cfg_desc_w, cfg_desc_h;
+  logic                              cfg_desc_ready;
   logic                              cfg_smp_we;
   logic [tex_pkg::SMP_ID_W-1:0]      cfg_smp_index;
   logic [tex_pkg::WRAP_W-1:0]        cfg_smp_wrap_u, cfg_smp_wrap_v;
@@ -136,7 +137,7 @@ module tex_unit_axi #(
     .s_axi_rresp(s_axi_rresp),
     .unit_rst(unit_rst),
     .cfg_desc_we(cfg_desc_we), .cfg_desc_index(cfg_desc_index), .cfg_desc_base(cfg_desc_base),
-    .cfg_desc_log2_w(cfg_desc_log2_w), .cfg_desc_log2_h(cfg_desc_log2_h),
+    .cfg_desc_w(cfg_desc_w), .cfg_desc_h(cfg_desc_h), .cfg_desc_ready(cfg_desc_ready),
     .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
     .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
@@ -160,7 +161,7 @@ module tex_unit_axi #(
   ) u_unit (
     .clk(clk), .rst(rst || unit_rst),  // (rst too: unit_rst is a register, random in the first clock)
     .cfg_desc_we(cfg_desc_we), .cfg_desc_index(cfg_desc_index), .cfg_desc_base(cfg_desc_base),
-    .cfg_desc_log2_w(cfg_desc_log2_w), .cfg_desc_log2_h(cfg_desc_log2_h),
+    .cfg_desc_w(cfg_desc_w), .cfg_desc_h(cfg_desc_h), .cfg_desc_ready(cfg_desc_ready),
     .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
     .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),

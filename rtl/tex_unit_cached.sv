@@ -32,15 +32,18 @@
 //                      unorm16). Written before the requests that name the entry; requests of
 //                      different samplers interleave freely (no flush: the fields ride with
 //                      each request).
-//   cfg_desc_*       : a descriptor write (cfg_desc_we high for one clock): entry cfg_desc_index
-//                      is the pyramid at byte address cfg_desc_base (MEM_ADDR_W bits, line
-//                      aligned) of 2^cfg_desc_log2_w x 2^cfg_desc_log2_h texels (a full chain of
-//                      levels, docs/memory.md §1) in format cfg_desc_format (tex_pkg::FMT_*: RGBA, or with BLOCK_FORMATS a
+//   cfg_desc_*       : a descriptor write (cfg_desc_we high for one clock, while cfg_desc_ready):
+//                      entry cfg_desc_index is the pyramid at byte address cfg_desc_base
+//                      (MEM_ADDR_W bits, line aligned) of cfg_desc_w x cfg_desc_h texels (1 to
+//                      2^MAX_LOG2_W x 2^MAX_LOG2_H, any size; a full chain of levels of GL's sizes,
+//                      docs/memory.md §1) in format cfg_desc_format (tex_pkg::FMT_*: RGBA, or with BLOCK_FORMATS a
 //                      block format, decoded after the cache to unorm8 texels; docs/memory.md §1),
 //                      its R, G, B sRGB-encoded if cfg_desc_srgb (SRGB only; not BC4, BC5).
 //                      Written before the requests that name the entry (and rewritten between
 //                      frames, with no request of that entry in flight); the caches need no flush
-//                      (they are tagged by address).
+//                      (they are tagged by address). The unit then sets the entry up (its levels'
+//                      first lines and pitches, tex_desc_table): cfg_desc_ready (a register
+//                      output) is low and req_ready is low for 1 + 2^LEVEL_W clocks.
 //   cfg_block_morton : 0 row-major, 1 Morton order of a level's blocks
 //   cfg_log2_sets, cfg_log2_ways : geometry of each cache (sets >= 4, sets * ways <= LINES)
 //   cfg_fifo_limit   : samples the FIFO holds at most, 1..FIFO_DEPTH (0 or more: FIFO_DEPTH), to
@@ -81,10 +84,11 @@ module tex_unit_cached #(
   input  logic                                   cfg_desc_we,
   input  logic [tex_pkg::TEX_ID_W-1:0]           cfg_desc_index,
   input  logic [tex_pkg::MEM_ADDR_W-1:0]         cfg_desc_base,
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_desc_log2_w,
-  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_desc_log2_h,
+  input  logic [tex_pkg::SIZE_W-1:0]             cfg_desc_w,
+  input  logic [tex_pkg::SIZE_W-1:0]             cfg_desc_h,
   input  logic [tex_pkg::FORMAT_W-1:0]           cfg_desc_format,
   input  logic                                   cfg_desc_srgb,
+  output logic                                   cfg_desc_ready,
   input  logic                                   cfg_smp_we,
   input  logic [tex_pkg::SMP_ID_W-1:0]           cfg_smp_index,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_u,
@@ -232,31 +236,37 @@ module tex_unit_cached #(
   end
 
   // ---------------------------------------------------------------- texture descriptors
-  // A descriptor write is registered, then written: the size here (read by the request port and
-  // by the front), the level bases in tex_cached_fetch.
+  // The table and its set-up (tex_desc_table): sizes read at the request port and by the front,
+  // level entries and format by the tag stage. While a descriptor is set up, no request is taken.
   localparam int TXW = (TEXTURES > 1) ? $clog2(TEXTURES) : 1;
-  localparam int ZW = 2*VW;
-  logic                           desc_we_q;
-  logic [TXW-1:0]                 desc_index_q;
-  logic [tex_pkg::MEM_ADDR_W-1:0] desc_base_q;
-  logic [ZW-1:0]                  desc_size_q;             // {log2 h, log2 w}
-  logic [tex_pkg::FORMAT_W-1:0]   desc_format_q;
-  logic                           desc_srgb_q;
-  logic [ZW-1:0]                  desc_size [TEXTURES];
-  always_ff @(posedge clk) begin
-    desc_we_q    <= !rst && cfg_desc_we;
-    desc_index_q <= TXW'(cfg_desc_index);
-    desc_base_q  <= cfg_desc_base;
-    desc_size_q  <= {cfg_desc_log2_h, cfg_desc_log2_w};
-    desc_format_q <= cfg_desc_format;
-    desc_srgb_q   <= cfg_desc_srgb;
-    if (desc_we_q) desc_size[desc_index_q] <= desc_size_q;
-  end
-  // The request's entry: its texture's size for tex_probe's LOD unit (taken with the request).
-  // The table keeps log2 sizes (power-of-two textures); tex_probe and tex_front take sizes.
-  localparam int NW = tex_pkg::SIZE_W;
-  logic [ZW-1:0] req_size;
-  assign req_size = desc_size[TXW'(req_tex)];
+  localparam int NW  = tex_pkg::SIZE_W;
+  localparam int ZW  = 2*NW;
+  localparam int PTW = ((MLW > MLH) ? MLW : MLH) + 1;
+  localparam int LNW = tex_pkg::MEM_ADDR_W - $clog2(LINE_BITS / 8);
+  logic            desc_busy;
+  logic [ZW-1:0]   req_size, probe_size;     // {h, w}
+  logic [TXW-1:0]  probe_tex, tex_s4;        // the probe's texture; the tag stage's
+  logic [2*VW-1:0] level_s4;
+  logic [2*LNW-1:0] line_s4;
+  logic [2*PTW-1:0] pitch_s4;
+  logic [2*VW-1:0] square_s4;
+  logic [tex_pkg::FORMAT_W-1:0] format_s4;
+  logic            srgb_s4;
+  logic [VW-1:0]   log2_lw_s4, log2_lh_s4;
+  tex_desc_table #(
+    .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .TEXTURES(TEXTURES), .BW(BLOCK_W), .BH(BLOCK_H),
+    .LINE_BYTES(LINE_BITS / 8), .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB)
+  ) u_desc (
+    .clk(clk), .rst(rst), .desc_we(cfg_desc_we), .desc_index(TXW'(cfg_desc_index)),
+    .desc_base(cfg_desc_base), .desc_w(cfg_desc_w), .desc_h(cfg_desc_h),
+    .desc_format(cfg_desc_format), .desc_srgb(cfg_desc_srgb), .block_morton(cfg_block_morton_q),
+    .busy(desc_busy),
+    .size_tex_a(TXW'(req_tex)), .size_a(req_size), .size_tex_b(probe_tex), .size_b(probe_size),
+    .tag_tex(tex_s4), .tag_level(level_s4), .tag_line(line_s4), .tag_pitch(pitch_s4),
+    .tag_square(square_s4), .tag_format(format_s4), .tag_srgb(srgb_s4),
+    .tag_log2_lw(log2_lw_s4), .tag_log2_lh(log2_lh_s4)
+  );
+  assign cfg_desc_ready = !desc_busy;
 
   // ---------------------------------------------------------------- sampler table
   // A sampler write is registered, then written, in three parts by the clock that reads them:
@@ -289,20 +299,21 @@ module tex_unit_cached #(
 
   // ---------------------------------------------------------------- requests 1-4: tex_probe
   logic en_front, en_back;
+  logic probe_ready;  // tex_probe takes a request (while no descriptor is being set up)
+  assign req_ready = probe_ready && !desc_busy;
   logic                                   probe_valid, probe_first, probe_last;
   logic [4:0]                             probe_n;
   logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u, probe_v;
   logic signed [tex_pkg::LOD_W-1:0]       probe_lod, probe_bias;
   logic [TGW-1:0]                         probe_tag;
-  logic [TXW-1:0]                         probe_tex;   // the probe's texture (with the tag)
   logic [SXW-1:0]                         probe_smp;   // and its sampler
   logic [2:0]                             probe_held;  // requests in tex_probe
   tex_probe #(.TAG_W(SXW + TXW + TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front),
-    .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
+    .req_valid(req_valid && !desc_busy), .req_ready(probe_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
-    .req_dvdy(req_dvdy), .req_w(NW'(1) << req_size[0 +: VW]), .req_h(NW'(1) << req_size[VW +: VW]),
+    .req_dvdy(req_dvdy), .req_w(req_size[0 +: NW]), .req_h(req_size[NW +: NW]),
     .req_max_aniso_m1(req_aniso[3:0]), .req_aniso_pow2(req_aniso[4]),
     .req_tag({SXW'(req_sampler), TXW'(req_tex), req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
@@ -310,11 +321,8 @@ module tex_unit_cached #(
     .probe_tag({probe_smp, probe_tex, probe_tag}),
     .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
   );
-  // The probe's entries: its texture's size and its sampler's fields for the front (taken at its
-  // clock 1).
-  logic [ZW-1:0]  probe_size;
+  // The probe's sampler's fields for the front (taken at its clock 1; its texture's size likewise).
   logic [FRW-1:0] probe_smp_front;
-  assign probe_size      = desc_size[probe_tex];
   assign probe_smp_front = smp_front[probe_smp];
 
   // ---------------------------------------------------------------- front: probe clocks 1-4
@@ -324,7 +332,7 @@ module tex_unit_cached #(
   // delayed-write shadow copy in every clock in Verilator, a narrow register does not.
   logic [4:1] valid_f;             // the front's clock-n register holds a probe
   logic [SW-1:0] tag_f1, tag_f2, tag_f3, tag_f4;  // clock n's probe
-  logic [4*TXW-1:0] tex_f;         // clock n's texture at [(n-1)*TXW +: TXW] (for the level bases)
+  logic [4*TXW-1:0] tex_f;         // clock n's texture at [(n-1)*TXW +: TXW] (for the level entries)
   logic [4*SXW-1:0] smp_f;         // and its sampler (for the border colour)
   always_ff @(posedge clk) begin
     if (rst) valid_f <= '0;
@@ -339,17 +347,16 @@ module tex_unit_cached #(
     end
   end
 
-  logic [2*VW-1:0] level_s4;
+  assign tex_s4 = tex_f[3*TXW +: TXW];
   logic [WB-1:0]   f_s4;
   logic [4*WB-1:0] w_s4;
-  logic [4*NW-1:0] size_s4;       // the slots' level sizes (powers of two here)
-  logic [4*VW-1:0] log2_size_s4;   // their log2, for the tag stage's block arithmetic
+  logic [4*NW-1:0] size_s4;       // the slots' level sizes
   logic [4*XW-1:0] x;
   logic [4*YW-1:0] y;
   logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside its level (mode border)
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
-    .req_w(NW'(1) << probe_size[0 +: VW]), .req_h(NW'(1) << probe_size[VW +: VW]),
+    .req_w(probe_size[0 +: NW]), .req_h(probe_size[NW +: NW]),
     .req_wrap_u(probe_smp_front[0 +: WW]), .req_wrap_v(probe_smp_front[WW +: WW]),
     .req_min_linear(probe_smp_front[2*WW]), .req_mag_linear(probe_smp_front[2*WW + 1]),
     .req_mip_mode(probe_smp_front[2*WW + 2 +: PW]), .req_lod_bias(probe_smp_front[2*WW + 2 + PW +: LW]),
@@ -358,11 +365,6 @@ module tex_unit_cached #(
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .border_x(border_x), .border_y(border_y)
   );
-  always_comb begin  // log2 of a power of two: the position of its one bit
-    log2_size_s4 = '0;
-    for (int i = 0; i < 4; i++)
-      for (int b = 1; b < NW; b++) if (size_s4[i*NW + b]) log2_size_s4[i*VW +: VW] = VW'(b);
-  end
 
   // ---------------------------------------------------------------- AXI4 read master
   // The miss ring's line reads and the fill FIFO's beats are the AR and R channels: one INCR burst
@@ -397,19 +399,17 @@ module tex_unit_cached #(
   tex_cached_fetch #(
     .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .CW(CWD), .TAG_W(SW), .BW(BLOCK_W), .BH(BLOCK_H),
     .LINES(LINES), .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH),
-    .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W), .TEXTURES(TEXTURES), .SAMPLERS(SAMPLERS),
+    .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W), .SAMPLERS(SAMPLERS),
     .BLOCK_FORMATS(BLOCK_FORMATS),
     .SRGB(SRGB)
   ) u_fetch (
     .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
-    .front_valid(valid_f[4]), .front_tag(tag_f4), .front_tex(tex_f[3*TXW +: TXW]),
-    .front_smp(smp_f[3*SXW +: SXW]), .level(level_s4),
-    .f(f_s4), .w(w_s4), .log2_size(log2_size_s4), .x(x), .y(y),
+    .front_valid(valid_f[4]), .front_tag(tag_f4), .front_smp(smp_f[3*SXW +: SXW]), .level_odd(level_s4[0]),
+    .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
+    .front_line(line_s4), .front_pitch(pitch_s4), .front_square(square_s4), .front_format(format_s4),
+    .front_srgb(srgb_s4), .front_log2_lw(log2_lw_s4), .front_log2_lh(log2_lh_s4),
     .border_x(border_x), .border_y(border_y),
     .smp_we(smp_we_q), .smp_index(smp_index_q), .smp_border_rgba(smp_border_q),
-    .desc_we(desc_we_q), .desc_index(desc_index_q), .desc_base(desc_base_q),
-    .desc_log2_w(desc_size_q[0 +: VW]), .desc_log2_h(desc_size_q[VW +: VW]), .desc_format(desc_format_q),
-    .desc_srgb(desc_srgb_q),
     .cfg_block_morton(cfg_block_morton_q), .cfg_log2_sets(cfg_log2_sets_q),
     .cfg_log2_ways(cfg_log2_ways_q), .cfg_fifo_limit(cfg_fifo_limit_q),
     .mem_req_valid(mem_req_valid), .mem_req_ready(mem_req_ready), .mem_req_addr(mem_req_addr),
@@ -535,6 +535,13 @@ module tex_unit_cached #(
       assert (32'(cfg_desc_index) < TEXTURES)
         else $error("tex_unit_cached: cfg_desc_index %0d is beyond the descriptor table (TEXTURES = %0d)",
                     cfg_desc_index, TEXTURES);
+    if (!rst && cfg_desc_we)
+      assert (cfg_desc_ready)
+        else $error("tex_unit_cached: cfg_desc_we while cfg_desc_ready is low (the last descriptor is being set up)");
+    if (!rst && cfg_desc_we)
+      assert (cfg_desc_w >= 1 && 32'(cfg_desc_w) <= (1 << MLW) && cfg_desc_h >= 1 && 32'(cfg_desc_h) <= (1 << MLH))
+        else $error("tex_unit_cached: cfg_desc_w x cfg_desc_h = %0d x %0d is not 1..%0d x 1..%0d",
+                    cfg_desc_w, cfg_desc_h, 1 << MLW, 1 << MLH);
     if (!rst && cfg_desc_we)
       assert (cfg_desc_format == tex_pkg::FMT_RGBA8
               || (BLOCK_FORMATS != 0 && cfg_desc_format != 3'd6))

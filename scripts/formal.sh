@@ -20,7 +20,8 @@
 #       slverr       - a write to an undefined or read-only address, or with WSTRB != 4'b1111,
 #                      answers SLVERR; a read of an undefined address SLVERR with RDATA 0;
 #       nochange     - a SLVERR write changes no output and clears no counter;
-#       desc         - cfg_desc_we is one clock, exactly at each accepted DESC_COMMIT write.
+#       desc         - cfg_desc_we is one clock, exactly at each accepted DESC_COMMIT write, and
+#                      only when the unit was ready (cfg_desc_ready) in the clock of the write.
 #     tex_cached_fetch (tex_unit_cached's AXI4 read master: 2x2-texel lines, 16 lines, miss ring
 #     16, fill FIFO 1, 64-bit beats; tag answers, line numbers and bank words cut; the slave
 #     assumed to send no beat without an open burst), BMC from reset and k-induction, of
@@ -181,7 +182,7 @@ proof axil tex_axil_config_formal "$AXIL_PARAMS" "tex_axil_config $AXIL_CFG" $AX
   "rone (one R per taken AR; none without it)" \
   "slverr (undefined or read-only address, partial WSTRB: SLVERR; undefined read: SLVERR, 0)" \
   "nochange (a SLVERR write changes no output, clears no counter)" \
-  "desc (cfg_desc_we: one clock, exactly at each accepted DESC_COMMIT, with its index)"
+  "desc (cfg_desc_we: one clock, exactly at each accepted DESC_COMMIT, with its index, only with cfg_desc_ready)"
 structural "tex_axil_config: no combinational path from any input to any output" \
   tex_axil_config "$UNIT_ANY"
 proof cached tex_cached_fetch_formal "$CACHED_PARAMS" "tex_cached_fetch $CACHED_CFG" $CACHED_BMC \
@@ -262,7 +263,7 @@ mutant axil_bdrop "tex_axil_config drops BVALID without BREADY" \
 mutant axil_rdata "tex_axil_config reloads RDATA while the response waits (a new ARVALID)" \
   rhold tex_axil_config.sv 's/    if (ar_take) begin/    if (ar_take || s_axi_arvalid) begin/'
 mutant axil_no_w "tex_axil_config writes (and answers) when AW comes, without waiting for W" \
-  bone tex_axil_config.sv 's/assign do_write = (aw_full || aw_take) \&\& (w_full || w_take);/assign do_write = aw_full || aw_take;/'
+  bone tex_axil_config.sv 's/assign do_write = (aw_full || aw_take) \&\& (w_full || w_take) \&\& !desc_wait;/assign do_write = (aw_full || aw_take) \&\& !desc_wait;/'
 mutant axil_ar_busy "tex_axil_config takes AR while an R response waits (one response lost)" \
   rone tex_axil_config.sv "s/assign s_axi_arready = !rvalid;/assign s_axi_arready = 1'b1;/"
 mutant axil_undef "tex_axil_config answers OKAY to a write to an undefined address" \
@@ -277,6 +278,8 @@ mutant axil_desc "tex_axil_config pulses cfg_desc_we on a DESC_ATTR write too" \
   desc tex_axil_config.sv 's/desc_we <= wr_en \&\& sel_commit;/desc_we <= wr_en \&\& (sel_commit || sel_attr);/'
 mutant axil_desc_held "tex_axil_config holds cfg_desc_we high after a commit" \
   desc tex_axil_config.sv 's/desc_we <= wr_en \&\& sel_commit;/desc_we <= desc_we || (wr_en \&\& sel_commit);/'
+mutant axil_desc_ready "tex_axil_config commits while the unit sets up the last descriptor (cfg_desc_ready ignored)" \
+  desc tex_axil_config.sv 's/ \&\& !desc_wait;/;/'
 mutant axil_smp "tex_axil_config pulses cfg_smp_we on a FILTER write too (a half-staged sampler written)" \
   smp tex_axil_config.sv 's/smp_we  <= wr_en \&\& sel_smp_commit;/smp_we  <= wr_en \&\& (sel_smp_commit || sel_filter);/'
 mutant axil_comb "tex_axil_config AWREADY = !aw_full && (!bvalid || BREADY) (combinational path)" \

@@ -1,5 +1,6 @@
 // Formal environment of tex_axil_config (scripts/formal.sh): a reset in the first clock, then every
-// input free in every clock (further resets, BREADY, RREADY, the counters' events) except that the
+// input free in every clock (further resets, BREADY, RREADY, the counters' events, the unit's
+// cfg_desc_ready) except that the
 // AXI4-Lite master keeps the protocol's rules (AMBA AXI A3.2.1): AWVALID, WVALID and ARVALID,
 // once high, stay high with their payload unchanged until the handshake (a reset releases them).
 // The properties are tex_axil_config's own, under `ifdef FORMAL in rtl/tex_axil_config.sv.
@@ -26,7 +27,8 @@ module tex_axil_config_formal #(
   input logic              stat_mem_beat,
   input logic              stat_out_stall,
   input logic              stat_mem_wait,
-  input logic              stat_req_stall
+  input logic              stat_req_stall,
+  input logic              cfg_desc_ready
 );
   logic s_axi_awready, s_axi_wready, s_axi_bvalid, s_axi_arready, s_axi_rvalid;
   logic [1:0] s_axi_bresp, s_axi_rresp;
@@ -43,8 +45,8 @@ module tex_axil_config_formal #(
     .s_axi_bvalid, .s_axi_bready, .s_axi_bresp,
     .s_axi_arvalid, .s_axi_arready, .s_axi_araddr, .s_axi_arprot,
     .s_axi_rvalid, .s_axi_rready, .s_axi_rdata, .s_axi_rresp,
-    .unit_rst(), .cfg_desc_we(), .cfg_desc_index(), .cfg_desc_base(), .cfg_desc_log2_w(),
-    .cfg_desc_log2_h(), .cfg_desc_format(), .cfg_desc_srgb(), .cfg_smp_we(), .cfg_smp_index(),
+    .unit_rst(), .cfg_desc_we(), .cfg_desc_index(), .cfg_desc_base(), .cfg_desc_w(),
+    .cfg_desc_h(), .cfg_desc_ready(cfg_desc_ready), .cfg_desc_format(), .cfg_desc_srgb(), .cfg_smp_we(), .cfg_smp_index(),
     .cfg_smp_wrap_u(), .cfg_smp_wrap_v(), .cfg_smp_min_linear(), .cfg_smp_mag_linear(), .cfg_smp_mip_mode(),
     .cfg_smp_lod_bias(), .cfg_smp_min_lod(), .cfg_smp_max_lod(), .cfg_smp_max_aniso_m1(), .cfg_smp_aniso_pow2(),
     .cfg_smp_border_rgba(), .cfg_block_morton(),

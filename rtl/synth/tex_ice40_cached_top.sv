@@ -52,7 +52,7 @@ module tex_ice40_cached_top #(
   output logic rsp_valid,
   output logic sout
 );
-  localparam int VW = tex_pkg::LEVEL_W;
+  localparam int NW = tex_pkg::SIZE_W;
   localparam int WW = tex_pkg::WRAP_W;
   localparam int MW = tex_pkg::MIP_W;
   localparam int LW = tex_pkg::LOD_W;
@@ -65,9 +65,9 @@ module tex_ice40_cached_top #(
   // Field offsets in the input shift register, in port order.
   localparam int O_DWE     = 0;
   localparam int O_DINDEX  = O_DWE + 1;
-  localparam int O_LOG2_W  = O_DINDEX + XW;
-  localparam int O_LOG2_H  = O_LOG2_W + VW;
-  localparam int O_FORMAT  = O_LOG2_H + VW;
+  localparam int O_DESC_W  = O_DINDEX + XW;
+  localparam int O_DESC_H  = O_DESC_W + NW;
+  localparam int O_FORMAT  = O_DESC_H + NW;
   localparam int O_SRGB    = O_FORMAT + tex_pkg::FORMAT_W;
   localparam int O_SWE     = O_SRGB + 1;
   localparam int O_SINDEX  = O_SWE + 1;
@@ -105,7 +105,7 @@ module tex_ice40_cached_top #(
 
   logic [4*CW-1:0]  rsp_rgba;
   logic [TAG_W-1:0] rsp_tag;
-  logic             arvalid, rready, rsp_error, stat_mem_wait, arid;
+  logic             arvalid, rready, rsp_error, stat_mem_wait, arid, desc_ready;
   logic [AW-1:0]    araddr;
   logic [7:0]       arlen;
   logic [2:0]       arsize, arprot;
@@ -118,7 +118,7 @@ module tex_ice40_cached_top #(
   ) u_unit (
     .clk(clk), .rst(rst),
     .cfg_desc_we(in_bits[O_DWE]), .cfg_desc_index(in_bits[O_DINDEX +: XW]),
-    .cfg_desc_log2_w(in_bits[O_LOG2_W +: VW]), .cfg_desc_log2_h(in_bits[O_LOG2_H +: VW]),
+    .cfg_desc_w(in_bits[O_DESC_W +: NW]), .cfg_desc_h(in_bits[O_DESC_H +: NW]), .cfg_desc_ready(desc_ready),
     .cfg_desc_format(in_bits[O_FORMAT +: tex_pkg::FORMAT_W]), .cfg_desc_srgb(in_bits[O_SRGB]),
     .cfg_desc_base(in_bits[O_BASE +: AW]), .req_tex(in_bits[O_TEX +: XW]),
     .req_sampler(in_bits[O_SMP +: tex_pkg::SMP_ID_W]),
@@ -150,5 +150,5 @@ module tex_ice40_cached_top #(
   );
   always_ff @(posedge clk)
     sout <= ^{rsp_rgba, rsp_tag, rsp_error, arvalid, rready, araddr, arlen, arsize, arburst, arid, arcache,
-              arprot, stat_lookups, stat_misses, stat_mem_wait};
+              arprot, stat_lookups, stat_misses, stat_mem_wait, desc_ready};
 endmodule

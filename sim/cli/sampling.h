@@ -127,7 +127,7 @@ struct SamplingOptions {
     cmd.add_option("--lod-bias", lod_bias, "added to lambda before the clamp, in levels")->capture_default_str();
     cmd.add_option("--min-lod", min_lod, "lambda clamp, in levels")->capture_default_str();
     cmd.add_option("--max-lod", max_lod, "lambda clamp, in levels")->capture_default_str();
-    cmd.add_flag("--resize", resize, "resample a texture whose sides are not powers of two to the nearest ones (the model samples any size; the RTL engines take powers of two)");
+    cmd.add_flag("--resize", resize, "resample a texture whose sides are not powers of two to the nearest ones (no longer needed: every engine samples any size)");
     cmd.add_option("--stalls", stalls,
                    "none | random | heavy: input gaps and output stalls of cycle-accurate engines (none = ideal "
                    "timing, what the hardware sustains)")

@@ -385,7 +385,7 @@ int main(int argc, char** argv) {
   mip->add_option("--texture,-t", mip_texture, "image file, DDS/KTX/KTX2 texture file, or pattern NAME[:WxH]")
       ->capture_default_str();
   mip->add_option("--pyramid", mip_mode, "exact | cascade")->capture_default_str();
-  mip->add_flag("--resize", mip_resize, "resample a texture whose sides are not powers of two to the nearest ones (the model samples any size; the RTL engines take powers of two)");
+  mip->add_flag("--resize", mip_resize, "resample a texture whose sides are not powers of two to the nearest ones (no longer needed: every engine samples any size)");
   mip->add_flag("--srgb", mip_srgb, "the texture's R, G, B are sRGB codes: the pyramid averaged in linear space, "
                 "levels and memory image in sRGB codes");
   CLI::Option* mip_format_opt = mip->add_option("--format", mip_format,

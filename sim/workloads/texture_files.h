@@ -25,9 +25,8 @@ bool is_texture_file(const std::string& path);
 
 // Reads every level the file has: one, or the whole chain down to 1x1. Throws tex::Error, one line
 // naming the file and the value, for: a truncated file or bytes after the last level, a format
-// this unit does not read (its DXGI, GL or Vulkan name), a cube map, array or volume, sides that
-// are not powers of two (or, for a block format, not multiples of 4 at level 0), a partial mip
-// chain (the level count named), KTX2 supercompression, sRGB on BC4/BC5.
+// this unit does not read (its DXGI, GL or Vulkan name), a cube map, array or volume, sides of 0
+// or above 8192 (or, for a block format, not multiples of 4 at level 0), a partial mip chain (the level count named), KTX2 supercompression, sRGB on BC4/BC5.
 TextureFile read_texture_file(const std::string& path);
 
 // The pyramid of a texture file: its levels as stored, decoded for the sampler (an sRGB format's

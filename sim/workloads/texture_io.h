@@ -10,8 +10,8 @@ namespace tex {
 
 // A texture is a file that OpenImageIO reads, or a built-in pattern: NAME or NAME:WxH
 // (default 512x512). Files become RGBA8 (gray -> RGB, missing alpha -> opaque).
-// Sizes must be powers of two from 1 to 8192 per side; with resize = true other sizes are
-// resampled (OpenImageIO, to the nearest power of two, at most 8192). Values of float images
+// Sizes may be anything from 1 to 8192 per side; with resize = true a side that is not a power of
+// two is resampled (OpenImageIO, to the nearest power of two, at most 8192). Values of float images
 // outside 0..1 are clamped, with one note on stderr. Throws tex::Error.
 Image load_texture(const std::string& spec, bool resize = false);
 

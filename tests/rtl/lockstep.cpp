@@ -179,12 +179,12 @@ std::vector<Request> random_requests(std::mt19937_64& rng, Extent size, size_t n
   return r;
 }
 
-Pyramid random_block_texture(TexelFormat format, int lw, int lh, uint64_t seed) {
+Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::vector<std::vector<uint8_t>> blocks;
   const int bytes = format_info(format).block_bytes;
-  for (int k = 0; k < level_count({1 << lw, 1 << lh}); ++k) {
-    const Extent s = level_extent({1 << lw, 1 << lh}, k);
+  for (int k = 0; k < level_count(size); ++k) {
+    const Extent s = level_extent(size, k);
     std::vector<uint8_t>& level = blocks.emplace_back(level_bytes(format, s.width(), s.height()));
     for (uint8_t& b : level) b = uint8_t(rng());
     if (format == TexelFormat::Bc7)
@@ -193,7 +193,7 @@ Pyramid random_block_texture(TexelFormat format, int lw, int lh, uint64_t seed) 
         level[i] = r == 15 ? 0 : uint8_t((level[i] << (mode + 1)) | (1 << mode));
       }
   }
-  return pyramid_of_blocks(format, {1 << lw, 1 << lh}, std::move(blocks));
+  return pyramid_of_blocks(format, size, std::move(blocks));
 }
 
 Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis) {

@@ -82,7 +82,7 @@ rtl::Timing random_timing(std::mt19937_64& rng, std::string& name);
 
 // A 2^lw x 2^lh texture (sides >= 4) of random blocks of a block format, every level: each BC7
 // block in a random one of its 8 modes and 1 in 16 in the reserved mode (decoded to 0).
-Pyramid random_block_texture(TexelFormat format, int lw, int lh, uint64_t seed);
+Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed);
 
 // The six filters (texel filter x mip mode) and three wrap modes.
 std::vector<Filter> all_filters();

@@ -574,7 +574,7 @@ std::vector<Request> random_requests(std::mt19937_64& rng, const TextureTable& t
   for (size_t i = 0; i < n; ++i) {
     if (rng() % 4 != 0) tex = uint8_t(rng() % table.size());  // mostly a new texture, runs now and then
     if (rng() % 4 != 0) smp = uint8_t(rng() % samplers);      // and a new sampler
-    const int lw = log2_exact(table[tex].pyramid->extent0().w), lh = log2_exact(table[tex].pyramid->extent0().h), last = std::max(lw, lh);
+    const int lw = log2_ceil(table[tex].pyramid->extent0().w), lh = log2_ceil(table[tex].pyramid->extent0().h), last = std::max(lw, lh);
     Request& r = out[i];
     if (rng() % 4 == 0) r = footprint(rng, lw, lh);
     r.u = coordinate(rng, lw, last);
@@ -588,8 +588,8 @@ std::vector<Request> random_requests(std::mt19937_64& rng, const TextureTable& t
   return out;
 }
 
-Pyramid random_pyramid(int lw, int lh, uint64_t seed) {
-  Image img(1 << lw, 1 << lh, 8);
+Pyramid random_pyramid(Extent size, uint64_t seed) {
+  Image img(size.w, size.h, 8);
   std::mt19937_64 rng(seed);
   for (Texel& t : img.texels)
     for (uint16_t& c : t) c = uint16_t(rng() & 255);
@@ -621,7 +621,8 @@ SamplerConfig random_sampler(std::mt19937_64& rng) {
   return s;
 }
 
-// A random case: 2 to 4 textures (the first of the largest size), 1 to 16 random samplers, block
+// A random case: 2 to 4 textures (the first of the largest size; of the others half any size, half
+// powers of two), 1 to 16 random samplers, block
 // order, base, cache geometry, FIFO limit, memory and stimulus.
 Case random_case(uint64_t seed, size_t requests, bool errors) {
   std::mt19937_64 rng(seed);
@@ -629,8 +630,10 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
   const int n = 2 + int(rng() % (kTextures - 1));
   c.pyramids.reserve(size_t(n));
   for (int i = 0; i < n; ++i) {
-    const int lw = i == 0 ? kMaxLog2W : int(rng() % (kMaxLog2W + 1)), lh = i == 0 ? kMaxLog2H : int(rng() % (kMaxLog2H + 1));
-    c.pyramids.push_back(random_pyramid(lw, lh, rng()));
+    Extent size{1 << kMaxLog2W, 1 << kMaxLog2H};
+    if (i > 0 && rng() % 2) size = {1 << (rng() % (kMaxLog2W + 1)), 1 << (rng() % (kMaxLog2H + 1))};
+    else if (i > 0) size = {1 + int(rng() % (1u << kMaxLog2W)), 1 + int(rng() % (1u << kMaxLog2H))};
+    c.pyramids.push_back(random_pyramid(size, rng()));
     c.table.push_back({&c.pyramids.back()});
   }
   const int ns = rng() % 4 == 0 ? kSamplers : 1 + int(rng() % kSamplers);
@@ -713,17 +716,20 @@ void program(AxiTop& top, const Case& c, const std::vector<TextureDescriptor>& d
     const MemoryLayout& l = desc[i].layout;
     expect_write(kDescBase, l.params().base, kOkay, "DESC_BASE");
     expect_write(kDescAttr, desc_attr_word(l), kOkay, "DESC_ATTR");
+    expect_write(kDescSize, desc_size_word(l.size0()), kOkay, "DESC_SIZE");
     expect_write(kDescCommit, uint32_t(i), kOkay, "DESC_COMMIT");
     expect_read(kDescCommit, uint32_t(i), "DESC_COMMIT");
   }
-  // Refused commits: an entry beyond the table, a base off the line, a size beyond MAX_LOG2_W.
+  // Refused commits: an entry beyond the table, a base off the line, a size beyond MAX_LOG2_W, 0.
   const uint32_t last = uint32_t(desc.size() - 1);
   expect_write(kDescCommit, kTextures, kSlverr, "DESC_COMMIT beyond TEXTURES");
   expect_write(kDescBase, desc.back().layout.params().base + 4, kOkay, "DESC_BASE off the line");
   expect_write(kDescCommit, 0, kSlverr, "DESC_COMMIT of a base off the line");
   expect_write(kDescBase, desc.back().layout.params().base, kOkay, "DESC_BASE");
-  expect_write(kDescAttr, uint32_t(kMaxLog2W + 1), kOkay, "DESC_ATTR too wide");
+  expect_write(kDescSize, desc_size_word({(1 << kMaxLog2W) + 1, 1}), kOkay, "DESC_SIZE too wide");
   expect_write(kDescCommit, 0, kSlverr, "DESC_COMMIT of a texture beyond MAX_LOG2_W");
+  expect_write(kDescSize, desc_size_word({1, 0}), kOkay, "DESC_SIZE of height 0");
+  expect_write(kDescCommit, 0, kSlverr, "DESC_COMMIT of a texture of height 0");
   expect_read(kDescCommit, last, "DESC_COMMIT after the refused commits");
   // The sampler table: each entry staged, committed and read back.
   for (size_t i = 0; i < c.samplers.size(); ++i) {
@@ -977,7 +983,7 @@ TEST(RtlAxiTop, PlantedBugsAreCaught) {
   AxiTop top(11);
   Case c = random_case(0xBAD, 1500, false);
   c.samplers.assign(2, SamplerConfig{});  // trilinear, no LOD clamp
-  c.pyramids[1] = random_pyramid(5, 2, 3);  // (in place: the table points at it)
+  c.pyramids[1] = random_pyramid({32, 4}, 3);  // (in place: the table points at it)
   c.samplers[1].wrap_u = Wrap::Clamp;
   c.samplers[1].wrap_v = Wrap::Repeat;
   std::mt19937_64 rng(5);
@@ -1004,16 +1010,16 @@ TEST(RtlAxiTop, PlantedBugsAreCaught) {
   EXPECT_GT(right.flagged, 0u);
 }
 
-// The timing of a descriptor commit (docs/rtl-interface.md, "Descriptor commit": "a request may
-// name the entry from the second clock after s_axi_bvalid rises"): entry 0 rewritten from texture
-// 0 to texture 1's pyramid (another size), BREADY high at once, then requests naming entry 0 whose
-// first handshake comes `after` clocks after the B handshake's edge; their samples must be texture
-// 1's.
+// The timing of a descriptor commit (docs/rtl-interface.md, "Descriptor commit"): entry 0
+// rewritten from texture 0 to texture 1's pyramid (another size, 7x3), BREADY high at once, then
+// requests naming entry 0 offered `after` clocks after the B handshake's edge. The unit takes none
+// while it sets the entry up (req_ready low for 1 + 2^LEVEL_W clocks from the clock after
+// cfg_desc_we), so every sample is texture 1's, however soon it is offered.
 TEST(RtlAxiTop, RequestsRightAfterADescriptorCommit) {
   AxiTop top(13);
   Case c = random_case(0xC0, 200, false);
-  c.pyramids[0] = random_pyramid(6, 3, 1);
-  c.pyramids[1] = random_pyramid(3, 1, 2);
+  c.pyramids[0] = random_pyramid({64, 8}, 1);
+  c.pyramids[1] = random_pyramid({7, 3}, 2);
   ASSERT_EQ(run_case(top, c).first_mismatch, "");
   EngineOptions eo;
   eo.layout = c.layout;
@@ -1028,6 +1034,7 @@ TEST(RtlAxiTop, RequestsRightAfterADescriptorCommit) {
       const TextureDescriptor& e = desc[size_t(to)];
       EXPECT_EQ(top.write(kDescBase, e.layout.params().base), kOkay);
       EXPECT_EQ(top.write(kDescAttr, desc_attr_word(e.layout)), kOkay);
+      EXPECT_EQ(top.write(kDescSize, desc_size_word(e.layout.size0())), kOkay);
       top.bready_p = to == 1 ? 1.0 : 0.7;
       EXPECT_EQ(top.write(kDescCommit, 0, &d), kOkay);
       top.bready_p = 0.7;
@@ -1052,19 +1059,13 @@ TEST(RtlAxiTop, RequestsRightAfterADescriptorCommit) {
     top.run_until([&] { return top.stream_done(); }, 20000);
     top.end_stream();
     const uint64_t edges = top.first_request_edge() - d;
-    ASSERT_EQ(edges, uint64_t(2 + after));
-    std::printf("[ commit   ] first request's handshake %llu edges after the one where BVALID rose: %s\n",
-                (unsigned long long)edges, first.empty() ? "texture 1's samples" : ("the old entry's size: " + first).c_str());
-    // tex_unit_cached registers cfg_desc_we, then writes its table (docs/rtl-interface.md,
-    // "Descriptor commit"): the entry is there for a handshake at the 3rd edge after BVALID rose,
-    // not yet at the 2nd (the clock right after the B handshake), where the request still takes
-    // the entry's old size (64x8: lambda 3 instead of 0 for the first samples' derivatives).
-    if (edges >= 3) {
-      EXPECT_EQ(first, "") << "request " << edges << " edges after the commit";
-    } else {
-      EXPECT_NE(first, "") << "a request 2 edges after the commit took the new entry: docs/rtl-interface.md "
-                              "says it sees the old one";
-    }
+    // BVALID rises at edge d, cfg_desc_we is high after it, the unit registers it at d + 1 and is
+    // busy through edge d + 18: the first handshake is at edge d + 19.
+    constexpr uint64_t kSetupEdges = 2 + (1u << 4) + 1;
+    EXPECT_EQ(edges, kSetupEdges) << "offered " << after << " clocks after the B handshake";
+    std::printf("[ commit   ] offered %d clocks after the B handshake, taken %llu edges after BVALID rose: %s\n",
+                after, (unsigned long long)edges, first.empty() ? "texture 1's samples" : ("the old entry: " + first).c_str());
+    EXPECT_EQ(first, "") << "request " << edges << " edges after the commit";
     EXPECT_EQ(top.failure(), "");
   }
 }

@@ -8,7 +8,8 @@
 // (computed from the reference state at the handshake edge), a stalled B or R held with its
 // payload, no response without a request, AWREADY/WREADY/ARREADY low while a response waits,
 // every cfg_* pin and unit_rst equal to the reference registers, cfg_desc_we (cfg_smp_we) exactly
-// in the clock after each accepted DESC_COMMIT (SMP_COMMIT), and the counters (events registered, counted a clock later;
+// in the clock after each accepted DESC_COMMIT (SMP_COMMIT) — a DESC_COMMIT held while the unit's
+// cfg_desc_ready (random here) is low or a pulse is on the pins — and the counters (events registered, counted a clock later;
 // clear, freeze, the LO-then-HI latch) through every counter read.
 #include <gtest/gtest.h>
 
@@ -40,9 +41,9 @@ constexpr int kFifoLimitBits = 9;  // $clog2(FIFO_DEPTH + 1)
 
 // ---- the register map: sim/engines/rtl/register_map.h (RegisterMapHeaderMatchesTheRtl)
 using namespace tex::rtl::axil;
-constexpr std::array<uint32_t, 14> kWritable = {kControl, kCache, kFifoLimit, kFilter, kLodBias,
+constexpr std::array<uint32_t, 15> kWritable = {kControl, kCache, kFifoLimit, kFilter, kLodBias,
                                                 kMinLod,  kMaxLod, kDescBase, kDescAttr, kDescCommit,
-                                                kBorderRg, kBorderBa, kWrap, kSmpCommit};
+                                                kDescSize, kBorderRg, kBorderBa, kWrap, kSmpCommit};
 
 int log2i(int v) {
   int k = 0;
@@ -62,7 +63,7 @@ struct Reference {
   uint32_t control = 1;                      // unit_reset after reset
   uint32_t cache = (2u << 16) | (6u << 8);   // 4 ways, 64 sets (LINES / MAX_WAYS), row-major
   uint32_t fifo_limit = 0, filter = 0x23, lod_bias = 0, min_lod = 0x8000, max_lod = 0x7FFF;
-  uint32_t desc_base = 0, desc_attr = 0, desc_index = 0, border_rg = 0, border_ba = 0, wrap = 0, smp_index = 0;
+  uint32_t desc_base = 0, desc_attr = 0, desc_size = 0x00010001, desc_index = 0, border_rg = 0, border_ba = 0, wrap = 0, smp_index = 0;
   std::array<uint64_t, kCounters> counters{};
   Events ev_q;  // the registered events (counted at the next edge)
   bool snap_valid = false;
@@ -74,10 +75,10 @@ struct Reference {
     return ways <= log2i(kMaxWays) && sets >= 2 && sets + ways <= log2i(kLines);
   }
   bool descriptor_ok(uint32_t d) const {
-    const uint32_t index = d & 15, log2_w = desc_attr & 15, log2_h = (desc_attr >> 4) & 15;
+    const uint32_t index = d & 15, w = desc_size & 0x3FFF, h = (desc_size >> 16) & 0x3FFF;
     const uint32_t format = (desc_attr >> 16) & 7;
     const bool srgb = (desc_attr >> 19) & 1;
-    return index < kTextures && log2_w <= kMaxLog2W && log2_h <= kMaxLog2H &&
+    return index < kTextures && w >= 1 && w <= (1u << kMaxLog2W) && h >= 1 && h <= (1u << kMaxLog2H) &&
            (format == 0 || (kBlockFormats && format != 6)) && (!srgb || (kSrgb && format != 4 && format != 5)) &&
            desc_base % kLineBytes == 0;
   }
@@ -106,7 +107,8 @@ struct Reference {
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
       case kDescBase: desc_base = d; break;
-      case kDescAttr: desc_attr = d & 0xF00FF; break;
+      case kDescAttr: desc_attr = d & 0xF0000; break;
+      case kDescSize: desc_size = d & 0x3FFF3FFF; break;
       case kWrap: wrap = d & 0x77; break;
       case kSmpCommit: smp_index = d & 15; break;
       case kBorderRg: border_rg = d; break;
@@ -142,7 +144,7 @@ struct Reference {
     }
     switch (a) {
       case kId: return {0x54455855u, kOkay};
-      case kVersion: return {0x00020000u, kOkay};
+      case kVersion: return {0x00030000u, kOkay};
       case kCaps0: return {caps0(), kOkay};
       case kCaps1: return {caps1(), kOkay};
       case kControl: return {control, kOkay};
@@ -154,6 +156,7 @@ struct Reference {
       case kMaxLod: return {max_lod, kOkay};
       case kDescBase: return {desc_base, kOkay};
       case kDescAttr: return {desc_attr, kOkay};
+      case kDescSize: return {desc_size, kOkay};
       case kBorderRg: return {border_rg, kOkay};
       case kBorderBa: return {border_ba, kOkay};
       case kDescCommit: return {desc_index, kOkay};
@@ -201,6 +204,7 @@ class Slave {
 
   // ---- what the test sets
   double bready_p = 1.0, rready_p = 1.0;  // BREADY / RREADY high in a clock with this probability
+  double desc_ready_p = 0.5;              // and the unit's cfg_desc_ready
   bool random_events = false;             // random stat_* events in every clock, else none
 
   void reset() {
@@ -317,6 +321,7 @@ class Slave {
     t.s_axi_arprot = junk() & 7;
     t.s_axi_bready = coin(bready_p);
     t.s_axi_rready = coin(rready_p);
+    t.cfg_desc_ready = coin(desc_ready_p);
     Events ev;
     if (random_events) {
       ev.sample = coin(0.5);
@@ -349,7 +354,10 @@ class Slave {
     if (b_owed_ || (w_.active && w_.aw_done)) { EXPECT_FALSE(t.s_axi_awready) << "AWREADY with a write open"; }
     if (b_owed_ || (w_.active && w_.w_done)) { EXPECT_FALSE(t.s_axi_wready) << "WREADY with a write open"; }
     if (r_owed_) { EXPECT_FALSE(t.s_axi_arready) << "ARREADY with an R response owed"; }
-    const bool writes_now = w_.active && (w_.aw_done || aw_take) && (w_.w_done || w_take);
+    // (a DESC_COMMIT waits, held, while the unit is not ready or the last commit's pulse is out)
+    const bool commit_waits = (w_.op.addr & ((1u << kAddrW) - 4)) == kDescCommit && (!t.cfg_desc_ready || t.cfg_desc_we);
+    const bool writes_now = w_.active && (w_.aw_done || aw_take) && (w_.w_done || w_take) && !commit_waits;
+    const bool desc_ready = t.cfg_desc_ready;
     uint32_t want_bresp = 0;
     if (writes_now) {
       EXPECT_FALSE(b_owed_) << "a write taken while the previous one's B is owed";
@@ -424,6 +432,7 @@ class Slave {
     else if (snap.set) ref_.snap_valid = true, ref_.snap_idx = snap.idx, ref_.snap_hi = snap.hi;
     else if (snap.consume) ref_.snap_valid = false;
     EXPECT_EQ(bool(t.cfg_desc_we), commit) << "cfg_desc_we is the clock after an accepted DESC_COMMIT";
+    if (t.cfg_desc_we) { EXPECT_TRUE(desc_ready) << "cfg_desc_we after a clock with cfg_desc_ready low"; }
     desc_pulses += t.cfg_desc_we;
     EXPECT_EQ(bool(t.cfg_smp_we), smp_commit) << "cfg_smp_we is the clock after an accepted SMP_COMMIT";
     smp_pulses += t.cfg_smp_we;
@@ -436,8 +445,8 @@ class Slave {
     EXPECT_EQ(bool(t.unit_rst), bool(r.control & 1));
     EXPECT_EQ(t.cfg_desc_index, r.desc_index);
     EXPECT_EQ(t.cfg_desc_base, r.desc_base);
-    EXPECT_EQ(t.cfg_desc_log2_w, r.desc_attr & 15);
-    EXPECT_EQ(t.cfg_desc_log2_h, (r.desc_attr >> 4) & 15);
+    EXPECT_EQ(t.cfg_desc_w, r.desc_size & 0x3FFF);
+    EXPECT_EQ(t.cfg_desc_h, (r.desc_size >> 16) & 0x3FFF);
     EXPECT_EQ(t.cfg_smp_index, r.smp_index);
     EXPECT_EQ(t.cfg_smp_wrap_u, r.wrap & 7);
     EXPECT_EQ(t.cfg_smp_wrap_v, (r.wrap >> 4) & 7);
@@ -480,7 +489,7 @@ std::vector<uint32_t> defined_registers() {
 TEST(RtlAxilConfig, IdVersionCapabilitiesAndResetValues) {
   Slave s(1);
   EXPECT_EQ(s.read(kId).data, 0x54455855u);  // "TEXU"
-  EXPECT_EQ(s.read(kVersion).data, 0x00020000u);
+  EXPECT_EQ(s.read(kVersion).data, 0x00030000u);
   EXPECT_EQ(s.read(kCaps0).data, uint32_t(10 | 9 << 4 | 8 << 8 | 1 << 16 | 1 << 17 | 4 << 20));
   EXPECT_EQ(s.read(kCaps1).data, uint32_t(8 | 4 << 8 | 8 << 16 | 6 << 24 | 4 << 28));
   // reset: the unit held in reset, the whole cache of 4 ways, trilinear, no LOD clamp
@@ -507,7 +516,8 @@ TEST(RtlAxilConfig, EveryRegisterWrittenAndReadBack) {
       if (a == kCache || a == kControl) continue;
       uint32_t d = uint32_t(rng());
       if (a == kDescCommit) {  // a valid descriptor: RGBA, line-aligned base
-        ASSERT_EQ(s.write(kDescAttr, 3u << 4 | 5u), kOkay);
+        ASSERT_EQ(s.write(kDescAttr, 0), kOkay);
+        ASSERT_EQ(s.write(kDescSize, uint32_t(1 + rng() % 512) << 16 | uint32_t(1 + rng() % 1024)), kOkay);
         ASSERT_EQ(s.write(kDescBase, uint32_t(rng()) & ~63u), kOkay);
         d = (d & ~15u) | uint32_t(rng() % kTextures);
       }
@@ -571,12 +581,18 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   // DESC_COMMIT while in reset (the unit drops cfg_desc_we under rst) and of invalid descriptors
   EXPECT_EQ(s.write(kDescCommit, 1), kSlverr);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
-  const uint32_t bad_attr[] = {11u, 10u << 4, 6u << 16, 1u << 19 | 4u << 16, 1u << 19 | 5u << 16};
+  const uint32_t bad_attr[] = {6u << 16, 1u << 19 | 4u << 16, 1u << 19 | 5u << 16};
   for (uint32_t attr : bad_attr) {
     ASSERT_EQ(s.write(kDescAttr, attr), kOkay);
     EXPECT_EQ(s.write(kDescCommit, 2), kSlverr) << std::hex << attr;
   }
-  ASSERT_EQ(s.write(kDescAttr, 0x84335), kOkay);  // sRGB RGBA 32x8 (bits 14:8 reserved, ignored): valid
+  ASSERT_EQ(s.write(kDescAttr, 0x84335), kOkay);  // sRGB RGBA (bits 15:0 reserved, ignored): valid
+  // sizes 0 and beyond the largest (1024 x 512 here; 14 bits each, bits 15:14 ignored)
+  for (uint32_t size : {0u, 5u, 1u << 16, 1025u | 1u << 16, 1u | 513u << 16, 0xC000u | 1u << 16}) {
+    ASSERT_EQ(s.write(kDescSize, size), kOkay);
+    EXPECT_EQ(s.write(kDescCommit, 2), kSlverr) << std::hex << size;
+  }
+  ASSERT_EQ(s.write(kDescSize, 1000u | 37u << 16), kOkay);  // any size up to the largest
   EXPECT_EQ(s.write(kDescCommit, kTextures), kSlverr);  // index beyond the table
   ASSERT_EQ(s.write(kDescBase, 0x1000 + 32), kOkay);     // not line-aligned
   EXPECT_EQ(s.write(kDescCommit, 2), kSlverr);
@@ -646,6 +662,7 @@ TEST(RtlAxilConfig, ResponsesHeldUnderBackpressureBothChannelsAtOnce) {
       if ((w.addr & ~3u) == kControl) w.data &= (rng() % 8 == 0) ? 7 : 3;  // a clear now and then
       if ((w.addr & ~3u) == kDescBase && rng() % 2) w.data &= ~63u;
       if ((w.addr & ~3u) == kDescAttr) w.data &= 0xF3311u;
+      if ((w.addr & ~3u) == kDescSize) w.data &= rng() % 2 ? 0x01FF03FFu : 0xFFFFFFFFu;  // mostly valid
       if ((w.addr & ~3u) == kWrap) w.data &= 0x33u | (rng() % 4 ? 0u : 0x44u);  // mostly valid
       if ((w.addr & ~3u) == kSmpCommit && rng() % 2) w.data &= 3u;
       w.strb = rng() % 10 == 0 ? uint8_t(rng() % 16) : 0xF;
@@ -668,7 +685,8 @@ TEST(RtlAxilConfig, DescriptorCommitPulsesOnce) {
   Slave s(6);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
   ASSERT_EQ(s.write(kDescBase, 0x12340040), kOkay);
-  ASSERT_EQ(s.write(kDescAttr, 1u << 19 | 7u << 16 | 9u << 4 | 10u), kOkay);  // BC7 sRGB
+  ASSERT_EQ(s.write(kDescAttr, 1u << 19 | 7u << 16), kOkay);  // BC7 sRGB
+  ASSERT_EQ(s.write(kDescSize, 511u << 16 | 1000u), kOkay);
   EXPECT_EQ(s.desc_pulses, 0);
   // the pulse: exactly the clock after the commit's edge (checked by the monitor), with the staged
   // descriptor on the pins
@@ -678,10 +696,36 @@ TEST(RtlAxilConfig, DescriptorCommitPulsesOnce) {
   EXPECT_EQ(s.top().cfg_desc_base, 0x12340040u);
   EXPECT_EQ(s.top().cfg_desc_format, 7);
   EXPECT_EQ(s.top().cfg_desc_srgb, 1);
+  EXPECT_EQ(s.top().cfg_desc_w, 1000);
+  EXPECT_EQ(s.top().cfg_desc_h, 511);
   s.idle(5);
   EXPECT_EQ(s.desc_pulses, 1);
   for (int i = 0; i < kTextures; ++i) ASSERT_EQ(s.write(kDescCommit, uint32_t(i)), kOkay);
   EXPECT_EQ(s.desc_pulses, 1 + kTextures);
+}
+
+// While tex_unit_cached sets a descriptor up (cfg_desc_ready low), a DESC_COMMIT is held: no B
+// response, no pulse, however long; the other registers answer meanwhile (the read channel is
+// free). When the unit is ready, the commit happens, once.
+TEST(RtlAxilConfig, DescriptorCommitWaitsForTheUnit) {
+  Slave s(16);
+  ASSERT_EQ(s.write(kControl, 0), kOkay);
+  ASSERT_EQ(s.write(kDescSize, 500u << 16 | 1000u), kOkay);
+  s.desc_ready_p = 0.0;
+  const size_t bresps = s.bresps.size();
+  s.queue_write({kDescCommit, 3});
+  s.queue_read({kDescSize});
+  s.idle(200);
+  EXPECT_EQ(s.bresps.size(), bresps) << "a DESC_COMMIT answered while the unit was not ready";
+  EXPECT_EQ(s.desc_pulses, 0);
+  ASSERT_FALSE(s.rresults.empty());
+  EXPECT_EQ(s.rresults.back().data, 500u << 16 | 1000u) << "reads wait for a held commit";
+  s.desc_ready_p = 1.0;
+  s.run();
+  ASSERT_EQ(s.bresps.size(), bresps + 1);
+  EXPECT_EQ(s.bresps.back(), kOkay);
+  EXPECT_EQ(s.desc_pulses, 1);
+  EXPECT_EQ(s.top().cfg_desc_index, 3);
 }
 
 TEST(RtlAxilConfig, SoftResetGuardsTheCacheGeometry) {

@@ -70,20 +70,20 @@ struct CacheCoverage {
 
 // A random texture for a configuration: RGBA (channels as memory holds them) or random blocks of a
 // block format; sRGB if asked and the configuration has the tables (not BC4, BC5: no sRGB).
-Pyramid random_pyramid(const rtl::RtlConfig& rc, TexelFormat format, int lw, int lh, bool srgb, uint64_t seed) {
+Pyramid random_pyramid(const rtl::RtlConfig& rc, TexelFormat format, Extent size, bool srgb, uint64_t seed) {
   srgb = srgb && rc.formats && format != TexelFormat::Bc4 && format != TexelFormat::Bc5;
   if (is_compressed(format)) {
-    Pyramid p = random_block_texture(format, lw, lh, seed);
+    Pyramid p = random_block_texture(format, size, seed);
     if (srgb) decode_srgb_levels(p);
     return p;
   }
-  Image level0 = random_texture(1 << lw, 1 << lh, rc.memory_channel_bits(), seed);
+  Image level0 = random_texture(size.w, size.h, rc.memory_channel_bits(), seed);
   return srgb ? build_srgb_pyramid(level0, PyramidMode::Exact) : build_pyramid(std::move(level0), PyramidMode::Exact);
 }
 
 struct CachedSuite {
   std::string config;  // a compiled tex_unit_cached configuration
-  std::vector<std::pair<int, int>> textures;  // log2 sizes
+  std::vector<Extent> textures;  // case i: textures[i % size]
   int cases;
   size_t requests_per_case;
   bool check_coverage = true;  // every bin of CacheCoverage::required must be hit
@@ -272,9 +272,9 @@ void run_suite(const CachedSuite& suite) {
     const uint64_t seed = mix64(base + uint64_t(ci));
     if (only && *only != seed) continue;
     std::mt19937_64 rng(seed);
-    const auto [lw, lh] = suite.textures[size_t(ci) % suite.textures.size()];
+    const Extent size = suite.textures[size_t(ci) % suite.textures.size()];
     const TexelFormat format = suite.formats[size_t(ci) % suite.formats.size()];
-    const Pyramid pyr = random_pyramid(rc, format, lw, lh, suite.srgb && ci % 2 == 1, seed);
+    const Pyramid pyr = random_pyramid(rc, format, size, suite.srgb && ci % 2 == 1, seed);
     SamplerConfig cfg;
     cfg.filter = filters[rng() % filters.size()];
     if (ci % 3 != 2) cfg.filter = Filter{TexelFilter::Linear, MipMode::Linear};  // most cases trilinear
@@ -289,7 +289,7 @@ void run_suite(const CachedSuite& suite) {
     std::string memory_name, timing_name;
     const rtl::MemoryTiming memory = random_memory(rng, rc, memory_name);
     const rtl::Timing stim = random_timing(rng, timing_name);
-    const std::vector<Request> requests = random_requests(rng, lw, lh, suite.requests_per_case);
+    const std::vector<Request> requests = random_requests(rng, size, suite.requests_per_case);
     // A quarter of the cases use a shallower FIFO (cfg_fifo_limit), down to 1 sample.
     const uint32_t fifo_depth = rng() % 4 == 0 ? 1 + uint32_t(rng() % uint64_t(rc.fifo_depth)) : 0;
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
@@ -302,7 +302,7 @@ void run_suite(const CachedSuite& suite) {
     if (!r.failure.empty()) {
       ++failures;
       ADD_FAILURE() << suite.config << " case " << ci << " (replay: TEX_SEED=" << seed << "): "
-                    << (1 << lw) << "x" << (1 << lh) << " " << format_info(format).name << (pyr.srgb ? " sRGB" : "")
+                    << size.w << "x" << size.h << " " << format_info(format).name << (pyr.srgb ? " sRGB" : "")
                     << ", " << describe(cfg) << ", "
                     << block_order_name(layout.order) << ", " << cache.size_bytes << " B x " << cache.ways
                     << " ways, FIFO " << (fifo_depth ? std::to_string(fifo_depth) : "all") << ", " << memory_name
@@ -328,15 +328,18 @@ void run_suite(const CachedSuite& suite) {
 
 }  // namespace
 
-// 64x8 (non-square), 4x4 blocks of RGBA8, 64 lines per cache at most, a 32-sample FIFO.
-TEST(RtlCached, NonSquareRgba8) { run_suite({"Vtex_cached_6x3", {{6, 3}, {5, 3}, {3, 0}, {6, 2}}, 60, 10000}); }
+// 64x8 (non-square), 4x4 blocks of RGBA8, 64 lines per cache at most, a 32-sample FIFO; textures
+// of powers of two and of other sides (odd, primes, 1 x N: the repeat seam's copies in memory).
+TEST(RtlCached, NonSquareRgba8) {
+  run_suite({"Vtex_cached_6x3", {{64, 8}, {37, 7}, {32, 8}, {60, 5}, {8, 1}, {1, 7}, {64, 4}, {13, 3}, {36, 6}}, 63, 10000});
+}
 
 // Every block format on the unit with the formats (64-byte lines: BC1 and BC4 lines of 16x8
 // texels, the others 8x8), random blocks (every BC7 mode), decoded by the RTL's 8 tap decoders
 // after the cache: samples, miss streams and response clocks against the model. (The cache bins
 // above are RGBA8's line shape; these lines are wider.)
 TEST(RtlCached, BlockFormats) {
-  run_suite({"Vtex_cached_13x13_formats", {{6, 3}, {5, 2}, {2, 2}, {6, 2}, {4, 3}}, 30, 6000, false,
+  run_suite({"Vtex_cached_13x13_formats", {{64, 8}, {61, 7}, {32, 4}, {4, 4}, {13, 5}, {64, 4}, {16, 8}, {30, 6}}, 32, 6000, false,
              {TexelFormat::Bc1, TexelFormat::Bc2, TexelFormat::Bc3, TexelFormat::Bc4, TexelFormat::Bc5,
               TexelFormat::Bc7}});
 }
@@ -345,7 +348,7 @@ TEST(RtlCached, BlockFormats) {
 // other case (RGBA8, BC1, BC2, BC3, BC7) and linear in the others (8-bit values through the 16-bit
 // filter), against the model's linear unorm16 samples.
 TEST(RtlCached, SrgbAndLinearEveryFormat) {
-  run_suite({"Vtex_cached_13x13_formats", {{6, 3}, {5, 2}, {2, 2}, {6, 2}}, 28, 4000, false,
+  run_suite({"Vtex_cached_13x13_formats", {{64, 8}, {32, 4}, {50, 6}, {4, 4}, {64, 4}, {9, 11}, {32, 4}}, 28, 4000, false,
              {TexelFormat::Rgba8, TexelFormat::Bc1, TexelFormat::Bc7, TexelFormat::Bc4, TexelFormat::Bc3,
               TexelFormat::Bc2, TexelFormat::Bc5},
              true});
@@ -353,7 +356,7 @@ TEST(RtlCached, SrgbAndLinearEveryFormat) {
 
 // 32x16 with 16-bit channels, 2x4 blocks (128-byte lines), 64-bit memory beats.
 TEST(RtlCached, Channels16Blocks2x4) {
-  run_suite({"Vtex_cached_5x4_cw16", {{5, 4}, {4, 4}, {0, 3}, {5, 1}}, 60, 10000});
+  run_suite({"Vtex_cached_5x4_cw16", {{32, 16}, {27, 13}, {16, 16}, {1, 8}, {32, 2}, {31, 11}}, 60, 10000});
 }
 
 // The checkers fire: a model with other caches than the RTL's gives another miss stream, and one
@@ -362,7 +365,7 @@ TEST(RtlCached, Channels16Blocks2x4) {
 // tall and square, on the configuration texsim uses for them. A few cases: the two suites above
 // cover the bins.
 TEST(RtlCached, LargestTextures) {
-  run_suite({"Vtex_cached_13x13", {{13, 2}, {1, 13}, {13, 13}}, 3, 20000, false});
+  run_suite({"Vtex_cached_13x13", {{8192, 4}, {2, 8192}, {8192, 8192}, {8191, 3}, {5, 8191}}, 5, 20000, false});
 }
 
 const std::vector<TexelFormat> kBlockFormats = {TexelFormat::Bc1, TexelFormat::Bc2, TexelFormat::Bc3,
@@ -392,12 +395,17 @@ void run_descriptor_tables(const std::string& config, int cases) {
     pyramids.reserve(size_t(n));
     TextureTable table;
     for (int t = 0; t < n; ++t) {
-      // Up to the configuration's 64x8; half of the textures in a block format (sides >= 4).
+      // Up to the configuration's 64x8, half of them of powers of two; half of the textures in a
+      // block format (sides >= 4).
       const TexelFormat format =
           !rc.formats || rng() % 2 ? TexelFormat::Rgba8 : kBlockFormats[rng() % kBlockFormats.size()];
       const bool blocks = is_compressed(format), srgb = rng() % 2;
-      const int lw = blocks ? 2 + int(rng() % 5) : int(rng() % 7), lh = blocks ? 2 + int(rng() % 2) : int(rng() % 4);
-      pyramids.push_back(random_pyramid(rc, format, lw, lh, srgb, rng()));
+      Extent size;
+      if (rng() % 2)
+        size = {1 << (blocks ? 2 + int(rng() % 5) : int(rng() % 7)), 1 << (blocks ? 2 + int(rng() % 2) : int(rng() % 4))};
+      else
+        size = {blocks ? 4 + int(rng() % 61) : 1 + int(rng() % 64), blocks ? 4 + int(rng() % 5) : 1 + int(rng() % 8)};
+      pyramids.push_back(random_pyramid(rc, format, size, srgb, rng()));
       block_textures += blocks;
       srgb_textures += pyramids.back().srgb;
       table.push_back({&pyramids.back()});
@@ -552,7 +560,7 @@ TEST(RtlCached, CheckersCatchPlantedBugs) {
   // line shape, so the same lines) sees other samples.
   unit = rtl::Driver::create(config_named("Vtex_cached_13x13_formats"), {});
   unit->reset();
-  const Pyramid bc3 = random_block_texture(TexelFormat::Bc3, 6, 3, 5);
+  const Pyramid bc3 = random_block_texture(TexelFormat::Bc3, {64, 8}, 5);
   const Pyramid as_bc2 = pyramid_of_blocks(TexelFormat::Bc2, {64, 8}, bc3.blocks);
   const TextureTable rtl_table = {{&bc3}}, model_table = {{&as_bc2}};
   const CaseResult same = run_case(*unit, rtl_table, SamplerTable{cfg}, layout, cache, memory, requests, {}, 1, nullptr);

@@ -81,9 +81,6 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
 
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests) {
   const Extent e = pyramid.extent0();
-  if (config.cached && (!is_power_of_two(e.w) || !is_power_of_two(e.h)))
-    throw Error("texture " + std::to_string(e.w) + "x" + std::to_string(e.h) + ": " + config.name +
-                " takes sides that are powers of two (the on-chip unit and --engine model take any size)");
   if (!config.fits(log2_ceil(e.w), log2_ceil(e.h)))
     throw Error("texture " + std::to_string(e.w) + "x" + std::to_string(e.h) + " does not fit " + config.name +
                 " (at most " + config.max_texture() + ")");
@@ -301,10 +298,17 @@ void Driver::configure(const SamplerTable& samplers) {
 }
 
 void Driver::write_tables() {
+  // A descriptor write waits for cfg_desc_ready (the unit sets each entry up, tex_desc_table).
+  auto desc_ready = [&] {
+    for (int i = 0; i < 64; ++i)
+      if (tick(PinsIn{}).desc_ready) return;
+    throw SimulationError(config_.name + ": cfg_desc_ready stayed low for 64 clocks after a descriptor write");
+  };
   for (const DescriptorPins& d : descriptors_) {
     apply_descriptor(d, true);
     tick(PinsIn{});
     apply_descriptor(d, false);
+    desc_ready();
   }
   for (const SamplerPins& s : samplers_) {
     apply_sampler(s, true);
@@ -335,9 +339,8 @@ void Driver::load_textures(const TextureTable& textures) {
     const MemoryLayout& layout = table[i].layout;
     const std::vector<uint8_t> bytes = build_memory_image(*textures[i].pyramid, layout);
     image.insert(image.end(), bytes.begin(), bytes.end());  // packed: each starts where the last ended
-    descriptors_.push_back({uint8_t(i), layout.params().base, uint8_t(log2_exact(layout.size0().w)),
-                            uint8_t(log2_exact(layout.size0().h)),
-                            uint8_t(layout.format()), textures[i].pyramid->srgb});
+    descriptors_.push_back({uint8_t(i), layout.params().base, uint16_t(layout.size0().w),
+                            uint16_t(layout.size0().h), uint8_t(layout.format()), textures[i].pyramid->srgb});
   }
   if (options_.memory_port) {
     port_ = options_.memory_port;

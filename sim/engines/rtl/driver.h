@@ -127,13 +127,14 @@ struct PinsOut {
   bool r_ready = false;
   uint32_t fifo_count = 0;
   bool head_waits = false;
+  bool desc_ready = true;  // cfg_desc_ready: the unit takes a descriptor write
 };
 
 // tex_unit_cached: one texture descriptor (the cfg_desc_* pins of a write).
 struct DescriptorPins {
   uint8_t index = 0;
   uint32_t base = 0;  // byte address of level 0
-  uint8_t log2_w = 0, log2_h = 0;
+  uint16_t w = 1, h = 1;  // level 0's size in texels
   uint8_t format = 0;  // tex_pkg::FMT_* = TexelFormat
   bool srgb = false;   // R, G, B are sRGB codes (a configuration with the formats)
 };

@@ -18,7 +18,7 @@ constexpr uint32_t kCache = 0x020, kFifoLimit = 0x024;
 constexpr uint32_t kFilter = 0x030, kLodBias = 0x034, kMinLod = 0x038, kMaxLod = 0x03C;
 constexpr uint32_t kBorderRg = 0x050, kBorderBa = 0x054, kWrap = 0x058, kSmpCommit = 0x05C;
 // ... and the staged texture descriptor (committed by DESC_COMMIT).
-constexpr uint32_t kDescBase = 0x040, kDescAttr = 0x044, kDescCommit = 0x048;
+constexpr uint32_t kDescBase = 0x040, kDescAttr = 0x044, kDescCommit = 0x048, kDescSize = 0x04C;
 constexpr uint32_t kCounterBase = 0x080;  // counter i: LO at 0x080 + 8 i, HI at + 4
 constexpr int kCounters = 9;
 enum Counter { kCycles, kSamples, kSampleErrors, kLookups, kMisses, kMemBytes, kOutStall, kMemWait, kReqStall };
@@ -27,7 +27,7 @@ constexpr const char* kCounterNames[kCounters] = {"CYCLES",    "SAMPLES",   "SAM
 
 // Constants and CONTROL's bits.
 constexpr uint32_t kIdValue = 0x54455855;       // "TEXU"
-constexpr uint32_t kVersionValue = 0x00020000;  // 2.0: the sampler table
+constexpr uint32_t kVersionValue = 0x00030000;  // 3.0: any texture size (DESC_SIZE)
 constexpr uint32_t kUnitReset = 1, kFreeze = 2, kClear = 4;
 constexpr uint32_t kOkay = 0, kSlverr = 2;
 
@@ -40,7 +40,7 @@ constexpr Register kRegisters[] = {
     {"ID", kId},           {"VERSION", kVersion},     {"CAPS0", kCaps0},         {"CAPS1", kCaps1},
     {"CONTROL", kControl}, {"CACHE", kCache},         {"FIFO_LIMIT", kFifoLimit}, {"FILTER", kFilter},
     {"LOD_BIAS", kLodBias}, {"MIN_LOD", kMinLod},     {"MAX_LOD", kMaxLod},      {"DESC_BASE", kDescBase},
-    {"DESC_ATTR", kDescAttr}, {"DESC_COMMIT", kDescCommit}, {"BORDER_RG", kBorderRg}, {"BORDER_BA", kBorderBa},
+    {"DESC_ATTR", kDescAttr}, {"DESC_COMMIT", kDescCommit}, {"DESC_SIZE", kDescSize}, {"BORDER_RG", kBorderRg}, {"BORDER_BA", kBorderBa},
     {"WRAP", kWrap},       {"SMP_COMMIT", kSmpCommit},
 };
 
@@ -58,9 +58,10 @@ inline uint32_t border_ba_word(const SamplerConfig& c) {
   const Texel b = c.border_unorm16();
   return uint32_t(b[2]) | uint32_t(b[3]) << 16;
 }
-// The staged descriptor's DESC_ATTR for a texture's layout (size, format) and sRGB flag.
+// The staged descriptor's DESC_ATTR for a texture's format and sRGB flag, and its DESC_SIZE.
 inline uint32_t desc_attr_word(const MemoryLayout& l, bool srgb = false) {
-  return uint32_t(log2_exact(l.size0().w)) | uint32_t(log2_exact(l.size0().h)) << 4 | uint32_t(l.format()) << 16 | uint32_t(srgb) << 19;
+  return uint32_t(l.format()) << 16 | uint32_t(srgb) << 19;
 }
+inline uint32_t desc_size_word(Extent e) { return uint32_t(e.w) | uint32_t(e.h) << 16; }
 
 }  // namespace tex::rtl::axil

@@ -108,6 +108,7 @@ class VerilatedTexUnit final : public Driver {
     out.rsp_tag = t.rsp_tag;
     if constexpr (kCached) {
       out.rsp_error = t.rsp_error;
+      out.desc_ready = t.cfg_desc_ready;
       out.ar_valid = t.m_axi_arvalid;
       out.ar_addr = t.m_axi_araddr;
       out.ar_len = t.m_axi_arlen;
@@ -170,8 +171,8 @@ class VerilatedTexUnit final : public Driver {
       t.cfg_desc_we = write;
       t.cfg_desc_index = d.index;
       t.cfg_desc_base = d.base;
-      t.cfg_desc_log2_w = d.log2_w;
-      t.cfg_desc_log2_h = d.log2_h;
+      t.cfg_desc_w = d.w;
+      t.cfg_desc_h = d.h;
       t.cfg_desc_format = d.format;
       t.cfg_desc_srgb = d.srgb;
       t.eval();
