@@ -93,7 +93,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   }
   const uint64_t resident = texture_bytes_resident(table, eo);  // also checks the table fits the memory
 
-  // --trace-queries: the frame's requests, and the textures they name (as loaded: powers of two,
+  // --trace-queries: the frame's requests, and the textures they name (as loaded: of the file's size,
   // RGBA8) with their wrap modes, so that `texsim sample --textures` replays the frame exactly.
   std::vector<OutputFile*> texture_files;
   OutputFile* list_out = nullptr;

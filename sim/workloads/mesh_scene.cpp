@@ -309,16 +309,16 @@ class ModelLoader {
     try {
       if (!embedded) {
         check_regular_file(t.source, "texture");
-        loaded = load_texture_pow2(t.source);
+        loaded = load_model_texture(t.source);
       } else if (embedded->mHeight == 0) {  // compressed: mWidth bytes of a PNG, JPEG, ...
-        loaded = decode_texture_pow2(t.source, embedded->pcData, embedded->mWidth, embedded->achFormatHint);
+        loaded = decode_model_texture(t.source, embedded->pcData, embedded->mWidth, embedded->achFormatHint);
       } else {  // mWidth x mHeight texels, ARGB8888
         Image img(int(embedded->mWidth), int(embedded->mHeight));
         for (size_t i = 0; i < img.texels.size(); ++i) {
           const aiTexel& p = embedded->pcData[i];
           img.texels[i] = {p.r, p.g, p.b, p.a};
         }
-        loaded = texture_pow2(t.source, std::move(img));
+        loaded = model_texture(t.source, std::move(img));
       }
     } catch (const Error& e) {
       throw Error(path_ + ": material " + in_quotes(t.material) + ": " + e.what());

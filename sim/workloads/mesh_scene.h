@@ -28,9 +28,9 @@ struct SamplerOverride {
 struct SceneTexture {
   std::string material;     // the material that names it (first one, for messages)
   std::string source;       // its file path, or "<model>#embedded:N" for an image inside the model
-  Image image;              // RGBA8, sides powers of two (resampled up if the file's were not)
+  Image image;              // RGBA8, the file's size (resampled down to 8192 if a side was larger)
   int file_width = 0, file_height = 0;  // as stored in the file
-  bool resized = false;     // file_width/height were not powers of two
+  bool resized = false;     // a side of file_width/height was beyond 8192
   Wrap wrap_u = Wrap::Repeat, wrap_v = Wrap::Repeat;  // glTF sampler modes; repeat where the format has none
   // The glTF sampler's magFilter and minFilter (GL's codes: 9728 NEAREST, 9729 LINEAR, 9984..9987
   // NEAREST_MIPMAP_NEAREST .. LINEAR_MIPMAP_LINEAR); 0 where the file has none.

@@ -359,9 +359,6 @@ TextureFile read_texture_file(const std::string& path) {
 Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format) {
   if (format == TexelFormat::Rgba8) return pyramid;
   if (pyramid.levels[0].channel_bits != 8) throw Error("--format: block formats hold 8-bit channels");
-  if (pyramid.levels[0].width % 4 || pyramid.levels[0].height % 4)
-    throw Error("--format " + std::string(format_info(format).name) + ": a " + std::to_string(pyramid.levels[0].width) +
-                "x" + std::to_string(pyramid.levels[0].height) + " texture; block formats need sides that are multiples of 4");
   pyramid.format = format;
   pyramid.blocks.clear();
   for (Image& level : pyramid.levels) {

@@ -121,19 +121,14 @@ Image rgba8_texels(const images::Pixels& p) {
   return img;
 }
 
-// Model textures are resampled up, never down: no texel of the file is lost (8192 is the limit).
-int next_power_of_two(int n) {
-  int p = 1;
-  while (p < n && p < (1 << kMaxLog2Size)) p <<= 1;
-  return p;
-}
-
-ModelTexture pow2_texture(images::Pixels& p, const std::string& name) {
+// A model's texture keeps its size (every engine samples any size); a side beyond 8192, which no
+// unit holds, is resampled down to 8192 (the caller notes it).
+ModelTexture model_texture(images::Pixels& p, const std::string& name) {
   ModelTexture t;
   t.file_width = p.width;
   t.file_height = p.height;
   if (t.file_width < 1 || t.file_height < 1) throw Error(name + ": the image is empty");
-  const int nw = next_power_of_two(t.file_width), nh = next_power_of_two(t.file_height);
+  const int nw = std::min(t.file_width, kMaxSize), nh = std::min(t.file_height, kMaxSize);
   if (nw != t.file_width || nh != t.file_height) {
     resize_pixels(p, nw, nh, name);
     t.resized = true;
@@ -173,12 +168,12 @@ Image load_texture(const std::string& spec, bool resize) {
   return rgba8_texels(p);
 }
 
-ModelTexture load_texture_pow2(const std::string& path) {
+ModelTexture load_model_texture(const std::string& path) {
   images::Pixels p = read_uint8(path, path);
-  return pow2_texture(p, path);
+  return model_texture(p, path);
 }
 
-ModelTexture decode_texture_pow2(const std::string& name, const void* data, size_t size,
+ModelTexture decode_model_texture(const std::string& name, const void* data, size_t size,
                                  const std::string& format_hint) {
   // OpenImageIO picks the reader by the name's extension: take it from the bytes when they say.
   const auto* b = static_cast<const unsigned char*>(data);
@@ -186,19 +181,19 @@ ModelTexture decode_texture_pow2(const std::string& name, const void* data, size
   if (size >= 8 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0) ext = "png";
   else if (size >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) ext = "jpg";
   images::Pixels p = read_uint8(name, "embedded." + ext, data, size);
-  return pow2_texture(p, name);
+  return model_texture(p, name);
 }
 
-ModelTexture texture_pow2(const std::string& name, Image rgba8) {
+ModelTexture model_texture(const std::string& name, Image rgba8) {
   const int w = rgba8.width, h = rgba8.height;
-  if (w > 0 && h > 0 && next_power_of_two(w) == w && next_power_of_two(h) == h) return {std::move(rgba8), w, h, false};
+  if (w > 0 && h > 0 && w <= kMaxSize && h <= kMaxSize) return {std::move(rgba8), w, h, false};
   images::Pixels p;
   p.width = w;
   p.height = h;
   p.channels = 4;
   p.values.resize(rgba8.texels.size() * 4);
   for (size_t i = 0; i < p.values.size(); ++i) p.values[i] = uint8_t(rgba8.texels[i / 4][i % 4]);
-  return pow2_texture(p, name);
+  return model_texture(p, name);
 }
 
 void check_image_path(const std::string& path) {

@@ -15,22 +15,22 @@ namespace tex {
 // outside 0..1 are clamped, with one note on stderr. Throws tex::Error.
 Image load_texture(const std::string& spec, bool resize = false);
 
-// A texture of a 3D model (workloads/mesh_scene.h): RGBA8 as above, but sides that are not powers
-// of two are resampled UP to the next power of two (at most 8192) with OpenImageIO's resize, and
-// nothing is printed: the caller reports `resized`. Throws tex::Error naming `name`.
+// A texture of a 3D model (workloads/mesh_scene.h): RGBA8 as above, of the file's size (any); a
+// side beyond 8192 is resampled down to 8192 with OpenImageIO's resize, and nothing is printed:
+// the caller reports `resized`. Throws tex::Error naming `name`.
 struct ModelTexture {
   Image image;
   int file_width = 0, file_height = 0;  // as stored
   bool resized = false;
 };
 // From an image file.
-ModelTexture load_texture_pow2(const std::string& path);
+ModelTexture load_model_texture(const std::string& path);
 // From an encoded image in memory (PNG, JPEG, ... bytes, e.g. embedded in a GLB); the format is
 // recognised from the bytes (PNG, JPEG) or else taken from `format_hint`, a file extension.
-ModelTexture decode_texture_pow2(const std::string& name, const void* data, size_t size,
-                                 const std::string& format_hint);
+ModelTexture decode_model_texture(const std::string& name, const void* data, size_t size,
+                                  const std::string& format_hint);
 // From 8-bit RGBA texels already decoded (e.g. Assimp's uncompressed embedded textures).
-ModelTexture texture_pow2(const std::string& name, Image rgba8);
+ModelTexture model_texture(const std::string& name, Image rgba8);
 
 // Throws tex::Error unless OpenImageIO has a writer for the extension of `path` (check it before
 // the work).

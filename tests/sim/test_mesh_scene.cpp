@@ -149,12 +149,6 @@ Texel texel_at(const SceneTexture& t, const glm::dvec2& uv) {
   return t.image.at(x, y);
 }
 
-int next_pow2(int n) {
-  int p = 1;
-  while (p < n) p *= 2;
-  return std::min(p, 8192);
-}
-
 bool has_note(const MeshScene& s, const std::string& text) {
   return std::any_of(s.notes.begin(), s.notes.end(),
                      [&](const std::string& n) { return n.find(text) != std::string::npos; });
@@ -186,7 +180,6 @@ void check_scene(const MeshScene& s) {
   }
   for (const SceneTexture& t : s.textures) {
     SCOPED_TRACE(t.source);
-    EXPECT_TRUE(is_power_of_two(t.image.width) && is_power_of_two(t.image.height));
     EXPECT_EQ(t.image.texels.size(), size_t(t.image.width) * t.image.height);
     EXPECT_EQ(t.image.channel_bits, 8);
     if (t.source.find("#embedded:") == std::string::npos) {  // a file: its size as OpenImageIO reads it
@@ -195,14 +188,10 @@ void check_scene(const MeshScene& s) {
       EXPECT_EQ(t.file_width, in->spec().width);
       EXPECT_EQ(t.file_height, in->spec().height);
     }
-    EXPECT_EQ(t.image.width, next_pow2(t.file_width));
-    EXPECT_EQ(t.image.height, next_pow2(t.file_height));
-    const bool pow2 = is_power_of_two(t.file_width) && is_power_of_two(t.file_height);
-    EXPECT_EQ(t.resized, !pow2);
-    const std::string note = "texture " + t.source + " (" + t.material + "): " + std::to_string(t.file_width) + "x" +
-                             std::to_string(t.file_height) + " resampled to " + std::to_string(t.image.width) + "x" +
-                             std::to_string(t.image.height);
-    EXPECT_EQ(has_note(s, note), !pow2) << note;
+    // the file's size, whatever it is (no test model has a side beyond 8192)
+    EXPECT_EQ(t.image.width, t.file_width);
+    EXPECT_EQ(t.image.height, t.file_height);
+    EXPECT_FALSE(t.resized);
   }
 }
 
@@ -269,7 +258,8 @@ TEST(MeshScene, BoxTexturedGltf2) {
   EXPECT_FALSE(s.meshes[0].double_sided);
   ASSERT_EQ(s.textures.size(), 1u);
   EXPECT_EQ(file_names(s), std::set<std::string>{"CesiumLogoFlat.png"});
-  EXPECT_TRUE(s.textures[0].resized);
+  EXPECT_FALSE(s.textures[0].resized);
+  EXPECT_EQ(s.textures[0].image.width, 211);       // sampled as it is
   EXPECT_EQ(s.textures[0].wrap_u, Wrap::Mirror);  // wrapS 33648
   EXPECT_EQ(s.textures[0].wrap_v, Wrap::Clamp);   // wrapT 33071
   EXPECT_EQ(s.textures[0].gltf_mag_filter, 9729);  // LINEAR
@@ -307,7 +297,7 @@ TEST(MeshScene, DuckCollada) {
 }
 
 // OBJ: 19 groups, materials naming textures as ".\name.jpg" (Windows); the four used ones are
-// 249x250, 250x250, 768x768 (resampled) and 128x128. Brusttex (wal69ar_small.jpg) is unused.
+// 249x250, 250x250, 768x768 and 128x128, kept as they are. Brusttex (wal69ar_small.jpg) is unused.
 TEST(MeshScene, SpiderObj) {
   const MeshScene s = load_model((kModels / "OBJ/spider.obj").string());
   check_scene(s);
@@ -317,7 +307,7 @@ TEST(MeshScene, SpiderObj) {
             (std::set<std::string>{"SpiderTex.jpg", "wal67ar_small.jpg", "drkwood2.jpg", "engineflare1.jpg"}));
   EXPECT_EQ(s.meshes.front().name, "HLeib01");  // the file's order
   EXPECT_EQ(s.meshes.back().name, "Duplicate05");
-  EXPECT_EQ(std::count_if(s.notes.begin(), s.notes.end(), [](auto& n) { return n.find("resampled") != n.npos; }), 3);
+  EXPECT_EQ(std::count_if(s.notes.begin(), s.notes.end(), [](auto& n) { return n.find("resampled") != n.npos; }), 0);
 }
 
 // OBJ puts v = 0 at the image's bottom: the loaded v is 1 - v, and the texel each corner selects
@@ -411,20 +401,32 @@ TEST(MeshScene, MirroredNodeKeepsFrontFaces) {
   }
 }
 
-TEST(MeshScene, NonPowerOfTwoTextureIsResampledUp) {
+// Any size is a texture: a 3x5 image is sampled as it is, texel for texel; a side beyond 8192
+// (which no unit holds) is resampled down to 8192, with a note.
+TEST(MeshScene, TexturesKeepTheirSize) {
   TempDir dir;
-  std::vector<Rgba> texels(15, Rgba{200, 100, 50, 255});
+  std::vector<Rgba> texels(15);
+  for (size_t i = 0; i < texels.size(); ++i) texels[i] = Rgba{uint8_t(i * 16), uint8_t(255 - i), 50, 255};
   write_png(dir / "odd.png", 3, 5, texels);
   const MeshScene s = load_model(write_obj(dir.path, "quad", "odd_paint", "odd.png").string());
   check_scene(s);
   const SceneTexture& t = s.textures.at(0);
-  EXPECT_TRUE(t.resized);
-  EXPECT_EQ(t.file_width, 3);
-  EXPECT_EQ(t.file_height, 5);
-  EXPECT_EQ(t.image.width, 4);
-  EXPECT_EQ(t.image.height, 8);
-  EXPECT_EQ(t.image.at(2, 5), texel(texels[0]));  // a flat colour stays that colour
-  EXPECT_TRUE(has_note(s, "texture " + (dir / "odd.png").string() + " (odd_paint): 3x5 resampled to 4x8"));
+  EXPECT_FALSE(t.resized);
+  EXPECT_EQ(t.image.width, 3);
+  EXPECT_EQ(t.image.height, 5);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 3; ++x) EXPECT_EQ(t.image.at(x, y), texel(texels[size_t(y * 3 + x)])) << x << "," << y;
+  EXPECT_TRUE(s.notes.empty());
+
+  std::vector<Rgba> wide(size_t(8200) * 2, Rgba{10, 20, 30, 255});
+  write_png(dir / "wide.png", 8200, 2, wide);
+  const MeshScene w = load_model(write_obj(dir.path, "quad2", "wide_paint", "wide.png").string());
+  const SceneTexture& tw = w.textures.at(0);
+  EXPECT_TRUE(tw.resized);
+  EXPECT_EQ(tw.image.width, 8192);
+  EXPECT_EQ(tw.image.height, 2);
+  EXPECT_EQ(tw.image.at(4000, 1), texel(wide[0]));
+  EXPECT_TRUE(has_note(w, "texture " + (dir / "wide.png").string() + " (wide_paint): 8200x2 resampled to 8192x2"));
 }
 
 TEST(MeshScene, MeshWithoutUvsIsSkippedWithANote) {
