@@ -38,7 +38,7 @@ uint64_t run_rtl(TimingWorkload& w, std::vector<uint64_t>* clocks) {
 // The model: fresh caches, each request looked up (its probes' misses), clocked by the timing layer.
 uint64_t run_model(const TimingWorkload& w, std::vector<uint64_t>* clocks) {
   using namespace tex;
-  const MemoryLayout layout(w.pyramid->extent0(), 8, w.options.layout);
+  const MemoryLayout layout = layout_of(*w.pyramid, w.options.layout);
   TextureCache cache(layout, w.options.cache, SamplerConfig{});
   const MemoryChannel memory(w.config->line_bytes(), w.config->mem_bits / 8, w.options.memory);
   TimedStream timed(rtl::unit_shape(*w.config), &memory, Stimulus{}, 7);

@@ -34,11 +34,16 @@ bool parse_block_size(const std::string& text, LayoutParams& out) {
 }
 std::string block_size_name(const LayoutParams& p) { return std::to_string(p.block_w) + "x" + std::to_string(p.block_h); }
 
-MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format)
+MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format,
+                           int levels)
     : params_(params), size0_(size0), channel_bits_(channel_bits), format_(format) {
   for (const int s : {size0.w, size0.h})
     if (s < 1 || s > kMaxSize)
       throw Error("texture side " + std::to_string(s) + " texels: must be 1 to " + std::to_string(kMaxSize));
+  if (levels < 0 || levels > level_count(size0))
+    throw Error(std::to_string(levels) + " levels: a " + std::to_string(size0.w) + "x" + std::to_string(size0.h) +
+                " texture has 1 to " + std::to_string(level_count(size0)));
+  if (levels == 0) levels = level_count(size0);
   if (channel_bits < 1 || channel_bits > kMaxChannelBits)
     throw Error("channel width " + std::to_string(channel_bits) + " bits: must be 1 to " +
                 std::to_string(kMaxChannelBits));
@@ -68,7 +73,7 @@ MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& p
   auto seam_of = [&](int n) { return is_power_of_two(n) ? 0u : (uint32_t(n) + seam_align - 1) / seam_align * seam_align; };
   auto span_of = [&](int n) { return is_power_of_two(n) ? uint32_t(n) : seam_of(n) + seam_align; };
   uint64_t at = params.base;
-  for (int k = 0; k < level_count(size0); ++k) {
+  for (int k = 0; k < levels; ++k) {
     Level l;
     l.size = level_extent(size0, k);
     l.seam_x = seam_of(l.size.w);

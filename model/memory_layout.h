@@ -47,7 +47,10 @@ class MemoryLayout {
   // Throws tex::Error naming the bad value: a texture size or channel width the unit cannot have,
   // a block side, a base not aligned to the line, an image ending beyond the 32-bit address space,
   // a block format with channels other than 8 bits or a line smaller than one of its blocks.
-  MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format = TexelFormat::Rgba8);
+  // `levels`: the chain's levels 0..levels-1 (Vulkan's mipLevels; 0: the full chain down to 1x1;
+  // more than the full chain is an error).
+  MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format = TexelFormat::Rgba8,
+               int levels = 0);
 
   const LayoutParams& params() const { return params_; }
   Extent size0() const { return size0_; }
@@ -120,6 +123,12 @@ class MemoryLayout {
   std::vector<Level> levels_;
   uint64_t image_bytes_ = 0;
 };
+
+// The layout of a pyramid as it is: its size, channel width in memory, format and level count.
+inline MemoryLayout layout_of(const Pyramid& pyramid, const LayoutParams& params) {
+  return MemoryLayout(pyramid.extent0(), pyramid.memory_channel_bits(), params, pyramid.format,
+                      int(pyramid.levels.size()));
+}
 
 // Calls texel(level, x, y, value) for every texel of the level stored in the line at `address`
 // (`line`: its line_bytes() bytes as memory holds them; blocks decoded); padding is skipped. False if the address

@@ -165,6 +165,23 @@ Pyramid pyramid_of_blocks(TexelFormat format, Extent e0, std::vector<std::vector
   return p;
 }
 
+Pyramid view_pyramid(const Pyramid& pyramid, int base_level, int max_level) {
+  const int last = pyramid.last_level();
+  if (base_level < 0 || base_level > last)
+    throw Error("base level " + std::to_string(base_level) + ": this texture has levels 0 to " + std::to_string(last));
+  if (max_level < base_level)
+    throw Error("max level " + std::to_string(max_level) + " is below the base level " + std::to_string(base_level));
+  const size_t b = size_t(base_level), e = size_t(std::min(max_level, last)) + 1;
+  Pyramid v;
+  v.mode = pyramid.mode;
+  v.format = pyramid.format;
+  v.srgb = pyramid.srgb;
+  v.levels.assign(pyramid.levels.begin() + long(b), pyramid.levels.begin() + long(e));
+  if (!pyramid.blocks.empty()) v.blocks.assign(pyramid.blocks.begin() + long(b), pyramid.blocks.begin() + long(e));
+  if (!pyramid.codes.empty()) v.codes.assign(pyramid.codes.begin() + long(b), pyramid.codes.begin() + long(e));
+  return v;
+}
+
 Image mip_layout(const Pyramid& pyramid) {
   const Image& l0 = pyramid.levels[0];
   Image canvas(2 * l0.width, 2 * l0.height, l0.channel_bits);

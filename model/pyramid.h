@@ -53,6 +53,14 @@ struct Pyramid {
   int last_level() const { return int(levels.size()) - 1; }
 };
 
+// A view of a pyramid (GL's TEXTURE_BASE_LEVEL and TEXTURE_MAX_LEVEL, Vulkan's baseMipLevel and
+// levelCount): its levels base_level .. min(max_level, last), as a pyramid of its own. Level b's
+// sides and every level after it are GL's sizes of the chain from b (max(1, n >> (b + k)) =
+// max(1, (n >> b) >> k)), so the units sample a view as a texture whose level 0 is level b and
+// whose chain may stop early (the descriptor's level count). Throws tex::Error naming the value:
+// a base level beyond the last level, a max level below the base.
+Pyramid view_pyramid(const Pyramid& pyramid, int base_level, int max_level);
+
 // exact: every texel is the rounded mean of its whole level-0 footprint (maketx --filter box),
 // weighted by area where a side is not a power of two (docs/numerics.md, the pyramid).
 // cascade: every level from its rounded parent, as a simple hardware generator does (a 2-tap box,

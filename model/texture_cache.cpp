@@ -8,7 +8,8 @@
 namespace tex {
 
 std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int channel_bits,
-                                       const LayoutParams& params, const std::vector<TexelFormat>& formats) {
+                                       const LayoutParams& params, const std::vector<TexelFormat>& formats,
+                                       const std::vector<int>& levels) {
   std::vector<MemoryLayout> out;
   LayoutParams p = params;
   uint64_t next = params.base;
@@ -17,7 +18,8 @@ std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int cha
       throw Error("textures: " + std::to_string(sizes.size()) + " pyramids do not fit the 32-bit address space");
     p.base = uint32_t(next);
     const TexelFormat f = out.size() < formats.size() ? formats[out.size()] : TexelFormat::Rgba8;
-    out.emplace_back(size, channel_bits, p, f);  // throws when it ends beyond 2^32
+    const int n = out.size() < levels.size() ? levels[out.size()] : 0;
+    out.emplace_back(size, channel_bits, p, f, n);  // throws when it ends beyond 2^32
     next += out.back().image_bytes();                   // a whole number of lines
   }
   return out;

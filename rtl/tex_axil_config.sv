@@ -80,6 +80,7 @@ module tex_axil_config #(
   output logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base,
   output logic [tex_pkg::SIZE_W-1:0]        cfg_desc_w,
   output logic [tex_pkg::SIZE_W-1:0]        cfg_desc_h,
+  output logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_last_level,
   output logic [tex_pkg::FORMAT_W-1:0]      cfg_desc_format,
   output logic                              cfg_desc_srgb,
   input  logic                              cfg_desc_ready,
@@ -226,6 +227,7 @@ module tex_axil_config #(
   logic [tex_pkg::TEX_ID_W-1:0]     desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]   desc_base;
   logic [3:0]                       desc_attr;  // {srgb, format} (DESC_ATTR bits 19:16)
+  logic [tex_pkg::LEVEL_W-1:0]      desc_last;  // DESC_ATTR bits 11:8
   logic [tex_pkg::SIZE_W-1:0]       desc_w, desc_h;
   logic                             smp_we;
   logic [tex_pkg::SMP_ID_W-1:0]     smp_index;
@@ -325,6 +327,7 @@ module tex_axil_config #(
       desc_index     <= '0;
       desc_base      <= '0;
       desc_attr      <= '0;
+      desc_last      <= '1;  // every level of the chain
       desc_w         <= tex_pkg::SIZE_W'(1);
       desc_h         <= tex_pkg::SIZE_W'(1);
       smp_we         <= 1'b0;
@@ -350,7 +353,7 @@ module tex_axil_config #(
       if (wr_en && sel_min)    min_lod <= wd[15:0];
       if (wr_en && sel_max)    max_lod <= wd[15:0];
       if (wr_en && sel_base)   desc_base <= wd;
-      if (wr_en && sel_attr)   desc_attr <= wd[19:16];
+      if (wr_en && sel_attr)   {desc_attr, desc_last} <= {wd[19:16], wd[11:8]};
       if (wr_en && sel_size)   {desc_h, desc_w} <= {wd[16 +: tex_pkg::SIZE_W], wd[0 +: tex_pkg::SIZE_W]};
       if (wr_en && sel_wrap)   wrap <= wd[6:0] & 7'h77;
       if (wr_en && sel_smp_commit) smp_index <= wd[3:0];
@@ -366,6 +369,7 @@ module tex_axil_config #(
   assign cfg_desc_base    = desc_base;
   assign cfg_desc_w       = desc_w;
   assign cfg_desc_h       = desc_h;
+  assign cfg_desc_last_level = desc_last;
   assign cfg_desc_format  = attr_format;
   assign cfg_desc_srgb    = attr_srgb;
   assign cfg_smp_we       = smp_we;
@@ -462,7 +466,7 @@ module tex_axil_config #(
         R_MIN_LOD:     rd_data = {16'd0, min_lod};
         R_MAX_LOD:     rd_data = {16'd0, max_lod};
         R_DESC_BASE:   rd_data = desc_base;
-        R_DESC_ATTR:   rd_data = {12'd0, desc_attr, 16'd0};
+        R_DESC_ATTR:   rd_data = {12'd0, desc_attr, 4'd0, desc_last, 8'd0};
         R_DESC_SIZE:   rd_data = {2'd0, desc_h, 2'd0, desc_w};
         R_DESC_COMMIT: rd_data = {28'd0, desc_index};
         R_BORDER_RG:   rd_data = border[31:0];
@@ -515,10 +519,10 @@ module tex_axil_config #(
   logic [1:0]    f_bresp_q;
   logic [33:0]   f_r_q;                  // {rresp, rdata}, last clock
   localparam int FSW = 2 * tex_pkg::WRAP_W + 2 + tex_pkg::MIP_W + 3 * tex_pkg::LOD_W + 5 + 64;
-  localparam int FCW = 1 + tex_pkg::TEX_ID_W + tex_pkg::SMP_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::SIZE_W
+  localparam int FCW = 1 + tex_pkg::TEX_ID_W + tex_pkg::SMP_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::SIZE_W + tex_pkg::LEVEL_W
                        + tex_pkg::FORMAT_W + 2 + SETS_W + WAYS_W + FLW + FSW;
   logic [FCW-1:0] f_cfg, f_cfg_q;        // unit_rst and every cfg_* output but the two we pulses
-  logic [2*tex_pkg::SIZE_W+35:0] f_desc, f_desc_q;  // the staged descriptor (cfg_desc_base .. _srgb)
+  logic [2*tex_pkg::SIZE_W+39:0] f_desc, f_desc_q;  // the staged descriptor (cfg_desc_base .. _srgb)
   logic [FSW-1:0] f_smp, f_smp_q;        // the staged sampler (cfg_smp_wrap_u .. _border_rgba)
   logic          f_desc_we_q, f_smp_we_q, f_clear_q, f_desc_ready_q;
   logic          f_b_new, f_r_new;       // a B (R) response that was not there last clock
@@ -538,10 +542,10 @@ module tex_axil_config #(
     f_readable = f_writable(a) || 32'(a) < 4 || (32'(a) >= 'h80 / 4 && 32'(a) < 'h80 / 4 + 2 * NCNT);
   endfunction
 
-  assign f_cfg = {unit_rst, cfg_desc_index, cfg_smp_index, cfg_desc_base, cfg_desc_w, cfg_desc_h,
+  assign f_cfg = {unit_rst, cfg_desc_index, cfg_smp_index, cfg_desc_base, cfg_desc_w, cfg_desc_h, cfg_desc_last_level,
                   cfg_desc_format, cfg_desc_srgb, cfg_block_morton, cfg_log2_sets, cfg_log2_ways,
                   cfg_fifo_limit, f_smp};
-  assign f_desc = {cfg_desc_base, cfg_desc_srgb, cfg_desc_format, cfg_desc_h, cfg_desc_w};
+  assign f_desc = {cfg_desc_base, cfg_desc_srgb, cfg_desc_format, cfg_desc_last_level, cfg_desc_h, cfg_desc_w};
   assign f_smp  = {cfg_smp_wrap_u, cfg_smp_wrap_v, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_mip_mode,
                    cfg_smp_lod_bias, cfg_smp_min_lod, cfg_smp_max_lod, cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2,
                    cfg_smp_border_rgba};

@@ -19,10 +19,12 @@
 // Ports:
 //   desc_*            : a descriptor write (tex_unit_cached's cfg_desc_* pins): entry desc_index is
 //                       the pyramid at byte address desc_base (line aligned) of desc_w x desc_h
-//                       texels (1..2^MAX_LOG2_W, 1..2^MAX_LOG2_H; unsigned SIZE_W bits), format
-//                       desc_format (tex_pkg::FMT_*), sRGB if desc_srgb
+//                       texels (1..2^MAX_LOG2_W, 1..2^MAX_LOG2_H; unsigned SIZE_W bits), levels
+//                       0..desc_last_level (LEVEL_W bits; the set-up walks all 16 slots anyway),
+//                       format desc_format (tex_pkg::FMT_*), sRGB if desc_srgb
 //   block_morton      : the block order of every level (a registered cfg pin; set under reset)
-//   size_tex_a/_b     : two entries whose size is read: size_a, size_b = {h, w}, SIZE_W bits each
+//   size_tex_a/_b     : two entries whose size is read: size_a, size_b = {h, w}, SIZE_W bits each;
+//                       last_b: entry b's last level
 //   tag_tex, tag_level: the tag stage's entry and its two slots' levels ({d1, d}, LEVEL_W each);
 //   tag_line          : per slot, the level's first line (a line number, MEM_ADDR_W - log2 line bytes)
 //   tag_pitch         : per slot, NBX (row-major: the block row's pitch), PTW bits unsigned
@@ -50,6 +52,7 @@ module tex_desc_table #(
   input  logic [tex_pkg::MEM_ADDR_W-1:0]  desc_base,
   input  logic [tex_pkg::SIZE_W-1:0]      desc_w,
   input  logic [tex_pkg::SIZE_W-1:0]      desc_h,
+  input  logic [tex_pkg::LEVEL_W-1:0]     desc_last_level,
   input  logic [tex_pkg::FORMAT_W-1:0]    desc_format,
   input  logic                            desc_srgb,
   input  logic                            block_morton,
@@ -59,6 +62,7 @@ module tex_desc_table #(
   output logic [2*tex_pkg::SIZE_W-1:0]    size_a,
   input  logic [TXW-1:0]                  size_tex_b,
   output logic [2*tex_pkg::SIZE_W-1:0]    size_b,
+  output logic [tex_pkg::LEVEL_W-1:0]     last_b,
 
   input  logic [TXW-1:0]                  tag_tex,
   input  logic [2*tex_pkg::LEVEL_W-1:0]   tag_level,
@@ -82,6 +86,7 @@ module tex_desc_table #(
   logic [TXW-1:0]         index_q;
   logic [LNW-1:0]         base_q;
   logic [NW-1:0]          w_q, h_q;
+  logic [VW-1:0]          last_q;
   logic [FW-1:0]          format_q;
   logic                   srgb_q;
   always_ff @(posedge clk) begin
@@ -91,6 +96,7 @@ module tex_desc_table #(
       base_q   <= LNW'(desc_base >> LOG2_LB);
       w_q      <= desc_w;
       h_q      <= desc_h;
+      last_q   <= desc_last_level;
       format_q <= (BLOCK_FORMATS != 0) ? desc_format : tex_pkg::FMT_RGBA8;
       srgb_q   <= (SRGB != 0) && desc_srgb;
     end
@@ -141,6 +147,7 @@ module tex_desc_table #(
 
   logic [NW-1:0]  size_w [TEXTURES];
   logic [NW-1:0]  size_h [TEXTURES];
+  logic [VW-1:0]  last   [TEXTURES];
   logic [FW-1:0]  format [TEXTURES];
   logic           srgb   [TEXTURES];
   logic [EW-1:0]  level  [TEXTURES * LEVELS];  // entry t, level k at t * LEVELS + k
@@ -148,6 +155,7 @@ module tex_desc_table #(
     if (we_q) begin
       size_w[index_q] <= w_q;
       size_h[index_q] <= h_q;
+      last[index_q]   <= last_q;
       format[index_q] <= format_q;
       srgb[index_q]   <= srgb_q;
     end
@@ -174,6 +182,7 @@ module tex_desc_table #(
   // ---------------------------------------------------------------- reads
   assign size_a = {size_h[size_tex_a], size_w[size_tex_a]};
   assign size_b = {size_h[size_tex_b], size_w[size_tex_b]};
+  assign last_b = last[size_tex_b];
   generate
     for (genvar s = 0; s < 2; s++) begin : g_slot
       logic [EW-1:0] e;

@@ -16,6 +16,9 @@
 //                           signed Q8.8, the request's own LOD bias (added to the sampler's)
 //   req_w, req_h          : unsigned SIZE_W bits, level 0's size of the request's texture, each
 //                           1..2^max(XW, YW) (any value: GL's sizes)
+//   req_last_level        : unsigned LEVEL_W bits, the texture's last level (its level count - 1:
+//                           a chain may stop before 1x1); tex_lod takes the smaller of it and
+//                           floor(log2 max(w, h))
 //   req_wrap_u .. req_max_lod: the request's sampler, as tex_unit's cfg_smp_* pins: wrap modes
 //                           (tex_pkg::WRAP_*), req_min_linear the minification filter's texel
 //                           filter, req_mag_linear the magnification filter (where lambda' <= 0),
@@ -45,6 +48,7 @@ module tex_front #(
   input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
   input  logic [tex_pkg::SIZE_W-1:0]             req_w,
   input  logic [tex_pkg::SIZE_W-1:0]             req_h,
+  input  logic [tex_pkg::LEVEL_W-1:0]            req_last_level,
   input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             req_wrap_v,
   input  logic                                   req_min_linear,
@@ -84,6 +88,7 @@ module tex_front #(
   logic signed [LW-1:0]                   lod_s1, min_lod_s1, max_lod_s1;
   logic signed [LW:0]                     lod_bias_s1;  // the sampler's + the request's, exact
   logic [3*ZW-1:0]                        size_q;
+  logic [VW-1:0]                          last_s1;   // req_last_level at clock 1
   logic [4*MW-1:0]                        wrap_q;
   logic [2*PW-1:0]                        mip_q;     // clocks 1, 2
   logic [3*2-1:0]                         linear_q;  // {mag, min} at clocks 1..3
@@ -96,6 +101,7 @@ module tex_front #(
       min_lod_s1  <= req_min_lod;
       max_lod_s1  <= req_max_lod;
       size_q   <= {size_q[0 +: 2*ZW], NB'(req_h), NB'(req_w)};  // (at most 2^ML: NB bits)
+      last_s1  <= req_last_level;
       wrap_q   <= {wrap_q[0 +: 3*MW], req_wrap_v, req_wrap_u};
       mip_q    <= {mip_q[0 +: PW], req_mip_mode};
       linear_q <= {linear_q[0 +: 2*2], req_mag_linear, req_min_linear};
@@ -114,9 +120,10 @@ module tex_front #(
   assign {wrap_v_s4, wrap_u_s4} = wrap_q[3*MW +: MW];
 
   // ---------------------------------------------------------------- clocks 2-3: lod, scale
-  // The last level, floor(log2 max(w0, h0)) = the larger of the sides' leading ones, from clock
-  // 1's size and registered in clock 2 (tex_lod selects the levels in clock 3: the leading-one
-  // detectors stay out of that clock).
+  // The last level, floor(log2 max(w0, h0)) = the larger of the sides' leading ones, or the
+  // texture's own last level if its chain stops earlier, from clock 1's size and registered in
+  // clock 2 (tex_lod selects the levels in clock 3: the leading-one detectors stay out of that
+  // clock).
   logic [VW-1:0] last_level;
   always_ff @(posedge clk) begin
     if (en) begin
@@ -127,7 +134,8 @@ module tex_front #(
         if (size_q[b]) lead_w = VW'(b);
         if (size_q[NB + b]) lead_h = VW'(b);
       end
-      last_level <= (lead_w > lead_h) ? lead_w : lead_h;
+      lead_w = (lead_w > lead_h) ? lead_w : lead_h;
+      last_level <= (last_s1 < lead_w) ? last_s1 : lead_w;
     end
   end
 

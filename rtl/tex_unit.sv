@@ -23,6 +23,8 @@
 //   cfg_w, cfg_h the texture's size, unsigned SIZE_W bits, 1..2^MAX_LOG2_W (2^MAX_LOG2_H), any
 //   value (GL's level sizes; a side that is not a power of two is loaded with its repeat seam's
 //   copy of texel column (row) 0 at index w (h) of every level: docs/numerics.md stage 3);
+//   cfg_last_level the texture's last level (its level count - 1; a chain may stop before 1x1:
+//   a view's max level), unsigned LEVEL_W bits;
 //   wr_level, wr_x, wr_y unsigned integers.
 // Inputs are only ever registered: no logic depends combinationally on an input pin.
 //   cfg_* are taken with each request (in tex_probe and tex_front; the border colour registered
@@ -51,6 +53,7 @@ module tex_unit #(
 
   input  logic [tex_pkg::SIZE_W-1:0]             cfg_w,
   input  logic [tex_pkg::SIZE_W-1:0]             cfg_h,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_last_level,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_v,
   input  logic                                   cfg_smp_min_linear,
@@ -210,7 +213,7 @@ module tex_unit #(
   logic [3:0]      border_x_s5, border_y_s5, border_x_s6, border_y_s6;
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
-    .req_w(cfg_w), .req_h(cfg_h), .req_wrap_u(cfg_smp_wrap_u),
+    .req_w(cfg_w), .req_h(cfg_h), .req_last_level(cfg_last_level), .req_wrap_u(cfg_smp_wrap_u),
     .req_wrap_v(cfg_smp_wrap_v), .req_min_linear(cfg_smp_min_linear), .req_mag_linear(cfg_smp_mag_linear),
     .req_mip_mode(cfg_smp_mip_mode), .req_lod_bias(cfg_smp_lod_bias), .req_min_lod(cfg_smp_min_lod),
     .req_max_lod(cfg_smp_max_lod),

@@ -106,6 +106,7 @@ module tex_unit_axi #(
   logic [tex_pkg::TEX_ID_W-1:0]      cfg_desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base;
   logic [tex_pkg::SIZE_W-1:0]        cfg_desc_w, cfg_desc_h;
+  logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_last_level;
   logic                              cfg_desc_ready;
   logic                              cfg_smp_we;
   logic [tex_pkg::SMP_ID_W-1:0]      cfg_smp_index;
@@ -138,6 +139,7 @@ module tex_unit_axi #(
     .unit_rst(unit_rst),
     .cfg_desc_we(cfg_desc_we), .cfg_desc_index(cfg_desc_index), .cfg_desc_base(cfg_desc_base),
     .cfg_desc_w(cfg_desc_w), .cfg_desc_h(cfg_desc_h), .cfg_desc_ready(cfg_desc_ready),
+    .cfg_desc_last_level(cfg_desc_last_level),
     .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
     .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
@@ -162,6 +164,7 @@ module tex_unit_axi #(
     .clk(clk), .rst(rst || unit_rst),  // (rst too: unit_rst is a register, random in the first clock)
     .cfg_desc_we(cfg_desc_we), .cfg_desc_index(cfg_desc_index), .cfg_desc_base(cfg_desc_base),
     .cfg_desc_w(cfg_desc_w), .cfg_desc_h(cfg_desc_h), .cfg_desc_ready(cfg_desc_ready),
+    .cfg_desc_last_level(cfg_desc_last_level),
     .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
     .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
     .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),

@@ -35,8 +35,8 @@
 //   cfg_desc_*       : a descriptor write (cfg_desc_we high for one clock, while cfg_desc_ready):
 //                      entry cfg_desc_index is the pyramid at byte address cfg_desc_base
 //                      (MEM_ADDR_W bits, line aligned) of cfg_desc_w x cfg_desc_h texels (1 to
-//                      2^MAX_LOG2_W x 2^MAX_LOG2_H, any size; a full chain of levels of GL's sizes,
-//                      docs/memory.md §1) in format cfg_desc_format (tex_pkg::FMT_*: RGBA, or with BLOCK_FORMATS a
+//                      2^MAX_LOG2_W x 2^MAX_LOG2_H, any size; a chain of levels of GL's sizes
+//                      from 0 to cfg_desc_last_level, or to 1x1 if that comes first: docs/memory.md §1) in format cfg_desc_format (tex_pkg::FMT_*: RGBA, or with BLOCK_FORMATS a
 //                      block format, decoded after the cache to unorm8 texels; docs/memory.md §1),
 //                      its R, G, B sRGB-encoded if cfg_desc_srgb (SRGB only; not BC4, BC5).
 //                      Written before the requests that name the entry (and rewritten between
@@ -86,6 +86,7 @@ module tex_unit_cached #(
   input  logic [tex_pkg::MEM_ADDR_W-1:0]         cfg_desc_base,
   input  logic [tex_pkg::SIZE_W-1:0]             cfg_desc_w,
   input  logic [tex_pkg::SIZE_W-1:0]             cfg_desc_h,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_desc_last_level,
   input  logic [tex_pkg::FORMAT_W-1:0]           cfg_desc_format,
   input  logic                                   cfg_desc_srgb,
   output logic                                   cfg_desc_ready,
@@ -245,6 +246,7 @@ module tex_unit_cached #(
   localparam int LNW = tex_pkg::MEM_ADDR_W - $clog2(LINE_BITS / 8);
   logic            desc_busy;
   logic [ZW-1:0]   req_size, probe_size;     // {h, w}
+  logic [VW-1:0]   probe_last_level;              // the probe's texture's last level
   logic [TXW-1:0]  probe_tex, tex_s4;        // the probe's texture; the tag stage's
   logic [2*VW-1:0] level_s4;
   logic [2*LNW-1:0] line_s4;
@@ -259,9 +261,11 @@ module tex_unit_cached #(
   ) u_desc (
     .clk(clk), .rst(rst), .desc_we(cfg_desc_we), .desc_index(TXW'(cfg_desc_index)),
     .desc_base(cfg_desc_base), .desc_w(cfg_desc_w), .desc_h(cfg_desc_h),
-    .desc_format(cfg_desc_format), .desc_srgb(cfg_desc_srgb), .block_morton(cfg_block_morton_q),
+    .desc_last_level(cfg_desc_last_level), .desc_format(cfg_desc_format), .desc_srgb(cfg_desc_srgb),
+    .block_morton(cfg_block_morton_q),
     .busy(desc_busy),
     .size_tex_a(TXW'(req_tex)), .size_a(req_size), .size_tex_b(probe_tex), .size_b(probe_size),
+    .last_b(probe_last_level),
     .tag_tex(tex_s4), .tag_level(level_s4), .tag_line(line_s4), .tag_pitch(pitch_s4),
     .tag_square(square_s4), .tag_format(format_s4), .tag_srgb(srgb_s4),
     .tag_log2_lw(log2_lw_s4), .tag_log2_lh(log2_lh_s4)
@@ -356,7 +360,7 @@ module tex_unit_cached #(
   logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside its level (mode border)
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
-    .req_w(probe_size[0 +: NW]), .req_h(probe_size[NW +: NW]),
+    .req_w(probe_size[0 +: NW]), .req_h(probe_size[NW +: NW]), .req_last_level(probe_last_level),
     .req_wrap_u(probe_smp_front[0 +: WW]), .req_wrap_v(probe_smp_front[WW +: WW]),
     .req_min_linear(probe_smp_front[2*WW]), .req_mag_linear(probe_smp_front[2*WW + 1]),
     .req_mip_mode(probe_smp_front[2*WW + 2 +: PW]), .req_lod_bias(probe_smp_front[2*WW + 2 + PW +: LW]),

@@ -46,7 +46,7 @@ module tex_axil_config_formal #(
     .s_axi_arvalid, .s_axi_arready, .s_axi_araddr, .s_axi_arprot,
     .s_axi_rvalid, .s_axi_rready, .s_axi_rdata, .s_axi_rresp,
     .unit_rst(), .cfg_desc_we(), .cfg_desc_index(), .cfg_desc_base(), .cfg_desc_w(),
-    .cfg_desc_h(), .cfg_desc_ready(cfg_desc_ready), .cfg_desc_format(), .cfg_desc_srgb(), .cfg_smp_we(), .cfg_smp_index(),
+    .cfg_desc_h(), .cfg_desc_last_level(), .cfg_desc_ready(cfg_desc_ready), .cfg_desc_format(), .cfg_desc_srgb(), .cfg_smp_we(), .cfg_smp_index(),
     .cfg_smp_wrap_u(), .cfg_smp_wrap_v(), .cfg_smp_min_linear(), .cfg_smp_mag_linear(), .cfg_smp_mip_mode(),
     .cfg_smp_lod_bias(), .cfg_smp_min_lod(), .cfg_smp_max_lod(), .cfg_smp_max_aniso_m1(), .cfg_smp_aniso_pow2(),
     .cfg_smp_border_rgba(), .cfg_block_morton(),

@@ -13,6 +13,7 @@ module tex_unit_formal #(
   input  logic                                   rst,
   input  logic [tex_pkg::SIZE_W-1:0]             cfg_w,
   input  logic [tex_pkg::SIZE_W-1:0]             cfg_h,
+  input  logic [tex_pkg::LEVEL_W-1:0]            cfg_last_level,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_u,
   input  logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_v,
   input  logic                                   cfg_smp_min_linear,

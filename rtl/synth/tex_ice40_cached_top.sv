@@ -67,7 +67,8 @@ module tex_ice40_cached_top #(
   localparam int O_DINDEX  = O_DWE + 1;
   localparam int O_DESC_W  = O_DINDEX + XW;
   localparam int O_DESC_H  = O_DESC_W + NW;
-  localparam int O_FORMAT  = O_DESC_H + NW;
+  localparam int O_LAST    = O_DESC_H + NW;
+  localparam int O_FORMAT  = O_LAST + tex_pkg::LEVEL_W;
   localparam int O_SRGB    = O_FORMAT + tex_pkg::FORMAT_W;
   localparam int O_SWE     = O_SRGB + 1;
   localparam int O_SINDEX  = O_SWE + 1;
@@ -119,6 +120,7 @@ module tex_ice40_cached_top #(
     .clk(clk), .rst(rst),
     .cfg_desc_we(in_bits[O_DWE]), .cfg_desc_index(in_bits[O_DINDEX +: XW]),
     .cfg_desc_w(in_bits[O_DESC_W +: NW]), .cfg_desc_h(in_bits[O_DESC_H +: NW]), .cfg_desc_ready(desc_ready),
+    .cfg_desc_last_level(in_bits[O_LAST +: tex_pkg::LEVEL_W]),
     .cfg_desc_format(in_bits[O_FORMAT +: tex_pkg::FORMAT_W]), .cfg_desc_srgb(in_bits[O_SRGB]),
     .cfg_desc_base(in_bits[O_BASE +: AW]), .req_tex(in_bits[O_TEX +: XW]),
     .req_sampler(in_bits[O_SMP +: tex_pkg::SMP_ID_W]),

@@ -33,7 +33,8 @@ module tex_ice40_top #(
   localparam int NW = tex_pkg::SIZE_W;
   localparam int O_SIZE_W  = 0;
   localparam int O_SIZE_H  = O_SIZE_W + NW;
-  localparam int O_WRAP_U  = O_SIZE_H + NW;
+  localparam int O_LAST    = O_SIZE_H + NW;
+  localparam int O_WRAP_U  = O_LAST + tex_pkg::LEVEL_W;
   localparam int O_WRAP_V  = O_WRAP_U + WW;
   localparam int O_LINEAR  = O_WRAP_V + WW;
   localparam int O_MAG     = O_LINEAR + 1;
@@ -87,7 +88,7 @@ module tex_ice40_top #(
   end
   tex_unit #(.MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W)) u_unit (
     .clk(clk), .rst(rst),
-    .cfg_w(in_bits[O_SIZE_W +: NW]), .cfg_h(in_bits[O_SIZE_H +: NW]),
+    .cfg_w(in_bits[O_SIZE_W +: NW]), .cfg_h(in_bits[O_SIZE_H +: NW]), .cfg_last_level(in_bits[O_LAST +: tex_pkg::LEVEL_W]),
     .cfg_smp_wrap_u(in_bits[O_WRAP_U +: WW]), .cfg_smp_wrap_v(in_bits[O_WRAP_V +: WW]),
     .cfg_smp_min_linear(in_bits[O_LINEAR]), .cfg_smp_mag_linear(in_bits[O_MAG]),
     .cfg_smp_mip_mode(in_bits[O_MIP +: MW]),

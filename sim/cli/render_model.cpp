@@ -161,16 +161,20 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   if (query_writer) queries_out->close();
   if (list_out) {
     std::FILE* list = list_out->open();
-    std::fprintf(list, "# texture list of %s: id file wrap_u wrap_v [srgb] min= mag= mip= (texsim sample --textures)\n",
+    std::fprintf(list, "# texture list of %s: id file wrap_u wrap_v [srgb] min= mag= mip= [base= max=] (texsim sample --textures)\n",
                  a.trace_queries.c_str());
     for (size_t t = 0; t < scene.textures.size(); ++t) {
       save_image(scene.textures[t].image, *texture_files[t]);
       const Filter& fl = samplers[t].filter;
-      std::fprintf(list, "%zu %s %s %s%s min=%s mag=%s mip=%s\n", t,
+      const TextureOptions topts = o.texture_options();
+      const std::string view = topts.base_level == 0 && topts.max_level >= kMaxLevels - 1
+                                   ? std::string()
+                                   : " base=" + std::to_string(topts.base_level) + " max=" + std::to_string(topts.max_level);
+      std::fprintf(list, "%zu %s %s %s%s min=%s mag=%s mip=%s%s\n", t,
                    std::filesystem::path(texture_files[t]->path()).filename().c_str(),
                    wrap_name(samplers[t].wrap_u).c_str(), wrap_name(samplers[t].wrap_v).c_str(),
                    table[t].pyramid->srgb ? " srgb" : "", texel_filter_name(fl.texel).c_str(),
-                   texel_filter_name(fl.mag).c_str(), mip_mode_name(fl.mip).c_str());
+                   texel_filter_name(fl.mag).c_str(), mip_mode_name(fl.mip).c_str(), view.c_str());
     }
     list_out->close();
   }

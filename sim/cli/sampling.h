@@ -73,6 +73,7 @@ struct SamplingOptions {
   std::string engine = "model";
   double lod_bias = 0, min_lod = -128, max_lod = 127.99;
   bool resize = false;
+  int base_level = 0, max_level = kMaxLevels - 1;  // the texture's view
   std::string stalls = "none";
   std::string seed = "1";
   std::string load = "backdoor";
@@ -127,6 +128,14 @@ struct SamplingOptions {
     cmd.add_option("--lod-bias", lod_bias, "added to lambda before the clamp, in levels")->capture_default_str();
     cmd.add_option("--min-lod", min_lod, "lambda clamp, in levels")->capture_default_str();
     cmd.add_option("--max-lod", max_lod, "lambda clamp, in levels")->capture_default_str();
+    cmd.add_option("--base-level", base_level,
+                   "the view's first level (GL TEXTURE_BASE_LEVEL, Vulkan baseMipLevel): the units sample level N "
+                   "as their level 0, up to the texture's last level")
+        ->capture_default_str();
+    cmd.add_option("--max-level", max_level,
+                   "the view's last level (GL TEXTURE_MAX_LEVEL; Vulkan baseMipLevel + levelCount - 1), at least "
+                   "--base-level; default: the texture's last")
+        ->capture_default_str();
     cmd.add_flag("--resize", resize, "resample a texture whose sides are not powers of two to the nearest ones (no longer needed: every engine samples any size)");
     cmd.add_option("--stalls", stalls,
                    "none | random | heavy: input gaps and output stalls of cycle-accurate engines (none = ideal "
@@ -249,6 +258,8 @@ struct SamplingOptions {
       throw Error("unknown --format " + quote_clipped(format) + " (" + texel_format_names() + ")");
     t.format_given = format_opt->count() > 0;
     t.srgb = srgb;
+    t.base_level = base_level;
+    t.max_level = max_level;
     return t;
   }
 

@@ -25,20 +25,22 @@ namespace {
 
 using namespace tex;
 
-// --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [min=F] [mag=F] [mip=M] [border=C]` per
-// line (ids 0, 1, ... in order; paths relative to the file; `srgb`: the texels are sRGB codes).
-// Line t is texture t of the descriptor table and sampler t of the sampler table: the options'
-// sampler with the line's wrap modes and fields (min: nearest | linear | a GL minification name;
-// mag: nearest | linear; mip: none | nearest | linear; border: a border colour name).
+// --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [min=F] [mag=F] [mip=M] [border=C]
+// [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file; `srgb`: the
+// texels are sRGB codes). Line t is texture t of the descriptor table and sampler t of the sampler
+// table: the options' sampler with the line's wrap modes and fields (min: nearest | linear | a GL
+// minification name; mag: nearest | linear; mip: none | nearest | linear; border: a border colour
+// name), the texture's view from --base-level and --max-level or the line's base= and max=.
 struct TextureListEntry {
   std::string path;
   SamplerConfig sampler;
   bool srgb = false;
+  std::optional<int> base_level, max_level;
 };
 std::vector<TextureListEntry> read_texture_list(const std::string& path, const SamplerConfig& cfg) {
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (!f) throw Error(path + ": cannot open texture list");
-  const std::string form = "`id path [wrap_u [wrap_v]] [srgb] [min=F] [mag=F] [mip=M] [border=C]`";
+  const std::string form = "`id path [wrap_u [wrap_v]] [srgb] [min=F] [mag=F] [mip=M] [border=C] [base=N] [max=N]`";
   std::vector<TextureListEntry> out;
   char buf[4096];
   int line_no = 0;
@@ -54,7 +56,7 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
       if (id != std::to_string(out.size()))
         throw Error(at + "texture id " + quote_clipped(id) + ": expected " + std::to_string(out.size()) + " (ids 0, 1, ... in order)");
       if (file.empty()) throw Error(at + "expected " + form);
-      TextureListEntry e{file, cfg, false};
+      TextureListEntry e{file, cfg, false, {}, {}};
       if (std::filesystem::path(file).is_relative()) e.path = (std::filesystem::path(path).parent_path() / file).string();
       int wraps = 0;
       for (std::string token; line >> token;) {
@@ -85,8 +87,19 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
         } else if (key == "border") {
           if (!parse_border_color(value, e.sampler.border))
             throw Error(at + "border=" + quote_clipped(value) + ": not a border colour name (transparent-black, ...)");
+        } else if (key == "base" || key == "max") {
+          int level = -1;
+          size_t used = 0;
+          try {
+            level = std::stoi(value, &used);
+          } catch (const std::exception&) {
+            used = 0;
+          }
+          if (used == 0 || used != value.size() || level < 0 || level >= kMaxLevels)
+            throw Error(at + key + "=" + quote_clipped(value) + ": not a level 0 to " + std::to_string(kMaxLevels - 1));
+          (key == "base" ? e.base_level : e.max_level) = level;
         } else {
-          throw Error(at + "unknown sampler field " + quote_clipped(key) + " (min, mag, mip, border)");
+          throw Error(at + "unknown field " + quote_clipped(key) + " (min, mag, mip, border, base, max)");
         }
       }
       if (out.size() == size_t(kMaxTextures))
@@ -119,7 +132,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
     for (const TextureListEntry& e : list) outputs.add_input(e.path, "--textures");
   } else {
     o.add_inputs(outputs);
-    list.push_back({o.texture, cfg, false});
+    list.push_back({o.texture, cfg, false, {}, {}});
   }
   outputs.add_input(queries_path, "--queries");
   OutputFile& result = outputs.declare(out_path, "--out");
@@ -154,6 +167,8 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   for (const TextureListEntry& e : list) {
     TextureOptions entry = topts;
     entry.srgb = entry.srgb || e.srgb;
+    entry.base_level = e.base_level.value_or(entry.base_level);
+    entry.max_level = e.max_level.value_or(entry.max_level);
     pyramids.push_back(load_pyramid(e.path, entry));
     table.push_back({&pyramids.back()});
     samplers.push_back(e.sampler);
@@ -258,7 +273,7 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
   std::vector<uint8_t> image_bytes;
   if (image_out)  // (the layout checks the block, base and size before anything is written)
     image_bytes = memory_image_file(
-        pyr, MemoryLayout(pyr.extent0(), pyr.memory_channel_bits(), memory_layout, pyr.format));
+        pyr, layout_of(pyr, memory_layout));
   if (!dump_dir.empty()) {
     outputs.make_directory(dump_dir, "--dump-levels");
     std::vector<OutputFile*> levels;

@@ -428,6 +428,7 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
                 std::to_string(kMaxTextures));
   std::vector<Extent> sizes;
   std::vector<TexelFormat> formats;
+  std::vector<int> levels;
   const int bits = textures[0].pyramid->memory_channel_bits();
   for (const BoundTexture& t : textures) {
     if (t.pyramid->memory_channel_bits() != bits)
@@ -435,8 +436,9 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
                   " and " + std::to_string(t.pyramid->memory_channel_bits()) + " bits)");
     sizes.push_back(t.pyramid->extent0());
     formats.push_back(t.pyramid->format);
+    levels.push_back(int(t.pyramid->levels.size()));
   }
-  const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout, formats);
+  const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout, formats, levels);
   std::vector<TextureDescriptor> out;
   for (size_t i = 0; i < textures.size(); ++i) out.push_back({layouts[i]});
   return out;

@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
       initiator.socket.bind(unit.socket);
       std::unique_ptr<MemoryTarget> memory;
       if (options.memory == Memory::Cached) {
-        const MemoryLayout layout(pyramid.extent0(), pyramid.levels[0].channel_bits, options.layout);
+        const MemoryLayout layout = layout_of(pyramid, options.layout);
         MemoryTargetTiming timing;
         timing.latency = latency;
         timing.bytes_per_clock = bytes_per_clock;

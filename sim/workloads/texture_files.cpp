@@ -381,14 +381,29 @@ Pyramid box_pyramid(Image level0, PyramidMode mode, bool srgb) {
 
 }  // namespace
 
+namespace {
+
+// The options' view of a pyramid (the whole pyramid when they ask for none).
+Pyramid view_of(Pyramid p, const TextureOptions& o) {
+  if (o.base_level == 0 && o.max_level >= p.last_level()) return p;
+  if (o.base_level < 0 || o.base_level > p.last_level())
+    throw Error("--base-level " + std::to_string(o.base_level) + ": the texture has levels 0 to " +
+                std::to_string(p.last_level()));
+  if (o.max_level < o.base_level)
+    throw Error("--max-level " + std::to_string(o.max_level) + " is below --base-level " + std::to_string(o.base_level));
+  return view_pyramid(p, o.base_level, o.max_level);
+}
+
+}  // namespace
+
 Pyramid make_pyramid(Image level0, const TextureOptions& o) {
-  if (!o.srgb) return compress_pyramid(box_pyramid(std::move(level0), o.mode, false), o.format);
+  if (!o.srgb) return view_of(compress_pyramid(box_pyramid(std::move(level0), o.mode, false), o.format), o);
   if (!format_info(o.format).srgb_allowed)
     throw Error(std::string("--srgb: an sRGB ") + format_info(o.format).name + " does not exist (" +
                 format_info(o.format).name + " holds data, not colour)");
   Pyramid p = compress_pyramid(box_pyramid(std::move(level0), o.mode, true), o.format);
   decode_srgb_levels(p);
-  return p;
+  return view_of(std::move(p), o);
 }
 
 Pyramid load_pyramid(const std::string& spec, const TextureOptions& o) {
@@ -399,7 +414,11 @@ Pyramid load_pyramid(const std::string& spec, const TextureOptions& o) {
                 " (a texture file keeps its format)");
   if (o.srgb && !file.srgb)
     throw Error(spec + ": --srgb, but the file holds " + file.format_name + ", not an sRGB format (a texture file keeps its own)");
-  return pyramid_of(file, o.mode);
+  try {
+    return view_of(pyramid_of(file, o.mode), o);
+  } catch (const Error& e) {
+    throw Error(spec + ": " + e.what());
+  }
 }
 
 Pyramid pyramid_of(const TextureFile& file, PyramidMode mode) {

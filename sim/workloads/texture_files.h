@@ -47,10 +47,16 @@ struct TextureOptions {
   TexelFormat format = TexelFormat::Rgba8;
   bool format_given = false;  // --format: for an image file or pattern; a texture file has its own
   bool srgb = false;          // --srgb: an image file's or pattern's texels are sRGB codes
+  // --base-level, --max-level: the view of the pyramid the units sample (view_pyramid: GL's
+  // TEXTURE_BASE_LEVEL / TEXTURE_MAX_LEVEL, Vulkan's baseMipLevel / levelCount)
+  int base_level = 0;
+  int max_level = kMaxLevels - 1;
 };
 
 // The pyramid of level 0 as the options make it: the box pyramid (in linear space for sRGB:
-// model/srgb.h), each level compressed to options.format. Throws tex::Error (sRGB BC4 or BC5).
+// model/srgb.h), each level compressed to options.format, then its view (base and max level).
+// Throws tex::Error (sRGB BC4 or BC5; a base level beyond the last, a max level below the base:
+// one line naming the option and both values).
 Pyramid make_pyramid(Image level0, const TextureOptions& options);
 
 // A texture's pyramid: a DDS/KTX file's levels and format, or an image file or pattern

@@ -445,3 +445,40 @@ TEST(MemoryLayout, NonPowerOfTwoLevelsKeepTheSeamCopies) {
   for (int i = 0; i < 8; ++i) EXPECT_EQ(bimg[bat(2, 4, 0) + size_t(i)], bimg[bat(2, 0, 0) + size_t(i)]) << i;
 }
 
+
+// A view (GL's base and max level) is a pyramid of its own: levels b..min(m, last) of the
+// texture, with GL's sizes of level b's chain. Its layout placed where level b of the whole
+// texture's layout starts gives every one of its levels at the address the whole layout gives
+// level b + k (so a driver points a descriptor at level b), in both block orders, RGBA and BC1, of
+// sizes powers of two and not. And the errors name the value.
+TEST(MemoryLayout, AViewIsTheLayoutFromItsBaseLevel) {
+  const Extent sizes[] = {{64, 8}, {100, 60}, {37, 5}, {1000, 600}, {7, 129}, {1, 33}};
+  for (const Extent size : sizes)
+    for (const BlockOrder order : {BlockOrder::RowMajor, BlockOrder::Morton})
+      for (const TexelFormat format : {TexelFormat::Rgba8, TexelFormat::Bc1}) {
+        LayoutParams params;
+        params.order = order;
+        params.base = 4096;
+        const MemoryLayout whole(size, 8, params, format);
+        for (int b = 0; b < whole.levels(); ++b)
+          for (int m = b; m < whole.levels(); m += 2) {
+            LayoutParams at = params;
+            at.base = whole.level_base(b);
+            const MemoryLayout view(whole.level_size(b), 8, at, format, m - b + 1);
+            ASSERT_EQ(view.levels(), m - b + 1);
+            for (int k = 0; k < view.levels(); ++k) {
+              ASSERT_EQ(view.level_size(k), whole.level_size(b + k)) << size.w << "x" << size.h << " b" << b << " k" << k;
+              ASSERT_EQ(view.level_base(k), whole.level_base(b + k)) << size.w << "x" << size.h << " b" << b << " k" << k;
+              ASSERT_EQ(view.blocks_x(k), whole.blocks_x(b + k));
+              ASSERT_EQ(view.seam_x(k), whole.seam_x(b + k));
+            }
+          }
+      }
+  EXPECT_THROW(MemoryLayout({100, 60}, 8, LayoutParams{}, TexelFormat::Rgba8, 8), Error);  // 7 levels
+  try {
+    MemoryLayout({100, 60}, 8, LayoutParams{}, TexelFormat::Rgba8, 9);
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("9 levels"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1 to 7"), std::string::npos) << e.what();
+  }
+}

@@ -6,7 +6,9 @@
 #include <array>
 #include <string>
 #include <vector>
+#include <tuple>
 
+#include "model/error.h"
 #include "model/image.h"
 #include "model/pyramid.h"
 
@@ -171,3 +173,26 @@ TEST(Pyramid, AreaMeanIsTheBoxOfPowersOfTwoAndThePolyphaseBoxOfOddSides) {
   }
 }
 
+
+// view_pyramid: levels b..min(m, last) as a pyramid of their own (blocks and sRGB codes too); a
+// base level beyond the last and a max level below the base are errors naming the values.
+TEST(Pyramid, ViewIsTheChainFromItsBaseLevel) {
+  const Pyramid p = build_pyramid(random_image(100, 60, 5), PyramidMode::Exact);  // 7 levels
+  const Pyramid v = view_pyramid(p, 2, 4);
+  ASSERT_EQ(v.levels.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(v.levels[size_t(k)].texels, p.levels[size_t(2 + k)].texels);
+  EXPECT_EQ(v.extent0(), (Extent{25, 15}));
+  EXPECT_EQ(v.extent0().w, side(100, 2));
+  EXPECT_EQ(view_pyramid(p, 6, 99).levels.size(), 1u);  // the 1x1 level, a max beyond the last
+  EXPECT_EQ(view_pyramid(p, 0, 99).levels.size(), p.levels.size());
+  for (auto [b, m, text] : {std::tuple{7, 9, "base level 7: this texture has levels 0 to 6"},
+                            std::tuple{3, 2, "max level 2 is below the base level 3"},
+                            std::tuple{-1, 2, "base level -1"}}) {
+    try {
+      view_pyramid(p, b, m);
+      ADD_FAILURE() << "no error for base " << b << " max " << m;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    }
+  }
+}

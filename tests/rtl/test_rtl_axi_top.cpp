@@ -634,6 +634,10 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
     if (i > 0 && rng() % 2) size = {1 << (rng() % (kMaxLog2W + 1)), 1 << (rng() % (kMaxLog2H + 1))};
     else if (i > 0) size = {1 + int(rng() % (1u << kMaxLog2W)), 1 + int(rng() % (1u << kMaxLog2H))};
     c.pyramids.push_back(random_pyramid(size, rng()));
+    if (i > 0 && rng() % 3 == 0) {  // a view: its chain cut (DESC_ATTR's last level)
+      const int b = int(rng() % uint64_t(c.pyramids.back().levels.size()));
+      c.pyramids.back() = view_pyramid(c.pyramids.back(), b, b + int(rng() % 3));
+    }
     c.table.push_back({&c.pyramids.back()});
   }
   const int ns = rng() % 4 == 0 ? kSamplers : 1 + int(rng() % kSamplers);

@@ -63,7 +63,7 @@ struct Reference {
   uint32_t control = 1;                      // unit_reset after reset
   uint32_t cache = (2u << 16) | (6u << 8);   // 4 ways, 64 sets (LINES / MAX_WAYS), row-major
   uint32_t fifo_limit = 0, filter = 0x23, lod_bias = 0, min_lod = 0x8000, max_lod = 0x7FFF;
-  uint32_t desc_base = 0, desc_attr = 0, desc_size = 0x00010001, desc_index = 0, border_rg = 0, border_ba = 0, wrap = 0, smp_index = 0;
+  uint32_t desc_base = 0, desc_attr = 0xF00, desc_size = 0x00010001, desc_index = 0, border_rg = 0, border_ba = 0, wrap = 0, smp_index = 0;
   std::array<uint64_t, kCounters> counters{};
   Events ev_q;  // the registered events (counted at the next edge)
   bool snap_valid = false;
@@ -107,7 +107,7 @@ struct Reference {
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
       case kDescBase: desc_base = d; break;
-      case kDescAttr: desc_attr = d & 0xF0000; break;
+      case kDescAttr: desc_attr = d & 0xF0F00; break;
       case kDescSize: desc_size = d & 0x3FFF3FFF; break;
       case kWrap: wrap = d & 0x77; break;
       case kSmpCommit: smp_index = d & 15; break;
@@ -451,6 +451,7 @@ class Slave {
     EXPECT_EQ(t.cfg_smp_wrap_u, r.wrap & 7);
     EXPECT_EQ(t.cfg_smp_wrap_v, (r.wrap >> 4) & 7);
     EXPECT_EQ(t.cfg_desc_format, (r.desc_attr >> 16) & 7);
+    EXPECT_EQ(t.cfg_desc_last_level, (r.desc_attr >> 8) & 15);
     EXPECT_EQ(t.cfg_desc_srgb, (r.desc_attr >> 19) & 1);
     EXPECT_EQ(t.cfg_smp_border_rgba, uint64_t(r.border_rg) | uint64_t(r.border_ba) << 32);
     EXPECT_EQ(t.cfg_smp_min_linear, r.filter & 1);

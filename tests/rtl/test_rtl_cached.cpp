@@ -122,7 +122,7 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerT
   unit.load_textures(table);
   unit.configure(smp);
   if (poke_texel >= 0) {  // planted bug: one byte of the image is wrong
-    const MemoryLayout ml(pyr.extent0(), pyr.memory_channel_bits(), layout, pyr.format);
+    const MemoryLayout ml = layout_of(pyr, layout);
     unit.memory()->poke(ml.line_address(0, 0, 0) + uint32_t(poke_texel), 0x5A ^ uint8_t(pyr.levels[0].at(0, 0)[0]));
   }
   // The model's tables: the RTL's, unless a test plants others.
@@ -274,7 +274,11 @@ void run_suite(const CachedSuite& suite) {
     std::mt19937_64 rng(seed);
     const Extent size = suite.textures[size_t(ci) % suite.textures.size()];
     const TexelFormat format = suite.formats[size_t(ci) % suite.formats.size()];
-    const Pyramid pyr = random_pyramid(rc, format, size, suite.srgb && ci % 2 == 1, seed);
+    Pyramid pyr = random_pyramid(rc, format, size, suite.srgb && ci % 2 == 1, seed);
+    if (ci % 4 == 3) {  // a quarter of the cases sample a view (base and max level: cfg_desc_last_level)
+      const int b = int(rng() % uint64_t(pyr.levels.size()));
+      pyr = view_pyramid(pyr, b, b + int(rng() % 4));
+    }
     SamplerConfig cfg;
     cfg.filter = filters[rng() % filters.size()];
     if (ci % 3 != 2) cfg.filter = Filter{TexelFilter::Linear, MipMode::Linear};  // most cases trilinear
@@ -302,7 +306,8 @@ void run_suite(const CachedSuite& suite) {
     if (!r.failure.empty()) {
       ++failures;
       ADD_FAILURE() << suite.config << " case " << ci << " (replay: TEX_SEED=" << seed << "): "
-                    << size.w << "x" << size.h << " " << format_info(format).name << (pyr.srgb ? " sRGB" : "")
+                    << size.w << "x" << size.h << " (view " << pyr.extent0().w << "x" << pyr.extent0().h << ", "
+                    << pyr.levels.size() << " levels) " << format_info(format).name << (pyr.srgb ? " sRGB" : "")
                     << ", " << describe(cfg) << ", "
                     << block_order_name(layout.order) << ", " << cache.size_bytes << " B x " << cache.ways
                     << " ways, FIFO " << (fifo_depth ? std::to_string(fifo_depth) : "all") << ", " << memory_name
@@ -406,6 +411,10 @@ void run_descriptor_tables(const std::string& config, int cases) {
       else
         size = {blocks ? 4 + int(rng() % 61) : 1 + int(rng() % 64), blocks ? 4 + int(rng() % 5) : 1 + int(rng() % 8)};
       pyramids.push_back(random_pyramid(rc, format, size, srgb, rng()));
+      if (rng() % 4 == 0) {  // a view: levels b..b+0..3 (the descriptor's last level)
+        const int b = int(rng() % uint64_t(pyramids.back().levels.size()));
+        pyramids.back() = view_pyramid(pyramids.back(), b, b + int(rng() % 4));
+      }
       block_textures += blocks;
       srgb_textures += pyramids.back().srgb;
       table.push_back({&pyramids.back()});

@@ -21,6 +21,7 @@ struct TextureSpec {
   std::string pattern;  // a built-in pattern (8-bit), or "noise16": every channel random over 16 bits
   int width, height;
   PyramidMode mode;
+  int base_level = 0, max_level = kMaxLevels - 1;  // the view the unit samples (view_pyramid)
 };
 
 Image make_texture(const TextureSpec& ts) {
@@ -62,7 +63,7 @@ void run_suite(const RandomSuite& suite) {
                       const std::function<void(std::mt19937_64&, SamplerConfig&)>& configure) {
     if (only && *only != seed) return true;
     if (!pyr) {  // loaded lazily: a replay of one seed loads only its texture
-      pyr = build_pyramid(make_texture(ts), ts.mode);
+      pyr = view_pyramid(build_pyramid(make_texture(ts), ts.mode), ts.base_level, ts.max_level);
       unit->load(*pyr, port_load ? LoadMethod::Port : LoadMethod::Backdoor);
     }
     std::mt19937_64 rng(seed);
@@ -90,7 +91,8 @@ void run_suite(const RandomSuite& suite) {
       for (const Request& q : reqs) coverage.sample(*pyr, cfg, q);
     if (r.ok()) return true;
     ++failures;
-    ADD_FAILURE() << suite.name << ": texture " << ts.pattern << ":" << ts.width << "x" << ts.height << " "
+    ADD_FAILURE() << suite.name << ": texture " << ts.pattern << ":" << ts.width << "x" << ts.height << " levels "
+                  << ts.base_level << ".." << ts.max_level << " "
                   << (ts.mode == PyramidMode::Exact ? "exact" : "cascade") << ", " << describe(cfg)
                   << (aniso ? " max_aniso " + std::to_string(cfg.max_aniso) + (cfg.aniso_pow2 ? " pow2" : "") : "")
                   << ", timing " << timing_name << ", " << reqs.size() << " requests\n"
@@ -153,7 +155,7 @@ void run_suite(const RandomSuite& suite) {
 TEST(RtlRandom, Small4x4) {
   run_suite({"Small4x4", 4, 4,
              {{"noise", 16, 16, PyramidMode::Exact},
-              {"noise", 16, 2, PyramidMode::Cascade},
+              {"noise", 16, 2, PyramidMode::Cascade, 0, 2},  // a chain cut at level 2 (cfg_last_level)
               {"noise", 1, 16, PyramidMode::Exact},
               {"testcard", 13, 11, PyramidMode::Cascade}},
              5000});
@@ -162,7 +164,7 @@ TEST(RtlRandom, Small4x4) {
 TEST(RtlRandom, NonSquare6x3) {
   run_suite({"NonSquare6x3", 6, 3,
              {{"noise", 64, 8, PyramidMode::Cascade},
-              {"noise", 63, 7, PyramidMode::Exact},
+              {"noise", 63, 7, PyramidMode::Exact, 1, 3},  // the view 31x3 .. 7x1
               {"noise", 32, 1, PyramidMode::Exact},
               {"noise", 2, 8, PyramidMode::Cascade}},
              5000});
@@ -172,7 +174,7 @@ TEST(RtlRandom, Large10x10) {
   run_suite({"Large10x10", 10, 10,
              {{"noise", 1024, 1024, PyramidMode::Exact},
               {"noise", 1000, 600, PyramidMode::Cascade},
-              {"noise", 1024, 2, PyramidMode::Exact}},
+              {"noise", 1024, 2, PyramidMode::Exact, 0, 4}},
              6000});
 }
 
@@ -180,7 +182,7 @@ TEST(RtlRandom, Wide16Bit5x4) {
   // 16-bit channels (CW = 16): the lerps' products and the rounding at full width.
   run_suite({"Wide16Bit5x4", 5, 4,
              {{"noise16", 32, 16, PyramidMode::Exact},
-              {"noise16", 29, 11, PyramidMode::Cascade},
+              {"noise16", 29, 11, PyramidMode::Cascade, 0, 2},
               {"noise16", 32, 1, PyramidMode::Cascade}},
              3000, 16});
 }

@@ -127,6 +127,13 @@ class GlSampling {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(levels.size()) - 1);
   }
+  // A view of the uploaded texture: TEXTURE_BASE_LEVEL and TEXTURE_MAX_LEVEL.
+  void view(int base_level, int max_level) {
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex_);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, base_level);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, max_level);
+  }
 
   // The sampler state of `c` on the texture, then one sample per query (u, v, lambda).
   std::vector<std::array<float, 4>> sample(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
@@ -268,4 +275,52 @@ TEST(GlSamplerStates, LlvmpipeAgreesWithTheModelOnEverySamplerState) {
   EXPECT_EQ(states, 240);
   std::printf("  %d sampler states, %d lookups compared with llvmpipe: max %.2f LSB, mean %.3f LSB\n", states,
               compared, worst / 100.0, mean_sum / states);
+}
+
+// Views (GL's TEXTURE_BASE_LEVEL and TEXTURE_MAX_LEVEL; texsim --base-level, --max-level): GL
+// samples the whole uploaded pyramid through the view, the model samples view_pyramid (the view as
+// a texture of its own: level b as level 0, lambda in its texels, the chain cut at m). Both must
+// agree as they do without a view, on RGBA8 and sRGB, sides powers of two and not, for bases and
+// max levels inside, at and beyond the chain, every mip mode.
+TEST(GlSamplerStates, ViewsAgreeWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  const Pyramid rgba = build_pyramid(make_pattern("noise", 32, 16));
+  const Pyramid rgba_npot = build_pyramid(make_pattern("noise", 37, 23));
+  const Pyramid srgb_npot = build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact);
+  const std::pair<int, int> views[] = {{1, 3}, {2, 99}, {0, 1}, {3, 3}, {1, 1}};
+  const Wrap wraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
+  std::mt19937 rng(40);
+  int states = 0, worst = 0;
+  for (const Pyramid* pyr : {&rgba, &rgba_npot, &srgb_npot}) {
+    gl.upload(*pyr);
+    for (auto [b, m] : views)
+      for (int mip = 0; mip < 3; ++mip) {
+        const Pyramid view = view_pyramid(*pyr, b, m);
+        gl.view(b, m);
+        SamplerConfig cfg{{TexelFilter(rng() % 2), MipMode(mip)}, wraps[rng() % 5], wraps[rng() % 5]};
+        cfg.filter.mag = TexelFilter(rng() % 2);
+        const Outcome o = compare(gl, view, cfg, uint32_t(1000 + states));
+        ++states;
+        SCOPED_TRACE((pyr->srgb ? "sRGB " : "RGBA8 ") + std::to_string(pyr->extent0().w) + "x" +
+                     std::to_string(pyr->extent0().h) + " levels " + std::to_string(b) + ".." + std::to_string(m) +
+                     ", " + name_of(cfg));
+        const double mean = o.sum / (4.0 * o.compared);
+        EXPECT_GT(o.compared, kW * kH / 2) << o.excluded << " excluded";
+        if (cfg.filter.texel == TexelFilter::Nearest && cfg.filter.mag == TexelFilter::Nearest &&
+            cfg.filter.mip != MipMode::Linear) {
+          EXPECT_LE(o.max_lsb_x100, pyr->srgb ? 35 : 0) << "mean " << mean;
+        }
+        EXPECT_LE(o.max_lsb_x100, 200) << "mean " << mean;
+        EXPECT_LE(mean, 0.4);
+        worst = std::max(worst, o.max_lsb_x100);
+      }
+  }
+  EXPECT_EQ(states, 45);
+  std::printf("  %d views, max %.2f LSB against llvmpipe\n", states, worst / 100.0);
+  // The check fires: the model sampling the whole pyramid where GL samples a view disagrees.
+  gl.upload(rgba_npot);
+  gl.view(2, 4);
+  const Outcome wrong = compare(gl, rgba_npot, SamplerConfig{}, 7);
+  EXPECT_GT(wrong.max_lsb_x100, 1000) << "a view ignored went unnoticed";
 }

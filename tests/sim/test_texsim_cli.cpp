@@ -66,6 +66,35 @@ TEST_F(TexsimCli, NonPowerOfTwoIsSampledOrNamedAndResizeWorks) {
   EXPECT_EQ(header, "r,g,b,a");
 }
 
+// A view (--base-level, --max-level; a texture list's base= and max=): every engine samples the
+// same bits (the on-chip unit through cfg_last_level, the cached one through its descriptor), and
+// differently from the whole texture; bad levels are one line naming the option and the values.
+TEST_F(TexsimCli, ViewsSampleTheSameInEveryEngine) {
+  queries("u,v,lod\n0.3,0.7,0\n0.5,0.5,1.5\n0.1,0.2,3.7\n0.9,0.9,9\n-0.2,1.3,2.2\n");
+  write_image(dir / "t.png", 100, 60, 3, [](int x, int y, int c) { return (x * 37 + y * 11 + c * 90) & 255; });
+  const std::string view = "sample -t t.png -q q.csv --base-level 1 --max-level 3 ";
+  ASSERT_EQ(run(view + "-o m.csv").exit_code, 0);
+  std::string h;
+  const auto model = read_csv_rows(dir / "m.csv", h);
+  for (const char* e : {"-e rtl", "-e rtl --memory cached", "-e systemc", "-e systemc --memory cached"}) {
+    const Result r = run(view + "-o e.csv " + e);
+    EXPECT_EQ(r.exit_code, 0) << e << ": " << r.err;
+    EXPECT_EQ(read_csv_rows(dir / "e.csv", h), model) << e;
+  }
+  ASSERT_EQ(run("sample -t t.png -q q.csv -o whole.csv").exit_code, 0);
+  EXPECT_NE(read_csv_rows(dir / "whole.csv", h), model) << "the view changed nothing";
+  // the same view from a texture list
+  write_text(dir / "list.txt", "0 t.png base=1 max=3\n");
+  ASSERT_EQ(run("sample --textures list.txt -q q.csv -o l.csv -e rtl --memory cached").exit_code, 0);
+  EXPECT_EQ(read_csv_rows(dir / "l.csv", h), model);
+  expect_clean_failure("sample -t testcard:100x60 -q q.csv -o x.csv --base-level 7", "x.csv",
+                       {"--base-level 7", "levels 0 to 6"});
+  expect_clean_failure("sample -t testcard:100x60 -q q.csv -o x.csv --base-level 3 --max-level 2", "x.csv",
+                       {"--max-level 2", "--base-level 3"});
+  write_text(dir / "bad.txt", "0 t.png base=x\n");
+  expect_clean_failure("sample --textures bad.txt -q q.csv -o x.csv", "x.csv", {"bad.txt:1", "base=", "not a level"});
+}
+
 TEST_F(TexsimCli, MalformedCsvLineGivesLineNumberAndText) {
   queries("u,v,lod\n0.1,0.2,0\n# a comment\n0.3,abc,0\n");
   expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:4", "0.3,abc,0"});

@@ -34,6 +34,7 @@ module tb_tex_unit #(
   logic clk = 1'b0;
   logic rst = 1'b1;
   logic [tex_pkg::SIZE_W-1:0]             cfg_w = 'x, cfg_h = 'x;
+  logic [tex_pkg::LEVEL_W-1:0]            cfg_last_level = 'x;
   logic [tex_pkg::WRAP_W-1:0]             cfg_smp_wrap_u = 'x, cfg_smp_wrap_v = 'x;
   logic                                   cfg_smp_min_linear = 'x;
   logic                                   cfg_smp_mag_linear = 'x;
@@ -285,7 +286,7 @@ module tb_tex_unit #(
   // ---------------------------------------------------------------- main
   initial begin : main
     byte op;
-    int a0, a1, a2, a3, a4, a5, a6, a7, a8, a9;
+    int a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10;
     logic [63:0] h0, h1;
     logic signed [31:0] s0, s1;
     bit done;
@@ -316,10 +317,11 @@ module tb_tex_unit #(
         fail(2, "stimulus.txt ends without E");
         done = 1;
       end else if (op == "C") begin
-        r = $fscanf(stim_fd, "%d %d %d %d %d %d %d %d %d %d %h", a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, h0);
+        r = $fscanf(stim_fd, "%d %d %d %d %d %d %d %d %d %d %d %h", a0, a1, a10, a2, a3, a4, a5, a6, a7, a8, a9, h0);
         if (accepted != answered) fail(2, "stimulus: cfg changed with requests in flight");
         cfg_w = a0;
         cfg_h = a1;
+        cfg_last_level = a10;
         cfg_smp_wrap_u = a2;
         cfg_smp_wrap_v = a3;
         cfg_smp_min_linear = a4[0];

@@ -128,7 +128,7 @@ struct Gen {
   }
 
   void cfg_line(const Pyramid& p, const SamplerConfig& c) {
-    stim << "C " << p.extent0().w << ' ' << p.extent0().h << ' ' << int(c.wrap_u) << ' ' << int(c.wrap_v) << ' '
+    stim << "C " << p.extent0().w << ' ' << p.extent0().h << ' ' << p.last_level() << ' ' << int(c.wrap_u) << ' ' << int(c.wrap_v) << ' '
          << (c.filter.texel == TexelFilter::Linear ? 1 : 0) << ' ' << int(c.filter.mip) << ' ' << c.lod_bias << ' '
          << c.min_lod << ' ' << c.max_lod << ' ' << (c.filter.mag == TexelFilter::Linear ? 1 : 0) << ' ';
     const Texel b = c.border_unorm16();

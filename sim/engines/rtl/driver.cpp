@@ -162,10 +162,11 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_sampler = r.sampler;
 }
 
-CfgPins cfg_pins(const SamplerConfig& config, Extent size) {
+CfgPins cfg_pins(const SamplerConfig& config, const Pyramid& pyramid) {
   CfgPins c;
-  c.w = uint16_t(size.w);
-  c.h = uint16_t(size.h);
+  c.w = uint16_t(pyramid.extent0().w);
+  c.h = uint16_t(pyramid.extent0().h);
+  c.last_level = uint8_t(pyramid.last_level());
   c.sampler = sampler_pins(config);
   return c;
 }
@@ -340,7 +341,8 @@ void Driver::load_textures(const TextureTable& textures) {
     const std::vector<uint8_t> bytes = build_memory_image(*textures[i].pyramid, layout);
     image.insert(image.end(), bytes.begin(), bytes.end());  // packed: each starts where the last ended
     descriptors_.push_back({uint8_t(i), layout.params().base, uint16_t(layout.size0().w),
-                            uint16_t(layout.size0().h), uint8_t(layout.format()), textures[i].pyramid->srgb});
+                            uint16_t(layout.size0().h), uint8_t(layout.levels() - 1), uint8_t(layout.format()),
+                            textures[i].pyramid->srgb});
   }
   if (options_.memory_port) {
     port_ = options_.memory_port;

@@ -135,6 +135,7 @@ struct DescriptorPins {
   uint8_t index = 0;
   uint32_t base = 0;  // byte address of level 0
   uint16_t w = 1, h = 1;  // level 0's size in texels
+  uint8_t last_level = 15; // the chain's last level (a view's: docs/rtl-interface.md)
   uint8_t format = 0;  // tex_pkg::FMT_* = TexelFormat
   bool srgb = false;   // R, G, B are sRGB codes (a configuration with the formats)
 };
@@ -158,9 +159,10 @@ SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index = 0);
 // configuration's) and its one sampler.
 struct CfgPins {
   uint16_t w = 1, h = 1;
+  uint8_t last_level = 15;  // cfg_last_level: the chain's last level (15: down to 1x1)
   SamplerPins sampler;
 };
-CfgPins cfg_pins(const SamplerConfig& config, Extent size);
+CfgPins cfg_pins(const SamplerConfig& config, const Pyramid& pyramid);
 
 // Texel <-> packed {A, B, G, R} of cw bits each (R in the low bits).
 uint64_t pack_rgba(const Texel& t, int cw);
@@ -260,7 +262,7 @@ class Driver {
   // cached unit then starts empty (a reset) and its descriptors and samplers are written again.
   void configure(const CfgPins& cfg);
   void configure(const SamplerConfig& config, const Pyramid& pyramid) {
-    configure(cfg_pins(config, pyramid.extent0()));
+    configure(cfg_pins(config, pyramid));
   }
   // tex_unit_cached: the sampler table (requests name an entry by Request::sampler), after a reset
   // with the descriptors. Throws tex::Error for tex_unit or more samplers than the table holds.

@@ -58,9 +58,9 @@ inline uint32_t border_ba_word(const SamplerConfig& c) {
   const Texel b = c.border_unorm16();
   return uint32_t(b[2]) | uint32_t(b[3]) << 16;
 }
-// The staged descriptor's DESC_ATTR for a texture's format and sRGB flag, and its DESC_SIZE.
+// The staged descriptor's DESC_ATTR for a texture's last level, format and sRGB flag, and its DESC_SIZE.
 inline uint32_t desc_attr_word(const MemoryLayout& l, bool srgb = false) {
-  return uint32_t(l.format()) << 16 | uint32_t(srgb) << 19;
+  return uint32_t(l.levels() - 1) << 8 | uint32_t(l.format()) << 16 | uint32_t(srgb) << 19;
 }
 inline uint32_t desc_size_word(Extent e) { return uint32_t(e.w) | uint32_t(e.h) << 16; }
 

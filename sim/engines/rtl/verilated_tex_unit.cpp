@@ -148,6 +148,7 @@ class VerilatedTexUnit final : public Driver {
       Top& t = *top_;
       t.cfg_w = c.w;
       t.cfg_h = c.h;
+      t.cfg_last_level = c.last_level;
       set_sampler_pins(c.sampler);
       t.eval();
     }
@@ -173,6 +174,7 @@ class VerilatedTexUnit final : public Driver {
       t.cfg_desc_base = d.base;
       t.cfg_desc_w = d.w;
       t.cfg_desc_h = d.h;
+      t.cfg_desc_last_level = d.last_level;
       t.cfg_desc_format = d.format;
       t.cfg_desc_srgb = d.srgb;
       t.eval();

@@ -62,7 +62,7 @@ EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfi
   // Cached: the pyramid's memory image in a TLM memory target with the --mem-* timing.
   std::unique_ptr<MemoryTarget> memory;
   if (eo.memory == Memory::Cached) {
-    const MemoryLayout layout(pyramid.extent0(), pyramid.levels[0].channel_bits, eo.layout);
+    const MemoryLayout layout = layout_of(pyramid, eo.layout);
     MemoryTargetTiming timing;
     timing.latency = eo.mem_latency;
     timing.bytes_per_clock = eo.mem_bytes_per_clock;
@@ -227,7 +227,7 @@ EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerCo
     throw Error("--mem-jitter " + std::to_string(eo.mem_jitter) +
                 ": the SystemC engines' TLM memory has a fixed latency (use --engine rtl or model for jitter)");
   if (cached) {  // the layout and the caches can be built for this texture
-    const MemoryLayout layout(pyramid.extent0(), pyramid.levels[0].channel_bits, eo.layout);
+    const MemoryLayout layout = layout_of(pyramid, eo.layout);
     TextureCache(layout, eo.cache, config);
   }
   if (backend == Backend::Rtl) {

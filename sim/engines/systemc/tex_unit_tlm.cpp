@@ -17,9 +17,8 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyra
       pyramid_(&pyramid), options_(options) {
   socket.register_transport_dbg(this, &TexUnitTlm::transport_dbg);
   const bool cached = options.memory == Memory::Cached;
-  const int cw = pyramid.levels[0].channel_bits;
   if (cached) {
-    layout_.emplace(pyramid.extent0(), cw, options.layout);
+    layout_.emplace(layout_of(pyramid, options.layout));
     cache_.emplace(*layout_, options.cache, config);
     cache_->set_error_reads(options.mem_error_reads);  // the flags the RTL backend must give
   }
