@@ -26,11 +26,12 @@ namespace {
 using namespace tex;
 
 // --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [min=F] [mag=F] [mip=M] [border=C]
-// [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file; `srgb`: the
-// texels are sRGB codes). Line t is texture t of the descriptor table and sampler t of the sampler
-// table: the options' sampler with the line's wrap modes and fields (min: nearest | linear | a GL
-// minification name; mag: nearest | linear; mip: none | nearest | linear; border: a border colour
-// name), the texture's view from --base-level and --max-level or the line's base= and max=.
+// [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
+// patterns as they are; `srgb`: the texels are sRGB codes). Line t is texture t of the
+// descriptor table and sampler t of the sampler table: the options' sampler with the line's wrap
+// modes and fields (min: nearest | linear | a GL minification name; mag: nearest | linear; mip:
+// none | nearest | linear; border: a border colour name), the texture's view from --base-level and
+// --max-level or the line's base= and max=.
 struct TextureListEntry {
   std::string path;
   SamplerConfig sampler;
@@ -57,7 +58,10 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
         throw Error(at + "texture id " + quote_clipped(id) + ": expected " + std::to_string(out.size()) + " (ids 0, 1, ... in order)");
       if (file.empty()) throw Error(at + "expected " + form);
       TextureListEntry e{file, cfg, false, {}, {}};
-      if (std::filesystem::path(file).is_relative()) e.path = (std::filesystem::path(path).parent_path() / file).string();
+      // A file relative to the list's directory; a built-in pattern as it is (unless such a file exists).
+      const std::filesystem::path beside = std::filesystem::path(path).parent_path() / file;
+      if (std::filesystem::path(file).is_relative() && (!is_pattern_spec(file) || std::filesystem::exists(beside)))
+        e.path = beside.string();
       int wraps = 0;
       for (std::string token; line >> token;) {
         const size_t eq = token.find('=');

@@ -146,6 +146,12 @@ int nearest_power_of_two(int n) {
 
 }  // namespace
 
+bool is_pattern_spec(const std::string& spec) {
+  std::string name;
+  int w = 0, h = 0;
+  return parse_pattern_spec(spec, name, w, h);
+}
+
 Image load_texture(const std::string& spec, bool resize) {
   std::string name;
   int w = 0, h = 0;

@@ -14,6 +14,8 @@ namespace tex {
 // two is resampled (OpenImageIO, to the nearest power of two, at most 8192). Values of float images
 // outside 0..1 are clamped, with one note on stderr. Throws tex::Error.
 Image load_texture(const std::string& spec, bool resize = false);
+// Whether `spec` names a built-in pattern (NAME or NAME:WxH) rather than a file.
+bool is_pattern_spec(const std::string& spec);
 
 // A texture of a 3D model (workloads/mesh_scene.h): RGBA8 as above, of the file's size (any); a
 // side beyond 8192 is resampled down to 8192 with OpenImageIO's resize, and nothing is printed:

@@ -91,6 +91,12 @@ TEST_F(TexsimCli, ViewsSampleTheSameInEveryEngine) {
                        {"--base-level 7", "levels 0 to 6"});
   expect_clean_failure("sample -t testcard:100x60 -q q.csv -o x.csv --base-level 3 --max-level 2", "x.csv",
                        {"--max-level 2", "--base-level 3"});
+  // a built-in pattern in a list is the pattern, wherever the list is
+  fs::create_directories(dir / "sub");
+  write_text(dir / "sub" / "p.txt", "0 testcard:100x60 base=1 max=3\n");
+  ASSERT_EQ(run("sample --textures sub/p.txt -q q.csv -o p.csv").exit_code, 0);
+  ASSERT_EQ(run("sample -t testcard:100x60 --base-level 1 --max-level 3 -q q.csv -o p2.csv").exit_code, 0);
+  EXPECT_EQ(read_csv_rows(dir / "p.csv", h), read_csv_rows(dir / "p2.csv", h));
   write_text(dir / "bad.txt", "0 t.png base=x\n");
   expect_clean_failure("sample --textures bad.txt -q q.csv -o x.csv", "x.csv", {"bad.txt:1", "base=", "not a level"});
 }
