@@ -19,7 +19,7 @@ help:
 	@echo "make rtl-soak  - RTL vs model lockstep and the block decoders (1.2 M blocks), 20x the random samples of make test, new seeds"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make xprop  - 4-state X-propagation run of the RTL in Icarus Verilog, with planted bugs"
-	@echo "make formal - Yosys proofs of the handshakes (skid buffer, req_ready path), the AXI4 read master and the AXI4-Lite slave, each shown failing on a planted bug (about 4 minutes)"
+	@echo "make formal - Yosys proofs of the handshakes (skid buffer, req_ready path), the AXI4 read master and the AXI4-Lite slave, each shown failing on a planted bug (about 6 minutes on one core)"
 	@echo "make synth  - every compiled configuration through Yosys for ECP5, Artix-7 and iCE40: LUTs, FFs, BRAM, DSP, parts it fits, nextpnr-ice40 Fmax ($(OUT)/synth/synth.json, about two hours)"
 	@echo "make clean  - remove $(BUILD)/ and $(OUT)/"
 
@@ -44,7 +44,7 @@ demo: build
 	@echo "demo: $(OUT)/plane_point.png aliases near the horizon, $(OUT)/plane_trilinear.png blurs it grey," \
 	      "$(OUT)/plane_anisotropic.png keeps its checks; $(OUT)/plane_1000x600_mirror.png: a texture of no power-of-two size"
 
-# After the build, the suites two at a time: the formal proofs (one core, about 4 minutes) beside
+# After the build, the suites two at a time: the formal proofs (one core, about 6 minutes) beside
 # lint, xprop, synth-latch, the model alone and ctest (whose own jobs share the other core until
 # the proofs are done). Lines of the two streams interleave whole (--output-sync=line).
 test: build

@@ -17,8 +17,8 @@ struct Derivatives {
 bool lod_from_derivatives(const Derivatives& d, Extent size0, int32_t& lod_q8);
 
 // ------------------------------------------------------------------ tex_lambda (docs/numerics.md, stage 1b)
-// The hardware LOD unit's specification (the RTL module of the same name is to follow it bit for
-// bit; scenes and derivative traces take their lambda from it): lambda from the four derivatives of normalized (u, v) per screen pixel, each signed Q8.24
+// The hardware LOD unit's specification (rtl/tex_lambda.sv follows it bit for bit, RtlLambda.*;
+// scenes and derivative traces take their lambda from it): lambda from the four derivatives of normalized (u, v) per screen pixel, each signed Q8.24
 // like u and v (2^-24 .. 128 texture widths per pixel; a converter saturates beyond). Scaled to
 // level-0 texels (|d| * w0 or * h0: a multiply, the paper's shift where the size is a power of two), normalized as a block (the largest magnitude to 16 bits), squared exactly,
 // rho^2 = max(|d(u,v)/dx|^2, |d(u,v)/dy|^2) (no square-root approximation), and log2 by a leading-
