@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "engines/rtl/driver.h"
 #include "model/pyramid.h"
 #include "model/srgb.h"
 #include "workloads/camera.h"
@@ -62,19 +63,6 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   if (scene.textures.size() > size_t(kMaxTextures))
     throw Error("the scene has " + std::to_string(scene.textures.size()) + " textures; the descriptor table holds " +
                 std::to_string(kMaxTextures));
-  // Several textures need the cached unit's descriptor table: chosen unless --memory says otherwise.
-  const bool memory_chosen = scene.textures.size() > 1 && eo.memory != Memory::Cached && !o.memory_opt->count();
-  if (memory_chosen) {
-    const std::string trace_path = eo.trace_path;
-    eo = o.engine_options(Memory::Cached);
-    eo.trace_path = trace_path;
-  }
-  if (scene.textures.size() > 1 && eo.memory != Memory::Cached)
-    throw Error("the scene has " + std::to_string(scene.textures.size()) +
-                " textures; the on-chip unit holds one (the paper's design): use --memory cached");
-  if (scene.textures.size() > 1 && !engine_info(o.engine).texture_table)
-    throw Error("the scene has " + std::to_string(scene.textures.size()) + " textures; engine " + o.engine +
-                " takes one per frame: use --engine model or rtl");
   std::vector<Pyramid> pyramids;
   pyramids.reserve(scene.textures.size());
   TextureTable table;
@@ -91,6 +79,32 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
     table.push_back({&pyramids.back()});
     samplers.push_back(file_sampler(t, cfg, a.filter_given, a.wrap_given));
   }
+  // The cached unit, unless --memory says otherwise, for several textures (its descriptor table)
+  // or, with an engine that simulates a compiled unit, a texture no compiled on-chip unit holds (an
+  // sRGB texture is held as 16-bit channels on chip, and those units are small).
+  std::string memory_chosen;
+  if (eo.memory != Memory::Cached && !o.memory_opt->count()) {
+    if (scene.textures.size() > 1) {
+      memory_chosen = "the on-chip unit holds one texture";
+    } else if (engine_info(o.engine).cycle_accurate) {
+      try {
+        rtl::smallest_config_for(table, Memory::OnChip, eo.layout.block_w, eo.layout.block_h);
+      } catch (const Error&) {
+        memory_chosen = "no compiled on-chip unit holds the texture";
+      }
+    }
+  }
+  if (!memory_chosen.empty()) {
+    const std::string trace_path = eo.trace_path;
+    eo = o.engine_options(Memory::Cached);
+    eo.trace_path = trace_path;
+  }
+  if (scene.textures.size() > 1 && eo.memory != Memory::Cached)
+    throw Error("the scene has " + std::to_string(scene.textures.size()) +
+                " textures; the on-chip unit holds one (the paper's design): use --memory cached");
+  if (scene.textures.size() > 1 && !engine_info(o.engine).texture_table)
+    throw Error("the scene has " + std::to_string(scene.textures.size()) + " textures; engine " + o.engine +
+                " takes one per frame: use --engine model or rtl");
   const uint64_t resident = texture_bytes_resident(table, eo);  // also checks the table fits the memory
 
   // --trace-queries: the frame's requests, and the textures they name (as loaded: of the file's size,
@@ -198,7 +212,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
               a.model.empty() ? a.scene_file.c_str() : a.model.c_str(), scene.meshes.size(), scene.textures.size(),
               a.width, a.height, first == last ? "" : "s", first, last, a.frames, filters.c_str(),
               a.order == PixelOrder::Tiled ? "tiled" : "scanline", o.engine.c_str(), memory_name(eo.memory).c_str(),
-              memory_chosen ? " (chosen: the on-chip unit holds one texture)" : "", a.out.c_str(), secs);
+              memory_chosen.empty() ? "" : (" (chosen: " + memory_chosen + ")").c_str(), a.out.c_str(), secs);
   return 0;
 }
 

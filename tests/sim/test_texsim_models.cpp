@@ -184,6 +184,15 @@ TEST_F(TexsimModels, BadInputsFailCleanly) {
                        {"2 textures", "--memory cached"});
   expect_clean_failure("render --scene-file two.json --memory cached --engine systemc --out f.png", "f.png",
                        {"2 textures", "engine systemc", "--engine model or rtl"});
+  // One texture no compiled on-chip unit holds (BoxTextured's 211x211 sRGB logo: 16-bit channels
+  // on chip): the RTL engine takes the cached unit and says why; --memory onchip names the way out.
+  const Result box = run("render --model " + kBox + " --engine rtl --verify --width 64 --height 48 --out f.png");
+  EXPECT_EQ(box.exit_code, 0) << box.err;
+  EXPECT_NE(box.out.find("cached memory (chosen: no compiled on-chip unit holds the texture)"), std::string::npos)
+      << box.out;
+  fs::remove(dir / "f.png");
+  expect_clean_failure("render --model " + kBox + " --engine rtl --memory onchip --width 64 --height 48 --out f.png",
+                       "f.png", {"211x211", "--memory cached"});
   expect_clean_failure("render --model missing.obj --out f.png", "f.png", {"missing.obj"});
   write_text(dir / "garbage.obj", "this is not a model\x01\x02\n");
   expect_clean_failure("render --model garbage.obj --out f.png", "f.png", {"garbage.obj"});

@@ -46,8 +46,17 @@ const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memo
   }
   const std::string named = size.w > 1 || size.h > 1 ? std::to_string(size.w) + "x" + std::to_string(size.h)
                                                       : size_text(log2_w, log2_h);
-  throw Error("texture " + named + " does not fit the RTL: the largest compiled tex_unit takes " +
-              largest->max_texture() + " (use --engine model for larger textures)");
+  // On chip: say whether the cached unit would take it (the sRGB and block-format units are cached).
+  std::string hint = "use --engine model for larger textures";
+  if (!cached)
+    for (const RtlConfig& c : compiled_configs())
+      if (c.cached && c.fits(log2_w, log2_h) && (c.cw == cw || c.formats)) {
+        hint = "use --memory cached (" + c.name + " takes " + c.max_texture() + ") or --engine model";
+        break;
+      }
+  throw Error("texture " + named + " does not fit the RTL: the largest compiled " +
+              (cached ? std::string("tex_unit_cached") : "on-chip tex_unit") + (cw != 8 ? " of " + std::to_string(cw) + "-bit channels" : std::string()) +
+              " takes " + largest->max_texture() + " (" + hint + ")");
 }
 
 const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory, int block_w, int block_h,
