@@ -2,10 +2,10 @@
 // pyramid in external memory; the set-up turns it into what a lookup needs per level: the level's
 // first line, the pitch of its block grid and its Morton square (the layout of docs/memory.md §1,
 // model/memory_layout.cpp, bit for bit).
-//   write    desc_we registers the descriptor (clock 0); in clock 1 its size, format and sRGB flag
-//            are written and the set-up starts;
-//   set-up   then one level per clock, all 2^LEVEL_W level slots (those past the last level hold
-//            1x1 levels, never read): level k's grid NBX x NBY blocks of the format's line
+//   write    desc_we registers the descriptor (clock 0); in clock 1 its size, last level, format
+//            and sRGB flag are written and the set-up starts;
+//   set-up   then one level per clock, all 2^LEVEL_W level slots (those past the chain's last
+//            level are never read): level k's grid NBX x NBY blocks of the format's line
 //            covering its max(1, w >> k) x max(1, h >> k) texels and, on a side that is not a
 //            power of two, the repeat seam's copy of column (row) 0; its first line = the last
 //            one's + NBX * NBY (row-major) or + 2^(ceil log2 NBX + ceil log2 NBY) (Morton). One
@@ -80,6 +80,18 @@ module tex_desc_table #(
   localparam int LOG2_LB = $clog2(LINE_BYTES);
   localparam int LEVELS  = 1 << VW;
   localparam int EW      = LNW + PTW + VW;  // a level entry: {first line, pitch, square}
+
+  generate  // (tex_unit_cached checks its own parameters, from which these come)
+    if ((TEXTURES & (TEXTURES - 1)) != 0 || TEXTURES < 1 || TEXTURES > 16 || (BW != 2 && BW != 4 && BW != 8)
+        || (BH != 2 && BH != 4 && BH != 8) || (LINE_BYTES & (LINE_BYTES - 1)) != 0 || LINE_BYTES < 16)
+    begin : g_bad_params
+`ifdef __ICARUS__
+      initial $fatal(1, "tex_desc_table: TEXTURES must be a power of two 1..16, BW and BH 2, 4 or 8, LINE_BYTES a power of two >= 16");
+`else
+      $error("tex_desc_table: TEXTURES must be a power of two 1..16, BW and BH 2, 4 or 8, LINE_BYTES a power of two >= 16");
+`endif
+    end
+  endgenerate
 
   // ---------------------------------------------------------------- the write, registered
   logic                   we_q;
