@@ -14,7 +14,7 @@ package tex_pkg;
   // ---- sizes, levels, texel indices
   localparam int MAX_LOG2_SIZE   = 13;  // 8192 texels per side at most (tex_unit_cached)
   localparam int MAX_LOG2_ONCHIP = 11;  // tex_unit's per-level memories: 2048 per side at most
-  localparam int LEVEL_W       = 4;   // a level index or a log2 size (0..13): wr_level, cfg_desc_log2_w
+  localparam int LEVEL_W       = 4;   // a level index (0..13): wr_level, cfg_last_level
   localparam int SIZE_W        = 14;  // a texture's or a level's side, 1..8192: cfg_w, cfg_h
   localparam int COORD_W       = 13;  // bits of a wrapped texel index / write coordinate
 

@@ -177,13 +177,13 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
     std::FILE* list = list_out->open();
     std::fprintf(list, "# texture list of %s: id file wrap_u wrap_v [srgb] min= mag= mip= [base= max=] (texsim sample --textures)\n",
                  a.trace_queries.c_str());
+    const TextureOptions topts = o.texture_options();  // the view, the same for every texture
+    const std::string view = topts.base_level == 0 && topts.max_level >= kMaxLevels - 1
+                                 ? std::string()
+                                 : " base=" + std::to_string(topts.base_level) + " max=" + std::to_string(topts.max_level);
     for (size_t t = 0; t < scene.textures.size(); ++t) {
       save_image(scene.textures[t].image, *texture_files[t]);
       const Filter& fl = samplers[t].filter;
-      const TextureOptions topts = o.texture_options();
-      const std::string view = topts.base_level == 0 && topts.max_level >= kMaxLevels - 1
-                                   ? std::string()
-                                   : " base=" + std::to_string(topts.base_level) + " max=" + std::to_string(topts.max_level);
       std::fprintf(list, "%zu %s %s %s%s min=%s mag=%s mip=%s%s\n", t,
                    std::filesystem::path(texture_files[t]->path()).filename().c_str(),
                    wrap_name(samplers[t].wrap_u).c_str(), wrap_name(samplers[t].wrap_v).c_str(),

@@ -383,15 +383,16 @@ Pyramid box_pyramid(Image level0, PyramidMode mode, bool srgb) {
 
 namespace {
 
-// The options' view of a pyramid (the whole pyramid when they ask for none).
+// The options' view of a pyramid (the whole pyramid when they ask for none); view_pyramid's error
+// named with the options.
 Pyramid view_of(Pyramid p, const TextureOptions& o) {
   if (o.base_level == 0 && o.max_level >= p.last_level()) return p;
-  if (o.base_level < 0 || o.base_level > p.last_level())
-    throw Error("--base-level " + std::to_string(o.base_level) + ": the texture has levels 0 to " +
-                std::to_string(p.last_level()));
-  if (o.max_level < o.base_level)
-    throw Error("--max-level " + std::to_string(o.max_level) + " is below --base-level " + std::to_string(o.base_level));
-  return view_pyramid(p, o.base_level, o.max_level);
+  try {
+    return view_pyramid(p, o.base_level, o.max_level);
+  } catch (const Error& e) {
+    throw Error("--base-level " + std::to_string(o.base_level) + " --max-level " + std::to_string(o.max_level) +
+                ": " + e.what());
+  }
 }
 
 }  // namespace

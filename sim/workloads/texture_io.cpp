@@ -123,7 +123,7 @@ Image rgba8_texels(const images::Pixels& p) {
 
 // A model's texture keeps its size (every engine samples any size); a side beyond 8192, which no
 // unit holds, is resampled down to 8192 (the caller notes it).
-ModelTexture model_texture(images::Pixels& p, const std::string& name) {
+ModelTexture model_texture_of(images::Pixels& p, const std::string& name) {
   ModelTexture t;
   t.file_width = p.width;
   t.file_height = p.height;
@@ -176,7 +176,7 @@ Image load_texture(const std::string& spec, bool resize) {
 
 ModelTexture load_model_texture(const std::string& path) {
   images::Pixels p = read_uint8(path, path);
-  return model_texture(p, path);
+  return model_texture_of(p, path);
 }
 
 ModelTexture decode_model_texture(const std::string& name, const void* data, size_t size,
@@ -187,7 +187,7 @@ ModelTexture decode_model_texture(const std::string& name, const void* data, siz
   if (size >= 8 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0) ext = "png";
   else if (size >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) ext = "jpg";
   images::Pixels p = read_uint8(name, "embedded." + ext, data, size);
-  return model_texture(p, name);
+  return model_texture_of(p, name);
 }
 
 ModelTexture model_texture(const std::string& name, Image rgba8) {
@@ -199,7 +199,7 @@ ModelTexture model_texture(const std::string& name, Image rgba8) {
   p.channels = 4;
   p.values.resize(rgba8.texels.size() * 4);
   for (size_t i = 0; i < p.values.size(); ++i) p.values[i] = uint8_t(rgba8.texels[i / 4][i % 4]);
-  return model_texture(p, name);
+  return model_texture_of(p, name);
 }
 
 void check_image_path(const std::string& path) {

@@ -477,6 +477,7 @@ TEST(MemoryLayout, AViewIsTheLayoutFromItsBaseLevel) {
   EXPECT_THROW(MemoryLayout({100, 60}, 8, LayoutParams{}, TexelFormat::Rgba8, 8), Error);  // 7 levels
   try {
     MemoryLayout({100, 60}, 8, LayoutParams{}, TexelFormat::Rgba8, 9);
+    ADD_FAILURE() << "9 levels of a 100x60 texture taken";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("9 levels"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("1 to 7"), std::string::npos) << e.what();
