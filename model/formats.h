@@ -12,6 +12,7 @@
 namespace tex {
 
 constexpr int kCoordFracBits = 24;  // u, v: signed Q8.24, 1.0 = one texture width
+constexpr int kTexelCoordFracBits = 16;  // u, v of an unnormalized sampler: signed Q16.16 in texels of level 0
 constexpr int kLodFracBits = 8;     // lambda: signed Q8.8 in levels
 constexpr int kWeightBits = 8;      // fx, fy, f: 0..255 = 0..255/256
 constexpr int kMaxLog2Size = 13;    // 8192 texels per side at most (any size 1..8192)
@@ -131,6 +132,10 @@ inline bool to_fixed(double x, int frac_bits, int64_t lo, int64_t hi, int32_t& o
   return true;
 }
 inline bool to_coord_fixed(double u, int32_t& out) { return to_fixed(u, kCoordFracBits, INT32_MIN, INT32_MAX, out); }
+// A coordinate of an unnormalized sampler (Vulkan unnormalizedCoordinates, GL rectangle textures): texels.
+inline bool to_texel_coord_fixed(double u, int32_t& out) {
+  return to_fixed(u, kTexelCoordFracBits, INT32_MIN, INT32_MAX, out);
+}
 inline bool to_lod_fixed(double lambda, int32_t& out) { return to_fixed(lambda, kLodFracBits, kLodMin, kLodMax, out); }
 
 }  // namespace tex

@@ -8,12 +8,33 @@
 
 namespace tex {
 
+std::string SamplerConfig::unnormalized_problem() const {
+  if (!unnormalized) return "";
+  const std::string head = "unnormalized coordinates ";
+  for (const Wrap w : {wrap_u, wrap_v})
+    if (w != Wrap::Clamp && w != Wrap::Border)
+      return head + "take the clamp or border address mode, not " + wrap_name(w);
+  if (filter.anisotropic) return head + "take no anisotropic filter";
+  if (filter.mag != filter.texel)
+    return head + "take one texel filter: the magnification filter " + texel_filter_name(filter.mag) +
+           " differs from the minification filter " + texel_filter_name(filter.texel);
+  if (filter.mip != MipMode::None && max_lod > 0)
+    return head + "read the base level only: mipmap mode " + mip_mode_name(filter.mip) + " with max LOD " +
+           std::to_string(max_lod / 256.0) + " (use mipmap mode none, or a max LOD of 0)";
+  return "";
+}
+
+void check_sampler(const SamplerConfig& config, const std::string& where) {
+  if (const std::string p = config.unnormalized_problem(); !p.empty()) throw Error(where + p);
+}
+
 Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPaths paths)
     : config_(config),
       channel_bits_(pyramid.levels[0].channel_bits),
       border_(stage::border_texel(config.border_unorm16(), pyramid.levels[0].channel_bits)),
       size0_(pyramid.extent0()),
       last_level_(int(pyramid.levels.size()) - 1) {
+  check_sampler(config, "sampler: ");
   if (paths == SamplerPaths::FastOnly && channel_bits_ != 8)
     throw Error("sampler: the fast path takes 8-bit channels; this texture has " + std::to_string(channel_bits_));
   if (paths == SamplerPaths::FastOnly && !fast_path_takes(config))
@@ -38,7 +59,7 @@ void Sampler::write_packed(int level, int32_t x, int32_t y, const Texel& t) {
 }
 
 bool Sampler::fast_path_takes(const SamplerConfig& config) {
-  return !config.uses_border() && config.filter.mag == config.filter.texel;
+  return !config.uses_border() && config.filter.mag == config.filter.texel && !config.unnormalized;
 }
 
 void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t) {
@@ -89,7 +110,7 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   if (!memory_) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
   const stage::LevelSelect sel =
       stage::lod(r.lod, config_.lod_bias + r.bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
-  const int32_t ru = stage::reduce(r.u, config_.wrap_u), rv = stage::reduce(r.v, config_.wrap_v);
+  const int32_t ru = stage::reduce(r.u, config_.wrap_u, config_.unnormalized), rv = stage::reduce(r.v, config_.wrap_v, config_.unnormalized);
   const TexelFilter texel_filter = stage::texel_filter(sel, config_.filter);
   const bool linear = texel_filter == TexelFilter::Linear;
 
@@ -100,8 +121,8 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   for (int s = 0; s < slots; ++s) {
     const int k = s == 0 ? sel.d : sel.d1;
     const Extent e = memory_->shape(k);
-    const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w), texel_filter);
-    const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h), texel_filter);
+    const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w, config_.unnormalized), texel_filter);
+    const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h, config_.unnormalized), texel_filter);
     slot[s].taps = memory_->fetch(k, stage::wrap(tu.i0, e.w, config_.wrap_u), stage::wrap(tu.i1, e.w, config_.wrap_u, true),
                                  stage::wrap(tv.i0, e.h, config_.wrap_v), stage::wrap(tv.i1, e.h, config_.wrap_v, true),
                                  !linear, border_);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "banked_memory.h"
@@ -28,6 +29,9 @@ struct SamplerConfig {
   bool aniso_pow2 = false;     // anisotropic filter: probe counts rounded up to powers of two
   BorderColor border = BorderColor::FloatTransparentBlack;  // clamp-to-border taps (GL's default)
   Texel border_custom{};       // BorderColor::Custom: RGBA unorm16 (65535 = 1.0), linear
+  // Vulkan's unnormalizedCoordinates, GL's rectangle textures: u, v in texels of level 0 (Q16.16),
+  // not in texture widths. Only with what Vulkan allows beside it (unnormalized_problem).
+  bool unnormalized = false;
   // The cap tex_aniso applies: max_aniso for the anisotropic filter, else 1 (one probe).
   int probe_cap() const { return filter.anisotropic ? max_aniso : 1; }
   // The border colour as RGBA unorm16 (stage::border_texel takes it to a level's channel width).
@@ -44,7 +48,15 @@ struct SamplerConfig {
     return {};
   }
   bool uses_border() const { return wrap_u == Wrap::Border || wrap_v == Wrap::Border; }
+  // Why an unnormalized sampler cannot be this one, or "" (also for a normalized one): Vulkan's
+  // rules (VkSamplerCreateInfo): clamp to edge or border on both axes, the magnification filter
+  // equal to the minification filter, no anisotropy, and the base level only (mipmap mode none,
+  // or a max LOD of at most 0, as Vulkan's nearest mipmaps with minLod = maxLod = 0 give).
+  std::string unnormalized_problem() const;
 };
+// Throws tex::Error naming the field and its value when the sampler is one the unit cannot take
+// (unnormalized_problem); `where` prefixes the message (a file and line, an option).
+void check_sampler(const SamplerConfig& config, const std::string& where = "");
 // A frame's samplers: requests name an entry by Request::sampler (1..kMaxSamplers entries).
 using SamplerTable = std::vector<SamplerConfig>;
 

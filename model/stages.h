@@ -61,8 +61,11 @@ inline TexelFilter texel_filter(const LevelSelect& s, const Filter& f) { return 
 // without this step (repeat and mirror are periodic in u; beyond +-2 the clamping modes give only
 // edge or border taps), the texel indices stay within [-2n - 1, 2n], and u * n is a 27 x 14-bit
 // product. (docs/numerics.md stage 2)
-inline int32_t reduce(int32_t coord, Wrap mode) {
+// An unnormalized coordinate (Q16.16 texels; its sampler clamps, SamplerConfig::check) passes
+// unchanged: scale() takes it as it is.
+inline int32_t reduce(int32_t coord, Wrap mode, bool unnormalized = false) {
   constexpr int32_t kOne = int32_t(1) << kCoordFracBits;
+  if (unnormalized) return coord;
   switch (mode) {
     case Wrap::Repeat: return coord & (kOne - 1);
     case Wrap::Mirror: return coord & (2 * kOne - 1);
@@ -73,7 +76,14 @@ inline int32_t reduce(int32_t coord, Wrap mode) {
 // floor(u * n * 512) for a level n texels wide along this axis: the level's texels with 9 fraction
 // bits. `reduced` is reduce(u); where n is a power of two 2^a this is the paper's binary shift
 // u >> (15 - a), and level k's value the shift of level 0's by k (floors of shifts compose).
-inline int32_t scale(int32_t reduced, int n) { return int32_t((int64_t(reduced) * n) >> (kCoordFracBits - 9)); }
+// An unnormalized coordinate is in texels already: floor(u * 512), clamped to [-2n, 2n] texels as
+// the normalized clamping modes are (the RTL clamps to +-2^(ML+1), the largest side's 2n: both
+// read the same taps, every index beyond n - 1 or below 0 being an edge or border tap).
+inline int32_t scale(int32_t reduced, int n, bool unnormalized = false) {
+  if (unnormalized)
+    return std::clamp(reduced >> (kTexelCoordFracBits - 9), -2 * n * 512, 2 * n * 512);
+  return int32_t((int64_t(reduced) * n) >> (kCoordFracBits - 9));
+}
 
 // ---------------------------------------------------------------- address (tex_address)
 

@@ -37,6 +37,7 @@ TextureCache::TextureCache(std::vector<TextureDescriptor> textures, const CacheP
   if (samplers_.empty() || samplers_.size() > size_t(kMaxSamplers))
     throw Error("texture cache: " + std::to_string(samplers_.size()) + " samplers; the sampler table holds 1 to " +
                 std::to_string(kMaxSamplers));
+  for (size_t i = 0; i < samplers_.size(); ++i) check_sampler(samplers_[i], "texture cache: sampler " + std::to_string(i) + ": ");
   const MemoryLayout& layout0 = textures_[0].layout;
   line_bytes_ = layout0.line_bytes();
   for (const TextureDescriptor& t : textures_)
@@ -133,7 +134,7 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
   const SamplerConfig& smp = sampler(r);
   const stage::LevelSelect sel =
       stage::lod(r.lod, smp.lod_bias + r.bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);
-  const int32_t ru = stage::reduce(r.u, smp.wrap_u), rv = stage::reduce(r.v, smp.wrap_v);
+  const int32_t ru = stage::reduce(r.u, smp.wrap_u, smp.unnormalized), rv = stage::reduce(r.v, smp.wrap_v, smp.unnormalized);
   SampleLookup out;
   for (int s = 0; s < 2; ++s) {
     SlotLookup& sl = out.slot[size_t(s)];
@@ -143,8 +144,8 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     const int k = sl.level;
     const Extent e = layout.level_size(k);
     const TexelFilter texel_filter = stage::texel_filter(sel, smp.filter);
-    const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w), texel_filter);
-    const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h), texel_filter);
+    const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w, smp.unnormalized), texel_filter);
+    const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h, smp.unnormalized), texel_filter);
     // The taps whose weight is not 0: (x0, y0) always, x1 / y1 when their weight is not 0; a
     // clamp-to-border tap outside the level (stage::kBorderTap) reads no line.
     const int32_t x[2] = {stage::wrap(tu.i0, e.w, smp.wrap_u), stage::wrap(tu.i1, e.w, smp.wrap_u, true)};

@@ -12,7 +12,8 @@
 // Latency: 4 clocks from the request pins to the clock-4 registers; x, y are combinational on
 //   them. Throughput: 1 per clock.
 // Ports:
-//   req_u, req_v          : signed Q8.24; req_lod: signed Q8.8 (before bias and clamp); req_bias:
+//   req_u, req_v          : signed Q8.24 (an unnormalized sampler's: signed Q16.16 texels of
+//                           level 0); req_lod: signed Q8.8 (before bias and clamp); req_bias:
 //                           signed Q8.8, the request's own LOD bias (added to the sampler's)
 //   req_w, req_h          : unsigned SIZE_W bits, level 0's size of the request's texture, each
 //                           1..2^max(XW, YW) (any value: GL's sizes)
@@ -23,7 +24,7 @@
 //                           (tex_pkg::WRAP_*), req_min_linear the minification filter's texel
 //                           filter, req_mag_linear the magnification filter (where lambda' <= 0),
 //                           req_mip_mode (tex_pkg::MIP_*), req_lod_bias, req_min_lod, req_max_lod
-//                           signed Q8.8
+//                           signed Q8.8, req_unnormalized the coordinates are texels (tex_reduce)
 //   level                 : slot s at [s*LEVEL_W +: LEVEL_W], integer level (clock 4)
 //   f                     : unsigned WEIGHT_BITS, weight of slot 1 in 1/256 (clock 4)
 //   w                     : slot s axis a (0 x, 1 y) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS],
@@ -57,6 +58,7 @@ module tex_front #(
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod_bias,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_min_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_max_lod,
+  input  logic                                   req_unnormalized,
   output logic [2*tex_pkg::LEVEL_W-1:0]          level,
   output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
@@ -92,6 +94,7 @@ module tex_front #(
   logic [4*MW-1:0]                        wrap_q;
   logic [2*PW-1:0]                        mip_q;     // clocks 1, 2
   logic [3*2-1:0]                         linear_q;  // {mag, min} at clocks 1..3
+  logic [2:0]                             unnorm_q;  // req_unnormalized at clocks 1..3
   always_ff @(posedge clk) begin
     if (en) begin
       u_s1        <= req_u;
@@ -105,6 +108,7 @@ module tex_front #(
       wrap_q   <= {wrap_q[0 +: 3*MW], req_wrap_v, req_wrap_u};
       mip_q    <= {mip_q[0 +: PW], req_mip_mode};
       linear_q <= {linear_q[0 +: 2*2], req_mag_linear, req_min_linear};
+      unnorm_q <= {unnorm_q[1:0], req_unnormalized};
     end
   end
   generate
@@ -156,8 +160,9 @@ module tex_front #(
   genvar a, s;
   generate
     for (a = 0; a < 2; a = a + 1) begin : g_axis
-      tex_reduce u_reduce (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
-                           .mode((a == 0) ? wrap_u_s1 : wrap_v_s1), .reduced(reduced_s2[a*RW +: RW]));
+      tex_reduce #(.ML(ML)) u_reduce (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
+                                      .mode((a == 0) ? wrap_u_s1 : wrap_v_s1), .unnormalized(unnorm_q[0]),
+                                      .reduced(reduced_s2[a*RW +: RW]));
     end
   endgenerate
   always_ff @(posedge clk) if (en) reduced_s3 <= reduced_s2;
@@ -185,7 +190,8 @@ module tex_front #(
         logic [NB-1:0] shifted;
         assign shifted = size_s3[a*NB +: NB] >> level_s3[s*VW +: VW];
         assign n_s3    = (shifted == '0) ? NB'(1) : shifted;
-        tex_scale #(.ML(ML), .RW(RW)) u_scale (.reduced(reduced_s3[a*RW +: RW]), .n(n_s3), .t9(t9_s3));
+        tex_scale #(.ML(ML), .RW(RW)) u_scale (.reduced(reduced_s3[a*RW +: RW]), .n(n_s3),
+                                               .unnormalized(unnorm_q[2]), .t9(t9_s3));
         tex_address #(.TW(TW), .IW(IW)) u_address (
           .clk(clk), .en(en), .t9(t9_s3), .linear(linear_s3), .i0(i0_s4), .i1(i1_s4),
           .w(w[(s*2 + a)*WB +: WB])

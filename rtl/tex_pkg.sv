@@ -6,6 +6,7 @@ package tex_pkg;
   // ---- number formats
   localparam int REQ_COORD_W   = 32;  // req_u, req_v: signed Q8.24, 1.0 = one texture width
   localparam int COORD_FRAC    = 24;  //   fraction bits of u, v
+  localparam int TEXEL_COORD_FRAC = 16;  //   of an unnormalized sampler's u, v: signed Q16.16 texels
   localparam int LOD_W         = 16;  // lambda, bias, min/max lod: signed Q8.8
   localparam int LOD_FRAC      = 8;   //   fraction bits of lambda
   localparam int WEIGHT_BITS   = 8;   // fx, fy, f: 0..255 = 0..255/256 of the second tap

@@ -19,6 +19,9 @@
 //   cfg_smp_max_aniso_m1 the probes per sample at most less one (0..15; 0 = trilinear),
 //   cfg_smp_aniso_pow2 probe counts rounded up to powers of two; cfg_smp_min_linear the minification
 //   filter's texel filter, cfg_smp_mag_linear the magnification filter (where lambda' <= 0);
+//   cfg_smp_unnormalized req_u, req_v are signed Q16.16 texels of level 0 (Vulkan's
+//   unnormalizedCoordinates; with clamp-to-edge or -border modes, one texel filter, no
+//   anisotropy, the base level only: the driver checks);
 //   cfg_smp_border_rgba the border colour of address mode border, {A, B, G, R} unorm16; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   cfg_w, cfg_h the texture's size, unsigned SIZE_W bits, 1..2^MAX_LOG2_W (2^MAX_LOG2_H), any
 //   value (GL's level sizes; a side that is not a power of two is loaded with its repeat seam's
@@ -65,6 +68,7 @@ module tex_unit #(
   input  logic [3:0]                             cfg_smp_max_aniso_m1,
   input  logic                                   cfg_smp_aniso_pow2,
   input  logic [63:0]                            cfg_smp_border_rgba,
+  input  logic                                   cfg_smp_unnormalized,
 
   input  logic                                   wr_en,
   input  logic [tex_pkg::LEVEL_W-1:0]            wr_level,
@@ -216,7 +220,7 @@ module tex_unit #(
     .req_w(cfg_w), .req_h(cfg_h), .req_last_level(cfg_last_level), .req_wrap_u(cfg_smp_wrap_u),
     .req_wrap_v(cfg_smp_wrap_v), .req_min_linear(cfg_smp_min_linear), .req_mag_linear(cfg_smp_mag_linear),
     .req_mip_mode(cfg_smp_mip_mode), .req_lod_bias(cfg_smp_lod_bias), .req_min_lod(cfg_smp_min_lod),
-    .req_max_lod(cfg_smp_max_lod),
+    .req_max_lod(cfg_smp_max_lod), .req_unnormalized(cfg_smp_unnormalized),
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .border_x(border_x), .border_y(border_y)
   );

@@ -103,6 +103,7 @@ module tex_unit_cached #(
   input  logic [3:0]                             cfg_smp_max_aniso_m1,
   input  logic                                   cfg_smp_aniso_pow2,
   input  logic [63:0]                            cfg_smp_border_rgba,
+  input  logic                                   cfg_smp_unnormalized,
   input  logic                                   cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]        cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]        cfg_log2_ways,
@@ -278,11 +279,11 @@ module tex_unit_cached #(
   // the front's clock 1 (tex_front), the border colour after the FIFO (tex_cached_fetch's table).
   localparam int SXW = (SAMPLERS > 1) ? $clog2(SAMPLERS) : 1;
   localparam int LW  = tex_pkg::LOD_W, PW = tex_pkg::MIP_W, WW = tex_pkg::WRAP_W;
-  localparam int FRW = 2*WW + 2 + PW + 3*LW;  // the front's fields
+  localparam int FRW = 2*WW + 2 + PW + 3*LW + 1;  // the front's fields
   logic            smp_we_q;
   logic [SXW-1:0]  smp_index_q;
   logic [4:0]      smp_aniso_q;    // {pow2, max_aniso_m1}
-  logic [FRW-1:0]  smp_front_q;    // {max, min, bias, mip mode, mag linear, min linear, wrap v, wrap u}
+  logic [FRW-1:0]  smp_front_q;    // {unnormalized, max, min, bias, mip mode, mag linear, min linear, wrap v, wrap u}
   logic [63:0]     smp_border_q;
   logic [4:0]      smp_aniso [SAMPLERS];
   logic [FRW-1:0]  smp_front [SAMPLERS];
@@ -290,7 +291,7 @@ module tex_unit_cached #(
     smp_we_q     <= !rst && cfg_smp_we;
     smp_index_q  <= SXW'(cfg_smp_index);
     smp_aniso_q  <= {cfg_smp_aniso_pow2, cfg_smp_max_aniso_m1};
-    smp_front_q  <= {cfg_smp_max_lod, cfg_smp_min_lod, cfg_smp_lod_bias, cfg_smp_mip_mode, cfg_smp_mag_linear,
+    smp_front_q  <= {cfg_smp_unnormalized, cfg_smp_max_lod, cfg_smp_min_lod, cfg_smp_lod_bias, cfg_smp_mip_mode, cfg_smp_mag_linear,
                      cfg_smp_min_linear, cfg_smp_wrap_v, cfg_smp_wrap_u};
     smp_border_q <= cfg_smp_border_rgba;
     if (smp_we_q) begin
@@ -365,7 +366,7 @@ module tex_unit_cached #(
     .req_min_linear(probe_smp_front[2*WW]), .req_mag_linear(probe_smp_front[2*WW + 1]),
     .req_mip_mode(probe_smp_front[2*WW + 2 +: PW]), .req_lod_bias(probe_smp_front[2*WW + 2 + PW +: LW]),
     .req_min_lod(probe_smp_front[2*WW + 2 + PW + LW +: LW]),
-    .req_max_lod(probe_smp_front[2*WW + 2 + PW + 2*LW +: LW]),
+    .req_max_lod(probe_smp_front[2*WW + 2 + PW + 2*LW +: LW]), .req_unnormalized(probe_smp_front[FRW - 1]),
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .border_x(border_x), .border_y(border_y)
   );

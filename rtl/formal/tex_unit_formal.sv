@@ -40,6 +40,7 @@ module tex_unit_formal #(
   input  logic [3:0]                             cfg_smp_max_aniso_m1,
   input  logic                                   cfg_smp_aniso_pow2,
   input  logic [63:0]                            cfg_smp_border_rgba,
+  input  logic                                   cfg_smp_unnormalized,
   input  logic [TAG_W-1:0]                       req_tag,
   input  logic                                   rsp_ready
 );

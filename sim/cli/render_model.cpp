@@ -33,6 +33,8 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   // Everything is checked before the work: options, engine, cameras, outputs, the model and its textures.
   const SamplerConfig cfg = o.config();
+  if (cfg.unnormalized)
+    throw Error("render --model: --unnormalized does not apply (a model's texture coordinates are normalized)");
   EngineOptions eo = o.engine_options();
   if (a.model.empty() == a.scene_file.empty()) throw Error("render: give --model FILE or --scene-file FILE (one of them)");
   if (!a.camera.empty() && !a.camera_path.empty()) throw Error("render: give --camera or --camera-path, not both");

@@ -62,6 +62,7 @@ struct SamplingOptions {
   std::string filter = "trilinear";
   int max_aniso = kMaxAniso;
   bool aniso_pow2 = false;
+  bool unnormalized = false;
   CLI::Option* max_aniso_opt = nullptr;
   std::string wrap = "repeat";
   std::string wrap_u, wrap_v;
@@ -116,6 +117,10 @@ struct SamplingOptions {
     cmd.add_option("--border-color", border_color,
                    "clamp to border's colour: transparent-black (default) | opaque-black | opaque-white (also "
                    "int-... and Vulkan names) | R,G,B,A in 0..1 (linear)");
+    cmd.add_flag("--unnormalized", unnormalized,
+                 "u, v in texels of the base level, not texture widths (Vulkan unnormalizedCoordinates, GL "
+                 "rectangle textures): with --wrap clamp | border, one texel filter (point or bilinear, or a "
+                 "--max-lod of 0), no anisotropy; render scales the frame's coordinates by the texture's size");
     cmd.add_option("--pyramid", pyramid, "exact (mean of the level-0 footprint) | cascade")->capture_default_str();
     format_opt = cmd.add_option("--format", format,
                                 texel_format_names() + ": how memory holds an image file or pattern (each level "
@@ -217,6 +222,8 @@ struct SamplingOptions {
     if (!to_lod_fixed(min_lod, c.min_lod)) throw Error("--min-lod " + std::to_string(min_lod) + " is outside [-128, 128)");
     if (!to_lod_fixed(max_lod, c.max_lod)) throw Error("--max-lod " + std::to_string(max_lod) + " is outside [-128, 128)");
     if (c.min_lod > c.max_lod) throw Error("--min-lod is greater than --max-lod");
+    c.unnormalized = unnormalized;
+    check_sampler(c, "--unnormalized: ");
     return c;
   }
 

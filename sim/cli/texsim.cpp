@@ -25,9 +25,10 @@ namespace {
 
 using namespace tex;
 
-// --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [min=F] [mag=F] [mip=M] [border=C]
-// [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
-// patterns as they are; `srgb`: the texels are sRGB codes). Line t is texture t of the
+// --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M]
+// [border=C] [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
+// patterns as they are; `srgb`: the texels are sRGB codes; `unnormalized`: the sampler takes texel
+// coordinates, the trace's u, v of this entry are texels). Line t is texture t of the
 // descriptor table and sampler t of the sampler table: the options' sampler with the line's wrap
 // modes and fields (min: nearest | linear | a GL minification name; mag: nearest | linear; mip:
 // none | nearest | linear; border: a border colour name), the texture's view from --base-level and
@@ -41,7 +42,8 @@ struct TextureListEntry {
 std::vector<TextureListEntry> read_texture_list(const std::string& path, const SamplerConfig& cfg) {
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (!f) throw Error(path + ": cannot open texture list");
-  const std::string form = "`id path [wrap_u [wrap_v]] [srgb] [min=F] [mag=F] [mip=M] [border=C] [base=N] [max=N]`";
+  const std::string form =
+      "`id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M] [border=C] [base=N] [max=N]`";
   std::vector<TextureListEntry> out;
   char buf[4096];
   int line_no = 0;
@@ -68,7 +70,9 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
         if (eq == std::string::npos) {
           if (token == "srgb" && !e.srgb) {
             e.srgb = true;
-          } else if (wraps < 2 && !e.srgb) {
+          } else if (token == "unnormalized" && !e.sampler.unnormalized) {
+            e.sampler.unnormalized = true;
+          } else if (wraps < 2 && !e.srgb && !e.sampler.unnormalized) {
             Wrap& w = wraps == 0 ? e.sampler.wrap_u : e.sampler.wrap_v;
             if (!parse_wrap(token, w)) throw Error(at + "unknown wrap mode " + quote_clipped(token) + " (" + kWrapNames + ")");
             if (wraps++ == 0) e.sampler.wrap_v = w;  // one mode: both axes
@@ -106,6 +110,7 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
           throw Error(at + "unknown field " + quote_clipped(key) + " (min, mag, mip, border, base, max)");
         }
       }
+      check_sampler(e.sampler, at);
       if (out.size() == size_t(kMaxTextures))
         throw Error(at + "more than " + std::to_string(kMaxTextures) + " textures: the descriptor table holds " +
                     std::to_string(kMaxTextures));
@@ -155,12 +160,14 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   // is parsed only there: the engine reads the requests the threads keep. The cycle engines wait
   // for the whole check before their work; the model, faster than the parse, starts on the first
   // requests, and a bad line stops it as soon as the threads find it (no output is written).
+  uint32_t unnormalized = 0;  // the samplers whose queries give texel coordinates
+  for (size_t i = 0; i < list.size(); ++i) unnormalized |= uint32_t(list[i].sampler.unnormalized) << i;
   std::optional<QueryReader> reader;
   std::optional<QueryFileParser> parser;
   std::exception_ptr query_error;
   try {
     reader.emplace(queries_path);
-    if (reader->rewindable()) parser.emplace(queries_path, 2, true);
+    if (reader->rewindable()) parser.emplace(queries_path, 2, true, unnormalized);
   } catch (...) {
     query_error = std::current_exception();
   }
@@ -191,7 +198,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (clocks_out) eo.clock_sink = &clocks.emplace(*clocks_out);
 
   // One helper thread beside the engine: it parses a trace that streams, or else writes the results.
-  QuerySource streamed(*reader);
+  QuerySource streamed(*reader, unnormalized);
   std::optional<ReadAheadSource> ahead;
   RequestSource& source = kept ? static_cast<RequestSource&>(*parser) : ahead.emplace(streamed);
   bool srgb = false;  // sRGB textures give linear unorm16 results
@@ -350,10 +357,12 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     const SceneFrame frame = make_scene(scene, so);
     const Pyramid pyr = scene_pyramid(frame, texture_given ? o.texture : "", topts);
     if (frame.clamp_edges && !wrap_given) cfg.wrap_u = cfg.wrap_v = Wrap::Clamp;
-    const auto requests = to_requests(frame.queries, "scene " + scene);
+    const SamplerTable samplers{cfg};
+    const auto requests = to_requests(in_sampler_coordinates(frame.queries, samplers, {pyr.extent0()}),
+                                      "scene " + scene, unnormalized_samplers(samplers));
     VectorSource source(requests);
     VectorSink texels;
-    last_stats = run_engine(o, eo, outputs, trace, {{&pyr}}, {cfg}, source, texels);
+    last_stats = run_engine(o, eo, outputs, trace, {{&pyr}}, samplers, source, texels);
     if (pyr.srgb) {  // linear results back to sRGB codes for the picture, as a display expects
       for (Texel& t : texels.texels) t = encode_srgb_texel(t);
       save_image(compose(frame, texels.texels, 8), *images[size_t(f - first)]);

@@ -325,13 +325,14 @@ struct QueryFileParser::Part {
   size_t count = 0;
 };
 
-QueryFileParser::QueryFileParser(const std::string& path, unsigned threads, bool keep)
+QueryFileParser::QueryFileParser(const std::string& path, unsigned threads, bool keep, uint32_t unnormalized)
     : first_(std::make_unique<QueryReader>(path)), start_(std::chrono::steady_clock::now()) {
   QueryReader& first = *first_;
   first.read_header();
   struct stat st {};
   const uint64_t size = ::fstat(fileno(first.file_), &st) == 0 ? uint64_t(st.st_size) : 0;
   keep_ = keep && size <= kMaxFileBytes;
+  unnormalized_ = unnormalized;
   // Cuts at line starts after the header, about size / threads apart (none for small files: a
   // thread costs more than it saves there).
   constexpr uint64_t kMinPart = uint64_t(4) << 20;
@@ -375,7 +376,7 @@ void QueryFileParser::parse(size_t k) {
   try {
     std::unique_ptr<QueryReader> own;
     if (k > 0) own.reset(new QueryReader(*first_, part.begin, part.end));  // (a private constructor)
-    QuerySource source(k > 0 ? *own : *first_);
+    QuerySource source(k > 0 ? *own : *first_, unnormalized_);
     std::vector<Request> scratch(keep_ ? 0 : 4096);
     for (;;) {
       {
@@ -470,7 +471,28 @@ size_t QueryFileParser::read(Request* out, size_t max) {
 
 void check_query_file(const std::string& path, unsigned threads) { QueryFileParser(path, threads, false).wait(); }
 
-Request to_request(const Query& q, const std::string& name, uint32_t tag) {
+uint32_t unnormalized_samplers(const SamplerTable& samplers) {
+  uint32_t mask = 0;
+  for (size_t s = 0; s < samplers.size(); ++s) mask |= uint32_t(samplers[s].unnormalized) << s;
+  return mask;
+}
+
+std::vector<Query> in_sampler_coordinates(std::vector<Query> queries, const SamplerTable& samplers,
+                                          const std::vector<Extent>& sizes) {
+  for (Query& q : queries) {
+    const size_t s = size_t(q.sampler < 0 ? q.texture : q.sampler);
+    if (s < samplers.size() && samplers[s].unnormalized && size_t(q.texture) < sizes.size()) {
+      // Within +-2n texels (a rasterized plane reaches far): beyond, the clamping modes of an
+      // unnormalized sampler read the same edge or border taps, so the picture is unchanged.
+      const double w = sizes[size_t(q.texture)].w, h = sizes[size_t(q.texture)].h;
+      q.u = std::clamp(q.u * w, -2 * w, 2 * w);
+      q.v = std::clamp(q.v * h, -2 * h, 2 * h);
+    }
+  }
+  return queries;
+}
+
+Request to_request(const Query& q, const std::string& name, uint32_t tag, uint32_t unnormalized) {
   Request r;
   r.tag = tag;
   auto at = [&] { return name + ":" + std::to_string(q.line) + ": "; };
@@ -481,8 +503,17 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag) {
     throw Error(at() + "sampler " + std::to_string(q.sampler) + " is outside 0.." + std::to_string(kMaxSamplers - 1));
   // No sampler column: the texture's own (entry t of a texture list is texture t and sampler t).
   r.sampler = uint8_t(q.sampler < 0 ? q.texture : q.sampler);
-  if (!to_coord_fixed(q.u, r.u)) throw Error(at() + "u = " + std::to_string(q.u) + " is outside [-128, 128)");
-  if (!to_coord_fixed(q.v, r.v)) throw Error(at() + "v = " + std::to_string(q.v) + " is outside [-128, 128)");
+  if (unnormalized >> r.sampler & 1) {  // texels of level 0, Q16.16
+    if (!to_texel_coord_fixed(q.u, r.u))
+      throw Error(at() + "u = " + std::to_string(q.u) + " texels (unnormalized sampler " + std::to_string(r.sampler) +
+                  ") is outside [-32768, 32768)");
+    if (!to_texel_coord_fixed(q.v, r.v))
+      throw Error(at() + "v = " + std::to_string(q.v) + " texels (unnormalized sampler " + std::to_string(r.sampler) +
+                  ") is outside [-32768, 32768)");
+  } else {
+    if (!to_coord_fixed(q.u, r.u)) throw Error(at() + "u = " + std::to_string(q.u) + " is outside [-128, 128)");
+    if (!to_coord_fixed(q.v, r.v)) throw Error(at() + "v = " + std::to_string(q.v) + " is outside [-128, 128)");
+  }
   if (q.explicit_lod) {
     if (!to_lod_fixed(q.lod, r.lod)) throw Error(at() + "lod = " + std::to_string(q.lod) + " is outside [-128, 128)");
   } else {
@@ -493,10 +524,10 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag) {
   return r;
 }
 
-std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name) {
+std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name, uint32_t unnormalized) {
   std::vector<Request> out;
   out.reserve(queries.size());
-  for (size_t i = 0; i < queries.size(); ++i) out.push_back(to_request(queries[i], name, uint32_t(i)));
+  for (size_t i = 0; i < queries.size(); ++i) out.push_back(to_request(queries[i], name, uint32_t(i), unnormalized));
   return out;
 }
 
@@ -504,7 +535,7 @@ size_t QuerySource::read(Request* out, size_t max) {
   size_t n = 0;
   Query q;
   while (n < max && reader_.next(q)) {
-    out[n] = to_request(q, reader_.name(), uint32_t(count_));
+    out[n] = to_request(q, reader_.name(), uint32_t(count_), unnormalized_);
     counts_.add(q);
     ++n;
     ++count_;

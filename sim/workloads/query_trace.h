@@ -92,17 +92,23 @@ struct QueryCounts {
   uint32_t first_quad_ = 0, last_quad_ = 0;
 };
 
+// Which samplers of a table take unnormalized coordinates: bit s for entry s. A query of such a
+// sampler gives u, v in texels of the texture's level 0 (signed Q16.16), any other in texture
+// widths (Q8.24); derivatives are texture widths per pixel either way.
+uint32_t unnormalized_samplers(const SamplerTable& samplers);
+
 // The queries of a reader as the hardware's fixed-point requests (tag = index), for the engines.
 // Throws tex::Error for a value out of the fixed-point range, naming the line.
 class QuerySource final : public RequestSource {
  public:
-  explicit QuerySource(QueryReader& reader) : reader_(reader) {}
+  explicit QuerySource(QueryReader& reader, uint32_t unnormalized = 0) : reader_(reader), unnormalized_(unnormalized) {}
   size_t read(Request* out, size_t max) override;
   size_t count() const { return count_; }
   const QueryCounts& counts() const { return counts_; }
 
  private:
   QueryReader& reader_;
+  uint32_t unnormalized_;
   size_t count_ = 0;
   QueryCounts counts_;
 };
@@ -121,7 +127,7 @@ class QueryFileParser final : public RequestSource {
  public:
   // About 2 M `u,v,lod` queries, 80 MB of requests.
   static constexpr uint64_t kMaxFileBytes = uint64_t(48) << 20;
-  QueryFileParser(const std::string& path, unsigned threads, bool keep);
+  QueryFileParser(const std::string& path, unsigned threads, bool keep, uint32_t unnormalized = 0);
   ~QueryFileParser() override;  // (stops the threads)
   QueryFileParser(const QueryFileParser&) = delete;
   QueryFileParser& operator=(const QueryFileParser&) = delete;
@@ -140,6 +146,7 @@ class QueryFileParser final : public RequestSource {
   void finish_locked();  // the totals, once every part is done
   std::unique_ptr<QueryReader> first_;  // (part 0's reader, past the header)
   bool keep_ = false;
+  uint32_t unnormalized_ = 0;
   std::vector<std::unique_ptr<Part>> parts_;
   std::vector<std::thread> threads_;
   std::mutex mutex_;
@@ -155,8 +162,15 @@ class QueryFileParser final : public RequestSource {
 // QueryFileParser(path, threads, false).wait(): the check pass alone.
 void check_query_file(const std::string& path, unsigned threads);
 
-Request to_request(const Query& q, const std::string& name, uint32_t tag);
-std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name);
+// `unnormalized`: unnormalized_samplers() of the table the requests name.
+Request to_request(const Query& q, const std::string& name, uint32_t tag, uint32_t unnormalized = 0);
+std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name, uint32_t unnormalized = 0);
+// A frame's queries (coordinates in texture widths, as a rasterizer interpolates them) for the
+// table's samplers: those of an unnormalized sampler scaled to texels of their texture's level 0
+// (sizes[t]), as a shader computes a rectangle texture's coordinates, within +-2n texels (the
+// clamping modes read the same taps beyond).
+std::vector<Query> in_sampler_coordinates(std::vector<Query> queries, const SamplerTable& samplers,
+                                          const std::vector<Extent>& sizes);
 
 // Writes kFrameTraceHeader, then one line per query (doubles in their shortest exact form).
 class QueryTraceWriter {

@@ -83,6 +83,7 @@ TEST(Params, RtlPackageAgreesWithModel) {
   ASSERT_TRUE(problems.empty()) << problems;
   const std::map<std::string, int64_t> expected = {
       {"COORD_FRAC", kCoordFracBits},
+      {"TEXEL_COORD_FRAC", kTexelCoordFracBits},
       {"LOD_FRAC", kLodFracBits},
       {"WEIGHT_BITS", kWeightBits},
       {"MAX_LOG2_SIZE", kMaxLog2Size},

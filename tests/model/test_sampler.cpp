@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "model/error.h"
 #include "model/image.h"
 #include "model/sampler.h"
 #include "model/srgb.h"
@@ -107,6 +108,79 @@ TEST(Sampler, NonPowerOfTwoSidesMatchTheGlReference) {
           }
   }
   EXPECT_EQ(checked, 6u * 25 * 2 * 3 * 300);
+}
+
+// Unnormalized coordinates (GL rectangle textures, Vulkan unnormalizedCoordinates): texel
+// coordinates of the base level, on NPOT sides, both clamping modes, each texel filter; texel
+// coordinates on a 1/256 grid (exact weights) against GL's definition in double.
+TEST(Sampler, UnnormalizedCoordinatesMatchTheGlReference) {
+  const std::pair<int, int> sizes[] = {{5, 3}, {7, 1}, {1, 9}, {100, 60}, {33, 64}};
+  std::mt19937 rng(41);
+  size_t checked = 0;
+  for (auto [w, h] : sizes) {
+    const Pyramid pyr = build_pyramid(make_pattern("noise", w, h));
+    for (Wrap wu : {Wrap::Clamp, Wrap::Border})
+      for (Wrap wv : {Wrap::Clamp, Wrap::Border})
+        for (TexelFilter tf : {TexelFilter::Nearest, TexelFilter::Linear}) {
+          SamplerConfig c{{tf, MipMode::None}, wu, wv};
+          c.unnormalized = true;
+          c.border = BorderColor::FloatOpaqueWhite;
+          Sampler s(pyr, c);
+          ref::GlSampler g = reference(pyr, c.filter, wu, wv);
+          g.unnormalized = true;
+          g.border = {255, 255, 255, 255};
+          for (int n = 0; n < 400; ++n) {
+            const double x = double(int(rng() % uint32_t((w + 6) * 256)) - 3 * 256) / 256;
+            const double y = double(int(rng() % uint32_t((h + 6) * 256)) - 3 * 256) / 256;
+            Request r;
+            ASSERT_TRUE(to_texel_coord_fixed(x, r.u) && to_texel_coord_fixed(y, r.v));
+            r.lod = int32_t(rng() % 1024) - 256;  // magnified or minified: the one texel filter, level 0
+            ASSERT_EQ(s.sample(r), rounded(g.sample(x, y, 0)))
+                << w << "x" << h << " " << name_of(c.filter, wu, wv) << " x=" << x << " y=" << y;
+            ++checked;
+          }
+        }
+  }
+  EXPECT_EQ(checked, 5u * 4 * 2 * 400);
+}
+
+// What an unnormalized sampler may be: Vulkan's rules, one line naming the field and its value.
+TEST(Sampler, UnnormalizedSamplerTakesVulkansRulesOnly) {
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 8, 8));
+  SamplerConfig ok{{TexelFilter::Linear, MipMode::None}, Wrap::Clamp, Wrap::Border};
+  ok.unnormalized = true;
+  EXPECT_EQ(ok.unnormalized_problem(), "");
+  EXPECT_NO_THROW(Sampler(pyr, ok));
+  SamplerConfig lod0 = ok;  // Vulkan's own form: nearest mipmaps, LOD clamped to 0
+  lod0.filter.mip = MipMode::Nearest;
+  lod0.min_lod = lod0.max_lod = 0;
+  EXPECT_EQ(lod0.unnormalized_problem(), "");
+  struct Bad { SamplerConfig c; std::string names; };
+  std::vector<Bad> bad;
+  for (Wrap w : {Wrap::Repeat, Wrap::Mirror, Wrap::MirrorClamp}) {
+    SamplerConfig c = ok;
+    c.wrap_v = w;
+    bad.push_back({c, "not " + wrap_name(w)});
+  }
+  SamplerConfig aniso = ok;
+  aniso.filter.anisotropic = true;
+  bad.push_back({aniso, "anisotropic"});
+  SamplerConfig mag = ok;
+  mag.filter.mag = TexelFilter::Nearest;
+  bad.push_back({mag, "magnification filter nearest"});
+  SamplerConfig mips = ok;
+  mips.filter.mip = MipMode::Linear;  // max LOD left at its default
+  bad.push_back({mips, "mipmap mode linear"});
+  for (const Bad& b : bad) {
+    const std::string p = b.c.unnormalized_problem();
+    EXPECT_NE(p.find(b.names), std::string::npos) << p;
+    try {
+      Sampler s(pyr, b.c);
+      ADD_FAILURE() << "no error for " << b.names;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(b.names), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Sampler, PointSamplingIsTexelAtFloorUW) {

@@ -186,9 +186,68 @@ void check_reduce_keeps_taps(int32_t u, int n, Wrap mode, TexelFilter f) {
   ASSERT_EQ(x0, g0) << "u=" << u << " n=" << n << " wrap=" << int(mode);
   if (f == TexelFilter::Nearest) return;
   ASSERT_EQ(x1, g1) << "u=" << u << " n=" << n << " wrap=" << int(mode);
-  if (g0 != g1) ASSERT_EQ(t.w, w) << "u=" << u << " n=" << n << " wrap=" << int(mode);
+  if (g0 != g1) {
+    ASSERT_EQ(t.w, w) << "u=" << u << " n=" << n << " wrap=" << int(mode);
+  }
+}
+
+// An unnormalized coordinate u (Q16.16 texels) on a side of n texels: the texels and weight GL
+// names for the texel coordinate u itself (GL 4.6 8.14.2, rectangle textures; Vulkan's
+// unnormalizedCoordinates), in real arithmetic, after the clamp or border wrap; the clamp of
+// scale() to +-2n texels is invisible.
+void check_unnormalized_taps(int32_t u, int n, Wrap mode, TexelFilter f) {
+  const stage::AxisTaps t = stage::address(stage::scale(stage::reduce(u, mode, true), n, true), f);
+  const double x = std::ldexp(double(u), -kTexelCoordFracBits);  // exact
+  int64_t i0, w = 0;
+  if (f == TexelFilter::Linear) {
+    const double p = std::floor((std::floor(x * 512) - 255) / 2);  // 9 sub-texel bits, then round-half-up
+    i0 = int64_t(std::floor(p / 256));
+    w = int64_t(p) - 256 * i0;
+  } else {
+    i0 = int64_t(std::floor(x));
+  }
+  const int64_t g0 = gl_wrap(i0, n, mode), g1 = gl_wrap(i0 + 1, n, mode);
+  ASSERT_EQ(stage::wrap(t.i0, n, mode), g0) << "u=" << u << " n=" << n << " wrap=" << int(mode);
+  if (f == TexelFilter::Nearest) return;
+  ASSERT_EQ(stage::wrap(t.i1, n, mode, true), g1) << "u=" << u << " n=" << n << " wrap=" << int(mode);
+  if (g0 != g1) {
+    ASSERT_EQ(t.w, w) << "u=" << u << " n=" << n << " wrap=" << int(mode);
+  }
 }
 }  // namespace
+
+TEST(Stages, UnnormalizedCoordinatesReadTheTexelsOfTheTexelCoordinate) {
+  std::mt19937_64 rng(13);
+  const int sizes[] = {1, 2, 3, 5, 8, 31, 600, 1000, 4095, 8191, 8192};
+  for (int n : sizes)
+    for (Wrap mode : {Wrap::Clamp, Wrap::Border})
+      for (TexelFilter f : {TexelFilter::Linear, TexelFilter::Nearest}) {
+        for (int i = 0; i < 20000; ++i) {
+          // Half anywhere in Q16.16, half within a few texels of the side.
+          const int32_t u = i % 2 ? int32_t(uint32_t(rng()))
+                                  : int32_t(int64_t(rng() % uint64_t((n + 8) << 16)) - (int64_t(4) << 16));
+          check_unnormalized_taps(u, n, mode, f);
+        }
+        for (int32_t u : {INT32_MIN, -1, 0, 1, 1 << 15, (n << 16) - 1, n << 16, (2 * n) << 16, INT32_MAX})
+          check_unnormalized_taps(u, n, mode, f);
+      }
+}
+
+// A power-of-two side up to 256 holds u / n exactly in Q8.24: the unnormalized sample at texel
+// coordinate u is the normalized one at u / n, texel for texel and weight for weight.
+TEST(Stages, UnnormalizedIsNormalizedTimesTheSize) {
+  std::mt19937_64 rng(17);
+  for (int lw = 0; lw <= 8; ++lw) {
+    const int n = 1 << lw;
+    for (Wrap mode : {Wrap::Clamp, Wrap::Border})
+      for (int i = 0; i < 20000; ++i) {
+        const int32_t u = int32_t(int64_t(rng() % uint64_t(4 * n << 16)) - (int64_t(n) << 16));  // [-n, 3n)
+        const int32_t t_unnorm = stage::scale(stage::reduce(u, mode, true), n, true);
+        const int32_t t_norm = stage::scale(stage::reduce(int32_t(int64_t(u) << (8 - lw)), mode), n);
+        ASSERT_EQ(t_unnorm, t_norm) << "u=" << u << " n=" << n;
+      }
+  }
+}
 
 TEST(Stages, ScaleAndAddressMatchRealTexelCoordinate) {
   std::mt19937 rng(7);

@@ -62,9 +62,9 @@ const char* const kTapCaseMeaning[kNumWraps][kTapCases] = {
 size_t fi_of(Filter f) { return size_t(f.texel) * 3 + size_t(f.mip); }  // all_filters() order
 
 // The period of the whole (unreduced) coordinate each tap falls in, on a side of n texels.
-int tap_case(int32_t coord, int n, TexelFilter filter) {
+int tap_case(int32_t coord, int n, TexelFilter filter, bool unnormalized) {
   if (n == 1) return kOneTexel;
-  const stage::AxisTaps t = stage::address(stage::scale(coord, n), filter);
+  const stage::AxisTaps t = stage::address(stage::scale(coord, n, unnormalized), filter);
   auto period = [&](int32_t i) { return i >= 0 ? i / n : -((-i + n - 1) / n); };
   const int32_t p0 = period(t.i0);
   const int32_t p1 = filter == TexelFilter::Linear ? period(t.i1) : p0;
@@ -134,6 +134,13 @@ Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log
   g_aniso_ = make("anisotropic: probes N x major axis");
   for (int n = 1; n <= kMaxAniso; ++n)
     for (const char* axis : {"along u", "along v", "diagonal"}) group(g_aniso_).add("N = " + std::to_string(n) + " " + axis);
+
+  g_unnorm_ = make("unnormalized coordinates: texel filter x wrap_u x wrap_v x inside or beyond level 0");
+  for (const char* tf : {"nearest", "linear"})
+    for (Wrap wu : {Wrap::Clamp, Wrap::Border})
+      for (Wrap wv : {Wrap::Clamp, Wrap::Border})
+        for (const char* where : {"inside", "beyond"})
+          group(g_unnorm_).add(std::string(tf) + " " + wrap_name(wu) + "/" + wrap_name(wv) + " " + where);
 }
 
 void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Request& q) {
@@ -152,6 +159,12 @@ void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Reques
       const size_t axis = mv < mu / 4 ? 0 : mu < mv / 4 ? 1 : 2;
       ++group(g_aniso_).hits[size_t(p.n - 1) * 3 + axis];
     }
+  }
+  if (cfg.unnormalized) {  // (the sampler takes clamping modes only: wrap 1 or 3)
+    const Extent e = pyr.extent0();
+    const bool inside = q.u >= 0 && q.v >= 0 && (q.u >> kTexelCoordFracBits) < e.w && (q.v >> kTexelCoordFracBits) < e.h;
+    ++group(g_unnorm_).hits[((size_t(cfg.filter.texel) * 2 + size_t(cfg.wrap_u == Wrap::Border)) * 2 +
+                             size_t(cfg.wrap_v == Wrap::Border)) * 2 + !inside];
   }
   for (int i = 0; i < p.n; ++i) sample_probe(pyr, cfg, p.at[size_t(i)]);
 }
@@ -183,7 +196,7 @@ void Coverage::sample_probe(const Pyramid& pyr, const SamplerConfig& cfg, const 
     const Extent shape = level_extent(pyr.extent0(), level);
     const int sizes[2] = {shape.w, shape.h};
     for (int axis = 0; axis < 2; ++axis) {
-      const int c = tap_case(coords[axis], sizes[axis], texel_filter);
+      const int c = tap_case(coords[axis], sizes[axis], texel_filter, cfg.unnormalized);
       const size_t bin =
           ((size_t(axis) * 2 + size_t(texel_filter)) * kNumWraps + size_t(wraps[axis])) * kTapCases + size_t(c);
       ++group(g_taps_).hits[bin];

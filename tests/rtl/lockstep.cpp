@@ -30,6 +30,7 @@ std::string describe(const SamplerConfig& c) {
   std::ostringstream o;
   o << filter_name(c.filter) << " wrap " << wrap_name(c.wrap_u) << "/" << wrap_name(c.wrap_v) << " bias "
     << c.lod_bias << " min " << c.min_lod << " max " << c.max_lod << " (Q8.8)";
+  if (c.unnormalized) o << " unnormalized (u, v in Q16.16 texels)";
   if (c.uses_border()) {
     const Texel b = c.border_unorm16();
     o << " border " << border_color_name(c.border) << " (" << b[0] << "," << b[1] << "," << b[2] << "," << b[3] << ")";
@@ -175,6 +176,15 @@ std::vector<Request> random_requests(std::mt19937_64& rng, Extent size, size_t n
     r[i].lod = lod_value(rng, last);
     if (rng() % 4 == 0) r[i].bias = lod_value(rng, last);  // the request's own bias (GLSL texture(s, uv, bias))
     r[i].tag = uint32_t(i);
+  }
+  return r;
+}
+
+std::vector<Request> random_texel_requests(std::mt19937_64& rng, Extent size, size_t n) {
+  std::vector<Request> r = random_requests(rng, size, n);
+  for (Request& q : r) {
+    q.u = texel_coordinate(rng, size.w);
+    q.v = texel_coordinate(rng, size.h);
   }
   return r;
 }

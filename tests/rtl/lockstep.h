@@ -9,6 +9,7 @@
 #include "model/pyramid.h"
 #include "model/sampler.h"
 #include "engines/rtl/driver.h"
+#include "stimulus.h"
 
 namespace tex::rtltest {
 
@@ -59,6 +60,10 @@ std::vector<Request> random_requests(std::mt19937_64& rng, Extent size, size_t n
 inline std::vector<Request> random_requests(std::mt19937_64& rng, int lw, int lh, size_t n) {
   return random_requests(rng, Extent{1 << lw, 1 << lh}, n);
 }
+// Requests of an unnormalized sampler: random_requests with u, v in Q16.16 texels of level 0 near
+// texel edges and centres within a few texels of the texture, anywhere in [-2n, 3n), beyond the
+// RTL's clamp (+-2^(ML+1) texels) and any 32-bit value.
+std::vector<Request> random_texel_requests(std::mt19937_64& rng, Extent size, size_t n);
 // A request with derivatives whose footprint takes `probes` probes (1..16) under a cap of 16, its
 // major axis along u (axis 0), v (1) or diagonal (2), from magnification to past the last level;
 // 1 in 16 has raw 32-bit derivatives (the format's saturating ends).

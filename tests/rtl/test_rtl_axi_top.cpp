@@ -53,6 +53,7 @@
 #include "model/pyramid.h"
 #include "model/sampler.h"
 #include "model/texture_cache.h"
+#include "stimulus.h"
 
 using namespace tex;
 
@@ -618,6 +619,7 @@ SamplerConfig random_sampler(std::mt19937_64& rng) {
     s.min_lod = int32_t(int64_t(rng() % 1537) - 512);
     s.max_lod = s.min_lod + int32_t(rng() % 2049);
   }
+  if (rng() % 6 == 0) rtltest::make_unnormalized(rng, s);  // (its requests: texel coordinates, random_case)
   return s;
 }
 
@@ -664,6 +666,8 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
   c.stim.long_stall_p = 0.002;
   c.stim.long_stall = 50 + int(rng() % 100);
   c.requests = random_requests(rng, c.table, c.samplers.size(), requests);
+  rtltest::texel_coordinates_where_unnormalized(rng, c.requests, c.samplers,
+                                       [&](int t) { return c.table[size_t(t)].pyramid->extent0(); });
   return c;
 }
 

@@ -84,7 +84,14 @@ struct Reference {
   }
   bool sampler_ok(uint32_t d) const {
     auto wrap_ok = [](uint32_t w) { return w <= 4; };  // the five address modes (5..7: none)
-    return (d & 15) < kSamplers && wrap_ok(wrap & 7) && wrap_ok((wrap >> 4) & 7) && ((filter >> 4) & 3) != 3;
+    auto clamping = [](uint32_t w) { return w == 1 || w == 3; };  // clamp to edge, to border
+    // Unnormalized coordinates as Vulkan allows them: clamping modes, one texel filter, no
+    // anisotropy, the base level only (mip mode none, or max LOD <= 0).
+    const bool unnormalized_ok = !((filter >> 13) & 1) ||
+                                 (clamping(wrap & 7) && clamping((wrap >> 4) & 7) && (filter & 1) == ((filter >> 1) & 1) &&
+                                  ((filter >> 8) & 15) == 0 && (((filter >> 4) & 3) == 0 || int16_t(max_lod) <= 0));
+    return (d & 15) < kSamplers && wrap_ok(wrap & 7) && wrap_ok((wrap >> 4) & 7) && ((filter >> 4) & 3) != 3 &&
+           unnormalized_ok;
   }
   // BRESP of a write (the state before its edge).
   uint32_t write_resp(uint32_t addr, uint32_t data, uint8_t strb) const {
@@ -102,7 +109,7 @@ struct Reference {
       case kControl: control = d & 3; break;
       case kCache: cache = d & 0x31F01; break;
       case kFifoLimit: fifo_limit = d & ((1u << kFifoLimitBits) - 1); break;
-      case kFilter: filter = d & 0x1F33; break;
+      case kFilter: filter = d & 0x3F33; break;
       case kLodBias: lod_bias = d & 0xFFFF; break;
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
@@ -144,7 +151,7 @@ struct Reference {
     }
     switch (a) {
       case kId: return {0x54455855u, kOkay};
-      case kVersion: return {0x00030000u, kOkay};
+      case kVersion: return {0x00030001u, kOkay};
       case kCaps0: return {caps0(), kOkay};
       case kCaps1: return {caps1(), kOkay};
       case kControl: return {control, kOkay};
@@ -459,6 +466,7 @@ class Slave {
     EXPECT_EQ(t.cfg_smp_mip_mode, (r.filter >> 4) & 3);
     EXPECT_EQ(t.cfg_smp_max_aniso_m1, (r.filter >> 8) & 15);
     EXPECT_EQ(t.cfg_smp_aniso_pow2, (r.filter >> 12) & 1);
+    EXPECT_EQ(t.cfg_smp_unnormalized, (r.filter >> 13) & 1);
     EXPECT_EQ(t.cfg_smp_lod_bias, r.lod_bias);
     EXPECT_EQ(t.cfg_smp_min_lod, r.min_lod);
     EXPECT_EQ(t.cfg_smp_max_lod, r.max_lod);
@@ -490,7 +498,7 @@ std::vector<uint32_t> defined_registers() {
 TEST(RtlAxilConfig, IdVersionCapabilitiesAndResetValues) {
   Slave s(1);
   EXPECT_EQ(s.read(kId).data, 0x54455855u);  // "TEXU"
-  EXPECT_EQ(s.read(kVersion).data, 0x00030000u);
+  EXPECT_EQ(s.read(kVersion).data, 0x00030001u);
   EXPECT_EQ(s.read(kCaps0).data, uint32_t(10 | 9 << 4 | 8 << 8 | 1 << 16 | 1 << 17 | 4 << 20));
   EXPECT_EQ(s.read(kCaps1).data, uint32_t(8 | 4 << 8 | 8 << 16 | 6 << 24 | 4 << 28));
   // reset: the unit held in reset, the whole cache of 4 ways, trilinear, no LOD clamp
@@ -611,14 +619,37 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   ASSERT_EQ(s.write(kWrap, 4u << 4 | 3u), kOkay);  // mirror-clamp / border: valid
   ASSERT_EQ(s.write(kFilter, 0x33), kOkay);        // mip mode 3
   EXPECT_EQ(s.write(kSmpCommit, 1), kSlverr);
+  // Unnormalized coordinates (FILTER bit 13) only as Vulkan allows them
+  ASSERT_EQ(s.write(kMaxLod, 0x0100), kOkay);  // 1.0
+  const uint32_t kUnnorm = 1u << 13;
+  struct Case { uint32_t wrap, filter; bool ok; const char* what; };
+  for (const Case& c : {Case{0x11, kUnnorm | 0x03, true, "clamp, linear, mip none"},
+                        Case{0x33, kUnnorm | 0x00, true, "border, nearest, mip none"},
+                        Case{0x13, kUnnorm | 0x13, false, "mip nearest with max LOD 1"},
+                        Case{0x10, kUnnorm | 0x03, false, "repeat"},
+                        Case{0x21, kUnnorm | 0x03, false, "mirror"},
+                        Case{0x41, kUnnorm | 0x03, false, "mirror-clamp"},
+                        Case{0x11, kUnnorm | 0x01, false, "min linear, mag nearest"},
+                        Case{0x11, kUnnorm | 0x103, false, "anisotropic"},
+                        Case{0x10, 0x03, true, "normalized repeat"}}) {
+    ASSERT_EQ(s.write(kWrap, c.wrap), kOkay);
+    ASSERT_EQ(s.write(kFilter, c.filter), kOkay);
+    EXPECT_EQ(s.write(kSmpCommit, 1), c.ok ? kOkay : kSlverr) << c.what;
+  }
+  ASSERT_EQ(s.write(kMaxLod, 0), kOkay);  // mip nearest reads level 0 only with max LOD 0 (Vulkan's rule)
+  ASSERT_EQ(s.write(kWrap, 0x13), kOkay);
+  ASSERT_EQ(s.write(kFilter, kUnnorm | 0x13), kOkay);
+  EXPECT_EQ(s.write(kSmpCommit, 1), kOkay);
+  const int unnormalized_pulses = 4;  // the OKAY commits above
+  ASSERT_EQ(s.write(kWrap, 4u << 4 | 3u), kOkay);
   ASSERT_EQ(s.write(kFilter, 0x23), kOkay);
   EXPECT_EQ(s.write(kSmpCommit, kSamplers), kSlverr);
   ASSERT_EQ(s.write(kControl, 1), kOkay);
   EXPECT_EQ(s.write(kSmpCommit, 1), kSlverr);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
-  EXPECT_EQ(s.smp_pulses, smp_pulses);
+  EXPECT_EQ(s.smp_pulses, smp_pulses + unnormalized_pulses);
   EXPECT_EQ(s.write(kSmpCommit, kSamplers - 1), kOkay);
-  EXPECT_EQ(s.smp_pulses, smp_pulses + 1);
+  EXPECT_EQ(s.smp_pulses, smp_pulses + unnormalized_pulses + 1);
 }
 
 TEST(RtlAxilConfig, WriteChannelInEitherOrder) {

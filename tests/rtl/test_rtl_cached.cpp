@@ -288,12 +288,15 @@ void run_suite(const CachedSuite& suite) {
     cfg.wrap_v = random_wrap(rng);
     randomize_border(rng, cfg);
     randomize_lod_controls(rng, cfg);
+    const bool unnormalized = ci % 7 == 6;  // a seventh with unnormalized coordinates
+    if (unnormalized) make_unnormalized(rng, cfg);
     const LayoutParams layout = random_layout(rng, rc);
     const CacheParams cache = random_cache(rng, rc);
     std::string memory_name, timing_name;
     const rtl::MemoryTiming memory = random_memory(rng, rc, memory_name);
     const rtl::Timing stim = random_timing(rng, timing_name);
-    const std::vector<Request> requests = random_requests(rng, size, suite.requests_per_case);
+    const std::vector<Request> requests = unnormalized ? random_texel_requests(rng, pyr.extent0(), suite.requests_per_case)
+                                                       : random_requests(rng, size, suite.requests_per_case);
     // A quarter of the cases use a shallower FIFO (cfg_fifo_limit), down to 1 sample.
     const uint32_t fifo_depth = rng() % 4 == 0 ? 1 + uint32_t(rng() % uint64_t(rc.fifo_depth)) : 0;
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
@@ -432,6 +435,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
       cfg.wrap_v = random_wrap(rng);
       randomize_border(rng, cfg);
       randomize_lod_controls(rng, cfg);
+      if (rng() % 6 == 0) make_unnormalized(rng, cfg);
     }
     const LayoutParams layout = random_layout(rng, rc);
     const CacheParams cache = random_cache(rng, rc);
@@ -445,6 +449,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
       switches += i > 0 && requests[i].texture != requests[i - 1].texture;
       sampler_switches += i > 0 && requests[i].sampler != requests[i - 1].sampler;
     }
+    texel_coordinates_where_unnormalized(rng, requests, samplers, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
     const CaseResult r = run_case(*unit, table, samplers, layout, cache, memory, requests, stim, rng(), nullptr, nullptr,
                                   -1, 0, nullptr, errors);

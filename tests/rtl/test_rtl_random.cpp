@@ -60,7 +60,7 @@ void run_suite(const RandomSuite& suite) {
   // requests; anisotropic cases take a quarter of the requests, each with a footprint of 1..16
   // probes along u, v or a diagonal. Returns false once enough failures are reported.
   auto run_case = [&](const TextureSpec& ts, std::optional<Pyramid>& pyr, bool port_load, uint64_t seed, bool aniso,
-                      const std::function<void(std::mt19937_64&, SamplerConfig&)>& configure) {
+                      const std::function<void(std::mt19937_64&, SamplerConfig&)>& configure, bool unnormalized = false) {
     if (only && *only != seed) return true;
     if (!pyr) {  // loaded lazily: a replay of one seed loads only its texture
       pyr = view_pyramid(build_pyramid(make_texture(ts), ts.mode), ts.base_level, ts.max_level);
@@ -70,9 +70,11 @@ void run_suite(const RandomSuite& suite) {
     SamplerConfig cfg;
     configure(rng, cfg);
     randomize_lod_controls(rng, cfg);
+    if (unnormalized) make_unnormalized(rng, cfg);
     std::string timing_name;
     const rtl::Timing timing = random_timing(rng, timing_name);
-    auto reqs = random_requests(rng, pyr->extent0(), suite.requests_per_case * scale() / (aniso ? 4 : 1));
+    const size_t n = suite.requests_per_case * scale() / (aniso ? 4 : 1);
+    auto reqs = unnormalized ? random_texel_requests(rng, pyr->extent0(), n) : random_requests(rng, pyr->extent0(), n);
     if (aniso)
       for (Request& q : reqs) {
         q.has_derivatives = true;
@@ -123,6 +125,17 @@ void run_suite(const RandomSuite& suite) {
               }))
             return;
         }
+        // unnormalized coordinates (the clamping pairs), each texel filter with a random mip mode
+        const bool clamping = (wu == int(Wrap::Clamp) || wu == int(Wrap::Border)) &&
+                              (wv == int(Wrap::Clamp) || wv == int(Wrap::Border));
+        for (int tf = 0; clamping && tf < 2; ++tf) {
+          const uint64_t useed = mix64(base + 0x5A5A + ((ti * 2 + tf) * kWrapModes + wu) * kWrapModes + wv);
+          if (!run_case(ts, pyr, port_load, useed, false, [&](std::mt19937_64& rng, SamplerConfig& cfg) {
+                cfg.filter = filters[size_t(tf) * 3 + rng() % 3];
+                wraps(rng, cfg);
+              }, true))
+            return;
+        }
         // the anisotropic filter, once per wrap pair
         const uint64_t seed = mix64(base + 0xA5A5 + (ti * kWrapModes + wu) * kWrapModes + wv);
         if (!run_case(ts, pyr, port_load, seed, true, [&](std::mt19937_64& rng, SamplerConfig& cfg) {
@@ -144,7 +157,8 @@ void run_suite(const RandomSuite& suite) {
     EXPECT_EQ(totals.rounds, 1u) << "TEX_SEED=" << *only << " is not a case of " << suite.name;
     return;
   }
-  EXPECT_EQ(totals.rounds, suite.textures.size() * (6 + 1) * kWrapModes * kWrapModes);  // 6 filters, anisotropic
+  // 6 filters and anisotropic per wrap pair; unnormalized: 4 clamping pairs x 2 texel filters
+  EXPECT_EQ(totals.rounds, suite.textures.size() * ((6 + 1) * kWrapModes * kWrapModes + 4 * 2));
   // Every reachable bin of the functional coverage was exercised, and no bin declared unreachable was.
   for (const std::string& hole : coverage.holes()) ADD_FAILURE() << suite.name << " coverage: " << hole;
   EXPECT_GE(totals.longest_latency, 100u) << "no long stall happened";

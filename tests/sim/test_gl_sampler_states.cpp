@@ -6,7 +6,8 @@
 // odd, so the repeat seams of odd levels and the area-mean pyramid are compared too). The golden model samples the same queries; the two must
 // agree within the precision GLES 3.0 allows an RGBA8 texture (4 LSB for filtered lookups, the
 // conformance suite's threshold): here at most 2 LSB (8-bit steps of full scale), 0.3 on average,
-// and nearest filters exact, away from texel and level edges.
+// and nearest filters exact, away from texel and level edges. Unnormalized coordinates are
+// compared with GL's rectangle textures (sampler2DRect: texel coordinates, level 0 only).
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -99,6 +100,21 @@ class GlSampling {
     glUseProgram(program_);
     glUniform1i(glGetUniformLocation(program_, "tex"), 0);
     glUniform1i(glGetUniformLocation(program_, "queries"), 1);
+    const char* rect_fs = R"(#version 330 core
+      uniform sampler2DRect tex;
+      uniform sampler2D queries;
+      out vec4 colour;
+      void main() {  // texel coordinates of the base level
+        colour = texture(tex, texelFetch(queries, ivec2(gl_FragCoord.xy), 0).xy);
+      })";
+    rect_program_ = glCreateProgram();
+    glAttachShader(rect_program_, compile(GL_VERTEX_SHADER, vs));
+    glAttachShader(rect_program_, compile(GL_FRAGMENT_SHADER, rect_fs));
+    glLinkProgram(rect_program_);
+    glUseProgram(rect_program_);
+    glUniform1i(glGetUniformLocation(rect_program_, "tex"), 2);
+    glUniform1i(glGetUniformLocation(rect_program_, "queries"), 1);
+    glGenTextures(1, &rect_);
     glGenVertexArrays(1, &vao_);
     glBindVertexArray(vao_);
     glGenTextures(1, &tex_);
@@ -126,6 +142,14 @@ class GlSampling {
     }
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(levels.size()) - 1);
+    // Level 0 as a rectangle texture too (unnormalized samplers).
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_RECTANGLE, rect_);
+    std::vector<uint8_t> rgba;
+    for (const Texel& t : levels[0].texels)
+      for (int c = 0; c < 4; ++c) rgba.push_back(uint8_t(t[size_t(c)]));
+    glTexImage2D(GL_TEXTURE_RECTANGLE, 0, p.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, levels[0].width, levels[0].height, 0,
+                 GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   }
   // A view of the uploaded texture: TEXTURE_BASE_LEVEL and TEXTURE_MAX_LEVEL.
   void view(int base_level, int max_level) {
@@ -135,17 +159,21 @@ class GlSampling {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, max_level);
   }
 
-  // The sampler state of `c` on the texture, then one sample per query (u, v, lambda).
+  // The sampler state of `c` on the texture, then one sample per query (u, v, lambda); an
+  // unnormalized sampler reads the rectangle texture at texel coordinates (u, v).
   std::vector<std::array<float, 4>> sample(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, tex_);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, gl_min_filter(c.filter));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, c.filter.mag == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, gl_wrap(c.wrap_u));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, gl_wrap(c.wrap_v));
+    const GLenum target = c.unnormalized ? GL_TEXTURE_RECTANGLE : GL_TEXTURE_2D;
+    glUseProgram(c.unnormalized ? rect_program_ : program_);
+    glActiveTexture(c.unnormalized ? GL_TEXTURE2 : GL_TEXTURE0);
+    glBindTexture(target, c.unnormalized ? rect_ : tex_);
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, c.unnormalized ? (c.filter.texel == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST)
+                                                                  : gl_min_filter(c.filter));
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, c.filter.mag == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, gl_wrap(c.wrap_u));
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, gl_wrap(c.wrap_v));
     const Texel b = c.border_unorm16();
     const float border[4] = {b[0] / 65535.f, b[1] / 65535.f, b[2] / 65535.f, b[3] / 65535.f};
-    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, border);
+    glTexParameterfv(target, GL_TEXTURE_BORDER_COLOR, border);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, queries_);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -161,7 +189,7 @@ class GlSampling {
  private:
   OSMesaContext ctx_ = nullptr;
   std::vector<uint8_t> window_ = std::vector<uint8_t>(size_t(kW) * kH * 4);
-  GLuint fbo_ = 0, colour_ = 0, program_ = 0, vao_ = 0, tex_ = 0, queries_ = 0;
+  GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, vao_ = 0, tex_ = 0, rect_ = 0, queries_ = 0;
   bool ready_ = false;
 };
 
@@ -173,7 +201,9 @@ struct Outcome {
 // Random on-grid queries (u, v multiples of 2^-16: exact in float and in Q8.24; lambda of 1/256),
 // each 2x2 pixel quad one lambda. A nearest filter's texel, or a level choice, at an edge within
 // 1/64 texel or level is either side's (both are right): such queries are not compared.
-Outcome compare(GlSampling& gl, const Pyramid& pyr, const SamplerConfig& cfg, uint32_t seed) {
+// `model_cfg`: the model's sampler instead of cfg (a planted bug).
+Outcome compare(GlSampling& gl, const Pyramid& pyr, const SamplerConfig& cfg, uint32_t seed,
+                const SamplerConfig* model_cfg = nullptr) {
   std::mt19937 rng(seed);
   const int q = pyr.last_level();
   std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
@@ -181,15 +211,21 @@ Outcome compare(GlSampling& gl, const Pyramid& pyr, const SamplerConfig& cfg, ui
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
       const size_t i = size_t(y) * kW + size_t(x);
-      const double u = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0, v = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0;
+      double u = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0, v = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0;
+      if (cfg.unnormalized) {  // texels of level 0, 3 beyond each edge, on a 1/256 grid
+        const Extent e = pyr.extent0();
+        u = (int(rng() % uint32_t((e.w + 6) << 8)) - (3 << 8)) / 256.0;
+        v = (int(rng() % uint32_t((e.h + 6) << 8)) - (3 << 8)) / 256.0;
+      }
       const double lambda = (x & 1) || (y & 1) ? queries[size_t(y & ~1) * kW + size_t(x & ~1)][2]
                                                  : (int(rng() % uint32_t((q + 4) * 256)) - 2 * 256) / 256.0;
       queries[i] = {float(u), float(v), float(lambda), 0.f};
-      EXPECT_TRUE(to_coord_fixed(u, requests[i].u) && to_coord_fixed(v, requests[i].v) &&
-                  to_lod_fixed(lambda, requests[i].lod));
+      const bool coords = cfg.unnormalized ? to_texel_coord_fixed(u, requests[i].u) && to_texel_coord_fixed(v, requests[i].v)
+                                           : to_coord_fixed(u, requests[i].u) && to_coord_fixed(v, requests[i].v);
+      EXPECT_TRUE(coords && to_lod_fixed(lambda, requests[i].lod));
     }
   const std::vector<std::array<float, 4>> got = gl.sample(cfg, queries);
-  Sampler model(pyr, cfg);
+  Sampler model(pyr, model_cfg ? *model_cfg : cfg);
   const bool srgb = pyr.srgb;
   Outcome o;
   for (size_t i = 0; i < requests.size(); ++i) {
@@ -201,8 +237,9 @@ Outcome compare(GlSampling& gl, const Pyramid& pyr, const SamplerConfig& cfg, ui
     if (!magnify && cfg.filter.mip == MipMode::Nearest)
       edge = edge || std::fabs(lambda - std::floor(lambda) - 0.5) < 1.0 / 64;
     if (tf == TexelFilter::Nearest)
-      for (int k = 0; k <= q; ++k)
-        for (double t : {queries[i][0] * pyr.levels[size_t(k)].width, queries[i][1] * pyr.levels[size_t(k)].height})
+      for (int k = 0; k <= (cfg.unnormalized ? 0 : q); ++k)
+        for (double t : {queries[i][0] * (cfg.unnormalized ? 1 : pyr.levels[size_t(k)].width),
+                         queries[i][1] * (cfg.unnormalized ? 1 : pyr.levels[size_t(k)].height)})
           edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
     if (edge) {
       ++o.excluded;
@@ -323,4 +360,53 @@ TEST(GlSamplerStates, ViewsAgreeWithLlvmpipe) {
   gl.view(2, 4);
   const Outcome wrong = compare(gl, rgba_npot, SamplerConfig{}, 7);
   EXPECT_GT(wrong.max_lsb_x100, 1000) << "a view ignored went unnoticed";
+}
+
+// Unnormalized coordinates (texsim --unnormalized, Vulkan unnormalizedCoordinates) against GL's
+// rectangle textures: texel coordinates of level 0, clamp to edge or border on each axis, each
+// texel filter, border colours named and custom, on RGBA8 and sRGB textures of sides powers of two
+// and not; the same precision as the normalized states.
+TEST(GlSamplerStates, UnnormalizedCoordinatesAgreeWithRectangleTextures) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  const Pyramid rgba = build_pyramid(make_pattern("noise", 32, 16));
+  const Pyramid rgba_npot = build_pyramid(make_pattern("noise", 37, 23));
+  const Pyramid srgb_npot = build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact);
+  std::mt19937 rng(41);
+  int states = 0, worst = 0;
+  for (const Pyramid* pyr : {&rgba, &rgba_npot, &srgb_npot}) {
+    gl.upload(*pyr);
+    for (Wrap wu : {Wrap::Clamp, Wrap::Border})
+      for (Wrap wv : {Wrap::Clamp, Wrap::Border})
+        for (int texel = 0; texel < 2; ++texel) {
+          SamplerConfig cfg{{TexelFilter(texel), MipMode::None}, wu, wv};
+          cfg.unnormalized = true;
+          cfg.border = BorderColor(rng() % kBorderColors);
+          if (cfg.border == BorderColor::Custom)
+            for (auto& c : cfg.border_custom) c = uint16_t(rng() % 65536);
+          const Outcome o = compare(gl, *pyr, cfg, uint32_t(2000 + states));
+          ++states;
+          SCOPED_TRACE((pyr->srgb ? "sRGB " : "RGBA8 ") + std::to_string(pyr->extent0().w) + "x" +
+                       std::to_string(pyr->extent0().h) + ", unnormalized, " + name_of(cfg));
+          const double mean = o.sum / (4.0 * o.compared);
+          EXPECT_GT(o.compared, kW * kH / 2) << o.excluded << " excluded";
+          const bool custom = cfg.border == BorderColor::Custom;
+          if (cfg.filter.texel == TexelFilter::Nearest) {
+            EXPECT_LE(o.max_lsb_x100, pyr->srgb ? 35 : custom ? 50 : 0) << "mean " << mean;
+          }
+          EXPECT_LE(o.max_lsb_x100, 200) << "mean " << mean;
+          EXPECT_LE(mean, 0.4);
+          worst = std::max(worst, o.max_lsb_x100);
+        }
+  }
+  EXPECT_EQ(states, 24);
+  std::printf("  %d unnormalized sampler states against rectangle textures: max %.2f LSB\n", states, worst / 100.0);
+  // The check fires: the model taking the texel coordinates as texture widths disagrees.
+  gl.upload(rgba_npot);
+  SamplerConfig rect{{TexelFilter::Linear, MipMode::None}, Wrap::Clamp, Wrap::Clamp};
+  rect.unnormalized = true;
+  SamplerConfig normalized = rect;
+  normalized.unnormalized = false;
+  const Outcome wrong = compare(gl, rgba_npot, rect, 9, &normalized);
+  EXPECT_GT(wrong.max_lsb_x100, 1000) << "texel coordinates read as texture widths went unnoticed";
 }

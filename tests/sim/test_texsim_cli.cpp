@@ -101,6 +101,68 @@ TEST_F(TexsimCli, ViewsSampleTheSameInEveryEngine) {
   expect_clean_failure("sample --textures bad.txt -q q.csv -o x.csv", "x.csv", {"bad.txt:1", "base=", "not a level"});
 }
 
+// --unnormalized (Vulkan unnormalizedCoordinates, GL rectangle textures): the trace's u, v are
+// texels. On a power-of-two texture a texel coordinate x is the normalized x / w exactly, so the
+// samples equal the normalized run's; an NPOT texture samples the same in every engine, and a
+// texture list takes `unnormalized` per entry.
+TEST_F(TexsimCli, UnnormalizedCoordinatesAreTexels) {
+  queries("u,v,lod\n0.5,0.5,0\n12.25,7.75,0\n63.5,31.5,2\n-3,40,0\n70.125,-0.5,0\n31.999,16.001,0\n");
+  write_text(dir / "n.csv", "u,v,lod\n0.0078125,0.015625,0\n0.19140625,0.2421875,0\n0.9921875,0.984375,2\n"
+                            "-0.046875,1.25,0\n1.095703125,-0.015625,0\n");
+  const std::string common = " --wrap-u clamp --wrap-v border --border-color opaque-white --filter bilinear ";
+  for (const char* e : {"-e model", "-e rtl", "-e rtl --memory cached"}) {
+    // the first five queries: exact in both forms (the sixth is not: 31.999 / 64 has no Q8.24 form)
+    write_text(dir / "q5.csv", "u,v,lod\n0.5,0.5,0\n12.25,7.75,0\n63.5,31.5,2\n-3,40,0\n70.125,-0.5,0\n");
+    ASSERT_EQ(run(std::string("sample -t noise:64x32 -q q5.csv -o u.csv --unnormalized") + common + e).exit_code, 0) << e;
+    ASSERT_EQ(run(std::string("sample -t noise:64x32 -q n.csv -o n_out.csv") + common + e).exit_code, 0) << e;
+    std::string h;
+    EXPECT_EQ(read_csv_rows(dir / "u.csv", h), read_csv_rows(dir / "n_out.csv", h)) << e;
+  }
+  const std::string npot = "sample -t testcard:37x23 -q q.csv --unnormalized" + common;
+  ASSERT_EQ(run(npot + "-o m.csv").exit_code, 0);
+  std::string h;
+  const auto model = read_csv_rows(dir / "m.csv", h);
+  for (const char* e : {"-e rtl", "-e rtl --memory cached", "-e systemc", "-e systemc --memory cached"}) {
+    const Result r = run(npot + "-o e.csv " + e);
+    EXPECT_EQ(r.exit_code, 0) << e << ": " << r.err;
+    EXPECT_EQ(read_csv_rows(dir / "e.csv", h), model) << e;
+  }
+  // a texture list: entry 1 unnormalized, entry 0 normalized, one trace
+  write_text(dir / "list.txt", "0 noise:64x32 clamp border\n1 noise:64x32 clamp border unnormalized\n");
+  write_text(dir / "t.csv", "tex,u,v,lod\n0,0.19140625,0.2421875,0\n1,12.25,7.75,0\n");
+  ASSERT_EQ(run("sample --textures list.txt -q t.csv -o l.csv --filter bilinear -e rtl --memory cached").exit_code, 0);
+  const auto rows = read_csv_rows(dir / "l.csv", h);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0], rows[1]) << "texel (12.25, 7.75) is (0.19140625, 0.2421875) of a 64x32 texture";
+  // bad input: what Vulkan forbids, named; texel coordinates beyond Q16.16
+  expect_clean_failure("sample -t noise:64x32 -q q.csv -o x.csv --unnormalized --filter bilinear", "x.csv",
+                       {"--unnormalized", "clamp or border", "not repeat"});
+  expect_clean_failure("sample -t noise:64x32 -q q.csv -o x.csv --unnormalized --wrap clamp", "x.csv",
+                       {"--unnormalized", "mipmap mode linear"});
+  expect_clean_failure("sample -t noise:64x32 -q q.csv -o x.csv --unnormalized --wrap clamp --filter bilinear "
+                       "--mag-filter nearest", "x.csv", {"--unnormalized", "magnification filter nearest"});
+  write_text(dir / "far.csv", "u,v,lod\n1,2,0\n40000,2,0\n");
+  expect_clean_failure("sample -t noise:64x32 -q far.csv -o x.csv --unnormalized --wrap clamp --filter point", "x.csv",
+                       {"far.csv:3", "40000", "texels", "[-32768, 32768)"});
+  // render scales the frame's coordinates to texels: the normalized frame's picture, but for the
+  // coordinates' rounding (Q16.16 texels of u * 64 against Q8.24 of u: a weight 1/256 apart)
+  const std::string plane = "render --scene plane --width 64 --height 48 -t noise:64x32 --wrap clamp --filter bilinear ";
+  ASSERT_EQ(run(plane + "--unnormalized -e rtl --verify -o pu.png").exit_code, 0);
+  ASSERT_EQ(run(plane + "-o pn.png").exit_code, 0);
+  int w = 0, hh = 0;
+  const std::vector<uint8_t> pu = read_image(dir / "pu.png", w, hh), pn = read_image(dir / "pn.png", w, hh);
+  ASSERT_EQ(pu.size(), pn.size());
+  ASSERT_FALSE(pu.empty());
+  int worst = 0;
+  for (size_t i = 0; i < pu.size(); ++i) worst = std::max(worst, std::abs(int(pu[i]) - int(pn[i])));
+  EXPECT_LE(worst, 2);
+  expect_clean_failure("render --model no.gltf --unnormalized --wrap clamp --filter bilinear -o x.png", "x.png",
+                       {"--unnormalized", "normalized"});
+  write_text(dir / "badlist.txt", "0 noise:64x32 repeat unnormalized\n");
+  expect_clean_failure("sample --textures badlist.txt -q t.csv -o x.csv --filter bilinear --memory cached", "x.csv",
+                       {"badlist.txt:1", "not repeat"});
+}
+
 TEST_F(TexsimCli, MalformedCsvLineGivesLineNumberAndText) {
   queries("u,v,lod\n0.1,0.2,0\n# a comment\n0.3,abc,0\n");
   expect_clean_failure("sample -t noise:8x8 -q q.csv -o r.csv", "r.csv", {"q.csv:4", "0.3,abc,0"});

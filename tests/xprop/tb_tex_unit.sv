@@ -56,6 +56,7 @@ module tb_tex_unit #(
   logic [3:0]                             cfg_smp_max_aniso_m1 = 'x;
   logic                                   cfg_smp_aniso_pow2 = 'x;
   logic [63:0]                            cfg_smp_border_rgba = 'x;
+  logic                                   cfg_smp_unnormalized = 1'b0;  // (the vectors' samplers are normalized)
   logic [TAG_W-1:0]                       req_tag = 'x;
   logic                                   rsp_valid;
   logic                                   rsp_ready = 1'b0;

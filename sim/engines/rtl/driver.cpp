@@ -193,6 +193,7 @@ SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index) {
   c.max_lod = int16_t(config.max_lod);
   c.max_aniso_m1 = uint8_t(config.probe_cap() - 1);
   c.aniso_pow2 = config.aniso_pow2;
+  c.unnormalized = config.unnormalized;
   const Texel b = config.border_unorm16();
   c.border_rgba = uint64_t(b[0]) | uint64_t(b[1]) << 16 | uint64_t(b[2]) << 32 | uint64_t(b[3]) << 48;
   return c;

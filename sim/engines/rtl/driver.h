@@ -152,6 +152,7 @@ struct SamplerPins {
   uint8_t max_aniso_m1 = 0;  // probes per sample at most, less one (0: trilinear)
   bool aniso_pow2 = false;
   uint64_t border_rgba = 0;  // the border colour, {A, B, G, R} unorm16
+  bool unnormalized = false; // req_u, req_v are Q16.16 texels
 };
 SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index = 0);
 

@@ -54,6 +54,7 @@ struct GlSampler {
   Rgba border{};  // TEXTURE_BORDER_COLOR in the filtered values' scale (after `decode`: never decoded)
   tex::Wrap wrap_s = tex::Wrap::Repeat, wrap_t = tex::Wrap::Repeat;
   double lod_bias = 0, min_lod = -1000, max_lod = 1000;
+  bool unnormalized = false;  // s, t are texel coordinates (rectangle textures: u' = s, v' = t)
   // A texel's stored value to the value filtered (sRGB: decoded in double); none: as stored.
   double (*decode)(int channel, double stored) = nullptr;
 
@@ -72,7 +73,7 @@ struct GlSampler {
   Rgba level_filter(int k, double s, double t, Choice* choice = nullptr,
                     tex::TexelFilter filter = tex::TexelFilter::Linear) const {
     const tex::Image& img = (*levels)[k];
-    const double us = s * img.width, vt = t * img.height;
+    const double us = unnormalized ? s : s * img.width, vt = unnormalized ? t : t * img.height;
     Rgba out{};
     if (filter == tex::TexelFilter::Nearest) {
       const int64_t i = int64_t(std::floor(us)), j = int64_t(std::floor(vt));
