@@ -7,7 +7,7 @@ TEXSIM = $(BUILD)/texsim
 .PHONY: help deps build demo test test-suites unit-tests model-test bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes
 
 help:
-	@echo "make demo   - build, then render the default scene (writes $(OUT)/)"
+	@echo "make demo   - build texsim only (not the tests), then render the default scene (writes $(OUT)/)"
 	@echo "make test   - build, then run every test suite"
 	@echo "make model-test - the golden model and its tests alone (no OpenImageIO, Verilator, SystemC)"
 	@echo "make bench  - samples/s of the model, OpenImageIO TextureSystem, every engine and the RTL per configuration"
@@ -35,7 +35,8 @@ build: deps $(BUILD)/CMakeCache.txt
 
 # The paper's receding plane (fig. 7): point sampling vs trilinear, both through the Verilated RTL
 # (ideal timing, the default), each checked bit for bit against the golden model (--verify).
-demo: build
+demo: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target texsim
 	@mkdir -p $(OUT)
 	$(TEXSIM) render --scene plane --texture checker --filter point --engine rtl --verify --out $(OUT)/plane_point.png
 	$(TEXSIM) render --scene plane --texture checker --filter trilinear --engine rtl --verify --out $(OUT)/plane_trilinear.png

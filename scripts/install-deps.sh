@@ -7,6 +7,7 @@ packages=(
   cmake g++ make pkg-config
   libgtest-dev libbenchmark-dev          # tests and benchmarks
   libopenimageio-dev openimageio-tools   # images in and out; maketx for the pyramid check
+  libpng-dev libjpeg62-turbo-dev         # PNG and JPEG without loading OpenImageIO (fast start)
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libassimp-dev libglm-dev assimp-testmodels  # 3D models (render --model), vector math, the test models
   libsquish-dev                          # BC1-BC5 encoder (--format) and reference decoder (tests)

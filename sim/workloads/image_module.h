@@ -1,7 +1,8 @@
 // The image module (libtexsim_images.so): OpenImageIO behind plain 8-bit buffers, and Mesa's BC7
 // encoder (the one in Debian; libsquish stops at BC5). texsim loads it
-// with dlopen on the first image file it reads or writes, so that a run without image files (a
-// pattern texture, CSV in and out) does not load OpenImageIO's 260 shared libraries (0.4 s).
+// with dlopen on the first image file it reads or writes that is not a PNG or JPEG (those go
+// through libpng and libjpeg: workloads/png_jpeg.h), so that a run without such files does not
+// load OpenImageIO's 260 shared libraries (0.4 s).
 // texture_io.cpp is its one user; everything here is the module's ABI with the host (the same
 // compiler and libstdc++: std::string and std::vector pass through).
 #pragma once

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engines/engine.h"
+#include "engines/streams.h"
 #include "model/lod.h"
 #include "model/sampler.h"
 #include "workloads/text.h"

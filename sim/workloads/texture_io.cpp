@@ -1,5 +1,6 @@
-// Texture files and pictures: the only place image files are read or written, through the image
-// module (OpenImageIO, loaded on first use: workloads/image_module.h).
+// Texture files and pictures: the only place image files are read or written: PNG and JPEG through
+// libpng and libjpeg (workloads/png_jpeg.h), everything else through the image module
+// (OpenImageIO, loaded on first use: workloads/image_module.h).
 #include "workloads/texture_io.h"
 
 #include <dlfcn.h>
@@ -14,6 +15,7 @@
 
 #include "model/error.h"
 #include "workloads/image_module.h"
+#include "workloads/png_jpeg.h"
 #include "workloads/query_trace.h"
 
 namespace tex {
@@ -99,6 +101,9 @@ images::Pixels read_uint8(const std::string& name, const std::string& file, cons
                           size_t size = 0) {
   images::Pixels p;
   std::string error;
+  // PNG and JPEG directly; anything else, or a file they find broken, through OpenImageIO (whose
+  // messages are the ones users know).
+  if (images::read_png_or_jpeg(file, data, size, p, error) == images::Direct::Read) return p;
   if (!images::module().read(file, data, size, p, error)) throw Error(name + ": " + error);
   return p;
 }
@@ -204,7 +209,7 @@ ModelTexture model_texture(const std::string& name, Image rgba8) {
 
 void check_image_path(const std::string& path) {
   if (path == "-") throw Error("-: images cannot go to standard output; give a file name");
-  if (!images::module().can_write(path))
+  if (!images::is_png_path(path) && !images::module().can_write(path))
     throw Error(path + ": no image writer for this file type (use .png, .tif, .exr, ...)");
 }
 
@@ -218,7 +223,9 @@ void save_image(const Image& img, const OutputFile& out) {
   for (size_t i = 0; i < img.texels.size(); ++i)
     for (int c = 0; c < 4; ++c) p.values[i * 4 + size_t(c)] = uint8_t(img.texels[i][size_t(c)] >> shift);
   std::string error;
-  if (!images::module().write(out.path(), out.write_path(), p, error)) throw Error(out.path() + ": " + error);
+  const bool ok = images::is_png_path(out.path()) ? images::write_png(out.write_path(), p, error)
+                                                  : images::module().write(out.path(), out.write_path(), p, error);
+  if (!ok) throw Error(out.path() + ": " + error);
 }
 
 }  // namespace tex

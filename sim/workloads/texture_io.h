@@ -1,4 +1,5 @@
-// Texture files and pictures through OpenImageIO (the model itself does no file I/O).
+// Texture files and pictures: PNG and JPEG through libpng and libjpeg, every other format through
+// OpenImageIO (the model itself does no file I/O).
 #pragma once
 #include <cstddef>
 #include <string>
@@ -8,7 +9,7 @@
 
 namespace tex {
 
-// A texture is a file that OpenImageIO reads, or a built-in pattern: NAME or NAME:WxH
+// A texture is an image file (PNG, JPEG, or any format OpenImageIO reads), or a built-in pattern: NAME or NAME:WxH
 // (default 512x512). Files become RGBA8 (gray -> RGB, missing alpha -> opaque).
 // Sizes may be anything from 1 to 8192 per side; with resize = true a side that is not a power of
 // two is resampled (OpenImageIO, to the nearest power of two, at most 8192). Values of float images

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <random>
 
+#include "model/error.h"
 #include "workloads/query_trace.h"
 
 using namespace tex;

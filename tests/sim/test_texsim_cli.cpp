@@ -655,18 +655,28 @@ TEST_F(TexsimCli, TiledOrderDrawsTheSamePictureFromOtherCacheTraffic) {
 // Image files go through libtexsim_images.so (OpenImageIO), loaded on first use: a run without
 // image files never needs it, and a module that cannot be found is a one-line error naming it,
 // before any work (TEXSIM_IMAGE_MODULE points elsewhere).
-TEST_F(TexsimCli, ImageModuleIsLoadedOnlyForImageFiles) {
-  write_image(dir / "t.png", 8, 8, 4, [](int x, int y, int c) { return (x * 31 + y * 17 + c * 5) & 255; });
+// The image module (OpenImageIO) is loaded only for files other than PNG and JPEG: without it, a
+// pattern, a PNG texture and a PNG picture still work, a TIFF fails naming the module.
+TEST_F(TexsimCli, ImageModuleIsLoadedOnlyBeyondPngAndJpeg) {
+  const auto value = [](int x, int y, int c) { return (x * 31 + y * 17 + c * 5) & 255; };
+  write_image(dir / "t.png", 8, 8, 4, value);
+  write_image(dir / "t.tif", 8, 8, 4, value);
   queries("u,v,lod\n0.5,0.5,0\n0.25,0.75,1\n");
   const std::string missing = (dir / "nowhere" / "libtexsim_images.so").string();
   setenv("TEXSIM_IMAGE_MODULE", missing.c_str(), 1);
   const Result pattern = run("sample -t noise:16x16 -q q.csv -o a.csv");
-  expect_clean_failure("sample -t t.png -q q.csv -o b.csv", "b.csv", {missing, "image module"});
-  expect_clean_failure("render -s plane --width 32 --height 32 -o c.png", "c.png", {missing});
+  const Result png = run("sample -t t.png -q q.csv -o b.csv");
+  const Result picture = run("render -s plane --width 32 --height 32 -t t.png -o c.png");
+  expect_clean_failure("sample -t t.tif -q q.csv -o d.csv", "d.csv", {missing, "image module"});
+  expect_clean_failure("render -s plane --width 32 --height 32 -o e.tif", "e.tif", {missing});
   unsetenv("TEXSIM_IMAGE_MODULE");
   EXPECT_EQ(pattern.exit_code, 0) << pattern.err;
-  const Result image = run("sample -t t.png -q q.csv -o b.csv");
-  EXPECT_EQ(image.exit_code, 0) << image.err;
+  EXPECT_EQ(png.exit_code, 0) << png.err;
+  EXPECT_EQ(picture.exit_code, 0) << picture.err;
+  const Result tif = run("sample -t t.tif -q q.csv -o d.csv");
+  EXPECT_EQ(tif.exit_code, 0) << tif.err;
+  std::string h;
+  EXPECT_EQ(read_csv_rows(dir / "b.csv", h), read_csv_rows(dir / "d.csv", h)) << "PNG and TIFF of the same pixels";
 }
 
 // --format: the texture is held compressed in memory (libsquish), the stats say so, the cached unit
