@@ -285,15 +285,6 @@ class VerilatedTexUnit final : public Driver {
 
 }  // namespace
 
-const std::vector<RtlConfig>& compiled_configs() {
-#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, formats) \
-  RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, cached ? kMaxTextures : 1, 4, \
-            formats != 0, cached ? kMaxSamplers : 1},
-  static const std::vector<RtlConfig> configs = {TEX_RTL_CONFIGS(TEX_RTL_CONFIG_ENTRY)};
-#undef TEX_RTL_CONFIG_ENTRY
-  return configs;
-}
-
 std::unique_ptr<Driver> Driver::create(const RtlConfig& config, const DriverOptions& options) {
 #define TEX_RTL_CONFIG_CREATE(prefix, log2_w, log2_h, cw, ...) \
   if (config.name == #prefix) return std::make_unique<VerilatedTexUnit<prefix>>(config, options);
