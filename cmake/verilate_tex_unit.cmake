@@ -55,7 +55,7 @@ function(verilate_tex_unit target prefix log2_w log2_h)
     PREFIX ${prefix}
     TOP_MODULE ${top}
     SOURCES ${waivers} ${sources}
-    VERILATOR_ARGS -Wall --assert -GMAX_LOG2_W=${log2_w} -GMAX_LOG2_H=${log2_h} -GCW=${ARG_CW} -GTAG_W=16
+    VERILATOR_ARGS -Wall --assert -I${PROJECT_SOURCE_DIR}/rtl -GMAX_LOG2_W=${log2_w} -GMAX_LOG2_H=${log2_h} -GCW=${ARG_CW} -GTAG_W=16
                    ${cache_params}
                    --x-assign unique --x-initial unique ${TEX_VERILATOR_EXTRA_ARGS}
     OPT_FAST -O2

@@ -13,6 +13,7 @@
 //   in_first, in_last, in_n : the probe's place in its sample and the sample's probes (1..16)
 //   in_side    : SIDE_W bits carried along (the tag)
 //   rgba       : {A, B, G, R}, CW-bit unsigned channels
+`include "tex_param_error.svh"
 module tex_accum #(
   parameter int CW     = 8,
   parameter int SIDE_W = 1
@@ -99,11 +100,7 @@ module tex_accum #(
 
   generate
     if (CW < 1 || CW > tex_pkg::MAX_CW) begin : g_bad_cw
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_accum: CW must be in 1..16");  // Icarus 11: no elaboration-time $error
-`else
-      $error("tex_accum: CW must be in 1..16");
-`endif
+      `TEX_PARAM_ERROR("tex_accum: CW must be in 1..16")
     end
   endgenerate
 endmodule

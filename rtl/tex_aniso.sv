@@ -15,6 +15,7 @@
 //   n                      : probes, unsigned 1..16 (5 bits)
 //   lambda                 : lambda' in signed Q8.8 (LOD_W bits), before bias and clamp
 //   step_u, step_v         : signed Q8.24 (REQ_COORD_W bits), the spacing of the probes
+`include "tex_param_error.svh"
 module tex_aniso (
   input  logic                                   clk,
   input  logic                                   en,
@@ -145,11 +146,7 @@ module tex_aniso (
 
   generate
     if (tex_pkg::LOD_W != 16 || tex_pkg::REQ_COORD_W != 32) begin : g_bad_formats
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_aniso: built for 16-bit Q8.8 lambda and 32-bit Q8.24 derivatives (tex_pkg)");  // Icarus 11: no elaboration-time $error
-`else
-      $error("tex_aniso: built for 16-bit Q8.8 lambda and 32-bit Q8.24 derivatives (tex_pkg)");
-`endif
+      `TEX_PARAM_ERROR("tex_aniso: built for 16-bit Q8.8 lambda and 32-bit Q8.24 derivatives (tex_pkg)")
     end
   endgenerate
 endmodule

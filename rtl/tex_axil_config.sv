@@ -36,6 +36,7 @@
 //                   (of those, with rsp_error), stat_lookups, stat_misses (unsigned 0..8),
 //                   stat_mem_beat (a memory read beat taken: BEAT_BYTES bytes), stat_out_stall
 //                   (rsp_valid && !rsp_ready), stat_mem_wait, stat_req_stall (req_valid && !req_ready)
+`include "tex_param_error.svh"
 module tex_axil_config #(
   parameter int ADDR_W        = 12,   // byte address bits of the register window, 8..32
   // tex_unit_cached's parameters (the checks of CACHE and DESC_COMMIT, the CAPS registers):
@@ -113,11 +114,6 @@ module tex_axil_config #(
   input  logic                              stat_req_stall
 );
   // ---------------------------------------------------------------- parameter checks
-`ifdef __ICARUS__
-  `define TEX_PARAM_ERROR(msg) initial $fatal(1, msg);
-`else
-  `define TEX_PARAM_ERROR(msg) $error(msg);
-`endif
   generate
     if (ADDR_W < 8 || ADDR_W > 32) begin : g_bad_addr_w
       `TEX_PARAM_ERROR("tex_axil_config: parameter ADDR_W must be in 8..32 (the registers span 256 bytes)")
@@ -156,7 +152,6 @@ module tex_axil_config #(
       `TEX_PARAM_ERROR("tex_axil_config: parameter BEAT_BYTES must be a power of two from 1 to 64")
     end
   endgenerate
-`undef TEX_PARAM_ERROR
 
   // ---------------------------------------------------------------- register map
   // Word addresses (byte offset / 4). docs/rtl-interface.md has the fields.

@@ -16,6 +16,7 @@
 //   index_bits, index2_bits: bits of an index and a secondary index in this mode (2..4; 0: none)
 //   select   : the index selection bit (mode 4): colour from the secondary index
 //   rotation : 0..3 (modes 4, 5): swap A with nothing, R, G or B after the interpolation
+`include "tex_param_error.svh"
 module tex_bc7_mode #(
   parameter int MODE = 0
 ) (
@@ -72,18 +73,10 @@ module tex_bc7_mode #(
   // Elaboration-time checks (Icarus 11 has no elaboration-time $error).
   generate
     if (MODE < 0 || MODE > 7) begin : g_bad_mode
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_bc7_mode: parameter MODE must be in 0..7");
-`else
-      $error("tex_bc7_mode: parameter MODE must be in 0..7");
-`endif
+      `TEX_PARAM_ERROR("tex_bc7_mode: parameter MODE must be in 0..7")
     end
     if (I2_AT + 16 * IB2 - (IB2 > 0 ? 1 : 0) != 128) begin : g_bad_fields
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_bc7_mode: the fields of a mode must end at bit 128 (Table.M)");
-`else
-      $error("tex_bc7_mode: the fields of a mode must end at bit 128 (Table.M)");
-`endif
+      `TEX_PARAM_ERROR("tex_bc7_mode: the fields of a mode must end at bit 128 (Table.M)")
     end
   endgenerate
 

@@ -6,6 +6,7 @@
 // Ports:
 //   rgba16 : {A, B, G, R}, unsigned 16 bits each (65535 = 1.0)
 //   rgba   : {A, B, G, R}, unsigned CW bits each
+`include "tex_param_error.svh"
 module tex_border #(
   parameter int CW = 8
 ) (
@@ -14,11 +15,7 @@ module tex_border #(
 );
   generate
     if (CW < 1 || CW > 16) begin : g_param_error
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_border: parameter CW must be in 1..16");  // (Icarus 11: no elaboration-time $error)
-`else
-      $error("tex_border: parameter CW must be in 1..16");
-`endif
+      `TEX_PARAM_ERROR("tex_border: parameter CW must be in 1..16")
     end
   endgenerate
   always_comb begin

@@ -19,6 +19,7 @@
 //   hit[p]        : the line is in the cache (0 when bank p does not look up)
 //   slot          : bank p's line slot at [p*SLW +: SLW] (the hit way or the victim way; 0 when
 //                   bank p does not look up)
+`include "tex_param_error.svh"
 module tex_cache_tags #(
   parameter int LINES    = 128,  // lines per cache (power of two, >= 4 * MAX_WAYS)
   parameter int MAX_WAYS = 4,    // 1, 2 or 4
@@ -54,11 +55,7 @@ module tex_cache_tags #(
 
   generate
     if (LINES < 4 * MAX_WAYS || (LINES & (LINES - 1)) != 0) begin : g_bad_lines
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_cache_tags: LINES must be a power of two, at least 4 * MAX_WAYS");
-`else
-      $error("tex_cache_tags: LINES must be a power of two, at least 4 * MAX_WAYS");
-`endif
+      `TEX_PARAM_ERROR("tex_cache_tags: LINES must be a power of two, at least 4 * MAX_WAYS")
     end
   endgenerate
 

@@ -32,6 +32,7 @@
 //   tag_format, tag_srgb, tag_log2_lw, tag_log2_lh : the entry's format, sRGB flag and line shape
 //                       (log2 texels across and down a line: the BW x BH block, or a block
 //                       format's 4x4 blocks, 2^a x 2^b of them in the line's bytes, a = b or b + 1)
+`include "tex_param_error.svh"
 module tex_desc_table #(
   parameter int MAX_LOG2_W    = 10,
   parameter int MAX_LOG2_H    = 10,
@@ -85,11 +86,7 @@ module tex_desc_table #(
     if ((TEXTURES & (TEXTURES - 1)) != 0 || TEXTURES < 1 || TEXTURES > 16 || (BW != 2 && BW != 4 && BW != 8)
         || (BH != 2 && BH != 4 && BH != 8) || (LINE_BYTES & (LINE_BYTES - 1)) != 0 || LINE_BYTES < 16)
     begin : g_bad_params
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_desc_table: TEXTURES must be a power of two 1..16, BW and BH 2, 4 or 8, LINE_BYTES a power of two >= 16");
-`else
-      $error("tex_desc_table: TEXTURES must be a power of two 1..16, BW and BH 2, 4 or 8, LINE_BYTES a power of two >= 16");
-`endif
+      `TEX_PARAM_ERROR("tex_desc_table: TEXTURES must be a power of two 1..16, BW and BH 2, 4 or 8, LINE_BYTES a power of two >= 16")
     end
   endgenerate
 

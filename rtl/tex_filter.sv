@@ -14,6 +14,7 @@
 //          weight of the +1 tap in 1/256
 //   f    : unsigned WEIGHT_BITS, weight of slot 1 (level d1) in 1/256
 //   blend: channel c at [c*(CW+24) +: CW+24] (R, G, B, A), unsigned CW.24, exact
+`include "tex_param_error.svh"
 module tex_filter #(
   parameter int CW = 8
 ) (
@@ -70,11 +71,7 @@ module tex_filter #(
 
   generate
     if (3 * WB != 24) begin : g_bad_weights
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_filter: blend is CW.24 (tex_pkg::WEIGHT_BITS = 8)");  // Icarus 11: no elaboration-time $error
-`else
-      $error("tex_filter: blend is CW.24 (tex_pkg::WEIGHT_BITS = 8)");
-`endif
+      `TEX_PARAM_ERROR("tex_filter: blend is CW.24 (tex_pkg::WEIGHT_BITS = 8)")
     end
   endgenerate
 endmodule

@@ -10,6 +10,7 @@
 //   w, h                   : the level-0 size, unsigned SIZE_W bits, 1..2^MAX_LOG2_SIZE (any value)
 //   lambda                 : signed Q8.8 (LOD_W bits); all derivatives 0 gives -128.0
 //   px_s1, py_s1           : the clock-1 squared lengths (33 bits, unsigned, the block's scale)
+`include "tex_param_error.svh"
 module tex_lambda (
   input  logic                                  clk,
   input  logic                                  en,
@@ -111,11 +112,7 @@ module tex_lambda (
 
   generate
     if (tex_pkg::LOD_W != 16) begin : g_bad_lod_w
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_lambda: lambda is built for a 16-bit Q8.8 port (tex_pkg::LOD_W)");  // Icarus 11: no elaboration-time $error
-`else
-      $error("tex_lambda: lambda is built for a 16-bit Q8.8 port (tex_pkg::LOD_W)");
-`endif
+      `TEX_PARAM_ERROR("tex_lambda: lambda is built for a 16-bit Q8.8 port (tex_pkg::LOD_W)")
     end
   endgenerate
 endmodule

@@ -17,6 +17,7 @@
 //   unnormalized : the sampler's unnormalized coordinates
 //   reduced      : signed Q2.24, RW = COORD_FRAC + 3 bits, in [-2, 2]; unnormalized: t9, signed
 //                  texels with 9 fraction bits, |t9| <= 2^(ML+10)
+`include "tex_param_error.svh"
 module tex_reduce #(
   parameter int ML = tex_pkg::MAX_LOG2_SIZE,  // the unit's largest log2 size
   parameter int RW = tex_pkg::COORD_FRAC + 3  // derived: do not override
@@ -35,11 +36,7 @@ module tex_reduce #(
   localparam logic signed [CW-1:0] TWO_N = CW'(1) <<< (ML + 1 + TF);  // 2^(ML+1) texels, Q16.16
   generate
     if (ML < 0 || ML + 11 > RW || ML + 2 + TF > CW) begin : g_bad_ml
-`ifdef __ICARUS__
-      initial $fatal(1, "tex_reduce: parameter ML must be 0..16 (2^(ML+1) texels within t9's RW bits and Q16.16)");
-`else
-      $error("tex_reduce: parameter ML must be 0..16 (2^(ML+1) texels within t9's RW bits and Q16.16)");
-`endif
+      `TEX_PARAM_ERROR("tex_reduce: parameter ML must be 0..16 (2^(ML+1) texels within t9's RW bits and Q16.16)")
     end
   endgenerate
   always_ff @(posedge clk) begin

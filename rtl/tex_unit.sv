@@ -45,6 +45,7 @@
 //   (combinational); tex_fetch: the memories of levels d and d1 read (4 banks each)
 //   6 tex_fetch: bank words -> 8 taps  7 top/bot lerps  8 bilinear lerps  9 level blend
 //   10 tex_accum: sum of the probes  11 mean and rounding  12 tex_skid (output register)
+`include "tex_param_error.svh"
 module tex_unit #(
   parameter int MAX_LOG2_W = 10,  // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H (any size up to it), each 0..11
   parameter int MAX_LOG2_H = 10,
@@ -112,11 +113,6 @@ module tex_unit #(
   localparam int TGW = (TAG_W < 1) ? 1 : TAG_W;
   localparam int XW  = (MLW > 0) ? MLW : 1;  // wrapped index bits (level 0's)
   localparam int YW  = (MLH > 0) ? MLH : 1;
-`ifdef __ICARUS__
-  `define TEX_PARAM_ERROR(msg) initial $fatal(1, msg);  // Icarus 11: no elaboration-time $error
-`else
-  `define TEX_PARAM_ERROR(msg) $error(msg);
-`endif
   generate
     if (MAX_LOG2_W < 0 || MAX_LOG2_W > tex_pkg::MAX_LOG2_ONCHIP) begin : g_bad_max_log2_w
       `TEX_PARAM_ERROR("tex_unit: parameter MAX_LOG2_W must be in 0..11 (tex_pkg::MAX_LOG2_ONCHIP)")
@@ -134,7 +130,6 @@ module tex_unit #(
       `TEX_PARAM_ERROR("tex_unit: LATENCY is not the registers a one-probe request passes")
     end
   endgenerate
-`undef TEX_PARAM_ERROR
 
   // ---------------------------------------------------------------- control: valid bits, enable
   logic en;                        // every stage advances (the skid buffer has room)

@@ -56,6 +56,7 @@
 // cfg_* are registered every clock; a descriptor or sampler entry must not be rewritten while a
 //   request that names it is in flight; cfg_log2_sets, cfg_log2_ways, cfg_block_morton change only under reset (the caches are
 //   emptied by rst), a texture in memory only with its descriptor (and no request of it in flight).
+`include "tex_param_error.svh"
 module tex_unit_cached #(
   parameter int MAX_LOG2_W = 10,   // largest texture: 2^MAX_LOG2_W x 2^MAX_LOG2_H, each 0..13
   parameter int MAX_LOG2_H = 10,
@@ -164,11 +165,6 @@ module tex_unit_cached #(
   localparam int XW  = (MLW > 0) ? MLW : 1;
   localparam int YW  = (MLH > 0) ? MLH : 1;
   localparam int LINE_BITS = BLOCK_W * BLOCK_H * ((CW > 8 && SRGB == 0) ? 64 : 32);
-`ifdef __ICARUS__
-  `define TEX_PARAM_ERROR(msg) initial $fatal(1, msg);
-`else
-  `define TEX_PARAM_ERROR(msg) $error(msg);
-`endif
   generate
     if (MAX_LOG2_W < 0 || MAX_LOG2_W > tex_pkg::MAX_LOG2_SIZE) begin : g_bad_max_log2_w
       `TEX_PARAM_ERROR("tex_unit_cached: parameter MAX_LOG2_W must be in 0..13 (tex_pkg::MAX_LOG2_SIZE)")
@@ -222,7 +218,6 @@ module tex_unit_cached #(
       `TEX_PARAM_ERROR("tex_unit_cached: parameter BLOCK_FORMATS must be 0, or 1 with 8-bit memory channels (CW = 8, or SRGB) and lines of at least 64 bytes (BLOCK_W * BLOCK_H >= 16)")
     end
   endgenerate
-`undef TEX_PARAM_ERROR
 
   // ---------------------------------------------------------------- input registers
   // (the descriptor and sampler writes are registered with their tables below; these here)

@@ -5,7 +5,7 @@
 set -euo pipefail
 case "${1:-}" in -h|--help) sed -n '2,/^set -/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0;; esac
 cd "$(dirname "$0")/.."
-lint() { verilator --lint-only -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit "$@" 2>&1; }
+lint() { verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit "$@" 2>&1; }
 configs=("4 4 8" "6 3 8" "10 10 8" "0 0 8" "11 2 16" "3 7 1")  # MAX_LOG2_W MAX_LOG2_H CW
 for cfg in "${configs[@]}"; do
   set -- $cfg
@@ -29,7 +29,7 @@ for p in "${bad[@]}"; do
   fi
 done
 # tex_unit_cached (docs/memory.md): cache, block, FIFO and beat parameters.
-lint_cached() { verilator --lint-only -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit_cached "$@" 2>&1; }
+lint_cached() { verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit_cached "$@" 2>&1; }
 cached=("-GMAX_LOG2_W=6 -GMAX_LOG2_H=3" "-GCW=16 -GMAX_LOG2_W=5 -GMAX_LOG2_H=4 -GBLOCK_W=2 -GMEM_W=64 -GBLOCK_FORMATS=0"
         "-GMAX_LOG2_W=0 -GMAX_LOG2_H=0" "-GBLOCK_W=8 -GBLOCK_H=2 -GMAX_WAYS=1 -GLINES=16 -GFILL_DEPTH=1"
         "-GMAX_LOG2_W=13 -GMAX_LOG2_H=13 -GLINES=1024 -GFIFO_DEPTH=1024 -GMEM_W=256 -GAXI_ID_W=4"
@@ -57,7 +57,7 @@ done
 echo "lint: verilator -Wall clean for ${#cached[@]} tex_unit_cached configurations; parameter checks fire for ${bad_cached[*]}"
 # The LOD unit on its own (its own test bench; in the units it sits inside tex_probe); alone it uses
 # few of tex_pkg's constants.
-if ! out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_lambda.sv \
+if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_lambda.sv \
              --top-module tex_lambda 2>&1) || [ -n "$out" ]; then
   echo "$out" >&2
   echo "lint: FAILED for tex_lambda" >&2
@@ -66,20 +66,20 @@ fi
 echo "lint: verilator -Wall clean for tex_lambda"
 # The block decoders on their own (tex_unit_cached has 8 of them), and the elaboration check of
 # tex_bc7_mode's MODE.
-if ! out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_channel.sv \
+if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_channel.sv \
              rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv --top-module tex_bc_decode 2>&1) ||
    [ -n "$out" ]; then
   echo "$out" >&2
   echo "lint: FAILED for tex_bc_decode" >&2
   exit 1
 fi
-if out=$(verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc7_mode.sv \
+if out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc7_mode.sv \
            --top-module tex_bc7_mode -GMODE=8 2>&1) || ! grep -q "tex_bc7_mode: parameter MODE must be in 0..7" <<< "$out"; then
   echo "$out" >&2
   echo "lint: tex_bc7_mode's MODE check did not fire for MODE=8" >&2
   exit 1
 fi
-if ! out=$(verilator --lint-only -Wall rtl/tex_srgb_decode.sv --top-module tex_srgb_decode 2>&1) || [ -n "$out" ]; then
+if ! out=$(verilator --lint-only -Irtl -Wall rtl/tex_srgb_decode.sv --top-module tex_srgb_decode 2>&1) || [ -n "$out" ]; then
   echo "$out" >&2
   echo "lint: FAILED for tex_srgb_decode" >&2
   exit 1
@@ -87,7 +87,7 @@ fi
 echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7) and tex_srgb_decode; MODE check fires for tex_bc7_mode MODE=8"
 # The AXI4-Lite configuration slave on its own (-Wno-UNUSEDPARAM: alone it uses few of tex_pkg's
 # constants; inside tex_unit_axi below it is linted with all warnings), and the AXI top.
-lint_axil() { verilator --lint-only -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_axil_config.sv \
+lint_axil() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_axil_config.sv \
                 --top-module tex_axil_config "$@" 2>&1; }
 axil=("" "-GADDR_W=8 -GTEXTURES=1 -GSAMPLERS=1 -GMAX_WAYS=1 -GLINES=16 -GFIFO_DEPTH=2 -GBEAT_BYTES=1 -GLINE_BYTES=1"
       "-GADDR_W=32 -GFIFO_DEPTH=1024 -GBEAT_BYTES=64 -GSRGB=1 -GBLOCK_FORMATS=0 -GMAX_LOG2_W=13 -GMAX_LOG2_H=0")
@@ -107,7 +107,7 @@ for p in "${bad_axil[@]}"; do
     exit 1
   fi
 done
-lint_top() { verilator --lint-only -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit_axi "$@" 2>&1; }
+lint_top() { verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit_axi "$@" 2>&1; }
 top=("" "-GCW=16 -GSRGB=1 -GMEM_W=32 -GAXI_ID_W=4 -GADDR_W=8 -GTEXTURES=2 -GMAX_LOG2_W=6 -GMAX_LOG2_H=3"
      "-GBLOCK_W=2 -GBLOCK_H=4 -GBLOCK_FORMATS=0 -GMEM_W=256 -GADDR_W=32 -GLINES=16 -GMAX_WAYS=1")
 for cfg in "${top[@]}"; do

@@ -49,7 +49,7 @@ bench() {
   while IFS='=' read -r name value; do
     [ -n "$name" ] && params+=("-Ptb_tex_unit.$name=$value")
   done < "$vec/params.txt"
-  if ! iverilog -g2012 "${params[@]}" -o "$bin" "$@" tests/xprop/tb_tex_unit.sv > "$log.iverilog" 2>&1; then
+  if ! iverilog -g2012 -I rtl "${params[@]}" -o "$bin" "$@" tests/xprop/tb_tex_unit.sv > "$log.iverilog" 2>&1; then
     cat "$log.iverilog" >&2
     echo "xprop: iverilog failed" >&2
     return 2
