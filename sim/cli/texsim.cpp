@@ -38,6 +38,7 @@ struct TextureListEntry {
   SamplerConfig sampler;
   bool srgb = false;
   std::optional<int> base_level, max_level;
+  std::string at;  // "FILE:LINE: " of the line (errors of its fields found later)
 };
 std::vector<TextureListEntry> read_texture_list(const std::string& path, const SamplerConfig& cfg) {
   std::FILE* f = std::fopen(path.c_str(), "r");
@@ -59,7 +60,7 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
       if (id != std::to_string(out.size()))
         throw Error(at + "texture id " + quote_clipped(id) + ": expected " + std::to_string(out.size()) + " (ids 0, 1, ... in order)");
       if (file.empty()) throw Error(at + "expected " + form);
-      TextureListEntry e{file, cfg, false, {}, {}};
+      TextureListEntry e{file, cfg, false, {}, {}, at};
       // A file relative to the list's directory; a built-in pattern as it is (unless such a file exists).
       const std::filesystem::path beside = std::filesystem::path(path).parent_path() / file;
       if (std::filesystem::path(file).is_relative() && (!is_pattern_spec(file) || std::filesystem::exists(beside)))
@@ -141,7 +142,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
     for (const TextureListEntry& e : list) outputs.add_input(e.path, "--textures");
   } else {
     o.add_inputs(outputs);
-    list.push_back({o.texture, cfg, false, {}, {}});
+    list.push_back({o.texture, cfg, false, {}, {}, ""});
   }
   outputs.add_input(queries_path, "--queries");
   OutputFile& result = outputs.declare(out_path, "--out");
@@ -180,6 +181,8 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
     entry.srgb = entry.srgb || e.srgb;
     entry.base_level = e.base_level.value_or(entry.base_level);
     entry.max_level = e.max_level.value_or(entry.max_level);
+    if (e.base_level || e.max_level)
+      entry.view_given_by = e.at + "base=" + std::to_string(entry.base_level) + " max=" + std::to_string(entry.max_level);
     pyramids.push_back(load_pyramid(e.path, entry));
     table.push_back({&pyramids.back()});
     samplers.push_back(e.sampler);

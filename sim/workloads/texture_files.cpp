@@ -390,8 +390,10 @@ Pyramid view_of(Pyramid p, const TextureOptions& o) {
   try {
     return view_pyramid(p, o.base_level, o.max_level);
   } catch (const Error& e) {
-    throw Error("--base-level " + std::to_string(o.base_level) + " --max-level " + std::to_string(o.max_level) +
-                ": " + e.what());
+    const std::string by = o.view_given_by.empty() ? "--base-level " + std::to_string(o.base_level) +
+                                                         " --max-level " + std::to_string(o.max_level)
+                                                   : o.view_given_by;
+    throw Error(by + ": " + e.what());
   }
 }
 

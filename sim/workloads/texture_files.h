@@ -51,6 +51,9 @@ struct TextureOptions {
   // TEXTURE_BASE_LEVEL / TEXTURE_MAX_LEVEL, Vulkan's baseMipLevel / levelCount)
   int base_level = 0;
   int max_level = kMaxLevels - 1;
+  // Where the view was given, for its error ("" = the options: "--base-level B --max-level M";
+  // a texture list names its file, line and fields).
+  std::string view_given_by;
 };
 
 // The pyramid of level 0 as the options make it: the box pyramid (in linear space for sRGB:

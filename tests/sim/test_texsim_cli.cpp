@@ -97,6 +97,9 @@ TEST_F(TexsimCli, ViewsSampleTheSameInEveryEngine) {
   ASSERT_EQ(run("sample --textures sub/p.txt -q q.csv -o p.csv").exit_code, 0);
   ASSERT_EQ(run("sample -t testcard:100x60 --base-level 1 --max-level 3 -q q.csv -o p2.csv").exit_code, 0);
   EXPECT_EQ(read_csv_rows(dir / "p.csv", h), read_csv_rows(dir / "p2.csv", h));
+  write_text(dir / "deep.txt", "0 t.png\n1 t.png base=9 max=12\n");  // 100x60: levels 0 to 6
+  expect_clean_failure("sample --textures deep.txt -q q.csv -o x.csv --memory cached", "x.csv",
+                       {"deep.txt:2: base=9 max=12", "levels 0 to 6"});
   write_text(dir / "bad.txt", "0 t.png base=x\n");
   expect_clean_failure("sample --textures bad.txt -q q.csv -o x.csv", "x.csv", {"bad.txt:1", "base=", "not a level"});
 }
