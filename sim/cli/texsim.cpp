@@ -161,8 +161,9 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   // is parsed only there: the engine reads the requests the threads keep. The cycle engines wait
   // for the whole check before their work; the model, faster than the parse, starts on the first
   // requests, and a bad line stops it as soon as the threads find it (no output is written).
-  uint32_t unnormalized = 0;  // the samplers whose queries give texel coordinates
-  for (size_t i = 0; i < list.size(); ++i) unnormalized |= uint32_t(list[i].sampler.unnormalized) << i;
+  SamplerTable samplers;  // entry i: list line i's
+  for (const TextureListEntry& e : list) samplers.push_back(e.sampler);
+  const uint32_t unnormalized = unnormalized_samplers(samplers);  // their queries give texel coordinates
   std::optional<QueryReader> reader;
   std::optional<QueryFileParser> parser;
   std::exception_ptr query_error;
@@ -175,7 +176,6 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   std::vector<Pyramid> pyramids;
   pyramids.reserve(list.size());
   TextureTable table;
-  SamplerTable samplers;  // entry i: list line i's
   for (const TextureListEntry& e : list) {
     TextureOptions entry = topts;
     entry.srgb = entry.srgb || e.srgb;
@@ -185,7 +185,6 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
       entry.view_given_by = e.at + "base=" + std::to_string(entry.base_level) + " max=" + std::to_string(entry.max_level);
     pyramids.push_back(load_pyramid(e.path, entry));
     table.push_back({&pyramids.back()});
-    samplers.push_back(e.sampler);
   }
   if (query_error) std::rethrow_exception(query_error);
   const bool kept = parser && parser->kept();
@@ -361,8 +360,11 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     const Pyramid pyr = scene_pyramid(frame, texture_given ? o.texture : "", topts);
     if (frame.clamp_edges && !wrap_given) cfg.wrap_u = cfg.wrap_v = Wrap::Clamp;
     const SamplerTable samplers{cfg};
-    const auto requests = to_requests(in_sampler_coordinates(frame.queries, samplers, {pyr.extent0()}),
-                                      "scene " + scene, unnormalized_samplers(samplers));
+    const uint32_t unnormalized = unnormalized_samplers(samplers);
+    std::vector<Query> in_texels;  // (the frame's queries are copied only for an unnormalized sampler)
+    const std::vector<Query>& queries =
+        unnormalized ? (in_texels = in_sampler_coordinates(frame.queries, samplers, {pyr.extent0()})) : frame.queries;
+    const auto requests = to_requests(queries, "scene " + scene, unnormalized);
     VectorSource source(requests);
     VectorSink texels;
     last_stats = run_engine(o, eo, outputs, trace, {{&pyr}}, samplers, source, texels);

@@ -326,13 +326,12 @@ struct QueryFileParser::Part {
 };
 
 QueryFileParser::QueryFileParser(const std::string& path, unsigned threads, bool keep, uint32_t unnormalized)
-    : first_(std::make_unique<QueryReader>(path)), start_(std::chrono::steady_clock::now()) {
+    : first_(std::make_unique<QueryReader>(path)), unnormalized_(unnormalized), start_(std::chrono::steady_clock::now()) {
   QueryReader& first = *first_;
   first.read_header();
   struct stat st {};
   const uint64_t size = ::fstat(fileno(first.file_), &st) == 0 ? uint64_t(st.st_size) : 0;
   keep_ = keep && size <= kMaxFileBytes;
-  unnormalized_ = unnormalized;
   // Cuts at line starts after the header, about size / threads apart (none for small files: a
   // thread costs more than it saves there).
   constexpr uint64_t kMinPart = uint64_t(4) << 20;
@@ -503,17 +502,15 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag, uint32
     throw Error(at() + "sampler " + std::to_string(q.sampler) + " is outside 0.." + std::to_string(kMaxSamplers - 1));
   // No sampler column: the texture's own (entry t of a texture list is texture t and sampler t).
   r.sampler = uint8_t(q.sampler < 0 ? q.texture : q.sampler);
-  if (unnormalized >> r.sampler & 1) {  // texels of level 0, Q16.16
-    if (!to_texel_coord_fixed(q.u, r.u))
-      throw Error(at() + "u = " + std::to_string(q.u) + " texels (unnormalized sampler " + std::to_string(r.sampler) +
-                  ") is outside [-32768, 32768)");
-    if (!to_texel_coord_fixed(q.v, r.v))
-      throw Error(at() + "v = " + std::to_string(q.v) + " texels (unnormalized sampler " + std::to_string(r.sampler) +
-                  ") is outside [-32768, 32768)");
-  } else {
-    if (!to_coord_fixed(q.u, r.u)) throw Error(at() + "u = " + std::to_string(q.u) + " is outside [-128, 128)");
-    if (!to_coord_fixed(q.v, r.v)) throw Error(at() + "v = " + std::to_string(q.v) + " is outside [-128, 128)");
-  }
+  const bool texels = unnormalized >> r.sampler & 1;  // an unnormalized sampler's: texels of level 0, Q16.16
+  auto coordinate = [&](double value, const char* axis, int32_t& out) {
+    if (texels ? to_texel_coord_fixed(value, out) : to_coord_fixed(value, out)) return;
+    throw Error(at() + axis + " = " + std::to_string(value) +
+                (texels ? " texels (unnormalized sampler " + std::to_string(r.sampler) + ") is outside [-32768, 32768)"
+                        : std::string(" is outside [-128, 128)")));
+  };
+  coordinate(q.u, "u", r.u);
+  coordinate(q.v, "v", r.v);
   if (q.explicit_lod) {
     if (!to_lod_fixed(q.lod, r.lod)) throw Error(at() + "lod = " + std::to_string(q.lod) + " is outside [-128, 128)");
   } else {

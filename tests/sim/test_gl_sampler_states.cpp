@@ -258,6 +258,24 @@ Outcome compare(GlSampling& gl, const Pyramid& pyr, const SamplerConfig& cfg, ui
   return o;
 }
 
+// The precision asserted of every state (8-bit steps of full scale): more than half of the lookups
+// compared; nearest filters take the same texel (RGBA8: exact, but for a custom border colour, which
+// GL returns unquantized and the unit rounds to 8 bits; sRGB: llvmpipe's decode and the model's
+// unorm16 table within 0.35 step); linear filters within 2 LSB (llvmpipe weighs with fewer
+// sub-texel bits), 0.4 LSB on average. Returns the mean.
+double expect_gl_precision(const Outcome& o, const Pyramid& pyr, const SamplerConfig& cfg) {
+  const double mean = o.sum / (4.0 * o.compared);
+  EXPECT_GT(o.compared, kW * kH / 2) << o.excluded << " excluded";
+  const bool custom = cfg.border == BorderColor::Custom && cfg.uses_border();
+  if (cfg.filter.texel == TexelFilter::Nearest && cfg.filter.mag == TexelFilter::Nearest &&
+      cfg.filter.mip != MipMode::Linear) {
+    EXPECT_LE(o.max_lsb_x100, pyr.srgb ? 35 : custom ? 50 : 0) << "mean " << mean;
+  }
+  EXPECT_LE(o.max_lsb_x100, 200) << "mean " << mean;
+  EXPECT_LE(mean, 0.4);
+  return mean;
+}
+
 std::string name_of(const SamplerConfig& c) {
   return "min " + filter_name(Filter{c.filter.texel, c.filter.mip}) + ", mag " + texel_filter_name(c.filter.mag) +
          ", wrap " + wrap_name(c.wrap_u) + "/" + wrap_name(c.wrap_v) + ", border " + border_color_name(c.border);
@@ -292,19 +310,7 @@ TEST(GlSamplerStates, LlvmpipeAgreesWithTheModelOnEverySamplerState) {
             compared += o.compared;
             SCOPED_TRACE((pyr->srgb ? "sRGB " : "RGBA8 ") + std::to_string(pyr->extent0().w) + "x" +
                          std::to_string(pyr->extent0().h) + ", " + name_of(cfg));
-            const double mean = o.sum / (4.0 * o.compared);
-            EXPECT_GT(o.compared, kW * kH / 2) << o.excluded << " excluded";
-            // Nearest filters take the same texel (RGBA8: exact but for a custom border colour,
-            // which GL returns unquantized and the unit rounds to 8 bits; sRGB: llvmpipe's decode
-            // and the model's unorm16 table within 0.35 step); linear filters within 2 LSB
-            // (llvmpipe weighs with fewer sub-texel bits), 0.4 LSB on average.
-            const bool custom = cfg.border == BorderColor::Custom && cfg.uses_border();
-            if (cfg.filter.texel == TexelFilter::Nearest && cfg.filter.mag == TexelFilter::Nearest &&
-                cfg.filter.mip != MipMode::Linear) {
-              EXPECT_LE(o.max_lsb_x100, pyr->srgb ? 35 : custom ? 50 : 0) << "mean " << mean;
-            }
-            EXPECT_LE(o.max_lsb_x100, 200) << "mean " << mean;
-            EXPECT_LE(mean, 0.4);
+            const double mean = expect_gl_precision(o, *pyr, cfg);
             worst = std::max(worst, o.max_lsb_x100);
             mean_sum += mean;
           }
@@ -342,14 +348,7 @@ TEST(GlSamplerStates, ViewsAgreeWithLlvmpipe) {
         SCOPED_TRACE((pyr->srgb ? "sRGB " : "RGBA8 ") + std::to_string(pyr->extent0().w) + "x" +
                      std::to_string(pyr->extent0().h) + " levels " + std::to_string(b) + ".." + std::to_string(m) +
                      ", " + name_of(cfg));
-        const double mean = o.sum / (4.0 * o.compared);
-        EXPECT_GT(o.compared, kW * kH / 2) << o.excluded << " excluded";
-        if (cfg.filter.texel == TexelFilter::Nearest && cfg.filter.mag == TexelFilter::Nearest &&
-            cfg.filter.mip != MipMode::Linear) {
-          EXPECT_LE(o.max_lsb_x100, pyr->srgb ? 35 : 0) << "mean " << mean;
-        }
-        EXPECT_LE(o.max_lsb_x100, 200) << "mean " << mean;
-        EXPECT_LE(mean, 0.4);
+        expect_gl_precision(o, *pyr, cfg);  // (the default border colour: never custom)
         worst = std::max(worst, o.max_lsb_x100);
       }
   }
@@ -388,14 +387,7 @@ TEST(GlSamplerStates, UnnormalizedCoordinatesAgreeWithRectangleTextures) {
           ++states;
           SCOPED_TRACE((pyr->srgb ? "sRGB " : "RGBA8 ") + std::to_string(pyr->extent0().w) + "x" +
                        std::to_string(pyr->extent0().h) + ", unnormalized, " + name_of(cfg));
-          const double mean = o.sum / (4.0 * o.compared);
-          EXPECT_GT(o.compared, kW * kH / 2) << o.excluded << " excluded";
-          const bool custom = cfg.border == BorderColor::Custom;
-          if (cfg.filter.texel == TexelFilter::Nearest) {
-            EXPECT_LE(o.max_lsb_x100, pyr->srgb ? 35 : custom ? 50 : 0) << "mean " << mean;
-          }
-          EXPECT_LE(o.max_lsb_x100, 200) << "mean " << mean;
-          EXPECT_LE(mean, 0.4);
+          expect_gl_precision(o, *pyr, cfg);
           worst = std::max(worst, o.max_lsb_x100);
         }
   }
