@@ -26,7 +26,13 @@ rtl/tex_bc_decode.sv
 rtl/tex_srgb_decode.sv
 rtl/tex_cache_data.sv
 rtl/tex_desc_table.sv
+rtl/tex_fifo.sv
+rtl/tex_tag_stage.sv
+rtl/tex_miss_ring.sv
+rtl/tex_fill_fifo.sv
+rtl/tex_tap_select.sv
 rtl/tex_cached_fetch.sv
+rtl/tex_axi_read.sv
 rtl/tex_unit_cached.sv
 rtl/tex_axil_config.sv
 rtl/tex_unit_axi.sv

@@ -49,4 +49,15 @@ package tex_pkg;
   localparam logic [FORMAT_W-1:0] FMT_BC4   = 3'd4;
   localparam logic [FORMAT_W-1:0] FMT_BC5   = 3'd5;
   localparam logic [FORMAT_W-1:0] FMT_BC7   = 3'd7;
+
+  // A cached line's kind in the data banks (tex_cache_data's wr_kind): what a bank word holds.
+  localparam int LINE_KIND_W = 2;
+  localparam logic [LINE_KIND_W-1:0] LINE_TEXELS   = 2'd0;
+  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS8  = 2'd1;  // BC1, BC4: 8-byte 4x4 blocks
+  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS16 = 2'd2;  // BC2, BC3, BC5, BC7: 16-byte blocks
+  function automatic logic [LINE_KIND_W-1:0] line_kind(input logic [FORMAT_W-1:0] fmt);
+    if (fmt == FMT_RGBA8) line_kind = LINE_TEXELS;
+    else if (fmt == FMT_BC1 || fmt == FMT_BC4) line_kind = LINE_BLOCKS8;
+    else line_kind = LINE_BLOCKS16;
+  endfunction
 endpackage

@@ -12,7 +12,7 @@
 //   ARADDR functions of registers only, RREADY of registers only. A beat with RRESP SLVERR or
 //   DECERR marks its line: every sample that looks the line up while it is cached comes out with
 //   rsp_error set and rsp_rgba 0 (the unit keeps running; docs/memory.md §3). RLAST and RID are
-//   checked in simulation only (the beats of a line are counted).
+//   checked in simulation only (tex_axi_read counts the beats of a line).
 // Latency: 19 clocks from the request handshake edge to rsp_valid when every line hits, the
 //   request has one probe and the output is not stalled (requests 1-4 tex_probe; probes 1-4
 //   tex_front, 5 tag stage and FIFO push, 6 head, 7 data read, 8 taps, 9-11 tex_filter, 12-13
@@ -368,27 +368,20 @@ module tex_unit_cached #(
 
   // ---------------------------------------------------------------- AXI4 read master
   // The miss ring's line reads and the fill FIFO's beats are the AR and R channels: one INCR burst
-  // of a whole line per read.
-  localparam int BEATS = LINE_BITS / MEM_W;
-  logic                           mem_req_valid, mem_req_ready, mem_rsp_valid, mem_rsp_ready;
+  // of a whole line per read (tex_axi_read).
+  logic                           mem_req_valid, mem_req_ready, mem_rsp_valid, mem_rsp_ready, mem_rsp_error;
   logic [tex_pkg::MEM_ADDR_W-1:0] mem_req_addr;
-  assign m_axi_arvalid = mem_req_valid;
-  assign mem_req_ready = m_axi_arready;
-  assign m_axi_araddr  = mem_req_addr;
-  assign m_axi_arlen   = 8'(BEATS - 1);
-  assign m_axi_arsize  = 3'($clog2(MEM_W / 8));
-  assign m_axi_arburst = 2'b01;      // INCR
-  assign m_axi_arid    = '0;
-  assign m_axi_arcache = 4'b0011;    // normal, non-cacheable, bufferable
-  assign m_axi_arprot  = 3'b000;     // unprivileged, secure, data
-  assign mem_rsp_valid = m_axi_rvalid;
-  assign m_axi_rready  = mem_rsp_ready;
-  logic rlast_unused;                // checked in simulation below: the beats are counted
-  logic [AXI_ID_W-1:0] rid_unused;   // one ID: responses in order
-  logic rresp_exokay_unused;         // RRESP[0] tells OKAY from EXOKAY (no exclusive reads)
-  assign rlast_unused = m_axi_rlast;
-  assign rid_unused   = m_axi_rid;
-  assign rresp_exokay_unused = m_axi_rresp[0];
+  logic [MEM_W-1:0]               mem_rsp_data;
+  tex_axi_read #(.MEM_W(MEM_W), .LINE_BITS(LINE_BITS), .AXI_ID_W(AXI_ID_W)) u_axi_read (
+    .clk(clk), .rst(rst), .mem_req_valid(mem_req_valid), .mem_req_ready(mem_req_ready),
+    .mem_req_addr(mem_req_addr), .mem_rsp_valid(mem_rsp_valid), .mem_rsp_ready(mem_rsp_ready),
+    .mem_rsp_data(mem_rsp_data), .mem_rsp_error(mem_rsp_error), .m_axi_arvalid(m_axi_arvalid),
+    .m_axi_arready(m_axi_arready), .m_axi_araddr(m_axi_araddr), .m_axi_arlen(m_axi_arlen),
+    .m_axi_arsize(m_axi_arsize), .m_axi_arburst(m_axi_arburst), .m_axi_arid(m_axi_arid),
+    .m_axi_arcache(m_axi_arcache), .m_axi_arprot(m_axi_arprot), .m_axi_rvalid(m_axi_rvalid),
+    .m_axi_rready(m_axi_rready), .m_axi_rdata(m_axi_rdata), .m_axi_rresp(m_axi_rresp),
+    .m_axi_rlast(m_axi_rlast), .m_axi_rid(m_axi_rid)
+  );
 
   // ---------------------------------------------------------------- cached fetch: clocks 5-8
   logic              fetch_valid, fetch_error;
@@ -413,8 +406,8 @@ module tex_unit_cached #(
     .cfg_block_morton(cfg_block_morton_q), .cfg_log2_sets(cfg_log2_sets_q),
     .cfg_log2_ways(cfg_log2_ways_q), .cfg_fifo_limit(cfg_fifo_limit_q),
     .mem_req_valid(mem_req_valid), .mem_req_ready(mem_req_ready), .mem_req_addr(mem_req_addr),
-    .mem_rsp_valid(mem_rsp_valid), .mem_rsp_ready(mem_rsp_ready), .mem_rsp_data(m_axi_rdata),
-    .mem_rsp_error(m_axi_rresp[1]),  // SLVERR (10) or DECERR (11); OKAY and EXOKAY are not
+    .mem_rsp_valid(mem_rsp_valid), .mem_rsp_ready(mem_rsp_ready), .mem_rsp_data(mem_rsp_data),
+    .mem_rsp_error(mem_rsp_error),
     .out_valid(fetch_valid), .out_tag(fetch_tag), .taps(taps), .out_w(fetch_w),
     .out_f(fetch_f), .out_error(fetch_error),
     .stat_lookups(stat_lookups), .stat_misses(stat_misses), .stat_mem_wait(stat_mem_wait)
@@ -475,10 +468,10 @@ module tex_unit_cached #(
 `ifndef SYNTHESIS
   // ---------------------------------------------------------------- simulation checks
   // Requests in flight never go below 0 (no response without a request); handshake rules of the
-  // request, response and AR channels: a valid is held until ready, with a stable payload; RLAST
-  // on the last beat of each burst and only there, no beat without a burst outstanding.
+  // request and response channels: a valid is held until ready, with a stable payload (the AXI
+  // read channels' own rules: tex_axi_read).
   logic [31:0] in_flight;
-  logic        req_stalled_q, rsp_stalled_q, mreq_stalled_q;
+  logic        req_stalled_q, rsp_stalled_q;
   logic signed [tex_pkg::REQ_COORD_W-1:0] req_u_q, req_v_q;
   logic signed [tex_pkg::LOD_W-1:0]       req_lod_q, req_bias_q;
   logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
@@ -487,8 +480,6 @@ module tex_unit_cached #(
   logic [tex_pkg::SMP_ID_W-1:0]           req_sampler_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
   logic                                   rsp_error_q;
-  logic [31:0]                            r_beat, bursts_open;
-  logic [tex_pkg::MEM_ADDR_W-1:0]         mreq_addr_q;
   always_ff @(posedge clk) begin
     if (rst) begin
       in_flight <= '0;
@@ -499,22 +490,6 @@ module tex_unit_cached #(
     end
     req_stalled_q  <= !rst && req_valid && !req_ready;
     rsp_stalled_q  <= !rst && rsp_valid && !rsp_ready;
-    mreq_stalled_q <= !rst && m_axi_arvalid && !m_axi_arready;
-    if (rst) begin
-      r_beat      <= '0;
-      bursts_open <= '0;
-    end else begin
-      if (m_axi_rvalid && m_axi_rready) begin
-        assert (bursts_open != '0 || (m_axi_arvalid && m_axi_arready))
-          else $error("tex_unit_cached: an AXI read beat with no burst outstanding");
-        assert (m_axi_rlast == (r_beat == 32'(BEATS - 1)))
-          else $error("tex_unit_cached: RLAST %0d on beat %0d of a burst of %0d", m_axi_rlast, r_beat, BEATS);
-        assert (m_axi_rid == '0) else $error("tex_unit_cached: RID %0d, the unit reads with ID 0", m_axi_rid);
-        r_beat <= (r_beat == 32'(BEATS - 1)) ? '0 : r_beat + 1;
-      end
-      bursts_open <= bursts_open + 32'(m_axi_arvalid && m_axi_arready)
-                   - 32'(m_axi_rvalid && m_axi_rready && r_beat == 32'(BEATS - 1));
-    end
     if (req_valid && !req_ready) begin
       req_u_q   <= req_u;
       req_v_q   <= req_v;
@@ -530,7 +505,6 @@ module tex_unit_cached #(
       rsp_rgba_q <= rsp_rgba;
       rsp_error_q <= rsp_error;
     end
-    if (m_axi_arvalid && !m_axi_arready) mreq_addr_q <= m_axi_araddr;
     if (!rst && cfg_desc_we)
       assert (32'(cfg_desc_index) < TEXTURES)
         else $error("tex_unit_cached: cfg_desc_index %0d is beyond the descriptor table (TEXTURES = %0d)",
@@ -570,10 +544,6 @@ module tex_unit_cached #(
     if (!rst && rsp_stalled_q) begin
       assert (rsp_valid && rsp_tag == rsp_tag_q && rsp_rgba == rsp_rgba_q && rsp_error == rsp_error_q)
         else $error("tex_unit_cached: rsp_valid dropped or response changed while rsp_ready was low");
-    end
-    if (!rst && mreq_stalled_q) begin
-      assert (m_axi_arvalid && m_axi_araddr == mreq_addr_q)
-        else $error("tex_unit_cached: ARVALID dropped or ARADDR changed while ARREADY was low");
     end
   end
 `endif

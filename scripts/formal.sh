@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Formal proofs of the valid/ready handshake with Yosys 0.23 + yosys-smtbmc + z3
 # (docs/verification.md, "Formal proofs"). The properties are immediate assertions under
-# `ifdef FORMAL in rtl/tex_skid.sv, rtl/tex_unit.sv, rtl/tex_axil_config.sv and rtl/tex_cached_fetch.sv;
+# `ifdef FORMAL in rtl/tex_skid.sv, rtl/tex_unit.sv, rtl/tex_axil_config.sv, rtl/tex_cached_fetch.sv
+# and the two parts of its memory path it names (rtl/tex_miss_ring.sv, rtl/tex_fill_fifo.sv);
 # rtl/formal/*_formal.sv are the environments (reset in the first clock, then every input free,
 # resets included; tex_axil_config's AXI4-Lite master keeps the protocol's rules).
 #  1. tex_skid (W=2) and tex_unit (2x2 texels, CW=1, TAG_W=2; the texel datapath cut to a free
@@ -89,7 +90,7 @@ model() {
     cut="cutpoint w:dut.rgba_s11 w:dut.u_probe.u_aniso.reaches; opt_clean;"
   [ "$top" = tex_axil_config_formal ] && cut="cutpoint w:dut.cnt; opt_clean;"
   [ "$top" = tex_cached_fetch_formal ] &&
-    cut="cutpoint w:dut.hit_c* w:dut.slot_c* w:dut.look_line* w:dut.bank_word*; opt_clean;"
+    cut="cutpoint w:dut.u_tag.hit_c* w:dut.u_tag.slot_c* w:dut.u_tag.look_line* w:dut.bank_word*; opt_clean;"
   yosys -q -l "$work/$name.yosys.log" -p "
     read_verilog -formal -DSYNTHESIS -sv $(sources "$dir" "$top") $dir/rtl/formal/$top.sv
     chparam $params $top; prep -flatten -top $top; $cut
@@ -217,7 +218,7 @@ mutant() {
       local top=tex_skid_formal params=$SKID_PARAMS depth=$SKID_BMC
       if [ "$file" = tex_axil_config.sv ]; then
         top=tex_axil_config_formal params=$AXIL_PARAMS depth=$AXIL_BMC
-      elif [ "$file" = tex_cached_fetch.sv ]; then
+      elif [[ "$file" =~ ^tex_(cached_fetch|miss_ring|fill_fifo)\.sv$ ]]; then
         top=tex_cached_fetch_formal params=$CACHED_PARAMS depth=$CACHED_BMC
       elif [ "$file" != tex_skid.sv ]; then
         top=tex_unit_formal params=$UNIT_PARAMS depth=$UNIT_BMC
@@ -284,14 +285,14 @@ mutant axil_smp "tex_axil_config pulses cfg_smp_we on a FILTER write too (a half
   smp tex_axil_config.sv 's/smp_we  <= wr_en \&\& sel_smp_commit;/smp_we  <= wr_en \&\& (sel_smp_commit || sel_filter);/'
 mutant axil_comb "tex_axil_config AWREADY = !aw_full && (!bvalid || BREADY) (combinational path)" \
   comb-axil tex_axil_config.sv 's/assign s_axi_awready = !aw_full \&\& !bvalid;/assign s_axi_awready = !aw_full \&\& (!bvalid || s_axi_bready);/'
-mutant cached_arhold "tex_cached_fetch reads the newest miss's bank, not the oldest's (ARADDR moves while stalled)" \
-  arhold tex_cached_fetch.sv 's/assign mem_req_addr  = {ring_line\[ring_iss\[RBW-1:0\]\]/assign mem_req_addr  = {ring_line[ring_wr[RBW-1:0] - 1'"'"'b1]/'
-mutant cached_arburst "tex_cached_fetch reads from the second byte of a line (a misaligned burst)" \
-  arburst tex_cached_fetch.sv "s/, LOG2_LB'(0)};/, LOG2_LB'(1)};/"
+mutant cached_arhold "tex_miss_ring reads the newest miss's bank, not the oldest's (ARADDR moves while stalled)" \
+  arhold tex_miss_ring.sv 's/assign mem_req_addr  = {bank_line\[iss\[RBW-1:0\]\]/assign mem_req_addr  = {bank_line[wr[RBW-1:0] - 1'"'"'b1]/'
+mutant cached_arburst "tex_miss_ring reads from the second byte of a line (a misaligned burst)" \
+  arburst tex_miss_ring.sv "s/, LOG2_LB'(0)};/, LOG2_LB'(1)};/"
 mutant cached_ring "tex_cached_fetch admits a sample with 8 misses into a full miss ring" \
   aroutstanding tex_cached_fetch.sv "s/ring_next <= MCW'(MISS_DEPTH - 8)/ring_next <= MCW'(MISS_DEPTH)/"
-mutant cached_rready "tex_cached_fetch takes beats with the fill FIFO full (RREADY always high)" \
-  rready tex_cached_fetch.sv "s/assign mem_rsp_ready = fill_count != LCW'(FILL_DEPTH);/assign mem_rsp_ready = 1'b1;/"
+mutant cached_rready "tex_fill_fifo takes beats with the fill FIFO full (RREADY always high)" \
+  rready tex_fill_fifo.sv "s/assign mem_rsp_ready = count != LCW'(DEPTH);/assign mem_rsp_ready = 1'b1;/"
 
 total=$((SECONDS - start))
 if [ $fail -ne 0 ]; then
