@@ -21,14 +21,6 @@ using namespace tex::rtltest;
 
 namespace {
 
-Image random_texture(int w, int h, int cw, uint64_t seed) {
-  Image img(w, h, cw);
-  std::mt19937_64 rng(seed);
-  for (Texel& t : img.texels)
-    for (uint16_t& c : t) c = uint16_t(rng() & ((1u << cw) - 1));
-  return img;
-}
-
 // Cache-side coverage bins, counted from the model's lookups and the driver's counters.
 struct CacheCoverage {
   std::map<std::string, uint64_t> bins;
@@ -77,7 +69,7 @@ Pyramid random_pyramid(const rtl::RtlConfig& rc, TexelFormat format, Extent size
     if (srgb) decode_srgb_levels(p);
     return p;
   }
-  Image level0 = random_texture(size.w, size.h, rc.memory_channel_bits(), seed);
+  Image level0 = random_image(size.w, size.h, rc.memory_channel_bits(), seed);
   return srgb ? build_srgb_pyramid(level0, PyramidMode::Exact) : build_pyramid(std::move(level0), PyramidMode::Exact);
 }
 
@@ -294,7 +286,7 @@ void run_suite(const CachedSuite& suite) {
     const CacheParams cache = random_cache(rng, rc);
     std::string memory_name, timing_name;
     const rtl::MemoryTiming memory = random_memory(rng, rc, memory_name);
-    const rtl::Timing stim = random_timing(rng, timing_name);
+    const rtl::Timing stim = random_stalls(rng, timing_name);
     const std::vector<Request> requests = unnormalized ? random_texel_requests(rng, pyr.extent0(), suite.requests_per_case)
                                                        : random_requests(rng, size, suite.requests_per_case);
     // A quarter of the cases use a shallower FIFO (cfg_fifo_limit), down to 1 sample.
@@ -441,7 +433,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
     const CacheParams cache = random_cache(rng, rc);
     std::string memory_name, timing_name;
     const rtl::MemoryTiming memory = random_memory(rng, rc, memory_name);
-    const rtl::Timing stim = random_timing(rng, timing_name);
+    const rtl::Timing stim = random_stalls(rng, timing_name);
     std::vector<Request> requests = random_requests(rng, 6, 3, 4000);
     for (size_t i = 0; i < requests.size(); ++i) {
       requests[i].texture = uint8_t(rng() % uint64_t(n));
@@ -489,7 +481,7 @@ TEST(RtlCached, DescriptorTableMixesSrgbAndLinear) {
   auto unit = rtl::Driver::create(config_named("Vtex_cached_13x13_formats"), {});
   unit->reset();
   std::mt19937_64 rng(8);
-  const Pyramid srgb = build_srgb_pyramid(random_texture(64, 8, 8, 4), PyramidMode::Exact);
+  const Pyramid srgb = build_srgb_pyramid(random_image(64, 8, 8, 4), PyramidMode::Exact);
   Pyramid codes = srgb;  // planted: the stored codes, filtered as if linear (16-bit values a * 257)
   for (size_t k = 0; k < codes.levels.size(); ++k) {
     codes.levels[k] = srgb.codes[k];
@@ -514,8 +506,8 @@ TEST(RtlCached, DescriptorTableCheckersCatchPlantedBugs) {
   auto unit = rtl::Driver::create(rc, {});
   unit->reset();
   std::mt19937_64 rng(3);
-  const Pyramid a = build_pyramid(random_texture(64, 8, 8, 1), PyramidMode::Exact);
-  const Pyramid b = build_pyramid(random_texture(32, 4, 8, 2), PyramidMode::Exact);
+  const Pyramid a = build_pyramid(random_image(64, 8, 8, 1), PyramidMode::Exact);
+  const Pyramid b = build_pyramid(random_image(32, 4, 8, 2), PyramidMode::Exact);
   std::vector<Request> requests = random_requests(rng, 6, 3, 2000);
   for (Request& q : requests) {
     q.texture = uint8_t(rng() % 2);
@@ -553,7 +545,7 @@ TEST(RtlCached, CheckersCatchPlantedBugs) {
   const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
   auto unit = rtl::Driver::create(rc, {});
   unit->reset();
-  const Pyramid pyr = build_pyramid(random_texture(64, 8, 8, 7), PyramidMode::Exact);
+  const Pyramid pyr = build_pyramid(random_image(64, 8, 8, 7), PyramidMode::Exact);
   std::mt19937_64 rng(11);
   const std::vector<Request> requests = random_requests(rng, 6, 3, 5000);
   SamplerConfig cfg;
@@ -592,7 +584,7 @@ TEST(RtlCached, MemoryErrorsFlagTheSamplesThatReadTheLine) {
   const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
   auto unit = rtl::Driver::create(rc, {});
   unit->reset();
-  const Pyramid pyr = build_pyramid(random_texture(64, 8, 8, 9), PyramidMode::Exact);
+  const Pyramid pyr = build_pyramid(random_image(64, 8, 8, 9), PyramidMode::Exact);
   std::mt19937_64 rng(13);
   const std::vector<Request> requests = random_requests(rng, 6, 3, 3000);
   const TextureTable table = {{&pyr}};
@@ -623,7 +615,7 @@ TEST(RtlCached, FifoLimitMakesAShallowerFifo) {
   const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
   auto unit = rtl::Driver::create(rc, {});
   unit->reset();
-  const Pyramid pyr = build_pyramid(random_texture(64, 8, 8, 3), PyramidMode::Exact);
+  const Pyramid pyr = build_pyramid(random_image(64, 8, 8, 3), PyramidMode::Exact);
   std::mt19937_64 rng(5);
   const std::vector<Request> requests = random_requests(rng, 6, 3, 4000);
   SamplerConfig cfg;

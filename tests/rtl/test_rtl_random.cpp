@@ -72,13 +72,13 @@ void run_suite(const RandomSuite& suite) {
     randomize_lod_controls(rng, cfg);
     if (unnormalized) make_unnormalized(rng, cfg);
     std::string timing_name;
-    const rtl::Timing timing = random_timing(rng, timing_name);
+    const rtl::Timing timing = random_stalls(rng, timing_name);
     const size_t n = suite.requests_per_case * scale() / (aniso ? 4 : 1);
     auto reqs = unnormalized ? random_texel_requests(rng, pyr->extent0(), n) : random_requests(rng, pyr->extent0(), n);
     if (aniso)
       for (Request& q : reqs) {
         q.has_derivatives = true;
-        q.deriv = random_footprint(rng, pyr->extent0(), int(rng() % 16) + 1, int(rng() % 3)).deriv;
+        q.deriv = random_footprint(rng, pyr->extent0(), int(rng() % 16) + 1, int(rng() % 4)).deriv;
       }
     const LockstepResult r = lockstep(*unit, *pyr, cfg, reqs, timing, rng());
 

@@ -71,7 +71,7 @@ TEST(RtlTiming, AnisotropicSampleTakesOneClockPerProbe) {
     std::vector<Request> reqs;
     uint64_t probes = 0;
     while (reqs.size() < 200) {  // footprints whose probe count is exactly n
-      Request r = random_footprint(rng, s.w, s.h, n, int(rng() % 3));
+      Request r = random_footprint(rng, Extent{1 << s.w, 1 << s.h}, n, int(rng() % 4));
       r.u = int32_t(rng());
       r.v = int32_t(rng());
       if (tex_probe(r, cfg, {1 << s.w, 1 << s.h}).n != n) continue;
@@ -181,7 +181,7 @@ TEST(RtlTiming, ResetInTheMiddleOfTraffic) {
       EXPECT_FALSE(after.rsp_valid) << "stale response tag " << after.rsp_tag << " after reset";
       EXPECT_TRUE(after.req_ready);
       std::string timing_name;
-      const rtl::Timing timing = random_timing(rng, timing_name);
+      const rtl::Timing timing = random_stalls(rng, timing_name);
       const auto reqs = random_requests(rng, s.w, s.h, 5000);
       const LockstepResult r = lockstep(*unit, pyr, cfg, reqs, timing, rng());
       EXPECT_TRUE(r.ok()) << "after reset in trial " << trial << ", timing " << timing_name << ", seed " << seed

@@ -19,6 +19,7 @@
 #include "engines/systemc/tex_unit_tlm.h"
 #include "model/error.h"
 #include "model/image.h"
+#include "stimulus.h"
 
 using namespace tex;
 using namespace tex::systemc;
@@ -31,40 +32,13 @@ struct TextureSpec {
   PyramidMode mode;
 };
 
-std::vector<Filter> all_filters() {
-  std::vector<Filter> f;
-  for (TexelFilter t : {TexelFilter::Nearest, TexelFilter::Linear})
-    for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear}) f.push_back({t, m});
-  return f;
-}
-
-// Coordinates mostly around [0, 1) but also far outside (every wrap mode, every level);
-// lod over magnification, every level and past the last.
-std::vector<Request> random_requests(std::mt19937_64& rng, size_t n, int levels) {
-  std::uniform_real_distribution<double> near(-0.25, 1.25), far(-3.0, 3.0);
-  std::uniform_int_distribution<int> lod(-3 * 256, (levels + 2) * 256);
-  std::vector<Request> r(n);
-  for (size_t i = 0; i < n; ++i) {
-    const bool wide = rng() % 4 == 0;
-    to_coord_fixed(wide ? far(rng) : near(rng), r[i].u);
-    to_coord_fixed(wide ? far(rng) : near(rng), r[i].v);
-    r[i].lod = lod(rng);
-    if (rng() % 8 == 0) r[i].lod = int32_t(256 * (rng() % uint64_t(levels + 1)));  // exactly on a level
-    r[i].tag = uint32_t(i);
-  }
-  return r;
-}
-
+// A sampler of filter f and these wrap modes, its LOD controls at random (tests/common).
 SamplerConfig random_config(std::mt19937_64& rng, Filter f, Wrap wu, Wrap wv) {
   SamplerConfig c;
   c.filter = f;
   c.wrap_u = wu;
   c.wrap_v = wv;
-  if (rng() % 2) {  // a bias and clamps half of the time
-    c.lod_bias = int32_t(rng() % 769) - 384;
-    c.min_lod = int32_t(rng() % 512) - 256;
-    c.max_lod = c.min_lod + int32_t(rng() % 2048);
-  }
+  stimulus::randomize_lod_controls(rng, c);
   return c;
 }
 
@@ -93,11 +67,11 @@ void run_filter_wrap_matrix(const TextureSpec& spec, Backend backend, InitiatorS
   const Pyramid pyr = build_pyramid(make_pattern(spec.pattern, spec.width, spec.height), spec.mode);
   std::mt19937_64 rng(seed);
   int n = 0;
-  for (Filter f : all_filters())
+  for (Filter f : stimulus::all_filters())
     for (Wrap wu : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror})
       for (Wrap wv : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror}) {
         const SamplerConfig cfg = random_config(rng, f, wu, wv);
-        const auto reqs = random_requests(rng, per_case, pyr.last_level() + 1);
+        const auto reqs = stimulus::random_requests(rng, pyr.extent0(), per_case);
         SystemcOptions o;
         o.initiator = style;
         o.engine.seed = seed + uint64_t(n);
@@ -147,7 +121,7 @@ TEST(SystemcRtl, BitExactLargestTexture) {
   const Pyramid pyr = build_pyramid(make_pattern("testcard", 1024, 512), PyramidMode::Exact);
   std::mt19937_64 rng(505);
   const SamplerConfig cfg;  // trilinear, repeat
-  const auto reqs = random_requests(rng, 20000, pyr.last_level() + 1);
+  const auto reqs = stimulus::random_requests(rng, pyr.extent0(), 20000);
   const EngineResult r = run_systemc(Backend::Rtl, pyr, cfg, reqs, SystemcOptions{});
   expect_bit_exact(r, pyr, cfg, reqs, "testcard 1024x512 trilinear");
   EXPECT_EQ(r.stats.cycle->load_cycles, 0u) << "the backdoor load takes no clock";
@@ -167,7 +141,7 @@ TEST(SystemcModel, SixteenBitChannelsAndLargeTexture) {
   const Pyramid pyr = build_pyramid(img, PyramidMode::Exact);
   std::mt19937_64 rng(808);
   const SamplerConfig cfg;
-  const auto reqs = random_requests(rng, 5000, pyr.last_level() + 1);
+  const auto reqs = stimulus::random_requests(rng, pyr.extent0(), 5000);
   const EngineResult r = run_systemc(Backend::Model, pyr, cfg, reqs, SystemcOptions{});
   expect_bit_exact(r, pyr, cfg, reqs, "noise 2048x64 model backend");
   EXPECT_FALSE(r.stats.cycle) << "loosely timed: no clock counters";
@@ -179,7 +153,7 @@ TEST(SystemcAdapters, AtInitiatorOnModelAndLtInitiatorOnRtl) {
   std::mt19937_64 rng(909);
   SamplerConfig cfg;
   cfg.wrap_u = Wrap::Mirror;
-  const auto reqs = random_requests(rng, 500, pyr.last_level() + 1);
+  const auto reqs = stimulus::random_requests(rng, pyr.extent0(), 500);
   SystemcOptions o;
   o.initiator = InitiatorStyle::At;
   expect_bit_exact(run_systemc(Backend::Model, pyr, cfg, reqs, o), pyr, cfg, reqs, "AT initiator, model backend");
@@ -197,7 +171,7 @@ TEST(SystemcRtl, ThroughputAtLeast099SamplesPerClock) {
   const Pyramid pyr = build_pyramid(make_pattern("testcard", 256, 256), PyramidMode::Exact);
   std::mt19937_64 rng(1001);
   const SamplerConfig cfg;  // trilinear: 8 texel reads per sample
-  const auto reqs = random_requests(rng, 200000, pyr.last_level() + 1);
+  const auto reqs = stimulus::random_requests(rng, pyr.extent0(), 200000);
   const EngineResult r = run_systemc(Backend::Rtl, pyr, cfg, reqs, SystemcOptions{});
   expect_bit_exact(r, pyr, cfg, reqs, "throughput stream");
   const CycleStats& c = *r.stats.cycle;
@@ -222,7 +196,7 @@ TEST(SystemcRtl, RandomGapsAndStallsReachTheRtl) {
   const Pyramid pyr = small_pyramid();
   std::mt19937_64 rng(1102);
   const SamplerConfig cfg;
-  const auto reqs = random_requests(rng, 30000, pyr.last_level() + 1);
+  const auto reqs = stimulus::random_requests(rng, pyr.extent0(), 30000);
   SystemcOptions o;
   o.engine.stalls = Stalls::Heavy;
   o.engine.seed = 1102;
@@ -298,7 +272,7 @@ class FaultyTarget : public sc_core::sc_module {
 std::string fault_error(Fault fault, uint64_t at, size_t n = 200) {
   const Pyramid pyr = small_pyramid();
   std::mt19937_64 rng(7);
-  const auto reqs = random_requests(rng, n, pyr.last_level() + 1);
+  const auto reqs = stimulus::random_requests(rng, pyr.extent0(), n);
   try {
     run_forked([&] {
       const sc_core::sc_time period(10, sc_core::SC_NS);

@@ -50,6 +50,7 @@
 #include "model/image.h"
 #include "model/pyramid.h"
 #include "model/sampler.h"
+#include "stimulus.h"
 
 namespace {
 
@@ -83,48 +84,9 @@ struct Gen {
   uint64_t below(uint64_t n) { return n ? rng() % n : 0; }
   int64_t between(int64_t lo, int64_t hi) { return lo + int64_t(below(uint64_t(hi - lo + 1))); }  // [lo, hi]
 
-  // A coordinate (Q8.24) for a texture axis of 2^log2_size texels.
-  int32_t coordinate(int log2_size, int last_level) {
-    const int64_t one = int64_t(1) << kCoordFracBits;
-    const int kind = int(below(100));
-    if (kind < 30) return int32_t(between(-4 * one, 4 * one - 1));  // a few textures around
-    if (kind < 60) {  // near a texel edge or centre of some level, a few raw units off
-      const int lk = std::max(log2_size - int(below(uint64_t(last_level) + 1)), 0);
-      const int64_t texel = one >> lk;
-      int64_t u = between(-2, (int64_t(1) << lk) + 2) * texel + (below(2) ? texel / 2 : 0);
-      if (below(3)) u += between(-130, 130);
-      return int32_t(u);
-    }
-    if (kind < 80) return int32_t(between(0, one - 1));  // [0, 1)
-    if (kind < 92) return int32_t(uint32_t(rng()));       // any 32-bit value
-    static const int32_t edges[] = {0,         1,         -1,        int32_t(one - 1), int32_t(one), int32_t(one + 1),
-                                    int32_t(-one), INT32_MIN, INT32_MAX, int32_t(one / 2), int32_t(-one / 2)};
-    return edges[below(std::size(edges))];
-  }
-
-  // A lambda (Q8.8): every level, their boundaries, below 0, past the last level, any value.
-  int32_t lod(int last_level) {
-    const int kind = int(below(100));
-    if (kind < 50) return int32_t(between(-512, (last_level + 2) * 256 - 1));
-    if (kind < 75) {  // a level boundary or the nearest-level rounding point, +-1/256
-      static const int offsets[] = {-1, 0, 1, 127, 128, 129};
-      return int32_t(between(-1, last_level + 1) * 256 + offsets[below(6)]);
-    }
-    if (kind < 85) return int32_t(between(-256, 256));
-    if (kind < 95) return int32_t(int16_t(uint16_t(rng())));  // any 16-bit value
-    return below(2) ? kLodMin : kLodMax;
-  }
-
+  // Textures and request fields: tests/common/stimulus.h, as every suite's.
   Image random_texture(int log2_w, int log2_h) {
-    Image img(1 << log2_w, 1 << log2_h, opt.cw);
-    const uint64_t mask = (uint64_t(1) << opt.cw) - 1;
-    const int style = int(below(3));  // 0 noise, 1 near-black/near-white extremes, 2 a few values
-    for (Texel& t : img.texels)
-      for (uint16_t& c : t) {
-        const uint64_t r = rng();
-        c = uint16_t(style == 0 ? r & mask : style == 1 ? ((r & 1) ? mask - (r >> 1 & 1) : (r >> 1 & 1)) : (r % 3) * mask / 2);
-      }
-    return img;
+    return stimulus::random_image(1 << log2_w, 1 << log2_h, opt.cw, rng(), -1);  // any style
   }
 
   void cfg_line(const Pyramid& p, const SamplerConfig& c) {
@@ -163,9 +125,9 @@ struct Gen {
     const int last = p.last_level();
     for (int i = 0; i < n; ++i) {
       Request r;
-      r.u = coordinate(log2_exact(p.extent0().w), last);
-      r.v = coordinate(log2_exact(p.extent0().h), last);
-      r.lod = lod(last);
+      r.u = stimulus::random_coordinate(rng, p.extent0().w, last);
+      r.v = stimulus::random_coordinate(rng, p.extent0().h, last);
+      r.lod = stimulus::random_lod(rng, last);
       const uint64_t tag = issued++ & ((uint64_t(1) << kTagBits) - 1);
       // Input gaps: none in about 60% of the requests, else 1..3, now and then up to 12.
       const uint64_t g = below(100);
@@ -263,16 +225,8 @@ int run(const Options& opt) {
       c.filter = k.filter;
       c.wrap_u = k.wu;
       c.wrap_v = k.wv;
-      c.border = BorderColor(g.below(kBorderColors));
-      for (uint16_t& v : c.border_custom) v = uint16_t(g.below(65536));
-      c.lod_bias = g.below(2) ? 0 : int32_t(g.between(-768, 768));  // [-3, 3] levels
-      if (g.below(2)) {
-        c.min_lod = kLodMin;
-        c.max_lod = kLodMax;
-      } else {
-        c.min_lod = int32_t(g.between(-512, 1024));  // [-2, 4]
-        c.max_lod = c.min_lod + int32_t(g.below(2049));
-      }
+      stimulus::randomize_border(g.rng, c);
+      stimulus::randomize_lod_controls(g.rng, c);
       g.stim << "D\n";
       g.cfg_line(pyr, c);
       const bool reset_here = std::find(reset_cases.begin(), reset_cases.end(), case_index) != reset_cases.end();

@@ -1,0 +1,266 @@
+#include "stimulus.h"
+
+#include <cmath>
+
+#include <algorithm>
+
+#include "model/block_formats.h"
+
+namespace tex::stimulus {
+
+int32_t random_coordinate(std::mt19937_64& rng, int size, int last_level) {
+  const int kind = int(rng() % 100);
+  const int64_t one = int64_t(1) << kCoordFracBits;
+  if (kind < 35) {  // far outside [0, 1): [-100, 100)
+    return int32_t(int64_t(rng() % uint64_t(200 * one)) - 100 * one);
+  }
+  if (kind < 65) {  // near a texel edge or centre of some level, a few raw units off
+    const int k = int(rng() % uint64_t(last_level + 1));
+    const int64_t n = std::max(size >> k, 1);
+    const int64_t j = int64_t(rng() % uint64_t(n + 5)) - 2 + (rng() % 4 == 0 ? n * (int64_t(rng() % 7) - 3) : 0);
+    const int64_t texel = one / n;  // (exact for a power of two)
+    int64_t u = j * texel + ((rng() & 1) ? texel / 2 : 0);
+    const int64_t jitter = int64_t(rng() % 257) - 128;
+    u += (rng() % 3 == 0) ? 0 : jitter;
+    return int32_t(std::clamp<int64_t>(u, INT32_MIN, INT32_MAX));
+  }
+  if (kind < 85) return int32_t(int64_t(rng() % uint64_t(one)));  // [0, 1)
+  if (kind < 95) return int32_t(uint32_t(rng()));                  // any 32-bit value
+  static const int32_t edges[] = {0, 1, -1, int32_t(one - 1), int32_t(one), int32_t(one + 1), int32_t(-one),
+                                  INT32_MIN, INT32_MAX, int32_t(one / 2), int32_t(-one / 2)};
+  return edges[rng() % (sizeof edges / sizeof edges[0])];
+}
+
+int32_t random_lod(std::mt19937_64& rng, int last_level) {
+  const int kind = int(rng() % 100);
+  const int top = (last_level + 2) * 256;
+  if (kind < 50) return int32_t(int64_t(rng() % uint64_t(top + 512)) - 512);  // [-2, last + 2)
+  if (kind < 75) {  // on a level boundary, or the nearest-level rounding point, +-1/256
+    const int k = int(rng() % uint64_t(last_level + 3)) - 1;
+    const int offsets[] = {-1, 0, 1, 127, 128, 129};
+    return k * 256 + offsets[rng() % 6];
+  }
+  if (kind < 90) return int32_t(int64_t(rng() % 513) - 256);  // [-1, 1]
+  if (kind < 97) return int32_t(int16_t(uint16_t(rng())));      // any 16-bit value
+  return rng() % 2 ? kLodMin : kLodMax;                         // the format's ends
+}
+
+int32_t texel_coordinate(std::mt19937_64& rng, int n) {
+  const int kind = int(rng() % 100);
+  const int64_t one = int64_t(1) << kTexelCoordFracBits;
+  if (kind < 50) {
+    int64_t u = (int64_t(rng() % uint64_t(n + 6)) - 3) * one + ((rng() & 1) ? one / 2 : 0);
+    if (rng() % 3) u += int64_t(rng() % 257) - 128;
+    return int32_t(u);
+  }
+  if (kind < 80) return int32_t(int64_t(rng() % uint64_t(5 * n * one)) - 2 * n * one);
+  if (kind < 92) return int32_t(uint32_t(rng()));
+  const int64_t edges[] = {0, 1, -1, n * one, n * one - 1, 2 * n * one + 1, -2 * n * one - 1,
+                           int64_t(1) << 30, -(int64_t(1) << 30), INT32_MIN, INT32_MAX};
+  return int32_t(edges[rng() % (sizeof edges / sizeof edges[0])]);
+}
+
+Request random_request(std::mt19937_64& rng, Extent size) {
+  const int last = level_count(size) - 1;
+  Request r;
+  if (rng() % 4 == 0) r = random_footprint(rng, size, int(rng() % 16) + 1, int(rng() % 4));
+  r.u = random_coordinate(rng, size.w, last);
+  r.v = random_coordinate(rng, size.h, last);
+  r.lod = random_lod(rng, last);
+  if (rng() % 4 == 0) r.bias = random_lod(rng, last);
+  return r;
+}
+
+std::vector<Request> random_requests(std::mt19937_64& rng, Extent size, size_t n) {
+  std::vector<Request> r(n);
+  for (size_t i = 0; i < n; ++i) {
+    r[i] = random_request(rng, size);
+    r[i].tag = uint32_t(i);
+  }
+  return r;
+}
+
+std::vector<Request> random_requests(std::mt19937_64& rng, const std::vector<Extent>& textures, size_t samplers,
+                                     size_t n) {
+  std::vector<Request> out(n);
+  uint8_t tex = 0, smp = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (rng() % 4 != 0) tex = uint8_t(rng() % textures.size());  // mostly a new texture, runs now and then
+    if (rng() % 4 != 0) smp = uint8_t(rng() % samplers);      // and a new sampler
+    out[i] = random_request(rng, textures[tex]);
+    out[i].texture = tex;
+    out[i].sampler = smp;
+    out[i].tag = uint32_t(i);
+  }
+  return out;
+}
+
+std::vector<Request> random_texel_requests(std::mt19937_64& rng, Extent size, size_t n) {
+  std::vector<Request> r = random_requests(rng, size, n);
+  for (Request& q : r) {
+    q.u = texel_coordinate(rng, size.w);
+    q.v = texel_coordinate(rng, size.h);
+  }
+  return r;
+}
+
+Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis) {
+  Request r;
+  r.has_derivatives = true;
+  if (rng() % 16 == 0) {
+    r.deriv = {int32_t(uint32_t(rng())), int32_t(uint32_t(rng())), int32_t(uint32_t(rng())), int32_t(uint32_t(rng()))};
+    return r;
+  }
+  // Lengths in level-0 texels: the major one from 1/8 texel to 4x the texture, the minor one so
+  // that major / minor lies in (probes - 1, probes] (1: equal lengths).
+  std::uniform_real_distribution<double> unit(0, 1);
+  const double major = std::exp2(-3 + unit(rng) * (level_count(size) + 4));
+  const double ratio = probes == 1 ? 1.0 : probes - 0.9 * unit(rng);
+  const double minor = major / ratio;
+  const double a = axis == 0   ? 0.0
+                   : axis == 1 ? M_PI / 2
+                   : axis == 2 ? M_PI / 4 + (unit(rng) - 0.5) * 0.5
+                               : unit(rng) * 2 * M_PI;
+  const double flip = rng() % 2 ? M_PI : 0.0;
+  const double ax = a + flip, ay = a + M_PI / 2;  // the minor axis is perpendicular
+  const double w = size.w, h = size.h;
+  auto q = [](double x) { return int32_t(std::clamp(std::lround(x * 16777216.0), -2147483647L, 2147483647L)); };
+  const bool x_major = rng() % 2;  // which screen axis is the long one
+  const double lx = x_major ? major : minor, ly = x_major ? minor : major;
+  const double thx = x_major ? ax : ay, thy = x_major ? ay : ax;
+  r.deriv = {q(lx * std::cos(thx) / w), q(lx * std::sin(thx) / h), q(ly * std::cos(thy) / w), q(ly * std::sin(thy) / h)};
+  return r;
+}
+
+std::vector<Filter> all_filters() {
+  std::vector<Filter> f;
+  for (TexelFilter t : {TexelFilter::Nearest, TexelFilter::Linear})
+    for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear}) f.push_back({t, m});
+  return f;
+}
+
+Wrap random_wrap(std::mt19937_64& rng) { return Wrap(rng() % kWrapModes); }
+
+void randomize_border(std::mt19937_64& rng, SamplerConfig& c) {
+  c.border = BorderColor(rng() % kBorderColors);
+  for (uint16_t& v : c.border_custom) v = uint16_t(rng());
+}
+
+void randomize_mag_filter(std::mt19937_64& rng, SamplerConfig& c) {
+  if (rng() % 3 == 0) c.filter.mag = TexelFilter(1 - int(c.filter.texel));  // a third: apart
+}
+
+void randomize_lod_controls(std::mt19937_64& rng, SamplerConfig& c) {
+  c.lod_bias = (rng() % 2) ? 0 : int32_t(int64_t(rng() % 1537) - 768);  // [-3, 3] levels
+  if (rng() % 2) {
+    c.min_lod = kLodMin;
+    c.max_lod = kLodMax;
+  } else {
+    c.min_lod = int32_t(int64_t(rng() % 1537) - 512);  // [-2, 4]
+    c.max_lod = c.min_lod + int32_t(rng() % 2049);     // up to 8 levels above
+  }
+}
+
+void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c) {
+  c.filter = {TexelFilter::Linear, MipMode::Linear, true};
+  c.max_aniso = rng() % 2 ? kMaxAniso : int(rng() % kMaxAniso) + 1;
+  c.aniso_pow2 = rng() % 4 == 0;
+}
+
+void make_unnormalized(std::mt19937_64& rng, SamplerConfig& c) {
+  c.unnormalized = true;
+  for (Wrap* w : {&c.wrap_u, &c.wrap_v})
+    if (*w != Wrap::Clamp && *w != Wrap::Border) *w = rng() % 2 ? Wrap::Clamp : Wrap::Border;
+  c.filter.anisotropic = false;
+  c.filter.mag = c.filter.texel;
+  if (c.filter.mip != MipMode::None && rng() % 2) c.filter.mip = MipMode::None;
+  if (c.filter.mip != MipMode::None) {  // Vulkan's form: mipmaps clamped to level 0
+    c.max_lod = std::min(c.max_lod, rng() % 2 ? 0 : -int32_t(rng() % 512));
+    c.min_lod = std::min(c.min_lod, c.max_lod);
+  }
+}
+
+SamplerConfig random_sampler(std::mt19937_64& rng, int unnormalized_one_in) {
+  SamplerConfig s;
+  const std::vector<Filter> filters = all_filters();
+  s.filter = rng() % 2 ? Filter{} : filters[rng() % filters.size()];
+  if (rng() % 3 == 0) randomize_aniso(rng, s);
+  randomize_mag_filter(rng, s);
+  s.wrap_u = random_wrap(rng);
+  s.wrap_v = random_wrap(rng);
+  randomize_border(rng, s);
+  randomize_lod_controls(rng, s);
+  if (unnormalized_one_in > 0 && rng() % uint64_t(unnormalized_one_in) == 0) make_unnormalized(rng, s);
+  return s;
+}
+
+Image random_image(int w, int h, int cw, uint64_t seed, int style) {
+  Image img(w, h, cw);
+  std::mt19937_64 rng(seed);
+  const uint64_t mask = (uint64_t(1) << cw) - 1;
+  if (style < 0) style = int(rng() % 3);
+  for (Texel& t : img.texels)
+    for (uint16_t& c : t) {
+      const uint64_t r = rng();
+      c = uint16_t(style == 0   ? r & mask
+                   : style == 1 ? ((r & 1) ? mask - (r >> 1 & 1) : (r >> 1 & 1))
+                                : (r % 3) * mask / 2);
+    }
+  return img;
+}
+
+Pyramid random_pyramid(Extent size, uint64_t seed) {
+  return build_pyramid(random_image(size.w, size.h, 8, seed), PyramidMode::Exact);
+}
+
+Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::vector<uint8_t>> blocks;
+  const int bytes = format_info(format).block_bytes;
+  for (int k = 0; k < level_count(size); ++k) {
+    const Extent s = level_extent(size, k);
+    std::vector<uint8_t>& level = blocks.emplace_back(level_bytes(format, s.width(), s.height()));
+    for (uint8_t& b : level) b = uint8_t(rng());
+    if (format == TexelFormat::Bc7)
+      for (size_t i = 0; i < level.size(); i += size_t(bytes)) {
+        const int r = int(rng() % 16), mode = r % 8;  // 15: the reserved mode (byte 0 = 0)
+        level[i] = r == 15 ? 0 : uint8_t((level[i] << (mode + 1)) | (1 << mode));
+      }
+  }
+  return pyramid_of_blocks(format, size, std::move(blocks));
+}
+
+Stimulus random_stalls(std::mt19937_64& rng, std::string& name) {
+  Stimulus t;
+  switch (rng() % 4) {
+    case 0:
+      name = "ideal";
+      break;
+    case 1:
+      name = "light";
+      t.gap_prob = 0.1;
+      t.max_gap = 3;
+      t.stall_prob = 0.1;
+      t.max_stall = 3;
+      break;
+    case 2:  // a gap starts in 60% of the free clocks and lasts 1..6: about 30% zero-delay clocks
+      name = "heavy";
+      t.gap_prob = 0.6;
+      t.max_gap = 6;
+      t.stall_prob = 0.6;
+      t.max_stall = 6;
+      break;
+    default:
+      name = "long-stalls";
+      t.gap_prob = 0.05;
+      t.max_gap = 2;
+      t.stall_prob = 0.2;
+      t.max_stall = 4;
+      t.long_stall_prob = 0.003;
+      t.long_stall = 100 + int(rng() % 400);
+      break;
+  }
+  return t;
+}
+
+}  // namespace tex::stimulus

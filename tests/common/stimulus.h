@@ -1,0 +1,100 @@
+// The random stimulus every suite that drives a unit draws from (the RTL lockstep suites, the AXI
+// top, the SystemC engines, the 4-state X-propagation vectors): requests, samplers, textures and
+// stall profiles. Model types only (library texunit_stimulus, links texmodel alone), so that the
+// suites differ in what they drive, never in what they ask.
+#pragma once
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "model/pyramid.h"
+#include "model/sampler.h"
+#include "model/timing.h"
+
+namespace tex::stimulus {
+
+// ---------------------------------------------------------------- requests
+// A coordinate (Q8.24) for a side of `size` texels (any size) of a chain of last_level + 1
+// levels: far outside [0, 1) ([-100, 100)), near a texel edge or centre of some level (a few raw
+// units off, some periods away), in [0, 1), any 32-bit value, or an edge case (0, +-1, 1 - 2^-24,
+// 1, 1 + 2^-24, -1, +-1/2, INT32_MIN, INT32_MAX).
+int32_t random_coordinate(std::mt19937_64& rng, int size, int last_level);
+// A lambda or bias (Q8.8): from -2 to past the last level, on level boundaries and the nearest-level
+// rounding points (+-1/256), in [-1, 1], any 16-bit value, the format's two ends.
+int32_t random_lod(std::mt19937_64& rng, int last_level);
+// A coordinate of an unnormalized sampler, Q16.16 texels, for a side of n texels: near a texel
+// edge or centre within 3 texels of the side (a few raw units off), anywhere in [-2n, 3n), any
+// 32-bit value, or an edge case (0, n, beyond 2n, +-2^14 texels: past the RTL's clamp).
+int32_t texel_coordinate(std::mt19937_64& rng, int n);
+
+// One request for a texture of `size`: random_coordinate, random_lod, a quarter with the
+// request's own bias (GLSL texture(s, uv, bias)); a quarter carry derivatives instead
+// (random_footprint: lambda from the LOD unit). Tag 0, texture 0, sampler 0.
+Request random_request(std::mt19937_64& rng, Extent size);
+// n of them, tagged 0..n-1.
+std::vector<Request> random_requests(std::mt19937_64& rng, Extent size, size_t n);
+// Requests spread over a descriptor table's textures (their level-0 sizes) and `samplers`
+// samplers: mostly a new texture and sampler per request, runs of one now and then; each a
+// random_request for its texture's size.
+std::vector<Request> random_requests(std::mt19937_64& rng, const std::vector<Extent>& textures, size_t samplers,
+                                     size_t n);
+// Requests of an unnormalized sampler: random_requests with u, v texel_coordinate()s.
+std::vector<Request> random_texel_requests(std::mt19937_64& rng, Extent size, size_t n);
+// A request with derivatives whose footprint takes `probes` probes (1..16) under a cap of 16, its
+// major axis along u (axis 0), v (1), near the diagonal (2) or in any direction (3), from
+// magnification to past the last level; 1 in 16 has raw 32-bit derivatives (the format's
+// saturating ends).
+Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis);
+
+// ---------------------------------------------------------------- samplers
+// The six filters (texel filter x mip mode).
+std::vector<Filter> all_filters();
+// One of the five address modes.
+Wrap random_wrap(std::mt19937_64& rng);
+// One of the border colours (Vulkan's six or a random custom one).
+void randomize_border(std::mt19937_64& rng, SamplerConfig& c);
+// A third of the time, a magnification filter apart from the minification filter's texel filter.
+void randomize_mag_filter(std::mt19937_64& rng, SamplerConfig& c);
+// Random bias (half of the cases 0) and clamps (half of the cases the full range).
+void randomize_lod_controls(std::mt19937_64& rng, SamplerConfig& c);
+// Anisotropic filter: cap 16 half of the time, else 1..16; probe counts rounded to powers of two
+// in a quarter of the cases.
+void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c);
+// Makes a sampler unnormalized the way Vulkan allows: its wrap modes clamp (clamp to edge or to
+// border, drawn again if not), one texel filter, no anisotropy, the base level only (mipmap mode
+// none, or its mode with max LOD clamped to <= 0).
+void make_unnormalized(std::mt19937_64& rng, SamplerConfig& c);
+// Everything at random: a filter (half the default trilinear, a third anisotropic), both address
+// modes, the border colour, the magnification filter, the LOD controls; unnormalized in 1 of
+// `unnormalized_one_in` (0: never).
+SamplerConfig random_sampler(std::mt19937_64& rng, int unnormalized_one_in = 0);
+
+// Gives the requests of the table's unnormalized samplers texel coordinates of their texture.
+template <class SizeOf>
+void texel_coordinates_where_unnormalized(std::mt19937_64& rng, std::vector<Request>& requests,
+                                          const SamplerTable& samplers, SizeOf size_of_texture) {
+  for (Request& r : requests)
+    if (samplers[r.sampler].unnormalized) {
+      const Extent e = size_of_texture(r.texture);
+      r.u = texel_coordinate(rng, e.w);
+      r.v = texel_coordinate(rng, e.h);
+    }
+}
+
+// ---------------------------------------------------------------- textures
+// Texels of `cw`-bit channels: noise, near-black and near-white extremes, or a few values (style
+// 0, 1, 2; -1: one of them at random).
+Image random_image(int w, int h, int cw, uint64_t seed, int style = 0);
+// An exact-mode pyramid of random_image noise, 8-bit channels.
+Pyramid random_pyramid(Extent size, uint64_t seed);
+// Random blocks of a block format (sides >= 1), every level: each BC7 block in a random one of its
+// 8 modes and 1 in 16 in the reserved mode (decoded to 0).
+Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed);
+
+// ---------------------------------------------------------------- stall profiles
+// One of: ideal, light, heavy (about 30% of clocks without a gap), long stalls (hundreds of
+// clocks); its name in `name`.
+Stimulus random_stalls(std::mt19937_64& rng, std::string& name);
+
+}  // namespace tex::stimulus
