@@ -14,7 +14,7 @@ help:
 	@echo "make bench-ir - the RTL's instructions per clock per configuration (callgrind: independent of the machine's load)"
 	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
 	@echo "make memory-report - cached memory through the RTL: throughput, hit rate, bytes, FIFO vs latency (docs/memory.md)"
-	@echo "make scenes - real frames: the assimp test models through the cached RTL at latency 200: $(OUT)/scenes/index.html"
+	@echo "make scenes - real frames: the assimp test models through the cached RTL at latency 200: $(OUT)/scenes/index.html (SCENES_ENGINE=systemc: behind the TLM sockets)"
 	@echo "make explore - sweep cache size, ways, block shape, latency, FIFO and pixel order over plane and panel, every point timed: $(OUT)/explore/index.html"
 	@echo "make rtl-soak  - RTL vs model lockstep and the block decoders (1.2 M blocks), 20x the random samples of make test, new seeds"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
@@ -75,8 +75,10 @@ memory-report: build
 
 # Real frames (docs/scenes.md): the assimp test models through the cached RTL, latency 200, verified
 # against the model; frames, contact sheet and table in $(OUT)/scenes/ (about a minute).
+# SCENES_ENGINE=systemc: the same RTL behind the SystemC/TLM-2.0 sockets.
+SCENES_ENGINE ?= rtl
 scenes: build
-	/usr/bin/python3 scripts/scenes_report.py --texsim $(TEXSIM) --out $(OUT)/scenes
+	/usr/bin/python3 scripts/scenes_report.py --texsim $(TEXSIM) --out $(OUT)/scenes --engine $(SCENES_ENGINE)
 
 # The default architecture sweep (docs/memory.md §6): plane and panel, 640x480, the 1024x1024 test
 # card, scanline and tiled order, caches 1..64 KiB of 1, 2 and 4 ways, blocks 4x4, 2x2 and 8x8,

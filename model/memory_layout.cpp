@@ -133,17 +133,26 @@ bool MemoryLayout::locate_line(uint32_t address, int& level, uint32_t& bx, uint3
 }
 
 bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
-                 const std::function<void(int level, int x, int y, const Texel& t)>& texel) {
+                 const std::function<void(int level, int x, int y, const Texel& t)>& texel, bool seam_copies) {
   int level = 0;
   uint32_t bx = 0, by = 0;
   if (!layout.locate_line(address, level, bx, by)) return false;
   const int bw = layout.block_w(), bh = layout.block_h(), tb = layout.texel_bytes();
   const uint32_t w = uint32_t(layout.level_size(level).w), h = uint32_t(layout.level_size(level).h);
   const bool blocks = is_compressed(layout.format());
+  // A stored column (row) past the side: the seam copy's (of column 0 .. align - 1) or padding.
+  const uint32_t align = blocks ? 4 : 1, seam_x = layout.seam_x(level), seam_y = layout.seam_y(level);
+  auto original = [&](uint32_t i, uint32_t n, uint32_t seam, uint32_t& o) {
+    o = i;
+    if (i < n) return true;
+    o = i - seam;
+    return seam_copies && seam != 0 && i >= seam && o < align && o < n;
+  };
   for (int ty = 0; ty < bh; ++ty)
     for (int tx = 0; tx < bw; ++tx) {
       const uint32_t x = bx * uint32_t(bw) + uint32_t(tx), y = by * uint32_t(bh) + uint32_t(ty);
-      if (x >= w || y >= h) continue;  // padding and seam copies
+      uint32_t ox = 0, oy = 0;
+      if (!original(x, w, seam_x, ox) || !original(y, h, seam_y, oy)) continue;  // padding (and seam copies)
       const uint8_t* at = line + layout.texel_offset(x, y);
       Texel t{};
       if (blocks) {
@@ -152,7 +161,7 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
       } else {
         for (size_t c = 0; c < 4; ++c) t[c] = tb == 4 ? at[c] : uint16_t(at[2 * c] | at[2 * c + 1] << 8);
       }
-      texel(level, int(x), int(y), t);
+      texel(level, int(ox), int(oy), t);
     }
   return true;
 }

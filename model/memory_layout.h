@@ -131,10 +131,12 @@ inline MemoryLayout layout_of(const Pyramid& pyramid, const LayoutParams& params
 }
 
 // Calls texel(level, x, y, value) for every texel of the level stored in the line at `address`
-// (`line`: its line_bytes() bytes as memory holds them; blocks decoded); padding is skipped. False if the address
-// is not a line of the layout.
+// (`line`: its line_bytes() bytes as memory holds them; blocks decoded); padding is skipped, and so
+// are the repeat seam's copies unless `seam_copies`: then each copy is reported as the texel it
+// copies (column 0, row 0: the same value; a unit whose taps read the copy needs it even when the
+// original's line was never read). False if the address is not a line of the layout.
 bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
-                 const std::function<void(int level, int x, int y, const Texel& t)>& texel);
+                 const std::function<void(int level, int x, int y, const Texel& t)>& texel, bool seam_copies = false);
 
 // The bytes at addresses base .. base + image_bytes - 1 (padding 0): texels, or a block format's
 // blocks as the pyramid keeps them. Throws tex::Error when the pyramid is not the one the layout

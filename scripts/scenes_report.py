@@ -2,10 +2,10 @@
 """Real frames through the RTL (docs/scenes.md): the assimp test models, cached unit, latency 200.
 
 Usage: /usr/bin/python3 scripts/scenes_report.py [--texsim build/texsim] [--out out/scenes]
-       [--width 640] [--height 480] [--latency 200] [--stalls none]
+       [--width 640] [--height 480] [--latency 200] [--stalls none] [--engine rtl|systemc]
 
 Renders each test model of Debian's assimp-testmodels with `texsim render --model ... --engine rtl
---memory cached` (default caches, tiled order, each texture's glTF sampler or trilinear, --verify:
+--memory cached` (or --engine systemc: the same RTL behind the TLM-2.0 sockets) (default caches, tiled order, each texture's glTF sampler or trilinear, --verify:
 every sample against the golden model, every line read against its miss stream) and writes OUT/FRAME.png, OUT/contact_sheet.png,
 OUT/report.md (the table of docs/scenes.md) and OUT/index.html. Lost clocks are the clocks after the
 pipeline fill beyond one per sample; the RTL counts the clocks in which the FIFO's head waits for
@@ -39,7 +39,7 @@ SCENES = [
 def render(exe, name, model, frame, a):
     stats = os.path.join(a.out, name + ".json")
     png = os.path.join(a.out, name + ".png")
-    cmd = [exe, "render", "--model", model, "--frames", "8", "--frame", str(frame), "--engine", "rtl",
+    cmd = [exe, "render", "--model", model, "--frames", "8", "--frame", str(frame), "--engine", a.engine,
            "--memory", "cached", "--mem-latency", str(a.latency), "--stalls", a.stalls, "--verify",
            "--width", str(a.width), "--height", str(a.height), "--out", png, "--stats", stats]
     run = subprocess.run(cmd, capture_output=True, text=True)
@@ -59,6 +59,8 @@ def main():
     ap.add_argument("--height", type=int, default=480)
     ap.add_argument("--latency", type=int, default=200)
     ap.add_argument("--stalls", default="none")
+    ap.add_argument("--engine", default="rtl", choices=["rtl", "systemc"],
+                    help="a clocked engine: the Verilated RTL, alone or behind the SystemC sockets")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     rows = []
@@ -71,7 +73,7 @@ def main():
     header = ("| model | samples | quads | helper lanes | textures used | texture MiB resident / touched | "
               "hit rate even / odd levels | bytes/sample (compulsory) | samples/clock | lost clocks | "
               "head waiting for memory | FIFO full |")
-    lines = [f"Engine rtl (`{rows[0]['configuration']}`), cached, default caches ({rows[0]['cache_kib']:g} KiB x 2, "
+    lines = [f"Engine {a.engine} (`{rows[0]['configuration']}`), cached, default caches ({rows[0]['cache_kib']:g} KiB x 2, "
              f"{rows[0]['ways']} ways, {rows[0]['block']} blocks), tiled order, each texture's glTF sampler or else trilinear, "
              f"{a.width}x{a.height}, memory "
              f"latency {a.latency} clocks, {rows[0]['mem_bytes_per_clock']} B/clock, stalls {a.stalls}; every sample "

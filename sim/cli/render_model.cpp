@@ -104,9 +104,6 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   if (scene.textures.size() > 1 && eo.memory != Memory::Cached)
     throw Error("the scene has " + std::to_string(scene.textures.size()) +
                 " textures; the on-chip unit holds one (the paper's design): use --memory cached");
-  if (scene.textures.size() > 1 && !engine_info(o.engine).texture_table)
-    throw Error("the scene has " + std::to_string(scene.textures.size()) + " textures; engine " + o.engine +
-                " takes one per frame: use --engine model or rtl");
   const uint64_t resident = texture_bytes_resident(table, eo);  // also checks the table fits the memory
 
   // --trace-queries: the frame's requests, and the textures they name (as loaded: of the file's size,

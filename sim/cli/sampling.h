@@ -321,6 +321,9 @@ struct SamplingOptions {
     make_engine(engine, o);  // unknown engine, --trace with an engine that cannot trace
     if (!o.mem_error_reads.empty() && engine != "model" && engine != "rtl" && engine != "systemc")
       throw Error("--mem-error-at: engine " + engine + " does not inject memory errors (engines model, rtl, systemc)");
+    if (!fifo_depth.empty() && engine == "systemc-model")
+      throw Error("--fifo-depth: engine systemc-model is loosely timed (a sample waits for its lines; no FIFO to "
+                  "size; use --engine model, rtl or systemc)");
     if (no_timing && engine != "model")
       throw Error("--no-timing applies to --engine model (engine " + engine + " is clocked: its timing is the simulation)");
     o.timing = !no_timing;

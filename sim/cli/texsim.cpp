@@ -153,9 +153,6 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (list.size() > 1 && eo.memory != Memory::Cached)
     throw Error(textures_path + ": " + std::to_string(list.size()) +
                 " textures; the on-chip unit holds one (the paper's design): use --memory cached");
-  if (list.size() > 1 && !engine_info(o.engine).texture_table)
-    throw Error(textures_path + ": " + std::to_string(list.size()) + " textures; engine " + o.engine +
-                " takes one per frame: use --engine model or rtl");
   // A query file is checked whole by threads of its own while the textures load (a pipe is
   // checked as it streams); a bad texture is still the error reported first. A file of modest size
   // is parsed only there: the engine reads the requests the threads keep. The cycle engines wait

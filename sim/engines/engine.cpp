@@ -188,15 +188,6 @@ EngineResult run_collected(const std::vector<Request>& requests,
   return r;
 }
 
-EngineStats Engine::run(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
-                        TexelSink& sink) {
-  if (textures.size() != 1 || samplers.size() != 1)
-    throw Error("this engine (the SystemC wrapper) passes one texture and one sampler per frame; the frame has " +
-                std::to_string(textures.size()) + " and " + std::to_string(samplers.size()) +
-                ": use --engine model or rtl, whose cached units hold descriptor and sampler tables");
-  return run(*textures[0].pyramid, samplers[0], source, sink);
-}
-
 void check_tables(const TextureTable& textures, const SamplerTable& samplers) {
   if (textures.empty() || textures.size() > size_t(kMaxTextures))
     throw Error(std::to_string(textures.size()) + " textures: the descriptor table holds 1 to " +
@@ -247,6 +238,15 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
   std::vector<TextureDescriptor> out;
   for (size_t i = 0; i < textures.size(); ++i) out.push_back({layouts[i]});
   return out;
+}
+
+std::vector<uint8_t> frame_memory_image(const TextureTable& textures, const std::vector<TextureDescriptor>& descriptors) {
+  std::vector<uint8_t> image;
+  for (size_t i = 0; i < textures.size(); ++i) {
+    const std::vector<uint8_t> bytes = build_memory_image(*textures[i].pyramid, descriptors[i].layout);
+    image.insert(image.end(), bytes.begin(), bytes.end());  // packed: each starts where the last ended
+  }
+  return image;
 }
 
 EngineResult Engine::run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests) {

@@ -209,11 +209,10 @@ class Engine {
                           TexelSink& sink) = 0;
   // The same for requests in memory.
   EngineResult run(const Pyramid& pyramid, const SamplerConfig& config, const std::vector<Request>& requests);
-  // Several textures and samplers through the cached unit's descriptor and sampler tables: the
-  // model and the RTL. This default takes one texture and one sampler and refuses more: the
-  // SystemC wrapper passes one of each (docs/systemc.md).
+  // Several textures and samplers through the cached unit's descriptor and sampler tables (every
+  // engine; on chip: one of each).
   virtual EngineStats run(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
-                          TexelSink& sink);
+                          TexelSink& sink) = 0;
 };
 
 struct EngineInfo {
@@ -222,7 +221,6 @@ struct EngineInfo {
   bool cycle_accurate = false;
   bool can_trace = false;
   std::function<std::unique_ptr<Engine>(const EngineOptions&)> make;
-  bool texture_table = false;  // samples a frame of several textures (cached mode's descriptor table)
 };
 // Every engine of this build, in the order --help lists them.
 const std::vector<EngineInfo>& engines();
@@ -256,5 +254,8 @@ std::unique_ptr<TimedStream> model_timing(const TextureTable& textures, const En
 // The descriptor table of a texture table in cached mode: layouts packed one after another from
 // options.layout.base. Throws tex::Error (too many textures, different channel widths, memory).
 std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures, const EngineOptions& options);
+// The memory image of a frame: each texture's (build_memory_image) at its descriptor's layout,
+// packed one after another from the first descriptor's base (the image's first byte).
+std::vector<uint8_t> frame_memory_image(const TextureTable& textures, const std::vector<TextureDescriptor>& descriptors);
 
 }  // namespace tex

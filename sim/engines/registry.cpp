@@ -10,9 +10,9 @@ namespace tex {
 const std::vector<EngineInfo>& engines() {
   static const std::vector<EngineInfo> list = {
       {"model", "the golden model (bit-exact executable specification)", false, false,
-       make_model_engine, true},
+       make_model_engine},
       {"rtl", "the Verilated RTL, cycle-accurate, smallest configuration that holds the texture", true, true,
-       rtl::make_rtl_engine, true},
+       rtl::make_rtl_engine},
       {"systemc", "the Verilated RTL behind a TLM-2.0 socket (approximately timed, pipelined)", true, true,
        [](const EngineOptions& o) { return systemc::make_systemc_engine(systemc::Backend::Rtl, o); }},
       {"systemc-model", "the golden model behind the same socket (loosely timed)", false, false,

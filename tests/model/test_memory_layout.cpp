@@ -324,6 +324,22 @@ TEST(MemoryLayout, DecodingEveryLineGivesBackThePyramid) {
     }
     for (size_t k = 0; k < seen.size(); ++k)
       EXPECT_TRUE(std::all_of(seen[k].begin(), seen[k].end(), [](int n) { return n == 1; })) << "level " << k;
+    // With seam_copies, each repeat seam's copy comes as the texel it copies: column 0 once more on a
+    // side that is not a power of two, row 0 likewise, texel (0, 0) a fourth time with both.
+    for (std::vector<int>& s : seen) std::fill(s.begin(), s.end(), 0);
+    for (uint64_t off = 0; off < image.size(); off += uint64_t(layout.line_bytes()))
+      decode_line(layout, c.base + uint32_t(off), &image[off], [&](int level, int x, int y, const Texel& t) {
+        EXPECT_EQ(t, pyr.levels[size_t(level)].at(x, y)) << "level " << level << " (" << x << ", " << y << ")";
+        ++seen[size_t(level)][size_t(y * pyr.levels[size_t(level)].width + x)];
+      }, true);
+    for (size_t k = 0; k < seen.size(); ++k) {
+      const Image& l = pyr.levels[k];
+      const bool sx = !is_power_of_two(l.width), sy = !is_power_of_two(l.height);
+      for (int y = 0; y < l.height; ++y)
+        for (int x = 0; x < l.width; ++x)
+          ASSERT_EQ(seen[k][size_t(y * l.width + x)], 1 + (sx && x == 0) + (sy && y == 0) + (sx && sy && x == 0 && y == 0))
+              << "level " << k << " (" << x << ", " << y << ") of " << c.w << "x" << c.h;
+    }
     const auto ignore = [](int, int, int, const Texel&) {};
     EXPECT_FALSE(decode_line(layout, c.base + 4, image.data(), ignore));  // not a line start
     EXPECT_FALSE(decode_line(layout, c.base + uint32_t(image.size()), image.data(), ignore));  // past the image

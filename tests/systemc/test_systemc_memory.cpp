@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <random>
 
 #include "engines/engine.h"
 #include "engines/rtl/rtl_engine.h"
@@ -20,6 +21,8 @@
 #include "engines/systemc/tex_unit_tlm.h"
 #include "model/image.h"
 #include "model/memory_layout.h"
+#include "model/srgb.h"
+#include "stimulus.h"
 #include "workloads/scenes.h"
 #include "workloads/texture_io.h"
 
@@ -248,4 +251,58 @@ TEST(SystemcMemory, ExamplePlatformRuns) {
     EXPECT_NE(text.find("all bit-identical to the golden model"), std::string::npos) << text;
   }
   std::remove("platform.txt");
+}
+
+// A frame as a real one binds it: four textures in the descriptor table (RGBA8 with sides that are
+// not powers of two, BC1 sRGB, BC7, RGBA8 sRGB) and five random samplers, random requests over
+// them (tests/common/stimulus.h), the memory jittering. Both backends give the golden model's texels
+// and its miss stream, in order.
+TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
+  std::vector<Pyramid> pyramids;
+  pyramids.push_back(build_pyramid(stimulus::random_image(61, 37, 8, 1), PyramidMode::Exact));
+  pyramids.push_back(stimulus::random_block_texture(TexelFormat::Bc1, {64, 32}, 2));
+  decode_srgb_levels(pyramids.back());
+  pyramids.push_back(stimulus::random_block_texture(TexelFormat::Bc7, {32, 32}, 3));
+  pyramids.push_back(build_srgb_pyramid(stimulus::random_image(16, 64, 8, 4), PyramidMode::Exact));
+  TextureTable table;
+  std::vector<Extent> sizes;
+  for (const Pyramid& p : pyramids) {
+    table.push_back({&p});
+    sizes.push_back(p.extent0());
+  }
+  std::mt19937_64 rng(5);
+  SamplerTable samplers;
+  for (int i = 0; i < 5; ++i) samplers.push_back(stimulus::random_sampler(rng));
+  const std::vector<Request> requests = stimulus::random_requests(rng, sizes, samplers.size(), 3000);
+  EngineOptions o = cached(60, 4);
+  o.mem_jitter = 40;
+  o.seed = 9;
+  Misses want_misses;
+  o.miss_sink = &want_misses;
+  const EngineResult want = run_collected(requests, [&](RequestSource& s, TexelSink& t) {
+    return make_engine("model", o)->run(table, samplers, s, t);
+  });
+  ASSERT_EQ(want.texels.size(), requests.size());
+  for (Backend b : {Backend::Rtl, Backend::Model}) {
+    const char* name = b == Backend::Rtl ? "systemc" : "systemc-model";
+    Misses got_misses;
+    SystemcOptions so;
+    so.engine = o;
+    so.engine.miss_sink = &got_misses;
+    const EngineResult got = run_collected(requests, [&](RequestSource& s, TexelSink& t) {
+      return run_systemc(b, table, samplers, s, t, so);
+    });
+    ASSERT_EQ(got.texels.size(), requests.size()) << name;
+    size_t bad = 0;
+    for (size_t i = 0; i < requests.size(); ++i)
+      if (got.texels[i] != want.texels[i] && bad++ < 3)
+        ADD_FAILURE() << name << ": request " << i << " (texture " << int(requests[i].texture) << ", sampler "
+                      << int(requests[i].sampler) << ") differs from the model";
+    EXPECT_EQ(bad, 0u) << name;
+    EXPECT_EQ(got_misses.lines, want_misses.lines) << name << ": the lines read, in order";
+    if (b == Backend::Rtl) {
+      ASSERT_TRUE(got.stats.cycle);
+      EXPECT_EQ(got.stats.cycle->configuration, "Vtex_cached_13x13_formats");
+    }
+  }
 }

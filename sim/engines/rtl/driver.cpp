@@ -196,12 +196,10 @@ void Driver::load_textures(const TextureTable& textures) {
   EngineOptions eo;
   eo.layout = options_.layout;
   const std::vector<TextureDescriptor> table = texture_descriptors(textures, eo);
-  std::vector<uint8_t> image;
+  std::vector<uint8_t> image = frame_memory_image(textures, table);
   descriptors_.clear();
   for (size_t i = 0; i < textures.size(); ++i) {
     const MemoryLayout& layout = table[i].layout;
-    const std::vector<uint8_t> bytes = build_memory_image(*textures[i].pyramid, layout);
-    image.insert(image.end(), bytes.begin(), bytes.end());  // packed: each starts where the last ended
     descriptors_.push_back({uint8_t(i), layout.params().base, uint16_t(layout.size0().w),
                             uint16_t(layout.size0().h), uint8_t(layout.levels() - 1), uint8_t(layout.format()),
                             textures[i].pyramid->srgb});

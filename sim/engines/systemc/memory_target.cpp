@@ -13,7 +13,7 @@ using tlm::tlm_sync_enum;
 MemoryTarget::MemoryTarget(sc_module_name name, std::vector<uint8_t> image, uint64_t base, const sc_time& period,
                            const MemoryTargetTiming& timing)
     : sc_module(name), socket("socket"), image_(std::move(image)), base_(base), period_(period), timing_(timing),
-      peq_(this, &MemoryTarget::respond) {
+      peq_(this, &MemoryTarget::respond), jitter_rng_(timing.seed) {
   socket.register_nb_transport_fw(this, &MemoryTarget::nb_transport_fw);
   socket.register_b_transport(this, &MemoryTarget::b_transport);
   socket.register_transport_dbg(this, &MemoryTarget::transport_dbg);
@@ -46,7 +46,7 @@ void MemoryTarget::accept(tlm_generic_payload& t) {
   ++open_;
   check(t);
   const sc_time now = sc_time_stamp();
-  const sc_time at = std::max(now + timing_.latency * period_, channel_free_);
+  const sc_time at = std::max(now + latency(), channel_free_);
   const double clocks = double(t.get_data_length()) / double(timing_.bytes_per_clock);
   channel_free_ = at + clocks * period_;
   peq_.notify(t, tlm::BEGIN_RESP, at - now);
@@ -94,8 +94,12 @@ void MemoryTarget::release() {
 }
 
 void MemoryTarget::b_transport(tlm_generic_payload& t, sc_time& delay) {
-  if (check(t))
-    delay += timing_.latency * period_ + (double(t.get_data_length()) / double(timing_.bytes_per_clock)) * period_;
+  if (check(t)) delay += latency() + (double(t.get_data_length()) / double(timing_.bytes_per_clock)) * period_;
+}
+
+sc_time MemoryTarget::latency() {
+  const uint64_t extra = timing_.jitter ? jitter_rng_() % (uint64_t(timing_.jitter) + 1) : 0;
+  return double(timing_.latency + extra) * period_;
 }
 
 unsigned int MemoryTarget::transport_dbg(tlm_generic_payload& t) {

@@ -3,7 +3,7 @@
 // reads from in the tests and the example platform; any other TLM target works the same way.
 //   nb_transport_fw (approximately timed, base protocol): BEGIN_REQ is accepted at once (END_REQ on
 //     the return path) while fewer than max_outstanding reads are open, else when one closes.
-//     BEGIN_RESP comes `latency` clocks after acceptance, and responses, in order, are at least
+//     BEGIN_RESP comes `latency` (+ 0..jitter, drawn per read) clocks after acceptance, and responses, in order, are at least
 //     line / bytes_per_clock clocks apart (the bandwidth). A read stays open until its data has
 //     crossed the channel (BEGIN_RESP + line / bytes_per_clock clocks): the Verilator harness's
 //     memory model (engines/rtl/memory_model.h) counts it until its last beat, the same clock.
@@ -20,12 +20,15 @@
 
 #include <cstdint>
 #include <deque>
+#include <random>
 #include <vector>
 
 namespace tex::systemc {
 
 struct MemoryTargetTiming {
   uint32_t latency = 100;         // clocks from accepting a read to its BEGIN_RESP
+  uint32_t jitter = 0;            // plus 0..jitter clocks, uniform per read (responses stay in order)
+  uint64_t seed = 1;              // of the jitter's draws
   uint32_t bytes_per_clock = 16;  // bandwidth
   uint32_t max_outstanding = 64;  // reads open at once (until their data has crossed the channel)
   std::vector<uint64_t> error_reads;  // good reads answered TLM_GENERIC_ERROR_RESPONSE, ascending
@@ -61,6 +64,8 @@ class MemoryTarget : public sc_core::sc_module {
   uint32_t open_ = 0;
   uint64_t reads_ = 0;       // good reads so far
   size_t next_error_ = 0;    // the next of timing_.error_reads
+  std::mt19937_64 jitter_rng_;
+  sc_core::sc_time latency();  // this read's: latency + its jitter
 };
 
 }  // namespace tex::systemc

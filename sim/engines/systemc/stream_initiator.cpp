@@ -76,6 +76,8 @@ StreamInitiator::Slot* StreamInitiator::take_slot(const Request& q, size_t index
   s->data.dudy = q.deriv.dudy;
   s->data.dvdy = q.deriv.dvdy;
   s->data.bias = q.bias;
+  s->data.texture = q.texture;
+  s->data.sampler = q.sampler;
   s->set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   ++issued_;
   return s;

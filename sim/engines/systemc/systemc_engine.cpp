@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -48,7 +49,7 @@ InitiatorTiming initiator_timing(const EngineOptions& o) {
 }
 
 // Runs in the child: elaborate, load, stream, check.
-EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
+EngineStats simulate(Backend backend, const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
                      TexelSink& sink, MissSink& misses, ClockSink& clocks, const SystemcOptions& o) {
   const bool at = o.initiator == InitiatorStyle::At || (o.initiator == InitiatorStyle::Auto && backend == Backend::Rtl);
   const sc_time period(o.clock_ns, SC_NS);
@@ -56,20 +57,22 @@ EngineStats simulate(Backend backend, const Pyramid& pyramid, const SamplerConfi
   EngineOptions eo = o.engine;
   eo.miss_sink = &misses;
   eo.clock_sink = o.engine.clock_sink ? &clocks : nullptr;  // (the parent's sink, through the pipe)
-  TexUnitTlm unit("tex_unit_tlm", backend, pyramid, config, period, eo);
+  TexUnitTlm unit("tex_unit_tlm", backend, textures, samplers, period, eo);
   StreamInitiator bench("testbench", source, sink, at, period, initiator_timing(o.engine));
   bench.socket.bind(unit.socket);
-  // Cached: the pyramid's memory image in a TLM memory target with the --mem-* timing.
+  // Cached: the frame's memory image (every texture at its descriptor's layout) in a TLM memory
+  // target with the --mem-* timing.
   std::unique_ptr<MemoryTarget> memory;
   if (eo.memory == Memory::Cached) {
-    const MemoryLayout layout = layout_of(pyramid, eo.layout);
     MemoryTargetTiming timing;
     timing.latency = eo.mem_latency;
+    timing.jitter = eo.mem_jitter;
+    timing.seed = eo.seed ^ 0x9E3779B97F4A7C15ULL;
     timing.bytes_per_clock = eo.mem_bytes_per_clock;
     timing.max_outstanding = eo.mem_outstanding;
     timing.error_reads = eo.mem_error_reads;
-    memory = std::make_unique<MemoryTarget>("memory", build_memory_image(pyramid, layout), eo.layout.base, period,
-                                            timing);
+    memory = std::make_unique<MemoryTarget>("memory", frame_memory_image(textures, texture_descriptors(textures, eo)),
+                                            eo.layout.base, period, timing);
     unit.memory_socket.bind(memory->socket);
   }
   const auto wall1 = std::chrono::steady_clock::now();
@@ -199,12 +202,11 @@ class SystemcEngine final : public Engine {
 
   EngineStats run(const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
                   TexelSink& sink) override {
-    if (options_.engine.memory == Memory::Cached && (is_compressed(pyramid.format) || pyramid.srgb))
-      throw Error(std::string("engine ") + (backend_ == Backend::Rtl ? "systemc" : "systemc-model") + ": a " +
-                  format_info(pyramid.format).name + (pyramid.srgb ? " sRGB" : "") +
-                  " texture in cached memory; the SystemC memory socket carries RGBA lines only so far "
-                  "(use --engine rtl or model, or --memory onchip)");
     return run_systemc(backend_, pyramid, config, source, sink, options_);
+  }
+  EngineStats run(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
+                  TexelSink& sink) override {
+    return run_systemc(backend_, textures, samplers, source, sink, options_);
   }
 
  private:
@@ -218,37 +220,48 @@ std::unique_ptr<Engine> make_systemc_engine(Backend backend, const EngineOptions
   return std::make_unique<SystemcEngine>(backend, options);
 }
 
-EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
-                        TexelSink& sink, const SystemcOptions& options) {
+EngineStats run_systemc(Backend backend, const TextureTable& textures, const SamplerTable& samplers,
+                        RequestSource& source, TexelSink& sink, const SystemcOptions& options) {
   // Input errors are reported here, before any simulation, as one line.
   const EngineOptions& eo = options.engine;
   const bool cached = eo.memory == Memory::Cached;
-  if (cached && eo.mem_jitter)  // (MemoryTarget answers every read after the same latency)
-    throw Error("--mem-jitter " + std::to_string(eo.mem_jitter) +
-                ": the SystemC engines' TLM memory has a fixed latency (use --engine rtl or model for jitter)");
-  if (cached) {  // the layout and the caches can be built for this texture
-    const MemoryLayout layout = layout_of(pyramid, eo.layout);
-    TextureCache(layout, eo.cache, config);
-  }
+  check_tables(textures, samplers);
+  if (!cached && (textures.size() > 1 || samplers.size() > 1))
+    throw Error(std::to_string(textures.size()) + " textures, " + std::to_string(samplers.size()) +
+                " samplers: the on-chip unit holds one of each (the paper's design); use --memory cached");
+  if (cached) TextureCache(texture_descriptors(textures, eo), eo.cache, samplers);  // the layouts and caches fit
   if (backend == Backend::Rtl) {
-    const rtl::RtlConfig& rc = rtl::smallest_config_for(TextureTable{{&pyramid}}, eo.memory, eo.layout.block_w,
-                                                        eo.layout.block_h, &eo.cache, eo.fifo_depth);
-    rtl::check_inputs(rc, pyramid);
+    const rtl::RtlConfig& rc = rtl::smallest_config_for(textures, eo.memory, eo.layout.block_w, eo.layout.block_h,
+                                                        &eo.cache, eo.fifo_depth);
+    for (const BoundTexture& t : textures) rtl::check_inputs(rc, *t.pyramid);
     if (cached) rtl::cache_pins(rc, eo.layout, eo.cache, eo.fifo_depth);
+    if (cached && eo.mem_bytes_per_clock > uint32_t(rc.mem_bits / 8))  // as the RTL engine's memory channel
+      throw Error("--mem-bytes-per-clock " + std::to_string(eo.mem_bytes_per_clock) + ": " + rc.name +
+                  "'s memory port carries 1 to " + std::to_string(rc.mem_bits / 8) + " bytes per clock (one beat)");
   } else if (!options.engine.trace_path.empty()) {
     throw Error("--trace: the model behind the SystemC socket has no waveforms (use --engine systemc)");
   }
   if (!(options.clock_ns > 0)) throw Error("SystemC clock period must be positive");
-  // Requests are checked against the RTL's ports in the parent, as they are read.
+  // Requests are checked against the tables and the RTL's ports in the parent, as they are read.
   size_t index = 0;
   auto check = [&](const Request* r, size_t n) {
-    if (backend == Backend::Rtl)
-      for (size_t i = 0; i < n; ++i) rtl::check_request(r[i], index + i);
+    for (size_t i = 0; i < n; ++i) {
+      check_request_tables(r[i], textures.size(), samplers.size());
+      if (backend == Backend::Rtl) rtl::check_request(r[i], index + i);
+    }
     index += n;
   };
+  // The child waits for memory as long as the longest read may take, then some.
+  SystemcOptions o = options;
+  if (cached) o.timeout_cycles = std::max<uint64_t>(o.timeout_cycles, 10000 + 2 * uint64_t(eo.mem_latency + eo.mem_jitter));
   return run_forked(source, sink, [&](RequestSource& s, TexelSink& t, MissSink& m, ClockSink& c) {
-    return simulate(backend, pyramid, config, s, t, m, c, options);
+    return simulate(backend, textures, samplers, s, t, m, c, o);
   }, check, eo.miss_sink, eo.clock_sink);
+}
+
+EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
+                        TexelSink& sink, const SystemcOptions& options) {
+  return run_systemc(backend, TextureTable{{&pyramid}}, SamplerTable{config}, source, sink, options);
 }
 
 EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,

@@ -36,6 +36,9 @@ std::unique_ptr<Engine> make_systemc_engine(Backend backend, const EngineOptions
 // error (tag mismatch, time-out, bad input).
 // The requests stream from `source` into the child through a pipe and the texels come back through
 // another, so memory does not grow with the number of requests.
+EngineStats run_systemc(Backend backend, const TextureTable& textures, const SamplerTable& samplers,
+                        RequestSource& source, TexelSink& sink, const SystemcOptions& options);
+// One texture, one sampler.
 EngineStats run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config, RequestSource& source,
                         TexelSink& sink, const SystemcOptions& options);
 EngineResult run_systemc(Backend backend, const Pyramid& pyramid, const SamplerConfig& config,

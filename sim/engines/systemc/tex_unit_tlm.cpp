@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "model/block_formats.h"
 #include "model/error.h"
+#include "model/srgb.h"
 
 namespace tex::systemc {
 
@@ -11,31 +13,37 @@ using tlm::tlm_generic_payload;
 using tlm::tlm_phase;
 using tlm::tlm_sync_enum;
 
-TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
-                       const sc_time& clock_period, const EngineOptions& options)
+TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const TextureTable& textures,
+                       const SamplerTable& samplers, const sc_time& clock_period, const EngineOptions& options)
     : sc_module(name), socket("socket"), memory_socket("memory_socket"), backend_(backend), period_(clock_period),
-      pyramid_(&pyramid), options_(options) {
+      textures_(textures), samplers_(samplers), options_(options) {
   socket.register_transport_dbg(this, &TexUnitTlm::transport_dbg);
+  check_tables(textures, samplers);
   const bool cached = options.memory == Memory::Cached;
+  if (!cached && textures.size() > 1)
+    throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one (the paper's design); "
+                "use --memory cached");
+  if (!cached && samplers.size() > 1)
+    throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one; use --memory cached");
   if (cached) {
-    layout_.emplace(layout_of(pyramid, options.layout));
-    cache_.emplace(*layout_, options.cache, config);
+    descriptors_ = texture_descriptors(textures, options);
+    cache_.emplace(descriptors_, options.cache, samplers);
     cache_->set_error_reads(options.mem_error_reads);  // the flags the RTL backend must give
   }
   if (backend == Backend::Model) {
+    model_samplers_.resize(textures.size() * samplers.size());
     if (cached) {
       // The unit's memories start blank: only the lines it reads over the bus fill them.
-      Pyramid blank = pyramid;
-      for (Image& level : blank.levels) std::fill(level.texels.begin(), level.texels.end(), Texel{});
-      sampler_ = std::make_unique<Sampler>(blank, config);
-      line_data_.assign(size_t(layout_->line_bytes()), 0);
-    } else {
-      sampler_ = std::make_unique<Sampler>(pyramid, config);
+      for (const BoundTexture& t : textures) {
+        Pyramid& blank = views_.emplace_back(*t.pyramid);
+        for (Image& level : blank.levels) std::fill(level.texels.begin(), level.texels.end(), Texel{});
+      }
+      line_data_.assign(size_t(descriptors_[0].layout.line_bytes()), 0);
     }
     socket.register_b_transport(this, &TexUnitTlm::b_transport);
     return;
   }
-  const rtl::RtlConfig& rc = rtl::smallest_config_for(TextureTable{{&pyramid}}, options.memory, options.layout.block_w,
+  const rtl::RtlConfig& rc = rtl::smallest_config_for(textures, options.memory, options.layout.block_w,
                                                       options.layout.block_h, &options.cache, options.fifo_depth);
   rtl::DriverOptions d = rtl::DriverOptions::of(options);
   if (cached) {
@@ -45,8 +53,13 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const Pyramid& pyra
   }
   driver_ = rtl::Driver::create(rc, d);
   driver_->reset();
-  driver_->load(pyramid, options.load);
-  driver_->configure(config, pyramid);
+  if (cached) {
+    driver_->load_textures(textures);
+    driver_->configure(samplers);
+  } else {
+    driver_->load(*textures[0].pyramid, options.load);
+    driver_->configure(samplers[0], *textures[0].pyramid);
+  }
   driver_->reset_counters();
   socket.register_nb_transport_fw(this, &TexUnitTlm::nb_transport_fw);
   SC_METHOD(on_clock);  // first edge at time 0, then one per period (next_trigger)
@@ -76,6 +89,8 @@ Request request_of(const SampleTransfer& s) {
   q.has_derivatives = s.has_derivatives != 0;
   q.deriv = {s.dudx, s.dvdx, s.dudy, s.dvdy};
   q.bias = s.bias;
+  q.texture = s.texture;
+  q.sampler = s.sampler;
   return q;
 }
 }  // namespace
@@ -100,6 +115,10 @@ SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
     return nullptr;
   }
   auto* s = reinterpret_cast<SampleTransfer*>(trans.get_data_ptr());
+  if (s->texture >= textures_.size() || s->sampler >= samplers_.size()) {  // beyond the tables
+    trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+    return nullptr;
+  }
   if (backend_ == Backend::Rtl && ((!s->has_derivatives && (s->lod < kLodMin || s->lod > kLodMax)) ||
                                    s->bias < kLodMin || s->bias > kLodMax)) {  // the 16-bit req_lod, req_bias ports
     trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
@@ -124,7 +143,7 @@ void TexUnitTlm::b_transport(tlm_generic_payload& trans, sc_time& delay) {
       return;
     }
   }
-  const Texel t = sampler_->sample(q);
+  const Texel t = model_sampler(q).sample(q);
   for (int c = 0; c < 4; ++c) s->rgba[c] = t[size_t(c)];
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
   delay += period_;  // pipelined: one sample per clock
@@ -144,8 +163,32 @@ void TexUnitTlm::read_line(uint32_t address, sc_time& delay) {
   if (t.get_response_status() != tlm::TLM_OK_RESPONSE)
     return fail("memory socket: the read of line " + rtl::hex_address(address) + " was answered with " +
                 t.get_response_string());
-  decode_line(*layout_, address, line_data_.data(),
-              [&](int level, int x, int y, const Texel& texel) { sampler_->write_texel(level, x, y, texel); });
+  // The texture whose layout holds the line: its view and its samplers get the line's texels, as
+  // the RTL's taps see them (blocks decoded by decode_line; sRGB codes to linear unorm16, A x 257).
+  const std::array<uint16_t, 256>& srgb = srgb_decode_table();
+  for (size_t t = 0; t < descriptors_.size(); ++t) {
+    const bool is_srgb = textures_[t].pyramid->srgb;
+    const bool mine = decode_line(descriptors_[t].layout, address, line_data_.data(),
+                                  [&](int level, int x, int y, const Texel& code) {
+      Texel texel = code;
+      if (is_srgb) {
+        for (size_t c = 0; c < 3; ++c) texel[c] = srgb[code[c] & 255];
+        texel[3] = uint16_t(code[3] * 257);
+      }
+      views_[t].levels[size_t(level)].at(x, y) = texel;
+      for (size_t s = 0; s < samplers_.size(); ++s)
+        if (Sampler* m = model_samplers_[t * samplers_.size() + s].get()) m->write_texel(level, x, y, texel);
+    }, true);  // a repeat seam's copy as its original: the taps may read the copy's line alone
+    if (mine) return;
+  }
+  fail("memory socket: line " + rtl::hex_address(address) + " is in no texture of the descriptor table");
+}
+
+Sampler& TexUnitTlm::model_sampler(const Request& q) {
+  std::unique_ptr<Sampler>& m = model_samplers_[size_t(q.texture) * samplers_.size() + q.sampler];
+  if (!m) m = std::make_unique<Sampler>(views_.empty() ? *textures_[q.texture].pyramid : views_[q.texture],
+                                        samplers_[q.sampler]);
+  return *m;
 }
 
 // Texels of the memory view, 8 bytes each along a row (sample_payload.h).
@@ -157,18 +200,21 @@ unsigned int TexUnitTlm::transport_dbg(tlm_generic_payload& trans) {
     return 0;
   const int level = int(a >> 40 & 0xFF);
   const uint32_t y = uint32_t(a >> 20 & 0xFFFFF), x0 = uint32_t(a & 0xFFFFF);
-  if (level >= int(pyramid_->levels.size())) return 0;
-  const Image& shape = pyramid_->levels[size_t(level)];
+  const Pyramid& pyramid = *textures_[0].pyramid;
+  if (level >= int(pyramid.levels.size())) return 0;
+  if (!descriptors_.empty() && is_compressed(pyramid.format)) return 0;  // memory holds blocks, not texels
+  const Image& shape = pyramid.levels[size_t(level)];
   if (y >= uint32_t(shape.height) || x0 + n > uint32_t(shape.width)) return 0;
   auto* out = reinterpret_cast<uint16_t*>(trans.get_data_ptr());
   for (uint32_t i = 0; i < n; ++i) {
     const uint32_t x = x0 + i;
     Texel t{};
-    if (layout_) {  // through the memory target's own debug transport
-      std::vector<uint8_t> bytes(size_t(layout_->texel_bytes()));
+    if (!descriptors_.empty()) {  // through the memory target's own debug transport
+      const MemoryLayout& layout = descriptors_[0].layout;
+      std::vector<uint8_t> bytes(size_t(layout.texel_bytes()));
       tlm_generic_payload d;
       d.set_command(tlm::TLM_READ_COMMAND);
-      d.set_address(layout_->line_address(level, x, y) + layout_->texel_offset(x, y));
+      d.set_address(layout.line_address(level, x, y) + layout.texel_offset(x, y));
       d.set_data_ptr(bytes.data());
       d.set_data_length(unsigned(bytes.size()));
       if (memory_socket.size() == 0 || memory_socket->transport_dbg(d) != bytes.size()) return i * 8;

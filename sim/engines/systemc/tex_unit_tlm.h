@@ -1,6 +1,9 @@
 // TexUnitTlm: the texture unit as a SystemC module with one TLM-2.0 target socket (docs/systemc.md).
 // Each transaction carries one sample request (sample_payload.h) and returns one RGBA texel.
 // Behind the socket, chosen at construction (run time):
+// The unit samples a frame's textures and samplers: a descriptor table and a sampler table, as the
+// cached RTL (a request names its entries: SampleTransfer::texture, ::sampler); the on-chip unit
+// holds one of each.
 //   Backend::Model  the golden model tex::Sampler. Loosely timed: b_transport samples at once and
 //                   adds one clock period to the delay (the unit's sustained rate of one sample per
 //                   clock); no clock, no latency.
@@ -10,18 +13,21 @@
 //                   backward path) at the clock edge where the RTL accepts the request, and
 //                   BEGIN_RESP is sent at the edge where the RTL's response fires, so one request
 //                   per clock is accepted while earlier ones are still in flight.
-// The texture is loaded at construction, before simulated time starts (backdoor: 0 clocks; write
+// The textures are loaded at construction, before simulated time starts (backdoor: 0 clocks; write
 // port: load_cycles() clocks of the RTL).
 // Cached memory (options.memory == Memory::Cached): the unit holds no texels; it reads cache lines
 // through `memory_socket`, a TLM-2.0 initiator socket, from whatever target is bound to it (the
-// pyramid's memory image, docs/memory.md §1, at options.layout.base). The RTL backend drives its
+// frame's memory image, docs/memory.md §1, at options.layout.base: each texture's layout packed
+// after the last's, as the RTL engine's memory holds them). The RTL backend drives its
 // memory port through it approximately timed (tlm_memory_port.h), so memory latency and bandwidth
 // are the target's; the model backend's caches read each missed line with b_transport (loosely
-// timed: the sample waits for its lines) and fill the sampler's memories from the bytes read. In
+// timed: the sample waits for its lines) and fill the samplers' memories from the bytes read (block
+// formats decoded, sRGB codes to linear, as the RTL's taps do). In
 // both, the golden model's caches predict every read: the RTL's are checked against them.
 // Debug transport on `socket` (transport_dbg) reads texels of the unit's memory view
 // (texel_debug_address, sample_payload.h): the level memories (on-chip), or the memory behind
-// `memory_socket` through its own debug transport (cached).
+// `memory_socket` through its own debug transport (cached; a block format's texels: none), of
+// texture 0.
 // The socket is a simple_target_socket with only one of b_transport / nb_transport_fw registered:
 // its built-in adapters serve the other style (at a cost, see docs/systemc.md).
 #pragma once
@@ -53,9 +59,13 @@ class TexUnitTlm : public sc_core::sc_module {
   tlm_utils::simple_target_socket<TexUnitTlm> socket;
   MemorySocket memory_socket;  // cached memory only (may stay unbound otherwise)
 
-  // Throws tex::Error for a texture or option the backend cannot take.
-  TexUnitTlm(sc_core::sc_module_name name, Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
+  // Throws tex::Error for a texture, table or option the backend cannot take.
+  TexUnitTlm(sc_core::sc_module_name name, Backend backend, const TextureTable& textures, const SamplerTable& samplers,
              const sc_core::sc_time& clock_period, const EngineOptions& options = {});
+  // One texture, one sampler.
+  TexUnitTlm(sc_core::sc_module_name name, Backend backend, const Pyramid& pyramid, const SamplerConfig& config,
+             const sc_core::sc_time& clock_period, const EngineOptions& options = {})
+      : TexUnitTlm(name, backend, TextureTable{{&pyramid}}, SamplerTable{config}, clock_period, options) {}
   ~TexUnitTlm() override;
   SC_HAS_PROCESS(TexUnitTlm);
 
@@ -80,6 +90,7 @@ class TexUnitTlm : public sc_core::sc_module {
   // Model backend.
   void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay);
   void read_line(uint32_t address, sc_core::sc_time& delay);  // cached: one missed line over the bus
+  Sampler& model_sampler(const Request& q);  // the (texture, sampler) pair's, built on first use
 
   unsigned int transport_dbg(tlm::tlm_generic_payload& trans);
 
@@ -90,9 +101,10 @@ class TexUnitTlm : public sc_core::sc_module {
 
   Backend backend_;
   sc_core::sc_time period_;
-  const Pyramid* pyramid_;  // shape, and the texels of the on-chip model backend's debug reads
+  TextureTable textures_;
+  SamplerTable samplers_;
   EngineOptions options_;
-  std::optional<MemoryLayout> layout_;      // cached
+  std::vector<TextureDescriptor> descriptors_;  // cached: each texture's layout
   std::optional<TextureCache> cache_;       // cached: the golden model's caches
   std::optional<rtl::MissChecker> checker_;  // cached RTL: predicted against actual reads
   std::unique_ptr<TlmMemoryPort> memory_port_;  // cached RTL
@@ -100,7 +112,10 @@ class TexUnitTlm : public sc_core::sc_module {
   std::vector<uint64_t> clocks_;            // RTL: response clocks not yet given to options_.clock_sink
   tlm::tlm_generic_payload line_trans_;     // cached model: the read of one line
   std::vector<uint8_t> line_data_;
-  std::unique_ptr<Sampler> sampler_;     // model backend
+  // Model backend: a Sampler per (texture, sampler) pair at [texture * samplers + sampler], built at
+  // its first request; cached: from the texture's memory view (views_), which the lines read fill.
+  std::vector<std::unique_ptr<Sampler>> model_samplers_;
+  std::vector<Pyramid> views_;
   std::unique_ptr<rtl::Driver> driver_;  // RTL backend
   std::string error_;
 
