@@ -4,7 +4,7 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test test-suites unit-tests model-test bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes
+.PHONY: help deps build demo test test-suites test-xprop unit-tests model-test bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes
 
 help:
 	@echo "make demo   - build texsim only (not the tests), then render the default scene (writes $(OUT)/)"
@@ -45,13 +45,18 @@ demo: deps $(BUILD)/CMakeCache.txt
 	@echo "demo: $(OUT)/plane_point.png aliases near the horizon, $(OUT)/plane_trilinear.png blurs it grey," \
 	      "$(OUT)/plane_anisotropic.png keeps its checks; $(OUT)/plane_1000x600_mirror.png: a texture of no power-of-two size"
 
-# After the build, the suites two at a time: the formal proofs (one core, about 6 minutes) beside
-# lint, xprop, synth-latch, the model alone and ctest (whose own jobs share the other core until
-# the proofs are done). Lines of the two streams interleave whole (--output-sync=line).
-test: build
+# Two at a time: the formal proofs (one core, 4-6 minutes; they need no build) start at once beside
+# the build, then lint, xprop, synth-latch, the model alone and ctest (whose own jobs share the
+# other core until the proofs are done). On a fresh clone the proofs so hide behind the build
+# instead of following it. Lines of the streams interleave whole (--output-sync=line).
+test: deps $(BUILD)/CMakeCache.txt
 	@$(MAKE) --no-print-directory --output-sync=line -j 2 test-suites
 
-test-suites: formal lint xprop synth-latch model-test unit-tests
+test-suites: formal build lint synth-latch model-test unit-tests test-xprop
+
+# (In make test: after the whole build, never a second cmake build beside it in the same tree.)
+test-xprop: build
+	@bash scripts/xprop.sh $(BUILD)
 
 unit-tests: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
