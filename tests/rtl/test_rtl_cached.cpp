@@ -382,7 +382,6 @@ void run_descriptor_tables(const std::string& config, int cases) {
   const std::optional<uint64_t> only = env_u64("TEX_SEED");
   auto unit = rtl::Driver::create(rc, {});
   unit->reset();
-  const std::vector<Filter> filters = all_filters();
   uint64_t samples = 0, switches = 0, sampler_switches = 0, reads = 0, flagged = 0;
   int full_tables = 0, full_samplers = 0, failures = 0, block_textures = 0, srgb_textures = 0;
   for (int ci = 0; ci < cases * scale(); ++ci) {
@@ -418,17 +417,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
     const int ns = ci % 4 == 1 ? kMaxSamplers : 1 + int(rng() % kMaxSamplers);
     full_samplers += ns == kMaxSamplers;
     SamplerTable samplers;
-    for (int k = 0; k < ns; ++k) {
-      SamplerConfig& cfg = samplers.emplace_back();
-      cfg.filter = rng() % 3 == 2 ? filters[rng() % filters.size()] : Filter{TexelFilter::Linear, MipMode::Linear};
-      if (rng() % 5 == 4) randomize_aniso(rng, cfg);
-      randomize_mag_filter(rng, cfg);
-      cfg.wrap_u = random_wrap(rng);
-      cfg.wrap_v = random_wrap(rng);
-      randomize_border(rng, cfg);
-      randomize_lod_controls(rng, cfg);
-      if (rng() % 6 == 0) make_unnormalized(rng, cfg);
-    }
+    for (int k = 0; k < ns; ++k) samplers.push_back(random_sampler(rng, 6));  // 1 in 6 unnormalized
     const LayoutParams layout = random_layout(rng, rc);
     const CacheParams cache = random_cache(rng, rc);
     std::string memory_name, timing_name;
