@@ -391,7 +391,7 @@ module tex_cached_fetch #(
     .CW(CW), .BW(BW), .BH(BH), .LINES(LINES), .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB)
   ) u_taps (
     .valid(t_valid), .c0(t_entry[P_C0]), .fmt(t_entry[P_FMT +: FW]), .srgb(t_entry[P_SRGB]),
-    .low(t_entry[P_TAPS +: 8*PB]), .reads(t_entry[4 +: 8*RD]), .bank_word({bank_word[1], bank_word[0]}),
+    .low(t_entry[P_TAPS +: 8*PB]), .reads(t_entry[4 +: 8*RD]), .word0(bank_word[0]), .word1(bank_word[1]),
     .texels(texels)
   );
 

@@ -12,7 +12,7 @@
 //   low           : slot s at [s*4*PB +: 4*PB]: {y1, y0, x1, x0} mod 2^PB (tex_tag_stage)
 //   reads         : the sample's bank reads, slot s bank b at [(s*4 + b)*RD +: RD]: {line slot,
 //                   offset}; the offsets place each tap in its word
-//   bank_word     : cache c bank b's word at [(c*4 + b)*WW +: WW] (tex_cache_data, read in R)
+//   word0, word1  : cache 0's (1's) bank b's word at [b*WW +: WW] (tex_cache_data, read in R)
 //   texels        : tap i's texel at [i*DW +: DW], DW = 4*CW, {A, B, G, R}: the cache's channels
 //                   (SRGB: an sRGB texture's R, G, B linear unorm16 and A x 257; a linear
 //                   texture's 8-bit channels zero-extended)
@@ -38,7 +38,8 @@ module tex_tap_select #(
   input  logic                         srgb,
   input  logic [8*PB-1:0]              low,
   input  logic [8*RD-1:0]              reads,
-  input  logic [8*WW-1:0]              bank_word,
+  input  logic [4*WW-1:0]              word0,
+  input  logic [4*WW-1:0]              word1,
   output logic [8*DW-1:0]              texels
 );
   /*verilator inline_module*/  // (one evaluation with its caller, as before the split)
@@ -65,10 +66,10 @@ module tex_tap_select #(
       end
   end
 
-  // Cache c's 4 bank words (an array: a tap picks its cache by a mux, then its bank's bits).
-  logic [4*WW-1:0] word [2];
-  assign word[0] = bank_word[0 +: 4*WW];
-  assign word[1] = bank_word[4*WW +: 4*WW];
+  // Tap i's n bits (a texel, or an 8- or 16-byte block) in its cache's bank word: read only inside
+  // the taps' condition (no copy of the words in the other clocks).
+  `define TAP_AT(i, n) (32'(tap_bank[(i)*2 +: 2])*WW + 32'(tap_offset[(i)*OFW +: OFW])*(n))
+  `define TAP_BITS(i, n) (tap_cache[i] ? word1[`TAP_AT(i, n) +: (n)] : word0[`TAP_AT(i, n) +: (n)])
 
   genvar b;
   logic [8*DWC-1:0] decoded;  // tap i's texel of a block format at [i*DWC +: DWC]
@@ -85,9 +86,9 @@ module tex_tap_select #(
           for (int i = 0; i < 8; i++) begin
             // (8-byte blocks: the low half; a word holds whole blocks, WW >= 128 with the formats)
             if (tex_pkg::line_kind(fmt) == tex_pkg::LINE_BLOCKS8)
-              dec_block[i*128 +: 64] = word[tap_cache[i]][32'(tap_bank[i*2 +: 2])*WW + 32'(tap_offset[i*OFW +: OFW])*64 +: 64];
+              dec_block[i*128 +: 64] = `TAP_BITS(i, 64);
             else
-              dec_block[i*128 +: 128] = word[tap_cache[i]][32'(tap_bank[i*2 +: 2])*WW + 32'(tap_offset[i*OFW +: OFW])*128 +: 128];
+              dec_block[i*128 +: 128] = `TAP_BITS(i, 128);
             dec_texel[i*4 +: 4] = {low[(i/4*4 + 2 + i%4/2)*PB +: 2], low[(i/4*4 + i%2)*PB +: 2]};
           end
       end
@@ -109,7 +110,7 @@ module tex_tap_select #(
     if (valid)
       for (int i = 0; i < 8; i++)
         cached[i*DWC +: DWC] = blk ? decoded[i*DWC +: DWC]
-                                   : word[tap_cache[i]][32'(tap_bank[i*2 +: 2])*WW + 32'(tap_offset[i*OFW +: OFW])*DWC +: DWC];
+                                   : `TAP_BITS(i, DWC);
   end
 
   // SRGB: the 8-bit channels into the CW = 16 filter. An sRGB texture's R, G, B through the decode
@@ -135,4 +136,6 @@ module tex_tap_select #(
       assign texels = cached;
     end
   endgenerate
+  `undef TAP_AT
+  `undef TAP_BITS
 endmodule
