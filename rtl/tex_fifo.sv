@@ -2,8 +2,7 @@
 // two), read asynchronously (LUT RAM). The cached fetch's sample FIFO.
 // Handshake: push writes push_data at the tail (the caller pushes only with room: count < DEPTH
 //   or a pop in the same clock); pop removes the head (only when count != 0). head is the oldest
-//   entry in a clock with pop, 0 otherwise (a simulator then skips the read: the caller registers
-//   the entry it pops).
+//   entry (undefined when empty).
 // Latency: an entry pushed in clock n is the head from clock n+1 (the FIFO empty). Throughput:
 //   one push and one pop per clock.
 // Ports:
@@ -36,10 +35,7 @@ module tex_fifo #(
   logic [PW-1:0] wr, rd;
   always_ff @(posedge clk)
     if (push) mem[wr] <= push_data;
-  always_comb begin
-    head = '0;
-    if (pop) head = mem[rd];
-  end
+  assign head       = mem[rd];
   assign count_next = count + CNW'(push) - CNW'(pop);
   always_ff @(posedge clk) begin
     if (rst) begin

@@ -9,9 +9,8 @@
 //   mem_rsp_data  : one beat, MEM_W bits: bytes [i*MEM_W/8 +: MEM_W/8] of the line in beat i;
 //                   LINE_BITS / MEM_W beats per line, in order
 //   mem_rsp_error : the beat came with an error (AXI RRESP SLVERR or DECERR)
-//   head_line     : the oldest line (LINE_BITS, as memory holds it), in a clock with retire (0
-//                   otherwise: a simulator copies it only then); head_error: any of its beats came
-//                   with an error
+//   head_line     : the oldest line (LINE_BITS, as memory holds it); head_error: any of its
+//                   beats came with an error
 //   count         : lines held (0..DEPTH, unsigned); line_done: a line's last beat is taken in
 //                   this clock; mid_line: some beats of a line are taken, not yet its last
 `include "tex_param_error.svh"
@@ -57,10 +56,7 @@ module tex_fill_fifo #(
   assign beat_take     = mem_rsp_valid && mem_rsp_ready;
   assign line_done     = beat_take && (BEATS == 1 || beat == BTW'(BEATS - 1));
   assign mid_line      = beat != '0;
-  always_comb begin
-    head_line = '0;
-    if (retire) head_line = lines[rd];
-  end
+  assign head_line     = lines[rd];
   assign head_error    = line_err[rd];
   always_ff @(posedge clk) begin
     if (beat_take) lines[wr][32'(beat)*MEM_W +: MEM_W] <= mem_rsp_data;  // (beat is 0 if BEATS = 1)
