@@ -19,7 +19,6 @@
 #include "engines/systemc/stream_initiator.h"
 #include "engines/systemc/memory_target.h"
 #include "engines/systemc/tex_unit_tlm.h"
-#include "model/block_formats.h"
 #include "model/error.h"
 
 // libsystemc.so defines main() and needs sc_main; texsim and the tests have their own main and
