@@ -188,13 +188,19 @@ EngineResult run_collected(const std::vector<Request>& requests,
   return r;
 }
 
-void check_tables(const TextureTable& textures, const SamplerTable& samplers) {
+void check_tables(const TextureTable& textures, const SamplerTable& samplers, Memory memory) {
   if (textures.empty() || textures.size() > size_t(kMaxTextures))
     throw Error(std::to_string(textures.size()) + " textures: the descriptor table holds 1 to " +
                 std::to_string(kMaxTextures));
   if (samplers.empty() || samplers.size() > size_t(kMaxSamplers))
     throw Error(std::to_string(samplers.size()) + " samplers: the sampler table holds 1 to " +
                 std::to_string(kMaxSamplers));
+  if (textures.size() > 1 && memory != Memory::Cached)
+    throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one texture (the paper's design); "
+                "use --memory cached, whose descriptor table holds up to " + std::to_string(kMaxTextures));
+  if (samplers.size() > 1 && memory != Memory::Cached)
+    throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one sampler; "
+                "use --memory cached, whose sampler table holds up to " + std::to_string(kMaxSamplers));
 }
 
 void check_request_tables(const Request& r, size_t textures, size_t samplers) {
@@ -208,7 +214,12 @@ void check_request_tables(const Request& r, size_t textures, size_t samplers) {
 
 SamplerPairs::SamplerPairs(const TextureTable& textures, const SamplerTable& samplers, SamplerPaths paths)
     : textures_(textures), samplers_(samplers), paths_(paths), pairs_(textures.size() * samplers.size()) {
-  check_tables(textures, samplers);
+  check_tables(textures, samplers, Memory::Cached);
+}
+
+void SamplerPairs::write_texel(int texture, int level, int x, int y, const Texel& t) {
+  for (size_t s = 0; s < samplers_.size(); ++s)
+    if (Sampler* p = pairs_[size_t(texture) * samplers_.size() + s].get()) p->write_texel(level, x, y, t);
 }
 
 std::vector<const Sampler*> SamplerPairs::built() const {

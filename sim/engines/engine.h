@@ -174,7 +174,8 @@ using TextureTable = std::vector<BoundTexture>;
 
 // Throws tex::Error unless the frame's tables fit the cached unit's (1 to kMaxTextures textures,
 // 1 to kMaxSamplers samplers).
-void check_tables(const TextureTable& textures, const SamplerTable& samplers);
+// With on-chip memory, also one of each (the paper's unit: its texture memories and cfg pins).
+void check_tables(const TextureTable& textures, const SamplerTable& samplers, Memory memory);
 // A request naming a texture or sampler beyond the tables: one line with the request's tag.
 void check_request_tables(const Request& r, size_t textures, size_t samplers);
 
@@ -192,6 +193,9 @@ class SamplerPairs {
   }
   // Every pair built so far, for counters.
   std::vector<const Sampler*> built() const;
+  // A texel of a texture written into every pair of it built so far (a pair built later takes the
+  // texture as it then stands).
+  void write_texel(int texture, int level, int x, int y, const Texel& t);
 
  private:
   TextureTable textures_;

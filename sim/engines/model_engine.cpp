@@ -94,13 +94,7 @@ std::unique_ptr<TimedStream> model_timing(const TextureTable& textures, const En
 EngineStats run_model(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
                       TexelSink& sink, const EngineOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_tables(textures, samplers);
-  if (textures.size() > 1 && options.memory != Memory::Cached)
-    throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one texture (the paper's design); "
-                "use --memory cached, whose descriptor table holds up to " + std::to_string(kMaxTextures));
-  if (samplers.size() > 1 && options.memory != Memory::Cached)
-    throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one sampler; "
-                "use --memory cached, whose sampler table holds up to " + std::to_string(kMaxSamplers));
+  check_tables(textures, samplers, options.memory);
   const bool cached = options.memory == Memory::Cached;
   bool fast = !options.count_reads;  // the fast path: 8-bit textures and samplers it takes only
   for (const BoundTexture& t : textures) fast = fast && t.pyramid->levels[0].channel_bits == 8;

@@ -60,12 +60,7 @@ class RtlEngine final : public Engine {
   EngineStats run(const TextureTable& textures, const SamplerTable& samplers, RequestSource& source,
                   TexelSink& sink) override {
     const bool cached = options_.memory == Memory::Cached;
-    check_tables(textures, samplers);
-    if (!cached && textures.size() > 1)
-      throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one (the paper's design); "
-                  "use --memory cached");
-    if (!cached && samplers.size() > 1)
-      throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one; use --memory cached");
+    check_tables(textures, samplers, options_.memory);
     const Pyramid& pyramid = *textures[0].pyramid;
     const RtlConfig& rc =
         smallest_config_for(textures, options_.memory, options_.layout.block_w, options_.layout.block_h,

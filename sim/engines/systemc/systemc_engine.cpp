@@ -224,10 +224,7 @@ EngineStats run_systemc(Backend backend, const TextureTable& textures, const Sam
   // Input errors are reported here, before any simulation, as one line.
   const EngineOptions& eo = options.engine;
   const bool cached = eo.memory == Memory::Cached;
-  check_tables(textures, samplers);
-  if (!cached && (textures.size() > 1 || samplers.size() > 1))
-    throw Error(std::to_string(textures.size()) + " textures, " + std::to_string(samplers.size()) +
-                " samplers: the on-chip unit holds one of each (the paper's design); use --memory cached");
+  check_tables(textures, samplers, eo.memory);
   if (cached) TextureCache(texture_descriptors(textures, eo), eo.cache, samplers);  // the layouts and caches fit
   if (backend == Backend::Rtl) {
     const rtl::RtlConfig& rc = rtl::smallest_config_for(textures, eo.memory, eo.layout.block_w, eo.layout.block_h,

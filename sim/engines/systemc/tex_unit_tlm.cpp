@@ -18,28 +18,26 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const TextureTable&
     : sc_module(name), socket("socket"), memory_socket("memory_socket"), backend_(backend), period_(clock_period),
       textures_(textures), samplers_(samplers), options_(options) {
   socket.register_transport_dbg(this, &TexUnitTlm::transport_dbg);
-  check_tables(textures, samplers);
+  check_tables(textures, samplers, options.memory);
   const bool cached = options.memory == Memory::Cached;
-  if (!cached && textures.size() > 1)
-    throw Error(std::to_string(textures.size()) + " textures: the on-chip unit holds one (the paper's design); "
-                "use --memory cached");
-  if (!cached && samplers.size() > 1)
-    throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one; use --memory cached");
   if (cached) {
     descriptors_ = texture_descriptors(textures, options);
     cache_.emplace(descriptors_, options.cache, samplers);
     cache_->set_error_reads(options.mem_error_reads);  // the flags the RTL backend must give
   }
   if (backend == Backend::Model) {
-    model_samplers_.resize(textures.size() * samplers.size());
+    TextureTable sampled = textures;
     if (cached) {
       // The unit's memories start blank: only the lines it reads over the bus fill them.
-      for (const BoundTexture& t : textures) {
-        Pyramid& blank = views_.emplace_back(*t.pyramid);
+      views_.reserve(textures.size());
+      for (size_t t = 0; t < textures.size(); ++t) {
+        Pyramid& blank = views_.emplace_back(*textures[t].pyramid);
         for (Image& level : blank.levels) std::fill(level.texels.begin(), level.texels.end(), Texel{});
+        sampled[t].pyramid = &blank;
       }
       line_data_.assign(size_t(descriptors_[0].layout.line_bytes()), 0);
     }
+    model_samplers_.emplace(sampled, samplers);
     socket.register_b_transport(this, &TexUnitTlm::b_transport);
     return;
   }
@@ -143,7 +141,7 @@ void TexUnitTlm::b_transport(tlm_generic_payload& trans, sc_time& delay) {
       return;
     }
   }
-  const Texel t = model_sampler(q).sample(q);
+  const Texel t = model_samplers_->at(q).sample(q);
   for (int c = 0; c < 4; ++c) s->rgba[c] = t[size_t(c)];
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
   delay += period_;  // pipelined: one sample per clock
@@ -176,20 +174,13 @@ void TexUnitTlm::read_line(uint32_t address, sc_time& delay) {
         texel[3] = uint16_t(code[3] * 257);
       }
       views_[t].levels[size_t(level)].at(x, y) = texel;
-      for (size_t s = 0; s < samplers_.size(); ++s)
-        if (Sampler* m = model_samplers_[t * samplers_.size() + s].get()) m->write_texel(level, x, y, texel);
+      model_samplers_->write_texel(int(t), level, x, y, texel);
     }, true);  // a repeat seam's copy as its original: the taps may read the copy's line alone
     if (mine) return;
   }
   fail("memory socket: line " + rtl::hex_address(address) + " is in no texture of the descriptor table");
 }
 
-Sampler& TexUnitTlm::model_sampler(const Request& q) {
-  std::unique_ptr<Sampler>& m = model_samplers_[size_t(q.texture) * samplers_.size() + q.sampler];
-  if (!m) m = std::make_unique<Sampler>(views_.empty() ? *textures_[q.texture].pyramid : views_[q.texture],
-                                        samplers_[q.sampler]);
-  return *m;
-}
 
 // Texels of the memory view, 8 bytes each along a row (sample_payload.h).
 unsigned int TexUnitTlm::transport_dbg(tlm_generic_payload& trans) {

@@ -90,7 +90,6 @@ class TexUnitTlm : public sc_core::sc_module {
   // Model backend.
   void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay);
   void read_line(uint32_t address, sc_core::sc_time& delay);  // cached: one missed line over the bus
-  Sampler& model_sampler(const Request& q);  // the (texture, sampler) pair's, built on first use
 
   unsigned int transport_dbg(tlm::tlm_generic_payload& trans);
 
@@ -112,10 +111,10 @@ class TexUnitTlm : public sc_core::sc_module {
   std::vector<uint64_t> clocks_;            // RTL: response clocks not yet given to options_.clock_sink
   tlm::tlm_generic_payload line_trans_;     // cached model: the read of one line
   std::vector<uint8_t> line_data_;
-  // Model backend: a Sampler per (texture, sampler) pair at [texture * samplers + sampler], built at
-  // its first request; cached: from the texture's memory view (views_), which the lines read fill.
-  std::vector<std::unique_ptr<Sampler>> model_samplers_;
+  // Model backend: a Sampler per (texture, sampler) pair, built at its first request; cached: from
+  // the texture's memory view (views_), which the lines read fill.
   std::vector<Pyramid> views_;
+  std::optional<SamplerPairs> model_samplers_;
   std::unique_ptr<rtl::Driver> driver_;  // RTL backend
   std::string error_;
 
