@@ -6,7 +6,10 @@
 #include <random>
 
 #include "engines/rtl/driver.h"
+#include "model/block_formats.h"
+#include "model/error.h"
 #include "model/image.h"
+#include "model/pyramid.h"
 #include "model/srgb.h"
 
 namespace bench {
@@ -28,9 +31,52 @@ void BM_rtl_sampling(benchmark::State& state, const tex::rtl::RtlConfig* config)
   state.counters["clocks/s"] = benchmark::Counter(double(clocks), benchmark::Counter::kIsRate);
 }
 
+// Random blocks at every level (BC7: each of the 8 modes equally often): the decoders' cost does not
+// depend on what the blocks show. (Not compressed from the noise: Mesa's BC7 encoder executes an
+// instruction that valgrind cannot, and make bench-ir runs under it.)
+tex::Pyramid random_blocks(tex::TexelFormat format, tex::Extent size) {
+  std::mt19937_64 rng(2);
+  std::vector<std::vector<uint8_t>> blocks;
+  const int bytes = tex::format_info(format).block_bytes;
+  for (int k = 0; k < tex::level_count(size); ++k) {
+    const tex::Extent s = tex::level_extent(size, k);
+    std::vector<uint8_t>& level = blocks.emplace_back(tex::level_bytes(format, s.width(), s.height()));
+    for (uint8_t& b : level) b = uint8_t(rng());
+    if (format == tex::TexelFormat::Bc7)
+      for (size_t i = 0; i < level.size(); i += size_t(bytes)) {
+        const int mode = int(rng() % 8);
+        level[i] = uint8_t((level[i] << (mode + 1)) | (1 << mode));
+      }
+  }
+  return tex::pyramid_of_blocks(format, size, std::move(blocks));
+}
+
 }  // namespace
 
-RtlWorkload make_rtl_workload(const tex::rtl::RtlConfig& config) {
+bool parse_rtl_texture(const std::string& name, RtlTexture& out) {
+  for (RtlTexture t : {RtlTexture::Rgba8, RtlTexture::Bc1, RtlTexture::Bc7, RtlTexture::Srgb})
+    if (name == rtl_texture_name(t)) {
+      out = t;
+      return true;
+    }
+  return false;
+}
+
+const char* rtl_texture_name(RtlTexture t) {
+  switch (t) {
+    case RtlTexture::Rgba8: return "rgba8";
+    case RtlTexture::Bc1: return "bc1";
+    case RtlTexture::Bc7: return "bc7";
+    case RtlTexture::Srgb: return "srgb";
+  }
+  return "?";
+}
+
+bool config_takes(const tex::rtl::RtlConfig& config, RtlTexture t) {
+  return t == RtlTexture::Rgba8 || config.formats;
+}
+
+RtlWorkload make_rtl_workload(const tex::rtl::RtlConfig& config, RtlTexture texture) {
   using namespace tex;
   rtl::DriverOptions options;  // cached configurations: the default caches (8 KiB, 2 ways) where they fit
   options.layout.block_w = config.block_w;
@@ -43,15 +89,24 @@ RtlWorkload make_rtl_workload(const tex::rtl::RtlConfig& config) {
   // The configuration's largest texture, at most 1024x1024 (the same texture for Vtex_unit_10x10
   // and Vtex_cached_13x13: its speed does not depend on the texture's size).
   const int lw = std::min(config.max_log2_w, 10), lh = std::min(config.max_log2_h, 10);
-  // (a configuration with the formats: an sRGB texture, every texel through the decode tables)
-  Pyramid pyr = config.formats ? build_srgb_pyramid(make_pattern("noise", 1 << lw, 1 << lh), PyramidMode::Exact)
-                               : build_pyramid(make_pattern("noise", 1 << lw, 1 << lh));
-  if (!config.formats)
-    for (Image& img : pyr.levels) {  // 16-bit configurations take 16-bit texels
-      img.channel_bits = config.cw;
-      for (Texel& t : img.texels)
-        for (uint16_t& c : t) c = uint16_t(c * ((1u << config.cw) - 1) / 255);
-    }
+  if (!config_takes(config, texture))
+    throw Error(config.name + " has no block decoders or sRGB tables (texture " + rtl_texture_name(texture) + ")");
+  const Image noise = make_pattern("noise", 1 << lw, 1 << lh);
+  Pyramid pyr;
+  switch (texture) {
+    case RtlTexture::Rgba8:
+      pyr = build_pyramid(noise);
+      if (!config.formats)
+        for (Image& img : pyr.levels) {  // 16-bit configurations take 16-bit texels
+          img.channel_bits = config.cw;
+          for (Texel& t : img.texels)
+            for (uint16_t& c : t) c = uint16_t(c * ((1u << config.cw) - 1) / 255);
+        }
+      break;
+    case RtlTexture::Bc1: pyr = random_blocks(TexelFormat::Bc1, {1 << lw, 1 << lh}); break;
+    case RtlTexture::Bc7: pyr = random_blocks(TexelFormat::Bc7, {1 << lw, 1 << lh}); break;
+    case RtlTexture::Srgb: pyr = build_srgb_pyramid(noise, PyramidMode::Exact); break;
+  }
   work.unit->load(pyr, LoadMethod::Backdoor);
   SamplerConfig cfg;  // trilinear, repeat
   work.unit->configure(cfg, pyr);

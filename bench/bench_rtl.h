@@ -8,15 +8,23 @@
 
 namespace bench {
 
+// The texture of a speed workload: RGBA8 (every configuration), BC1, BC7 or sRGB RGBA8 (the
+// configurations with the block decoders and sRGB tables: what they cost when they are used).
+enum class RtlTexture { Rgba8, Bc1, Bc7, Srgb };
+bool parse_rtl_texture(const std::string& name, RtlTexture& out);
+const char* rtl_texture_name(RtlTexture t);
+constexpr const char* kRtlTextureNames = "rgba8 | bc1 | bc7 | srgb";
+bool config_takes(const tex::rtl::RtlConfig& config, RtlTexture t);
+
 // One configuration's speed workload: the driver after reset, its largest texture (at most
-// 1024x1024, noise) loaded through the backdoor and configured (trilinear, repeat; cached: the
-// default caches where they fit, 16 B/clock), and 65536 random trilinear requests (u, v uniform
-// in [-2, 2), lambda uniform over the levels).
+// 1024x1024, noise; block formats compressed from it) loaded through the backdoor and configured
+// (trilinear, repeat; cached: the default caches where they fit, 16 B/clock), and 65536 random
+// trilinear requests (u, v uniform in [-2, 2), lambda uniform over the levels).
 struct RtlWorkload {
   std::unique_ptr<tex::rtl::Driver> unit;
   std::vector<tex::Request> requests;
 };
-RtlWorkload make_rtl_workload(const tex::rtl::RtlConfig& config);
+RtlWorkload make_rtl_workload(const tex::rtl::RtlConfig& config, RtlTexture texture = RtlTexture::Rgba8);
 
 // Registers one benchmark per configuration: "rtl_sampling/<configuration>". Each streams random
 // trilinear requests through rtl::Driver with ideal timing after a backdoor load: the sampling

@@ -23,16 +23,31 @@ int main(int argc, char** argv) {
                "workload (instructions per clock: make bench-ir)"};
   std::vector<std::string> configs;
   int repeat = 4;
+  std::string texture_name = "rgba8";
   app.add_option("configs", configs, "configurations (default: all): " + names);
+  app.add_option("--texture", texture_name,
+                 std::string("the texture: ") + bench::kRtlTextureNames +
+                     " (bc1, bc7, srgb: configurations with the block decoders and sRGB tables only)")
+      ->capture_default_str();
   app.add_option("--repeat", repeat, "passes over the 65536 requests")->check(CLI::Range(1, 1000));
   bool list = false;
-  app.add_flag("--list", list, "print the compiled configurations, one per line, and exit");
+  app.add_flag("--list", list,
+               "print the compiled configurations, one per line with the textures each takes, and exit");
   CLI11_PARSE(app, argc, argv);
   if (list) {
-    for (const tex::rtl::RtlConfig& c : tex::rtl::compiled_configs()) std::printf("%s\n", c.name.c_str());
+    for (const tex::rtl::RtlConfig& c : tex::rtl::compiled_configs()) {
+      std::printf("%s", c.name.c_str());
+      for (bench::RtlTexture t : {bench::RtlTexture::Rgba8, bench::RtlTexture::Bc1, bench::RtlTexture::Bc7,
+                                  bench::RtlTexture::Srgb})
+        if (bench::config_takes(c, t)) std::printf(" %s", bench::rtl_texture_name(t));
+      std::printf("\n");
+    }
     return 0;
   }
   try {
+    bench::RtlTexture texture;
+    if (!bench::parse_rtl_texture(texture_name, texture))
+      throw tex::Error("unknown --texture '" + texture_name + "' (" + bench::kRtlTextureNames + ")");
     for (const std::string& n : configs) {
       bool known = false;
       for (const tex::rtl::RtlConfig& c : tex::rtl::compiled_configs()) known |= n == c.name;
@@ -41,8 +56,8 @@ int main(int argc, char** argv) {
     for (const tex::rtl::RtlConfig& c : tex::rtl::compiled_configs()) {
       bool wanted = configs.empty();
       for (const std::string& n : configs) wanted |= n == c.name;
-      if (!wanted) continue;
-      bench::RtlWorkload work = bench::make_rtl_workload(c);
+      if (!wanted || (configs.empty() && !bench::config_takes(c, texture))) continue;
+      bench::RtlWorkload work = bench::make_rtl_workload(c, texture);
       uint64_t clocks = 0, samples = 0, sink = 0;
       const auto start = std::chrono::steady_clock::now();
       CALLGRIND_TOGGLE_COLLECT;
@@ -55,7 +70,8 @@ int main(int argc, char** argv) {
       }
       CALLGRIND_TOGGLE_COLLECT;
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::printf("%s: %llu samples in %llu clocks, %.3f M clocks/s (checksum %llx)\n", c.name.c_str(),
+      std::printf("%s %s: %llu samples in %llu clocks, %.3f M clocks/s (checksum %llx)\n", c.name.c_str(),
+                  bench::rtl_texture_name(texture),
                   (unsigned long long)samples, (unsigned long long)clocks, double(clocks) / seconds / 1e6,
                   (unsigned long long)sink);
     }

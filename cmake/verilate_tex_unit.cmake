@@ -2,15 +2,12 @@
 # tex_unit of rtl/ verilated into TARGET as class PREFIX, for textures up to 2^LOG2_W x 2^LOG2_H
 # with CW-bit channels (default 8); with CACHED, tex_unit_cached with those BLOCK_W, BLOCK_H,
 # LINES, FIFO_DEPTH, MEM_W and MISS_DEPTH; with FORMATS also the block decoders and the sRGB tables
-# (BLOCK_FORMATS = SRGB = 1: 8-bit channels in memory, CW 16), else neither (Verilator evaluates
-# the 8 decoders in every clock, used or not: an RGBA unit simulates 6x faster without them).
+# (BLOCK_FORMATS = SRGB = 1: 8-bit channels in memory, CW 16), else neither. (The decoders are
+# functions that the taps call only for block and sRGB texels: they cost simulation time only in
+# the clocks that use them.)
 # One set of options for every build: -Wall (make lint keeps it at zero warnings), assertions on,
 # registers without reset start random (the design must not rely on zero initialisation),
-# single-threaded, C++ at -O2 (Verilator's default -Os is about 1.5x slower). With FORMATS the
-# waveforms stop 5 scopes deep (--trace-depth 5): every pipeline, cache and tap signal is kept, and
-# of the 8 tap decoders their ports and first levels; their deepest insides (BC7's per-mode
-# fields, subsets, anchors: 6 700 of the 10 000 traced signals) were 4 of the 14 MB of generated
-# C++. The decoders are verified on their own (RtlBlockDecode.*).
+# single-threaded, C++ at -O2 (Verilator's default -Os is about 1.5x slower).
 # TEX_VERILATOR_EXTRA_ARGS (a cache variable, empty by default) adds options to every configuration,
 # e.g. -DTEX_VERILATOR_EXTRA_ARGS=--prof-cfuncs in a separate build tree to see which always
 # block the simulation time goes to (docs/performance.md, "Profiling the Verilated RTL").
@@ -40,7 +37,6 @@ function(verilate_tex_unit target prefix log2_w log2_h)
   endif()
   set(top tex_unit)
   set(cache_params "")
-  set(trace_depth "")
   if(ARG_CACHED)
     set(top tex_unit_cached)
     list(GET ARG_CACHED 0 bw)
@@ -52,7 +48,6 @@ function(verilate_tex_unit target prefix log2_w log2_h)
     set(formats 0)
     if(ARG_FORMATS)
       set(formats 1)
-      set(trace_depth --trace-depth 5)
     endif()
     set(cache_params -GBLOCK_W=${bw} -GBLOCK_H=${bh} -GLINES=${lines} -GFIFO_DEPTH=${fifo} -GMEM_W=${mem_w}
                      -GMISS_DEPTH=${miss} -GBLOCK_FORMATS=${formats} -GSRGB=${formats})
@@ -63,7 +58,7 @@ function(verilate_tex_unit target prefix log2_w log2_h)
     SOURCES ${waivers} ${sources}
     VERILATOR_ARGS -Wall --assert -I${PROJECT_SOURCE_DIR}/rtl -GMAX_LOG2_W=${log2_w} -GMAX_LOG2_H=${log2_h} -GCW=${ARG_CW} -GTAG_W=16
                    ${cache_params}
-                   --x-assign unique --x-initial unique ${trace_depth} ${TEX_VERILATOR_EXTRA_ARGS}
+                   --x-assign unique --x-initial unique ${TEX_VERILATOR_EXTRA_ARGS}
     OPT_FAST -O2
     OPT_GLOBAL -O2
     OPT_SLOW -O1)

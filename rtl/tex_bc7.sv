@@ -1,30 +1,20 @@
 // tex_bc7: one texel of a BC7 block (ARB_texture_compression_bptc; docs/numerics.md
 // "Block-compressed formats"). The mode is the number of zeros below the low byte's lowest one;
-// one tex_bc7_mode per mode reads the block's fields as that mode, the block's own is kept, its
-// indices are read by one shifter (for all modes: the 128-bit shifts are most of the area), the
-// weights looked up, and each channel is ((64 - w) e0 + w e1 + 32) >> 6; then the rotation swaps
-// A with R, G or B. The reserved mode 8 (low byte 0) gives (0, 0, 0, 0), as D3D11 says.
-// Handshake: none (combinational; the cached unit's taps). Latency: 0. Throughput: 1 per clock.
-// Ports:
-//   block : the 128-bit block, byte i at bits 8i+7..8i (little-endian, as memory holds it)
-//   texel : 0..15, x + 4 y inside the block
-//   rgba  : unorm8 R (bits 7..0), G, B, A (31..24)
-module tex_bc7 (
-  input  logic [127:0] block,
-  input  logic [3:0]   texel,
-  output logic [31:0]  rgba
-);
-  logic [2:0]  mode;
-  logic        reserved;
-  always_comb begin
-    mode = 3'd0;
-    for (int m = 7; m >= 0; m--)
-      if (block[m]) mode = 3'(m);
-  end
-  assign reserved = block[7:0] == 8'd0;
-
-  // The partition (modes 0: 4 bits, 1, 2, 3, 7: 6 bits after the mode bits), read once: the
-  // texel's subset, the anchors (an anchor's index has one bit less) for whichever mode it is.
+// the block's fields are read as that mode (Table.M) at constant offsets, one reading per mode of
+// which the block's own is kept, its indices are read by one shifter (for all modes: the 128-bit
+// shifts are most of the area), the weights looked up, and each channel is
+// ((64 - w) e0 + w e1 + 32) >> 6; then the rotation swaps A with R, G or B. The reserved mode 8
+// (low byte 0) gives (0, 0, 0, 0), as D3D11 says.
+// A function, not a module: a simulator evaluates it only for the taps that read a BC7 block
+// (and, inside, only the block's own mode), where a module would be evaluated every clock.
+// Handshake: none (combinational). Latency: 0. Throughput: 1 per call (8 calls per clock).
+// rgba(block, texel):
+//   block  : the 128-bit block, byte i at bits 8i+7..8i (little-endian, as memory holds it)
+//   texel  : 0..15, x + 4 y inside the block
+//   result : unorm8 R (bits 7..0), G, B, A (31..24)
+package tex_bc7;
+  // The partition (modes 0: 4 bits, 1, 2, 3, 7: 6 bits after the mode bits) gives the texel's
+  // subset and the anchors (an anchor's index has one bit less), for whichever mode it is.
   // partition2 (Table.P2: bit t = the subset of texel t)
   function automatic logic [15:0] partition2(input logic [5:0] p);
     case (p)
@@ -376,48 +366,6 @@ module tex_bc7 (
     endcase
   endfunction
 
-  logic [1:0]  subsets;         // of the mode: 1..3
-  logic [5:0]  part;
-  logic [15:0] p2;
-  logic [31:0] p3;
-  logic [1:0]  subset, earlier;
-  logic [3:0]  anchor_1, anchor_2;
-  logic        is_anchor;
-  always_comb begin
-    case (mode)
-      3'd0:    begin subsets = 2'd3; part = {2'd0, block[4:1]}; end
-      3'd1:    begin subsets = 2'd2; part = block[7:2];         end
-      3'd2:    begin subsets = 2'd3; part = block[8:3];         end
-      3'd3:    begin subsets = 2'd2; part = block[9:4];         end
-      3'd7:    begin subsets = 2'd2; part = block[13:8];        end
-      default: begin subsets = 2'd1; part = 6'd0;               end
-    endcase
-  end
-  assign p2        = partition2(part);
-  assign p3        = partition3(part);
-  assign subset    = subsets == 2'd1 ? 2'd0 : subsets == 2'd2 ? {1'b0, p2[texel]} : p3[2 * texel +: 2];
-  assign anchor_1  = subsets == 2'd2 ? anchor2(part) : anchor3a(part);
-  assign anchor_2  = anchor3b(part);
-  assign is_anchor = texel == 4'd0 || (subsets != 2'd1 && texel == anchor_1) || (subsets == 2'd3 && texel == anchor_2);
-  assign earlier   = 2'(subsets != 2'd1 && anchor_1 < texel) + 2'(subsets == 2'd3 && anchor_2 < texel);
-
-  // Each mode's reading, mode m at [m * width +: width] (flat: Yosys keeps wires, not memories).
-  logic [8*32-1:0] e0, e1;
-  logic [8*7-1:0]  index_at, index2_at;
-  logic [8*4-1:0]  index_mask, index2_mask;
-  logic [8*3-1:0]  index_bits, index2_bits;
-  logic [7:0]      select;
-  logic [8*2-1:0]  rotation;
-  generate
-    for (genvar m = 0; m < 8; m++) begin : g_mode
-      tex_bc7_mode #(.MODE(m)) u_mode (
-        .block(block), .texel(texel), .subset(subset), .is_anchor(is_anchor), .earlier(earlier), .e0(e0[32 * m +: 32]), .e1(e1[32 * m +: 32]), .index_at(index_at[7 * m +: 7]),
-        .index_mask(index_mask[4 * m +: 4]), .index2_at(index2_at[7 * m +: 7]), .index2_mask(index2_mask[4 * m +: 4]),
-        .index_bits(index_bits[3 * m +: 3]), .index2_bits(index2_bits[3 * m +: 3]), .select(select[m]),
-        .rotation(rotation[2 * m +: 2]));
-    end
-  endgenerate
-
   // Interpolation weights in 64ths of 2-, 3- and 4-bit indices.
   function automatic logic [6:0] weight(input logic [2:0] bits, input logic [3:0] i);
     logic [6:0] w;
@@ -442,48 +390,137 @@ module tex_bc7 (
     weight = w;
   endfunction
 
-  logic [31:0] a, b, mixed;
-  logic [6:0]  wc, wa;
-  logic [1:0]  rot;
-  logic [3:0]  index, index2;    // this texel's, from the one shifter
-  logic [2:0]  ib, ib2;
-  logic        sel;
-  assign a   = e0[32 * mode +: 32];
-  assign b   = e1[32 * mode +: 32];
-  assign rot    = rotation[2 * mode +: 2];
-  assign index  = 4'(block >> index_at[7 * mode +: 7]) & index_mask[4 * mode +: 4];
-  assign index2 = 4'(block >> index2_at[7 * mode +: 7]) & index2_mask[4 * mode +: 4];
-  assign ib     = index_bits[3 * mode +: 3];
-  assign ib2    = index2_bits[3 * mode +: 3];
-  assign sel    = select[mode];
-  // Colour from the secondary index when the selection bit is 1; alpha from it when there is one
-  // and the bit is 0.
-  assign wc     = (ib2 != 3'd0 && sel) ? weight(ib2, index2) : weight(ib, index);
-  assign wa     = (ib2 != 3'd0 && !sel) ? weight(ib2, index2) : weight(ib, index);
-  generate
-    for (genvar c = 0; c < 4; c++) begin : g_channel
+  // bits (at most 8) of the block from bit `at`
+  function automatic logic [7:0] field(input logic [127:0] block, input int at, input int bits);
+    field = 8'(block >> at) & 8'((1 << bits) - 1);
+  endfunction
+
+  function automatic logic [31:0] rgba(input logic [127:0] block, input logic [3:0] texel);
+    logic [2:0]  mode;
+    logic [1:0]  subsets;         // of the mode: 1..3
+    logic [5:0]  part;
+    logic [15:0] p2;
+    logic [31:0] p3;
+    logic [1:0]  subset, earlier;
+    logic [3:0]  anchor_1, anchor_2;
+    logic        is_anchor;
+    // Table.M for one mode: subsets, partition, rotation and index-selection bits, colour and
+    // alpha bits, P-bits per endpoint or shared per subset, index and secondary index bits; then
+    // where each field starts (the last ends at bit 128).
+    int          ns, pb, rb, isb, cb, ab, epb, spb, ib, ib2;
+    int          p_at, r_at, s_at, c_at, a_at, ep_at, sp_at, i_at, i2_at;
+    int          stored, nb;      // a channel's stored bits, and with its P-bit
+    // The block's mode's reading for this texel.
+    logic [31:0] e0, e1;          // unorm8 RGBA endpoints of the texel's subset
+    logic [6:0]  index_at, index2_at;
+    logic [3:0]  index_mask, index2_mask;
+    logic [2:0]  ibits, ib2bits;
+    logic        sel;             // colour from the secondary index (mode 4)
+    logic [1:0]  rot;             // swap A with nothing, R, G or B (modes 4, 5)
+    logic        pbit;
+    logic [7:0]  raw, value;
+    logic [3:0]  index, index2;   // this texel's, from the one shifter
+    logic [6:0]  wc, wa, w;       // weights of e1 in 64ths: colour, alpha, this channel
+    logic signed [8:0]  diff;     // e1 - e0
+    logic signed [16:0] sum;      // 64 e0 + (e1 - e0) w + 32, in [0, 64 * 255 + 32]
+    logic [31:0] mixed, out;
+
+    mode = 3'd0;
+    for (int m = 7; m >= 0; m--)
+      if (block[m]) mode = 3'(m);
+    case (mode)
+      3'd0:    begin subsets = 2'd3; part = {2'd0, block[4:1]}; end
+      3'd1:    begin subsets = 2'd2; part = block[7:2];         end
+      3'd2:    begin subsets = 2'd3; part = block[8:3];         end
+      3'd3:    begin subsets = 2'd2; part = block[9:4];         end
+      3'd7:    begin subsets = 2'd2; part = block[13:8];        end
+      default: begin subsets = 2'd1; part = 6'd0;               end
+    endcase
+    p2        = partition2(part);
+    p3        = partition3(part);
+    subset    = subsets == 2'd1 ? 2'd0 : subsets == 2'd2 ? {1'b0, p2[texel]} : p3[2 * texel +: 2];
+    anchor_1  = subsets == 2'd2 ? anchor2(part) : anchor3a(part);
+    anchor_2  = anchor3b(part);
+    is_anchor = texel == 4'd0 || (subsets != 2'd1 && texel == anchor_1) || (subsets == 2'd3 && texel == anchor_2);
+    earlier   = 2'(subsets != 2'd1 && anchor_1 < texel) + 2'(subsets == 2'd3 && anchor_2 < texel);
+
+    {e0, e1, index_at, index2_at, index_mask, index2_mask, ibits, ib2bits, sel, rot} = '0;
+    // Each mode at its constant offsets (m is a constant in each unrolled pass), the block's kept.
+    for (int m = 0; m < 8; m++)
+      if (mode == 3'(m)) begin
+        ns  = (m == 0 || m == 2) ? 3 : (m == 1 || m == 3 || m == 7) ? 2 : 1;
+        pb  = m == 0 ? 4 : (m == 1 || m == 2 || m == 3 || m == 7) ? 6 : 0;
+        rb  = (m == 4 || m == 5) ? 2 : 0;
+        isb = m == 4 ? 1 : 0;
+        cb  = m == 0 ? 4 : m == 1 ? 6 : (m == 2 || m == 4 || m == 7) ? 5 : 7;
+        ab  = m == 4 ? 6 : m == 5 ? 8 : m == 6 ? 7 : m == 7 ? 5 : 0;
+        epb = (m == 0 || m == 3 || m == 6 || m == 7) ? 1 : 0;
+        spb = m == 1 ? 1 : 0;
+        ib  = (m == 0 || m == 1) ? 3 : m == 6 ? 4 : 2;
+        ib2 = m == 4 ? 3 : m == 5 ? 2 : 0;
+        p_at  = m + 1;
+        r_at  = p_at + pb;
+        s_at  = r_at + rb;
+        c_at  = s_at + isb;
+        a_at  = c_at + 6 * ns * cb;
+        ep_at = a_at + 2 * ns * ab;
+        sp_at = ep_at + 2 * ns * epb;
+        i_at  = sp_at + ns * spb;
+        i2_at = i_at + 16 * ib - ns;
+        // Texel t's index starts ib t bits in, less one per earlier anchor (texel 0 is subset
+        // 0's); an anchor texel's index has one bit less.
+        index_at    = 7'(i_at + 32'(texel) * ib - 32'(texel != 4'd0) - 32'(earlier));
+        index2_at   = 7'(i2_at + 32'(texel) * ib2 - 32'(texel != 4'd0));
+        index_mask  = 4'((1 << (is_anchor ? ib - 1 : ib)) - 1);
+        index2_mask = ib2 == 0 ? 4'd0 : 4'((1 << (texel == 4'd0 ? ib2 - 1 : ib2)) - 1);
+        ibits       = 3'(ib);
+        ib2bits     = 3'(ib2);
+        sel         = isb > 0 ? block[s_at] : 1'b0;
+        rot         = rb > 0 ? 2'(block >> r_at) : 2'd0;
+        // Each field at its constant offset for every subset, the texel's subset kept (a select
+        // at a variable offset would be a 128-bit shifter per field).
+        for (int e = 0; e < 2; e++)
+          for (int c = 0; c < 4; c++) begin
+            stored = c < 3 ? cb : ab;
+            nb     = stored + epb + spb;
+            {pbit, raw} = '0;
+            for (int s = 0; s < 3; s++)
+              if (s < ns && subset == 2'(s)) begin
+                pbit = epb > 0 ? block[ep_at + 2 * s + e] : spb > 0 ? block[sp_at + s] : 1'b0;
+                raw  = c < 3 ? field(block, c_at + ((c * ns + s) * 2 + e) * cb, cb)
+                             : field(block, a_at + (s * 2 + e) * ab, ab);
+              end
+            // (raw, P-bit) in the top nb bits, then its top bits again below them.
+            value = epb + spb > 0 ? 8'({raw, pbit} << (8 - nb)) : 8'(raw << (8 - nb));
+            value = stored == 0 ? 8'd255 : value | 8'(value >> nb);
+            // (channel c ends at bits 8c..: no write at a variable index, which a function
+            // that is not inlined cannot have in Verilator)
+            if (e == 0) e0 = {value, e0[31:8]};
+            else e1 = {value, e1[31:8]};
+          end
+      end
+
+    index  = 4'(block >> index_at) & index_mask;
+    index2 = 4'(block >> index2_at) & index2_mask;
+    // Colour from the secondary index when the selection bit is 1; alpha from it when there is one
+    // and the bit is 0.
+    wc = (ib2bits != 3'd0 && sel) ? weight(ib2bits, index2) : weight(ibits, index);
+    wa = (ib2bits != 3'd0 && !sel) ? weight(ib2bits, index2) : weight(ibits, index);
+    mixed = '0;
+    for (int c = 0; c < 4; c++) begin
       // ((64 - w) e0 + w e1 + 32) >> 6 with one multiply: (64 e0 + w (e1 - e0) + 32) >> 6.
-      logic [6:0]         w;     // the weight of e1 in 64ths
-      logic signed [8:0]  diff;  // e1 - e0
-      logic signed [16:0] step;  // (e1 - e0) w, |step| <= 255 * 64
-      logic signed [16:0] sum;   // 64 e0 + step + 32, in [0, 64 * 255 + 32]
-      logic [8:0]         sum_rest_unused;
-      assign w    = c < 3 ? wc : wa;
-      assign diff = $signed({1'b0, b[8 * c +: 8]}) - $signed({1'b0, a[8 * c +: 8]});
-      assign step = diff * $signed({1'b0, w});
-      assign sum  = $signed({3'd0, a[8 * c +: 8], 6'd0}) + step + 17'sd32;
-      assign mixed[8 * c +: 8] = sum[13:6];
-      assign sum_rest_unused = {sum[16:14], sum[5:0]};
+      w    = c < 3 ? wc : wa;
+      diff = $signed({1'b0, e1[8 * c +: 8]}) - $signed({1'b0, e0[8 * c +: 8]});
+      sum  = $signed({3'd0, e0[8 * c +: 8], 6'd0}) + diff * $signed({1'b0, w}) + 17'sd32;
+      mixed = {8'(sum >>> 6), mixed[31:8]};
     end
-  endgenerate
-  always_comb begin
-    rgba = mixed;
+    out = mixed;
     case (rot)
-      2'd1: begin rgba[7:0] = mixed[31:24];   rgba[31:24] = mixed[7:0];   end
-      2'd2: begin rgba[15:8] = mixed[31:24];  rgba[31:24] = mixed[15:8];  end
-      2'd3: begin rgba[23:16] = mixed[31:24]; rgba[31:24] = mixed[23:16]; end
+      2'd1: begin out[7:0] = mixed[31:24];   out[31:24] = mixed[7:0];   end
+      2'd2: begin out[15:8] = mixed[31:24];  out[31:24] = mixed[15:8];  end
+      2'd3: begin out[23:16] = mixed[31:24]; out[31:24] = mixed[23:16]; end
       default: ;
     endcase
-    if (reserved) rgba = 32'd0;
-  end
-endmodule
+    rgba = block[7:0] == 8'd0 ? 32'd0 : out;
+  endfunction
+endpackage

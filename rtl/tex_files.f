@@ -20,7 +20,6 @@ rtl/tex_unit.sv
 rtl/tex_cache_tags.sv
 rtl/tex_bc_colour.sv
 rtl/tex_bc_channel.sv
-rtl/tex_bc7_mode.sv
 rtl/tex_bc7.sv
 rtl/tex_bc_decode.sv
 rtl/tex_srgb_decode.sv

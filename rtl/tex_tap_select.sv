@@ -2,8 +2,10 @@
 // sample's 8 taps (tap i = slot*4 + t; slot 0 level d in cache c0, slot 1 level d1 in the other;
 // t bit 0 the second x tap, bit 1 the second y tap). Each tap reads the bank of its parity (of its
 // texel, or of its 4x4 block) at that bank's offset: a texel of the word, or a block decoded by
-// one tex_bc_decode per tap (BLOCK_FORMATS); with SRGB an sRGB texture's R, G, B through
-// tex_srgb_decode (24 per sample), its alpha widened exactly.
+// the function tex_bc_decode per tap (BLOCK_FORMATS); with SRGB an sRGB texture's R, G, B through
+// the function tex_srgb_decode (24 per sample), its alpha widened exactly. The decoders are
+// functions called only for the taps that need them: a simulator spends nothing on them in the
+// clocks that read RGBA8 texels (as modules, Verilator evaluated all 8 every clock).
 // Handshake: none (combinational). Everything is 0 unless `valid` (a sample is in T), so that a
 // simulator skips the taps in the clocks in between.
 // Latency: 0. Throughput: 8 taps per clock.
@@ -44,7 +46,7 @@ module tex_tap_select #(
 );
   /*verilator inline_module*/  // (one evaluation with its caller, as before the split)
   logic blk;
-  assign blk = fmt != tex_pkg::FMT_RGBA8;
+  assign blk = (BLOCK_FORMATS != 0) && fmt != tex_pkg::FMT_RGBA8;  // (the table keeps RGBA8 without them)
 
   // Each tap's bank and its offset in the bank's word (only while a sample is in T).
   logic [8*2-1:0]   tap_bank;    // tap i's bank at [i*2 +: 2]
@@ -71,64 +73,65 @@ module tex_tap_select #(
   `define TAP_AT(i, n) (32'(tap_bank[(i)*2 +: 2])*WW + 32'(tap_offset[(i)*OFW +: OFW])*(n))
   `define TAP_BITS(i, n) (tap_cache[i] ? word1[`TAP_AT(i, n) +: (n)] : word0[`TAP_AT(i, n) +: (n)])
 
-  genvar b;
-  logic [8*DWC-1:0] decoded;  // tap i's texel of a block format at [i*DWC +: DWC]
+  // Each tap's texel as the cache holds its channels: from its bank word, or decoded from its
+  // block. The decoder is a function called inside the taps' condition (not a module, which a
+  // simulator would evaluate every clock): the clocks without a block sample cost nothing.
+  logic [8*DWC-1:0] cached;
   generate
     if (BLOCK_FORMATS != 0) begin : g_decode
-      // One decoder per tap (all 8 texels of a trilinear sample in this clock); their inputs
-      // are 0 unless a block-format sample is in T.
-      logic [8*128-1:0] dec_block;
-      logic [8*4-1:0]   dec_texel;
       always_comb begin
-        dec_block = '0;
-        dec_texel = '0;
+        logic [63:0]  block8;
+        logic [127:0] block;  // (8-byte blocks in the low half; a word holds whole blocks, WW >= 128)
+        logic [31:0]  rgba;   // the tap's texel, unorm8
+        {block8, block, rgba} = '0;
+        cached = '0;
         if (valid && blk)
           for (int i = 0; i < 8; i++) begin
-            // (8-byte blocks: the low half; a word holds whole blocks, WW >= 128 with the formats)
-            if (tex_pkg::line_kind(fmt) == tex_pkg::LINE_BLOCKS8)
-              dec_block[i*128 +: 64] = `TAP_BITS(i, 64);
-            else
-              dec_block[i*128 +: 128] = `TAP_BITS(i, 128);
-            dec_texel[i*4 +: 4] = {low[(i/4*4 + 2 + i%4/2)*PB +: 2], low[(i/4*4 + i%2)*PB +: 2]};
+            if (tex_pkg::line_kind(fmt) == tex_pkg::LINE_BLOCKS8) begin
+              block8 = `TAP_BITS(i, 64);
+              block  = 128'(block8);
+            end else
+              block = `TAP_BITS(i, 128);
+            rgba = tex_bc_decode::rgba(fmt, block, {low[(i/4*4 + 2 + i%4/2)*PB +: 2], low[(i/4*4 + i%2)*PB +: 2]});
+            cached[i*DWC +: DWC] = DWC'(rgba);
           end
+        else if (valid)
+          for (int i = 0; i < 8; i++)
+            cached[i*DWC +: DWC] = `TAP_BITS(i, DWC);
       end
-      for (b = 0; b < 8; b = b + 1) begin : g_tap
-        logic [31:0] rgba;
-        tex_bc_decode u_dec (.format(fmt), .block(dec_block[b*128 +: 128]), .texel(dec_texel[b*4 +: 4]),
-                             .rgba(rgba));
-        assign decoded[b*DWC +: DWC] = DWC'(rgba);
+    end else begin : g_texels
+      always_comb begin
+        cached = '0;
+        if (valid)
+          for (int i = 0; i < 8; i++)
+            cached[i*DWC +: DWC] = `TAP_BITS(i, DWC);
       end
-    end else begin : g_no_decode
-      assign decoded = '0;
     end
   endgenerate
 
-  // Each tap's texel as the cache holds its channels: from its bank word, or decoded.
-  logic [8*DWC-1:0] cached;
-  always_comb begin
-    cached = '0;
-    if (valid)
-      for (int i = 0; i < 8; i++)
-        cached[i*DWC +: DWC] = blk ? decoded[i*DWC +: DWC]
-                                   : `TAP_BITS(i, DWC);
-  end
-
   // SRGB: the 8-bit channels into the CW = 16 filter. An sRGB texture's R, G, B through the decode
-  // table (24 ROM reads per sample), its alpha widened exactly (a * 257 = {a, a}); a linear
-  // texture's channels as they are (the filter's arithmetic is exact, so 8-bit values give the
-  // 8-bit filter's result in the low bits).
+  // table (24 reads per sample, called only for sRGB textures), its alpha widened exactly
+  // (a * 257 = {a, a}); a linear texture's channels as they are (the filter's arithmetic is exact,
+  // so 8-bit values give the 8-bit filter's result in the low bits).
   generate
     if (SRGB != 0) begin : g_srgb
-      for (b = 0; b < 8; b = b + 1) begin : g_tap
-        logic [47:0] rgb;  // linear unorm16 R, G, B
-        logic [7:0]  a;
-        for (genvar k = 0; k < 3; k = k + 1) begin : g_channel
-          tex_srgb_decode u_rom (.code(cached[b*32 + k*8 +: 8]), .linear(rgb[k*16 +: 16]));
-        end
-        assign a = cached[b*32 + 24 +: 8];
-        assign texels[b*DW +: DW] = srgb ? DW'({a, a, rgb})
-                                         : DW'({8'd0, a, 8'd0, cached[b*32 + 16 +: 8], 8'd0, cached[b*32 + 8 +: 8],
-                                                8'd0, cached[b*32 +: 8]});
+      // (two loops under one `if`, not an `if` per tap: Verilator turns an if/else of two single
+      // assignments into a ?: and then calls the functions before it, in every clock)
+      always_comb begin
+        logic [31:0] t;
+        t = '0;
+        texels = '0;
+        if (valid && srgb)
+          for (int i = 0; i < 8; i++) begin
+            t = cached[i*32 +: 32];
+            texels[i*DW +: DW] = DW'({t[31:24], t[31:24], tex_srgb_decode::linear(t[23:16]),
+                                      tex_srgb_decode::linear(t[15:8]), tex_srgb_decode::linear(t[7:0])});
+          end
+        else
+          for (int i = 0; i < 8; i++) begin
+            t = cached[i*32 +: 32];
+            texels[i*DW +: DW] = DW'({8'd0, t[31:24], 8'd0, t[23:16], 8'd0, t[15:8], 8'd0, t[7:0]});
+          end
       end
     end else begin : g_linear
       logic srgb_unused;  // (no sRGB textures without SRGB)

@@ -64,27 +64,29 @@ if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt r
   exit 1
 fi
 echo "lint: verilator -Wall clean for tex_lambda"
-# The block decoders on their own (tex_unit_cached has 8 of them), and the elaboration check of
-# tex_bc7_mode's MODE.
-if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_channel.sv \
-             rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv --top-module tex_bc_decode 2>&1) ||
-   [ -n "$out" ]; then
+# The block decoders and the sRGB table on their own, through their harnesses (tex_unit_cached's
+# taps call them; linted there too).
+if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
+             rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
+             --top-module tex_bc_decode_top 2>&1) || [ -n "$out" ]; then
   echo "$out" >&2
   echo "lint: FAILED for tex_bc_decode" >&2
   exit 1
 fi
-if out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc7_mode.sv \
-           --top-module tex_bc7_mode -GMODE=8 2>&1) || ! grep -q "tex_bc7_mode: parameter MODE must be in 0..7" <<< "$out"; then
+if out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
+           rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
+           --top-module tex_bc_decode_top -GFORMAT=8 2>&1) || ! grep -q "tex_bc_decode_top: parameter FORMAT must be" <<< "$out"; then
   echo "$out" >&2
-  echo "lint: tex_bc7_mode's MODE check did not fire for MODE=8" >&2
+  echo "lint: tex_bc_decode_top's FORMAT check did not fire for FORMAT=8" >&2
   exit 1
 fi
-if ! out=$(verilator --lint-only -Irtl -Wall rtl/tex_srgb_decode.sv --top-module tex_srgb_decode 2>&1) || [ -n "$out" ]; then
+if ! out=$(verilator --lint-only -Irtl -Wall rtl/tex_srgb_decode.sv rtl/synth/tex_srgb_decode_top.sv \
+             --top-module tex_srgb_decode_top 2>&1) || [ -n "$out" ]; then
   echo "$out" >&2
   echo "lint: FAILED for tex_srgb_decode" >&2
   exit 1
 fi
-echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7) and tex_srgb_decode; MODE check fires for tex_bc7_mode MODE=8"
+echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7) and tex_srgb_decode; FORMAT check fires for FORMAT=8"
 # The AXI4-Lite configuration slave on its own (-Wno-UNUSEDPARAM: alone it uses few of tex_pkg's
 # constants; inside tex_unit_axi below it is linted with all warnings), and the AXI top.
 lint_axil() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_axil_config.sv \

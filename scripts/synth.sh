@@ -227,32 +227,37 @@ if [ "${SYNTH_REFERENCE:-1}" != 0 ]; then
   done
 fi
 
-# ---- the block decoders (docs/numerics.md): one texel per decoder, combinational; the cached unit
-# takes 8 per sample. synth_ice40 and synth_ecp5 LUTs per decoder, no latches; a table in
+# ---- the block decoders (docs/numerics.md): one texel per call, combinational; the cached unit's
+# taps call them 8 times per sample (the sRGB table 24 times). Each through its harness
+# (rtl/synth/tex_bc_decode_top.sv with FORMAT fixing a format, so that only that format's decoder
+# is kept; tex_srgb_decode_top.sv): synth_ice40 and synth_ecp5 LUTs, no latches; a table in
 # BUILD/synth/decoders.md.
 if [ "${SYNTH_DECODERS:-1}" != 0 ]; then
 # (one line: a newline inside `yosys -p` ends a command)
-decoder_files="rtl/tex_pkg.sv rtl/tex_bc_channel.sv rtl/tex_bc_colour.sv rtl/tex_bc7_mode.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/tex_srgb_decode.sv"
-decoders=("tex_bc_colour:BC1 (and the colour of BC2, BC3)" "tex_bc_channel:BC4 (and BC3's alpha, each half of BC5)"
-          "tex_bc7:BC7" "tex_bc_decode:every format (what the cached unit's taps will take)"
-          "tex_srgb_decode:sRGB, one channel (3 per texel)")
+decoder_files="rtl/tex_pkg.sv rtl/tex_bc_colour.sv rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/tex_srgb_decode.sv rtl/synth/tex_bc_decode_top.sv rtl/synth/tex_srgb_decode_top.sv"
+# name:top:FORMAT (empty: none):what
+decoders=("bc1:tex_bc_decode_top:1:BC1 (tex_bc_colour; also the colour of BC2, BC3)"
+          "bc4:tex_bc_decode_top:4:BC4 (tex_bc_channel; also BC3's alpha, each half of BC5)"
+          "bc7:tex_bc_decode_top:7:BC7 (tex_bc7)" "all:tex_bc_decode_top::every format (what each tap calls)"
+          "srgb:tex_srgb_decode_top::sRGB, one channel (tex_srgb_decode; 3 per texel)")
 {
   echo "| decoder | formats | iCE40 SB_LUT4 | iCE40 SB_CARRY | ECP5 LUT4 | ECP5 CCU2C | ECP5 MULT18X18D |"
   echo "|---|---|---|---|---|---|---|"
 } > "$out/decoders.md"
 for d in "${decoders[@]}"; do
-  top=${d%%:*}
-  what=${d#*:}
+  IFS=: read -r name top format what <<< "$d"
+  param=""
+  [ -n "$format" ] && param="chparam -set FORMAT $format $top;"
   for target in ice40 ecp5; do
-    if ! yosys -p "read_verilog -sv $decoder_files; synth_$target -top $top; tee -o $out/${target}_$top.stat stat;
-                   select -assert-none t:\$dlatch t:\$_DLATCH* t:LATCH*" > "$out/${target}_$top.log" 2>&1; then
-      tail -20 "$out/${target}_$top.log" >&2
-      echo "synth: FAILED synth_$target of $top, see $out/${target}_$top.log" >&2
+    if ! yosys -p "read_verilog -sv -Irtl $decoder_files; $param synth_$target -top $top; tee -o $out/${target}_decoder_$name.stat stat;
+                   select -assert-none t:\$dlatch t:\$_DLATCH* t:LATCH*" > "$out/${target}_decoder_$name.log" 2>&1; then
+      tail -20 "$out/${target}_decoder_$name.log" >&2
+      echo "synth: FAILED synth_$target of decoder $name, see $out/${target}_decoder_$name.log" >&2
       exit 1
     fi
   done
-  count() { awk -v c="$2" '$1 == c {n = $2} END {print n + 0}' "$out/$1_$top.stat"; }
-  row="| $top | $what | $(count ice40 SB_LUT4) | $(count ice40 SB_CARRY) | $(count ecp5 LUT4) | $(count ecp5 CCU2C) | $(count ecp5 MULT18X18D) |"
+  count() { awk -v c="$2" '$1 == c {n = $2} END {print n + 0}' "$out/$1_decoder_$name.stat"; }
+  row="| $name | $what | $(count ice40 SB_LUT4) | $(count ice40 SB_CARRY) | $(count ecp5 LUT4) | $(count ecp5 CCU2C) | $(count ecp5 MULT18X18D) |"
   echo "$row" >> "$out/decoders.md"
   echo "synth: decoder $row"
 done

@@ -339,7 +339,7 @@ TEST(RtlCached, NonSquareRgba8) {
 // after the cache: samples, miss streams and response clocks against the model. (The cache bins
 // above are RGBA8's line shape; these lines are wider.)
 TEST(RtlCached, BlockFormats) {
-  run_suite({"Vtex_cached_13x13_formats", {{64, 8}, {61, 7}, {32, 4}, {4, 4}, {13, 5}, {64, 4}, {16, 8}, {30, 6}}, 32, 6000, false,
+  run_suite({"Vtex_cached_13x13", {{64, 8}, {61, 7}, {32, 4}, {4, 4}, {13, 5}, {64, 4}, {16, 8}, {30, 6}}, 32, 6000, false,
              {TexelFormat::Bc1, TexelFormat::Bc2, TexelFormat::Bc3, TexelFormat::Bc4, TexelFormat::Bc5,
               TexelFormat::Bc7}});
 }
@@ -348,7 +348,7 @@ TEST(RtlCached, BlockFormats) {
 // other case (RGBA8, BC1, BC2, BC3, BC7) and linear in the others (8-bit values through the 16-bit
 // filter), against the model's linear unorm16 samples.
 TEST(RtlCached, SrgbAndLinearEveryFormat) {
-  run_suite({"Vtex_cached_13x13_formats", {{64, 8}, {32, 4}, {50, 6}, {4, 4}, {64, 4}, {9, 11}, {32, 4}}, 28, 4000, false,
+  run_suite({"Vtex_cached_13x13", {{64, 8}, {32, 4}, {50, 6}, {4, 4}, {64, 4}, {9, 11}, {32, 4}}, 28, 4000, false,
              {TexelFormat::Rgba8, TexelFormat::Bc1, TexelFormat::Bc7, TexelFormat::Bc4, TexelFormat::Bc3,
               TexelFormat::Bc2, TexelFormat::Bc5},
              true});
@@ -466,8 +466,8 @@ TEST(RtlCached, DescriptorAndSamplerTablesInterleave) { run_descriptor_tables("V
 // With the sRGB tables (CW 16 filter, 8-bit memory): sRGB and linear textures of every format mixed
 // in one table; a model that filters an sRGB texture's codes as linear values is caught.
 TEST(RtlCached, DescriptorTableMixesSrgbAndLinear) {
-  run_descriptor_tables("Vtex_cached_13x13_formats", 24);
-  auto unit = rtl::Driver::create(config_named("Vtex_cached_13x13_formats"), {});
+  run_descriptor_tables("Vtex_cached_13x13", 24);
+  auto unit = rtl::Driver::create(config_named("Vtex_cached_13x13"), {});
   unit->reset();
   std::mt19937_64 rng(8);
   const Pyramid srgb = build_srgb_pyramid(random_image(64, 8, 8, 4), PyramidMode::Exact);
@@ -553,7 +553,7 @@ TEST(RtlCached, CheckersCatchPlantedBugs) {
 
   // Block formats: the RTL decodes BC3 blocks, a model that reads the same bytes as BC2 (the same
   // line shape, so the same lines) sees other samples.
-  unit = rtl::Driver::create(config_named("Vtex_cached_13x13_formats"), {});
+  unit = rtl::Driver::create(config_named("Vtex_cached_13x13"), {});
   unit->reset();
   const Pyramid bc3 = random_block_texture(TexelFormat::Bc3, {64, 8}, 5);
   const Pyramid as_bc2 = pyramid_of_blocks(TexelFormat::Bc2, {64, 8}, bc3.blocks);

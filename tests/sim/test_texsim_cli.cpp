@@ -787,7 +787,7 @@ TEST_F(TexsimCli, SrgbTexturesThroughTheCli) {
   ASSERT_EQ(cm.exit_code, 0) << cm.err;
   ASSERT_EQ(ct.exit_code, 0) << ct.err;
   EXPECT_EQ(read_text(dir / "cm.csv"), read_text(dir / "ct.csv"));
-  EXPECT_EQ(nlohmann::json::parse(read_text(dir / "ct.json"))["configuration"], "Vtex_cached_13x13_formats");
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir / "ct.json"))["configuration"], "Vtex_cached_13x13");
   // Behind the TLM-2.0 socket: the same results (RTL: its sRGB tables; model backend: the lines it
   // reads, decoded to linear).
   for (const char* e : {"systemc", "systemc-model"}) {

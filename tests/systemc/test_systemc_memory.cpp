@@ -302,7 +302,7 @@ TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
     EXPECT_EQ(got_misses.lines, want_misses.lines) << name << ": the lines read, in order";
     if (b == Backend::Rtl) {
       ASSERT_TRUE(got.stats.cycle);
-      EXPECT_EQ(got.stats.cycle->configuration, "Vtex_cached_13x13_formats");
+      EXPECT_EQ(got.stats.cycle->configuration, "Vtex_cached_13x13");
     }
   }
 }

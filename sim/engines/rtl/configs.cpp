@@ -35,19 +35,26 @@ const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memo
   const RtlConfig* best = nullptr;
   const RtlConfig* largest = nullptr;
   const bool cached = memory == Memory::Cached;
+  // A unit with the formats also takes 8-bit linear textures (its filter's 16-bit channels hold
+  // their 8-bit values: the same results); among units that fit, the smallest, then one without.
+  auto takes = [&](const RtlConfig& c) {
+    return c.cached == cached && (formats ? c.formats : c.cw == cw || (c.formats && cw == 8));
+  };
+  auto area = [](const RtlConfig* c) { return c->max_log2_w + c->max_log2_h; };
   for (const RtlConfig& c : compiled_configs()) {
-    if (c.cw != cw || c.cached != cached || c.formats != formats) continue;
+    if (!takes(c)) continue;
     if (cached && (c.block_w != block_w || c.block_h != block_h)) continue;
-    const int area = c.max_log2_w + c.max_log2_h;
-    if (c.fits(log2_w, log2_h) && (!best || area < best->max_log2_w + best->max_log2_h)) best = &c;
-    if (!largest || area > largest->max_log2_w + largest->max_log2_h) largest = &c;
+    if (c.fits(log2_w, log2_h) &&
+        (!best || area(&c) < area(best) || (area(&c) == area(best) && best->formats && !c.formats)))
+      best = &c;
+    if (!largest || area(&c) > area(largest)) largest = &c;
   }
   if (best) return *best;
   if (!largest) {
     std::string built;
     for (const RtlConfig& c : compiled_configs())
       if (const std::string shape = std::to_string(c.block_w) + "x" + std::to_string(c.block_h);
-          c.cached == cached && c.cw == cw && c.formats == formats && built.find(shape) == std::string::npos)
+          takes(c) && built.find(shape) == std::string::npos)
         built += (built.empty() ? "" : ", ") + shape;
     if (cached && !built.empty())
       throw Error("no cached RTL configuration is built for " + std::to_string(block_w) + "x" +
@@ -92,7 +99,8 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
   // A larger configuration of the same kind whose caches hold the geometry asked for.
   const RtlConfig* best = nullptr;
   for (const RtlConfig& c : compiled_configs())
-    if (c.cached && c.cw == fits.cw && c.formats == fits.formats && c.block_w == block_w && c.block_h == block_h &&
+    if (c.cached && (fits.formats ? c.formats : c.cw == fits.cw || (c.formats && fits.cw == 8)) &&
+        c.block_w == block_w && c.block_h == block_h &&
         c.fits(log2_w, log2_h) && holds(c) &&
         (!best || c.max_log2_w + c.max_log2_h < best->max_log2_w + best->max_log2_h))
       best = &c;

@@ -1,0 +1,27 @@
+// tex_bc_decode_top: a harness only (not part of the design): the block decoder function
+// tex_bc_decode::rgba as a module, so that the decoder can be simulated alone (tests/rtl's
+// RtlBlockDecode.*, every texel of every block against the model) and synthesized alone
+// (scripts/synth.sh's decoder table: FORMAT fixes the format, and Yosys keeps only that
+// format's decoder; -1, the default, takes it from the port: every format).
+// Handshake: none (combinational). Latency: 0. Throughput: 1 per clock.
+// Ports:
+//   format : tex_pkg::FMT_* (used when FORMAT < 0)
+//   block  : 128 bits, byte i at bits 8i+7..8i; BC1 and BC4 use bits 63..0
+//   texel  : 0..15, x + 4 y inside the block
+//   rgba   : unorm8 R (bits 7..0), G, B, A (31..24)
+`include "tex_param_error.svh"
+module tex_bc_decode_top #(
+  parameter int FORMAT = -1
+) (
+  input  logic [tex_pkg::FORMAT_W-1:0] format,
+  input  logic [127:0]                 block,
+  input  logic [3:0]                   texel,
+  output logic [31:0]                  rgba
+);
+  generate
+    if (FORMAT < -1 || FORMAT >= (1 << tex_pkg::FORMAT_W)) begin : g_bad_format
+      `TEX_PARAM_ERROR("tex_bc_decode_top: parameter FORMAT must be -1 (the port) or a tex_pkg::FMT_* code")
+    end
+  endgenerate
+  always_comb rgba = tex_bc_decode::rgba(FORMAT < 0 ? format : tex_pkg::FORMAT_W'(FORMAT), block, texel);
+endmodule
