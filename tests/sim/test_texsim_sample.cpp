@@ -1,0 +1,438 @@
+// texsim sample and mip as documented: sizes, views, unnormalized coordinates, channels, the
+// results file, derivatives, sampler options, statistics, mip dumps and memory images. Runs this
+// build's texsim (TEXSIM_PATH).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cli_fixture.h"
+#include "engines/engine.h"
+#include "model/image.h"
+#include "model/memory_layout.h"
+#include "model/pyramid.h"
+#include "workloads/scenes.h"
+
+using namespace tex;
+namespace fs = std::filesystem;
+
+// A file of any size is sampled as it is, by the model and both RTL units alike (the same
+// samples); --resize resamples to powers of two.
+TEST_F(TexsimCli, NonPowerOfTwoIsSampledOrNamedAndResizeWorks) {
+  write_image(dir / "npot.png", 12, 5, 3, [](int x, int y, int c) { return (x * 20 + y * 7 + c * 50) & 255; });
+  queries("u,v,lod\n0.5,0.5,0\n0.25,0.75,1\n");
+  const Result m = run("sample -t npot.png -q q.csv -o m.csv");
+  EXPECT_EQ(m.exit_code, 0) << m.err;
+  std::string mh;
+  EXPECT_EQ(read_csv_rows(dir / "m.csv", mh).size(), 2u);
+  const Result onchip = run("sample -t npot.png -q q.csv -o o.csv -e rtl");
+  EXPECT_EQ(onchip.exit_code, 0) << onchip.err;
+  std::string oh;
+  EXPECT_EQ(read_csv_rows(dir / "o.csv", oh), read_csv_rows(dir / "m.csv", mh));
+  const Result cached = run("sample -t npot.png -q q.csv -o c.csv -e rtl --memory cached");
+  EXPECT_EQ(cached.exit_code, 0) << cached.err;
+  std::string ch;
+  EXPECT_EQ(read_csv_rows(dir / "c.csv", ch), read_csv_rows(dir / "m.csv", mh));
+  const Result r = run("sample -t npot.png --resize -q q.csv -o r.csv -e rtl");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::string header;
+  EXPECT_EQ(read_csv_rows(dir / "r.csv", header).size(), 2u);
+  EXPECT_EQ(header, "r,g,b,a");
+}
+
+// A view (--base-level, --max-level; a texture list's base= and max=): every engine samples the
+// same bits (the on-chip unit through cfg_last_level, the cached one through its descriptor), and
+// differently from the whole texture; bad levels are one line naming the option and the values.
+TEST_F(TexsimCli, ViewsSampleTheSameInEveryEngine) {
+  queries("u,v,lod\n0.3,0.7,0\n0.5,0.5,1.5\n0.1,0.2,3.7\n0.9,0.9,9\n-0.2,1.3,2.2\n");
+  write_image(dir / "t.png", 100, 60, 3, [](int x, int y, int c) { return (x * 37 + y * 11 + c * 90) & 255; });
+  const std::string view = "sample -t t.png -q q.csv --base-level 1 --max-level 3 ";
+  ASSERT_EQ(run(view + "-o m.csv").exit_code, 0);
+  std::string h;
+  const auto model = read_csv_rows(dir / "m.csv", h);
+  for (const char* e : {"-e rtl", "-e rtl --memory cached", "-e systemc", "-e systemc --memory cached"}) {
+    const Result r = run(view + "-o e.csv " + e);
+    EXPECT_EQ(r.exit_code, 0) << e << ": " << r.err;
+    EXPECT_EQ(read_csv_rows(dir / "e.csv", h), model) << e;
+  }
+  ASSERT_EQ(run("sample -t t.png -q q.csv -o whole.csv").exit_code, 0);
+  EXPECT_NE(read_csv_rows(dir / "whole.csv", h), model) << "the view changed nothing";
+  // the same view from a texture list
+  write_text(dir / "list.txt", "0 t.png base=1 max=3\n");
+  ASSERT_EQ(run("sample --textures list.txt -q q.csv -o l.csv -e rtl --memory cached").exit_code, 0);
+  EXPECT_EQ(read_csv_rows(dir / "l.csv", h), model);
+  expect_clean_failure("sample -t testcard:100x60 -q q.csv -o x.csv --base-level 7", "x.csv",
+                       {"--base-level 7", "levels 0 to 6"});
+  expect_clean_failure("sample -t testcard:100x60 -q q.csv -o x.csv --base-level 3 --max-level 2", "x.csv",
+                       {"--max-level 2", "--base-level 3"});
+  // a built-in pattern in a list is the pattern, wherever the list is
+  fs::create_directories(dir / "sub");
+  write_text(dir / "sub" / "p.txt", "0 testcard:100x60 base=1 max=3\n");
+  ASSERT_EQ(run("sample --textures sub/p.txt -q q.csv -o p.csv").exit_code, 0);
+  ASSERT_EQ(run("sample -t testcard:100x60 --base-level 1 --max-level 3 -q q.csv -o p2.csv").exit_code, 0);
+  EXPECT_EQ(read_csv_rows(dir / "p.csv", h), read_csv_rows(dir / "p2.csv", h));
+  write_text(dir / "deep.txt", "0 t.png\n1 t.png base=9 max=12\n");  // 100x60: levels 0 to 6
+  expect_clean_failure("sample --textures deep.txt -q q.csv -o x.csv --memory cached", "x.csv",
+                       {"deep.txt:2: base=9 max=12", "levels 0 to 6"});
+  write_text(dir / "bad.txt", "0 t.png base=x\n");
+  expect_clean_failure("sample --textures bad.txt -q q.csv -o x.csv", "x.csv", {"bad.txt:1", "base=", "not a level"});
+}
+
+// --unnormalized (Vulkan unnormalizedCoordinates, GL rectangle textures): the trace's u, v are
+// texels. On a power-of-two texture a texel coordinate x is the normalized x / w exactly, so the
+// samples equal the normalized run's; an NPOT texture samples the same in every engine, and a
+// texture list takes `unnormalized` per entry.
+TEST_F(TexsimCli, UnnormalizedCoordinatesAreTexels) {
+  queries("u,v,lod\n0.5,0.5,0\n12.25,7.75,0\n63.5,31.5,2\n-3,40,0\n70.125,-0.5,0\n31.999,16.001,0\n");
+  write_text(dir / "n.csv", "u,v,lod\n0.0078125,0.015625,0\n0.19140625,0.2421875,0\n0.9921875,0.984375,2\n"
+                            "-0.046875,1.25,0\n1.095703125,-0.015625,0\n");
+  const std::string common = " --wrap-u clamp --wrap-v border --border-color opaque-white --filter bilinear ";
+  for (const char* e : {"-e model", "-e rtl", "-e rtl --memory cached"}) {
+    // the first five queries: exact in both forms (the sixth is not: 31.999 / 64 has no Q8.24 form)
+    write_text(dir / "q5.csv", "u,v,lod\n0.5,0.5,0\n12.25,7.75,0\n63.5,31.5,2\n-3,40,0\n70.125,-0.5,0\n");
+    ASSERT_EQ(run(std::string("sample -t noise:64x32 -q q5.csv -o u.csv --unnormalized") + common + e).exit_code, 0) << e;
+    ASSERT_EQ(run(std::string("sample -t noise:64x32 -q n.csv -o n_out.csv") + common + e).exit_code, 0) << e;
+    std::string h;
+    EXPECT_EQ(read_csv_rows(dir / "u.csv", h), read_csv_rows(dir / "n_out.csv", h)) << e;
+  }
+  const std::string npot = "sample -t testcard:37x23 -q q.csv --unnormalized" + common;
+  ASSERT_EQ(run(npot + "-o m.csv").exit_code, 0);
+  std::string h;
+  const auto model = read_csv_rows(dir / "m.csv", h);
+  for (const char* e : {"-e rtl", "-e rtl --memory cached", "-e systemc", "-e systemc --memory cached"}) {
+    const Result r = run(npot + "-o e.csv " + e);
+    EXPECT_EQ(r.exit_code, 0) << e << ": " << r.err;
+    EXPECT_EQ(read_csv_rows(dir / "e.csv", h), model) << e;
+  }
+  // a texture list: entry 1 unnormalized, entry 0 normalized, one trace
+  write_text(dir / "list.txt", "0 noise:64x32 clamp border\n1 noise:64x32 clamp border unnormalized\n");
+  write_text(dir / "t.csv", "tex,u,v,lod\n0,0.19140625,0.2421875,0\n1,12.25,7.75,0\n");
+  ASSERT_EQ(run("sample --textures list.txt -q t.csv -o l.csv --filter bilinear -e rtl --memory cached").exit_code, 0);
+  const auto rows = read_csv_rows(dir / "l.csv", h);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0], rows[1]) << "texel (12.25, 7.75) is (0.19140625, 0.2421875) of a 64x32 texture";
+  // bad input: what Vulkan forbids, named; texel coordinates beyond Q16.16
+  expect_clean_failure("sample -t noise:64x32 -q q.csv -o x.csv --unnormalized --filter bilinear", "x.csv",
+                       {"--unnormalized", "clamp or border", "not repeat"});
+  expect_clean_failure("sample -t noise:64x32 -q q.csv -o x.csv --unnormalized --wrap clamp", "x.csv",
+                       {"--unnormalized", "mipmap mode linear"});
+  expect_clean_failure("sample -t noise:64x32 -q q.csv -o x.csv --unnormalized --wrap clamp --filter bilinear "
+                       "--mag-filter nearest", "x.csv", {"--unnormalized", "magnification filter nearest"});
+  write_text(dir / "far.csv", "u,v,lod\n1,2,0\n40000,2,0\n");
+  expect_clean_failure("sample -t noise:64x32 -q far.csv -o x.csv --unnormalized --wrap clamp --filter point", "x.csv",
+                       {"far.csv:3", "40000", "texels", "[-32768, 32768)"});
+  // render scales the frame's coordinates to texels: the normalized frame's picture, but for the
+  // coordinates' rounding (Q16.16 texels of u * 64 against Q8.24 of u: a weight 1/256 apart)
+  const std::string plane = "render --scene plane --width 64 --height 48 -t noise:64x32 --wrap clamp --filter bilinear ";
+  ASSERT_EQ(run(plane + "--unnormalized -e rtl --verify -o pu.png").exit_code, 0);
+  ASSERT_EQ(run(plane + "-o pn.png").exit_code, 0);
+  int w = 0, hh = 0;
+  const std::vector<uint8_t> pu = read_image(dir / "pu.png", w, hh), pn = read_image(dir / "pn.png", w, hh);
+  ASSERT_EQ(pu.size(), pn.size());
+  ASSERT_FALSE(pu.empty());
+  int worst = 0;
+  for (size_t i = 0; i < pu.size(); ++i) worst = std::max(worst, std::abs(int(pu[i]) - int(pn[i])));
+  EXPECT_LE(worst, 2);
+  expect_clean_failure("render --model no.gltf --unnormalized --wrap clamp --filter bilinear -o x.png", "x.png",
+                       {"--unnormalized", "normalized"});
+  write_text(dir / "badlist.txt", "0 noise:64x32 repeat unnormalized\n");
+  expect_clean_failure("sample --textures badlist.txt -q t.csv -o x.csv --filter bilinear --memory cached", "x.csv",
+                       {"badlist.txt:1", "not repeat"});
+}
+
+TEST_F(TexsimCli, GrayBecomesOpaqueRgbAndRgbGetsOpaqueAlpha) {
+  auto gray = [](int x, int y, int) { return 10 + x * 30 + y * 3; };
+  auto rgb = [](int x, int y, int c) { return 5 + x * 40 + y * 9 + c * 2; };
+  auto rgba = [](int x, int y, int c) { return c == 3 ? 128 : 200 - x * 20 - y - c; };  // alpha 128, not premultiplied
+  write_image(dir / "gray.png", 4, 2, 1, gray);
+  write_image(dir / "rgb.png", 4, 2, 3, rgb);
+  write_image(dir / "rgba.png", 4, 2, 4, rgba);
+  write_image(dir / "rgb.tif", 4, 2, 3, rgb);
+  // Point sampling at every texel centre, in row order.
+  std::string q = "u,v,lod\n";
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) q += std::to_string((x + 0.5) / 4) + "," + std::to_string((y + 0.5) / 2) + ",0\n";
+  queries(q);
+  for (const char* file : {"gray.png", "rgb.png", "rgba.png", "rgb.tif"}) {
+    const Result r = run(std::string("sample -f point -t ") + file + " -q q.csv -o r.csv");
+    ASSERT_EQ(r.exit_code, 0) << file << ": " << r.err;
+    std::string header;
+    const auto rows = read_csv_rows(dir / "r.csv", header);
+    ASSERT_EQ(rows.size(), 8u) << file;
+    for (int i = 0; i < 8; ++i) {
+      const int x = i % 4, y = i / 4;
+      std::vector<int> want;
+      if (file == std::string("gray.png")) want = {gray(x, y, 0), gray(x, y, 0), gray(x, y, 0), 255};
+      else if (file == std::string("rgba.png")) want = {rgba(x, y, 0), rgba(x, y, 1), rgba(x, y, 2), 128};
+      else want = {rgb(x, y, 0), rgb(x, y, 1), rgb(x, y, 2), 255};
+      EXPECT_EQ(rows[i], want) << file << " texel " << x << "," << y;
+    }
+  }
+}
+
+TEST_F(TexsimCli, ResultCsvHasHeaderAndOneLinePerQueryInOrder) {
+  // Point samples of a 16x16 noise pattern at chosen texels, with comments and blank lines between.
+  const Image tex = make_pattern("noise", 16, 16);
+  std::string q = "# leading comment\n\nu,v,lod\n";
+  std::vector<std::pair<int, int>> texels;
+  for (int i = 0; i < 40; ++i) {
+    const int x = (i * 7) % 16, y = (i * 11 + 3) % 16;
+    texels.push_back({x, y});
+    q += std::to_string((x + 0.5) / 16) + ", " + std::to_string((y + 0.5) / 16) + " ,0\n";
+    if (i % 10 == 0) q += "# comment line " + std::to_string(i) + "\n   \n";
+  }
+  queries(q);
+  const Result r = run("sample -f point -t noise:16x16 -q q.csv -o r.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  std::string header;
+  const auto rows = read_csv_rows(dir / "r.csv", header);
+  EXPECT_EQ(header, "r,g,b,a");
+  ASSERT_EQ(rows.size(), texels.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const Texel& t = tex.at(texels[i].first, texels[i].second);
+    EXPECT_EQ(rows[i], (std::vector<int>{t[0], t[1], t[2], t[3]})) << "query " << i;
+  }
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find("partial"), std::string::npos);
+}
+
+TEST_F(TexsimCli, DerivativeHeaderGivesTheSameAsExplicitLod) {
+  // 64x64 texture: du/dx = 2/64 is 2 texels per pixel -> lambda = 1; 4/64 and 3/64 -> lambda = 2.
+  queries("u,v,dudx,dvdx,dudy,dvdy\n0.3,0.6,0.03125,0,0,0.03125\n0.71,0.2,0,0.0625,0.046875,0\n0.5,0.5,0,0,0,0\n");
+  Result r = run("sample -t noise:64x64 -q q.csv -o d.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  queries("u,v,lod\n0.3,0.6,1\n0.71,0.2,2\n0.5,0.5,-128\n");
+  r = run("sample -t noise:64x64 -q q.csv -o l.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir / "d.csv"), read_text(dir / "l.csv"));
+  std::string header;
+  EXPECT_EQ(read_csv_rows(dir / "d.csv", header).size(), 3u);
+}
+
+TEST_F(TexsimCli, MipDumpLevelsWritesEveryLevel) {
+  const Result r = run("mip -t noise:64x16 --dump-levels lv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 64, 16));
+  const int sizes[7][2] = {{64, 16}, {32, 8}, {16, 4}, {8, 2}, {4, 1}, {2, 1}, {1, 1}};
+  for (int k = 0; k < 7; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "level%02d.png", k);
+    int w = 0, h = 0;
+    const auto px = read_image(dir / "lv" / name, w, h);
+    ASSERT_FALSE(px.empty()) << name;
+    EXPECT_EQ(w, sizes[k][0]) << name;
+    EXPECT_EQ(h, sizes[k][1]) << name;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 4; ++c)
+          ASSERT_EQ(px[(size_t(y) * w + x) * 4 + c], pyr.levels[k].at(x, y)[c]) << name << " " << x << "," << y;
+  }
+  EXPECT_FALSE(fs::exists(dir / "lv" / "level07.png"));
+}
+
+TEST_F(TexsimCli, MipLayoutHoldsRgbPlanesInQuadrants) {
+  const Result r = run("mip -t testcard:16x16 --layout lay.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int w = 0, h = 0;
+  const auto px = read_image(dir / "lay.png", w, h);
+  ASSERT_EQ(w, 32);
+  ASSERT_EQ(h, 32);
+  const Pyramid pyr = build_pyramid(make_pattern("testcard", 16, 16));
+  auto at = [&](int x, int y) {
+    const uint8_t* p = &px[(size_t(y) * w + x) * 4];
+    return std::vector<int>{p[0], p[1], p[2], p[3]};
+  };
+  // Level 0: R upper right, G lower left, B lower right; level 1 the same inside the upper-left quadrant.
+  for (int k = 0; k < 2; ++k) {
+    const Image& lvl = pyr.levels[k];
+    const int n = lvl.width;
+    for (auto [x, y] : {std::pair{0, 0}, std::pair{3, 5}, std::pair{n - 1, n - 1}, std::pair{n / 2, 1}}) {
+      const Texel& t = lvl.at(x, y);
+      EXPECT_EQ(at(n + x, y), (std::vector<int>{t[0], 0, 0, 255})) << "R level " << k;
+      EXPECT_EQ(at(x, n + y), (std::vector<int>{0, t[1], 0, 255})) << "G level " << k;
+      EXPECT_EQ(at(n + x, n + y), (std::vector<int>{0, 0, t[2], 255})) << "B level " << k;
+    }
+  }
+  // The 1x1 level sits at (1, 0), (0, 1), (1, 1); (0, 0) stays empty.
+  const Texel& last = pyr.levels[4].at(0, 0);
+  EXPECT_EQ(at(1, 0), (std::vector<int>{last[0], 0, 0, 255}));
+  EXPECT_EQ(at(1, 1), (std::vector<int>{0, 0, last[2], 255}));
+  EXPECT_EQ(at(0, 0), (std::vector<int>{0, 0, 0, 255}));
+}
+
+// --filter anisotropic: --stats counts the samples by probe count (every engine), and the RTL takes
+// one clock per probe. Footprints of 1, 4 and 16 texels by 1 on a 64x64 texture: N = 1, 4, 16 by
+// the definition (ceil(Pmax / Pmin)), 1 + 2*4 + 2*16 = 41 probes.
+TEST_F(TexsimCli, AnisotropicStatsCountTheProbes) {
+  write_text(dir / "q.csv", "u,v,dudx,dvdx,dudy,dvdy\n"
+                            "0.5,0.5,0.03125,0,0,0.03125\n"      // 2 x 2 texels: N = 1
+                            "0.25,0.5,0.0625,0,0,0.015625\n"     // 4 x 1 along u: N = 4
+                            "0.5,0.25,0,0.015625,0,0.0625\n"     // 1 x 4, the long axis along v: N = 4
+                            "0.75,0.5,0.25,0,0,0.015625\n"       // 16 x 1: N = 16
+                            "0.5,0.75,0.176777,0.176777,-0.0110485,0.0110485\n");  // 16 x 1 diagonal: N = 16
+  std::vector<uint64_t> expected(16, 0);
+  expected[0] = 1;
+  expected[3] = 2;
+  expected[15] = 2;
+  for (const char* engine : {"model", "rtl"}) {
+    const Result r = run(std::string("sample -t noise:64x64 -q q.csv -o r.csv --filter anisotropic --stats s.json -e ") + engine);
+    ASSERT_EQ(r.exit_code, 0) << engine << ": " << r.err;
+    const auto stats = nlohmann::json::parse(read_text(dir / "s.json"));
+    EXPECT_EQ(stats.at("probes_per_sample").get<std::vector<uint64_t>>(), expected) << engine << ": " << stats.dump();
+    EXPECT_EQ(stats.at("probes").get<uint64_t>(), 41u) << engine;
+    EXPECT_DOUBLE_EQ(stats.at("mean_probes_per_sample").get<double>(), 41.0 / 5.0) << engine;
+    EXPECT_NE(r.out.find("probes: 41 = 8.200 per sample (N:samples 1:1 4:2 16:2)"), std::string::npos) << r.out;
+    if (std::string(engine) == "rtl") {
+      EXPECT_EQ(stats.at("cycles").get<uint64_t>(), 41 + stats.at("latency_cycles").get<uint64_t>()) << stats.dump();
+    }
+  }
+  // Other filters write no probe counts.
+  const Result t = run("sample -t noise:64x64 -q q.csv -o r.csv --stats s.json");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_FALSE(nlohmann::json::parse(read_text(dir / "s.json")).contains("probes_per_sample"));
+}
+
+// A new user's first cycle-accurate run measures the design: ideal timing, backdoor load, one
+// sample per clock once the pipeline has filled; the summary line says which timing ran.
+TEST_F(TexsimCli, DefaultsMeasureTheDesign) {
+  write_text(dir / "q.csv", "u,v,lod\n0.5,0.5,0\n0.25,0.75,2.5\n0.1,0.9,1.25\n");
+  for (const char* engine : {"rtl", "systemc"}) {
+    const Result r = run(std::string("sample -q q.csv -o r.csv --stats s.json --engine ") + engine);
+    ASSERT_EQ(r.exit_code, 0) << engine << ": " << r.err;
+    const auto stats = nlohmann::json::parse(read_text(dir / "s.json"));
+    EXPECT_GE(stats.at("samples_per_clock").get<double>(), 0.99) << engine << ": " << stats.dump();
+    EXPECT_EQ(stats.at("stalls"), "none") << engine;
+    EXPECT_EQ(stats.at("load"), "backdoor") << engine;
+    EXPECT_EQ(stats.at("load_cycles"), 0) << engine;
+    EXPECT_EQ(stats.at("output_stall_cycles"), 0) << engine;
+    EXPECT_EQ(stats.at("cycles").get<uint64_t>(), 3 + stats.at("latency_cycles").get<uint64_t>()) << engine;
+    EXPECT_NE(r.out.find("stalls none"), std::string::npos) << r.out;
+  }
+  // Random stalls are asked for, and they show.
+  const Result r = run("sample -q q.csv -o r.csv --stats s.json --engine rtl --stalls heavy --load port");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto stats = nlohmann::json::parse(read_text(dir / "s.json"));
+  EXPECT_EQ(stats.at("stalls"), "heavy");
+  EXPECT_GT(stats.at("load_cycles").get<uint64_t>(), 512u * 512u) << "a 512x512 pyramid through the write port";
+  EXPECT_NE(r.out.find("stalls heavy"), std::string::npos) << r.out;
+}
+
+// --memory-image: the header of docs/memory.md, then the image the cached RTL reads, byte for byte
+// the model's (checked against hand-computed sizes and a texel read back).
+TEST_F(TexsimCli, MipMemoryImageIsTheModelsImage) {
+  const Result r = run("mip -t noise:64x16 --memory-image mem.bin --block 8x2 --block-order morton --mem-base 2048");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(dir / "mem.bin", std::ios::binary);
+  const std::vector<uint8_t> file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Pyramid pyr = build_pyramid(make_pattern("noise", 64, 16));
+  LayoutParams p;
+  p.block_w = 8;
+  p.block_h = 2;
+  p.order = BlockOrder::Morton;
+  p.base = 2048;
+  const MemoryLayout layout({64, 16}, 8, p);
+  EXPECT_EQ(file, memory_image_file(pyr, layout));
+  // 7 levels: 8x8 + 4x4 + 2x2 + 1x1 + 1x1 + 1x1 + 1x1 blocks of 64 bytes after a 72 + 7*8 byte header.
+  ASSERT_EQ(file.size(), 128u + (64u + 16u + 4u + 4u) * 64u);
+  // Texel (9, 3) of level 0: block (1, 1), Morton index 3, at 2048 + 3*64, texel (1, 1) of it.
+  const size_t at = 128 + 3 * 64 + (1 * 8 + 1) * 4;
+  EXPECT_EQ(file[at], pyr.levels[0].at(9, 3)[0]);
+  EXPECT_EQ(file[at + 3], pyr.levels[0].at(9, 3)[3]);
+  EXPECT_NE(run("mip --memory-image m2.bin --mem-base 100").exit_code, 0);  // not a multiple of 64
+  EXPECT_FALSE(std::filesystem::exists(dir / "m2.bin"));
+}
+
+// Sampler state on the command line (docs/numerics.md stages 1 and 3): a clamp-to-border tap takes
+// the border colour (a name or R,G,B,A), mirror clamp mirrors once, the magnification filter
+// applies at lambda <= 0 (in every engine, both RTL units included); GL and Vulkan names are
+// accepted; bad values fail before any work, with one line naming the option and the value.
+TEST_F(TexsimCli, SamplerStateOptions) {
+  // 4x4: texel (x, y) = (x * 60, y * 60, 7, 255).
+  write_image(dir / "ramp.png", 4, 4, 4, [](int x, int y, int c) { return c == 0 ? x * 60 : c == 1 ? y * 60 : c == 2 ? 7 : 255; });
+  // Point samples of texel column -1 (outside), 0 and 5 (outside); a bilinear sample half a texel
+  // left of the edge; one at lambda 0 between texels 0 and 1.
+  queries("u,v,lod\n-0.125,0.375,0\n0.125,0.375,0\n1.375,0.375,0\n0,0.375,0\n0.25,0.375,0\n");
+  auto rows = [&](const std::string& options) {
+    fs::remove(dir / "r.csv");  // (a failed run must not leave the last one's rows to read)
+    const Result r = run("sample -t ramp.png -q q.csv -o r.csv " + options);
+    EXPECT_EQ(r.exit_code, 0) << options << ": " << r.err;
+    std::string header;
+    std::vector<std::vector<int>> out = read_csv_rows(dir / "r.csv", header);
+    if (out.size() < 5) out.assign(5, std::vector<int>(4, -1));  // (failed above: rows that match nothing)
+    return out;
+  };
+  // Point, border (opaque white by its Vulkan name): texel -1 and 5 are the border colour.
+  auto p = rows("--filter point --wrap VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER --border-color VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE");
+  ASSERT_EQ(p.size(), 5u);
+  EXPECT_EQ(p[0], (std::vector<int>{255, 255, 255, 255}));
+  EXPECT_EQ(p[1], (std::vector<int>{0, 60, 7, 255}));
+  EXPECT_EQ(p[2], (std::vector<int>{255, 255, 255, 255}));
+  // Bilinear at u = 0, border colour (1, 0.5, 0, 0.2) = 255, 128, 0, 51: half the border, half texel 0.
+  p = rows("--filter bilinear --wrap-u border --wrap-v clamp --border-color 1,0.50196,0,0.2");
+  EXPECT_EQ(p[3], (std::vector<int>{128, 94, 4, 153}));  // (255+0)/2 rounded up, (128+60)/2, (0+7)/2 up, (51+255)/2
+  // Mirror clamp (GL name): -1 -> 0, 5 -> 3.
+  p = rows("--filter point --wrap GL_MIRROR_CLAMP_TO_EDGE");
+  EXPECT_EQ(p[0][0], 0);
+  EXPECT_EQ(p[2][0], 180);
+  // At lambda 0, u between texels 0 and 1: the magnification filter decides.
+  EXPECT_EQ(rows("--filter trilinear --mag-filter nearest")[4][0], 60);     // texel 1 (u = 0.25 is its left edge)
+  EXPECT_EQ(rows("--filter trilinear --mag-filter GL_LINEAR")[4][0], 30);   // between texel 0 and 1
+  EXPECT_EQ(rows("--min-filter nearest_mipmap_linear --mag-filter linear")[4][0], 30);
+  EXPECT_EQ(rows("--min-filter GL_NEAREST_MIPMAP_LINEAR --mag-filter GL_LINEAR")[4][0], 30);
+  // The RTL has the magnification filter (--verify: bit for bit the model's).
+  EXPECT_EQ(rows("--filter trilinear --mag-filter nearest -e rtl --verify")[4][0], 60);
+  EXPECT_EQ(rows("--filter point --mag-filter linear -e rtl --memory cached --cache-kib 4 --verify")[4][0], 30);
+  // Bad values: one line naming the option and the value, nothing written.
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --wrap clamp_to_nowhere", "bad.csv", {"clamp_to_nowhere", "border"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --mag-filter cubic", "bad.csv", {"--mag-filter", "cubic"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --min-filter trilinear", "bad.csv", {"--min-filter", "trilinear"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --mipmap-mode cubic", "bad.csv", {"--mipmap-mode", "cubic"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --border-color 1,0,0", "bad.csv", {"--border-color", "3 values"});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --border-color 1,0,2,1", "bad.csv", {"--border-color", "\"2\""});
+  expect_clean_failure("sample -t ramp.png -q q.csv -o bad.csv --border-color pink", "bad.csv", {"--border-color", "pink"});
+  // Both RTL units have every address mode and the border colour (--verify: the model's bits).
+  EXPECT_EQ(rows("--filter bilinear --wrap-u border --wrap-v clamp --border-color 1,0.50196,0,0.2 -e rtl --verify")[3],
+            (std::vector<int>{128, 94, 4, 153}));
+  EXPECT_EQ(rows("--filter point --wrap mirror-clamp -e systemc --verify")[2][0], 180);
+  EXPECT_EQ(rows("--filter point --wrap mirror-clamp -e rtl --memory cached --cache-kib 4 --verify")[2][0], 180);
+  EXPECT_EQ(rows("--filter bilinear --wrap-u border --wrap-v clamp --border-color 1,0.50196,0,0.2 -e rtl "
+                 "--memory cached --cache-kib 4 --verify")[3],
+            (std::vector<int>{128, 94, 4, 153}));
+}
+
+// A trace's `bias` column is each request's own LOD bias (GLSL texture(s, uv, bias)), added to the
+// sampler's: a trace whose every request has bias 0.75 samples as the same trace without it
+// through --lod-bias 0.75, on the model and the RTL; a bias outside Q8.8 is refused with its line.
+TEST_F(TexsimCli, TraceBiasColumnAddsToTheSamplersBias) {
+  std::string with = "u,v,dudx,dvdx,dudy,dvdy,bias\n", without = "u,v,dudx,dvdx,dudy,dvdy\n";
+  for (int i = 0; i < 300; ++i) {
+    const std::string row = std::to_string((i % 17) / 17.0) + "," + std::to_string((i / 17) / 18.0) + "," +
+                            std::to_string(0.02 + (i % 7) * 0.015) + ",0,0," + std::to_string(0.03 + (i % 5) * 0.02);
+    with += row + "," + (i % 2 ? "0.75" : "-0.5") + "\n";
+    without += row + "\n";
+  }
+  for (const char* e : {"model", "rtl"}) {
+    // Even requests carry -0.5, odd ones 0.75: each half against its own --lod-bias run.
+    queries(with);
+    ASSERT_EQ(run(std::string("sample -t noise:64x64 -q q.csv -o b.csv -e ") + e).exit_code, 0);
+    queries(without);
+    ASSERT_EQ(run(std::string("sample -t noise:64x64 -q q.csv -o p.csv --lod-bias 0.75 -e ") + e).exit_code, 0);
+    ASSERT_EQ(run(std::string("sample -t noise:64x64 -q q.csv -o m.csv --lod-bias -0.5 -e ") + e).exit_code, 0);
+    ASSERT_EQ(run(std::string("sample -t noise:64x64 -q q.csv -o z.csv -e ") + e).exit_code, 0);
+    std::string h1, h2, h3, h4;
+    const auto b = read_csv_rows(dir / "b.csv", h1), p = read_csv_rows(dir / "p.csv", h2),
+               m = read_csv_rows(dir / "m.csv", h3), z = read_csv_rows(dir / "z.csv", h4);
+    ASSERT_EQ(b.size(), 300u);
+    size_t moved = 0;
+    for (size_t i = 0; i < b.size(); ++i) {
+      EXPECT_EQ(b[i], i % 2 ? p[i] : m[i]) << e << " request " << i;
+      moved += b[i] != z[i];
+    }
+    EXPECT_GT(moved, 100u) << e << ": the bias moved too few samples to tell";
+  }
+  queries("u,v,dudx,dvdx,dudy,dvdy,bias\n0.5,0.5,0.01,0,0,0.01,200\n");
+  expect_clean_failure("sample -t noise:64x64 -q q.csv -o r.csv", "r.csv", {"q.csv:2", "bias"});
+}
