@@ -390,12 +390,70 @@ package tex_bc7;
     weight = w;
   endfunction
 
+  // Table.M for mode m (constant functions: for a constant m, Yosys and Verilator fold them, so
+  // that each mode's fields are read at constant offsets): subsets, partition, rotation and
+  // index-selection bits, colour and alpha bits, P-bits per endpoint or shared per subset, index
+  // and secondary index bits; then where each field starts (the last ends at bit 128).
+  function automatic int ns_of(input int m);  ns_of  = (m == 0 || m == 2) ? 3 : (m == 1 || m == 3 || m == 7) ? 2 : 1; endfunction
+  function automatic int pb_of(input int m);  pb_of  = m == 0 ? 4 : (m == 1 || m == 2 || m == 3 || m == 7) ? 6 : 0; endfunction
+  function automatic int rb_of(input int m);  rb_of  = (m == 4 || m == 5) ? 2 : 0; endfunction
+  function automatic int isb_of(input int m); isb_of = m == 4 ? 1 : 0; endfunction
+  function automatic int cb_of(input int m);  cb_of  = m == 0 ? 4 : m == 1 ? 6 : (m == 2 || m == 4 || m == 7) ? 5 : 7; endfunction
+  function automatic int ab_of(input int m);  ab_of  = m == 4 ? 6 : m == 5 ? 8 : m == 6 ? 7 : m == 7 ? 5 : 0; endfunction
+  function automatic int epb_of(input int m); epb_of = (m == 0 || m == 3 || m == 6 || m == 7) ? 1 : 0; endfunction
+  function automatic int spb_of(input int m); spb_of = m == 1 ? 1 : 0; endfunction
+  function automatic int ib_of(input int m);  ib_of  = (m == 0 || m == 1) ? 3 : m == 6 ? 4 : 2; endfunction
+  function automatic int ib2_of(input int m); ib2_of = m == 4 ? 3 : m == 5 ? 2 : 0; endfunction
+  function automatic int r_at_of(input int m);  r_at_of  = m + 1 + pb_of(m); endfunction
+  function automatic int s_at_of(input int m);  s_at_of  = r_at_of(m) + rb_of(m); endfunction
+  function automatic int c_at_of(input int m);  c_at_of  = s_at_of(m) + isb_of(m); endfunction
+  function automatic int a_at_of(input int m);  a_at_of  = c_at_of(m) + 6 * ns_of(m) * cb_of(m); endfunction
+  function automatic int ep_at_of(input int m); ep_at_of = a_at_of(m) + 2 * ns_of(m) * ab_of(m); endfunction
+  function automatic int sp_at_of(input int m); sp_at_of = ep_at_of(m) + 2 * ns_of(m) * epb_of(m); endfunction
+  function automatic int i_at_of(input int m);  i_at_of  = sp_at_of(m) + ns_of(m) * spb_of(m); endfunction
+  function automatic int i2_at_of(input int m); i2_at_of = i_at_of(m) + 16 * ib_of(m) - ns_of(m); endfunction
+
   // bits (at most 8) of the block from bit `at`
   function automatic logic [7:0] field(input logic [127:0] block, input int at, input int bits);
     field = 8'(block >> at) & 8'((1 << bits) - 1);
   endfunction
 
+  // Mode m's endpoint e of the texel's subset, unorm8 RGBA (alpha 255 in modes without it): each
+  // field read at its constant offset for every subset, then the subset's kept (a select at a
+  // variable offset would be a 128-bit shifter per field); (stored bits, P-bit) in the top bits,
+  // then their top bits again below them.
+  function automatic logic [31:0] endpoint(input int m, input int e, input logic [127:0] block, input logic [1:0] subset);
+    logic [31:0] out;
+    logic [23:0] raws;   // subset s's stored bits at [8s +: 8]
+    logic [2:0]  pbits;  // and its P-bit
+    logic [7:0]  raw, value;
+    logic        pbit;
+    int          stored, nb;
+    int          c, s;  // (loop variables declared here: Yosys makes latches of `for (int ...)` ones in a
+                        // function called under an `if`)
+    out = '0;
+    for (c = 0; c < 4; c++) begin
+      stored = c < 3 ? cb_of(m) : ab_of(m);
+      nb     = stored + epb_of(m) + spb_of(m);
+      for (s = 0; s < 3; s++) begin
+        raws  = {s < ns_of(m) ? (c < 3 ? field(block, c_at_of(m) + ((c * ns_of(m) + s) * 2 + e) * cb_of(m), cb_of(m))
+                                       : field(block, a_at_of(m) + (s * 2 + e) * ab_of(m), ab_of(m)))
+                              : 8'd0, raws[23:8]};
+        pbits = {s < ns_of(m) && epb_of(m) > 0 ? block[ep_at_of(m) + 2 * s + e]
+                 : s < ns_of(m) && spb_of(m) > 0 ? block[sp_at_of(m) + s] : 1'b0, pbits[2:1]};
+      end
+      raw   = 8'(raws >> (8 * subset));
+      pbit  = pbits[subset];
+      value = epb_of(m) + spb_of(m) > 0 ? 8'({raw, pbit} << (8 - nb)) : 8'(raw << (8 - nb));
+      // (channel c ends at bits 8c..: no write at a variable index, which a function that is not
+      // inlined cannot have in Verilator)
+      out = {stored == 0 ? 8'd255 : value | 8'(value >> nb), out[31:8]};
+    end
+    endpoint = out;
+  endfunction
+
   function automatic logic [31:0] rgba(input logic [127:0] block, input logic [3:0] texel);
+    /*verilator no_inline_task*/  // (one C++ function for the 8 taps' decoders)
     logic [2:0]  mode;
     logic [1:0]  subsets;         // of the mode: 1..3
     logic [5:0]  part;
@@ -404,12 +462,6 @@ package tex_bc7;
     logic [1:0]  subset, earlier;
     logic [3:0]  anchor_1, anchor_2;
     logic        is_anchor;
-    // Table.M for one mode: subsets, partition, rotation and index-selection bits, colour and
-    // alpha bits, P-bits per endpoint or shared per subset, index and secondary index bits; then
-    // where each field starts (the last ends at bit 128).
-    int          ns, pb, rb, isb, cb, ab, epb, spb, ib, ib2;
-    int          p_at, r_at, s_at, c_at, a_at, ep_at, sp_at, i_at, i2_at;
-    int          stored, nb;      // a channel's stored bits, and with its P-bit
     // The block's mode's reading for this texel.
     logic [31:0] e0, e1;          // unorm8 RGBA endpoints of the texel's subset
     logic [6:0]  index_at, index2_at;
@@ -417,8 +469,6 @@ package tex_bc7;
     logic [2:0]  ibits, ib2bits;
     logic        sel;             // colour from the secondary index (mode 4)
     logic [1:0]  rot;             // swap A with nothing, R, G or B (modes 4, 5)
-    logic        pbit;
-    logic [7:0]  raw, value;
     logic [3:0]  index, index2;   // this texel's, from the one shifter
     logic [6:0]  wc, wa, w;       // weights of e1 in 64ths: colour, alpha, this channel
     logic signed [8:0]  diff;     // e1 - e0
@@ -444,61 +494,29 @@ package tex_bc7;
     is_anchor = texel == 4'd0 || (subsets != 2'd1 && texel == anchor_1) || (subsets == 2'd3 && texel == anchor_2);
     earlier   = 2'(subsets != 2'd1 && anchor_1 < texel) + 2'(subsets == 2'd3 && anchor_2 < texel);
 
-    {e0, e1, index_at, index2_at, index_mask, index2_mask, ibits, ib2bits, sel, rot} = '0;
-    // Each mode at its constant offsets (m is a constant in each unrolled pass), the block's kept.
-    for (int m = 0; m < 8; m++)
-      if (mode == 3'(m)) begin
-        ns  = (m == 0 || m == 2) ? 3 : (m == 1 || m == 3 || m == 7) ? 2 : 1;
-        pb  = m == 0 ? 4 : (m == 1 || m == 2 || m == 3 || m == 7) ? 6 : 0;
-        rb  = (m == 4 || m == 5) ? 2 : 0;
-        isb = m == 4 ? 1 : 0;
-        cb  = m == 0 ? 4 : m == 1 ? 6 : (m == 2 || m == 4 || m == 7) ? 5 : 7;
-        ab  = m == 4 ? 6 : m == 5 ? 8 : m == 6 ? 7 : m == 7 ? 5 : 0;
-        epb = (m == 0 || m == 3 || m == 6 || m == 7) ? 1 : 0;
-        spb = m == 1 ? 1 : 0;
-        ib  = (m == 0 || m == 1) ? 3 : m == 6 ? 4 : 2;
-        ib2 = m == 4 ? 3 : m == 5 ? 2 : 0;
-        p_at  = m + 1;
-        r_at  = p_at + pb;
-        s_at  = r_at + rb;
-        c_at  = s_at + isb;
-        a_at  = c_at + 6 * ns * cb;
-        ep_at = a_at + 2 * ns * ab;
-        sp_at = ep_at + 2 * ns * epb;
-        i_at  = sp_at + ns * spb;
-        i2_at = i_at + 16 * ib - ns;
-        // Texel t's index starts ib t bits in, less one per earlier anchor (texel 0 is subset
-        // 0's); an anchor texel's index has one bit less.
-        index_at    = 7'(i_at + 32'(texel) * ib - 32'(texel != 4'd0) - 32'(earlier));
-        index2_at   = 7'(i2_at + 32'(texel) * ib2 - 32'(texel != 4'd0));
-        index_mask  = 4'((1 << (is_anchor ? ib - 1 : ib)) - 1);
-        index2_mask = ib2 == 0 ? 4'd0 : 4'((1 << (texel == 4'd0 ? ib2 - 1 : ib2)) - 1);
-        ibits       = 3'(ib);
-        ib2bits     = 3'(ib2);
-        sel         = isb > 0 ? block[s_at] : 1'b0;
-        rot         = rb > 0 ? 2'(block >> r_at) : 2'd0;
-        // Each field at its constant offset for every subset, the texel's subset kept (a select
-        // at a variable offset would be a 128-bit shifter per field).
-        for (int e = 0; e < 2; e++)
-          for (int c = 0; c < 4; c++) begin
-            stored = c < 3 ? cb : ab;
-            nb     = stored + epb + spb;
-            {pbit, raw} = '0;
-            for (int s = 0; s < 3; s++)
-              if (s < ns && subset == 2'(s)) begin
-                pbit = epb > 0 ? block[ep_at + 2 * s + e] : spb > 0 ? block[sp_at + s] : 1'b0;
-                raw  = c < 3 ? field(block, c_at + ((c * ns + s) * 2 + e) * cb, cb)
-                             : field(block, a_at + (s * 2 + e) * ab, ab);
-              end
-            // (raw, P-bit) in the top nb bits, then its top bits again below them.
-            value = epb + spb > 0 ? 8'({raw, pbit} << (8 - nb)) : 8'(raw << (8 - nb));
-            value = stored == 0 ? 8'd255 : value | 8'(value >> nb);
-            // (channel c ends at bits 8c..: no write at a variable index, which a function
-            // that is not inlined cannot have in Verilator)
-            if (e == 0) e0 = {value, e0[31:8]};
-            else e1 = {value, e1[31:8]};
-          end
-      end
+    // The endpoints: each mode's read at its constant offsets, only the block's mode's kept (and,
+    // in a simulator, computed). Texel t's index starts ib t bits in, less one per earlier anchor
+    // (texel 0 is subset 0's); an anchor texel's index has one bit less.
+    // (each mode spelt out, so that m is a constant at every call and a simulator folds the
+    // table's offsets as synthesis does)
+    case (mode)
+      3'd0:    begin e0 = endpoint(0, 0, block, subset); e1 = endpoint(0, 1, block, subset); end
+      3'd1:    begin e0 = endpoint(1, 0, block, subset); e1 = endpoint(1, 1, block, subset); end
+      3'd2:    begin e0 = endpoint(2, 0, block, subset); e1 = endpoint(2, 1, block, subset); end
+      3'd3:    begin e0 = endpoint(3, 0, block, subset); e1 = endpoint(3, 1, block, subset); end
+      3'd4:    begin e0 = endpoint(4, 0, block, subset); e1 = endpoint(4, 1, block, subset); end
+      3'd5:    begin e0 = endpoint(5, 0, block, subset); e1 = endpoint(5, 1, block, subset); end
+      3'd6:    begin e0 = endpoint(6, 0, block, subset); e1 = endpoint(6, 1, block, subset); end
+      default: begin e0 = endpoint(7, 0, block, subset); e1 = endpoint(7, 1, block, subset); end
+    endcase
+    ibits       = 3'(ib_of(32'(mode)));
+    ib2bits     = 3'(ib2_of(32'(mode)));
+    index_at    = 7'(i_at_of(32'(mode)) + 32'(texel) * ib_of(32'(mode)) - 32'(texel != 4'd0) - 32'(earlier));
+    index2_at   = 7'(i2_at_of(32'(mode)) + 32'(texel) * ib2_of(32'(mode)) - 32'(texel != 4'd0));
+    index_mask  = 4'((1 << (is_anchor ? ibits - 3'd1 : ibits)) - 1);
+    index2_mask = ib2bits == 3'd0 ? 4'd0 : 4'((1 << (texel == 4'd0 ? ib2bits - 3'd1 : ib2bits)) - 1);
+    sel         = isb_of(32'(mode)) > 0 ? block[s_at_of(32'(mode))] : 1'b0;
+    rot         = rb_of(32'(mode)) > 0 ? 2'(block >> r_at_of(32'(mode))) : 2'd0;
 
     index  = 4'(block >> index_at) & index_mask;
     index2 = 4'(block >> index2_at) & index2_mask;

@@ -2,43 +2,80 @@
 // "Block-compressed formats"): BC1 (with its transparent index), BC2 (4-bit alpha), BC3 (BC4-style
 // alpha), BC4 (R, 0, 0, 255), BC5 (R, G, 0, 255), BC7. The model's decode_texel
 // (model/block_formats.h) is its specification, bit for bit.
-// A function, not a module: tex_tap_select calls it for each tap that reads a block, inside the
-// taps' condition, so that a simulator spends nothing on it in the clocks without block texels
-// (Verilator evaluates a module's logic every clock); and each format's parts are called only for
-// their formats. One colour decoder serves BC1 (low half) and BC2/BC3 (high half), one channel
-// decoder BC3's alpha, BC4 and BC5's red, a second BC5's green.
+// The formats' decoders are functions (packages tex_bc_colour, tex_bc_channel, tex_bc7) called
+// inside `if (en)` and only for their formats, so that a simulator spends nothing on them in the
+// clocks without a block texel (Verilator evaluates a module's continuous logic every clock, but
+// keeps an `if` as a branch); the module around them is elaborated once for the 8 taps. One colour
+// decoder serves BC1 (low half) and BC2/BC3 (high half), one channel decoder BC3's alpha, BC4 and
+// BC5's red, a second BC5's green.
 // Handshake: none (combinational; the cached unit's taps decode the 8 texels of a trilinear
-// sample in the filter's clock). Latency: 0. Throughput: 1 per call (8 calls per clock).
-// rgba(format, block, texel):
+// sample with 8 of these in the filter's clock). Latency: 0. Throughput: 1 per clock.
+// Ports:
+//   en     : decode (else rgba is 0 and nothing is evaluated)
 //   format : tex_pkg::FMT_* (FMT_RGBA8 gives 0: not a block format)
 //   block  : 128 bits, byte i at bits 8i+7..8i; BC1 and BC4 use bits 63..0
 //   texel  : 0..15, x + 4 y inside the block
-//   result : unorm8 R (bits 7..0), G, B, A (31..24)
-package tex_bc_decode;
-  function automatic logic [31:0] rgba(input logic [tex_pkg::FORMAT_W-1:0] format, input logic [127:0] block,
-                                       input logic [3:0] texel);
-    /*verilator no_inline_task*/  // (one C++ function: 8 taps call it)
-    logic        bc1;
-    logic [24:0] colour;   // {transparent, rgb}
-    logic [7:0]  low, high;
-    logic [3:0]  nibble;   // BC2's alpha
-    bc1 = format == tex_pkg::FMT_BC1;
-    {colour, low, high} = '0;
-    if (bc1 || format == tex_pkg::FMT_BC2 || format == tex_pkg::FMT_BC3)
-      colour = tex_bc_colour::texel_rgb(bc1 ? block[63:0] : block[127:64], texel, !bc1);
-    if (format == tex_pkg::FMT_BC3 || format == tex_pkg::FMT_BC4 || format == tex_pkg::FMT_BC5)
-      low = tex_bc_channel::value(block[63:0], texel);
-    if (format == tex_pkg::FMT_BC5)
-      high = tex_bc_channel::value(block[127:64], texel);
-    nibble = 4'(block >> (4 * texel));
+//   rgba   : unorm8 R (bits 7..0), G, B, A (31..24)
+module tex_bc_decode (
+  input  logic                         en,
+  input  logic [tex_pkg::FORMAT_W-1:0] format,
+  input  logic [127:0]                 block,
+  input  logic [3:0]                   texel,
+  output logic [31:0]                  rgba
+);
+  logic        bc1;
+  logic [3:0]  nibble;   // BC2's alpha
+  assign bc1    = format == tex_pkg::FMT_BC1;
+  assign nibble = 4'(block >> (4 * texel));
+`ifdef SYNTHESIS
+  logic [24:0] colour;   // {transparent, rgb}
+  logic [7:0]  low, high;
+  logic [31:0] bc7;
+  // Yosys inlines a function where it is called: inside an `if`, every assignment of its body
+  // becomes a multiplexer (Yosys's `proc` took minutes for the 8 taps); as continuous logic, none
+  // does. The same values as below.
+  assign colour = tex_bc_colour::texel_rgb(bc1 ? block[63:0] : block[127:64], texel, !bc1);
+  assign low    = tex_bc_channel::value(block[63:0], texel);
+  assign high   = tex_bc_channel::value(block[127:64], texel);
+  assign bc7    = tex_bc7::rgba(block, texel);
+  always_comb begin
     case (format)
       tex_pkg::FMT_BC1: rgba = colour[24] ? 32'd0 : {8'd255, colour[23:0]};
       tex_pkg::FMT_BC2: rgba = {nibble, nibble, colour[23:0]};  // x 17
       tex_pkg::FMT_BC3: rgba = {low, colour[23:0]};
       tex_pkg::FMT_BC4: rgba = {8'd255, 16'd0, low};
       tex_pkg::FMT_BC5: rgba = {8'd255, 8'd0, high, low};
-      tex_pkg::FMT_BC7: rgba = tex_bc7::rgba(block, texel);
+      tex_pkg::FMT_BC7: rgba = bc7;
       default:          rgba = 32'd0;
     endcase
-  endfunction
-endpackage
+    if (!en) rgba = 32'd0;
+  end
+`else
+  // A simulator: nothing without `en` (the clocks without a block sample cost a test), and each
+  // format's decoder only for that format. (No `else` branches: Verilator makes a ?: of an
+  // if/else of two single assignments and calls the functions before it, in every clock.)
+  always_comb begin
+    logic [24:0] colour;   // {transparent, rgb}
+    logic [7:0]  low, high;
+    rgba = '0;
+    {colour, low, high} = '0;
+    if (en) begin
+      if (bc1 || format == tex_pkg::FMT_BC2 || format == tex_pkg::FMT_BC3)
+        colour = tex_bc_colour::texel_rgb(bc1 ? block[63:0] : block[127:64], texel, !bc1);
+      if (format == tex_pkg::FMT_BC3 || format == tex_pkg::FMT_BC4 || format == tex_pkg::FMT_BC5)
+        low = tex_bc_channel::value(block[63:0], texel);
+      if (format == tex_pkg::FMT_BC5)
+        high = tex_bc_channel::value(block[127:64], texel);
+      case (format)
+        tex_pkg::FMT_BC1: rgba = colour[24] ? 32'd0 : {8'd255, colour[23:0]};
+        tex_pkg::FMT_BC2: rgba = {nibble, nibble, colour[23:0]};  // x 17
+        tex_pkg::FMT_BC3: rgba = {low, colour[23:0]};
+        tex_pkg::FMT_BC4: rgba = {8'd255, 16'd0, low};
+        tex_pkg::FMT_BC5: rgba = {8'd255, 8'd0, high, low};
+        tex_pkg::FMT_BC7: rgba = tex_bc7::rgba(block, texel);
+        default:          rgba = 32'd0;
+      endcase
+    end
+  end
+`endif
+endmodule

@@ -2,10 +2,10 @@
 // sample's 8 taps (tap i = slot*4 + t; slot 0 level d in cache c0, slot 1 level d1 in the other;
 // t bit 0 the second x tap, bit 1 the second y tap). Each tap reads the bank of its parity (of its
 // texel, or of its 4x4 block) at that bank's offset: a texel of the word, or a block decoded by
-// the function tex_bc_decode per tap (BLOCK_FORMATS); with SRGB an sRGB texture's R, G, B through
-// the function tex_srgb_decode (24 per sample), its alpha widened exactly. The decoders are
+// one tex_bc_decode per tap (BLOCK_FORMATS); with SRGB an sRGB texture's R, G, B through the
+// function tex_srgb_decode::linear (24 per sample), its alpha widened exactly. The decoders are
 // functions called only for the taps that need them: a simulator spends nothing on them in the
-// clocks that read RGBA8 texels (as modules, Verilator evaluated all 8 every clock).
+// clocks that read RGBA8 texels (as plain modules, Verilator evaluated all 8 every clock).
 // Handshake: none (combinational). Everything is 0 unless `valid` (a sample is in T), so that a
 // simulator skips the taps in the clocks in between.
 // Latency: 0. Throughput: 8 taps per clock.
@@ -74,27 +74,36 @@ module tex_tap_select #(
   `define TAP_BITS(i, n) (tap_cache[i] ? word1[`TAP_AT(i, n) +: (n)] : word0[`TAP_AT(i, n) +: (n)])
 
   // Each tap's texel as the cache holds its channels: from its bank word, or decoded from its
-  // block. The decoder is a function called inside the taps' condition (not a module, which a
-  // simulator would evaluate every clock): the clocks without a block sample cost nothing.
+  // block by the tap's tex_bc_decode, which evaluates its decoders only with `en` (a block sample
+  // in T), so that the clocks without one cost a simulator a test there.
   logic [8*DWC-1:0] cached;
   generate
     if (BLOCK_FORMATS != 0) begin : g_decode
+      logic [8*128-1:0] blocks;  // tap i's block at [i*128 +: 128] (8-byte blocks in the low half;
+                                 // a word holds whole blocks, WW >= 128)
+      logic [8*32-1:0]  rgbas;   // and its decoded texel, unorm8
       always_comb begin
-        logic [63:0]  block8;
-        logic [127:0] block;  // (8-byte blocks in the low half; a word holds whole blocks, WW >= 128)
-        logic [31:0]  rgba;   // the tap's texel, unorm8
-        {block8, block, rgba} = '0;
-        cached = '0;
+        logic [63:0] block8;
+        block8 = '0;
+        blocks = '0;
         if (valid && blk)
-          for (int i = 0; i < 8; i++) begin
+          for (int i = 0; i < 8; i++)
             if (tex_pkg::line_kind(fmt) == tex_pkg::LINE_BLOCKS8) begin
               block8 = `TAP_BITS(i, 64);
-              block  = 128'(block8);
+              blocks[i*128 +: 128] = 128'(block8);
             end else
-              block = `TAP_BITS(i, 128);
-            rgba = tex_bc_decode::rgba(fmt, block, {low[(i/4*4 + 2 + i%4/2)*PB +: 2], low[(i/4*4 + i%2)*PB +: 2]});
-            cached[i*DWC +: DWC] = DWC'(rgba);
-          end
+              blocks[i*128 +: 128] = `TAP_BITS(i, 128);
+      end
+      for (genvar g = 0; g < 8; g++) begin : g_tap
+        tex_bc_decode u_dec (.en(valid && blk), .format(fmt), .block(blocks[g*128 +: 128]),
+                             .texel({low[(g/4*4 + 2 + g%4/2)*PB +: 2], low[(g/4*4 + g%2)*PB +: 2]}),
+                             .rgba(rgbas[g*32 +: 32]));
+      end
+      always_comb begin
+        cached = '0;
+        if (valid && blk)
+          for (int i = 0; i < 8; i++)
+            cached[i*DWC +: DWC] = DWC'(rgbas[i*32 +: 32]);
         else if (valid)
           for (int i = 0; i < 8; i++)
             cached[i*DWC +: DWC] = `TAP_BITS(i, DWC);
@@ -115,17 +124,19 @@ module tex_tap_select #(
   // so 8-bit values give the 8-bit filter's result in the low bits).
   generate
     if (SRGB != 0) begin : g_srgb
-      // (two loops under one `if`, not an `if` per tap: Verilator turns an if/else of two single
-      // assignments into a ?: and then calls the functions before it, in every clock)
+      // (the calls under an `if` of their own: Verilator turns an if/else of two single
+      // assignments into a ?: and calls the functions before it, in every clock)
       always_comb begin
         logic [31:0] t;
+        logic [47:0] rgb;  // linear unorm16 R, G, B
         t = '0;
+        rgb = '0;
         texels = '0;
         if (valid && srgb)
           for (int i = 0; i < 8; i++) begin
-            t = cached[i*32 +: 32];
-            texels[i*DW +: DW] = DW'({t[31:24], t[31:24], tex_srgb_decode::linear(t[23:16]),
-                                      tex_srgb_decode::linear(t[15:8]), tex_srgb_decode::linear(t[7:0])});
+            t   = cached[i*32 +: 32];
+            rgb = {tex_srgb_decode::linear(t[23:16]), tex_srgb_decode::linear(t[15:8]), tex_srgb_decode::linear(t[7:0])};
+            texels[i*DW +: DW] = DW'({t[31:24], t[31:24], rgb});
           end
         else
           for (int i = 0; i < 8; i++) begin

@@ -73,6 +73,13 @@ if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt r
   echo "lint: FAILED for tex_bc_decode" >&2
   exit 1
 fi
+if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM -DSYNTHESIS rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
+             rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
+             --top-module tex_bc_decode_top 2>&1) || [ -n "$out" ]; then
+  echo "$out" >&2
+  echo "lint: FAILED for tex_bc_decode (-DSYNTHESIS: the synthesis form)" >&2
+  exit 1
+fi
 if out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
            rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
            --top-module tex_bc_decode_top -GFORMAT=8 2>&1) || ! grep -q "tex_bc_decode_top: parameter FORMAT must be" <<< "$out"; then
@@ -86,7 +93,7 @@ if ! out=$(verilator --lint-only -Irtl -Wall rtl/tex_srgb_decode.sv rtl/synth/te
   echo "lint: FAILED for tex_srgb_decode" >&2
   exit 1
 fi
-echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7) and tex_srgb_decode; FORMAT check fires for FORMAT=8"
+echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7; as simulated and with -DSYNTHESIS) and tex_srgb_decode; FORMAT check fires for FORMAT=8"
 # The AXI4-Lite configuration slave on its own (-Wno-UNUSEDPARAM: alone it uses few of tex_pkg's
 # constants; inside tex_unit_axi below it is linted with all warnings), and the AXI top.
 lint_axil() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_axil_config.sv \

@@ -1,8 +1,6 @@
-// tex_bc_decode_top: a harness only (not part of the design): the block decoder function
-// tex_bc_decode::rgba as a module, so that the decoder can be simulated alone (tests/rtl's
-// RtlBlockDecode.*, every texel of every block against the model) and synthesized alone
-// (scripts/synth.sh's decoder table: FORMAT fixes the format, and Yosys keeps only that
-// format's decoder; -1, the default, takes it from the port: every format).
+// tex_bc_decode_top: a synthesis harness only (scripts/synth.sh's decoder table), not part of the
+// design: tex_bc_decode with `en` tied high and, with FORMAT >= 0, the format fixed, so that Yosys
+// keeps only that format's decoder; FORMAT = -1 (the default) takes it from the port: every format.
 // Handshake: none (combinational). Latency: 0. Throughput: 1 per clock.
 // Ports:
 //   format : tex_pkg::FMT_* (used when FORMAT < 0)
@@ -23,5 +21,6 @@ module tex_bc_decode_top #(
       `TEX_PARAM_ERROR("tex_bc_decode_top: parameter FORMAT must be -1 (the port) or a tex_pkg::FMT_* code")
     end
   endgenerate
-  always_comb rgba = tex_bc_decode::rgba(FORMAT < 0 ? format : tex_pkg::FORMAT_W'(FORMAT), block, texel);
+  tex_bc_decode u_decode (.en(1'b1), .format(FORMAT < 0 ? format : tex_pkg::FORMAT_W'(FORMAT)), .block(block),
+                          .texel(texel), .rgba(rgba));
 endmodule

@@ -1,5 +1,6 @@
 // The block decoders (rtl/tex_bc_decode.sv and its parts) against the model's decode_texel
-// (model/block_formats.h), bit for bit, on every texel: every endpoint pair and index of the
+// (model/block_formats.h), bit for bit, on every texel, both as simulators take them and as
+// synthesis does (-DSYNTHESIS, through rtl/synth/tex_bc_decode_top.sv): every endpoint pair and index of the
 // BC4-style channel block (exhaustive), random blocks of every format (BC7 in all 8 modes and the
 // reserved one), with functional coverage: every BC7 mode, every partition of the partitioned
 // modes, every rotation and index selection, BC1's two colour modes and its transparent texel.
@@ -11,8 +12,10 @@
 #include <map>
 #include <random>
 #include <set>
+#include <type_traits>
 
 #include "Vtex_bc_decode.h"
+#include "Vtex_bc_decode_synthesis.h"
 #include "Vtex_srgb_decode.h"
 #include "lockstep.h"
 #include "model/block_formats.h"
@@ -22,23 +25,34 @@ using namespace tex;
 
 namespace {
 
+// Both forms of the decoder: the simulator's (functions called inside `if (en)`) and the
+// synthesis form (-DSYNTHESIS: continuous logic).
 class Decoder {
  public:
-  Decoder() : ctx_(std::make_unique<VerilatedContext>()), top_(std::make_unique<Vtex_bc_decode>(ctx_.get())) {}
-  Rgba8 texel(TexelFormat f, const uint8_t* block, int i) {
-    top_->format = uint8_t(f);
-    for (int w = 0; w < 4; ++w)
-      top_->block[w] = uint32_t(block[4 * w]) | uint32_t(block[4 * w + 1]) << 8 | uint32_t(block[4 * w + 2]) << 16 |
-                       uint32_t(block[4 * w + 3]) << 24;
-    top_->texel = uint8_t(i);
-    top_->eval();
-    const uint32_t v = top_->rgba;
-    return {uint8_t(v), uint8_t(v >> 8), uint8_t(v >> 16), uint8_t(v >> 24)};
+  Decoder()
+      : ctx_(std::make_unique<VerilatedContext>()),
+        sim_(std::make_unique<Vtex_bc_decode>(ctx_.get())),
+        synthesis_(std::make_unique<Vtex_bc_decode_synthesis>(ctx_.get())) {}
+  Rgba8 texel(TexelFormat f, const uint8_t* block, int i, bool synthesis) {
+    return synthesis ? eval(*synthesis_, f, block, i) : eval(*sim_, f, block, i);
   }
 
  private:
+  template <class Top>
+  static Rgba8 eval(Top& top, TexelFormat f, const uint8_t* block, int i) {
+    if constexpr (std::is_same_v<Top, Vtex_bc_decode>) top.en = 1;
+    top.format = uint8_t(f);
+    for (int w = 0; w < 4; ++w)
+      top.block[w] = uint32_t(block[4 * w]) | uint32_t(block[4 * w + 1]) << 8 | uint32_t(block[4 * w + 2]) << 16 |
+                     uint32_t(block[4 * w + 3]) << 24;
+    top.texel = uint8_t(i);
+    top.eval();
+    const uint32_t v = top.rgba;
+    return {uint8_t(v), uint8_t(v >> 8), uint8_t(v >> 16), uint8_t(v >> 24)};
+  }
   std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<Vtex_bc_decode> top_;
+  std::unique_ptr<Vtex_bc_decode> sim_;
+  std::unique_ptr<Vtex_bc_decode_synthesis> synthesis_;
 };
 
 std::string hex(const uint8_t* b, int n) {
@@ -50,15 +64,16 @@ std::string hex(const uint8_t* b, int n) {
 
 // Compares all 16 texels of a block; false (with a message) at the first difference.
 ::testing::AssertionResult same(Decoder& rtl, TexelFormat f, const uint8_t* block) {
-  for (int i = 0; i < 16; ++i) {
-    const Rgba8 want = decode_texel(f, block, i), got = rtl.texel(f, block, i);
-    if (want != got)
-      return ::testing::AssertionFailure()
-             << format_info(f).name << " block 0x" << hex(block, format_info(f).block_bytes) << " texel " << i
-             << ": RTL (" << int(got[0]) << ", " << int(got[1]) << ", " << int(got[2]) << ", " << int(got[3])
-             << "), model (" << int(want[0]) << ", " << int(want[1]) << ", " << int(want[2]) << ", " << int(want[3])
-             << ")";
-  }
+  for (int i = 0; i < 16; ++i)
+    for (bool synthesis : {false, true}) {
+      const Rgba8 want = decode_texel(f, block, i), got = rtl.texel(f, block, i, synthesis);
+      if (want != got)
+        return ::testing::AssertionFailure()
+               << format_info(f).name << " block 0x" << hex(block, format_info(f).block_bytes) << " texel " << i
+               << (synthesis ? " (the synthesis form)" : "") << ": RTL (" << int(got[0]) << ", " << int(got[1])
+               << ", " << int(got[2]) << ", " << int(got[3]) << "), model (" << int(want[0]) << ", "
+               << int(want[1]) << ", " << int(want[2]) << ", " << int(want[3]) << ")";
+    }
   return ::testing::AssertionSuccess();
 }
 
@@ -131,7 +146,23 @@ TEST(RtlBlockDecode, Rgba8IsNotDecoded) {
   Decoder rtl;
   uint8_t b[16];
   for (int i = 0; i < 16; ++i) b[i] = uint8_t(0x11 * i + 1);
-  EXPECT_EQ(rtl.texel(TexelFormat::Rgba8, b, 3), (Rgba8{0, 0, 0, 0}));
+  EXPECT_EQ(rtl.texel(TexelFormat::Rgba8, b, 3, false), (Rgba8{0, 0, 0, 0}));
+  EXPECT_EQ(rtl.texel(TexelFormat::Rgba8, b, 3, true), (Rgba8{0, 0, 0, 0}));
+}
+
+// Without `en` the decoder gives zeros (what tex_tap_select passes on between block samples).
+TEST(RtlBlockDecode, NothingWithoutEnable) {
+  VerilatedContext ctx;
+  Vtex_bc_decode top(&ctx);
+  top.en = 0;
+  top.format = uint8_t(TexelFormat::Bc7);
+  for (int w = 0; w < 4; ++w) top.block[w] = 0x12345678u * uint32_t(w + 1) | 1u;  // mode 0
+  top.texel = 5;
+  top.eval();
+  EXPECT_EQ(top.rgba, 0u);
+  top.en = 1;
+  top.eval();
+  EXPECT_NE(top.rgba, 0u);
 }
 
 TEST(RtlBlockDecode, SrgbRomIsTheModelsTable) {
