@@ -23,6 +23,22 @@ module tex_bc_decode (
   input  logic [3:0]                   texel,
   output logic [31:0]                  rgba
 );
+  // The texel from the formats' parts: BC1's colour (black if transparent), BC2's 4-bit alpha,
+  // BC3's channel alpha, BC4's red, BC5's red and green, BC7's texel.
+  function automatic logic [31:0] texel_of(input logic [tex_pkg::FORMAT_W-1:0] f, input logic [24:0] colour,
+                                           input logic [7:0] low, input logic [7:0] high, input logic [3:0] nibble,
+                                           input logic [31:0] bc7);
+    case (f)
+      tex_pkg::FMT_BC1: texel_of = colour[24] ? 32'd0 : {8'd255, colour[23:0]};
+      tex_pkg::FMT_BC2: texel_of = {nibble, nibble, colour[23:0]};  // x 17
+      tex_pkg::FMT_BC3: texel_of = {low, colour[23:0]};
+      tex_pkg::FMT_BC4: texel_of = {8'd255, 16'd0, low};
+      tex_pkg::FMT_BC5: texel_of = {8'd255, 8'd0, high, low};
+      tex_pkg::FMT_BC7: texel_of = bc7;
+      default:          texel_of = 32'd0;
+    endcase
+  endfunction
+
   logic        bc1;
   logic [3:0]  nibble;   // BC2's alpha
   assign bc1    = format == tex_pkg::FMT_BC1;
@@ -38,18 +54,7 @@ module tex_bc_decode (
   assign low    = tex_bc_channel::value(block[63:0], texel);
   assign high   = tex_bc_channel::value(block[127:64], texel);
   assign bc7    = tex_bc7::rgba(block, texel);
-  always_comb begin
-    case (format)
-      tex_pkg::FMT_BC1: rgba = colour[24] ? 32'd0 : {8'd255, colour[23:0]};
-      tex_pkg::FMT_BC2: rgba = {nibble, nibble, colour[23:0]};  // x 17
-      tex_pkg::FMT_BC3: rgba = {low, colour[23:0]};
-      tex_pkg::FMT_BC4: rgba = {8'd255, 16'd0, low};
-      tex_pkg::FMT_BC5: rgba = {8'd255, 8'd0, high, low};
-      tex_pkg::FMT_BC7: rgba = bc7;
-      default:          rgba = 32'd0;
-    endcase
-    if (!en) rgba = 32'd0;
-  end
+  assign rgba = en ? texel_of(format, colour, low, high, nibble, bc7) : 32'd0;
 `else
   // A simulator: nothing without `en` (the clocks without a block sample cost a test), and each
   // format's decoder only for that format. (No `else` branches: Verilator makes a ?: of an
@@ -57,8 +62,9 @@ module tex_bc_decode (
   always_comb begin
     logic [24:0] colour;   // {transparent, rgb}
     logic [7:0]  low, high;
+    logic [31:0] bc7;
     rgba = '0;
-    {colour, low, high} = '0;
+    {colour, low, high, bc7} = '0;
     if (en) begin
       if (bc1 || format == tex_pkg::FMT_BC2 || format == tex_pkg::FMT_BC3)
         colour = tex_bc_colour::texel_rgb(bc1 ? block[63:0] : block[127:64], texel, !bc1);
@@ -66,15 +72,9 @@ module tex_bc_decode (
         low = tex_bc_channel::value(block[63:0], texel);
       if (format == tex_pkg::FMT_BC5)
         high = tex_bc_channel::value(block[127:64], texel);
-      case (format)
-        tex_pkg::FMT_BC1: rgba = colour[24] ? 32'd0 : {8'd255, colour[23:0]};
-        tex_pkg::FMT_BC2: rgba = {nibble, nibble, colour[23:0]};  // x 17
-        tex_pkg::FMT_BC3: rgba = {low, colour[23:0]};
-        tex_pkg::FMT_BC4: rgba = {8'd255, 16'd0, low};
-        tex_pkg::FMT_BC5: rgba = {8'd255, 8'd0, high, low};
-        tex_pkg::FMT_BC7: rgba = tex_bc7::rgba(block, texel);
-        default:          rgba = 32'd0;
-      endcase
+      if (format == tex_pkg::FMT_BC7)
+        bc7 = tex_bc7::rgba(block, texel);
+      rgba = texel_of(format, colour, low, high, nibble, bc7);
     end
   end
 `endif
