@@ -17,7 +17,7 @@ constexpr const char* kRtlTextureNames = "rgba8 | bc1 | bc7 | srgb";
 bool config_takes(const tex::rtl::RtlConfig& config, RtlTexture t);
 
 // One configuration's speed workload: the driver after reset, its largest texture (at most
-// 1024x1024, noise; block formats compressed from it) loaded through the backdoor and configured
+// 1024x1024, noise; a block format: random blocks) loaded through the backdoor and configured
 // (trilinear, repeat; cached: the default caches where they fit, 16 B/clock), and 65536 random
 // trilinear requests (u, v uniform in [-2, 2), lambda uniform over the levels).
 struct RtlWorkload {
