@@ -36,9 +36,10 @@ files=$(tr '\n' ' ' < rtl/tex_files.f)
 freq=${SYNTH_FREQ:-30}     # MHz target for nextpnr (--timing-allow-fail: Fmax is reported either way)
 t_start=$(date +%s)
 
-read_cfg() {  # $1 $2 $3 [top] -> yosys commands that read and parameterize the design
-  local top=${4:-tex_unit}
-  echo "read_verilog -sv $files rtl/synth/tex_ice40_top.sv; chparam -set MAX_LOG2_W $1 -set MAX_LOG2_H $2 -set CW $3 $top; hierarchy -top $top"
+# read_cfg LOG2_W LOG2_H CW -> yosys commands that read tex_unit so parameterized. (-defer: only the
+# modules under the top are elaborated; tex_bc_decode alone, its functions inlined, takes 27 s.)
+read_cfg() {
+  echo "read_verilog -sv -defer $files; hierarchy -top tex_unit -chparam MAX_LOG2_W $1 -chparam MAX_LOG2_H $2 -chparam CW $3"
 }
 
 # ---- latch check: generic synth, no latches allowed

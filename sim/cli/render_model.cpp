@@ -4,6 +4,7 @@
 #include <chrono>
 #include <filesystem>
 #include <vector>
+#include <nlohmann/json.hpp>
 
 #include "engines/rtl/driver.h"
 #include "model/pyramid.h"

@@ -11,6 +11,7 @@
 #include <unistd.h>
 #include <unordered_set>
 #include <vector>
+#include <nlohmann/json.hpp>
 
 #include "engines/engine.h"
 #include "model/error.h"

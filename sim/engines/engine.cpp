@@ -1,4 +1,5 @@
 #include "engines/engine.h"
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 

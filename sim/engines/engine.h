@@ -3,7 +3,7 @@
 // request order; cycle-accurate engines also count clocks. Statistics are typed (EngineStats);
 // JSON is only their output format (to_json), with the same key for the same quantity everywhere.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>  // (json.hpp where a JSON value is built or read: 2 s a file)
 #include <functional>
 #include <memory>
 #include <optional>

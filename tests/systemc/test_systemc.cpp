@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <deque>
+#include <nlohmann/json.hpp>
 
 #include "engines/engine.h"
 #include "engines/systemc/stream_initiator.h"

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <nlohmann/json.hpp>
 
 #include "engines/rtl/driver.h"
 #include "engines/systemc/stream_initiator.h"
