@@ -157,7 +157,7 @@ TEST(Sampler, UnnormalizedSamplerTakesVulkansRulesOnly) {
   EXPECT_EQ(lod0.unnormalized_problem(), "");
   struct Bad { SamplerConfig c; std::string names; };
   std::vector<Bad> bad;
-  bad.reserve(6);
+  bad.reserve(6);  // (else GCC 12's -Warray-bounds sees a string copy out of bounds)
   for (Wrap w : {Wrap::Repeat, Wrap::Mirror, Wrap::MirrorClamp}) {
     SamplerConfig c = ok;
     c.wrap_v = w;
