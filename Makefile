@@ -128,7 +128,7 @@ xprop: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) --target xprop_vectors -j $(JOBS)
 	@bash scripts/xprop.sh $(BUILD)
 
-# Generic Yosys synthesis of a small configuration; fails on any latch (part of `make test`).
+# Yosys: a small tex_unit after proc, tex_lambda and tex_axil_config synthesized; fails on any latch (make test).
 synth-latch:
 	@bash scripts/synth.sh latch $(BUILD)
 
