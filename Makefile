@@ -45,7 +45,7 @@ demo: deps $(BUILD)/CMakeCache.txt
 	@echo "demo: $(OUT)/plane_point.png aliases near the horizon, $(OUT)/plane_trilinear.png blurs it grey," \
 	      "$(OUT)/plane_anisotropic.png keeps its checks; $(OUT)/plane_1000x600_mirror.png: a texture of no power-of-two size"
 
-# Two at a time: the formal proofs (one core, about 100 s; they need no build; their planted bugs
+# Two at a time: the formal proofs (one core, about a minute; they need no build; their planted bugs
 # are make formal's) start at once beside the build, then lint, xprop, synth-latch, the model
 # library alone and ctest (whose own jobs share the other core until the proofs are done). Lines
 # of the streams interleave whole (--output-sync=line).

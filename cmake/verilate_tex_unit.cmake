@@ -22,7 +22,7 @@ function(verilate_tex_unit target prefix log2_w log2_h)
   # Sources in compile order from rtl/tex_files.f (comment and option lines skipped), waivers first.
   # The list starts with tex_unit's own files, through rtl/tex_unit.sv: an on-chip configuration
   # takes those only (Verilator compiles every package it reads, used or not: the decoders' add
-  # about 15 s of C++ to each configuration).
+  # about 12 s of compiling to each configuration).
   set(file_list ${PROJECT_SOURCE_DIR}/rtl/tex_files.f)
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${file_list})
   file(STRINGS ${file_list} lines)

@@ -1,7 +1,7 @@
 #include "engines/engine.h"
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 namespace tex {
 
