@@ -3,7 +3,8 @@
 // with dlopen on the first image file it reads or writes that is not a PNG or JPEG (those go
 // through libpng and libjpeg: workloads/png_jpeg.h), so that a run without such files does not
 // load OpenImageIO's 260 shared libraries (0.4 s).
-// texture_io.cpp is its one user; everything here is the module's ABI with the host (the same
+// texture_io.cpp is its user in texsim (the CLI tests' fixture writes and reads images through it
+// too); everything here is the module's ABI with the host (the same
 // compiler and libstdc++: std::string and std::vector pass through).
 #pragma once
 #include <cstddef>

@@ -2,7 +2,6 @@
 // captured stdout/stderr, and the check that a bad input fails cleanly.
 #pragma once
 #include <gtest/gtest.h>
-#include <OpenImageIO/imageio.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,6 +11,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "workloads/image_module.h"
 
 namespace fs = std::filesystem;
 
@@ -29,31 +30,30 @@ inline std::string read_text(const fs::path& p) {
 
 inline void write_text(const fs::path& p, const std::string& s) { std::ofstream(p, std::ios::binary) << s; }
 
+// Image files go through OpenImageIO in texsim's image module (workloads/image_module.h), loaded on
+// the first use: the suite's executable does not link OpenImageIO's 260 libraries, which cost every
+// test process half a second at start.
+
 // Writes an 8-bit image with `channels` channels, pixel values from `value(x, y, c)`.
 template <class F>
 void write_image(const fs::path& p, int w, int h, int channels, F value) {
-  std::vector<uint8_t> px(size_t(w) * h * channels);
+  tex::images::Pixels px{w, h, channels, false, std::vector<uint8_t>(size_t(w) * h * channels)};
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      for (int c = 0; c < channels; ++c) px[(size_t(y) * w + x) * channels + c] = uint8_t(value(x, y, c));
-  auto out = OIIO::ImageOutput::create(p.string());
-  ASSERT_TRUE(out);
-  OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  ASSERT_TRUE(out->open(p.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data()) && out->close());
+      for (int c = 0; c < channels; ++c) px.values[(size_t(y) * w + x) * channels + c] = uint8_t(value(x, y, c));
+  std::string error;
+  ASSERT_TRUE(tex::images::module().write(p.string(), p.string(), px, error)) << p << ": " << error;
 }
 
-// RGBA8 pixels of an image file as stored (no alpha premultiplication).
+// RGBA8 pixels of an image file as stored (no alpha premultiplication); empty when the file is
+// unreadable or not RGBA.
 inline std::vector<uint8_t> read_image(const fs::path& p, int& w, int& h) {
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(p.string(), &config);
-  if (!in) return {};
-  w = in->spec().width;
-  h = in->spec().height;
-  std::vector<uint8_t> px(size_t(w) * h * 4, 0);
-  if (in->spec().nchannels != 4 || !in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, px.data())) return {};
-  return px;
+  tex::images::Pixels px;
+  std::string error;
+  if (!tex::images::module().read(p.string(), nullptr, 0, px, error) || px.channels != 4) return {};
+  w = px.width;
+  h = px.height;
+  return px.values;
 }
 
 inline std::vector<std::vector<int>> read_csv_rows(const fs::path& p, std::string& header) {

@@ -1,7 +1,6 @@
 // Textured 3D models (sim/workloads/mesh_scene): Assimp's test models (Debian assimp-testmodels),
 // OBJ+MTL and glTF 2.0 files written here with known texels, scene files and bad input.
 #include <gtest/gtest.h>
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,6 +16,7 @@
 #include <sstream>
 
 #include "model/error.h"
+#include "workloads/image_module.h"
 #include "workloads/mesh_scene.h"
 
 using namespace tex;
@@ -49,13 +49,12 @@ std::string read_bytes(const fs::path& p) {
   return ss.str();
 }
 
-// An RGBA8 PNG, rows top to bottom as PNG stores them.
+// An RGBA8 PNG, rows top to bottom as PNG stores them (OpenImageIO, through texsim's image module).
 void write_png(const fs::path& p, int w, int h, const std::vector<Rgba>& texels) {
-  auto out = OIIO::ImageOutput::create(p.string());
-  ASSERT_TRUE(out);
-  OIIO::ImageSpec spec(w, h, 4, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:UnassociatedAlpha", 1);  // keep the texels as given
-  ASSERT_TRUE(out->open(p.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, texels.data()) && out->close());
+  tex::images::Pixels px{w, h, 4, false, {}};
+  for (const Rgba& t : texels) px.values.insert(px.values.end(), t.begin(), t.end());
+  std::string error;
+  ASSERT_TRUE(tex::images::module().write(p.string(), p.string(), px, error)) << error;
 }
 
 // Eight distinct colours (and alphas) of a 4x2 image: row 0 is the top.
@@ -183,10 +182,11 @@ void check_scene(const MeshScene& s) {
     EXPECT_EQ(t.image.texels.size(), size_t(t.image.width) * t.image.height);
     EXPECT_EQ(t.image.channel_bits, 8);
     if (t.source.find("#embedded:") == std::string::npos) {  // a file: its size as OpenImageIO reads it
-      auto in = OIIO::ImageInput::open(t.source);
-      ASSERT_TRUE(in) << "texture file unreadable";
-      EXPECT_EQ(t.file_width, in->spec().width);
-      EXPECT_EQ(t.file_height, in->spec().height);
+      tex::images::Pixels px;
+      std::string error;
+      ASSERT_TRUE(tex::images::module().read(t.source, nullptr, 0, px, error)) << error;
+      EXPECT_EQ(t.file_width, px.width);
+      EXPECT_EQ(t.file_height, px.height);
     }
     // the file's size, whatever it is (no test model has a side beyond 8192)
     EXPECT_EQ(t.image.width, t.file_width);
