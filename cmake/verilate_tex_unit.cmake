@@ -12,7 +12,7 @@
 # e.g. -DTEX_VERILATOR_EXTRA_ARGS=--prof-cfuncs in a separate build tree to see which always
 # block the simulation time goes to (docs/performance.md, "Profiling the Verilated RTL").
 set(TEX_VERILATOR_EXTRA_ARGS "" CACHE STRING "extra Verilator options for every tex_unit configuration")
-find_package(verilator 5 REQUIRED HINTS /usr/share/verilator $ENV{VERILATOR_ROOT})
+include(${CMAKE_CURRENT_LIST_DIR}/verilate_unity.cmake)
 
 function(verilate_tex_unit target prefix log2_w log2_h)
   cmake_parse_arguments(ARG "TRACE_FST;FORMATS" "CW" "CACHED" ${ARGN})
@@ -58,7 +58,7 @@ function(verilate_tex_unit target prefix log2_w log2_h)
     set(cache_params -GBLOCK_W=${bw} -GBLOCK_H=${bh} -GLINES=${lines} -GFIFO_DEPTH=${fifo} -GMEM_W=${mem_w}
                      -GMISS_DEPTH=${miss} -GBLOCK_FORMATS=${formats} -GSRGB=${formats})
   endif()
-  verilate(${target} ${mode}
+  verilate_unity(${target} ${mode}
     PREFIX ${prefix}
     TOP_MODULE ${top}
     SOURCES ${waivers} ${sources}
