@@ -307,6 +307,34 @@ TEST(RtlDriver, AssertionFailureClosesTheTrace) {
   std::filesystem::remove(trace);
 }
 
+// Several units in one process (a check beside an engine, a benchmark's units): each unit's
+// assertions are its own, whichever unit was made or used last (Verilator keeps one context per
+// thread, not per model: the driver makes each unit's the thread's before it touches the model),
+// and units go away in any order (a unit made and dropped before another used to leave the
+// thread's context dangling, and a later unit's destructor hung on it at exit: make bench).
+TEST(RtlDriver, EachUnitSeesItsOwnAssertionsBesideOthers) {
+  auto first = make_unit(4, 4, 3);
+  { auto dropped = make_unit(6, 3, 3); }
+  auto later = make_unit(4, 4, 3);  // made after `first`: the thread's context was its
+  rtl::PinsIn in;
+  in.req_valid = true;
+  in.rsp_ready = false;
+  int clocks = 0;
+  while (first->tick(in).req_ready) ASSERT_LT(++clocks, 100);
+  later->tick(rtl::PinsIn{});  // `later` used last
+  in.req_valid = false;        // `first` breaks the rule that a request stays offered until taken
+  EXPECT_THROW(
+      {
+        first->tick(in);
+        first->tick(in);
+      },
+      SimulationError)
+      << "the assertion of the unit made first went unseen";
+  EXPECT_NO_THROW(later->tick(rtl::PinsIn{})) << "the other unit's assertion stopped this one";
+  first.reset();
+  later.reset();
+}
+
 TEST(RtlDriver, TraceWindowIsClosedAfterItsLastClock) {
   const std::string small = temp_path("w1.fst"), large = temp_path("w2.fst");
   auto run = [](const std::string& path, uint64_t begin, uint64_t end) {

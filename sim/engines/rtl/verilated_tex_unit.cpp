@@ -41,6 +41,7 @@ class VerilatedTexUnit final : public Driver {
     context_->randReset(2);
     context_->randSeed(int(options.seed & 0x7fffffff));
     if (tracing_) context_->traceEverOn(true);
+    Verilated::threadContextp(context_.get());
     top_ = std::make_unique<Top>(context_.get(), "tex_unit");
     if (tracing_) {
       trace_ = std::make_unique<VerilatedFstC>();
@@ -62,12 +63,24 @@ class VerilatedTexUnit final : public Driver {
 
   ~VerilatedTexUnit() override {
     close_trace();
-    top_->final();
+    current().final();
+    top_.reset();  // (its scopes leave the thread's context: this unit's, current() made it so)
+  }
+
+ private:
+  // The model, its context made the thread's first. Verilator 5.006 keeps one context per thread
+  // (Verilated::threadContextp), not per model: a model registers and erases its scopes there, and
+  // an assertion ($error, $fatal) sets gotFinish there. With several units in one process (a
+  // check beside the engine, a benchmark's units one after another) it must be this unit's, else
+  // an assertion of this unit goes unseen and its destructor reads a context that may be gone.
+  Top& current() {
+    Verilated::threadContextp(context_.get());
+    return *top_;
   }
 
  protected:
   PinsOut tick_pins(const PinsIn& in, bool dump) override {
-    Top& t = *top_;
+    Top& t = current();
     t.rst = in.rst;
     if constexpr (kCached) {
       t.m_axi_arready = in.ar_ready;
@@ -129,7 +142,7 @@ class VerilatedTexUnit final : public Driver {
 
   // The cfg_smp_* pins: tex_unit's one sampler, or the data of a sampler-table write.
   void set_sampler_pins(const SamplerPins& c) {
-    Top& t = *top_;
+    Top& t = current();
     t.cfg_smp_wrap_u = c.wrap_u;
     t.cfg_smp_wrap_v = c.wrap_v;
     t.cfg_smp_border_rgba = c.border_rgba;
@@ -146,7 +159,7 @@ class VerilatedTexUnit final : public Driver {
 
   void apply_cfg(const CfgPins& c) override {
     if constexpr (!kCached) {  // the cached unit's sizes and samplers are its tables'
-      Top& t = *top_;
+      Top& t = current();
       t.cfg_w = c.w;
       t.cfg_h = c.h;
       t.cfg_last_level = c.last_level;
@@ -157,7 +170,7 @@ class VerilatedTexUnit final : public Driver {
 
   void apply_sampler(const SamplerPins& s, bool write) override {
     if constexpr (kCached) {
-      Top& t = *top_;
+      Top& t = current();
       t.cfg_smp_we = write;
       t.cfg_smp_index = s.index;
       set_sampler_pins(s);
@@ -169,7 +182,7 @@ class VerilatedTexUnit final : public Driver {
 
   void apply_descriptor(const DescriptorPins& d, bool write) override {
     if constexpr (kCached) {
-      Top& t = *top_;
+      Top& t = current();
       t.cfg_desc_we = write;
       t.cfg_desc_index = d.index;
       t.cfg_desc_base = d.base;
@@ -186,7 +199,7 @@ class VerilatedTexUnit final : public Driver {
 
   void apply_cache_pins(const CachePins& p) override {
     if constexpr (kCached) {
-      Top& t = *top_;
+      Top& t = current();
       t.cfg_block_morton = p.block_morton;
       t.cfg_log2_sets = p.log2_sets;
       t.cfg_log2_ways = p.log2_ways;
