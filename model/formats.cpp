@@ -134,6 +134,20 @@ bool parse_border_color(const std::string& name, BorderColor& out) {
 
 std::string border_color_name(BorderColor b) { return int(b) < kBorderColors ? kBorderNames[int(b)] : "?"; }
 
+constexpr const char* kReductionNames[kReductions] = {"weighted-average", "min", "max"};
+
+bool parse_reduction(const std::string& name, Reduction& out) {
+  const std::string n = name_key(name, "vk_sampler_reduction_mode_");
+  for (int i = 0; i < kReductions; ++i)
+    if (n == name_key(kReductionNames[i], "")) {
+      out = Reduction(i);
+      return true;
+    }
+  return false;
+}
+
+std::string reduction_name(Reduction r) { return int(r) < kReductions ? kReductionNames[int(r)] : "?"; }
+
 bool parse_pyramid_mode(const std::string& name, PyramidMode& out) {
   if (name == "exact") out = PyramidMode::Exact;
   else if (name == "cascade") out = PyramidMode::Cascade;

@@ -70,6 +70,13 @@ enum class BorderColor : uint8_t {
 };
 constexpr int kBorderColors = 7;
 
+// How a filter combines the texels it weighs (Vulkan 1.2's VkSamplerReductionMode, whose values
+// these are; GL_ARB_texture_filter_minmax): their weighted average (every filter's default), or
+// the component-wise minimum or maximum of the texels it weighs with a weight above 0, over the
+// footprint, both levels of a two-level sample and an anisotropic sample's probes.
+enum class Reduction : uint8_t { WeightedAverage = 0, Min = 1, Max = 2 };
+constexpr int kReductions = 3;
+
 // Names: point, bilinear, trilinear, mip_nearest (bilinear in the nearest level), anisotropic
 // (trilinear probes), and the six GL names (nearest, linear, nearest_mipmap_nearest, ...).
 bool parse_filter(const std::string& name, Filter& out);
@@ -94,6 +101,9 @@ constexpr const char* kWrapNames = "repeat | clamp | mirror | border | mirror-cl
 bool parse_border_color(const std::string& name, BorderColor& out);
 std::string border_color_name(BorderColor b);
 bool parse_pyramid_mode(const std::string& name, PyramidMode& out);
+// weighted-average | min | max (and the Vulkan names, VK_SAMPLER_REDUCTION_MODE_MIN, ...).
+bool parse_reduction(const std::string& name, Reduction& out);
+std::string reduction_name(Reduction r);
 
 constexpr bool is_power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
 // ceil(log2 n) for n >= 1 (log2 n itself for a power of two).

@@ -59,7 +59,8 @@ void Sampler::write_packed(int level, int32_t x, int32_t y, const Texel& t) {
 }
 
 bool Sampler::fast_path_takes(const SamplerConfig& config) {
-  return !config.uses_border() && config.filter.mag == config.filter.texel && !config.unnormalized;
+  return !config.uses_border() && config.filter.mag == config.filter.texel && !config.unnormalized &&
+         config.reduction == Reduction::WeightedAverage;
 }
 
 void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t) {
@@ -96,13 +97,21 @@ int tex_probe_count(const Request& r, const SamplerConfig& config, Extent size0)
 // The stages in pipeline order, as the RTL runs them (model/stages.h, docs/architecture.md).
 Texel Sampler::sample(const Request& r) {
   const Probes p = tex_probe(r, config_, size0_);
+  ++samples_;
+  ++probes_[size_t(p.n)];
+  if (config_.reduction != Reduction::WeightedAverage) {  // the min or max over the probes too
+    stage::Unrounded m = sample_probe(p.at[0]);
+    for (int i = 1; i < p.n; ++i) {
+      const stage::Unrounded t = sample_probe(p.at[size_t(i)]);
+      for (size_t c = 0; c < 4; ++c) m[c] = config_.reduction == Reduction::Max ? std::max(m[c], t[c]) : std::min(m[c], t[c]);
+    }
+    return stage::average_and_round(m, 1);
+  }
   stage::Unrounded sum{};
   for (int i = 0; i < p.n; ++i) {
     const stage::Unrounded t = sample_probe(p.at[size_t(i)]);
     for (size_t c = 0; c < 4; ++c) sum[c] += t[c];
   }
-  ++samples_;
-  ++probes_[size_t(p.n)];
   return stage::average_and_round(sum, p.n);
 }
 
@@ -128,9 +137,10 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
                                  !linear, border_);
     slot[s].fx = tu.w;
     slot[s].fy = tv.w;
-    if (linear) multiplies_ += 3;
   }
-  if (sel.two_levels) multiplies_ += 1;
+  if (config_.reduction != Reduction::WeightedAverage)  // compares, no multiplies
+    return stage::reduce_taps(slot[0], slot[sel.two_levels ? 1 : 0], sel.f, config_.reduction == Reduction::Max);
+  multiplies_ += (linear ? 3 : 0) * slots + (sel.two_levels ? 1 : 0);
   return stage::filter_unrounded(slot[0], slot[sel.two_levels ? 1 : 0], sel.f);
 }
 

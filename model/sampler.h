@@ -32,6 +32,10 @@ struct SamplerConfig {
   // Vulkan's unnormalizedCoordinates, GL's rectangle textures: u, v in texels of level 0 (Q16.16),
   // not in texture widths. Only with what Vulkan allows beside it (unnormalized_problem).
   bool unnormalized = false;
+  // Vulkan's reductionMode (GL_TEXTURE_REDUCTION_MODE_ARB): the weighted average, or the minimum or
+  // maximum of the texels weighed (stage::reduce_taps). The reference path and the model engine
+  // take min and max; the RTL does not yet (issue 35: the driver refuses them).
+  Reduction reduction = Reduction::WeightedAverage;
   // The cap tex_aniso applies: max_aniso for the anisotropic filter, else 1 (one probe).
   int probe_cap() const { return filter.anisotropic ? max_aniso : 1; }
   // The border colour as RGBA unorm16 (stage::border_texel takes it to a level's channel width).
@@ -105,8 +109,9 @@ enum class SamplerPaths { Both, FastOnly };
 
 class Sampler {
  public:
-  // Whether the 8-bit fast path (sample_rgba8) takes this configuration: not with clamp to border
-  // or a magnification filter apart from the minification filter (the reference path does them).
+  // Whether the 8-bit fast path (sample_rgba8) takes this configuration: not with clamp to border,
+  // a magnification filter apart from the minification filter, unnormalized coordinates or a
+  // min/max reduction (the reference path does them).
   static bool fast_path_takes(const SamplerConfig& config);
   // Throws tex::Error for FastOnly with channels other than 8 bits or a configuration the fast path
   // does not take.

@@ -185,6 +185,29 @@ inline Unrounded filter_unrounded(const Footprint& d, const Footprint& d1, int f
   return out;
 }
 
+// The min/max reduction (Reduction::Min, Max) of one probe: per channel, the least or greatest of
+// the texels the filter weighs with a weight above 0 (Vulkan "Texel Filtering", reductionMode):
+// tap a always (its weights are 256 - fx and 256 - fy, never 0), b where fx > 0, c where fy > 0,
+// e where both; level d1's taps where f > 0 (a two-level sample). A nearest filter has fx = fy = 0:
+// its one texel per level. As CW.24 (the texel * 2^24), so that a probe's value and the rounding
+// after it are those of the weighted average's path.
+inline Unrounded reduce_taps(const Footprint& d, const Footprint& d1, int f, bool max) {
+  Unrounded out;
+  for (size_t c = 0; c < 4; ++c) {
+    uint32_t v = d.taps[0][c];
+    auto take = [&](const Footprint& s) {
+      const uint32_t t[4] = {s.taps[0][c], s.taps[1][c], s.taps[2][c], s.taps[3][c]};
+      const bool weighed[4] = {true, s.fx > 0, s.fy > 0, s.fx > 0 && s.fy > 0};
+      for (int k = 0; k < 4; ++k)
+        if (weighed[k]) v = max ? std::max(v, t[k]) : std::min(v, t[k]);
+    };
+    take(d);
+    if (f > 0) take(d1);
+    out[c] = int64_t(v) << 24;
+  }
+  return out;
+}
+
 // The mean of n probes (the sum of their CW.24 values) and the one rounding, half up, to CW bits:
 // round(sum / (n * 2^24)). With n = 1 this is blend_and_round. (tex_accum; the RTL divides by n
 // with a reciprocal multiply, docs/numerics.md stage 6, equal for every sum it can see.)

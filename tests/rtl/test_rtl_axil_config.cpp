@@ -832,8 +832,9 @@ TEST(RtlAxilConfig, SixtyFourBitReadIsConsistentAcrossACarry) {
 // values and the counter count, read out of the source, equal the header's, and each side has
 // every register of the other.
 TEST(RtlAxilConfig, RegisterMapHeaderMatchesTheRtl) {
-  std::ifstream in(std::string(TEX_RTL_DIR) + "/tex_axil_config.sv");
-  ASSERT_TRUE(in) << TEX_RTL_DIR << "/tex_axil_config.sv";
+  const char* path = TEX_RTL_DIR "/tex_axil_config.sv";
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << path;
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::map<std::string, uint32_t> rtl;
   const std::regex reg(R"(localparam logic \[WA-1:0\] R_(\w+)\s*=\s*WA'\('h([0-9A-Fa-f]+) >> 2\);)");

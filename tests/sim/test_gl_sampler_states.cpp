@@ -174,6 +174,10 @@ class GlSampling {
     const Texel b = c.border_unorm16();
     const float border[4] = {b[0] / 65535.f, b[1] / 65535.f, b[2] / 65535.f, b[3] / 65535.f};
     glTexParameterfv(target, GL_TEXTURE_BORDER_COLOR, border);
+    glTexParameteri(target, GL_TEXTURE_REDUCTION_MODE_ARB,  // GL_ARB_texture_filter_minmax
+                    c.reduction == Reduction::Min   ? GL_MIN
+                    : c.reduction == Reduction::Max ? GL_MAX
+                                                    : GL_WEIGHTED_AVERAGE_ARB);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, queries_);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -241,6 +245,16 @@ Outcome compare(GlSampling& gl, const Pyramid& pyr, const SamplerConfig& cfg, ui
         for (double t : {queries[i][0] * (cfg.unnormalized ? 1 : pyr.levels[size_t(k)].width),
                          queries[i][1] * (cfg.unnormalized ? 1 : pyr.levels[size_t(k)].height)})
           edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
+    if (cfg.reduction != Reduction::WeightedAverage) {
+      // Min and max take the texels of weight above 0: a linear filter's second tap, or the second
+      // level, at a weight within 1/64 of 0 is in on one side and out on the other.
+      if (tf == TexelFilter::Linear)
+        for (int k = 0; k <= (cfg.unnormalized ? 0 : q); ++k)
+          for (double t : {queries[i][0] * (cfg.unnormalized ? 1 : pyr.levels[size_t(k)].width) - 0.5,
+                           queries[i][1] * (cfg.unnormalized ? 1 : pyr.levels[size_t(k)].height) - 0.5})
+            edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
+      if (!magnify && cfg.filter.mip == MipMode::Linear) edge = edge || std::fabs(lambda - std::round(lambda)) < 1.0 / 64;
+    }
     if (edge) {
       ++o.excluded;
       continue;
@@ -401,4 +415,55 @@ TEST(GlSamplerStates, UnnormalizedCoordinatesAgreeWithRectangleTextures) {
   normalized.unnormalized = false;
   const Outcome wrong = compare(gl, rgba_npot, rect, 9, &normalized);
   EXPECT_GT(wrong.max_lsb_x100, 1000) << "texel coordinates read as texture widths went unnoticed";
+}
+
+// The min/max reduction (Vulkan reductionMode, GL_ARB_texture_filter_minmax) against llvmpipe: the
+// component-wise minimum or maximum of the texels the filter weighs (above 0) within a level, for
+// both texel filters and the mipmap modes that sample one level, every address mode, on RGBA8 and
+// sRGB textures of sides powers of two and not. The result is a texel, not a blend: RGBA8 exact,
+// sRGB within the decode tables' 0.35 step (away from weights within 1/64 of 0, where either
+// answer is right).
+// Where llvmpipe (Mesa 22.3) and the model part, not compared here: with a nearest filter beside a
+// linear one (min point, mag linear or the reverse) llvmpipe reduces over the 2x2 footprint in both
+// (the model: one texel where the filter is nearest), and between two levels it blends the two
+// levels' reductions by the level weight (the model takes the minimum or maximum over both levels'
+// texels of weight above 0, docs/numerics.md). Both were seen on these textures
+// (MinMaxReductionAgreesWithLlvmpipe with every filter pair and mipmap mode: 24 of 36 states apart).
+TEST(GlSamplerStates, MinMaxReductionAgreesWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  const Pyramid rgba = build_pyramid(make_pattern("noise", 32, 16));
+  const Pyramid rgba_npot = build_pyramid(make_pattern("noise", 37, 23));
+  const Pyramid srgb_npot = build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact);
+  const Wrap wraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
+  std::mt19937 rng(42);
+  int states = 0, compared = 0, worst = 0;
+  for (const Pyramid* pyr : {&rgba, &rgba_npot, &srgb_npot}) {
+    gl.upload(*pyr);
+    for (Reduction red : {Reduction::Min, Reduction::Max})
+      for (MipMode mip : {MipMode::None, MipMode::Nearest})
+        for (int texel = 0; texel < 2; ++texel) {
+          SamplerConfig cfg{{TexelFilter(texel), mip}, wraps[rng() % 5], wraps[rng() % 5]};
+          cfg.reduction = red;
+          cfg.border = BorderColor(rng() % (kBorderColors - 1));  // named colours: GL returns them exactly
+          const Outcome o = compare(gl, *pyr, cfg, uint32_t(3000 + states));
+          ++states;
+          compared += o.compared;
+          SCOPED_TRACE((pyr->srgb ? "sRGB " : "RGBA8 ") + std::to_string(pyr->extent0().w) + "x" +
+                       std::to_string(pyr->extent0().h) + ", " + reduction_name(red) + ", " + name_of(cfg));
+          EXPECT_GT(o.compared, kW * kH / 3) << o.excluded << " excluded";
+          EXPECT_LE(o.max_lsb_x100, pyr->srgb ? 35 : 0);
+          worst = std::max(worst, o.max_lsb_x100);
+        }
+  }
+  EXPECT_EQ(states, 24);
+  std::printf("  %d min/max sampler states, %d lookups compared with llvmpipe: max %.2f LSB\n", states, compared,
+              worst / 100.0);
+  // The check fires: the model averaging where GL takes the minimum disagrees.
+  gl.upload(rgba);
+  SamplerConfig min{{TexelFilter::Linear, MipMode::Nearest}, Wrap::Repeat, Wrap::Repeat};
+  min.reduction = Reduction::Min;
+  const SamplerConfig average{{TexelFilter::Linear, MipMode::Nearest}, Wrap::Repeat, Wrap::Repeat};
+  const Outcome wrong = compare(gl, rgba, min, 11, &average);
+  EXPECT_GT(wrong.max_lsb_x100, 1000) << "an average for a minimum went unnoticed";
 }

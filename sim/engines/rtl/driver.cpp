@@ -33,6 +33,9 @@ CfgPins cfg_pins(const SamplerConfig& config, const Pyramid& pyramid) {
 }
 
 SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index) {
+  if (config.reduction != Reduction::WeightedAverage)
+    throw Error("the RTL has no " + reduction_name(config.reduction) +
+                " reduction yet (the model engine samples it; issue 35)");
   SamplerPins c;
   c.index = index;
   c.wrap_u = uint8_t(config.wrap_u);
