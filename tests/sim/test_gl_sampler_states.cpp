@@ -426,9 +426,9 @@ TEST(GlSamplerStates, UnnormalizedCoordinatesAgreeWithRectangleTextures) {
 // Where llvmpipe (Mesa 22.3) and the model part, not compared here: with a nearest filter beside a
 // linear one (min point, mag linear or the reverse) llvmpipe reduces over the 2x2 footprint in both
 // (the model: one texel where the filter is nearest), and between two levels it blends the two
-// levels' reductions by the level weight (the model takes the minimum or maximum over both levels'
-// texels of weight above 0, docs/numerics.md). Both were seen on these textures
-// (MinMaxReductionAgreesWithLlvmpipe with every filter pair and mipmap mode: 24 of 36 states apart).
+// levels' reductions by the level weight (the model, as Vulkan's "Texel Mipmap Filtering" says,
+// takes the minimum or maximum of both levels' values of weight above 0: docs/numerics.md 5b).
+// Both were seen on these textures (every filter pair and mipmap mode: 24 of 36 states apart).
 TEST(GlSamplerStates, MinMaxReductionAgreesWithLlvmpipe) {
   GlSampling gl;
   ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
