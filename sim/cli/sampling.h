@@ -68,6 +68,7 @@ struct SamplingOptions {
   std::string wrap = "repeat";
   std::string wrap_u, wrap_v;
   std::string mag_filter, min_filter, mipmap_mode, border_color;
+  std::string reduction = "weighted-average";
   std::string pyramid = "exact";
   std::string format = "rgba8";
   bool srgb = false;
@@ -118,6 +119,11 @@ struct SamplingOptions {
     cmd.add_option("--border-color", border_color,
                    "clamp to border's colour: transparent-black (default) | opaque-black | opaque-white (also "
                    "int-... and Vulkan names) | R,G,B,A in 0..1 (linear)");
+    cmd.add_option("--reduction", reduction,
+                   "weighted-average | min | max (or Vulkan names): how the filter combines the texels it weighs "
+                   "(Vulkan reductionMode; min and max: the texels of weight above 0, both levels, every probe; "
+                   "the model engines, not yet the RTL)")
+        ->capture_default_str();
     cmd.add_flag("--unnormalized", unnormalized,
                  "u, v in texels of the base level, not texture widths (Vulkan unnormalizedCoordinates, GL "
                  "rectangle textures): with --wrap clamp | border, one texel filter (point or bilinear, or a "
@@ -219,6 +225,8 @@ struct SamplingOptions {
     if (wrap_v_opt->count() && !parse_wrap(wrap_v, c.wrap_v))
       throw Error("--wrap-v: unknown wrap mode " + quote_clipped(wrap_v) + " (" + kWrapNames + ")");
     if (!border_color.empty()) parse_border(c);
+    if (!parse_reduction(reduction, c.reduction))
+      throw Error("--reduction " + quote_clipped(reduction) + " is not weighted-average, min or max");
     if (!to_lod_fixed(lod_bias, c.lod_bias)) throw Error("--lod-bias " + std::to_string(lod_bias) + " is outside [-128, 128)");
     if (!to_lod_fixed(min_lod, c.min_lod)) throw Error("--min-lod " + std::to_string(min_lod) + " is outside [-128, 128)");
     if (!to_lod_fixed(max_lod, c.max_lod)) throw Error("--max-lod " + std::to_string(max_lod) + " is outside [-128, 128)");

@@ -26,7 +26,7 @@ namespace {
 using namespace tex;
 
 // --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M]
-// [border=C] [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
+// [border=C] [reduction=R] [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
 // patterns as they are; `srgb`: the texels are sRGB codes; `unnormalized`: the sampler takes texel
 // coordinates, the trace's u, v of this entry are texels). Line t is texture t of the
 // descriptor table and sampler t of the sampler table: the options' sampler with the line's wrap
@@ -44,7 +44,7 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (!f) throw Error(path + ": cannot open texture list");
   const std::string form =
-      "`id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M] [border=C] [base=N] [max=N]`";
+      "`id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M] [border=C] [reduction=R] [base=N] [max=N]`";
   std::vector<TextureListEntry> out;
   char buf[4096];
   int line_no = 0;
@@ -96,6 +96,9 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
         } else if (key == "border") {
           if (!parse_border_color(value, e.sampler.border))
             throw Error(at + "border=" + quote_clipped(value) + ": not a border colour name (transparent-black, ...)");
+        } else if (key == "reduction") {
+          if (!parse_reduction(value, e.sampler.reduction))
+            throw Error(at + "reduction=" + quote_clipped(value) + ": not weighted-average, min or max");
         } else if (key == "base" || key == "max") {
           int level = -1;
           size_t used = 0;
@@ -108,7 +111,7 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
             throw Error(at + key + "=" + quote_clipped(value) + ": not a level 0 to " + std::to_string(kMaxLevels - 1));
           (key == "base" ? e.base_level : e.max_level) = level;
         } else {
-          throw Error(at + "unknown field " + quote_clipped(key) + " (min, mag, mip, border, base, max)");
+          throw Error(at + "unknown field " + quote_clipped(key) + " (min, mag, mip, border, reduction, base, max)");
         }
       }
       check_sampler(e.sampler, at);
@@ -124,6 +127,11 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
   std::fclose(f);
   if (out.empty()) throw Error(path + ": no textures listed (one " + form + " per line)");
   return out;
+}
+
+// The filter as the summary line names it, with a reduction other than the weighted average.
+std::string filter_label(const SamplerConfig& c) {
+  return filter_name(c.filter) + (c.reduction == Reduction::WeightedAverage ? "" : " " + reduction_name(c.reduction));
 }
 
 int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& textures_path,
@@ -237,10 +245,10 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (frame) std::fprintf(report, "  %s\n", frame->summary().c_str());
   if (table.size() > 1)
     std::fprintf(report, "texsim sample: %zu queries, %s, %zu textures, engine %s -> %s (%.2f s)\n", count,
-                 filter_name(cfg.filter).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
+                 filter_label(cfg).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
   else
     std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
-                 count, filter_name(cfg.filter).c_str(), wrap_name(samplers[0].wrap_u).c_str(),
+                 count, filter_label(cfg).c_str(), wrap_name(samplers[0].wrap_u).c_str(),
                  wrap_name(samplers[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
                  out_path.c_str(), secs);
   return 0;
@@ -383,7 +391,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
   print_probe_stats(last_stats);
   std::printf("texsim render: scene %s, %dx%d, frame%s %d..%d of %d, %zu samples, %s, engine %s -> %s (%.2f s)\n",
               scene.c_str(), so.width, so.height, all_frames ? "s" : "", first, last, so.frames, samples,
-              filter_name(cfg.filter).c_str(), o.engine.c_str(), out.c_str(), secs);
+              filter_label(cfg).c_str(), o.engine.c_str(), out.c_str(), secs);
   return 0;
 }
 

@@ -143,6 +143,50 @@ TEST_F(TexsimCli, UnnormalizedCoordinatesAreTexels) {
                        {"badlist.txt:1", "not repeat"});
 }
 
+// --reduction (Vulkan reductionMode): min and max bound the weighted average texel by texel, and
+// differ from it; the SystemC model engine gives the model's bytes; a texture list's reduction=
+// sets its sampler's; the RTL engines refuse it with one line and write nothing (issue 35: not in
+// the RTL yet); a bad name is one line.
+TEST_F(TexsimCli, ReductionMinAndMaxBoundTheAverage) {
+  std::string q = "u,v,lod\n";
+  for (int i = 0; i < 300; ++i)
+    q += std::to_string((i * 37 % 300) / 97.0 - 1) + "," + std::to_string((i * 53 % 300) / 113.0 - 1) + "," +
+         std::to_string(i % 9 * 0.5 - 1) + "\n";
+  queries(q);
+  const std::string base = "sample -t noise:37x23 -q q.csv -f trilinear -w mirror ";
+  for (const auto& [option, out] : {std::pair{"", "avg.csv"}, {"--reduction min ", "min.csv"},
+                                     {"--reduction VK_SAMPLER_REDUCTION_MODE_MAX ", "max.csv"}}) {
+    const Result res = run(base + option + "-o " + out);
+    ASSERT_EQ(res.exit_code, 0) << option << res.err;
+  }
+  std::string h;
+  const auto avg = read_csv_rows(dir / "avg.csv", h), lo = read_csv_rows(dir / "min.csv", h),
+             hi = read_csv_rows(dir / "max.csv", h);
+  ASSERT_EQ(avg.size(), 300u);
+  ASSERT_EQ(lo.size(), avg.size());
+  ASSERT_EQ(hi.size(), avg.size());
+  int below = 0, above = 0;
+  for (size_t i = 0; i < avg.size(); ++i)
+    for (size_t c = 0; c < avg[i].size(); ++c) {
+      EXPECT_LE(lo[i][c], avg[i][c]) << "query " << i;
+      EXPECT_LE(avg[i][c], hi[i][c]) << "query " << i;
+      below += lo[i][c] < avg[i][c];
+      above += avg[i][c] < hi[i][c];
+    }
+  EXPECT_GT(below, 300);
+  EXPECT_GT(above, 300);
+  ASSERT_EQ(run(base + "--reduction min -e systemc-model -o sc.csv").exit_code, 0);
+  EXPECT_EQ(read_text(dir / "sc.csv"), read_text(dir / "min.csv"));
+  write_text(dir / "list.txt", "0 noise:37x23 mirror reduction=max\n");
+  ASSERT_EQ(run("sample --textures list.txt -q q.csv -f trilinear -o l.csv").exit_code, 0);
+  EXPECT_EQ(read_text(dir / "l.csv"), read_text(dir / "max.csv"));
+  expect_clean_failure(base + "--reduction min -e rtl -o r.csv", "r.csv", {"min reduction"});
+  expect_clean_failure(base + "--reduction max -e rtl --memory cached -o r.csv", "r.csv", {"max reduction"});
+  expect_clean_failure(base + "--reduction median -o r.csv", "r.csv", {"--reduction", "median"});
+  write_text(dir / "bad.txt", "0 noise:37x23 reduction=avg\n");
+  expect_clean_failure("sample --textures bad.txt -q q.csv -o r.csv", "r.csv", {"bad.txt", "reduction=", "avg"});
+}
+
 TEST_F(TexsimCli, GrayBecomesOpaqueRgbAndRgbGetsOpaqueAlpha) {
   auto gray = [](int x, int y, int) { return 10 + x * 30 + y * 3; };
   auto rgb = [](int x, int y, int c) { return 5 + x * 40 + y * 9 + c * 2; };
