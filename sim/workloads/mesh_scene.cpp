@@ -538,8 +538,13 @@ std::vector<ModelPlacement> read_scene_file(const std::string& path) {
             BorderColor b;
             if (!parse_border_color(name, b)) fail(fat, "unknown border colour " + quote_clipped(name) + " (transparent-black, opaque-black, opaque-white)");
             o.border_color = b;
+          } else if (field == "reduction") {
+            Reduction r;
+            if (!parse_reduction(name, r)) fail(fat, "unknown reduction " + quote_clipped(name) + " (weighted-average, min, max)");
+            o.reduction = r;
           } else {
-            fail(fat, "unknown sampler field (wrap, wrap_u, wrap_v, min_filter, mag_filter, mipmap_mode, border_color)");
+            fail(fat, "unknown sampler field (wrap, wrap_u, wrap_v, min_filter, mag_filter, mipmap_mode, border_color, "
+                      "reduction)");
           }
         }
       } else {
@@ -561,6 +566,7 @@ std::string SamplerOverride::key() const {
   add(mag_filter.has_value(), mag_filter ? int(*mag_filter) : 0);
   add(mipmap_mode.has_value(), mipmap_mode ? int(*mipmap_mode) : 0);
   add(border_color.has_value(), border_color ? int(*border_color) : 0);
+  add(reduction.has_value(), reduction ? int(*reduction) : 0);
   return k;
 }
 
@@ -590,6 +596,7 @@ SamplerConfig file_sampler(const SceneTexture& t, SamplerConfig base, bool keep_
   if (o.mag_filter) base.filter.mag = *o.mag_filter;
   if (o.mipmap_mode) base.filter.mip = *o.mipmap_mode;
   if (o.border_color) base.border = *o.border_color;
+  if (o.reduction) base.reduction = *o.reduction;
   return base;
 }
 

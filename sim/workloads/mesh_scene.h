@@ -21,6 +21,7 @@ struct SamplerOverride {
   std::optional<TexelFilter> min_filter, mag_filter;
   std::optional<MipMode> mipmap_mode;
   std::optional<BorderColor> border_color;
+  std::optional<Reduction> reduction;
   std::string key() const;  // equal for equal overrides (textures are told apart by it)
 };
 
