@@ -290,6 +290,18 @@ double expect_gl_precision(const Outcome& o, const Pyramid& pyr, const SamplerCo
   return mean;
 }
 
+constexpr Wrap kWraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
+
+// The textures most states are compared on: RGBA8 with sides powers of two (32x16) and not (37x23:
+// odd levels, repeat seams), and an sRGB one with sides not powers of two (25x48).
+struct TestTextures {
+  Pyramid rgba, rgba_npot, srgb_npot;
+};
+TestTextures test_textures() {
+  return {build_pyramid(make_pattern("noise", 32, 16)), build_pyramid(make_pattern("noise", 37, 23)),
+          build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact)};
+}
+
 std::string name_of(const SamplerConfig& c) {
   return "min " + filter_name(Filter{c.filter.texel, c.filter.mip}) + ", mag " + texel_filter_name(c.filter.mag) +
          ", wrap " + wrap_name(c.wrap_u) + "/" + wrap_name(c.wrap_v) + ", border " + border_color_name(c.border);
@@ -305,7 +317,6 @@ TEST(GlSamplerStates, LlvmpipeAgreesWithTheModelOnEverySamplerState) {
   const Pyramid rgba_npot = build_pyramid(make_pattern("noise", 37, 23));  // 37x23, 18x11, 9x5, 4x2, 2x1, 1x1
   const Pyramid srgb_npot = build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact);
   std::mt19937 rng(39);
-  const Wrap wraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
   int states = 0, compared = 0, worst = 0;
   double mean_sum = 0;
   for (const Pyramid* pyr : {&rgba, &srgb, &rgba_npot, &srgb_npot}) {
@@ -314,7 +325,7 @@ TEST(GlSamplerStates, LlvmpipeAgreesWithTheModelOnEverySamplerState) {
       for (int texel = 0; texel < 2; ++texel)
         for (int mag = 0; mag < 2; ++mag)
           for (int w = 0; w < 5; ++w) {
-            SamplerConfig cfg{{TexelFilter(texel), MipMode(mip)}, wraps[w], wraps[(w + 1 + rng() % 4) % 5]};
+            SamplerConfig cfg{{TexelFilter(texel), MipMode(mip)}, kWraps[w], kWraps[(w + 1 + rng() % 4) % 5]};
             cfg.filter.mag = TexelFilter(mag);
             cfg.border = BorderColor(rng() % kBorderColors);
             if (cfg.border == BorderColor::Custom)
@@ -342,11 +353,8 @@ TEST(GlSamplerStates, LlvmpipeAgreesWithTheModelOnEverySamplerState) {
 TEST(GlSamplerStates, ViewsAgreeWithLlvmpipe) {
   GlSampling gl;
   ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
-  const Pyramid rgba = build_pyramid(make_pattern("noise", 32, 16));
-  const Pyramid rgba_npot = build_pyramid(make_pattern("noise", 37, 23));
-  const Pyramid srgb_npot = build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact);
+  const auto [rgba, rgba_npot, srgb_npot] = test_textures();
   const std::pair<int, int> views[] = {{1, 3}, {2, 99}, {0, 1}, {3, 3}, {1, 1}};
-  const Wrap wraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
   std::mt19937 rng(40);
   int states = 0, worst = 0;
   for (const Pyramid* pyr : {&rgba, &rgba_npot, &srgb_npot}) {
@@ -355,7 +363,7 @@ TEST(GlSamplerStates, ViewsAgreeWithLlvmpipe) {
       for (int mip = 0; mip < 3; ++mip) {
         const Pyramid view = view_pyramid(*pyr, b, m);
         gl.view(b, m);
-        SamplerConfig cfg{{TexelFilter(rng() % 2), MipMode(mip)}, wraps[rng() % 5], wraps[rng() % 5]};
+        SamplerConfig cfg{{TexelFilter(rng() % 2), MipMode(mip)}, kWraps[rng() % 5], kWraps[rng() % 5]};
         cfg.filter.mag = TexelFilter(rng() % 2);
         const Outcome o = compare(gl, view, cfg, uint32_t(1000 + states));
         ++states;
@@ -382,9 +390,7 @@ TEST(GlSamplerStates, ViewsAgreeWithLlvmpipe) {
 TEST(GlSamplerStates, UnnormalizedCoordinatesAgreeWithRectangleTextures) {
   GlSampling gl;
   ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
-  const Pyramid rgba = build_pyramid(make_pattern("noise", 32, 16));
-  const Pyramid rgba_npot = build_pyramid(make_pattern("noise", 37, 23));
-  const Pyramid srgb_npot = build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact);
+  const auto [rgba, rgba_npot, srgb_npot] = test_textures();
   std::mt19937 rng(41);
   int states = 0, worst = 0;
   for (const Pyramid* pyr : {&rgba, &rgba_npot, &srgb_npot}) {
@@ -432,10 +438,7 @@ TEST(GlSamplerStates, UnnormalizedCoordinatesAgreeWithRectangleTextures) {
 TEST(GlSamplerStates, MinMaxReductionAgreesWithLlvmpipe) {
   GlSampling gl;
   ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
-  const Pyramid rgba = build_pyramid(make_pattern("noise", 32, 16));
-  const Pyramid rgba_npot = build_pyramid(make_pattern("noise", 37, 23));
-  const Pyramid srgb_npot = build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact);
-  const Wrap wraps[] = {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror, Wrap::Border, Wrap::MirrorClamp};
+  const auto [rgba, rgba_npot, srgb_npot] = test_textures();
   std::mt19937 rng(42);
   int states = 0, compared = 0, worst = 0;
   for (const Pyramid* pyr : {&rgba, &rgba_npot, &srgb_npot}) {
@@ -443,7 +446,7 @@ TEST(GlSamplerStates, MinMaxReductionAgreesWithLlvmpipe) {
     for (Reduction red : {Reduction::Min, Reduction::Max})
       for (MipMode mip : {MipMode::None, MipMode::Nearest})
         for (int texel = 0; texel < 2; ++texel) {
-          SamplerConfig cfg{{TexelFilter(texel), mip}, wraps[rng() % 5], wraps[rng() % 5]};
+          SamplerConfig cfg{{TexelFilter(texel), mip}, kWraps[rng() % 5], kWraps[rng() % 5]};
           cfg.reduction = red;
           cfg.border = BorderColor(rng() % (kBorderColors - 1));  // named colours: GL returns them exactly
           const Outcome o = compare(gl, *pyr, cfg, uint32_t(3000 + states));
