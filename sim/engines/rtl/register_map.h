@@ -1,7 +1,7 @@
 // The AXI4-Lite register map of tex_unit_axi (rtl/tex_axil_config.sv; docs/rtl-interface.md,
 // "AXI4-Lite configuration"): byte offsets, constants and the fields of the staged descriptor and
-// sampler, for drivers and tests. One copy: RtlAxilConfig.RegisterMapHeaderMatchesTheRtl reads
-// every offset and constant back out of tex_axil_config.sv.
+// sampler, for drivers and tests. One copy: RegisterMap.HeaderMatchesTheRtl
+// (tests/rtl/test_register_map.cpp) reads every offset and constant back out of tex_axil_config.sv.
 #pragma once
 #include <cstdint>
 
