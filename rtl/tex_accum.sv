@@ -2,7 +2,9 @@
 // average_and_round (docs/numerics.md stage 6): round half up of sum / (N * 2^24), computed as
 // floor(X * ceil(2^25 / N) / 2^25) with X = floor((sum + N * 2^23) / 2^24) (exact for every X
 // below 2^21, tests/model/test_aniso.cpp). With N = 1 it is the trilinear rounding.
-//   clock 1: acc = first ? blend : acc + blend          per channel, CW.24 (+ 4 bits for 16 probes)
+// A min or max reduction (in_reduction) keeps the min or max of the probes instead of their sum,
+// and its mean of 1: each probe's blend is a texel value * 2^24, returned exactly.
+//   clock 1: acc = first ? blend : acc + blend (min, max)  per channel, CW.24 (+ 4 bits for 16 probes)
 //   clock 2: rgba = the rounded mean of acc; out_valid only for the sample's last probe
 // Handshake: stall-enable; the registers load when en is high, the data registers only with a
 //   valid probe (clock 1) or a sample's last probe (clock 2): rgba and out_side hold the last
@@ -11,6 +13,7 @@
 // Ports:
 //   blend        : channel c at [c*(CW+24) +: CW+24], unsigned CW.24 (tex_filter's)
 //   in_first, in_last, in_n : the probe's place in its sample and the sample's probes (1..16)
+//   in_reduction : tex_pkg::REDUCE_*, the probe's sampler's reduction mode (code 3 as min)
 //   in_side    : SIDE_W bits carried along (the tag)
 //   rgba       : {A, B, G, R}, CW-bit unsigned channels
 `include "tex_param_error.svh"
@@ -25,6 +28,7 @@ module tex_accum #(
   input  logic                  in_first,
   input  logic                  in_last,
   input  logic [4:0]            in_n,
+  input  logic [tex_pkg::REDUCTION_W-1:0] in_reduction,
   input  logic [4*(CW+24)-1:0]  blend,
   input  logic [SIDE_W-1:0]     in_side,
   output logic                  out_valid,
@@ -48,7 +52,7 @@ module tex_accum #(
     else if (en) valid_s1 <= in_valid;
     if (en && in_valid) begin
       last_s1 <= in_last;
-      n_s1    <= in_n;
+      n_s1    <= (in_reduction != tex_pkg::REDUCE_AVERAGE) ? 5'd1 : in_n;
       side_s1 <= in_side;
     end
   end
@@ -84,9 +88,12 @@ module tex_accum #(
   genvar c;
   generate
     for (c = 0; c < 4; c = c + 1) begin : g_channel
-      logic [AW-1:0] acc;
+      logic [AW-1:0] acc, probe;
+      assign probe = {4'd0, blend[c*TW +: TW]};
       always_ff @(posedge clk) begin
-        if (en && in_valid) acc <= (in_first ? '0 : acc) + {4'd0, blend[c*TW +: TW]};
+        if (en && in_valid)
+          if (in_reduction == tex_pkg::REDUCE_AVERAGE) acc <= (in_first ? '0 : acc) + probe;
+          else acc <= (in_first || ((probe > acc) == (in_reduction == tex_pkg::REDUCE_MAX))) ? probe : acc;
         if (en && valid_s1 && last_s1) rgba[c*CW +: CW] <= mean_of(acc, n_s1);
       end
     end

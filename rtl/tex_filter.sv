@@ -5,6 +5,10 @@
 //   clock 2: bil = lerp(top, bot, fy)                      per slot            CW.16
 //   clock 3: blend = lerp(bil[0], bil[1], f)                                   CW.24
 // Point sampling is the same datapath with fx = fy = 0 and f = 0 (blend = a of slot 0, * 2^24).
+// A min or max reduction (the model's reduce_taps) compares instead of weighing, in the same
+// registers: clock 1 the min/max of the taps a slot weighs with a weight above 0 (a; b if fx > 0;
+// c if fy > 0; e if both), clock 2 passes it, clock 3 takes slot 1's too if f > 0; blend is that
+// texel value * 2^24 (exact: tex_accum's rounding returns it).
 // Handshake: stall-enable; every register loads when en is high.
 // Latency: 3 clocks. Throughput: 1 per clock.
 // Ports:
@@ -13,6 +17,7 @@
 //   w    : slot s axis a (0 fx, 1 fy) at [(s*2 + a)*WEIGHT_BITS +: WEIGHT_BITS], unsigned, the
 //          weight of the +1 tap in 1/256
 //   f    : unsigned WEIGHT_BITS, weight of slot 1 (level d1) in 1/256
+//   reduction : tex_pkg::REDUCE_*, with the taps (the sampler's reduction mode; code 3 as min)
 //   blend: channel c at [c*(CW+24) +: CW+24] (R, G, B, A), unsigned CW.24, exact
 `include "tex_param_error.svh"
 module tex_filter #(
@@ -23,20 +28,32 @@ module tex_filter #(
   input  logic [32*CW-1:0]                    taps,
   input  logic [4*tex_pkg::WEIGHT_BITS-1:0]   w,
   input  logic [tex_pkg::WEIGHT_BITS-1:0]     f,
+  input  logic [tex_pkg::REDUCTION_W-1:0]     reduction,
   output logic [4*(CW+24)-1:0]                blend
 );
   localparam int WB = tex_pkg::WEIGHT_BITS;
 
-  // Weights delayed to the clock that uses them.
+  // Weights and the reduction delayed to the clock that uses them.
   logic [2*WB-1:0] fy_s7;  // slot s at [s*WB +: WB]
   logic [WB-1:0]   f_s7, f_s8;
+  logic            compare, compare_s7, compare_s8;  // a min or max reduction
+  logic            take_max, take_max_s7, take_max_s8;
+  assign compare  = reduction != tex_pkg::REDUCE_AVERAGE;
+  assign take_max = reduction == tex_pkg::REDUCE_MAX;
   always_ff @(posedge clk) begin
     if (en) begin
       fy_s7 <= {w[3*WB +: WB], w[1*WB +: WB]};
       f_s7  <= f;
       f_s8  <= f_s7;
+      {compare_s7, take_max_s7} <= {compare, take_max};
+      {compare_s8, take_max_s8} <= {compare_s7, take_max_s7};
     end
   end
+
+  // The larger (take_max) or smaller of two channel values.
+  function automatic logic [CW-1:0] pick(input logic [CW-1:0] p, input logic [CW-1:0] q, input logic larger);
+    pick = ((p > q) == larger) ? p : q;
+  endfunction
 
   genvar c, s;
   generate
@@ -52,20 +69,33 @@ module tex_filter #(
         assign te = taps[((s*4 + 3)*4 + c)*CW +: CW];
         tex_lerp #(.IN_W(CW)) u_top (.a(ta), .b(tb), .w(w[(s*2)*WB +: WB]), .y(top_next));
         tex_lerp #(.IN_W(CW)) u_bot (.a(tc), .b(te), .w(w[(s*2)*WB +: WB]), .y(bot_next));
+        // The reduction's taps: those of weight 0 replaced by a (which is always weighed).
+        logic          wx, wy;
+        logic [CW-1:0] reduced;
+        assign wx = w[(s*2)*WB +: WB] != '0;
+        assign wy = w[(s*2 + 1)*WB +: WB] != '0;
+        assign reduced = pick(pick(ta, wx ? tb : ta, take_max), pick(wy ? tc : ta, (wx && wy) ? te : ta, take_max),
+                              take_max);
         always_ff @(posedge clk) begin
           if (en) begin
-            top_s7 <= top_next;
+            top_s7 <= compare ? {reduced, WB'(0)} : top_next;
             bot_s7 <= bot_next;
           end
         end
         tex_lerp #(.IN_W(CW+WB)) u_bil (.a(top_s7), .b(bot_s7), .w(fy_s7[s*WB +: WB]), .y(bil_next));
-        always_ff @(posedge clk) if (en) bil_s8 <= bil_next;
+        always_ff @(posedge clk) if (en) bil_s8 <= compare_s7 ? {top_s7, WB'(0)} : bil_next;
       end
 
       logic [CW+3*WB-1:0] tri_next;                              // CW.24
+      logic [CW-1:0]      r0, r1;  // the slots' reductions (bil_s8's integer part)
       tex_lerp #(.IN_W(CW+2*WB)) u_tri (.a(g_slot[0].bil_s8), .b(g_slot[1].bil_s8), .w(f_s8),
                                         .y(tri_next));
-      always_ff @(posedge clk) if (en) blend[c*(CW+3*WB) +: CW+3*WB] <= tri_next;
+      assign r0 = g_slot[0].bil_s8[2*WB +: CW];
+      assign r1 = g_slot[1].bil_s8[2*WB +: CW];
+      always_ff @(posedge clk)
+        if (en)
+          blend[c*(CW+3*WB) +: CW+3*WB] <= compare_s8 ? {(f_s8 != '0) ? pick(r0, r1, take_max_s8) : r0, (3*WB)'(0)}
+                                                      : tri_next;
     end
   endgenerate
 

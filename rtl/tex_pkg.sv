@@ -40,6 +40,12 @@ package tex_pkg;
   localparam logic [MIP_W-1:0] MIP_NEAREST = 2'd1;
   localparam logic [MIP_W-1:0] MIP_LINEAR  = 2'd2;
 
+  // ---- cfg_smp_reduction (Vulkan's VkSamplerReductionMode values)
+  localparam int REDUCTION_W = 2;
+  localparam logic [REDUCTION_W-1:0] REDUCE_AVERAGE = 2'd0;  // the weighted average (filtering)
+  localparam logic [REDUCTION_W-1:0] REDUCE_MIN     = 2'd1;  // the minimum of the weighed taps
+  localparam logic [REDUCTION_W-1:0] REDUCE_MAX     = 2'd2;  // their maximum
+
   // ---- texel formats (model/block_formats.h TexelFormat): how memory holds a texture
   localparam int FORMAT_W = 3;
   localparam logic [FORMAT_W-1:0] FMT_RGBA8 = 3'd0;

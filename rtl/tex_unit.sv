@@ -22,6 +22,8 @@
 //   cfg_smp_unnormalized req_u, req_v are signed Q16.16 texels of level 0 (Vulkan's
 //   unnormalizedCoordinates; with clamp-to-edge or -border modes, one texel filter, no
 //   anisotropy, the base level only: the driver checks);
+//   cfg_smp_reduction how the filter combines its taps (tex_pkg::REDUCE_*: the weighted average,
+//   or the component-wise min or max of the taps it weighs above 0, both levels and every probe);
 //   cfg_smp_border_rgba the border colour of address mode border, {A, B, G, R} unorm16; wr_data, rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   cfg_w, cfg_h the texture's size, unsigned SIZE_W bits, 1..2^MAX_LOG2_W (2^MAX_LOG2_H), any
 //   value (GL's level sizes; a side that is not a power of two is loaded with its repeat seam's
@@ -30,8 +32,8 @@
 //   a view's max level), unsigned LEVEL_W bits;
 //   wr_level, wr_x, wr_y unsigned integers.
 // Inputs are only ever registered: no logic depends combinationally on an input pin.
-//   cfg_* are taken with each request (in tex_probe and tex_front; the border colour registered
-//   every clock) and must be static while requests are in flight. The cfg_smp_* pins are the
+//   cfg_* are taken with each request (in tex_probe and tex_front; the border colour and the
+//   reduction registered every clock) and must be static while requests are in flight. The cfg_smp_* pins are the
 //   unit's one sampler: the fields of an entry of tex_unit_cached's sampler table.
 //   wr_* are registered (wr_*_q) and written one clock later: a texel on the write pins in cycle
 //   t is in its memory from cycle t + 2 on, and is seen by every request accepted in cycle t - 6
@@ -70,6 +72,7 @@ module tex_unit #(
   input  logic                                   cfg_smp_aniso_pow2,
   input  logic [63:0]                            cfg_smp_border_rgba,
   input  logic                                   cfg_smp_unnormalized,
+  input  logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction,
 
   input  logic                                   wr_en,
   input  logic [tex_pkg::LEVEL_W-1:0]            wr_level,
@@ -251,9 +254,11 @@ module tex_unit #(
   logic [4*CWD-1:0]  border_next, border_rgba;  // in the filter's channel width (tex_border)
   logic [32*CWD-1:0] taps_b_s6;
   tex_border #(.CW(CWD)) u_border (.rgba16(cfg_border_q), .rgba(border_next));
+  logic [tex_pkg::REDUCTION_W-1:0] cfg_reduction_q;  // (the filter's and tex_accum's)
   always_ff @(posedge clk) begin
-    cfg_border_q <= cfg_smp_border_rgba;
-    border_rgba  <= border_next;
+    cfg_border_q    <= cfg_smp_border_rgba;
+    border_rgba     <= border_next;
+    cfg_reduction_q <= cfg_smp_reduction;
   end
   always_comb begin
     for (int t = 0; t < 8; t++) begin
@@ -267,7 +272,7 @@ module tex_unit #(
   // ---------------------------------------------------------------- clocks 7-9: filter
   logic [4*(CWD+24)-1:0] blend_s9;
   tex_filter #(.CW(CWD)) u_filter (
-    .clk(clk), .en(en), .taps(taps_b_s6), .w(w_s6), .f(f_s6), .blend(blend_s9)
+    .clk(clk), .en(en), .taps(taps_b_s6), .w(w_s6), .f(f_s6), .reduction(cfg_reduction_q), .blend(blend_s9)
   );
 
   // ---------------------------------------------------------------- clocks 10-11: tex_accum
@@ -282,7 +287,7 @@ module tex_unit #(
   tex_accum #(.CW(CWD), .SIDE_W(TGW)) u_accum (
     .clk(clk), .rst(rst), .en(en), .in_valid(valid[NSTAGE]),
     .in_first(g_tag[NSTAGE].tag[TGW]), .in_last(g_tag[NSTAGE].tag[TGW+1]),
-    .in_n(g_tag[NSTAGE].tag[TGW+2 +: 5]), .blend(blend_s9), .in_side(g_tag[NSTAGE].tag[TGW-1:0]),
+    .in_n(g_tag[NSTAGE].tag[TGW+2 +: 5]), .in_reduction(cfg_reduction_q), .blend(blend_s9), .in_side(g_tag[NSTAGE].tag[TGW-1:0]),
     .out_valid(sample_valid), .rgba(rgba_s11), .out_side(tag_s11), .held(accum_held)
 `ifdef FORMAL
     , .f_valid_s1(f_accum_valid), .f_side_s1(f_accum_tag)

@@ -104,6 +104,7 @@ module tex_unit_axi #(
   logic                              unit_rst;
   logic                              cfg_desc_we, cfg_desc_srgb, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_aniso_pow2;
   logic                              cfg_smp_unnormalized;
+  logic [tex_pkg::REDUCTION_W-1:0]   cfg_smp_reduction;
   logic [tex_pkg::TEX_ID_W-1:0]      cfg_desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base;
   logic [tex_pkg::SIZE_W-1:0]        cfg_desc_w, cfg_desc_h;
@@ -147,7 +148,7 @@ module tex_unit_axi #(
     .cfg_smp_min_linear(cfg_smp_min_linear), .cfg_smp_mag_linear(cfg_smp_mag_linear), .cfg_smp_mip_mode(cfg_smp_mip_mode),
     .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
     .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
-    .cfg_smp_unnormalized(cfg_smp_unnormalized),
+    .cfg_smp_unnormalized(cfg_smp_unnormalized), .cfg_smp_reduction(cfg_smp_reduction),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     // the counters' events, at the unit's ports
@@ -173,7 +174,7 @@ module tex_unit_axi #(
     .cfg_smp_min_linear(cfg_smp_min_linear), .cfg_smp_mag_linear(cfg_smp_mag_linear), .cfg_smp_mip_mode(cfg_smp_mip_mode),
     .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
     .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
-    .cfg_smp_unnormalized(cfg_smp_unnormalized),
+    .cfg_smp_unnormalized(cfg_smp_unnormalized), .cfg_smp_reduction(cfg_smp_reduction),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v),

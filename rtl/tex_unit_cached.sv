@@ -28,8 +28,8 @@
 //   req_sampler      : the request's sampler-table entry, 0..SAMPLERS-1
 //   cfg_smp_*        : a sampler write (cfg_smp_we high for one clock): entry cfg_smp_index gets
 //                      the fields of tex_unit's cfg_smp_* pins (filters, mip mode, LOD bias and
-//                      clamp signed Q8.8, anisotropy cap, wrap modes, border colour {A, B, G, R}
-//                      unorm16). Written before the requests that name the entry; requests of
+//                      clamp signed Q8.8, anisotropy cap, wrap modes, reduction, border colour
+//                      {A, B, G, R} unorm16). Written before the requests that name the entry; requests of
 //                      different samplers interleave freely (no flush: the fields ride with
 //                      each request).
 //   cfg_desc_*       : a descriptor write (cfg_desc_we high for one clock, while cfg_desc_ready):
@@ -105,6 +105,7 @@ module tex_unit_cached #(
   input  logic                                   cfg_smp_aniso_pow2,
   input  logic [63:0]                            cfg_smp_border_rgba,
   input  logic                                   cfg_smp_unnormalized,
+  input  logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction,
   input  logic                                   cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]        cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]        cfg_log2_ways,
@@ -271,27 +272,33 @@ module tex_unit_cached #(
   // ---------------------------------------------------------------- sampler table
   // A sampler write is registered, then written, in three parts by the clock that reads them:
   // the anisotropy cap at the request port (tex_probe), the filters, LOD fields and wrap modes at
-  // the front's clock 1 (tex_front), the border colour after the FIFO (tex_cached_fetch's table).
+  // the front's clock 1 (tex_front; the reduction there too, carried in the probe's tag to the
+  // filter and tex_accum), the border colour after the FIFO (tex_cached_fetch's table).
   localparam int SXW = (SAMPLERS > 1) ? $clog2(SAMPLERS) : 1;
   localparam int LW  = tex_pkg::LOD_W, PW = tex_pkg::MIP_W, WW = tex_pkg::WRAP_W;
   localparam int FRW = 2*WW + 2 + PW + 3*LW + 1;  // the front's fields
+  localparam int RDW = tex_pkg::REDUCTION_W;
   logic            smp_we_q;
   logic [SXW-1:0]  smp_index_q;
   logic [4:0]      smp_aniso_q;    // {pow2, max_aniso_m1}
   logic [FRW-1:0]  smp_front_q;    // {unnormalized, max, min, bias, mip mode, mag linear, min linear, wrap v, wrap u}
+  logic [RDW-1:0]  smp_reduction_q;
   logic [63:0]     smp_border_q;
   logic [4:0]      smp_aniso [SAMPLERS];
   logic [FRW-1:0]  smp_front [SAMPLERS];
+  logic [RDW-1:0]  smp_reduction [SAMPLERS];
   always_ff @(posedge clk) begin
     smp_we_q     <= !rst && cfg_smp_we;
     smp_index_q  <= SXW'(cfg_smp_index);
     smp_aniso_q  <= {cfg_smp_aniso_pow2, cfg_smp_max_aniso_m1};
     smp_front_q  <= {cfg_smp_unnormalized, cfg_smp_max_lod, cfg_smp_min_lod, cfg_smp_lod_bias, cfg_smp_mip_mode, cfg_smp_mag_linear,
                      cfg_smp_min_linear, cfg_smp_wrap_v, cfg_smp_wrap_u};
+    smp_reduction_q <= cfg_smp_reduction;
     smp_border_q <= cfg_smp_border_rgba;
     if (smp_we_q) begin
       smp_aniso[smp_index_q] <= smp_aniso_q;
       smp_front[smp_index_q] <= smp_front_q;
+      smp_reduction[smp_index_q] <= smp_reduction_q;
     end
   end
   logic [4:0] req_aniso;  // the request's sampler's cap, taken with the request
@@ -326,8 +333,9 @@ module tex_unit_cached #(
   assign probe_smp_front = smp_front[probe_smp];
 
   // ---------------------------------------------------------------- front: probe clocks 1-4
-  // A probe's tag carries its place in the sample, {n, last, first, tag}, through the FIFO.
-  localparam int SW = TGW + 7;
+  // A probe's tag carries its place in the sample and its sampler's reduction,
+  // {reduction, n, last, first, tag}, through the FIFO.
+  localparam int SW = TGW + 7 + RDW;
   // The tags are one register per clock: an unpacked array or a wide packed vector would cost a
   // delayed-write shadow copy in every clock in Verilator, a narrow register does not.
   logic [4:1] valid_f;             // the front's clock-n register holds a probe
@@ -338,7 +346,7 @@ module tex_unit_cached #(
     if (rst) valid_f <= '0;
     else if (en_front) valid_f <= {valid_f[3:1], probe_valid};
     if (en_front) begin
-      tag_f1 <= {probe_n, probe_last, probe_first, probe_tag};
+      tag_f1 <= {smp_reduction[probe_smp], probe_n, probe_last, probe_first, probe_tag};
       tag_f2 <= tag_f1;
       tag_f3 <= tag_f2;
       tag_f4 <= tag_f3;
@@ -433,7 +441,8 @@ module tex_unit_cached #(
   end
   logic [4*(CWD+24)-1:0] blend;
   tex_filter #(.CW(CWD)) u_filter (
-    .clk(clk), .en(filter_en), .taps(taps), .w(fetch_w), .f(fetch_f), .blend(blend)
+    .clk(clk), .en(filter_en), .taps(taps), .w(fetch_w), .f(fetch_f), .reduction(fetch_tag[TGW+7 +: RDW]),
+    .blend(blend)
   );
 
   // ---------------------------------------------------------------- clocks 12-13: tex_accum
@@ -451,7 +460,7 @@ module tex_unit_cached #(
   assign probe_held_unused = probe_held;
   tex_accum #(.CW(CWD), .SIDE_W(TGW + 1)) u_accum (
     .clk(clk), .rst(rst), .en(en_back), .in_valid(valid_b[3]), .in_first(tag_b3[TGW]),
-    .in_last(tag_b3[TGW+1]), .in_n(tag_b3[TGW+2 +: 5]), .blend(blend),
+    .in_last(tag_b3[TGW+1]), .in_n(tag_b3[TGW+2 +: 5]), .in_reduction(tag_b3[TGW+7 +: RDW]), .blend(blend),
     .in_side({probe_err, tag_b3[TGW-1:0]}), .out_valid(sample_valid), .rgba(rgba),
     .out_side({sample_error, sample_tag}),
     .held(accum_held_unused)

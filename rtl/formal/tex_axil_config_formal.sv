@@ -49,7 +49,7 @@ module tex_axil_config_formal #(
     .cfg_desc_h(), .cfg_desc_last_level(), .cfg_desc_ready(cfg_desc_ready), .cfg_desc_format(), .cfg_desc_srgb(), .cfg_smp_we(), .cfg_smp_index(),
     .cfg_smp_wrap_u(), .cfg_smp_wrap_v(), .cfg_smp_min_linear(), .cfg_smp_mag_linear(), .cfg_smp_mip_mode(),
     .cfg_smp_lod_bias(), .cfg_smp_min_lod(), .cfg_smp_max_lod(), .cfg_smp_max_aniso_m1(), .cfg_smp_aniso_pow2(),
-    .cfg_smp_border_rgba(), .cfg_smp_unnormalized(), .cfg_block_morton(),
+    .cfg_smp_border_rgba(), .cfg_smp_unnormalized(), .cfg_smp_reduction(), .cfg_block_morton(),
     .cfg_log2_sets(), .cfg_log2_ways(), .cfg_fifo_limit(),
     .stat_sample, .stat_sample_error, .stat_lookups, .stat_misses, .stat_mem_beat,
     .stat_out_stall, .stat_mem_wait, .stat_req_stall

@@ -121,8 +121,7 @@ struct SamplingOptions {
                    "int-... and Vulkan names) | R,G,B,A in 0..1 (linear)");
     cmd.add_option("--reduction", reduction,
                    "weighted-average | min | max (or Vulkan names): how the filter combines the texels it weighs "
-                   "(Vulkan reductionMode; min and max: the texels of weight above 0, both levels, every probe; "
-                   "the model engines, not yet the RTL)")
+                   "(Vulkan reductionMode; min and max: the texels of weight above 0, both levels, every probe)")
         ->capture_default_str();
     cmd.add_flag("--unnormalized", unnormalized,
                  "u, v in texels of the base level, not texture widths (Vulkan unnormalizedCoordinates, GL "

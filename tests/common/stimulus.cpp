@@ -161,6 +161,11 @@ void randomize_lod_controls(std::mt19937_64& rng, SamplerConfig& c) {
   }
 }
 
+void randomize_reduction(std::mt19937_64& rng, SamplerConfig& c) {
+  const uint64_t k = rng() % 8;
+  c.reduction = k == 0 ? Reduction::Min : k == 1 ? Reduction::Max : Reduction::WeightedAverage;
+}
+
 void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c) {
   c.filter = {TexelFilter::Linear, MipMode::Linear, true};
   c.max_aniso = rng() % 2 ? kMaxAniso : int(rng() % kMaxAniso) + 1;
@@ -190,6 +195,7 @@ SamplerConfig random_sampler(std::mt19937_64& rng, int unnormalized_one_in) {
   s.wrap_v = random_wrap(rng);
   randomize_border(rng, s);
   randomize_lod_controls(rng, s);
+  randomize_reduction(rng, s);
   if (unnormalized_one_in > 0 && rng() % uint64_t(unnormalized_one_in) == 0) make_unnormalized(rng, s);
   return s;
 }

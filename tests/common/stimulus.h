@@ -58,6 +58,8 @@ void randomize_border(std::mt19937_64& rng, SamplerConfig& c);
 void randomize_mag_filter(std::mt19937_64& rng, SamplerConfig& c);
 // Random bias (half of the cases 0) and clamps (half of the cases the full range).
 void randomize_lod_controls(std::mt19937_64& rng, SamplerConfig& c);
+// A min or max reduction in a quarter of the cases (each half of them), else the weighted average.
+void randomize_reduction(std::mt19937_64& rng, SamplerConfig& c);
 // Anisotropic filter: cap 16 half of the time, else 1..16; probe counts rounded to powers of two
 // in a quarter of the cases.
 void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c);
@@ -66,8 +68,8 @@ void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c);
 // none, or its mode with max LOD clamped to <= 0).
 void make_unnormalized(std::mt19937_64& rng, SamplerConfig& c);
 // Everything at random: a filter (half the default trilinear, a third anisotropic), both address
-// modes, the border colour, the magnification filter, the LOD controls; unnormalized in 1 of
-// `unnormalized_one_in` (0: never).
+// modes, the border colour, the magnification filter, the LOD controls, the reduction;
+// unnormalized in 1 of `unnormalized_one_in` (0: never).
 SamplerConfig random_sampler(std::mt19937_64& rng, int unnormalized_one_in = 0);
 
 // Gives the requests of the table's unnormalized samplers texel coordinates of their texture.

@@ -77,8 +77,9 @@ struct Reference {
     const bool unnormalized_ok = !((filter >> 13) & 1) ||
                                  (clamping(wrap & 7) && clamping((wrap >> 4) & 7) && (filter & 1) == ((filter >> 1) & 1) &&
                                   ((filter >> 8) & 15) == 0 && (((filter >> 4) & 3) == 0 || int16_t(max_lod) <= 0));
+    const bool reduction_ok = ((filter >> 14) & 3) <= 2;  // weighted average, min, max
     return (d & 15) < kSamplers && wrap_ok(wrap & 7) && wrap_ok((wrap >> 4) & 7) && ((filter >> 4) & 3) != 3 &&
-           unnormalized_ok;
+           unnormalized_ok && reduction_ok;
   }
   // BRESP of a write (the state before its edge).
   uint32_t write_resp(uint32_t addr, uint32_t data, uint8_t strb) const {
@@ -96,7 +97,7 @@ struct Reference {
       case kControl: control = d & 3; break;
       case kCache: cache = d & 0x31F01; break;
       case kFifoLimit: fifo_limit = d & ((1u << kFifoLimitBits) - 1); break;
-      case kFilter: filter = d & 0x3F33; break;
+      case kFilter: filter = d & 0xFF33; break;
       case kLodBias: lod_bias = d & 0xFFFF; break;
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
@@ -138,7 +139,7 @@ struct Reference {
     }
     switch (a) {
       case kId: return {0x54455855u, kOkay};
-      case kVersion: return {0x00030001u, kOkay};
+      case kVersion: return {0x00030002u, kOkay};
       case kCaps0: return {caps0(), kOkay};
       case kCaps1: return {caps1(), kOkay};
       case kControl: return {control, kOkay};
@@ -454,6 +455,7 @@ class Slave {
     EXPECT_EQ(t.cfg_smp_max_aniso_m1, (r.filter >> 8) & 15);
     EXPECT_EQ(t.cfg_smp_aniso_pow2, (r.filter >> 12) & 1);
     EXPECT_EQ(t.cfg_smp_unnormalized, (r.filter >> 13) & 1);
+    EXPECT_EQ(t.cfg_smp_reduction, (r.filter >> 14) & 3);
     EXPECT_EQ(t.cfg_smp_lod_bias, r.lod_bias);
     EXPECT_EQ(t.cfg_smp_min_lod, r.min_lod);
     EXPECT_EQ(t.cfg_smp_max_lod, r.max_lod);

@@ -141,6 +141,16 @@ Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log
       for (Wrap wv : {Wrap::Clamp, Wrap::Border})
         for (const char* where : {"inside", "beyond"})
           group(g_unnorm_).add(std::string(tf) + " " + wrap_name(wu) + "/" + wrap_name(wv) + " " + where);
+
+  // The taps a min/max reduction weighs (those of weight > 0) in level d, in one or two levels;
+  // and over several probes.
+  g_reduce_ = make("min/max reduction: taps weighed in level d x one or two levels; several probes");
+  for (Reduction r : {Reduction::Min, Reduction::Max}) {
+    for (const char* taps : {"1 tap", "2 taps along u", "2 taps along v", "4 taps"})
+      for (const char* levels : {"one level", "two levels"})
+        group(g_reduce_).add(reduction_name(r) + " " + taps + " " + levels);
+    group(g_reduce_).add(reduction_name(r) + " several probes");
+  }
 }
 
 void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Request& q) {
@@ -166,6 +176,7 @@ void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Reques
     ++group(g_unnorm_).hits[((size_t(cfg.filter.texel) * 2 + size_t(cfg.wrap_u == Wrap::Border)) * 2 +
                              size_t(cfg.wrap_v == Wrap::Border)) * 2 + !inside];
   }
+  if (cfg.reduction != Reduction::WeightedAverage && p.n > 1) ++group(g_reduce_).hits[(size_t(cfg.reduction) - 1) * 9 + 8];
   for (int i = 0; i < p.n; ++i) sample_probe(pyr, cfg, p.at[size_t(i)]);
 }
 
@@ -201,6 +212,12 @@ void Coverage::sample_probe(const Pyramid& pyr, const SamplerConfig& cfg, const 
           ((size_t(axis) * 2 + size_t(texel_filter)) * kNumWraps + size_t(wraps[axis])) * kTapCases + size_t(c);
       ++group(g_taps_).hits[bin];
     }
+  }
+  if (cfg.reduction != Reduction::WeightedAverage) {
+    const Extent shape = level_extent(pyr.extent0(), s.d);
+    const bool wx = stage::address(stage::scale(stage::reduce(q.u, cfg.wrap_u, cfg.unnormalized), shape.w, cfg.unnormalized), texel_filter).w > 0;
+    const bool wy = stage::address(stage::scale(stage::reduce(q.v, cfg.wrap_v, cfg.unnormalized), shape.h, cfg.unnormalized), texel_filter).w > 0;
+    ++group(g_reduce_).hits[(size_t(cfg.reduction) - 1) * 9 + (size_t(wx) + 2 * size_t(wy)) * 2 + (s.two_levels && s.f > 0)];
   }
   for (int axis = 0; axis < 2; ++axis)
     ++group(g_sign_).hits[(size_t(axis) * kNumWraps + size_t(wraps[axis])) * 2 + (coords[axis] < 0)];

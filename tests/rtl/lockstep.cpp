@@ -31,6 +31,7 @@ std::string describe(const SamplerConfig& c) {
   o << filter_name(c.filter) << " wrap " << wrap_name(c.wrap_u) << "/" << wrap_name(c.wrap_v) << " bias "
     << c.lod_bias << " min " << c.min_lod << " max " << c.max_lod << " (Q8.8)";
   if (c.unnormalized) o << " unnormalized (u, v in Q16.16 texels)";
+  if (c.reduction != Reduction::WeightedAverage) o << " reduction " << reduction_name(c.reduction);
   if (c.uses_border()) {
     const Texel b = c.border_unorm16();
     o << " border " << border_color_name(c.border) << " (" << b[0] << "," << b[1] << "," << b[2] << "," << b[3] << ")";

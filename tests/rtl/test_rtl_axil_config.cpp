@@ -25,7 +25,7 @@ using namespace axil_harness;
 TEST(RtlAxilConfig, IdVersionCapabilitiesAndResetValues) {
   Slave s(1);
   EXPECT_EQ(s.read(kId).data, 0x54455855u);  // "TEXU"
-  EXPECT_EQ(s.read(kVersion).data, 0x00030001u);
+  EXPECT_EQ(s.read(kVersion).data, 0x00030002u);
   EXPECT_EQ(s.read(kCaps0).data, uint32_t(10 | 9 << 4 | 8 << 8 | 1 << 16 | 1 << 17 | 4 << 20));
   EXPECT_EQ(s.read(kCaps1).data, uint32_t(8 | 4 << 8 | 8 << 16 | 6 << 24 | 4 << 28));
   // reset: the unit held in reset, the whole cache of 4 ways, trilinear, no LOD clamp
@@ -57,9 +57,9 @@ TEST(RtlAxilConfig, EveryRegisterWrittenAndReadBack) {
         ASSERT_EQ(s.write(kDescBase, uint32_t(rng()) & ~63u), kOkay);
         d = (d & ~15u) | uint32_t(rng() % kTextures);
       }
-      if (a == kSmpCommit) {  // a valid sampler: address modes 0..4, mip mode 0..2
+      if (a == kSmpCommit) {  // a valid sampler: address modes 0..4, mip mode 0..2, reduction 0..2
         ASSERT_EQ(s.write(kWrap, uint32_t(rng() % 5) << 4 | uint32_t(rng() % 5)), kOkay);
-        ASSERT_EQ(s.write(kFilter, (uint32_t(rng()) & 0x1F03) | uint32_t(rng() % 3) << 4), kOkay);
+        ASSERT_EQ(s.write(kFilter, (uint32_t(rng()) & 0x1F03) | uint32_t(rng() % 3) << 4 | uint32_t(rng() % 3) << 14), kOkay);
         d = (d & ~15u) | uint32_t(rng() % kSamplers);
       }
       ASSERT_EQ(s.write(a, d), kOkay) << std::hex << a;
@@ -146,7 +146,7 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   ASSERT_EQ(s.write(kWrap, 4u << 4 | 3u), kOkay);  // mirror-clamp / border: valid
   ASSERT_EQ(s.write(kFilter, 0x33), kOkay);        // mip mode 3
   EXPECT_EQ(s.write(kSmpCommit, 1), kSlverr);
-  // Unnormalized coordinates (FILTER bit 13) only as Vulkan allows them
+  // Unnormalized coordinates (FILTER bit 13) only as Vulkan allows them; reductions 0..2 (bits 14-15)
   ASSERT_EQ(s.write(kMaxLod, 0x0100), kOkay);  // 1.0
   const uint32_t kUnnorm = 1u << 13;
   struct Case { uint32_t wrap, filter; bool ok; const char* what; };
@@ -158,7 +158,9 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
                         Case{0x41, kUnnorm | 0x03, false, "mirror-clamp"},
                         Case{0x11, kUnnorm | 0x01, false, "min linear, mag nearest"},
                         Case{0x11, kUnnorm | 0x103, false, "anisotropic"},
-                        Case{0x10, 0x03, true, "normalized repeat"}}) {
+                        Case{0x10, 0x03, true, "normalized repeat"},
+                        Case{0x10, 2u << 14 | 0x23, true, "max reduction"},
+                        Case{0x10, 3u << 14 | 0x23, false, "reduction 3 (none)"}}) {
     ASSERT_EQ(s.write(kWrap, c.wrap), kOkay);
     ASSERT_EQ(s.write(kFilter, c.filter), kOkay);
     EXPECT_EQ(s.write(kSmpCommit, 1), c.ok ? kOkay : kSlverr) << c.what;
@@ -167,7 +169,7 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   ASSERT_EQ(s.write(kWrap, 0x13), kOkay);
   ASSERT_EQ(s.write(kFilter, kUnnorm | 0x13), kOkay);
   EXPECT_EQ(s.write(kSmpCommit, 1), kOkay);
-  const int unnormalized_pulses = 4;  // the OKAY commits above
+  const int unnormalized_pulses = 5;  // the OKAY commits above
   ASSERT_EQ(s.write(kWrap, 4u << 4 | 3u), kOkay);
   ASSERT_EQ(s.write(kFilter, 0x23), kOkay);
   EXPECT_EQ(s.write(kSmpCommit, kSamplers), kSlverr);

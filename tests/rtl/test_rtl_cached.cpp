@@ -280,6 +280,7 @@ void run_suite(const CachedSuite& suite) {
     cfg.wrap_v = random_wrap(rng);
     randomize_border(rng, cfg);
     randomize_lod_controls(rng, cfg);
+    randomize_reduction(rng, cfg);
     const bool unnormalized = ci % 7 == 6;  // a seventh with unnormalized coordinates
     if (unnormalized) make_unnormalized(rng, cfg);
     const LayoutParams layout = random_layout(rng, rc);

@@ -70,6 +70,7 @@ void run_suite(const RandomSuite& suite) {
     SamplerConfig cfg;
     configure(rng, cfg);
     randomize_lod_controls(rng, cfg);
+    randomize_reduction(rng, cfg);
     if (unnormalized) make_unnormalized(rng, cfg);
     std::string timing_name;
     const rtl::Timing timing = random_stalls(rng, timing_name);

@@ -307,19 +307,6 @@ TEST(RtlDriver, AssertionFailureClosesTheTrace) {
   std::filesystem::remove(trace);
 }
 
-// The RTL has no min/max reduction yet (issue 35): the driver refuses such a sampler with one
-// line, rather than sampling it as the weighted average.
-TEST(RtlDriver, RefusesAReductionItHasNot) {
-  SamplerConfig cfg;
-  cfg.reduction = Reduction::Min;
-  try {
-    rtl::sampler_pins(cfg);
-    FAIL() << "a min reduction reached the pins";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("min reduction"), std::string::npos) << e.what();
-  }
-}
-
 // Several units in one process (a check beside an engine, a benchmark's units): each unit's
 // assertions are its own, whichever unit was made or used last (Verilator keeps one context per
 // thread, not per model: the driver makes each unit's the thread's before it touches the model),

@@ -33,13 +33,14 @@ struct TextureSpec {
   PyramidMode mode;
 };
 
-// A sampler of filter f and these wrap modes, its LOD controls at random (tests/common).
+// A sampler of filter f and these wrap modes, its LOD controls and reduction at random (tests/common).
 SamplerConfig random_config(std::mt19937_64& rng, Filter f, Wrap wu, Wrap wv) {
   SamplerConfig c;
   c.filter = f;
   c.wrap_u = wu;
   c.wrap_v = wv;
   stimulus::randomize_lod_controls(rng, c);
+  stimulus::randomize_reduction(rng, c);
   return c;
 }
 

@@ -57,6 +57,7 @@ module tb_tex_unit #(
   logic                                   cfg_smp_aniso_pow2 = 'x;
   logic [63:0]                            cfg_smp_border_rgba = 'x;
   logic                                   cfg_smp_unnormalized = 1'b0;  // (the vectors' samplers are normalized)
+  logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction = 'x;
   logic [TAG_W-1:0]                       req_tag = 'x;
   logic                                   rsp_valid;
   logic                                   rsp_ready = 1'b0;
@@ -287,7 +288,7 @@ module tb_tex_unit #(
   // ---------------------------------------------------------------- main
   initial begin : main
     byte op;
-    int a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10;
+    int a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11;
     logic [63:0] h0, h1;
     logic signed [31:0] s0, s1;
     bit done;
@@ -318,7 +319,7 @@ module tb_tex_unit #(
         fail(2, "stimulus.txt ends without E");
         done = 1;
       end else if (op == "C") begin
-        r = $fscanf(stim_fd, "%d %d %d %d %d %d %d %d %d %d %d %h", a0, a1, a10, a2, a3, a4, a5, a6, a7, a8, a9, h0);
+        r = $fscanf(stim_fd, "%d %d %d %d %d %d %d %d %d %d %d %h %d", a0, a1, a10, a2, a3, a4, a5, a6, a7, a8, a9, h0, a11);
         if (accepted != answered) fail(2, "stimulus: cfg changed with requests in flight");
         cfg_w = a0;
         cfg_h = a1;
@@ -332,6 +333,7 @@ module tb_tex_unit #(
         cfg_smp_max_lod = a8;
         cfg_smp_mag_linear = a9[0];
         cfg_smp_border_rgba = h0;
+        cfg_smp_reduction = a11[1:0];
         configs++;
       end else if (op == "W") begin
         r = $fscanf(stim_fd, "%d %d %d %h", a0, a1, a2, h0);

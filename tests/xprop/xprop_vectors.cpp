@@ -7,8 +7,8 @@
 //   params.txt     MAX_LOG2_W=.., MAX_LOG2_H=.., CW=.., TAG_W=..: the bench's parameters (-P)
 //   stimulus.txt   one command per line, in order (numbers decimal unless marked hex):
 //     H max_log2_w max_log2_h cw tag_w requests ready_len   header (checked by the bench)
-//     C w h wrap_u wrap_v texel_linear mip_mode lod_bias min_lod max_lod mag_linear
-//       border(hex, {A, B, G, R} unorm16)
+//     C w h last_level wrap_u wrap_v texel_linear mip_mode lod_bias min_lod max_lod mag_linear
+//       border(hex, {A, B, G, R} unorm16) reduction
 //                    the cfg pins from now on (only after a drain: nothing in flight)
 //     W level x y data(hex)                       one clock with wr_en high
 //     I clocks                                    idle clocks (req_valid and wr_en low)
@@ -98,7 +98,7 @@ struct Gen {
     std::snprintf(hex, sizeof hex, "%llx",
                   static_cast<unsigned long long>(uint64_t(b[0]) | uint64_t(b[1]) << 16 | uint64_t(b[2]) << 32 |
                                                   uint64_t(b[3]) << 48));
-    stim << hex << '\n';
+    stim << hex << ' ' << int(c.reduction) << '\n';
   }
 
   void write_line(int level, int x, int y, uint64_t data) {
@@ -227,6 +227,7 @@ int run(const Options& opt) {
       c.wrap_v = k.wv;
       stimulus::randomize_border(g.rng, c);
       stimulus::randomize_lod_controls(g.rng, c);
+      stimulus::randomize_reduction(g.rng, c);
       g.stim << "D\n";
       g.cfg_line(pyr, c);
       const bool reset_here = std::find(reset_cases.begin(), reset_cases.end(), case_index) != reset_cases.end();

@@ -33,9 +33,6 @@ CfgPins cfg_pins(const SamplerConfig& config, const Pyramid& pyramid) {
 }
 
 SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index) {
-  if (config.reduction != Reduction::WeightedAverage)
-    throw Error("the RTL has no " + reduction_name(config.reduction) +
-                " reduction yet (the model engine samples it; issue 35)");
   SamplerPins c;
   c.index = index;
   c.wrap_u = uint8_t(config.wrap_u);
@@ -49,6 +46,7 @@ SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index) {
   c.max_aniso_m1 = uint8_t(config.probe_cap() - 1);
   c.aniso_pow2 = config.aniso_pow2;
   c.unnormalized = config.unnormalized;
+  c.reduction = uint8_t(config.reduction);
   const Texel b = config.border_unorm16();
   c.border_rgba = uint64_t(b[0]) | uint64_t(b[1]) << 16 | uint64_t(b[2]) << 32 | uint64_t(b[3]) << 48;
   return c;

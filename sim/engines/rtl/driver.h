@@ -96,6 +96,7 @@ struct SamplerPins {
   bool aniso_pow2 = false;
   uint64_t border_rgba = 0;  // the border colour, {A, B, G, R} unorm16
   bool unnormalized = false; // req_u, req_v are Q16.16 texels
+  uint8_t reduction = 0;     // tex_pkg::REDUCE_*: the weighted average, min or max
 };
 SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index = 0);
 

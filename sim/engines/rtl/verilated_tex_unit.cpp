@@ -155,6 +155,7 @@ class VerilatedTexUnit final : public Driver {
     t.cfg_smp_max_aniso_m1 = c.max_aniso_m1;
     t.cfg_smp_aniso_pow2 = c.aniso_pow2;
     t.cfg_smp_unnormalized = c.unnormalized;
+    t.cfg_smp_reduction = c.reduction;
   }
 
   void apply_cfg(const CfgPins& c) override {
