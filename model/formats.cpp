@@ -148,6 +148,22 @@ bool parse_reduction(const std::string& name, Reduction& out) {
 
 std::string reduction_name(Reduction r) { return int(r) < kReductions ? kReductionNames[int(r)] : "?"; }
 
+bool parse_op(const std::string& name, Op& out) {
+  const std::string n = name_key(name, "");
+  if (n == "sample") out = Op::Sample;
+  else if (n == "fetch" || n == "texelfetch") out = Op::Fetch;
+  else return false;
+  return true;
+}
+
+std::string op_name(Op op) {
+  switch (op) {
+    case Op::Sample: return "sample";
+    case Op::Fetch: return "fetch";
+  }
+  return "?";
+}
+
 bool parse_pyramid_mode(const std::string& name, PyramidMode& out) {
   if (name == "exact") out = PyramidMode::Exact;
   else if (name == "cascade") out = PyramidMode::Cascade;

@@ -77,6 +77,12 @@ constexpr int kBorderColors = 7;
 enum class Reduction : uint8_t { WeightedAverage = 0, Min = 1, Max = 2 };
 constexpr int kReductions = 3;
 
+// What a request asks of the unit (the RTL's req_op, tex_pkg::OP_*): a filtered sample (GLSL
+// texture*), or texelFetch: the texel (i, j) of one level, no filter, no address mode, 0 outside
+// the level or the view's levels (Vulkan's robust image access). Codes 1 and 2 are kept for
+// gather and compare (issue 35).
+enum class Op : uint8_t { Sample = 0, Fetch = 3 };
+
 // Names: point, bilinear, trilinear, mip_nearest (bilinear in the nearest level), anisotropic
 // (trilinear probes), and the six GL names (nearest, linear, nearest_mipmap_nearest, ...).
 bool parse_filter(const std::string& name, Filter& out);
@@ -104,6 +110,9 @@ bool parse_pyramid_mode(const std::string& name, PyramidMode& out);
 // weighted-average | min | max (and the Vulkan names, VK_SAMPLER_REDUCTION_MODE_MIN, ...).
 bool parse_reduction(const std::string& name, Reduction& out);
 std::string reduction_name(Reduction r);
+// sample | fetch (also texelFetch).
+bool parse_op(const std::string& name, Op& out);
+std::string op_name(Op op);
 
 constexpr bool is_power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
 // ceil(log2 n) for n >= 1 (log2 n itself for a power of two).
@@ -121,6 +130,15 @@ struct Extent {
   bool operator==(const Extent& o) const { return w == o.w && h == o.h; }
   bool operator!=(const Extent& o) const { return !(*this == o); }
 };
+
+// Level geometry of docs/numerics.md (GL's): level k is max(1, floor(w0 / 2^k)) x max(1, floor(h0 / 2^k))
+// texels, floor(log2 max(w0, h0)) + 1 levels; a side that reaches 1 stays 1.
+inline int level_count(Extent e0) {
+  int n = 1;
+  for (int m = e0.w > e0.h ? e0.w : e0.h; m > 1; m >>= 1) ++n;
+  return n;
+}
+inline Extent level_extent(Extent e0, int k) { return {e0.w >> k > 1 ? e0.w >> k : 1, e0.h >> k > 1 ? e0.h >> k : 1}; }
 
 // One texel: up to 4 channels of up to 16 bits (R, G, B, A).
 using Texel = std::array<uint16_t, 4>;

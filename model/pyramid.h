@@ -9,14 +9,7 @@
 
 namespace tex {
 
-// Level geometry of docs/numerics.md (GL's): level k is max(1, floor(w0 / 2^k)) x max(1, floor(h0 / 2^k))
-// texels, floor(log2 max(w0, h0)) + 1 levels; a side that reaches 1 stays 1.
-inline int level_count(Extent e0) {
-  int n = 1;
-  for (int m = e0.w > e0.h ? e0.w : e0.h; m > 1; m >>= 1) ++n;
-  return n;
-}
-inline Extent level_extent(Extent e0, int k) { return {e0.w >> k > 1 ? e0.w >> k : 1, e0.h >> k > 1 ? e0.h >> k : 1}; }
+// (Level geometry, level_count and level_extent: formats.h.)
 // The repeat seam (docs/numerics.md stage 3): a side n that is not a power of two is stored with
 // one more texel, a copy of texel 0 at index n, which the second tap of the seam pair (n-1, 0) reads
 // so that the pair sits in two parity banks. Memory side of a level side n:

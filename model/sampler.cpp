@@ -96,6 +96,7 @@ int tex_probe_count(const Request& r, const SamplerConfig& config, Extent size0)
 
 // The stages in pipeline order, as the RTL runs them (model/stages.h, docs/architecture.md).
 Texel Sampler::sample(const Request& r) {
+  if (r.op == Op::Fetch) return fetch(r);
   const Probes p = tex_probe(r, config_, size0_);
   ++samples_;
   ++probes_[size_t(p.n)];
@@ -113,6 +114,16 @@ Texel Sampler::sample(const Request& r) {
     for (size_t c = 0; c < 4; ++c) sum[c] += t[c];
   }
   return stage::average_and_round(sum, p.n);
+}
+
+// texelFetch: one probe, no filter (the filter's point sampling returns the texel exactly).
+Texel Sampler::fetch(const Request& r) {
+  if (!memory_) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
+  if (r.has_derivatives) throw Error("sampler: a texel fetch carries no derivatives");
+  ++samples_;
+  ++probes_[1];
+  if (!stage::fetch_inside(r.u, r.v, r.lod, last_level(), size0_)) return {};
+  return memory_->fetch(r.lod, r.u, r.u, r.v, r.v, true, border_)[0];
 }
 
 stage::Unrounded Sampler::sample_probe(const Request& r) {
@@ -254,6 +265,12 @@ void sample_batch(const FastLevel* levels, int last, Extent size0, const Sampler
   constexpr uint64_t kHalf = (uint64_t(1) << 23) | (uint64_t(1) << 55);  // rounding of both channels
   for (size_t i = 0; i < n; ++i) {
     const Request& r = requests[i];
+    if (r.op == Op::Fetch) [[unlikely]] {
+      out[i] = stage::fetch_inside(r.u, r.v, r.lod, last, size0)
+                   ? levels[r.lod].texels[size_t(r.v) * levels[r.lod].stride + size_t(r.u)]
+                   : 0;
+      continue;
+    }
     if (r.has_derivatives) {
       // The probes of tex_probe, summed per channel (16 probes of CW.24 need 36 bits: unpacked).
       const Probes p = tex_probe(r, cfg, size0);

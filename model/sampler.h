@@ -33,8 +33,7 @@ struct SamplerConfig {
   // not in texture widths. Only with what Vulkan allows beside it (unnormalized_problem).
   bool unnormalized = false;
   // Vulkan's reductionMode (GL_TEXTURE_REDUCTION_MODE_ARB): the weighted average, or the minimum or
-  // maximum of the texels weighed (stage::reduce_taps). The reference path and the model engine
-  // take min and max; the RTL does not yet (issue 35: the driver refuses them).
+  // maximum of the texels weighed (stage::reduce_taps).
   Reduction reduction = Reduction::WeightedAverage;
   // The cap tex_aniso applies: max_aniso for the anisotropic filter, else 1 (one probe).
   int probe_cap() const { return filter.anisotropic ? max_aniso : 1; }
@@ -73,9 +72,20 @@ struct Request {
   uint32_t tag = 0;
   uint8_t texture = 0;   // cached unit: the descriptor-table entry sampled (0..kMaxTextures-1)
   uint8_t sampler = 0;   // cached unit: the sampler-table entry it is sampled with (0..kMaxSamplers-1)
-  bool has_derivatives = false;
+  Op op = Op::Sample;    // Op::Fetch: u, v, lod are the integers i, j and the level (stage::fetch_inside)
+  bool has_derivatives = false;  // (a fetch has none)
   LodDerivatives deriv;  // Q8.24 texture widths per pixel (requests with derivatives)
 };
+// texelFetch of texel (i, j) of `level` (Op::Fetch).
+inline Request fetch_request(int32_t i, int32_t j, int32_t level, uint32_t tag = 0) {
+  Request r;
+  r.op = Op::Fetch;
+  r.u = i;
+  r.v = j;
+  r.lod = level;
+  r.tag = tag;
+  return r;
+}
 inline Request lambda_request(int32_t u, int32_t v, int32_t lod, uint32_t tag = 0) {
   Request r;
   r.u = u;
@@ -137,6 +147,7 @@ class Sampler {
   int channel_bits() const { return channel_bits_; }
 
  private:
+  Texel fetch(const Request& r);  // sample() of an Op::Fetch request
   void write_packed(int level, int32_t x, int32_t y, const Texel& t);
 
   SamplerConfig config_;

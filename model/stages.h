@@ -147,6 +147,20 @@ inline Texel border_texel(const Texel& unorm16, int channel_bits) {
   return t;
 }
 
+// ---------------------------------------------------------------- texel fetch (tex_front)
+
+// texelFetch (Op::Fetch; GLSL texelFetch, SPIR-V OpImageFetch): the request's u, v and lod are the
+// integers i, j and the level k, relative to the view's base. It reads texel (i, j) of level k,
+// with no LOD bias or clamp, no address mode and no filter; where k is not a level of the texture
+// (0..last_level) or (i, j) is outside that level it reads nothing and the result is 0 (Vulkan's
+// robust image access: (0, 0, 0, 0)). (tex_front: level k, the nearest texel of (i + 1/2,
+// j + 1/2) texels in clamp-to-border mode; a fetch that reads nothing leaves as 0.)
+inline bool fetch_inside(int32_t i, int32_t j, int32_t level, int last_level, Extent size0) {
+  if (level < 0 || level > last_level) return false;
+  const Extent e = level_extent(size0, level);
+  return i >= 0 && i < e.w && j >= 0 && j < e.h;
+}
+
 // ---------------------------------------------------------------- fetch (tex_fetch, tex_bank)
 
 // The bank of a texel: its parity in x and y.

@@ -132,25 +132,44 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
   if (r.has_derivatives) throw Error("texture cache: lookup() takes a probe; use lookup_sample() for a request");
   const MemoryLayout& layout = texture(r).layout;
   const SamplerConfig& smp = sampler(r);
-  const stage::LevelSelect sel =
-      stage::lod(r.lod, smp.lod_bias + r.bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);
-  const int32_t ru = stage::reduce(r.u, smp.wrap_u, smp.unnormalized), rv = stage::reduce(r.v, smp.wrap_v, smp.unnormalized);
   SampleLookup out;
+  // Each slot's level and taps: (x0, y0) always, x1 / y1 when their weight is not 0; a
+  // clamp-to-border tap outside the level (stage::kBorderTap) reads no line. A texel fetch reads
+  // its one texel in slot 0, or nothing (stage::fetch_inside).
+  struct Taps {
+    int32_t x[2], y[2];
+    int nx = 1, ny = 1;
+  } taps[2];
+  if (r.op == Op::Fetch) {
+    out.slot[0].level = r.lod;
+    out.slot[0].needed = stage::fetch_inside(r.u, r.v, r.lod, layout.levels() - 1, layout.size0());
+    taps[0] = {{r.u, r.u}, {r.v, r.v}};
+  } else {
+    const stage::LevelSelect sel =
+        stage::lod(r.lod, smp.lod_bias + r.bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);
+    const int32_t ru = stage::reduce(r.u, smp.wrap_u, smp.unnormalized), rv = stage::reduce(r.v, smp.wrap_v, smp.unnormalized);
+    const TexelFilter texel_filter = stage::texel_filter(sel, smp.filter);
+    for (int s = 0; s < 2; ++s) {
+      SlotLookup& sl = out.slot[size_t(s)];
+      sl.level = s == 0 ? sel.d : sel.d1;
+      sl.needed = s == 0 || sel.f != 0;
+      if (!sl.needed) continue;
+      const Extent e = layout.level_size(sl.level);
+      const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w, smp.unnormalized), texel_filter);
+      const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h, smp.unnormalized), texel_filter);
+      taps[s] = {{stage::wrap(tu.i0, e.w, smp.wrap_u), stage::wrap(tu.i1, e.w, smp.wrap_u, true)},
+                 {stage::wrap(tv.i0, e.h, smp.wrap_v), stage::wrap(tv.i1, e.h, smp.wrap_v, true)},
+                 tu.w != 0 ? 2 : 1,
+                 tv.w != 0 ? 2 : 1};
+    }
+  }
   for (int s = 0; s < 2; ++s) {
     SlotLookup& sl = out.slot[size_t(s)];
-    sl.level = s == 0 ? sel.d : sel.d1;
-    sl.needed = s == 0 || sel.f != 0;
     if (!sl.needed) continue;
     const int k = sl.level;
-    const Extent e = layout.level_size(k);
-    const TexelFilter texel_filter = stage::texel_filter(sel, smp.filter);
-    const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w, smp.unnormalized), texel_filter);
-    const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h, smp.unnormalized), texel_filter);
-    // The taps whose weight is not 0: (x0, y0) always, x1 / y1 when their weight is not 0; a
-    // clamp-to-border tap outside the level (stage::kBorderTap) reads no line.
-    const int32_t x[2] = {stage::wrap(tu.i0, e.w, smp.wrap_u), stage::wrap(tu.i1, e.w, smp.wrap_u, true)};
-    const int32_t y[2] = {stage::wrap(tv.i0, e.h, smp.wrap_v), stage::wrap(tv.i1, e.h, smp.wrap_v, true)};
-    const int nx = tu.w != 0 ? 2 : 1, ny = tv.w != 0 ? 2 : 1;
+    const int32_t* x = taps[s].x;
+    const int32_t* y = taps[s].y;
+    const int nx = taps[s].nx, ny = taps[s].ny;
     // Distinct blocks by parity (two distinct blocks of a footprint differ in a parity).
     uint32_t bx_of[4] = {}, by_of[4] = {};
     for (int j = 0; j < nx; ++j)

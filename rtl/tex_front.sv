@@ -4,6 +4,11 @@
 //   clock 1 capture (u_s1, v_s1, lod_s1)  2 tex_lod clamp, tex_reduce  3 tex_lod level select
 //   4 per slot and axis: the level's size, tex_scale (u' * size) and tex_address; then tex_wrap,
 //   combinational on the clock-4 registers
+// A texel fetch (req_fetch; the model's stage::fetch_inside) takes the same path as a point sample
+// of an unnormalized sampler in clamp-to-border mode: level k = req_lod in both slots, f = 0, the
+// nearest texel of (i + 1/2, j + 1/2) texels; every tap is a border tap when i, j or k lies
+// outside every level (clock 2) or k beyond the texture's last level (clock 3), and `zero` says
+// the fetch reads nothing (the top answers 0).
 // Handshake: stall-enable; every register loads when en is high (the valid bits and tags are
 //   the top's). The texture's size (req_w, req_h) and the sampler's fields (req_wrap_*, req_min_linear
 //   .. req_max_lod: the request's sampler-table entry, or the on-chip unit's one sampler) are the
@@ -15,6 +20,7 @@
 //   req_u, req_v          : signed Q8.24 (an unnormalized sampler's: signed Q16.16 texels of
 //                           level 0); req_lod: signed Q8.8 (before bias and clamp); req_bias:
 //                           signed Q8.8, the request's own LOD bias (added to the sampler's)
+//   req_fetch             : a texel fetch: req_u, req_v, req_lod are the signed integers i, j, k
 //   req_w, req_h          : unsigned SIZE_W bits, level 0's size of the request's texture, each
 //                           1..2^max(XW, YW) (any value: GL's sizes)
 //   req_last_level        : unsigned LEVEL_W bits, the texture's last level (its level count - 1:
@@ -37,6 +43,7 @@
 //                           power of two; docs/numerics.md stage 3)
 //   border_x, border_y    : slot s tap j at [s*2 + j]: the tap is outside its level in address
 //                           mode border (tex_wrap's border; x, y are then don't-care indices)
+//   zero                  : a texel fetch outside the texture (no texel read; clock 4)
 module tex_front #(
   parameter int XW = 10,  // bits of a wrapped x index: max(MAX_LOG2_W, 1)
   parameter int YW = 10   // (sizes up to 2^XW x 2^YW)
@@ -59,6 +66,7 @@ module tex_front #(
   input  logic signed [tex_pkg::LOD_W-1:0]       req_min_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_max_lod,
   input  logic                                   req_unnormalized,
+  input  logic                                   req_fetch,
   output logic [2*tex_pkg::LEVEL_W-1:0]          level,
   output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
@@ -66,7 +74,8 @@ module tex_front #(
   output logic [4*XW-1:0]                        x,
   output logic [4*YW-1:0]                        y,
   output logic [3:0]                             border_x,
-  output logic [3:0]                             border_y
+  output logic [3:0]                             border_y,
+  output logic                                   zero
 );
   localparam int VW = tex_pkg::LEVEL_W;
   localparam int WB = tex_pkg::WEIGHT_BITS;
@@ -95,6 +104,7 @@ module tex_front #(
   logic [2*PW-1:0]                        mip_q;     // clocks 1, 2
   logic [3*2-1:0]                         linear_q;  // {mag, min} at clocks 1..3
   logic [2:0]                             unnorm_q;  // req_unnormalized at clocks 1..3
+  logic [3:0]                             fetch_q;   // req_fetch at clocks 1..4
   always_ff @(posedge clk) begin
     if (en) begin
       u_s1        <= req_u;
@@ -109,6 +119,7 @@ module tex_front #(
       mip_q    <= {mip_q[0 +: PW], req_mip_mode};
       linear_q <= {linear_q[0 +: 2*2], req_mag_linear, req_min_linear};
       unnorm_q <= {unnorm_q[1:0], req_unnormalized};
+      fetch_q  <= {fetch_q[2:0], req_fetch};
     end
   end
   generate
@@ -151,17 +162,43 @@ module tex_front #(
     .max_lod(max_lod_s1), .mip_mode(mip_q[PW +: PW]), .last_level(last_level),
     .level(level_s3), .f(f_s3), .minify(minify_s3)
   );
-  logic linear_s3;  // the sample's texel filter (the model's stage::texel_filter)
-  assign linear_s3 = minify_s3 ? linear_q[2*2] : linear_q[2*2 + 1];
+  logic linear_s3;  // the sample's texel filter (the model's stage::texel_filter; a fetch: nearest)
+  assign linear_s3 = !fetch_q[2] && (minify_s3 ? linear_q[2*2] : linear_q[2*2 + 1]);
+
+  // A texel fetch: whether its i, j or k lies outside every level this unit holds (clock 2), or k
+  // beyond the texture's last level (clock 3); k itself replaces tex_lod's levels in clock 3.
+  localparam logic signed [tex_pkg::REQ_COORD_W-1:0] SIDE_MAX = tex_pkg::REQ_COORD_W'(1) <<< ML;
+  logic          outside_s2, outside_s3, outside_s4;
+  logic [VW-1:0] fetch_level_s2, fetch_level_s3;
+  always_ff @(posedge clk) begin
+    if (en) begin
+      outside_s2     <= fetch_q[0] && (u_s1 < 0 || u_s1 >= SIDE_MAX || v_s1 < 0 || v_s1 >= SIDE_MAX
+                                       || lod_s1 < 0 || lod_s1 > LW'((1 << VW) - 1));
+      fetch_level_s2 <= lod_s1[VW-1:0];
+      outside_s3     <= outside_s2 || (fetch_q[1] && fetch_level_s2 > last_level);
+      fetch_level_s3 <= fetch_level_s2;
+      outside_s4     <= outside_s3;
+    end
+  end
+  logic [2*VW-1:0] level_sel;      // clock 3's levels: tex_lod's, or a fetch's k in both slots
+  assign level_sel = fetch_q[2] ? {fetch_level_s3, fetch_level_s3} : level_s3;
 
   // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the reduced
-  // coordinate, held one clock while tex_lod selects the levels.
+  // coordinate, held one clock while tex_lod selects the levels. A fetch's integer index is the
+  // texel centre i + 1/2 in Q16.16 texels (0 <= i < 2^ML where it reads a texel), reduced and
+  // scaled as an unnormalized sampler's coordinate.
   logic [2*RW-1:0] reduced_s2, reduced_s3;
   genvar a, s;
   generate
     for (a = 0; a < 2; a = a + 1) begin : g_axis
-      tex_reduce #(.ML(ML)) u_reduce (.clk(clk), .en(en), .coord((a == 0) ? u_s1 : v_s1),
-                                      .mode((a == 0) ? wrap_u_s1 : wrap_v_s1), .unnormalized(unnorm_q[0]),
+      logic signed [tex_pkg::REQ_COORD_W-1:0] coord, centre;
+      logic [ML-1:0]                          index;  // (its low bits: 0..2^ML - 1 where it reads a texel)
+      assign index  = (a == 0) ? u_s1[ML-1:0] : v_s1[ML-1:0];
+      assign centre = (tex_pkg::REQ_COORD_W'(index) <<< tex_pkg::TEXEL_COORD_FRAC)
+                      | (tex_pkg::REQ_COORD_W'(1) <<< (tex_pkg::TEXEL_COORD_FRAC - 1));
+      assign coord = fetch_q[0] ? centre : (a == 0) ? u_s1 : v_s1;
+      tex_reduce #(.ML(ML)) u_reduce (.clk(clk), .en(en), .coord(coord),
+                                      .mode((a == 0) ? wrap_u_s1 : wrap_v_s1), .unnormalized(unnorm_q[0] || fetch_q[0]),
                                       .reduced(reduced_s2[a*RW +: RW]));
     end
   endgenerate
@@ -172,8 +209,8 @@ module tex_front #(
   // (clock 4), then their wrap (combinational, into the fetch).
   always_ff @(posedge clk) begin
     if (en) begin
-      level <= level_s3;
-      f     <= f_s3;
+      level <= level_sel;
+      f     <= fetch_q[2] ? '0 : f_s3;
     end
   end
   generate
@@ -188,10 +225,10 @@ module tex_front #(
         logic                 b0, b1;        // their border flags
         // max(1, size0 >> level): a side that reaches 1 texel stays 1 (GL's level sizes).
         logic [NB-1:0] shifted;
-        assign shifted = size_s3[a*NB +: NB] >> level_s3[s*VW +: VW];
+        assign shifted = size_s3[a*NB +: NB] >> level_sel[s*VW +: VW];
         assign n_s3    = (shifted == '0) ? NB'(1) : shifted;
         tex_scale #(.ML(ML), .RW(RW)) u_scale (.reduced(reduced_s3[a*RW +: RW]), .n(n_s3),
-                                               .unnormalized(unnorm_q[2]), .t9(t9_s3));
+                                               .unnormalized(unnorm_q[2] || fetch_q[2]), .t9(t9_s3));
         tex_address #(.TW(TW), .IW(IW)) u_address (
           .clk(clk), .en(en), .t9(t9_s3), .linear(linear_s3), .i0(i0_s4), .i1(i1_s4),
           .w(w[(s*2 + a)*WB +: WB])
@@ -204,20 +241,23 @@ module tex_front #(
           end
         end
         assign size[(s*2 + a)*NW +: NW] = NW'(n_s4);
+        logic [tex_pkg::WRAP_W-1:0] mode;  // the sampler's, or a fetch's clamp to border
+        assign mode = fetch_q[3] ? tex_pkg::WRAP_BORDER : (a == 0) ? wrap_u_s4 : wrap_v_s4;
         tex_wrap #(.OUT_W(OW), .IW(IW), .NB(NB), .SECOND(1'b0)) u_wrap0 (.i(i0_s4), .n(n_s4), .pow2(pow2_s4),
-                                        .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t0), .border(b0));
+                                        .mode(mode), .o(t0), .border(b0));
         tex_wrap #(.OUT_W(OW), .IW(IW), .NB(NB), .SECOND(1'b1)) u_wrap1 (.i(i1_s4), .n(n_s4), .pow2(pow2_s4),
-                                        .mode((a == 0) ? wrap_u_s4 : wrap_v_s4), .o(t1), .border(b1));
+                                        .mode(mode), .o(t1), .border(b1));
         if (a == 0) begin : g_x
           assign x[(s*2 + 0)*XW +: XW] = t0;
           assign x[(s*2 + 1)*XW +: XW] = t1;
-          assign border_x[s*2 +: 2]    = {b1, b0};
+          assign border_x[s*2 +: 2]    = {b1, b0} | {2{outside_s4}};
         end else begin : g_y
           assign y[(s*2 + 0)*YW +: YW] = t0;
           assign y[(s*2 + 1)*YW +: YW] = t1;
-          assign border_y[s*2 +: 2]    = {b1, b0};
+          assign border_y[s*2 +: 2]    = {b1, b0} | {2{outside_s4}};
         end
       end
     end
   endgenerate
+  assign zero = fetch_q[3] && (border_x[0] || border_y[0]);  // (outside_s4 is only ever a fetch's)
 endmodule

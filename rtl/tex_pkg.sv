@@ -46,6 +46,11 @@ package tex_pkg;
   localparam logic [REDUCTION_W-1:0] REDUCE_MIN     = 2'd1;  // the minimum of the weighed taps
   localparam logic [REDUCTION_W-1:0] REDUCE_MAX     = 2'd2;  // their maximum
 
+  // ---- req_op (model/formats.h Op): what a request asks
+  localparam int OP_W = 2;
+  localparam logic [OP_W-1:0] OP_SAMPLE = 2'd0;  // a filtered sample
+  localparam logic [OP_W-1:0] OP_FETCH  = 2'd3;  // texelFetch: req_u, req_v, req_lod are i, j, level
+
   // ---- texel formats (model/block_formats.h TexelFormat): how memory holds a texture
   localparam int FORMAT_W = 3;
   localparam logic [FORMAT_W-1:0] FMT_RGBA8 = 3'd0;

@@ -14,6 +14,9 @@
 //   clocks for an anisotropic sample of N probes; under backpressure the unit adds no bubbles.
 // Ports (see docs/rtl-interface.md): req_u, req_v signed Q8.24; req_lod, req_bias (the request's
 //   own LOD bias, added to the sampler's: GLSL texture(s, uv, bias)), cfg_smp_lod_bias,
+//   req_op what the request asks (tex_pkg::OP_*): OP_SAMPLE a filtered sample, OP_FETCH texelFetch
+//   (req_u, req_v, req_lod the signed integers i, j and level; req_deriv 0; the texel, or 0 where
+//   there is none: tex_front),
 //   cfg_smp_min_lod, cfg_smp_max_lod signed Q8.8; req_deriv selects req_lod (0) or the derivatives
 //   req_dudx, req_dvdx, req_dudy, req_dvdy (1, signed Q8.24 texture widths per pixel);
 //   cfg_smp_max_aniso_m1 the probes per sample at most less one (0..15; 0 = trilinear),
@@ -91,6 +94,7 @@ module tex_unit #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
+  input  logic [tex_pkg::OP_W-1:0]               req_op,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -144,20 +148,22 @@ module tex_unit #(
   logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u, probe_v;
   logic signed [tex_pkg::LOD_W-1:0]       probe_lod, probe_bias;
   logic [TGW-1:0]                         probe_tag;
+  logic [tex_pkg::OP_W-1:0]               probe_op;    // (rides in tex_probe's tag, above req_tag)
   logic [2:0]                             probe_held;  // requests in tex_probe
+  localparam int PTW = TGW + tex_pkg::OP_W;
 `ifdef FORMAL
   logic [4:1]                             f_probe_valid;
-  logic [4*TGW-1:0]                       f_probe_tags;
+  logic [4*PTW-1:0]                       f_probe_tags;
 `endif
-  tex_probe #(.TAG_W(TGW)) u_probe (
+  tex_probe #(.TAG_W(PTW)) u_probe (
     .clk(clk), .rst(rst), .en(en),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_w(cfg_w), .req_h(cfg_h),
-    .req_max_aniso_m1(cfg_smp_max_aniso_m1), .req_aniso_pow2(cfg_smp_aniso_pow2), .req_tag(req_tag),
+    .req_max_aniso_m1(cfg_smp_max_aniso_m1), .req_aniso_pow2(cfg_smp_aniso_pow2), .req_tag({req_op, req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
-    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag(probe_tag),
+    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag({probe_op, probe_tag}),
     .held(probe_held)
 `ifdef FORMAL
     , .f_valid(f_probe_valid), .f_tags(f_probe_tags)
@@ -213,14 +219,17 @@ module tex_unit #(
   logic [4*YW-1:0] y;
   logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside the level (border)
   logic [3:0]      border_x_s5, border_y_s5, border_x_s6, border_y_s6;
+  logic            zero_s4;            // a texel fetch that reads nothing: its blend is 0
+  logic [9:5]      zero_q;             // zero_s4 at clocks 5..9
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
     .req_w(cfg_w), .req_h(cfg_h), .req_last_level(cfg_last_level), .req_wrap_u(cfg_smp_wrap_u),
     .req_wrap_v(cfg_smp_wrap_v), .req_min_linear(cfg_smp_min_linear), .req_mag_linear(cfg_smp_mag_linear),
     .req_mip_mode(cfg_smp_mip_mode), .req_lod_bias(cfg_smp_lod_bias), .req_min_lod(cfg_smp_min_lod),
     .req_max_lod(cfg_smp_max_lod), .req_unnormalized(cfg_smp_unnormalized),
+    .req_fetch(probe_op == tex_pkg::OP_FETCH),
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
-    .border_x(border_x), .border_y(border_y)
+    .border_x(border_x), .border_y(border_y), .zero(zero_s4)
   );
   logic [4*tex_pkg::SIZE_W-1:0] size_unused;
   assign size_unused = size_s4;  // (*_unused: likewise)
@@ -235,6 +244,7 @@ module tex_unit #(
       border_y_s5 <= border_y;
       border_x_s6 <= border_x_s5;
       border_y_s6 <= border_y_s5;
+      zero_q      <= {zero_q[8:5], zero_s4};
     end
   end
 
@@ -276,6 +286,9 @@ module tex_unit #(
   );
 
   // ---------------------------------------------------------------- clocks 10-11: tex_accum
+  // (A wire, not an expression on the port: Yosys 0.23 fails an assertion on the latter.)
+  logic [4*(CWD+24)-1:0] accum_blend;  // a texel fetch outside the texture enters as 0
+  assign accum_blend = zero_q[9] ? '0 : blend_s9;
   logic             sample_valid;
   logic [4*CWD-1:0] rgba_s11;
   logic [TGW-1:0]   tag_s11;
@@ -287,7 +300,7 @@ module tex_unit #(
   tex_accum #(.CW(CWD), .SIDE_W(TGW)) u_accum (
     .clk(clk), .rst(rst), .en(en), .in_valid(valid[NSTAGE]),
     .in_first(g_tag[NSTAGE].tag[TGW]), .in_last(g_tag[NSTAGE].tag[TGW+1]),
-    .in_n(g_tag[NSTAGE].tag[TGW+2 +: 5]), .in_reduction(cfg_reduction_q), .blend(blend_s9), .in_side(g_tag[NSTAGE].tag[TGW-1:0]),
+    .in_n(g_tag[NSTAGE].tag[TGW+2 +: 5]), .in_reduction(cfg_reduction_q), .blend(accum_blend), .in_side(g_tag[NSTAGE].tag[TGW-1:0]),
     .out_valid(sample_valid), .rgba(rgba_s11), .out_side(tag_s11), .held(accum_held)
 `ifdef FORMAL
     , .f_valid_s1(f_accum_valid), .f_side_s1(f_accum_tag)
@@ -349,6 +362,7 @@ module tex_unit #(
   logic signed [tex_pkg::LOD_W-1:0]       req_lod_q, req_bias_q;
   logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
+  logic [tex_pkg::OP_W-1:0]               req_op_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
   // (The payload copies are taken only in a stalled cycle, the only time they are compared.)
   always_ff @(posedge clk) begin
@@ -360,6 +374,7 @@ module tex_unit #(
       req_lod_q <= req_lod;
       req_bias_q <= req_bias;
       req_tag_q <= req_tag;
+      req_op_q  <= req_op;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
     end
     if (rsp_valid && !rsp_ready) begin
@@ -368,7 +383,7 @@ module tex_unit #(
     end
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
-              && req_tag == req_tag_q
+              && req_tag == req_tag_q && req_op == req_op_q
               // (=== : a lambda request's derivative pins are don't-care, X in the 4-state run)
               && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} === req_deriv_q)
         else $error("tex_unit: req_valid dropped or request changed while req_ready was low");
@@ -377,6 +392,9 @@ module tex_unit #(
       assert (rsp_valid && rsp_tag == rsp_tag_q && rsp_rgba == rsp_rgba_q)
         else $error("tex_unit: rsp_valid dropped or response changed while rsp_ready was low");
     end
+    if (!rst && req_valid)
+      assert (req_op == tex_pkg::OP_SAMPLE || (req_op == tex_pkg::OP_FETCH && !req_deriv))
+        else $error("tex_unit: req_op %0d with req_deriv %0d is not an operation of this unit", req_op, req_deriv);
   end
 `endif
 
@@ -492,7 +510,7 @@ module tex_unit #(
       assign ahead = f_after_chain + FN'(later[1]) + FN'(later[2]) + FN'(later[3]);
       always_comb
         if (f_reset_done && f_probe_valid[n] && f_pos == ahead)
-          assert (f_probe_tags[(n-1)*TGW +: TGW] == f_pick_tag);
+          assert (f_probe_tags[(n-1)*PTW +: TGW] == f_pick_tag);
     end
   endgenerate
 `endif

@@ -26,6 +26,7 @@
 //   request names (tables, as Vulkan and D3D12 keep image views and samplers apart), plus
 //   req_tex          : the request's texture descriptor-table entry, 0..TEXTURES-1
 //   req_sampler      : the request's sampler-table entry, 0..SAMPLERS-1
+//   req_op           : as tex_unit's (a sample, or a texel fetch of the request's texture)
 //   cfg_smp_*        : a sampler write (cfg_smp_we high for one clock): entry cfg_smp_index gets
 //                      the fields of tex_unit's cfg_smp_* pins (filters, mip mode, LOD bias and
 //                      clamp signed Q8.8, anisotropy cap, wrap modes, reduction, border colour
@@ -124,6 +125,7 @@ module tex_unit_cached #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
   input  logic [tex_pkg::TEX_ID_W-1:0]           req_tex,
   input  logic [tex_pkg::SMP_ID_W-1:0]           req_sampler,
+  input  logic [tex_pkg::OP_W-1:0]               req_op,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -314,18 +316,19 @@ module tex_unit_cached #(
   logic signed [tex_pkg::LOD_W-1:0]       probe_lod, probe_bias;
   logic [TGW-1:0]                         probe_tag;
   logic [SXW-1:0]                         probe_smp;   // and its sampler
+  logic [tex_pkg::OP_W-1:0]               probe_op;    // and its operation
   logic [2:0]                             probe_held;  // requests in tex_probe
-  tex_probe #(.TAG_W(SXW + TXW + TGW)) u_probe (
+  tex_probe #(.TAG_W(tex_pkg::OP_W + SXW + TXW + TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front),
     .req_valid(req_valid && !desc_busy), .req_ready(probe_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_w(req_size[0 +: NW]), .req_h(req_size[NW +: NW]),
     .req_max_aniso_m1(req_aniso[3:0]), .req_aniso_pow2(req_aniso[4]),
-    .req_tag({SXW'(req_sampler), TXW'(req_tex), req_tag}),
+    .req_tag({req_op, SXW'(req_sampler), TXW'(req_tex), req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n),
-    .probe_tag({probe_smp, probe_tex, probe_tag}),
+    .probe_tag({probe_op, probe_smp, probe_tex, probe_tag}),
     .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
   );
   // The probe's sampler's fields for the front (taken at its clock 1; its texture's size likewise).
@@ -333,13 +336,15 @@ module tex_unit_cached #(
   assign probe_smp_front = smp_front[probe_smp];
 
   // ---------------------------------------------------------------- front: probe clocks 1-4
-  // A probe's tag carries its place in the sample and its sampler's reduction,
-  // {reduction, n, last, first, tag}, through the FIFO.
-  localparam int SW = TGW + 7 + RDW;
+  // A probe's tag carries its place in the sample and its sampler's reduction through the front,
+  // {reduction, n, last, first, tag}; from the front's clock 4 on, with tex_front's zero (a
+  // texel fetch that reads nothing) above them, through the FIFO.
+  localparam int FTW = TGW + 7 + RDW;
+  localparam int SW  = FTW + 1;
   // The tags are one register per clock: an unpacked array or a wide packed vector would cost a
   // delayed-write shadow copy in every clock in Verilator, a narrow register does not.
   logic [4:1] valid_f;             // the front's clock-n register holds a probe
-  logic [SW-1:0] tag_f1, tag_f2, tag_f3, tag_f4;  // clock n's probe
+  logic [FTW-1:0] tag_f1, tag_f2, tag_f3, tag_f4;  // clock n's probe
   logic [4*TXW-1:0] tex_f;         // clock n's texture at [(n-1)*TXW +: TXW] (for the level entries)
   logic [4*SXW-1:0] smp_f;         // and its sampler (for the border colour)
   always_ff @(posedge clk) begin
@@ -362,6 +367,7 @@ module tex_unit_cached #(
   logic [4*XW-1:0] x;
   logic [4*YW-1:0] y;
   logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside its level (mode border)
+  logic            zero_s4;             // a texel fetch that reads nothing (its blend is 0)
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
     .req_w(probe_size[0 +: NW]), .req_h(probe_size[NW +: NW]), .req_last_level(probe_last_level),
@@ -370,8 +376,9 @@ module tex_unit_cached #(
     .req_mip_mode(probe_smp_front[2*WW + 2 +: PW]), .req_lod_bias(probe_smp_front[2*WW + 2 + PW +: LW]),
     .req_min_lod(probe_smp_front[2*WW + 2 + PW + LW +: LW]),
     .req_max_lod(probe_smp_front[2*WW + 2 + PW + 2*LW +: LW]), .req_unnormalized(probe_smp_front[FRW - 1]),
+    .req_fetch(probe_op == tex_pkg::OP_FETCH),
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
-    .border_x(border_x), .border_y(border_y)
+    .border_x(border_x), .border_y(border_y), .zero(zero_s4)
   );
 
   // ---------------------------------------------------------------- AXI4 read master
@@ -405,7 +412,7 @@ module tex_unit_cached #(
     .SRGB(SRGB)
   ) u_fetch (
     .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
-    .front_valid(valid_f[4]), .front_tag(tag_f4), .front_smp(smp_f[3*SXW +: SXW]), .level_odd(level_s4[0]),
+    .front_valid(valid_f[4]), .front_tag({zero_s4, tag_f4}), .front_smp(smp_f[3*SXW +: SXW]), .level_odd(level_s4[0]),
     .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .front_line(line_s4), .front_pitch(pitch_s4), .front_square(square_s4), .front_format(format_s4),
     .front_srgb(srgb_s4), .front_log2_lw(log2_lw_s4), .front_log2_lh(log2_lh_s4),
@@ -456,11 +463,14 @@ module tex_unit_cached #(
   logic [4*CWD-1:0] rgba;
   logic [TGW-1:0]   sample_tag;
   logic             accum_held_unused;  // (in-flight accounting: tex_unit's checks)
+  logic [4*(CWD+24)-1:0] accum_blend;   // a texel fetch outside the texture enters as 0
+  assign accum_blend = tag_b3[SW-1] ? '0 : blend;
   logic [2:0]       probe_held_unused;
   assign probe_held_unused = probe_held;
   tex_accum #(.CW(CWD), .SIDE_W(TGW + 1)) u_accum (
     .clk(clk), .rst(rst), .en(en_back), .in_valid(valid_b[3]), .in_first(tag_b3[TGW]),
-    .in_last(tag_b3[TGW+1]), .in_n(tag_b3[TGW+2 +: 5]), .in_reduction(tag_b3[TGW+7 +: RDW]), .blend(blend),
+    .in_last(tag_b3[TGW+1]), .in_n(tag_b3[TGW+2 +: 5]), .in_reduction(tag_b3[TGW+7 +: RDW]),
+    .blend(accum_blend),
     .in_side({probe_err, tag_b3[TGW-1:0]}), .out_valid(sample_valid), .rgba(rgba),
     .out_side({sample_error, sample_tag}),
     .held(accum_held_unused)
@@ -485,6 +495,7 @@ module tex_unit_cached #(
   logic signed [tex_pkg::LOD_W-1:0]       req_lod_q, req_bias_q;
   logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
+  logic [tex_pkg::OP_W-1:0]               req_op_q;
   logic [tex_pkg::TEX_ID_W-1:0]           req_tex_q;
   logic [tex_pkg::SMP_ID_W-1:0]           req_sampler_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
@@ -505,6 +516,7 @@ module tex_unit_cached #(
       req_lod_q <= req_lod;
       req_bias_q <= req_bias;
       req_tag_q <= req_tag;
+      req_op_q  <= req_op;
       req_tex_q <= req_tex;
       req_sampler_q <= req_sampler;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
@@ -543,11 +555,14 @@ module tex_unit_cached #(
         else $error("tex_unit_cached: req_sampler %0d is beyond the sampler table (SAMPLERS = %0d)",
                     req_sampler, SAMPLERS);
     if (!rst && req_valid)
+      assert (req_op == tex_pkg::OP_SAMPLE || (req_op == tex_pkg::OP_FETCH && !req_deriv))
+        else $error("tex_unit_cached: req_op %0d with req_deriv %0d is not an operation of this unit", req_op, req_deriv);
+    if (!rst && req_valid)
       assert (32'(req_tex) < TEXTURES)
         else $error("tex_unit_cached: req_tex %0d is beyond the descriptor table (TEXTURES = %0d)", req_tex, TEXTURES);
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
-              && req_tag == req_tag_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
+              && req_tag == req_tag_q && req_op == req_op_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin

@@ -42,6 +42,7 @@ module tex_unit_formal #(
   input  logic [63:0]                            cfg_smp_border_rgba,
   input  logic                                   cfg_smp_unnormalized,
   input  logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction,
+  input  logic [tex_pkg::OP_W-1:0]               req_op,
   input  logic [TAG_W-1:0]                       req_tag,
   input  logic                                   rsp_ready
 );

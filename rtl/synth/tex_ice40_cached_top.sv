@@ -99,7 +99,10 @@ module tex_ice40_cached_top #(
   localparam int O_MDATA   = O_MVALID + 1;
   localparam int O_MRESP   = O_MDATA + MEM_W;
   localparam int O_MLAST   = O_MRESP + 2;
-  localparam int NIN       = O_MLAST + 1;
+  localparam int O_OP      = O_MLAST + 1;       // req_op
+  localparam int O_UNNORM  = O_OP + tex_pkg::OP_W;  // cfg_smp_unnormalized
+  localparam int O_REDUCE  = O_UNNORM + 1;      // cfg_smp_reduction
+  localparam int NIN       = O_REDUCE + tex_pkg::REDUCTION_W;
 
   logic [NIN-1:0] in_bits;
   always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
@@ -131,11 +134,13 @@ module tex_ice40_cached_top #(
     .cfg_smp_mip_mode(in_bits[O_MIP +: MW]),
     .cfg_smp_lod_bias(in_bits[O_BIAS +: LW]), .cfg_smp_min_lod(in_bits[O_MIN_LOD +: LW]),
     .cfg_smp_max_lod(in_bits[O_MAX_LOD +: LW]),
+    .cfg_smp_unnormalized(in_bits[O_UNNORM]), .cfg_smp_reduction(in_bits[O_REDUCE +: tex_pkg::REDUCTION_W]),
     .cfg_block_morton(in_bits[O_MORTON]),
     .cfg_log2_sets(in_bits[O_SETS +: SW]), .cfg_log2_ways(in_bits[O_WAYS +: YW]),
     .cfg_fifo_limit(in_bits[O_FIFO +: FW]),
     .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
+    .req_op(in_bits[O_OP +: tex_pkg::OP_W]),
     .req_bias('0),  // lambda requests (textureLod) have no bias of their own
     // Lambda requests only (the LOD / anisotropy unit is tied off and optimized away: a fit
     // of the probe datapath on the HX8K is not measured here).

@@ -135,9 +135,11 @@ std::string filter_label(const SamplerConfig& c) {
 }
 
 int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& textures_path,
-               const std::string& out_path) {
+               const std::string& out_path, const std::string& op_option) {
   const auto t0 = std::chrono::steady_clock::now();
   // Everything is checked before the work: options, engine, outputs, texture, every query.
+  Op op{};
+  if (!parse_op(op_option, op)) throw Error("--op " + quote_clipped(op_option) + " is not sample or fetch");
   const SamplerConfig cfg = o.config();
   const TextureOptions topts = o.texture_options();
   EngineOptions eo = o.engine_options();
@@ -174,6 +176,10 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   std::exception_ptr query_error;
   try {
     reader.emplace(queries_path);
+    if (reader->op() != op)  // (the header names what the queries carry)
+      throw Error(reader->name() + ": header " + reader->header() + (op == Op::Fetch
+                  ? " is not a texel fetch's: --op fetch takes [tex,[smp,]]i,j,level"
+                  : " is a texel fetch's: give --op fetch"));
     if (reader->rewindable()) parser.emplace(queries_path, 2, true, unnormalized);
   } catch (...) {
     query_error = std::current_exception();
@@ -245,10 +251,10 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (frame) std::fprintf(report, "  %s\n", frame->summary().c_str());
   if (table.size() > 1)
     std::fprintf(report, "texsim sample: %zu queries, %s, %zu textures, engine %s -> %s (%.2f s)\n", count,
-                 filter_label(cfg).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
+                 op == Op::Fetch ? "texel fetches" : filter_label(cfg).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
   else
     std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
-                 count, filter_label(cfg).c_str(), wrap_name(samplers[0].wrap_u).c_str(),
+                 count, op == Op::Fetch ? "texel fetches" : filter_label(cfg).c_str(), wrap_name(samplers[0].wrap_u).c_str(),
                  wrap_name(samplers[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
                  out_path.c_str(), secs);
   return 0;
@@ -409,8 +415,13 @@ int main(int argc, char** argv) {
   sample_opts.add_to(*sample);
   sample->add_option("--queries,-q", queries,
                      "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy, either with a leading tex column, or "
-                     "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper (- = standard input)")
+                     "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper; with --op fetch i,j,level (- = standard input)")
       ->required();
+  std::string sample_op = "sample";
+  sample->add_option("--op", sample_op,
+                     "sample | fetch: what each query asks; fetch: texelFetch of texel (i, j) of a level, no filter, "
+                     "0 outside the texture (Vulkan robust image access)")
+      ->capture_default_str();
   sample->add_option("--out,-o", out, "result CSV: header r,g,b,a (- = standard output)")->required();
   std::string textures_list;
   sample->add_option("--textures", textures_list,
@@ -561,7 +572,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (*sample) return cmd_sample(sample_opts, queries, textures_list, out);
+    if (*sample) return cmd_sample(sample_opts, queries, textures_list, out, sample_op);
     if (*mip)
       return cmd_mip(mip_texture, mip_mode, mip_resize, mip_format, mip_format_opt->count() > 0, mip_srgb, dump_dir, layout,
                      image);

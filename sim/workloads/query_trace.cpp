@@ -144,8 +144,9 @@ namespace {
 // The headers a trace may have: the columns, in order.
 struct TraceFormat {
   const char* header;
-  // a tex column; a smp column; u,v,lod (else the four derivatives); a bias column; quad,x,y,helper
-  bool texture, sampler, lod, bias, quad;
+  // a tex column; a smp column; u,v,lod (else the four derivatives); a bias column; quad,x,y,helper;
+  // i,j,level (a texel fetch, in place of u,v,lod)
+  bool texture, sampler, lod, bias, quad, fetch = false;
 };
 constexpr TraceFormat kFormats[] = {
     {"u,v,lod", false, false, true, false, false},
@@ -158,12 +159,16 @@ constexpr TraceFormat kFormats[] = {
     {"tex,smp,u,v,dudx,dvdx,dudy,dvdy", true, true, false, false, false},
     {"tex,smp,u,v,dudx,dvdx,dudy,dvdy,bias", true, true, false, true, false},
     {kFrameTraceHeader, true, false, false, false, true},
+    {"i,j,level", false, false, true, false, false, true},
+    {"tex,i,j,level", true, false, true, false, false, true},
+    {"tex,smp,i,j,level", true, true, true, false, false, true},
 };
 constexpr int kMaxColumns = 11;
 
 // The headers of kFormats, in short: [tex,[smp,]] before u,v,lod and u,v,dudx,...
 std::string known_headers() {
-  return "[tex,[smp,]]u,v,lod or [tex,[smp,]]u,v,dudx,dvdx,dudy,dvdy[,bias] or " + std::string(kFrameTraceHeader);
+  return "[tex,[smp,]]u,v,lod or [tex,[smp,]]u,v,dudx,dvdx,dudy,dvdy[,bias] or " + std::string(kFrameTraceHeader) +
+         " or [tex,[smp,]]i,j,level";
 }
 
 }  // namespace
@@ -262,10 +267,17 @@ void QueryReader::read_header() {
         bias_ = format.bias;
         lod_ = format.lod;
         quad_ = format.quad;
+        fetch_ = format.fetch;
+        header_ = header;
       }
     if (columns_ == 0) throw Error(at + "unknown header " + quote_clipped(line) + " (expected " + known_headers() + ")");
   }
   if (columns_ == 0) throw Error(name_ + ": no header line (expected " + known_headers() + ")");
+}
+
+Op QueryReader::op() {
+  if (columns_ == 0) read_header();
+  return fetch_ ? Op::Fetch : Op::Sample;
 }
 
 bool QueryReader::next(Query& q) {
@@ -291,6 +303,13 @@ bool QueryReader::next(Query& q) {
     int c = 0;
     if (texture_) q.texture = int(whole(c++, 0, kMaxTextures - 1, "texture"));
     if (sampler_) q.sampler = int(whole(c++, 0, kMaxSamplers - 1, "sampler"));
+    if (fetch_) {
+      q.fetch = true;
+      q.u = double(whole(c++, INT32_MIN, INT32_MAX, "i"));
+      q.v = double(whole(c++, INT32_MIN, INT32_MAX, "j"));
+      q.lod = double(whole(c++, kLodMin, kLodMax, "level"));
+      return true;
+    }
     q.u = v[c++];
     q.v = v[c++];
     q.explicit_lod = lod_;
@@ -502,6 +521,13 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag, uint32
     throw Error(at() + "sampler " + std::to_string(q.sampler) + " is outside 0.." + std::to_string(kMaxSamplers - 1));
   // No sampler column: the texture's own (entry t of a texture list is texture t and sampler t).
   r.sampler = uint8_t(q.sampler < 0 ? q.texture : q.sampler);
+  if (q.fetch) {  // (whole numbers in range: QueryReader)
+    r.op = Op::Fetch;
+    r.u = int32_t(q.u);
+    r.v = int32_t(q.v);
+    r.lod = int32_t(q.lod);
+    return r;
+  }
   const bool texels = unnormalized >> r.sampler & 1;  // an unnormalized sampler's: texels of level 0, Q16.16
   auto coordinate = [&](double value, const char* axis, int32_t& out) {
     if (texels ? to_texel_coord_fixed(value, out) : to_coord_fixed(value, out)) return;

@@ -19,6 +19,7 @@
 namespace tex {
 
 struct Query {
+  bool fetch = false;  // a texel fetch (header i,j,level): u, v, lod hold the integers i, j, level
   double u = 0, v = 0;
   bool explicit_lod = true;
   double lod = 0;     // levels, when explicit_lod
@@ -42,7 +43,8 @@ constexpr const char* kFrameTraceHeader = "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,
 // Reads a query trace line by line. Header `u,v,lod` or `u,v,dudx,dvdx,dudy,dvdy`, either with a
 // leading `tex` column (the descriptor-table entry, 0..15) or `tex,smp` columns (and the
 // sampler-table entry, 0..15), the derivative forms optionally with a trailing `bias` column (the
-// request's own LOD bias in levels, GLSL texture(s, uv, bias)), or kFrameTraceHeader; `#` lines are
+// request's own LOD bias in levels, GLSL texture(s, uv, bias)), or kFrameTraceHeader; texel
+// fetches: `i,j,level` (whole numbers: i, j 32-bit, level 16-bit), also with `tex` or `tex,smp`; `#` lines are
 // comments, blank lines are skipped; a UTF-8 byte-order mark is skipped. A file with only the
 // header has no queries (not an error). Throws tex::Error naming the file, the line number and
 // the text of a bad line (quoted once, at most 80 characters): no header, a NUL byte (a binary
@@ -56,6 +58,9 @@ class QueryReader {
 
   bool next(Query& q);  // false at the end
   const std::string& name() const { return name_; }
+  // The header's operation (it reads the header if not yet read): Op::Fetch for i,j,level.
+  Op op();
+  std::string header() const { return header_; }  // (after op() or next())
   // True for a regular file: it can be read twice (QueryFileParser before the work).
   bool rewindable() const { return rewindable_; }
 
@@ -77,7 +82,8 @@ class QueryReader {
   uint64_t file_pos_ = 0, file_end_ = UINT64_MAX;  // offset of buf_[end_]; where reading stops
   bool eof_ = false;
   int line_no_ = 0, columns_ = 0;
-  bool texture_ = false, sampler_ = false, lod_ = false, bias_ = false, quad_ = false;  // the header's columns
+  bool texture_ = false, sampler_ = false, lod_ = false, bias_ = false, quad_ = false, fetch_ = false;  // the header's columns
+  std::string header_;
 };
 
 // What a frame's queries ask for (texsim's frame figures): quads are runs of one quad number.

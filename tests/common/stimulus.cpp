@@ -104,6 +104,22 @@ std::vector<Request> random_texel_requests(std::mt19937_64& rng, Extent size, si
   return r;
 }
 
+Request random_fetch(std::mt19937_64& rng, Extent size) {
+  const int last = level_count(size) - 1;
+  static const int32_t far_levels[] = {15, 16, -32768, 32767};
+  const int32_t level = rng() % 16 == 0 ? far_levels[rng() % 4] : int32_t(rng() % uint64_t(last + 4)) - 1;
+  const Extent e = level_extent(size, std::clamp(level, 0, last));
+  auto index = [&](int n) {
+    const uint64_t k = rng() % 16;
+    if (k == 0) return int32_t(uint32_t(rng()));
+    if (k == 1) return int32_t(rng() % 2 ? 8192 : -8192) + int32_t(rng() % 3) - 1;  // the largest side's edges
+    if (k < 4) return rng() % 2 ? int32_t(n) - 1 + int32_t(rng() % 3) : -1 + int32_t(rng() % 2);  // on an edge
+    return int32_t(rng() % uint64_t(n + 4)) - 2;
+  };
+  const int32_t i = index(e.w), j = index(e.h);  // (in this order: one rng stream on every compiler)
+  return fetch_request(i, j, level);
+}
+
 Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis) {
   Request r;
   r.has_derivatives = true;

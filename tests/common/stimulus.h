@@ -46,6 +46,23 @@ std::vector<Request> random_texel_requests(std::mt19937_64& rng, Extent size, si
 // magnification to past the last level; 1 in 16 has raw 32-bit derivatives (the format's
 // saturating ends).
 Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis);
+// A texel fetch (Op::Fetch) of a texture of `size`: a level from -1 to 2 past the last (a few far
+// out: 15, 16, -32768, 32767), (i, j) within 2 texels of that level's sides, on its edges, or any
+// 32-bit value or the unit's largest side's edge (+-2^13). Tag 0, texture 0, sampler 0.
+Request random_fetch(std::mt19937_64& rng, Extent size);
+// One in `one_in` of the requests made a random_fetch of the texture it names (its tag, texture
+// and sampler kept).
+template <class SizeOf>
+void fetches_among(std::mt19937_64& rng, std::vector<Request>& requests, int one_in, SizeOf size_of_texture) {
+  for (Request& r : requests)
+    if (rng() % uint64_t(one_in) == 0) {
+      Request f = random_fetch(rng, size_of_texture(r.texture));
+      f.tag = r.tag;
+      f.texture = r.texture;
+      f.sampler = r.sampler;
+      r = f;
+    }
+}
 
 // ---------------------------------------------------------------- samplers
 // The six filters (texel filter x mip mode).

@@ -98,6 +98,8 @@ TEST(Params, RtlPackageAgreesWithModel) {
       {"REDUCE_AVERAGE", int(Reduction::WeightedAverage)},
       {"REDUCE_MIN", int(Reduction::Min)},
       {"REDUCE_MAX", int(Reduction::Max)},
+      {"OP_SAMPLE", int(Op::Sample)},
+      {"OP_FETCH", int(Op::Fetch)},
       {"MAX_CW", kMaxChannelBits},
       {"FMT_RGBA8", int(TexelFormat::Rgba8)},
       {"FMT_BC1", int(TexelFormat::Bc1)},

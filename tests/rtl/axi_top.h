@@ -245,6 +245,7 @@ class AxiTop {
       t.req_dvdy = uint32_t(q.deriv.dvdy);
       t.req_tex = q.texture;
       t.req_sampler = q.sampler;
+      t.req_op = uint8_t(q.op);
       t.req_tag = uint16_t(next_req_);
     } else {
       t.req_u = junk();
@@ -258,6 +259,7 @@ class AxiTop {
       t.req_dvdy = junk();
       t.req_tex = junk() & 15;
       t.req_sampler = junk() & 15;
+      t.req_op = junk() & 3;
       t.req_tag = uint16_t(junk());
     }
     t.req_valid = req_valid;

@@ -151,9 +151,27 @@ Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log
         group(g_reduce_).add(reduction_name(r) + " " + taps + " " + levels);
     group(g_reduce_).add(reduction_name(r) + " several probes");
   }
+
+  g_fetch_ = make("texel fetch: where (i, j, level) falls");
+  for (const char* where : {"inside level 0", "inside a level above 0", "within 2 texels outside its level",
+                            "further outside its level", "level below 0", "level above the last"})
+    group(g_fetch_).add(where);
 }
 
 void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Request& q) {
+  if (q.op == Op::Fetch) {  // (no filter, no address mode: its own group)
+    const int last = pyr.last_level();
+    size_t bin = 5;
+    if (q.lod < 0) {
+      bin = 4;
+    } else if (q.lod <= last) {
+      const Extent e = level_extent(pyr.extent0(), q.lod);
+      const bool near = q.u >= -2 && q.u < e.w + 2 && q.v >= -2 && q.v < e.h + 2;
+      bin = stage::fetch_inside(q.u, q.v, q.lod, last, pyr.extent0()) ? (q.lod == 0 ? 0 : 1) : near ? 2 : 3;
+    }
+    ++group(g_fetch_).hits[bin];
+    return;
+  }
   const size_t fi = fi_of(cfg.filter);
   ++group(g_filter_wrap_).hits[(fi * kNumWraps + size_t(cfg.wrap_u)) * kNumWraps + size_t(cfg.wrap_v)];
   ++group(g_pyramid_).hits[size_t(pyr.mode)];

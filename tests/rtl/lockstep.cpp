@@ -41,6 +41,11 @@ std::string describe(const SamplerConfig& c) {
 
 std::string describe(const Request& r) {
   std::ostringstream o;
+  if (r.op == Op::Fetch) {
+    o << "fetch i=" << r.u << " j=" << r.v << " level=" << r.lod;
+    if (r.texture || r.sampler) o << " texture " << int(r.texture) << " sampler " << int(r.sampler);
+    return o.str();
+  }
   o << "u=" << r.u << " (" << r.u / 16777216.0 << ") v=" << r.v << " (" << r.v / 16777216.0 << ")";
   if (r.has_derivatives)
     o << " dudx=" << r.deriv.dudx << " dvdx=" << r.deriv.dvdx << " dudy=" << r.deriv.dudy << " dvdy=" << r.deriv.dvdy;

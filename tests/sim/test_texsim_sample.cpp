@@ -188,6 +188,54 @@ TEST_F(TexsimCli, ReductionMinAndMaxBoundTheAverage) {
   expect_clean_failure("sample --textures bad.txt -q q.csv -o bad.csv", "bad.csv", {"bad.txt", "reduction=", "avg"});
 }
 
+// --op fetch (texelFetch): an i,j,level trace reads level 0's texels as the image holds them, a
+// level above 0 as a nearest-level point sample at that texel's centre gives it, and 0 outside the
+// texture; every engine and both RTL units give the model's bytes; a trace whose header does not
+// match --op, a value that is not a whole number, an unknown operation: one line, nothing written.
+TEST_F(TexsimCli, TexelFetchReadsTexelsAndZeroOutside) {
+  auto value = [](int x, int y, int c) { return (7 + x * 31 + y * 17 + c * 50) % 256; };
+  write_image(dir / "t.png", 6, 5, 4, value);  // levels 6x5, 3x2, 1x1
+  std::string q = "i,j,level\n", p = "u,v,lod\n";
+  std::vector<std::vector<int>> want;
+  for (int y = -1; y <= 5; ++y)
+    for (int x = -1; x <= 6; ++x) {
+      q += std::to_string(x) + "," + std::to_string(y) + ",0\n";
+      const bool in = x >= 0 && x < 6 && y >= 0 && y < 5;
+      want.push_back(in ? std::vector<int>{value(x, y, 0), value(x, y, 1), value(x, y, 2), value(x, y, 3)}
+                        : std::vector<int>{0, 0, 0, 0});
+    }
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) {  // level 1 (3x2): against point samples at lod 1
+      q += std::to_string(x) + "," + std::to_string(y) + ",1\n";
+      p += std::to_string((x + 0.5) / 3) + "," + std::to_string((y + 0.5) / 2) + ",1\n";
+    }
+  q += "0,0,3\n-5,0,1\n0,0,-1\n";  // beyond the last level, left of level 1, below level 0
+  write_text(dir / "q.csv", q);
+  write_text(dir / "p.csv", p);
+  const Result r = run("sample -t t.png --op fetch -q q.csv -o f.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("texel fetches"), std::string::npos) << r.out;
+  std::string h;
+  const auto rows = read_csv_rows(dir / "f.csv", h);
+  ASSERT_EQ(rows.size(), want.size() + 6 + 3);
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_EQ(rows[i], want[i]) << "query " << i;
+  ASSERT_EQ(run("sample -t t.png -f nearest_mipmap_nearest -q p.csv -o p_out.csv").exit_code, 0);
+  const auto points = read_csv_rows(dir / "p_out.csv", h);
+  ASSERT_EQ(points.size(), 6u);
+  for (size_t i = 0; i < 6; ++i) EXPECT_EQ(rows[want.size() + i], points[i]) << "level 1 texel " << i;
+  for (size_t i = want.size() + 6; i < rows.size(); ++i) EXPECT_EQ(rows[i], (std::vector<int>{0, 0, 0, 0})) << i;
+  for (const char* engine : {"-e rtl", "-e rtl --memory cached", "-e systemc --memory cached", "-e systemc-model"}) {
+    const Result e = run(std::string("sample -t t.png --op fetch -q q.csv -o e.csv ") + engine);
+    ASSERT_EQ(e.exit_code, 0) << engine << ": " << e.err;
+    EXPECT_EQ(read_text(dir / "e.csv"), read_text(dir / "f.csv")) << engine;
+  }
+  expect_clean_failure("sample -t t.png --op fetch -q p.csv -o bad.csv", "bad.csv", {"p.csv", "u,v,lod", "--op fetch"});
+  expect_clean_failure("sample -t t.png -q q.csv -o bad.csv", "bad.csv", {"q.csv", "i,j,level", "--op fetch"});
+  expect_clean_failure("sample -t t.png --op gather -q q.csv -o bad.csv", "bad.csv", {"--op", "gather"});
+  write_text(dir / "half.csv", "i,j,level\n1,2,0\n1.5,2,0\n");
+  expect_clean_failure("sample -t t.png --op fetch -q half.csv -o bad.csv", "bad.csv", {"half.csv:3", "i", "1.5"});
+}
+
 TEST_F(TexsimCli, GrayBecomesOpaqueRgbAndRgbGetsOpaqueAlpha) {
   auto gray = [](int x, int y, int) { return 10 + x * 30 + y * 3; };
   auto rgb = [](int x, int y, int c) { return 5 + x * 40 + y * 9 + c * 2; };

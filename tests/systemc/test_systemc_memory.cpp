@@ -273,7 +273,8 @@ TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
   std::mt19937_64 rng(5);
   SamplerTable samplers;
   for (int i = 0; i < 5; ++i) samplers.push_back(stimulus::random_sampler(rng));
-  const std::vector<Request> requests = stimulus::random_requests(rng, sizes, samplers.size(), 3000);
+  std::vector<Request> requests = stimulus::random_requests(rng, sizes, samplers.size(), 3000);
+  stimulus::fetches_among(rng, requests, 16, [&](int t) { return sizes[size_t(t)]; });
   EngineOptions o = cached(60, 4);
   o.mem_jitter = 40;
   o.seed = 9;

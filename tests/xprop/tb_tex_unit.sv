@@ -59,6 +59,7 @@ module tb_tex_unit #(
   logic                                   cfg_smp_unnormalized = 1'b0;  // (the vectors' samplers are normalized)
   logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction = 'x;
   logic [TAG_W-1:0]                       req_tag = 'x;
+  logic [tex_pkg::OP_W-1:0]               req_op = 'x;
   logic                                   rsp_valid;
   logic                                   rsp_ready = 1'b0;
   logic [4*CW-1:0]                        rsp_rgba;
@@ -198,6 +199,7 @@ module tb_tex_unit #(
     req_bias = 'x;
     req_deriv = 'x;
     req_tag = 'x;
+    req_op = 'x;
   endtask
 
   task automatic idle_write_pins;
@@ -256,7 +258,7 @@ module tb_tex_unit #(
 
   task automatic request(input int gap, input logic signed [31:0] u, input logic signed [31:0] v,
                          input int lod, input logic [TAG_W-1:0] tag, input int wr, input int wl,
-                         input int wx, input int wy, input logic [63:0] wd);
+                         input int wx, input int wy, input logic [63:0] wd, input int op);
     int waited;
     idle_request_pins();
     if (wr != 0) begin
@@ -274,6 +276,7 @@ module tb_tex_unit #(
     req_bias = '0;  // (the vectors' requests have no bias of their own)
     req_deriv = 1'b0;
     req_tag = tag;
+    req_op = op[tex_pkg::OP_W-1:0];
     step();
     idle_write_pins();
     waited = 0;
@@ -347,9 +350,9 @@ module tb_tex_unit #(
         idle_request_pins();
         repeat (a0) step();
       end else if (op == "R") begin
-        r = $fscanf(stim_fd, "%d %d %d %d %h %d %d %d %d %h", a0, s0, s1, a1, h0, a2, a3, a4, a5, h1);
-        if (r != 10) $fatal(1, "xprop: FAIL bad R line in stimulus.txt (%0d fields)", r);
-        request(a0, s0, s1, a1, h0[TAG_W-1:0], a2, a3, a4, a5, h1);
+        r = $fscanf(stim_fd, "%d %d %d %d %h %d %d %d %d %h %d", a0, s0, s1, a1, h0, a2, a3, a4, a5, h1, a11);
+        if (r != 11) $fatal(1, "xprop: FAIL bad R line in stimulus.txt (%0d fields)", r);
+        request(a0, s0, s1, a1, h0[TAG_W-1:0], a2, a3, a4, a5, h1, a11);
       end else if (op == "Z") begin
         r = $fscanf(stim_fd, "%d %d", a0, a1);
         do_reset(a0, a1);

@@ -12,9 +12,10 @@
 //                    the cfg pins from now on (only after a drain: nothing in flight)
 //     W level x y data(hex)                       one clock with wr_en high
 //     I clocks                                    idle clocks (req_valid and wr_en low)
-//     R gap u v lod tag(hex) wr level x y data(hex)
+//     R gap u v lod tag(hex) wr level x y data(hex) op
 //                    gap idle clocks, then the request offered until taken; wr = 1: the write
-//                    (x, y) of `level` <- data (the texel it already holds) in the first of them
+//                    (x, y) of `level` <- data (the texel it already holds) in the first of them;
+//                    op: req_op (a sample, or a texel fetch: u, v, lod are i, j, level)
 //     Z hold clocks  hold clocks with rsp_ready low and no request, then rst high for `clocks`
 //                    clocks: the requests in flight are dropped; the next ones are answered
 //     D              drain: no request until every accepted one is answered, then idle clocks
@@ -125,9 +126,13 @@ struct Gen {
     const int last = p.last_level();
     for (int i = 0; i < n; ++i) {
       Request r;
-      r.u = stimulus::random_coordinate(rng, p.extent0().w, last);
-      r.v = stimulus::random_coordinate(rng, p.extent0().h, last);
-      r.lod = stimulus::random_lod(rng, last);
+      if (below(8) == 0) {
+        r = stimulus::random_fetch(rng, p.extent0());
+      } else {
+        r.u = stimulus::random_coordinate(rng, p.extent0().w, last);
+        r.v = stimulus::random_coordinate(rng, p.extent0().h, last);
+        r.lod = stimulus::random_lod(rng, last);
+      }
       const uint64_t tag = issued++ & ((uint64_t(1) << kTagBits) - 1);
       // Input gaps: none in about 60% of the requests, else 1..3, now and then up to 12.
       const uint64_t g = below(100);
@@ -144,9 +149,9 @@ struct Gen {
         wd = pack_rgba(img.at(wx, wy), opt.cw);
       }
       char line[160];
-      std::snprintf(line, sizeof line, "R %llu %d %d %d %llx %d %d %d %d %llx\n", static_cast<unsigned long long>(gap),
+      std::snprintf(line, sizeof line, "R %llu %d %d %d %llx %d %d %d %d %llx %d\n", static_cast<unsigned long long>(gap),
                     r.u, r.v, int(r.lod), static_cast<unsigned long long>(tag), wr, wl, wx, wy,
-                    static_cast<unsigned long long>(wd));
+                    static_cast<unsigned long long>(wd), int(r.op));
       stim << line;
       std::snprintf(line, sizeof line, "%llx %llx\n", static_cast<unsigned long long>(tag),
                     static_cast<unsigned long long>(pack_rgba(model.sample(r), opt.cw)));

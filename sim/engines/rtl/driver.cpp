@@ -21,6 +21,7 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_dvdy = r.deriv.dvdy;
   in.req_tex = r.texture;
   in.req_sampler = r.sampler;
+  in.req_op = uint8_t(r.op);
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, const Pyramid& pyramid) {

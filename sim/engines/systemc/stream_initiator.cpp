@@ -78,6 +78,7 @@ StreamInitiator::Slot* StreamInitiator::take_slot(const Request& q, size_t index
   s->data.bias = q.bias;
   s->data.texture = q.texture;
   s->data.sampler = q.sampler;
+  s->data.op = uint8_t(q.op);
   s->set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   ++issued_;
   return s;

@@ -89,6 +89,7 @@ Request request_of(const SampleTransfer& s) {
   q.bias = s.bias;
   q.texture = s.texture;
   q.sampler = s.sampler;
+  q.op = Op(s.op);
   return q;
 }
 }  // namespace
@@ -113,7 +114,9 @@ SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
     return nullptr;
   }
   auto* s = reinterpret_cast<SampleTransfer*>(trans.get_data_ptr());
-  if (s->texture >= textures_.size() || s->sampler >= samplers_.size()) {  // beyond the tables
+  if (s->texture >= textures_.size() || s->sampler >= samplers_.size() ||  // beyond the tables
+      (s->op != uint8_t(Op::Sample) && s->op != uint8_t(Op::Fetch)) ||         // no such operation
+      (s->op == uint8_t(Op::Fetch) && s->has_derivatives)) {
     trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return nullptr;
   }
