@@ -115,6 +115,21 @@ class GlSampling {
     glUniform1i(glGetUniformLocation(rect_program_, "tex"), 2);
     glUniform1i(glGetUniformLocation(rect_program_, "queries"), 1);
     glGenTextures(1, &rect_);
+    const char* fetch_fs = R"(#version 330 core
+      uniform sampler2D tex;
+      uniform sampler2D queries;
+      out vec4 colour;
+      void main() {  // texel (i, j) of level k
+        vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
+        colour = texelFetch(tex, ivec2(q.xy), int(q.z));
+      })";
+    fetch_program_ = glCreateProgram();
+    glAttachShader(fetch_program_, compile(GL_VERTEX_SHADER, vs));
+    glAttachShader(fetch_program_, compile(GL_FRAGMENT_SHADER, fetch_fs));
+    glLinkProgram(fetch_program_);
+    glUseProgram(fetch_program_);
+    glUniform1i(glGetUniformLocation(fetch_program_, "tex"), 0);
+    glUniform1i(glGetUniformLocation(fetch_program_, "queries"), 1);
     glGenVertexArrays(1, &vao_);
     glBindVertexArray(vao_);
     glGenTextures(1, &tex_);
@@ -178,6 +193,20 @@ class GlSampling {
                     c.reduction == Reduction::Min   ? GL_MIN
                     : c.reduction == Reduction::Max ? GL_MAX
                                                     : GL_WEIGHTED_AVERAGE_ARB);
+    return draw(q);
+  }
+
+  // texelFetch of (i, j, level) = (q[0], q[1], q[2]) (whole numbers) from the uploaded texture.
+  std::vector<std::array<float, 4>> fetch(const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(fetch_program_);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex_);
+    return draw(q);
+  }
+
+ private:
+  // One fragment per query with the bound program; the results.
+  std::vector<std::array<float, 4>> draw(const std::vector<std::array<float, 4>>& q) {
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, queries_);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -190,10 +219,10 @@ class GlSampling {
     return out;
   }
 
- private:
   OSMesaContext ctx_ = nullptr;
   std::vector<uint8_t> window_ = std::vector<uint8_t>(size_t(kW) * kH * 4);
-  GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, vao_ = 0, tex_ = 0, rect_ = 0, queries_ = 0;
+  GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, fetch_program_ = 0, vao_ = 0, tex_ = 0, rect_ = 0,
+         queries_ = 0;
   bool ready_ = false;
 };
 
@@ -469,4 +498,66 @@ TEST(GlSamplerStates, MinMaxReductionAgreesWithLlvmpipe) {
   const SamplerConfig average{{TexelFilter::Linear, MipMode::Nearest}, Wrap::Repeat, Wrap::Repeat};
   const Outcome wrong = compare(gl, rgba, min, 11, &average);
   EXPECT_GT(wrong.max_lsb_x100, 1000) << "an average for a minimum went unnoticed";
+}
+
+// texelFetch: every texel llvmpipe fetches inside the texture, on every level of the three test
+// textures, is the model's (RGBA8 exactly; sRGB within the decode tables' 0.35 step). Outside the
+// texture GL leaves the result undefined; the model's 0 (Vulkan's robust access) is compared
+// where llvmpipe also answers 0 in every channel, and the rest are counted.
+TEST(GlSamplerStates, TexelFetchAgreesWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  const auto [rgba, rgba_npot, srgb_npot] = test_textures();
+  std::mt19937 rng(45);
+  int compared = 0, outside = 0, outside_zero = 0, worst = 0, planted = 0;
+  for (const Pyramid* pyr : {&rgba, &rgba_npot, &srgb_npot}) {
+    gl.upload(*pyr);
+    const int last = pyr->last_level();
+    std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
+    std::vector<Request> requests(queries.size());
+    for (size_t n = 0; n < queries.size(); ++n) {
+      // A level of the texture, 1 in 8 one beyond either end; indices up to 1 texel beyond its sides.
+      const int k = rng() % 8 == 0 ? (rng() % 2 ? -1 : last + 1) : int(rng() % uint32_t(last + 1));
+      const Extent e = level_extent(pyr->extent0(), std::clamp(k, 0, last));
+      const int i = int(rng() % uint32_t(e.w + 2)) - 1, j = int(rng() % uint32_t(e.h + 2)) - 1;
+      queries[n] = {float(i), float(j), float(k), 0.f};
+      requests[n] = fetch_request(i, j, k);
+    }
+    const std::vector<std::array<float, 4>> got = gl.fetch(queries);
+    Sampler model(*pyr, SamplerConfig{});
+    for (size_t n = 0; n < requests.size(); ++n) {
+      const Request& r = requests[n];
+      const Texel m = model.sample(r);
+      const bool inside = stage::fetch_inside(r.u, r.v, r.lod, last, pyr->extent0());
+      if (!inside) {
+        ++outside;
+        if (got[n] != std::array<float, 4>{0, 0, 0, 0}) continue;  // (undefined in GL)
+        ++outside_zero;
+      }
+      int err = 0;
+      for (int c = 0; c < 4; ++c) {
+        const double mine = pyr->srgb ? m[size_t(c)] / 65535.0 * 255 : m[size_t(c)];
+        err = std::max(err, int(std::lround(std::fabs(mine - double(got[n][size_t(c)]) * 255) * 100)));
+      }
+      ASSERT_LE(err, pyr->srgb ? 35 : 0) << (pyr->srgb ? "sRGB " : "RGBA8 ") << pyr->extent0().w << "x"
+                                         << pyr->extent0().h << " fetch (" << r.u << ", " << r.v << ") level " << r.lod;
+      worst = std::max(worst, err);
+      ++compared;
+      // The check fires: a model that fetches the texel to the right (RGBA8) disagrees.
+      if (!pyr->srgb && inside) {
+        const Texel right = model.sample(fetch_request(r.u + 1, r.v, r.lod));
+        for (int c = 0; c < 4; ++c) {
+          if (std::lround(got[n][size_t(c)] * 255) != right[size_t(c)]) {
+            ++planted;
+            break;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(planted, kW * kH / 2) << "a fetch one texel off went unnoticed";
+  EXPECT_GT(compared - outside_zero, kW * kH) << "fetches inside the texture";
+  EXPECT_GT(outside, 1000);
+  std::printf("  %d texel fetches compared with llvmpipe (max %.2f LSB): %d inside the texture, %d outside (0 in "
+              "llvmpipe too: %d)\n", compared, worst / 100.0, compared - outside_zero, outside, outside_zero);
 }
