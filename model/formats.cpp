@@ -151,6 +151,7 @@ std::string reduction_name(Reduction r) { return int(r) < kReductions ? kReducti
 bool parse_op(const std::string& name, Op& out) {
   const std::string n = name_key(name, "");
   if (n == "sample") out = Op::Sample;
+  else if (n == "gather" || n == "texturegather") out = Op::Gather;
   else if (n == "fetch" || n == "texelfetch") out = Op::Fetch;
   else return false;
   return true;
@@ -159,6 +160,7 @@ bool parse_op(const std::string& name, Op& out) {
 std::string op_name(Op op) {
   switch (op) {
     case Op::Sample: return "sample";
+    case Op::Gather: return "gather";
     case Op::Fetch: return "fetch";
   }
   return "?";

@@ -78,10 +78,11 @@ enum class Reduction : uint8_t { WeightedAverage = 0, Min = 1, Max = 2 };
 constexpr int kReductions = 3;
 
 // What a request asks of the unit (the RTL's req_op, tex_pkg::OP_*): a filtered sample (GLSL
-// texture*), or texelFetch: the texel (i, j) of one level, no filter, no address mode, 0 outside
-// the level or the view's levels (Vulkan's robust image access). Codes 1 and 2 are kept for
-// gather and compare (issue 35).
-enum class Op : uint8_t { Sample = 0, Fetch = 3 };
+// texture*); textureGather: one component of the four texels a linear filter weighs at the base
+// level (stage::gather); or texelFetch: the texel (i, j) of one level, no filter, no address mode,
+// 0 outside the level or the view's levels (Vulkan's robust image access). Code 2 is kept for
+// compare (issue 35).
+enum class Op : uint8_t { Sample = 0, Gather = 1, Fetch = 3 };
 
 // Names: point, bilinear, trilinear, mip_nearest (bilinear in the nearest level), anisotropic
 // (trilinear probes), and the six GL names (nearest, linear, nearest_mipmap_nearest, ...).
@@ -110,7 +111,7 @@ bool parse_pyramid_mode(const std::string& name, PyramidMode& out);
 // weighted-average | min | max (and the Vulkan names, VK_SAMPLER_REDUCTION_MODE_MIN, ...).
 bool parse_reduction(const std::string& name, Reduction& out);
 std::string reduction_name(Reduction r);
-// sample | fetch (also texelFetch).
+// sample | gather | fetch (also textureGather, texelFetch).
 bool parse_op(const std::string& name, Op& out);
 std::string op_name(Op op);
 

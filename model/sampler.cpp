@@ -97,6 +97,7 @@ int tex_probe_count(const Request& r, const SamplerConfig& config, Extent size0)
 // The stages in pipeline order, as the RTL runs them (model/stages.h, docs/architecture.md).
 Texel Sampler::sample(const Request& r) {
   if (r.op == Op::Fetch) return fetch(r);
+  if (r.op == Op::Gather) return gather(r);
   const Probes p = tex_probe(r, config_, size0_);
   ++samples_;
   ++probes_[size_t(p.n)];
@@ -124,6 +125,23 @@ Texel Sampler::fetch(const Request& r) {
   ++probes_[1];
   if (!stage::fetch_inside(r.u, r.v, r.lod, last_level(), size0_)) return {};
   return memory_->fetch(r.lod, r.u, r.u, r.v, r.v, true, border_)[0];
+}
+
+// textureGather: the linear filter's four taps at the base level, one component of each.
+Texel Sampler::gather(const Request& r) {
+  if (!memory_) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
+  if (r.has_derivatives) throw Error("sampler: a gather carries no derivatives");
+  ++samples_;
+  ++probes_[1];
+  const Extent e = memory_->shape(0);
+  const int32_t ru = stage::reduce(r.u, config_.wrap_u, config_.unnormalized), rv = stage::reduce(r.v, config_.wrap_v, config_.unnormalized);
+  const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w, config_.unnormalized), TexelFilter::Linear);
+  const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h, config_.unnormalized), TexelFilter::Linear);
+  stage::Footprint d;
+  d.taps = memory_->fetch(0, stage::wrap(tu.i0, e.w, config_.wrap_u), stage::wrap(tu.i1, e.w, config_.wrap_u, true),
+                          stage::wrap(tv.i0, e.h, config_.wrap_v), stage::wrap(tv.i1, e.h, config_.wrap_v, true), false,
+                          border_);
+  return stage::gather(d, r.component);
 }
 
 stage::Unrounded Sampler::sample_probe(const Request& r) {
@@ -233,6 +251,19 @@ template <TexelFilter TF, Wrap WU, Wrap WV>
   }
 }
 
+// stage::gather at the base level: byte `component` of taps c, e, b, a as R, G, B, A.
+template <Wrap WU, Wrap WV>
+inline uint32_t gather_level(const FastLevel& lv, int32_t u, int32_t v, int component) {
+  const int32_t pu = (stage::scale(u, lv.w) - 255) >> 1, pv = (stage::scale(v, lv.h) - 255) >> 1;
+  const int32_t x0 = wrap_first<WU>(pu >> 8, lv.w), x1 = wrap_second<WU>((pu >> 8) + 1, lv.w, lv.seam_w);
+  const int32_t y0 = wrap_first<WV>(pv >> 8, lv.h), y1 = wrap_second<WV>((pv >> 8) + 1, lv.h, lv.seam_h);
+  const uint32_t* row0 = lv.texels + size_t(y0) * lv.stride;
+  const uint32_t* row1 = lv.texels + size_t(y1) * lv.stride;
+  const int shift = 8 * (component & 3);
+  auto byte = [&](uint32_t t) { return t >> shift & 255; };
+  return byte(row1[x0]) | byte(row1[x1]) << 8 | byte(row0[x1]) << 16 | byte(row0[x0]) << 24;
+}
+
 // One probe: the trilinear (or nearest-level) value before rounding, CW.24 per channel.
 template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
 [[gnu::always_inline]] inline Packed2x2 probe_packed(const FastLevel* levels, int last, const SamplerConfig& cfg, int32_t u_in, int32_t v_in,
@@ -269,6 +300,10 @@ void sample_batch(const FastLevel* levels, int last, Extent size0, const Sampler
       out[i] = stage::fetch_inside(r.u, r.v, r.lod, last, size0)
                    ? levels[r.lod].texels[size_t(r.v) * levels[r.lod].stride + size_t(r.u)]
                    : 0;
+      continue;
+    }
+    if (r.op == Op::Gather) [[unlikely]] {
+      out[i] = gather_level<WU, WV>(levels[0], stage::reduce(r.u, WU), stage::reduce(r.v, WV), r.component);
       continue;
     }
     if (r.has_derivatives) {

@@ -73,6 +73,7 @@ struct Request {
   uint8_t texture = 0;   // cached unit: the descriptor-table entry sampled (0..kMaxTextures-1)
   uint8_t sampler = 0;   // cached unit: the sampler-table entry it is sampled with (0..kMaxSamplers-1)
   Op op = Op::Sample;    // Op::Fetch: u, v, lod are the integers i, j and the level (stage::fetch_inside)
+  uint8_t component = 0; // Op::Gather: the channel gathered, 0 (R) .. 3 (A)
   bool has_derivatives = false;  // (a fetch has none)
   LodDerivatives deriv;  // Q8.24 texture widths per pixel (requests with derivatives)
 };
@@ -83,6 +84,16 @@ inline Request fetch_request(int32_t i, int32_t j, int32_t level, uint32_t tag =
   r.u = i;
   r.v = j;
   r.lod = level;
+  r.tag = tag;
+  return r;
+}
+// textureGather of `component` at (u, v) (Op::Gather; Q8.24).
+inline Request gather_request(int32_t u, int32_t v, int component, uint32_t tag = 0) {
+  Request r;
+  r.op = Op::Gather;
+  r.u = u;
+  r.v = v;
+  r.component = uint8_t(component);
   r.tag = tag;
   return r;
 }
@@ -147,7 +158,8 @@ class Sampler {
   int channel_bits() const { return channel_bits_; }
 
  private:
-  Texel fetch(const Request& r);  // sample() of an Op::Fetch request
+  Texel fetch(const Request& r);   // sample() of an Op::Fetch request
+  Texel gather(const Request& r);  // and of an Op::Gather one
   void write_packed(int level, int32_t x, int32_t y, const Texel& t);
 
   SamplerConfig config_;

@@ -222,6 +222,16 @@ inline Unrounded reduce_taps(const Footprint& d, const Footprint& d1, int f, boo
   return out;
 }
 
+// textureGather (Op::Gather; GL 4.6 §8.14.2, Vulkan "Texel Gathering"): one component of the four
+// texels a linear filter weighs at the base level — the sampler's address modes and border colour
+// apply, its filters, LOD controls and reduction do not — in the order (i0, j1), (i1, j1), (i1, j0),
+// (i0, j0) as R, G, B, A: taps c, e, b, a. (tex_front: level 0, the linear filter's taps, all four
+// read; tex_filter passes them through its registers as a min/max does.)
+inline Texel gather(const Footprint& d, int component) {
+  const size_t c = size_t(component & 3);
+  return {d.taps[2][c], d.taps[3][c], d.taps[1][c], d.taps[0][c]};
+}
+
 // The mean of n probes (the sum of their CW.24 values) and the one rounding, half up, to CW bits:
 // round(sum / (n * 2^24)). With n = 1 this is blend_and_round. (tex_accum; the RTL divides by n
 // with a reciprocal multiply, docs/numerics.md stage 6, equal for every sum it can see.)

@@ -144,6 +144,15 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     out.slot[0].level = r.lod;
     out.slot[0].needed = stage::fetch_inside(r.u, r.v, r.lod, layout.levels() - 1, layout.size0());
     taps[0] = {{r.u, r.u}, {r.v, r.v}};
+  } else if (r.op == Op::Gather) {  // the linear filter's four taps at the base level, all read
+    const Extent e = layout.level_size(0);
+    const stage::AxisTaps tu = stage::address(stage::scale(stage::reduce(r.u, smp.wrap_u, smp.unnormalized), e.w, smp.unnormalized), TexelFilter::Linear);
+    const stage::AxisTaps tv = stage::address(stage::scale(stage::reduce(r.v, smp.wrap_v, smp.unnormalized), e.h, smp.unnormalized), TexelFilter::Linear);
+    out.slot[0].needed = true;
+    taps[0] = {{stage::wrap(tu.i0, e.w, smp.wrap_u), stage::wrap(tu.i1, e.w, smp.wrap_u, true)},
+               {stage::wrap(tv.i0, e.h, smp.wrap_v), stage::wrap(tv.i1, e.h, smp.wrap_v, true)},
+               2,
+               2};
   } else {
     const stage::LevelSelect sel =
         stage::lod(r.lod, smp.lod_bias + r.bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);

@@ -9,6 +9,8 @@
 // registers: clock 1 the min/max of the taps a slot weighs with a weight above 0 (a; b if fx > 0;
 // c if fy > 0; e if both), clock 2 passes it, clock 3 takes slot 1's too if f > 0; blend is that
 // texel value * 2^24 (exact: tex_accum's rounding returns it).
+// A gather (the model's stage::gather) takes the same path with channel c of clock 1 holding
+// component `component` of slot 0's tap c, e, b, a for c = R, G, B, A (f is 0).
 // Handshake: stall-enable; every register loads when en is high.
 // Latency: 3 clocks. Throughput: 1 per clock.
 // Ports:
@@ -18,6 +20,7 @@
 //          weight of the +1 tap in 1/256
 //   f    : unsigned WEIGHT_BITS, weight of slot 1 (level d1) in 1/256
 //   reduction : tex_pkg::REDUCE_*, with the taps (the sampler's reduction mode; code 3 as min)
+//   gather, component : with the taps: a gather of channel `component` (0 R .. 3 A)
 //   blend: channel c at [c*(CW+24) +: CW+24] (R, G, B, A), unsigned CW.24, exact
 `include "tex_param_error.svh"
 module tex_filter #(
@@ -29,6 +32,8 @@ module tex_filter #(
   input  logic [4*tex_pkg::WEIGHT_BITS-1:0]   w,
   input  logic [tex_pkg::WEIGHT_BITS-1:0]     f,
   input  logic [tex_pkg::REDUCTION_W-1:0]     reduction,
+  input  logic                                gather,
+  input  logic [1:0]                          component,
   output logic [4*(CW+24)-1:0]                blend
 );
   localparam int WB = tex_pkg::WEIGHT_BITS;
@@ -38,7 +43,7 @@ module tex_filter #(
   logic [WB-1:0]   f_s7, f_s8;
   logic            compare, compare_s7, compare_s8;  // a min or max reduction
   logic            take_max, take_max_s7, take_max_s8;
-  assign compare  = reduction != tex_pkg::REDUCE_AVERAGE;
+  assign compare  = reduction != tex_pkg::REDUCE_AVERAGE || gather;
   assign take_max = reduction == tex_pkg::REDUCE_MAX;
   always_ff @(posedge clk) begin
     if (en) begin
@@ -76,9 +81,12 @@ module tex_filter #(
         assign wy = w[(s*2 + 1)*WB +: WB] != '0;
         assign reduced = pick(pick(ta, wx ? tb : ta, take_max), pick(wy ? tc : ta, (wx && wy) ? te : ta, take_max),
                               take_max);
+        // A gather's value for channel c: component `component` of tap c, e, b, a (slot 0).
+        logic [CW-1:0] gathered;
+        assign gathered = taps[((s*4 + ((c == 0) ? 2 : (c == 1) ? 3 : (c == 2) ? 1 : 0))*4 + 32'(component))*CW +: CW];
         always_ff @(posedge clk) begin
           if (en) begin
-            top_s7 <= compare ? {reduced, WB'(0)} : top_next;
+            top_s7 <= gather ? {gathered, WB'(0)} : compare ? {reduced, WB'(0)} : top_next;
             bot_s7 <= bot_next;
           end
         end

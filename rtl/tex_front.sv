@@ -9,6 +9,9 @@
 // nearest texel of (i + 1/2, j + 1/2) texels; every tap is a border tap when i, j or k lies
 // outside every level (clock 2) or k beyond the texture's last level (clock 3), and `zero` says
 // the fetch reads nothing (the top answers 0).
+// A gather (req_gather; the model's stage::gather) takes level 0 in both slots, f = 0 and the linear
+// filter's taps; its weights leave as 1/256 where they are 0, so that every tap is read (the
+// filter does not weigh a gather's taps).
 // Handshake: stall-enable; every register loads when en is high (the valid bits and tags are
 //   the top's). The texture's size (req_w, req_h) and the sampler's fields (req_wrap_*, req_min_linear
 //   .. req_max_lod: the request's sampler-table entry, or the on-chip unit's one sampler) are the
@@ -21,6 +24,7 @@
 //                           level 0); req_lod: signed Q8.8 (before bias and clamp); req_bias:
 //                           signed Q8.8, the request's own LOD bias (added to the sampler's)
 //   req_fetch             : a texel fetch: req_u, req_v, req_lod are the signed integers i, j, k
+//   req_gather            : a gather (req_lod, req_bias and the sampler's filters and LOD fields unused)
 //   req_w, req_h          : unsigned SIZE_W bits, level 0's size of the request's texture, each
 //                           1..2^max(XW, YW) (any value: GL's sizes)
 //   req_last_level        : unsigned LEVEL_W bits, the texture's last level (its level count - 1:
@@ -67,6 +71,7 @@ module tex_front #(
   input  logic signed [tex_pkg::LOD_W-1:0]       req_max_lod,
   input  logic                                   req_unnormalized,
   input  logic                                   req_fetch,
+  input  logic                                   req_gather,
   output logic [2*tex_pkg::LEVEL_W-1:0]          level,
   output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
@@ -105,6 +110,7 @@ module tex_front #(
   logic [3*2-1:0]                         linear_q;  // {mag, min} at clocks 1..3
   logic [2:0]                             unnorm_q;  // req_unnormalized at clocks 1..3
   logic [3:0]                             fetch_q;   // req_fetch at clocks 1..4
+  logic [3:0]                             gather_q;  // req_gather at clocks 1..4
   always_ff @(posedge clk) begin
     if (en) begin
       u_s1        <= req_u;
@@ -120,6 +126,7 @@ module tex_front #(
       linear_q <= {linear_q[0 +: 2*2], req_mag_linear, req_min_linear};
       unnorm_q <= {unnorm_q[1:0], req_unnormalized};
       fetch_q  <= {fetch_q[2:0], req_fetch};
+      gather_q <= {gather_q[2:0], req_gather};
     end
   end
   generate
@@ -162,8 +169,8 @@ module tex_front #(
     .max_lod(max_lod_s1), .mip_mode(mip_q[PW +: PW]), .last_level(last_level),
     .level(level_s3), .f(f_s3), .minify(minify_s3)
   );
-  logic linear_s3;  // the sample's texel filter (the model's stage::texel_filter; a fetch: nearest)
-  assign linear_s3 = !fetch_q[2] && (minify_s3 ? linear_q[2*2] : linear_q[2*2 + 1]);
+  logic linear_s3;  // the sample's texel filter (the model's stage::texel_filter; a fetch: nearest, a gather linear)
+  assign linear_s3 = gather_q[2] || (!fetch_q[2] && (minify_s3 ? linear_q[2*2] : linear_q[2*2 + 1]));
 
   // A texel fetch: whether its i, j or k lies outside every level this unit holds (clock 2), or k
   // beyond the texture's last level (clock 3); k itself replaces tex_lod's levels in clock 3.
@@ -180,8 +187,8 @@ module tex_front #(
       outside_s4     <= outside_s3;
     end
   end
-  logic [2*VW-1:0] level_sel;      // clock 3's levels: tex_lod's, or a fetch's k in both slots
-  assign level_sel = fetch_q[2] ? {fetch_level_s3, fetch_level_s3} : level_s3;
+  logic [2*VW-1:0] level_sel;      // clock 3's levels: tex_lod's, a fetch's k or a gather's 0
+  assign level_sel = fetch_q[2] ? {fetch_level_s3, fetch_level_s3} : gather_q[2] ? '0 : level_s3;
 
   // Per axis a (0 = u / x / width, 1 = v / y / height; part a of these vectors): the reduced
   // coordinate, held one clock while tex_lod selects the levels. A fetch's integer index is the
@@ -210,7 +217,7 @@ module tex_front #(
   always_ff @(posedge clk) begin
     if (en) begin
       level <= level_sel;
-      f     <= fetch_q[2] ? '0 : f_s3;
+      f     <= (fetch_q[2] || gather_q[2]) ? '0 : f_s3;
     end
   end
   generate
@@ -229,10 +236,11 @@ module tex_front #(
         assign n_s3    = (shifted == '0) ? NB'(1) : shifted;
         tex_scale #(.ML(ML), .RW(RW)) u_scale (.reduced(reduced_s3[a*RW +: RW]), .n(n_s3),
                                                .unnormalized(unnorm_q[2] || fetch_q[2]), .t9(t9_s3));
+        logic [WB-1:0] w_s4;
         tex_address #(.TW(TW), .IW(IW)) u_address (
-          .clk(clk), .en(en), .t9(t9_s3), .linear(linear_s3), .i0(i0_s4), .i1(i1_s4),
-          .w(w[(s*2 + a)*WB +: WB])
+          .clk(clk), .en(en), .t9(t9_s3), .linear(linear_s3), .i0(i0_s4), .i1(i1_s4), .w(w_s4)
         );
+        assign w[(s*2 + a)*WB +: WB] = (gather_q[3] && w_s4 == '0) ? WB'(1) : w_s4;
         // The size and its power-of-two flag are registered here rather than made in clock 5.
         always_ff @(posedge clk) begin
           if (en) begin

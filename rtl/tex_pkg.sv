@@ -49,6 +49,7 @@ package tex_pkg;
   // ---- req_op (model/formats.h Op): what a request asks
   localparam int OP_W = 2;
   localparam logic [OP_W-1:0] OP_SAMPLE = 2'd0;  // a filtered sample
+  localparam logic [OP_W-1:0] OP_GATHER = 2'd1;  // textureGather: req_component of the linear taps at level 0
   localparam logic [OP_W-1:0] OP_FETCH  = 2'd3;  // texelFetch: req_u, req_v, req_lod are i, j, level
 
   // ---- texel formats (model/block_formats.h TexelFormat): how memory holds a texture

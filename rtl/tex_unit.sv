@@ -16,7 +16,8 @@
 //   own LOD bias, added to the sampler's: GLSL texture(s, uv, bias)), cfg_smp_lod_bias,
 //   req_op what the request asks (tex_pkg::OP_*): OP_SAMPLE a filtered sample, OP_FETCH texelFetch
 //   (req_u, req_v, req_lod the signed integers i, j and level; req_deriv 0; the texel, or 0 where
-//   there is none: tex_front),
+//   there is none: tex_front), OP_GATHER textureGather (req_component 0..3 of the four texels a
+//   linear filter weighs at level 0, in GL's order as R, G, B, A: tex_front, tex_filter),
 //   cfg_smp_min_lod, cfg_smp_max_lod signed Q8.8; req_deriv selects req_lod (0) or the derivatives
 //   req_dudx, req_dvdx, req_dudy, req_dvdy (1, signed Q8.24 texture widths per pixel);
 //   cfg_smp_max_aniso_m1 the probes per sample at most less one (0..15; 0 = trilinear),
@@ -95,6 +96,7 @@ module tex_unit #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
   input  logic [tex_pkg::OP_W-1:0]               req_op,
+  input  logic [1:0]                             req_component,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -148,9 +150,10 @@ module tex_unit #(
   logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u, probe_v;
   logic signed [tex_pkg::LOD_W-1:0]       probe_lod, probe_bias;
   logic [TGW-1:0]                         probe_tag;
-  logic [tex_pkg::OP_W-1:0]               probe_op;    // (rides in tex_probe's tag, above req_tag)
+  logic [tex_pkg::OP_W-1:0]               probe_op;    // (ride in tex_probe's tag, above req_tag)
+  logic [1:0]                             probe_component;
   logic [2:0]                             probe_held;  // requests in tex_probe
-  localparam int PTW = TGW + tex_pkg::OP_W;
+  localparam int PTW = TGW + tex_pkg::OP_W + 2;
 `ifdef FORMAL
   logic [4:1]                             f_probe_valid;
   logic [4*PTW-1:0]                       f_probe_tags;
@@ -161,9 +164,9 @@ module tex_unit #(
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_w(cfg_w), .req_h(cfg_h),
-    .req_max_aniso_m1(cfg_smp_max_aniso_m1), .req_aniso_pow2(cfg_smp_aniso_pow2), .req_tag({req_op, req_tag}),
+    .req_max_aniso_m1(cfg_smp_max_aniso_m1), .req_aniso_pow2(cfg_smp_aniso_pow2), .req_tag({req_component, req_op, req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
-    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag({probe_op, probe_tag}),
+    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag({probe_component, probe_op, probe_tag}),
     .held(probe_held)
 `ifdef FORMAL
     , .f_valid(f_probe_valid), .f_tags(f_probe_tags)
@@ -176,8 +179,9 @@ module tex_unit #(
   end
 
   // g_tag[n].tag: the tag of the probe in the clock-n register, with its place in the sample
-  // {n, last, first} (it rides along, not reset).
-  localparam int SW = TGW + 7;
+  // {n, last, first} and, above, whether it is a gather and of which component (for tex_filter)
+  // (it rides along, not reset).
+  localparam int SW = TGW + 10;
   logic [NSTAGE:1] last;           // last[n]: the clock-n probe is its sample's last
   genvar n;
   generate
@@ -185,7 +189,8 @@ module tex_unit #(
       logic [SW-1:0] tag;
       assign last[n] = tag[TGW+1];
       if (n == 1) begin : g_capture
-        always_ff @(posedge clk) if (en) tag <= {probe_n, probe_last, probe_first, probe_tag};
+        always_ff @(posedge clk)
+          if (en) tag <= {probe_component, probe_op == tex_pkg::OP_GATHER, probe_n, probe_last, probe_first, probe_tag};
       end else begin : g_shift
         always_ff @(posedge clk) if (en) tag <= g_tag[n-1].tag;
       end
@@ -227,7 +232,7 @@ module tex_unit #(
     .req_wrap_v(cfg_smp_wrap_v), .req_min_linear(cfg_smp_min_linear), .req_mag_linear(cfg_smp_mag_linear),
     .req_mip_mode(cfg_smp_mip_mode), .req_lod_bias(cfg_smp_lod_bias), .req_min_lod(cfg_smp_min_lod),
     .req_max_lod(cfg_smp_max_lod), .req_unnormalized(cfg_smp_unnormalized),
-    .req_fetch(probe_op == tex_pkg::OP_FETCH),
+    .req_fetch(probe_op == tex_pkg::OP_FETCH), .req_gather(probe_op == tex_pkg::OP_GATHER),
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .border_x(border_x), .border_y(border_y), .zero(zero_s4)
   );
@@ -282,7 +287,8 @@ module tex_unit #(
   // ---------------------------------------------------------------- clocks 7-9: filter
   logic [4*(CWD+24)-1:0] blend_s9;
   tex_filter #(.CW(CWD)) u_filter (
-    .clk(clk), .en(en), .taps(taps_b_s6), .w(w_s6), .f(f_s6), .reduction(cfg_reduction_q), .blend(blend_s9)
+    .clk(clk), .en(en), .taps(taps_b_s6), .w(w_s6), .f(f_s6), .reduction(cfg_reduction_q),
+    .gather(g_tag[6].tag[TGW+7]), .component(g_tag[6].tag[TGW+8 +: 2]), .blend(blend_s9)
   );
 
   // ---------------------------------------------------------------- clocks 10-11: tex_accum
@@ -363,6 +369,7 @@ module tex_unit #(
   logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [tex_pkg::OP_W-1:0]               req_op_q;
+  logic [1:0]                             req_component_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
   // (The payload copies are taken only in a stalled cycle, the only time they are compared.)
   always_ff @(posedge clk) begin
@@ -375,6 +382,7 @@ module tex_unit #(
       req_bias_q <= req_bias;
       req_tag_q <= req_tag;
       req_op_q  <= req_op;
+      req_component_q <= req_component;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
     end
     if (rsp_valid && !rsp_ready) begin
@@ -383,7 +391,7 @@ module tex_unit #(
     end
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
-              && req_tag == req_tag_q && req_op == req_op_q
+              && req_tag == req_tag_q && req_op == req_op_q && req_component === req_component_q  // (don't-care but with a gather)
               // (=== : a lambda request's derivative pins are don't-care, X in the 4-state run)
               && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} === req_deriv_q)
         else $error("tex_unit: req_valid dropped or request changed while req_ready was low");
@@ -393,7 +401,7 @@ module tex_unit #(
         else $error("tex_unit: rsp_valid dropped or response changed while rsp_ready was low");
     end
     if (!rst && req_valid)
-      assert (req_op == tex_pkg::OP_SAMPLE || (req_op == tex_pkg::OP_FETCH && !req_deriv))
+      assert (req_op == tex_pkg::OP_SAMPLE || ((req_op == tex_pkg::OP_FETCH || req_op == tex_pkg::OP_GATHER) && !req_deriv))
         else $error("tex_unit: req_op %0d with req_deriv %0d is not an operation of this unit", req_op, req_deriv);
   end
 `endif

@@ -26,7 +26,7 @@
 //   request names (tables, as Vulkan and D3D12 keep image views and samplers apart), plus
 //   req_tex          : the request's texture descriptor-table entry, 0..TEXTURES-1
 //   req_sampler      : the request's sampler-table entry, 0..SAMPLERS-1
-//   req_op           : as tex_unit's (a sample, or a texel fetch of the request's texture)
+//   req_op, req_component : as tex_unit's (a sample, a gather or a texel fetch of the request's texture)
 //   cfg_smp_*        : a sampler write (cfg_smp_we high for one clock): entry cfg_smp_index gets
 //                      the fields of tex_unit's cfg_smp_* pins (filters, mip mode, LOD bias and
 //                      clamp signed Q8.8, anisotropy cap, wrap modes, reduction, border colour
@@ -126,6 +126,7 @@ module tex_unit_cached #(
   input  logic [tex_pkg::TEX_ID_W-1:0]           req_tex,
   input  logic [tex_pkg::SMP_ID_W-1:0]           req_sampler,
   input  logic [tex_pkg::OP_W-1:0]               req_op,
+  input  logic [1:0]                             req_component,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -317,18 +318,19 @@ module tex_unit_cached #(
   logic [TGW-1:0]                         probe_tag;
   logic [SXW-1:0]                         probe_smp;   // and its sampler
   logic [tex_pkg::OP_W-1:0]               probe_op;    // and its operation
+  logic [1:0]                             probe_component;
   logic [2:0]                             probe_held;  // requests in tex_probe
-  tex_probe #(.TAG_W(tex_pkg::OP_W + SXW + TXW + TGW)) u_probe (
+  tex_probe #(.TAG_W(2 + tex_pkg::OP_W + SXW + TXW + TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front),
     .req_valid(req_valid && !desc_busy), .req_ready(probe_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_w(req_size[0 +: NW]), .req_h(req_size[NW +: NW]),
     .req_max_aniso_m1(req_aniso[3:0]), .req_aniso_pow2(req_aniso[4]),
-    .req_tag({req_op, SXW'(req_sampler), TXW'(req_tex), req_tag}),
+    .req_tag({req_component, req_op, SXW'(req_sampler), TXW'(req_tex), req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n),
-    .probe_tag({probe_op, probe_smp, probe_tex, probe_tag}),
+    .probe_tag({probe_component, probe_op, probe_smp, probe_tex, probe_tag}),
     .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
   );
   // The probe's sampler's fields for the front (taken at its clock 1; its texture's size likewise).
@@ -336,10 +338,11 @@ module tex_unit_cached #(
   assign probe_smp_front = smp_front[probe_smp];
 
   // ---------------------------------------------------------------- front: probe clocks 1-4
-  // A probe's tag carries its place in the sample and its sampler's reduction through the front,
-  // {reduction, n, last, first, tag}; from the front's clock 4 on, with tex_front's zero (a
-  // texel fetch that reads nothing) above them, through the FIFO.
-  localparam int FTW = TGW + 7 + RDW;
+  // A probe's tag carries its place in the sample, its sampler's reduction and whether it is a
+  // gather and of which component through the front, {component, gather, reduction, n, last,
+  // first, tag}; from the front's clock 4 on, with tex_front's zero (a texel fetch that reads
+  // nothing) above them, through the FIFO.
+  localparam int FTW = TGW + 7 + RDW + 3;
   localparam int SW  = FTW + 1;
   // The tags are one register per clock: an unpacked array or a wide packed vector would cost a
   // delayed-write shadow copy in every clock in Verilator, a narrow register does not.
@@ -351,7 +354,8 @@ module tex_unit_cached #(
     if (rst) valid_f <= '0;
     else if (en_front) valid_f <= {valid_f[3:1], probe_valid};
     if (en_front) begin
-      tag_f1 <= {smp_reduction[probe_smp], probe_n, probe_last, probe_first, probe_tag};
+      tag_f1 <= {probe_component, probe_op == tex_pkg::OP_GATHER, smp_reduction[probe_smp], probe_n, probe_last,
+                 probe_first, probe_tag};
       tag_f2 <= tag_f1;
       tag_f3 <= tag_f2;
       tag_f4 <= tag_f3;
@@ -376,7 +380,7 @@ module tex_unit_cached #(
     .req_mip_mode(probe_smp_front[2*WW + 2 +: PW]), .req_lod_bias(probe_smp_front[2*WW + 2 + PW +: LW]),
     .req_min_lod(probe_smp_front[2*WW + 2 + PW + LW +: LW]),
     .req_max_lod(probe_smp_front[2*WW + 2 + PW + 2*LW +: LW]), .req_unnormalized(probe_smp_front[FRW - 1]),
-    .req_fetch(probe_op == tex_pkg::OP_FETCH),
+    .req_fetch(probe_op == tex_pkg::OP_FETCH), .req_gather(probe_op == tex_pkg::OP_GATHER),
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .border_x(border_x), .border_y(border_y), .zero(zero_s4)
   );
@@ -449,7 +453,7 @@ module tex_unit_cached #(
   logic [4*(CWD+24)-1:0] blend;
   tex_filter #(.CW(CWD)) u_filter (
     .clk(clk), .en(filter_en), .taps(taps), .w(fetch_w), .f(fetch_f), .reduction(fetch_tag[TGW+7 +: RDW]),
-    .blend(blend)
+    .gather(fetch_tag[TGW+7+RDW]), .component(fetch_tag[TGW+8+RDW +: 2]), .blend(blend)
   );
 
   // ---------------------------------------------------------------- clocks 12-13: tex_accum
@@ -496,6 +500,7 @@ module tex_unit_cached #(
   logic [4*tex_pkg::REQ_COORD_W:0]        req_deriv_q;  // {req_deriv, dudx, dvdx, dudy, dvdy}
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [tex_pkg::OP_W-1:0]               req_op_q;
+  logic [1:0]                             req_component_q;
   logic [tex_pkg::TEX_ID_W-1:0]           req_tex_q;
   logic [tex_pkg::SMP_ID_W-1:0]           req_sampler_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
@@ -517,6 +522,7 @@ module tex_unit_cached #(
       req_bias_q <= req_bias;
       req_tag_q <= req_tag;
       req_op_q  <= req_op;
+      req_component_q <= req_component;
       req_tex_q <= req_tex;
       req_sampler_q <= req_sampler;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
@@ -555,14 +561,14 @@ module tex_unit_cached #(
         else $error("tex_unit_cached: req_sampler %0d is beyond the sampler table (SAMPLERS = %0d)",
                     req_sampler, SAMPLERS);
     if (!rst && req_valid)
-      assert (req_op == tex_pkg::OP_SAMPLE || (req_op == tex_pkg::OP_FETCH && !req_deriv))
+      assert (req_op == tex_pkg::OP_SAMPLE || ((req_op == tex_pkg::OP_FETCH || req_op == tex_pkg::OP_GATHER) && !req_deriv))
         else $error("tex_unit_cached: req_op %0d with req_deriv %0d is not an operation of this unit", req_op, req_deriv);
     if (!rst && req_valid)
       assert (32'(req_tex) < TEXTURES)
         else $error("tex_unit_cached: req_tex %0d is beyond the descriptor table (TEXTURES = %0d)", req_tex, TEXTURES);
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
-              && req_tag == req_tag_q && req_op == req_op_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
+              && req_tag == req_tag_q && req_op == req_op_q && req_component == req_component_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin

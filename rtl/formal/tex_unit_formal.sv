@@ -43,6 +43,7 @@ module tex_unit_formal #(
   input  logic                                   cfg_smp_unnormalized,
   input  logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction,
   input  logic [tex_pkg::OP_W-1:0]               req_op,
+  input  logic [1:0]                             req_component,
   input  logic [TAG_W-1:0]                       req_tag,
   input  logic                                   rsp_ready
 );

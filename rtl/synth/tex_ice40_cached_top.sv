@@ -100,7 +100,8 @@ module tex_ice40_cached_top #(
   localparam int O_MRESP   = O_MDATA + MEM_W;
   localparam int O_MLAST   = O_MRESP + 2;
   localparam int O_OP      = O_MLAST + 1;       // req_op
-  localparam int O_UNNORM  = O_OP + tex_pkg::OP_W;  // cfg_smp_unnormalized
+  localparam int O_COMP    = O_OP + tex_pkg::OP_W;  // req_component
+  localparam int O_UNNORM  = O_COMP + 2;        // cfg_smp_unnormalized
   localparam int O_REDUCE  = O_UNNORM + 1;      // cfg_smp_reduction
   localparam int NIN       = O_REDUCE + tex_pkg::REDUCTION_W;
 
@@ -140,7 +141,7 @@ module tex_ice40_cached_top #(
     .cfg_fifo_limit(in_bits[O_FIFO +: FW]),
     .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
-    .req_op(in_bits[O_OP +: tex_pkg::OP_W]),
+    .req_op(in_bits[O_OP +: tex_pkg::OP_W]), .req_component(in_bits[O_COMP +: 2]),
     .req_bias('0),  // lambda requests (textureLod) have no bias of their own
     // Lambda requests only (the LOD / anisotropy unit is tied off and optimized away: a fit
     // of the probe datapath on the HX8K is not measured here).

@@ -55,7 +55,8 @@ module tex_ice40_top #(
   localparam int O_READY   = O_TAG + TAG_W;
   localparam int O_BORDER  = O_READY + 1;      // cfg_smp_border_rgba
   localparam int O_OP      = O_BORDER + 64;    // req_op
-  localparam int O_UNNORM  = O_OP + tex_pkg::OP_W;  // cfg_smp_unnormalized
+  localparam int O_COMP    = O_OP + tex_pkg::OP_W;  // req_component
+  localparam int O_UNNORM  = O_COMP + 2;        // cfg_smp_unnormalized
   localparam int O_REDUCE  = O_UNNORM + 1;      // cfg_smp_reduction
   localparam int O_DERIV   = O_REDUCE + tex_pkg::REDUCTION_W;  // with DERIV only: req_deriv, the 4 derivatives,
   localparam int O_DUDX    = O_DERIV + 1;      // cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2
@@ -105,7 +106,7 @@ module tex_ice40_top #(
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2),
     .cfg_smp_border_rgba(in_bits[O_BORDER +: 64]),
-    .req_op(in_bits[O_OP +: tex_pkg::OP_W]), .cfg_smp_unnormalized(in_bits[O_UNNORM]),
+    .req_op(in_bits[O_OP +: tex_pkg::OP_W]), .req_component(in_bits[O_COMP +: 2]), .cfg_smp_unnormalized(in_bits[O_UNNORM]),
     .cfg_smp_reduction(in_bits[O_REDUCE +: tex_pkg::REDUCTION_W]),
     .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag)
   );

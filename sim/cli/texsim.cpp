@@ -1,5 +1,6 @@
 // texsim: the command-line tool. Sample query traces, build and dump pyramids, render scenes.
 #include <CLI/CLI.hpp>
+#include <bit>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -134,12 +135,25 @@ std::string filter_label(const SamplerConfig& c) {
   return filter_name(c.filter) + (c.reduction == Reduction::WeightedAverage ? "" : " " + reduction_name(c.reduction));
 }
 
+// What the summary line says was asked: texel fetches, gathers of a component, or the filter.
+std::string op_label(Op op, int component, const SamplerConfig& c) {
+  if (op == Op::Fetch) return "texel fetches";
+  if (op == Op::Gather) return std::string("gathers of ") + "RGBA"[component];
+  return filter_label(c);
+}
+
 int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& textures_path,
-               const std::string& out_path, const std::string& op_option) {
+               const std::string& out_path, const std::string& op_option, const std::string& component_option) {
   const auto t0 = std::chrono::steady_clock::now();
   // Everything is checked before the work: options, engine, outputs, texture, every query.
   Op op{};
-  if (!parse_op(op_option, op)) throw Error("--op " + quote_clipped(op_option) + " is not sample or fetch");
+  if (!parse_op(op_option, op)) throw Error("--op " + quote_clipped(op_option) + " is not sample, gather or fetch");
+  static const std::string kComponents[] = {"r", "g", "b", "a"};
+  int component = -1;
+  for (int c = 0; c < 4; ++c)
+    if (component_option == std::to_string(c) || component_option == kComponents[c]) component = c;
+  if (component < 0) throw Error("--component " + quote_clipped(component_option) + " is not 0, 1, 2, 3 (r, g, b, a)");
+  if (component != 0 && op != Op::Gather) throw Error("--component is a gather's (--op gather)");
   const SamplerConfig cfg = o.config();
   const TextureOptions topts = o.texture_options();
   EngineOptions eo = o.engine_options();
@@ -171,16 +185,21 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   SamplerTable samplers;  // entry i: list line i's
   for (const TextureListEntry& e : list) samplers.push_back(e.sampler);
   const uint32_t unnormalized = unnormalized_samplers(samplers);  // their queries give texel coordinates
+  if (op == Op::Gather && unnormalized)  // (VkSamplerCreateInfo: not with OpImage*Gather)
+    throw Error("--op gather: Vulkan does not gather through an unnormalized sampler (sampler " +
+                std::to_string(std::countr_zero(unnormalized)) + ")");
+  const QueryForm form{unnormalized, uint8_t(component)};
   std::optional<QueryReader> reader;
   std::optional<QueryFileParser> parser;
   std::exception_ptr query_error;
   try {
     reader.emplace(queries_path);
     if (reader->op() != op)  // (the header names what the queries carry)
-      throw Error(reader->name() + ": header " + reader->header() + (op == Op::Fetch
-                  ? " is not a texel fetch's: --op fetch takes [tex,[smp,]]i,j,level"
-                  : " is a texel fetch's: give --op fetch"));
-    if (reader->rewindable()) parser.emplace(queries_path, 2, true, unnormalized);
+      throw Error(reader->name() + ": header " + reader->header() + " is a " + op_name(reader->op()) + "'s" +
+                  (op == Op::Sample ? ": give --op " + op_name(reader->op())
+                                    : "; --op " + op_name(op) + " takes " +
+                                          (op == Op::Fetch ? "[tex,[smp,]]i,j,level" : "[tex,[smp,]]u,v")));
+    if (reader->rewindable()) parser.emplace(queries_path, 2, true, form);
   } catch (...) {
     query_error = std::current_exception();
   }
@@ -211,7 +230,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (clocks_out) eo.clock_sink = &clocks.emplace(*clocks_out);
 
   // One helper thread beside the engine: it parses a trace that streams, or else writes the results.
-  QuerySource streamed(*reader, unnormalized);
+  QuerySource streamed(*reader, form);
   std::optional<ReadAheadSource> ahead;
   RequestSource& source = kept ? static_cast<RequestSource&>(*parser) : ahead.emplace(streamed);
   bool srgb = false;  // sRGB textures give linear unorm16 results
@@ -251,10 +270,10 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (frame) std::fprintf(report, "  %s\n", frame->summary().c_str());
   if (table.size() > 1)
     std::fprintf(report, "texsim sample: %zu queries, %s, %zu textures, engine %s -> %s (%.2f s)\n", count,
-                 op == Op::Fetch ? "texel fetches" : filter_label(cfg).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
+                 op_label(op, component, cfg).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
   else
     std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
-                 count, op == Op::Fetch ? "texel fetches" : filter_label(cfg).c_str(), wrap_name(samplers[0].wrap_u).c_str(),
+                 count, op_label(op, component, cfg).c_str(), wrap_name(samplers[0].wrap_u).c_str(),
                  wrap_name(samplers[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
                  out_path.c_str(), secs);
   return 0;
@@ -375,7 +394,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     std::vector<Query> in_texels;  // (the frame's queries are copied only for an unnormalized sampler)
     const std::vector<Query>& queries =
         unnormalized ? (in_texels = in_sampler_coordinates(frame.queries, samplers, {pyr.extent0()})) : frame.queries;
-    const auto requests = to_requests(queries, "scene " + scene, unnormalized);
+    const auto requests = to_requests(queries, "scene " + scene, QueryForm{unnormalized});
     VectorSource source(requests);
     VectorSink texels;
     last_stats = run_engine(o, eo, outputs, trace, {{&pyr}}, samplers, source, texels);
@@ -417,10 +436,13 @@ int main(int argc, char** argv) {
                      "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy, either with a leading tex column, or "
                      "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper; with --op fetch i,j,level (- = standard input)")
       ->required();
-  std::string sample_op = "sample";
+  std::string sample_op = "sample", sample_component = "0";
   sample->add_option("--op", sample_op,
-                     "sample | fetch: what each query asks; fetch: texelFetch of texel (i, j) of a level, no filter, "
-                     "0 outside the texture (Vulkan robust image access)")
+                     "sample | gather | fetch: what each query asks; gather: textureGather, one component of the four "
+                     "texels a linear filter weighs at the base level (header u,v); fetch: texelFetch of texel (i, j) "
+                     "of a level, no filter, 0 outside the texture (Vulkan robust image access; header i,j,level)")
+      ->capture_default_str();
+  sample->add_option("--component", sample_component, "the component a gather gathers: 0 1 2 3 or r g b a")
       ->capture_default_str();
   sample->add_option("--out,-o", out, "result CSV: header r,g,b,a (- = standard output)")->required();
   std::string textures_list;
@@ -572,7 +594,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (*sample) return cmd_sample(sample_opts, queries, textures_list, out, sample_op);
+    if (*sample) return cmd_sample(sample_opts, queries, textures_list, out, sample_op, sample_component);
     if (*mip)
       return cmd_mip(mip_texture, mip_mode, mip_resize, mip_format, mip_format_opt->count() > 0, mip_srgb, dump_dir, layout,
                      image);

@@ -145,8 +145,8 @@ namespace {
 struct TraceFormat {
   const char* header;
   // a tex column; a smp column; u,v,lod (else the four derivatives); a bias column; quad,x,y,helper;
-  // i,j,level (a texel fetch, in place of u,v,lod)
-  bool texture, sampler, lod, bias, quad, fetch = false;
+  // i,j,level (a texel fetch, in place of u,v,lod); u,v alone (a gather)
+  bool texture, sampler, lod, bias, quad, fetch = false, gather = false;
 };
 constexpr TraceFormat kFormats[] = {
     {"u,v,lod", false, false, true, false, false},
@@ -162,13 +162,16 @@ constexpr TraceFormat kFormats[] = {
     {"i,j,level", false, false, true, false, false, true},
     {"tex,i,j,level", true, false, true, false, false, true},
     {"tex,smp,i,j,level", true, true, true, false, false, true},
+    {"u,v", false, false, false, false, false, false, true},
+    {"tex,u,v", true, false, false, false, false, false, true},
+    {"tex,smp,u,v", true, true, false, false, false, false, true},
 };
 constexpr int kMaxColumns = 11;
 
 // The headers of kFormats, in short: [tex,[smp,]] before u,v,lod and u,v,dudx,...
 std::string known_headers() {
-  return "[tex,[smp,]]u,v,lod or [tex,[smp,]]u,v,dudx,dvdx,dudy,dvdy[,bias] or " + std::string(kFrameTraceHeader) +
-         " or [tex,[smp,]]i,j,level";
+  return "[tex,[smp,]] then u,v,lod, u,v,dudx,dvdx,dudy,dvdy[,bias], u,v (gather) or i,j,level (fetch), or " +
+         std::string(kFrameTraceHeader);
 }
 
 }  // namespace
@@ -268,6 +271,7 @@ void QueryReader::read_header() {
         lod_ = format.lod;
         quad_ = format.quad;
         fetch_ = format.fetch;
+        gather_ = format.gather;
         header_ = header;
       }
     if (columns_ == 0) throw Error(at + "unknown header " + quote_clipped(line) + " (expected " + known_headers() + ")");
@@ -277,7 +281,7 @@ void QueryReader::read_header() {
 
 Op QueryReader::op() {
   if (columns_ == 0) read_header();
-  return fetch_ ? Op::Fetch : Op::Sample;
+  return fetch_ ? Op::Fetch : gather_ ? Op::Gather : Op::Sample;
 }
 
 bool QueryReader::next(Query& q) {
@@ -312,6 +316,10 @@ bool QueryReader::next(Query& q) {
     }
     q.u = v[c++];
     q.v = v[c++];
+    if (gather_) {
+      q.gather = true;
+      return true;
+    }
     q.explicit_lod = lod_;
     if (lod_) {
       q.lod = v[c++];
@@ -344,8 +352,8 @@ struct QueryFileParser::Part {
   size_t count = 0;
 };
 
-QueryFileParser::QueryFileParser(const std::string& path, unsigned threads, bool keep, uint32_t unnormalized)
-    : first_(std::make_unique<QueryReader>(path)), unnormalized_(unnormalized), start_(std::chrono::steady_clock::now()) {
+QueryFileParser::QueryFileParser(const std::string& path, unsigned threads, bool keep, QueryForm form)
+    : first_(std::make_unique<QueryReader>(path)), form_(form), start_(std::chrono::steady_clock::now()) {
   QueryReader& first = *first_;
   first.read_header();
   struct stat st {};
@@ -394,7 +402,7 @@ void QueryFileParser::parse(size_t k) {
   try {
     std::unique_ptr<QueryReader> own;
     if (k > 0) own.reset(new QueryReader(*first_, part.begin, part.end));  // (a private constructor)
-    QuerySource source(k > 0 ? *own : *first_, unnormalized_);
+    QuerySource source(k > 0 ? *own : *first_, form_);
     std::vector<Request> scratch(keep_ ? 0 : 4096);
     for (;;) {
       {
@@ -510,7 +518,7 @@ std::vector<Query> in_sampler_coordinates(std::vector<Query> queries, const Samp
   return queries;
 }
 
-Request to_request(const Query& q, const std::string& name, uint32_t tag, uint32_t unnormalized) {
+Request to_request(const Query& q, const std::string& name, uint32_t tag, QueryForm form) {
   Request r;
   r.tag = tag;
   auto at = [&] { return name + ":" + std::to_string(q.line) + ": "; };
@@ -528,7 +536,11 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag, uint32
     r.lod = int32_t(q.lod);
     return r;
   }
-  const bool texels = unnormalized >> r.sampler & 1;  // an unnormalized sampler's: texels of level 0, Q16.16
+  if (q.gather) {
+    r.op = Op::Gather;
+    r.component = form.component;
+  }
+  const bool texels = form.unnormalized >> r.sampler & 1;  // an unnormalized sampler's: texels of level 0, Q16.16
   auto coordinate = [&](double value, const char* axis, int32_t& out) {
     if (texels ? to_texel_coord_fixed(value, out) : to_coord_fixed(value, out)) return;
     throw Error(at() + axis + " = " + std::to_string(value) +
@@ -537,6 +549,7 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag, uint32
   };
   coordinate(q.u, "u", r.u);
   coordinate(q.v, "v", r.v);
+  if (q.gather) return r;
   if (q.explicit_lod) {
     if (!to_lod_fixed(q.lod, r.lod)) throw Error(at() + "lod = " + std::to_string(q.lod) + " is outside [-128, 128)");
   } else {
@@ -547,10 +560,10 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag, uint32
   return r;
 }
 
-std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name, uint32_t unnormalized) {
+std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name, QueryForm form) {
   std::vector<Request> out;
   out.reserve(queries.size());
-  for (size_t i = 0; i < queries.size(); ++i) out.push_back(to_request(queries[i], name, uint32_t(i), unnormalized));
+  for (size_t i = 0; i < queries.size(); ++i) out.push_back(to_request(queries[i], name, uint32_t(i), form));
   return out;
 }
 
@@ -558,7 +571,7 @@ size_t QuerySource::read(Request* out, size_t max) {
   size_t n = 0;
   Query q;
   while (n < max && reader_.next(q)) {
-    out[n] = to_request(q, reader_.name(), uint32_t(count_), unnormalized_);
+    out[n] = to_request(q, reader_.name(), uint32_t(count_), form_);
     counts_.add(q);
     ++n;
     ++count_;

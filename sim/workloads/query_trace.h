@@ -20,6 +20,7 @@ namespace tex {
 
 struct Query {
   bool fetch = false;  // a texel fetch (header i,j,level): u, v, lod hold the integers i, j, level
+  bool gather = false; // a gather (header u,v): u, v alone
   double u = 0, v = 0;
   bool explicit_lod = true;
   double lod = 0;     // levels, when explicit_lod
@@ -44,7 +45,8 @@ constexpr const char* kFrameTraceHeader = "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,
 // leading `tex` column (the descriptor-table entry, 0..15) or `tex,smp` columns (and the
 // sampler-table entry, 0..15), the derivative forms optionally with a trailing `bias` column (the
 // request's own LOD bias in levels, GLSL texture(s, uv, bias)), or kFrameTraceHeader; texel
-// fetches: `i,j,level` (whole numbers: i, j 32-bit, level 16-bit), also with `tex` or `tex,smp`; `#` lines are
+// fetches: `i,j,level` (whole numbers: i, j 32-bit, level 16-bit), gathers `u,v`, each also with
+// `tex` or `tex,smp`; `#` lines are
 // comments, blank lines are skipped; a UTF-8 byte-order mark is skipped. A file with only the
 // header has no queries (not an error). Throws tex::Error naming the file, the line number and
 // the text of a bad line (quoted once, at most 80 characters): no header, a NUL byte (a binary
@@ -58,7 +60,8 @@ class QueryReader {
 
   bool next(Query& q);  // false at the end
   const std::string& name() const { return name_; }
-  // The header's operation (it reads the header if not yet read): Op::Fetch for i,j,level.
+  // The header's operation (it reads the header if not yet read): Op::Fetch for i,j,level,
+  // Op::Gather for u,v.
   Op op();
   std::string header() const { return header_; }  // (after op() or next())
   // True for a regular file: it can be read twice (QueryFileParser before the work).
@@ -82,7 +85,7 @@ class QueryReader {
   uint64_t file_pos_ = 0, file_end_ = UINT64_MAX;  // offset of buf_[end_]; where reading stops
   bool eof_ = false;
   int line_no_ = 0, columns_ = 0;
-  bool texture_ = false, sampler_ = false, lod_ = false, bias_ = false, quad_ = false, fetch_ = false;  // the header's columns
+  bool texture_ = false, sampler_ = false, lod_ = false, bias_ = false, quad_ = false, fetch_ = false, gather_ = false;  // the header's columns
   std::string header_;
 };
 
@@ -103,18 +106,25 @@ struct QueryCounts {
 // widths (Q8.24); derivatives are texture widths per pixel either way.
 uint32_t unnormalized_samplers(const SamplerTable& samplers);
 
+// How queries become requests: which samplers take texel coordinates (unnormalized_samplers), and
+// the component a gather query (header u,v) gathers.
+struct QueryForm {
+  uint32_t unnormalized = 0;
+  uint8_t component = 0;
+};
+
 // The queries of a reader as the hardware's fixed-point requests (tag = index), for the engines.
 // Throws tex::Error for a value out of the fixed-point range, naming the line.
 class QuerySource final : public RequestSource {
  public:
-  explicit QuerySource(QueryReader& reader, uint32_t unnormalized = 0) : reader_(reader), unnormalized_(unnormalized) {}
+  explicit QuerySource(QueryReader& reader, QueryForm form = {}) : reader_(reader), form_(form) {}
   size_t read(Request* out, size_t max) override;
   size_t count() const { return count_; }
   const QueryCounts& counts() const { return counts_; }
 
  private:
   QueryReader& reader_;
-  uint32_t unnormalized_;
+  QueryForm form_;
   size_t count_ = 0;
   QueryCounts counts_;
 };
@@ -133,7 +143,7 @@ class QueryFileParser final : public RequestSource {
  public:
   // About 2 M `u,v,lod` queries, 80 MB of requests.
   static constexpr uint64_t kMaxFileBytes = uint64_t(48) << 20;
-  QueryFileParser(const std::string& path, unsigned threads, bool keep, uint32_t unnormalized = 0);
+  QueryFileParser(const std::string& path, unsigned threads, bool keep, QueryForm form = {});
   ~QueryFileParser() override;  // (stops the threads)
   QueryFileParser(const QueryFileParser&) = delete;
   QueryFileParser& operator=(const QueryFileParser&) = delete;
@@ -152,7 +162,7 @@ class QueryFileParser final : public RequestSource {
   void finish_locked();  // the totals, once every part is done
   std::unique_ptr<QueryReader> first_;  // (part 0's reader, past the header)
   bool keep_ = false;
-  uint32_t unnormalized_ = 0;
+  QueryForm form_;
   std::vector<std::unique_ptr<Part>> parts_;
   std::vector<std::thread> threads_;
   std::mutex mutex_;
@@ -168,9 +178,8 @@ class QueryFileParser final : public RequestSource {
 // QueryFileParser(path, threads, false).wait(): the check pass alone.
 void check_query_file(const std::string& path, unsigned threads);
 
-// `unnormalized`: unnormalized_samplers() of the table the requests name.
-Request to_request(const Query& q, const std::string& name, uint32_t tag, uint32_t unnormalized = 0);
-std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name, uint32_t unnormalized = 0);
+Request to_request(const Query& q, const std::string& name, uint32_t tag, QueryForm form = {});
+std::vector<Request> to_requests(const std::vector<Query>& queries, const std::string& name, QueryForm form = {});
 // A frame's queries (coordinates in texture widths, as a rasterizer interpolates them) for the
 // table's samplers: those of an unnormalized sampler scaled to texels of their texture's level 0
 // (sizes[t]), as a shader computes a rectangle texture's coordinates, within +-2n texels (the

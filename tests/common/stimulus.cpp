@@ -120,6 +120,12 @@ Request random_fetch(std::mt19937_64& rng, Extent size) {
   return fetch_request(i, j, level);
 }
 
+Request random_gather(std::mt19937_64& rng, Extent size) {
+  const int last = level_count(size) - 1;
+  const int32_t u = random_coordinate(rng, size.w, last), v = random_coordinate(rng, size.h, last);
+  return gather_request(u, v, int(rng() % 4));
+}
+
 Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis) {
   Request r;
   r.has_derivatives = true;

@@ -50,13 +50,15 @@ Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis
 // out: 15, 16, -32768, 32767), (i, j) within 2 texels of that level's sides, on its edges, or any
 // 32-bit value or the unit's largest side's edge (+-2^13). Tag 0, texture 0, sampler 0.
 Request random_fetch(std::mt19937_64& rng, Extent size);
-// One in `one_in` of the requests made a random_fetch of the texture it names (its tag, texture
-// and sampler kept).
+// A gather (Op::Gather) of a random component at random_coordinate()s of a texture of `size`.
+Request random_gather(std::mt19937_64& rng, Extent size);
+// One in `one_in` of the requests made a random_fetch or a random_gather (half each) of the texture
+// it names (its tag, texture and sampler kept).
 template <class SizeOf>
-void fetches_among(std::mt19937_64& rng, std::vector<Request>& requests, int one_in, SizeOf size_of_texture) {
+void fetches_and_gathers_among(std::mt19937_64& rng, std::vector<Request>& requests, int one_in, SizeOf size_of_texture) {
   for (Request& r : requests)
     if (rng() % uint64_t(one_in) == 0) {
-      Request f = random_fetch(rng, size_of_texture(r.texture));
+      Request f = rng() % 2 ? random_fetch(rng, size_of_texture(r.texture)) : random_gather(rng, size_of_texture(r.texture));
       f.tag = r.tag;
       f.texture = r.texture;
       f.sampler = r.sampler;

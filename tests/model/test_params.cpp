@@ -100,6 +100,7 @@ TEST(Params, RtlPackageAgreesWithModel) {
       {"REDUCE_MAX", int(Reduction::Max)},
       {"OP_SAMPLE", int(Op::Sample)},
       {"OP_FETCH", int(Op::Fetch)},
+      {"OP_GATHER", int(Op::Gather)},
       {"MAX_CW", kMaxChannelBits},
       {"FMT_RGBA8", int(TexelFormat::Rgba8)},
       {"FMT_BC1", int(TexelFormat::Bc1)},

@@ -246,6 +246,7 @@ class AxiTop {
       t.req_tex = q.texture;
       t.req_sampler = q.sampler;
       t.req_op = uint8_t(q.op);
+      t.req_component = q.component;
       t.req_tag = uint16_t(next_req_);
     } else {
       t.req_u = junk();
@@ -260,6 +261,7 @@ class AxiTop {
       t.req_tex = junk() & 15;
       t.req_sampler = junk() & 15;
       t.req_op = junk() & 3;
+      t.req_component = junk() & 3;
       t.req_tag = uint16_t(junk());
     }
     t.req_valid = req_valid;

@@ -156,6 +156,10 @@ Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log
   for (const char* where : {"inside level 0", "inside a level above 0", "within 2 texels outside its level",
                             "further outside its level", "level below 0", "level above the last"})
     group(g_fetch_).add(where);
+
+  g_gather_ = make("gather: component x footprint inside level 0 or across its edge");
+  for (const char* c : {"R", "G", "B", "A"})
+    for (const char* where : {"inside", "across an edge"}) group(g_gather_).add(std::string(c) + " " + where);
 }
 
 void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Request& q) {
@@ -170,6 +174,16 @@ void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Reques
       bin = stage::fetch_inside(q.u, q.v, q.lod, last, pyr.extent0()) ? (q.lod == 0 ? 0 : 1) : near ? 2 : 3;
     }
     ++group(g_fetch_).hits[bin];
+    return;
+  }
+  if (q.op == Op::Gather) {  // (the linear filter's taps at level 0)
+    const Extent e = pyr.extent0();
+    const stage::AxisTaps tu = stage::address(
+        stage::scale(stage::reduce(q.u, cfg.wrap_u, cfg.unnormalized), e.w, cfg.unnormalized), TexelFilter::Linear);
+    const stage::AxisTaps tv = stage::address(
+        stage::scale(stage::reduce(q.v, cfg.wrap_v, cfg.unnormalized), e.h, cfg.unnormalized), TexelFilter::Linear);
+    const bool across = tu.i0 < 0 || tu.i1 >= e.w || tv.i0 < 0 || tv.i1 >= e.h;
+    ++group(g_gather_).hits[size_t(q.component & 3) * 2 + across];
     return;
   }
   const size_t fi = fi_of(cfg.filter);

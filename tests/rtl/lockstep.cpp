@@ -46,6 +46,7 @@ std::string describe(const Request& r) {
     if (r.texture || r.sampler) o << " texture " << int(r.texture) << " sampler " << int(r.sampler);
     return o.str();
   }
+  if (r.op == Op::Gather) o << "gather component " << int(r.component) << " ";
   o << "u=" << r.u << " (" << r.u / 16777216.0 << ") v=" << r.v << " (" << r.v / 16777216.0 << ")";
   if (r.has_derivatives)
     o << " dudx=" << r.deriv.dudx << " dvdx=" << r.deriv.dvdx << " dudy=" << r.deriv.dudy << " dvdy=" << r.deriv.dvdy;

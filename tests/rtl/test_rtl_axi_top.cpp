@@ -144,7 +144,7 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
   c.requests = random_requests(rng, sizes_of(c.table), c.samplers.size(), requests);
   texel_coordinates_where_unnormalized(rng, c.requests, c.samplers,
                                        [&](int t) { return c.table[size_t(t)].pyramid->extent0(); });
-  fetches_among(rng, c.requests, 16, [&](int t) { return c.table[size_t(t)].pyramid->extent0(); });
+  fetches_and_gathers_among(rng, c.requests, 16, [&](int t) { return c.table[size_t(t)].pyramid->extent0(); });
   return c;
 }
 

@@ -290,7 +290,7 @@ void run_suite(const CachedSuite& suite) {
     const rtl::Timing stim = random_stalls(rng, timing_name);
     std::vector<Request> requests = unnormalized ? random_texel_requests(rng, pyr.extent0(), suite.requests_per_case)
                                                  : random_requests(rng, size, suite.requests_per_case);
-    fetches_among(rng, requests, 16, [&](int) { return pyr.extent0(); });  // texelFetch, 1 in 16
+    fetches_and_gathers_among(rng, requests, 16, [&](int) { return pyr.extent0(); });  // texelFetch and textureGather, 1 in 16
     // A quarter of the cases use a shallower FIFO (cfg_fifo_limit), down to 1 sample.
     const uint32_t fifo_depth = rng() % 4 == 0 ? 1 + uint32_t(rng() % uint64_t(rc.fifo_depth)) : 0;
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
@@ -433,7 +433,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
       sampler_switches += i > 0 && requests[i].sampler != requests[i - 1].sampler;
     }
     texel_coordinates_where_unnormalized(rng, requests, samplers, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
-    fetches_among(rng, requests, 16, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
+    fetches_and_gathers_among(rng, requests, 16, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
     const CaseResult r = run_case(*unit, table, samplers, layout, cache, memory, requests, stim, rng(), nullptr, nullptr,
                                   -1, 0, nullptr, errors);

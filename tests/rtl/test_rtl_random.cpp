@@ -81,7 +81,7 @@ void run_suite(const RandomSuite& suite) {
         q.has_derivatives = true;
         q.deriv = random_footprint(rng, pyr->extent0(), int(rng() % 16) + 1, int(rng() % 4)).deriv;
       }
-    fetches_among(rng, reqs, 16, [&](int) { return pyr->extent0(); });  // texelFetch, 1 in 16
+    fetches_and_gathers_among(rng, reqs, 16, [&](int) { return pyr->extent0(); });  // texelFetch and textureGather, 1 in 16
     const LockstepResult r = lockstep(*unit, *pyr, cfg, reqs, timing, rng());
 
     ++totals.rounds;

@@ -130,6 +130,23 @@ class GlSampling {
     glUseProgram(fetch_program_);
     glUniform1i(glGetUniformLocation(fetch_program_, "tex"), 0);
     glUniform1i(glGetUniformLocation(fetch_program_, "queries"), 1);
+    const char* gather_fs = R"(#version 400 core
+      uniform sampler2D tex;
+      uniform sampler2D queries;
+      out vec4 colour;
+      void main() {  // component q.z of the four texels at (u, v) (the component must be a constant)
+        vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
+        int c = int(q.z);
+        colour = c == 0 ? textureGather(tex, q.xy, 0) : c == 1 ? textureGather(tex, q.xy, 1)
+               : c == 2 ? textureGather(tex, q.xy, 2) : textureGather(tex, q.xy, 3);
+      })";
+    gather_program_ = glCreateProgram();
+    glAttachShader(gather_program_, compile(GL_VERTEX_SHADER, vs));
+    glAttachShader(gather_program_, compile(GL_FRAGMENT_SHADER, gather_fs));
+    glLinkProgram(gather_program_);
+    glUseProgram(gather_program_);
+    glUniform1i(glGetUniformLocation(gather_program_, "tex"), 0);
+    glUniform1i(glGetUniformLocation(gather_program_, "queries"), 1);
     glGenVertexArrays(1, &vao_);
     glBindVertexArray(vao_);
     glGenTextures(1, &tex_);
@@ -177,8 +194,30 @@ class GlSampling {
   // The sampler state of `c` on the texture, then one sample per query (u, v, lambda); an
   // unnormalized sampler reads the rectangle texture at texel coordinates (u, v).
   std::vector<std::array<float, 4>> sample(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
-    const GLenum target = c.unnormalized ? GL_TEXTURE_RECTANGLE : GL_TEXTURE_2D;
     glUseProgram(c.unnormalized ? rect_program_ : program_);
+    apply(c);
+    return draw(q);
+  }
+
+  // textureGather of component q[2] at (u, v) = (q[0], q[1]) under the sampler state of `c`.
+  std::vector<std::array<float, 4>> gather(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(gather_program_);
+    apply(c);
+    return draw(q);
+  }
+
+  // texelFetch of (i, j, level) = (q[0], q[1], q[2]) (whole numbers) from the uploaded texture.
+  std::vector<std::array<float, 4>> fetch(const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(fetch_program_);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex_);
+    return draw(q);
+  }
+
+ private:
+  // The sampler state of `c` on the texture (the rectangle texture for an unnormalized sampler).
+  void apply(const SamplerConfig& c) {
+    const GLenum target = c.unnormalized ? GL_TEXTURE_RECTANGLE : GL_TEXTURE_2D;
     glActiveTexture(c.unnormalized ? GL_TEXTURE2 : GL_TEXTURE0);
     glBindTexture(target, c.unnormalized ? rect_ : tex_);
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, c.unnormalized ? (c.filter.texel == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST)
@@ -193,18 +232,8 @@ class GlSampling {
                     c.reduction == Reduction::Min   ? GL_MIN
                     : c.reduction == Reduction::Max ? GL_MAX
                                                     : GL_WEIGHTED_AVERAGE_ARB);
-    return draw(q);
   }
 
-  // texelFetch of (i, j, level) = (q[0], q[1], q[2]) (whole numbers) from the uploaded texture.
-  std::vector<std::array<float, 4>> fetch(const std::vector<std::array<float, 4>>& q) {
-    glUseProgram(fetch_program_);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, tex_);
-    return draw(q);
-  }
-
- private:
   // One fragment per query with the bound program; the results.
   std::vector<std::array<float, 4>> draw(const std::vector<std::array<float, 4>>& q) {
     glActiveTexture(GL_TEXTURE1);
@@ -221,8 +250,8 @@ class GlSampling {
 
   OSMesaContext ctx_ = nullptr;
   std::vector<uint8_t> window_ = std::vector<uint8_t>(size_t(kW) * kH * 4);
-  GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, fetch_program_ = 0, vao_ = 0, tex_ = 0, rect_ = 0,
-         queries_ = 0;
+  GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, fetch_program_ = 0, gather_program_ = 0, vao_ = 0,
+         tex_ = 0, rect_ = 0, queries_ = 0;
   bool ready_ = false;
 };
 
@@ -560,4 +589,66 @@ TEST(GlSamplerStates, TexelFetchAgreesWithLlvmpipe) {
   EXPECT_GT(outside, 1000);
   std::printf("  %d texel fetches compared with llvmpipe (max %.2f LSB): %d inside the texture, %d outside (0 in "
               "llvmpipe too: %d)\n", compared, worst / 100.0, compared - outside_zero, outside, outside_zero);
+}
+
+// textureGather: llvmpipe gathers each component under random sampler states (every address mode
+// on each axis, named border colours, filters and LOD fields that must not matter) on the three
+// test textures; the model's four texels are its (RGBA8 exactly; sRGB within the decode tables).
+// A coordinate within 1/64 texel of where the footprint moves (u w - 1/2 a whole number) may take
+// either footprint and is not compared. A model gathering in another order is caught.
+TEST(GlSamplerStates, GatherAgreesWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  const auto [rgba, rgba_npot, srgb_npot] = test_textures();
+  std::mt19937 rng(46);
+  int states = 0, compared = 0, excluded = 0, worst = 0, rotated = 0;
+  for (const Pyramid* pyr : {&rgba, &rgba_npot, &srgb_npot}) {
+    gl.upload(*pyr);
+    const Extent e = pyr->extent0();
+    for (int w = 0; w < 5; ++w) {
+      SamplerConfig cfg{{TexelFilter(rng() % 2), MipMode(rng() % 3)}, kWraps[w], kWraps[rng() % 5]};
+      cfg.border = BorderColor(rng() % (kBorderColors - 1));  // named colours: GL returns them exactly
+      cfg.lod_bias = int32_t(rng() % 512);
+      std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
+      std::vector<Request> requests(queries.size());
+      for (size_t n = 0; n < queries.size(); ++n) {
+        const double u = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0, v = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0;
+        const int c = int(rng() % 4);
+        queries[n] = {float(u), float(v), float(c), 0.f};
+        int32_t fu = 0, fv = 0;
+        EXPECT_TRUE(to_coord_fixed(u, fu) && to_coord_fixed(v, fv));
+        requests[n] = gather_request(fu, fv, c);
+      }
+      const std::vector<std::array<float, 4>> got = gl.gather(cfg, queries);
+      Sampler model(*pyr, cfg);
+      for (size_t n = 0; n < requests.size(); ++n) {
+        bool edge = false;
+        for (double t : {queries[n][0] * e.w - 0.5, queries[n][1] * e.h - 0.5}) edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
+        if (edge) {
+          ++excluded;
+          continue;
+        }
+        const Texel m = model.sample(requests[n]);
+        int err = 0, err_rotated = 0;
+        for (int c = 0; c < 4; ++c) {
+          const double scale = pyr->srgb ? 255.0 / 65535 : 1.0;
+          err = std::max(err, int(std::lround(std::fabs(m[size_t(c)] * scale - double(got[n][size_t(c)]) * 255) * 100)));
+          err_rotated = std::max(err_rotated, int(std::lround(std::fabs(m[size_t((c + 1) % 4)] * scale -
+                                                                           double(got[n][size_t(c)]) * 255) * 100)));
+        }
+        ASSERT_LE(err, pyr->srgb ? 35 : 0) << (pyr->srgb ? "sRGB " : "RGBA8 ") << e.w << "x" << e.h << " "
+                                           << name_of(cfg) << " gather " << requests[n].component << " at ("
+                                           << queries[n][0] << ", " << queries[n][1] << ")";
+        worst = std::max(worst, err);
+        rotated += err_rotated > 100;
+        ++compared;
+      }
+      ++states;
+    }
+  }
+  EXPECT_EQ(states, 15);
+  EXPECT_GT(compared, 15 * kW * kH * 3 / 4) << excluded << " excluded";
+  EXPECT_GT(rotated, compared / 2) << "a gather in another order went unnoticed";
+  std::printf("  %d gathers in %d sampler states compared with llvmpipe: max %.2f LSB (%d near a footprint edge "
+              "not compared)\n", compared, states, worst / 100.0, excluded);
 }

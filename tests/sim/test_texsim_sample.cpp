@@ -236,6 +236,47 @@ TEST_F(TexsimCli, TexelFetchReadsTexelsAndZeroOutside) {
   expect_clean_failure("sample -t t.png --op fetch -q half.csv -o bad.csv", "bad.csv", {"half.csv:3", "i", "1.5"});
 }
 
+// --op gather (textureGather) --component C: at the corner between texels (x, y) and (x+1, y+1)
+// the four texels the linear filter weighs, component C of (x, y+1), (x+1, y+1), (x+1, y), (x, y)
+// as R, G, B, A, read from the PNG's pixels; clamp at the texture's edge; every engine and both RTL
+// units give the model's bytes; a header or option that does not fit: one line, nothing written.
+TEST_F(TexsimCli, GatherReadsTheLinearFiltersFourTexels) {
+  auto value = [](int x, int y, int c) { return (11 + x * 37 + y * 19 + c * 60) % 256; };
+  write_image(dir / "t.png", 6, 5, 4, value);
+  std::string q = "u,v\n";
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 5; ++x) q += std::to_string((x + 1) / 6.0) + "," + std::to_string((y + 1) / 5.0) + "\n";
+  q += "0,0\n";  // the corner of the texture: every tap clamped to texel (0, 0)
+  write_text(dir / "q.csv", q);
+  for (int c = 0; c < 4; ++c) {
+    const std::string out = "g" + std::to_string(c) + ".csv";
+    const Result r = run("sample -t t.png -w clamp --op gather --component " + std::string(1, "rgba"[c]) + " -q q.csv -o " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(std::string("gathers of ") + "RGBA"[c]), std::string::npos) << r.out;
+    std::string h;
+    const auto rows = read_csv_rows(dir / out, h);
+    ASSERT_EQ(rows.size(), 21u);
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 5; ++x)
+        EXPECT_EQ(rows[size_t(y * 5 + x)], (std::vector<int>{value(x, y + 1, c), value(x + 1, y + 1, c), value(x + 1, y, c),
+                                                            value(x, y, c)}))
+            << "component " << c << " corner " << x << "," << y;
+    EXPECT_EQ(rows[20], (std::vector<int>(4, value(0, 0, c)))) << "component " << c;
+  }
+  for (const char* engine : {"-e rtl", "-e rtl --memory cached", "-e systemc --memory cached", "-e systemc-model"}) {
+    const Result e = run(std::string("sample -t t.png -w clamp --op gather --component 2 -q q.csv -o e.csv ") + engine);
+    ASSERT_EQ(e.exit_code, 0) << engine << ": " << e.err;
+    EXPECT_EQ(read_text(dir / "e.csv"), read_text(dir / "g2.csv")) << engine;
+  }
+  write_text(dir / "f.csv", "i,j,level\n1,1,0\n");
+  expect_clean_failure("sample -t t.png --op gather -q f.csv -o bad.csv", "bad.csv", {"f.csv", "i,j,level", "u,v"});
+  expect_clean_failure("sample -t t.png -q q.csv -o bad.csv", "bad.csv", {"q.csv", "u,v", "--op gather"});
+  expect_clean_failure("sample -t t.png --op gather --component 4 -q q.csv -o bad.csv", "bad.csv", {"--component", "4"});
+  expect_clean_failure("sample -t t.png --component b -q f.csv -o bad.csv", "bad.csv", {"--component", "gather"});
+  expect_clean_failure("sample -t t.png --op gather --unnormalized -w clamp -f point -q q.csv -o bad.csv", "bad.csv",
+                       {"gather", "unnormalized"});
+}
+
 TEST_F(TexsimCli, GrayBecomesOpaqueRgbAndRgbGetsOpaqueAlpha) {
   auto gray = [](int x, int y, int) { return 10 + x * 30 + y * 3; };
   auto rgb = [](int x, int y, int c) { return 5 + x * 40 + y * 9 + c * 2; };

@@ -74,7 +74,7 @@ void run_filter_wrap_matrix(const TextureSpec& spec, Backend backend, InitiatorS
       for (Wrap wv : {Wrap::Repeat, Wrap::Clamp, Wrap::Mirror}) {
         const SamplerConfig cfg = random_config(rng, f, wu, wv);
         auto reqs = stimulus::random_requests(rng, pyr.extent0(), per_case);
-        stimulus::fetches_among(rng, reqs, 16, [&](int) { return pyr.extent0(); });
+        stimulus::fetches_and_gathers_among(rng, reqs, 16, [&](int) { return pyr.extent0(); });
         SystemcOptions o;
         o.initiator = style;
         o.engine.seed = seed + uint64_t(n);

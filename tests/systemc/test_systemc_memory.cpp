@@ -274,7 +274,7 @@ TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
   SamplerTable samplers;
   for (int i = 0; i < 5; ++i) samplers.push_back(stimulus::random_sampler(rng));
   std::vector<Request> requests = stimulus::random_requests(rng, sizes, samplers.size(), 3000);
-  stimulus::fetches_among(rng, requests, 16, [&](int t) { return sizes[size_t(t)]; });
+  stimulus::fetches_and_gathers_among(rng, requests, 16, [&](int t) { return sizes[size_t(t)]; });
   EngineOptions o = cached(60, 4);
   o.mem_jitter = 40;
   o.seed = 9;

@@ -60,6 +60,7 @@ module tb_tex_unit #(
   logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction = 'x;
   logic [TAG_W-1:0]                       req_tag = 'x;
   logic [tex_pkg::OP_W-1:0]               req_op = 'x;
+  logic [1:0]                             req_component = 'x;
   logic                                   rsp_valid;
   logic                                   rsp_ready = 1'b0;
   logic [4*CW-1:0]                        rsp_rgba;
@@ -200,6 +201,7 @@ module tb_tex_unit #(
     req_deriv = 'x;
     req_tag = 'x;
     req_op = 'x;
+    req_component = 'x;
   endtask
 
   task automatic idle_write_pins;
@@ -258,7 +260,7 @@ module tb_tex_unit #(
 
   task automatic request(input int gap, input logic signed [31:0] u, input logic signed [31:0] v,
                          input int lod, input logic [TAG_W-1:0] tag, input int wr, input int wl,
-                         input int wx, input int wy, input logic [63:0] wd, input int op);
+                         input int wx, input int wy, input logic [63:0] wd, input int op, input int component);
     int waited;
     idle_request_pins();
     if (wr != 0) begin
@@ -277,6 +279,7 @@ module tb_tex_unit #(
     req_deriv = 1'b0;
     req_tag = tag;
     req_op = op[tex_pkg::OP_W-1:0];
+    req_component = (op == 1) ? component[1:0] : 'x;  // (don't-care but with a gather, OP_GATHER)
     step();
     idle_write_pins();
     waited = 0;
@@ -350,9 +353,9 @@ module tb_tex_unit #(
         idle_request_pins();
         repeat (a0) step();
       end else if (op == "R") begin
-        r = $fscanf(stim_fd, "%d %d %d %d %h %d %d %d %d %h %d", a0, s0, s1, a1, h0, a2, a3, a4, a5, h1, a11);
-        if (r != 11) $fatal(1, "xprop: FAIL bad R line in stimulus.txt (%0d fields)", r);
-        request(a0, s0, s1, a1, h0[TAG_W-1:0], a2, a3, a4, a5, h1, a11);
+        r = $fscanf(stim_fd, "%d %d %d %d %h %d %d %d %d %h %d %d", a0, s0, s1, a1, h0, a2, a3, a4, a5, h1, a11, a6);
+        if (r != 12) $fatal(1, "xprop: FAIL bad R line in stimulus.txt (%0d fields)", r);
+        request(a0, s0, s1, a1, h0[TAG_W-1:0], a2, a3, a4, a5, h1, a11, a6);
       end else if (op == "Z") begin
         r = $fscanf(stim_fd, "%d %d", a0, a1);
         do_reset(a0, a1);

@@ -12,10 +12,11 @@
 //                    the cfg pins from now on (only after a drain: nothing in flight)
 //     W level x y data(hex)                       one clock with wr_en high
 //     I clocks                                    idle clocks (req_valid and wr_en low)
-//     R gap u v lod tag(hex) wr level x y data(hex) op
+//     R gap u v lod tag(hex) wr level x y data(hex) op component
 //                    gap idle clocks, then the request offered until taken; wr = 1: the write
 //                    (x, y) of `level` <- data (the texel it already holds) in the first of them;
-//                    op: req_op (a sample, or a texel fetch: u, v, lod are i, j, level)
+//                    op: req_op (a sample, a gather of `component`, or a texel fetch: u, v,
+//                    lod are i, j, level)
 //     Z hold clocks  hold clocks with rsp_ready low and no request, then rst high for `clocks`
 //                    clocks: the requests in flight are dropped; the next ones are answered
 //     D              drain: no request until every accepted one is answered, then idle clocks
@@ -128,6 +129,8 @@ struct Gen {
       Request r;
       if (below(8) == 0) {
         r = stimulus::random_fetch(rng, p.extent0());
+      } else if (below(8) == 0) {
+        r = stimulus::random_gather(rng, p.extent0());
       } else {
         r.u = stimulus::random_coordinate(rng, p.extent0().w, last);
         r.v = stimulus::random_coordinate(rng, p.extent0().h, last);
@@ -149,9 +152,9 @@ struct Gen {
         wd = pack_rgba(img.at(wx, wy), opt.cw);
       }
       char line[160];
-      std::snprintf(line, sizeof line, "R %llu %d %d %d %llx %d %d %d %d %llx %d\n", static_cast<unsigned long long>(gap),
+      std::snprintf(line, sizeof line, "R %llu %d %d %d %llx %d %d %d %d %llx %d %d\n", static_cast<unsigned long long>(gap),
                     r.u, r.v, int(r.lod), static_cast<unsigned long long>(tag), wr, wl, wx, wy,
-                    static_cast<unsigned long long>(wd), int(r.op));
+                    static_cast<unsigned long long>(wd), int(r.op), int(r.component));
       stim << line;
       std::snprintf(line, sizeof line, "%llx %llx\n", static_cast<unsigned long long>(tag),
                     static_cast<unsigned long long>(pack_rgba(model.sample(r), opt.cw)));

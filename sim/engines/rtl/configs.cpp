@@ -129,8 +129,10 @@ void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::ve
 }
 
 void check_request(const Request& request, size_t index) {
-  if (request.op == Op::Fetch && request.has_derivatives)
-    throw Error("request " + std::to_string(index) + ": a texel fetch carries no derivatives");
+  if (request.op != Op::Sample && request.has_derivatives)
+    throw Error("request " + std::to_string(index) + ": a " + op_name(request.op) + " carries no derivatives");
+  if (request.component > 3)
+    throw Error("request " + std::to_string(index) + ": component " + std::to_string(request.component) + " is not 0..3");
   if (!request.has_derivatives && (request.lod < kLodMin || request.lod > kLodMax))
     throw Error("request " + std::to_string(index) + ": lod " + std::to_string(request.lod) +
                 "/256 is outside the 16-bit Q8.8 port of the RTL");

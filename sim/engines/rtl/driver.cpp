@@ -22,6 +22,7 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_tex = r.texture;
   in.req_sampler = r.sampler;
   in.req_op = uint8_t(r.op);
+  in.req_component = r.component & 3;
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, const Pyramid& pyramid) {

@@ -42,7 +42,8 @@ struct PinsIn {
   uint16_t req_tag = 0;
   uint8_t req_tex = 0;           // tex_unit_cached: the descriptor-table entry
   uint8_t req_sampler = 0;       // tex_unit_cached: the sampler-table entry
-  uint8_t req_op = 0;            // tex_pkg::OP_*: a sample, or a texel fetch (req_u, req_v, req_lod: i, j, level)
+  uint8_t req_op = 0;            // tex_pkg::OP_*: a sample, a gather, or a texel fetch (req_u, req_v, req_lod: i, j, level)
+  uint8_t req_component = 0;     // a gather's channel, 0..3
   bool rsp_ready = true;
   // AXI4 read port of tex_unit_cached: driven by the driver's memory model (ignored otherwise).
   bool ar_ready = false;

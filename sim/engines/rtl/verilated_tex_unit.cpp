@@ -110,6 +110,7 @@ class VerilatedTexUnit final : public Driver {
     t.req_dvdy = uint32_t(in.req_dvdy);
     t.req_tag = in.req_tag;
     t.req_op = in.req_op;
+    t.req_component = in.req_component;
     t.rsp_ready = in.rsp_ready;
     t.clk = 0;
     t.eval();

@@ -25,9 +25,9 @@ struct SampleTransfer {
   int32_t bias = 0;      // Q8.8, the request's own LOD bias (added to the sampler's); 16-bit RTL port
   uint8_t texture = 0;   // the descriptor-table entry (req_tex); beyond the unit's table: an error response
   uint8_t sampler = 0;   // the sampler-table entry (req_sampler); likewise
-  uint8_t op = 0;        // req_op: 0 a sample, 3 a texel fetch (u, v, lod: the integers i, j, level);
-                         // another value: an error response
-  uint8_t reserved = 0;
+  uint8_t op = 0;        // req_op: 0 a sample, 1 a gather, 3 a texel fetch (u, v, lod: the integers
+                         // i, j, level); another value: an error response
+  uint8_t component = 0; // a gather's channel, 0..3 (req_component)
   // Response (written by the target).
   uint16_t rgba[4] = {0, 0, 0, 0};  // R, G, B, A; channel width of the texture (8 bits on the RTL)
 };

@@ -90,6 +90,7 @@ Request request_of(const SampleTransfer& s) {
   q.texture = s.texture;
   q.sampler = s.sampler;
   q.op = Op(s.op);
+  q.component = s.component;
   return q;
 }
 }  // namespace
@@ -115,8 +116,8 @@ SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
   }
   auto* s = reinterpret_cast<SampleTransfer*>(trans.get_data_ptr());
   if (s->texture >= textures_.size() || s->sampler >= samplers_.size() ||  // beyond the tables
-      (s->op != uint8_t(Op::Sample) && s->op != uint8_t(Op::Fetch)) ||         // no such operation
-      (s->op == uint8_t(Op::Fetch) && s->has_derivatives)) {
+      (s->op != uint8_t(Op::Sample) && s->op != uint8_t(Op::Gather) && s->op != uint8_t(Op::Fetch)) ||
+      (s->op != uint8_t(Op::Sample) && s->has_derivatives) || s->component > 3) {  // no such operation
     trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return nullptr;
   }
