@@ -93,7 +93,8 @@ module tex_accum #(
       always_ff @(posedge clk) begin
         if (en && in_valid)
           if (in_reduction == tex_pkg::REDUCE_AVERAGE) acc <= (in_first ? '0 : acc) + probe;
-          else acc <= (in_first || ((probe > acc) == (in_reduction == tex_pkg::REDUCE_MAX))) ? probe : acc;
+          // (a min/max probe is a texel * 2^24: its integer part alone is compared)
+          else acc <= (in_first || ((probe[AW-1:24] > acc[AW-1:24]) == (in_reduction == tex_pkg::REDUCE_MAX))) ? probe : acc;
         if (en && valid_s1 && last_s1) rgba[c*CW +: CW] <= mean_of(acc, n_s1);
       end
     end

@@ -81,12 +81,13 @@ module tex_filter #(
         assign wy = w[(s*2 + 1)*WB +: WB] != '0;
         assign reduced = pick(pick(ta, wx ? tb : ta, take_max), pick(wy ? tc : ta, (wx && wy) ? te : ta, take_max),
                               take_max);
-        // A gather's value for channel c: component `component` of tap c, e, b, a (slot 0).
+        // A gather's value for channel c: component `component` of tap c, e, b, a of slot 0 (slot 1
+        // takes no gather: f is 0).
         logic [CW-1:0] gathered;
-        assign gathered = taps[((s*4 + ((c == 0) ? 2 : (c == 1) ? 3 : (c == 2) ? 1 : 0))*4 + 32'(component))*CW +: CW];
+        assign gathered = taps[(((c == 0) ? 2 : (c == 1) ? 3 : (c == 2) ? 1 : 0)*4 + 32'(component))*CW +: CW];
         always_ff @(posedge clk) begin
           if (en) begin
-            top_s7 <= gather ? {gathered, WB'(0)} : compare ? {reduced, WB'(0)} : top_next;
+            top_s7 <= (s == 0 && gather) ? {gathered, WB'(0)} : compare ? {reduced, WB'(0)} : top_next;
             bot_s7 <= bot_next;
           end
         end

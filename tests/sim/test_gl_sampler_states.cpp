@@ -64,6 +64,18 @@ GLuint compile(GLenum kind, const char* text) {
   return s;
 }
 
+// A program of the two shaders, its sampler `tex` on texture unit `unit` and `queries` on unit 1.
+GLuint link(const char* vs, const char* fs, GLint unit) {
+  const GLuint p = glCreateProgram();
+  glAttachShader(p, compile(GL_VERTEX_SHADER, vs));
+  glAttachShader(p, compile(GL_FRAGMENT_SHADER, fs));
+  glLinkProgram(p);
+  glUseProgram(p);
+  glUniform1i(glGetUniformLocation(p, "tex"), unit);
+  glUniform1i(glGetUniformLocation(p, "queries"), 1);
+  return p;
+}
+
 // A GL 3.3 core context on llvmpipe drawing into a kW x kH RGBA32F framebuffer object, and the
 // program: every fragment samples `tex` at the (u, v, lambda) of its pixel in `queries`.
 class GlSampling {
@@ -93,13 +105,7 @@ class GlSampling {
         vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
         colour = textureLod(tex, q.xy, q.z);
       })";
-    program_ = glCreateProgram();
-    glAttachShader(program_, compile(GL_VERTEX_SHADER, vs));
-    glAttachShader(program_, compile(GL_FRAGMENT_SHADER, fs));
-    glLinkProgram(program_);
-    glUseProgram(program_);
-    glUniform1i(glGetUniformLocation(program_, "tex"), 0);
-    glUniform1i(glGetUniformLocation(program_, "queries"), 1);
+    program_ = link(vs, fs, 0);
     const char* rect_fs = R"(#version 330 core
       uniform sampler2DRect tex;
       uniform sampler2D queries;
@@ -107,13 +113,7 @@ class GlSampling {
       void main() {  // texel coordinates of the base level
         colour = texture(tex, texelFetch(queries, ivec2(gl_FragCoord.xy), 0).xy);
       })";
-    rect_program_ = glCreateProgram();
-    glAttachShader(rect_program_, compile(GL_VERTEX_SHADER, vs));
-    glAttachShader(rect_program_, compile(GL_FRAGMENT_SHADER, rect_fs));
-    glLinkProgram(rect_program_);
-    glUseProgram(rect_program_);
-    glUniform1i(glGetUniformLocation(rect_program_, "tex"), 2);
-    glUniform1i(glGetUniformLocation(rect_program_, "queries"), 1);
+    rect_program_ = link(vs, rect_fs, 2);
     glGenTextures(1, &rect_);
     const char* fetch_fs = R"(#version 330 core
       uniform sampler2D tex;
@@ -123,13 +123,7 @@ class GlSampling {
         vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
         colour = texelFetch(tex, ivec2(q.xy), int(q.z));
       })";
-    fetch_program_ = glCreateProgram();
-    glAttachShader(fetch_program_, compile(GL_VERTEX_SHADER, vs));
-    glAttachShader(fetch_program_, compile(GL_FRAGMENT_SHADER, fetch_fs));
-    glLinkProgram(fetch_program_);
-    glUseProgram(fetch_program_);
-    glUniform1i(glGetUniformLocation(fetch_program_, "tex"), 0);
-    glUniform1i(glGetUniformLocation(fetch_program_, "queries"), 1);
+    fetch_program_ = link(vs, fetch_fs, 0);
     const char* gather_fs = R"(#version 400 core
       uniform sampler2D tex;
       uniform sampler2D queries;
@@ -140,13 +134,7 @@ class GlSampling {
         colour = c == 0 ? textureGather(tex, q.xy, 0) : c == 1 ? textureGather(tex, q.xy, 1)
                : c == 2 ? textureGather(tex, q.xy, 2) : textureGather(tex, q.xy, 3);
       })";
-    gather_program_ = glCreateProgram();
-    glAttachShader(gather_program_, compile(GL_VERTEX_SHADER, vs));
-    glAttachShader(gather_program_, compile(GL_FRAGMENT_SHADER, gather_fs));
-    glLinkProgram(gather_program_);
-    glUseProgram(gather_program_);
-    glUniform1i(glGetUniformLocation(gather_program_, "tex"), 0);
-    glUniform1i(glGetUniformLocation(gather_program_, "queries"), 1);
+    gather_program_ = link(vs, gather_fs, 0);
     glGenVertexArrays(1, &vao_);
     glBindVertexArray(vao_);
     glGenTextures(1, &tex_);
