@@ -14,6 +14,7 @@
 //   blend        : channel c at [c*(CW+24) +: CW+24], unsigned CW.24 (tex_filter's)
 //   in_first, in_last, in_n : the probe's place in its sample and the sample's probes (1..16)
 //   in_reduction : tex_pkg::REDUCE_*, the probe's sampler's reduction mode (code 3 as min)
+//   in_zero      : the probe counts as 0 (a texel fetch outside the texture: tex_front's zero)
 //   in_side    : SIDE_W bits carried along (the tag)
 //   rgba       : {A, B, G, R}, CW-bit unsigned channels
 `include "tex_param_error.svh"
@@ -29,6 +30,7 @@ module tex_accum #(
   input  logic                  in_last,
   input  logic [4:0]            in_n,
   input  logic [tex_pkg::REDUCTION_W-1:0] in_reduction,
+  input  logic                  in_zero,
   input  logic [4*(CW+24)-1:0]  blend,
   input  logic [SIDE_W-1:0]     in_side,
   output logic                  out_valid,
@@ -89,7 +91,7 @@ module tex_accum #(
   generate
     for (c = 0; c < 4; c = c + 1) begin : g_channel
       logic [AW-1:0] acc, probe;
-      assign probe = {4'd0, blend[c*TW +: TW]};
+      assign probe = in_zero ? '0 : {4'd0, blend[c*TW +: TW]};
       always_ff @(posedge clk) begin
         if (en && in_valid)
           if (in_reduction == tex_pkg::REDUCE_AVERAGE) acc <= (in_first ? '0 : acc) + probe;

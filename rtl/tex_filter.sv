@@ -55,11 +55,6 @@ module tex_filter #(
     end
   end
 
-  // The larger (take_max) or smaller of two channel values.
-  function automatic logic [CW-1:0] pick(input logic [CW-1:0] p, input logic [CW-1:0] q, input logic larger);
-    pick = ((p > q) == larger) ? p : q;
-  endfunction
-
   genvar c, s;
   generate
     for (c = 0; c < 4; c = c + 1) begin : g_channel
@@ -74,20 +69,35 @@ module tex_filter #(
         assign te = taps[((s*4 + 3)*4 + c)*CW +: CW];
         tex_lerp #(.IN_W(CW)) u_top (.a(ta), .b(tb), .w(w[(s*2)*WB +: WB]), .y(top_next));
         tex_lerp #(.IN_W(CW)) u_bot (.a(tc), .b(te), .w(w[(s*2)*WB +: WB]), .y(bot_next));
-        // The reduction's taps: those of weight 0 replaced by a (which is always weighed).
-        logic          wx, wy;
-        logic [CW-1:0] reduced;
+        // A min or max: the taps of weight 0 replaced by a (which is always weighed), then the min
+        // or max of the four. A gather: channel c holds component `component` of tap c, e, b, a of
+        // slot 0 (slot 1 takes none: f is 0). Written as statements in the enable's branches, not
+        // as continuous logic or functions, so that the simulation computes them only for a min/max
+        // or a gather (a function's arguments are evaluated in every clock).
+        localparam int GT = (c == 0) ? 2 : (c == 1) ? 3 : (c == 2) ? 1 : 0;
+        logic wx, wy;
         assign wx = w[(s*2)*WB +: WB] != '0;
         assign wy = w[(s*2 + 1)*WB +: WB] != '0;
-        assign reduced = pick(pick(ta, wx ? tb : ta, take_max), pick(wy ? tc : ta, (wx && wy) ? te : ta, take_max),
-                              take_max);
-        // A gather's value for channel c: component `component` of tap c, e, b, a of slot 0 (slot 1
-        // takes no gather: f is 0).
-        logic [CW-1:0] gathered;
-        assign gathered = taps[(((c == 0) ? 2 : (c == 1) ? 3 : (c == 2) ? 1 : 0)*4 + 32'(component))*CW +: CW];
         always_ff @(posedge clk) begin
           if (en) begin
-            top_s7 <= (s == 0 && gather) ? {gathered, WB'(0)} : compare ? {reduced, WB'(0)} : top_next;
+            if (s == 0 && gather) begin
+              case (component)
+                2'd0:    top_s7 <= {taps[(GT*4 + 0)*CW +: CW], WB'(0)};
+                2'd1:    top_s7 <= {taps[(GT*4 + 1)*CW +: CW], WB'(0)};
+                2'd2:    top_s7 <= {taps[(GT*4 + 2)*CW +: CW], WB'(0)};
+                default: top_s7 <= {taps[(GT*4 + 3)*CW +: CW], WB'(0)};
+              endcase
+            end else if (compare) begin : g_reduce
+              logic [CW-1:0] pb, pc, pe, m0, m1;
+              pb = wx ? tb : ta;
+              pc = wy ? tc : ta;
+              pe = (wx && wy) ? te : ta;
+              m0 = ((ta > pb) == take_max) ? ta : pb;
+              m1 = ((pc > pe) == take_max) ? pc : pe;
+              top_s7 <= {((m0 > m1) == take_max) ? m0 : m1, WB'(0)};
+            end else begin
+              top_s7 <= top_next;
+            end
             bot_s7 <= bot_next;
           end
         end
@@ -102,9 +112,12 @@ module tex_filter #(
       assign r0 = g_slot[0].bil_s8[2*WB +: CW];
       assign r1 = g_slot[1].bil_s8[2*WB +: CW];
       always_ff @(posedge clk)
-        if (en)
-          blend[c*(CW+3*WB) +: CW+3*WB] <= compare_s8 ? {(f_s8 != '0) ? pick(r0, r1, take_max_s8) : r0, (3*WB)'(0)}
-                                                      : tri_next;
+        if (en) begin
+          if (compare_s8)  // slot 1's too if f > 0 (a gather's f is 0)
+            blend[c*(CW+3*WB) +: CW+3*WB] <= {(f_s8 != '0 && ((r1 > r0) == take_max_s8)) ? r1 : r0, (3*WB)'(0)};
+          else
+            blend[c*(CW+3*WB) +: CW+3*WB] <= tri_next;
+        end
     end
   endgenerate
 

@@ -179,10 +179,15 @@ module tex_front #(
   logic [VW-1:0] fetch_level_s2, fetch_level_s3;
   always_ff @(posedge clk) begin
     if (en) begin
-      outside_s2     <= fetch_q[0] && (u_s1 < 0 || u_s1 >= SIDE_MAX || v_s1 < 0 || v_s1 >= SIDE_MAX
-                                       || lod_s1 < 0 || lod_s1 > LW'((1 << VW) - 1));
+      // (if statements rather than logic: the simulation checks only a fetch's indices)
+      if (fetch_q[0])
+        outside_s2 <= u_s1 < 0 || u_s1 >= SIDE_MAX || v_s1 < 0 || v_s1 >= SIDE_MAX || lod_s1 < 0
+                      || lod_s1 > LW'((1 << VW) - 1);
+      else
+        outside_s2 <= 1'b0;
       fetch_level_s2 <= lod_s1[VW-1:0];
-      outside_s3     <= outside_s2 || (fetch_q[1] && fetch_level_s2 > last_level);
+      if (fetch_q[1]) outside_s3 <= outside_s2 || fetch_level_s2 > last_level;
+      else outside_s3 <= 1'b0;
       fetch_level_s3 <= fetch_level_s2;
       outside_s4     <= outside_s3;
     end

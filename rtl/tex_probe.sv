@@ -67,13 +67,11 @@ module tex_probe #(
   // ---------------------------------------------------------------- clocks 1-4: request registers
   // Clock 1 captures the pins; u, v, lod, the mode and the tag ride along while tex_aniso works.
   logic [4:1]                       valid;
-  // Packed shift registers, clock k's value at [(k-1)*width +: width] (an unpacked array would
-  // cost Verilator a delayed-write shadow per element and clock).
+  // One register per clock and field, g_req[k] for clock k (a packed shift register wider than 64
+  // bits, or an unpacked array, would cost Verilator a wide copy or a delayed-write shadow in every
+  // clock).
   localparam int LW = tex_pkg::LOD_W;
-  logic [4*DW-1:0]                  u_q, v_q;
-  logic [4*LW-1:0]                  lod_q, bias_q;
   logic [4:1]                       deriv_q;
-  logic [4*TAG_W-1:0]               tag_q;
   logic signed [DW-1:0]             dudx_s1, dvdx_s1, dudy_s1, dvdy_s1;
   logic [tex_pkg::SIZE_W-1:0]       w_s1, h_s1;            // the texture's size, for tex_aniso's clock 1
   logic [3:0]                       max_aniso_m1_s1;       // and the sampler's cap
@@ -82,12 +80,7 @@ module tex_probe #(
     if (rst) valid <= '0;
     else if (en_up) valid <= {valid[3:1], req_valid};
     if (en_up) begin
-      u_q        <= {u_q[0 +: 3*DW], req_u};
-      v_q        <= {v_q[0 +: 3*DW], req_v};
-      lod_q      <= {lod_q[0 +: 3*LW], req_lod};
-      bias_q     <= {bias_q[0 +: 3*LW], req_bias};
       deriv_q    <= {deriv_q[3:1], req_deriv};
-      tag_q      <= {tag_q[0 +: 3*TAG_W], req_tag};
       dudx_s1    <= req_dudx;
       dvdx_s1    <= req_dvdx;
       dudy_s1    <= req_dudy;
@@ -98,6 +91,33 @@ module tex_probe #(
       pow2_s1    <= req_aniso_pow2;
     end
   end
+  genvar k;
+  generate
+    for (k = 1; k <= 4; k = k + 1) begin : g_req
+      logic signed [DW-1:0] u, v;
+      logic signed [LW-1:0] lod, bias;
+      logic [TAG_W-1:0]     tag;
+      if (k == 1) begin : g_capture
+        always_ff @(posedge clk)
+          if (en_up) begin
+            u    <= req_u;
+            v    <= req_v;
+            lod  <= req_lod;
+            bias <= req_bias;
+            tag  <= req_tag;
+          end
+      end else begin : g_shift
+        always_ff @(posedge clk)
+          if (en_up) begin
+            u    <= g_req[k-1].u;
+            v    <= g_req[k-1].v;
+            lod  <= g_req[k-1].lod;
+            bias <= g_req[k-1].bias;
+            tag  <= g_req[k-1].tag;
+          end
+      end
+    end
+  endgenerate
 
   logic [4:0]           aniso_n;
   logic                 aniso_en;  // tex_aniso advances only with a derivative request in it: its
@@ -140,30 +160,30 @@ module tex_probe #(
   // derivative pins, and so the steps, are don't-care): a simulator skips the multiplies otherwise.
   always_comb begin
     {position, offset_u, offset_v, sum_u, sum_v} = '0;
-    probe_u = u_q[3*DW +: DW];
-    probe_v = v_q[3*DW +: DW];
+    probe_u = g_req[4].u;
+    probe_v = g_req[4].v;
     if (deriv_q[4]) begin
       position = $signed({1'b0, index, 1'b1}) - $signed({1'b0, n});
       offset_u = (38'(position) * 38'(step_u)) >>> 1;
       offset_v = (38'(position) * 38'(step_v)) >>> 1;
-      sum_u    = 39'($signed(u_q[3*DW +: DW])) + 39'(offset_u);
-      sum_v    = 39'($signed(v_q[3*DW +: DW])) + 39'(offset_v);
+      sum_u    = 39'($signed(g_req[4].u)) + 39'(offset_u);
+      sum_v    = 39'($signed(g_req[4].v)) + 39'(offset_v);
       probe_u  = saturate(sum_u);
       probe_v  = saturate(sum_v);
     end
   end
   assign probe_valid = valid[4];
-  assign probe_lod   = deriv_q[4] ? aniso_lambda : lod_q[3*LW +: LW];
-  assign probe_bias  = bias_q[3*LW +: LW];
+  assign probe_lod   = deriv_q[4] ? aniso_lambda : g_req[4].lod;
+  assign probe_bias  = g_req[4].bias;
   assign probe_first = index == 4'd0;
   assign probe_last  = !hold;
   assign probe_n     = n;
-  assign probe_tag   = tag_q[3*TAG_W +: TAG_W];
+  assign probe_tag   = g_req[4].tag;
   assign held        = 3'(valid[1]) + 3'(valid[2]) + 3'(valid[3]) + 3'(valid[4]);
 
 `ifdef FORMAL
   assign f_valid = valid;
-  assign f_tags  = tag_q;
+  assign f_tags  = {g_req[4].tag, g_req[3].tag, g_req[2].tag, g_req[1].tag};
   // The probe index is 0 except while a request with derivatives issues its probes.
   logic f_reset_done = 1'b0;
   always_ff @(posedge clk) if (rst) f_reset_done <= 1'b1;

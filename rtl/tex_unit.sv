@@ -292,9 +292,6 @@ module tex_unit #(
   );
 
   // ---------------------------------------------------------------- clocks 10-11: tex_accum
-  // (A wire, not an expression on the port: Yosys 0.23 fails an assertion on the latter.)
-  logic [4*(CWD+24)-1:0] accum_blend;  // a texel fetch outside the texture enters as 0
-  assign accum_blend = zero_q[9] ? '0 : blend_s9;
   logic             sample_valid;
   logic [4*CWD-1:0] rgba_s11;
   logic [TGW-1:0]   tag_s11;
@@ -306,7 +303,7 @@ module tex_unit #(
   tex_accum #(.CW(CWD), .SIDE_W(TGW)) u_accum (
     .clk(clk), .rst(rst), .en(en), .in_valid(valid[NSTAGE]),
     .in_first(g_tag[NSTAGE].tag[TGW]), .in_last(g_tag[NSTAGE].tag[TGW+1]),
-    .in_n(g_tag[NSTAGE].tag[TGW+2 +: 5]), .in_reduction(cfg_reduction_q), .blend(accum_blend), .in_side(g_tag[NSTAGE].tag[TGW-1:0]),
+    .in_n(g_tag[NSTAGE].tag[TGW+2 +: 5]), .in_reduction(cfg_reduction_q), .in_zero(zero_q[9]), .blend(blend_s9), .in_side(g_tag[NSTAGE].tag[TGW-1:0]),
     .out_valid(sample_valid), .rgba(rgba_s11), .out_side(tag_s11), .held(accum_held)
 `ifdef FORMAL
     , .f_valid_s1(f_accum_valid), .f_side_s1(f_accum_tag)

@@ -467,14 +467,13 @@ module tex_unit_cached #(
   logic [4*CWD-1:0] rgba;
   logic [TGW-1:0]   sample_tag;
   logic             accum_held_unused;  // (in-flight accounting: tex_unit's checks)
-  logic [4*(CWD+24)-1:0] accum_blend;   // a texel fetch outside the texture enters as 0
-  assign accum_blend = tag_b3[SW-1] ? '0 : blend;
+
   logic [2:0]       probe_held_unused;
   assign probe_held_unused = probe_held;
   tex_accum #(.CW(CWD), .SIDE_W(TGW + 1)) u_accum (
     .clk(clk), .rst(rst), .en(en_back), .in_valid(valid_b[3]), .in_first(tag_b3[TGW]),
     .in_last(tag_b3[TGW+1]), .in_n(tag_b3[TGW+2 +: 5]), .in_reduction(tag_b3[TGW+7 +: RDW]),
-    .blend(accum_blend),
+    .in_zero(tag_b3[SW-1]), .blend(blend),
     .in_side({probe_err, tag_b3[TGW-1:0]}), .out_valid(sample_valid), .rgba(rgba),
     .out_side({sample_error, sample_tag}),
     .held(accum_held_unused)
