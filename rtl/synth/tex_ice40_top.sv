@@ -4,8 +4,10 @@
 // logic of tex_unit is optimized away and its timing is measured register to register.
 // DERIV = 1 (default) feeds the derivative request and the anisotropy configuration from the
 // shift register too: the whole tex_unit, as compiled (scripts/synth.sh places a compiled
-// configuration this way when an iCE40 part holds it). DERIV = 0 ties them to 0: λ requests only,
-// the LOD/anisotropy unit is optimized away (scripts/synth.sh's reduced iCE40 reference).
+// configuration this way when an iCE40 part holds it), and the operation, the reduction and the
+// unnormalized flag. DERIV = 0 ties them all to 0: λ sample requests only (weighted average,
+// normalized coordinates), the LOD/anisotropy unit, the min/max, texel fetch and gather logic
+// optimized away (scripts/synth.sh's reduced iCE40 reference, the same unit as before those).
 // Handshake: none of its own (a measurement wrapper). Latency: that of tex_unit plus the
 //   shift-in. Ports: clk, rst, sin (serial input bit), req_ready, rsp_valid, sout (XOR of the
 //   response data and tag).
@@ -54,18 +56,18 @@ module tex_ice40_top #(
   localparam int O_TAG     = O_LOD + LW;
   localparam int O_READY   = O_TAG + TAG_W;
   localparam int O_BORDER  = O_READY + 1;      // cfg_smp_border_rgba
-  localparam int O_OP      = O_BORDER + 64;    // req_op
-  localparam int O_COMP    = O_OP + tex_pkg::OP_W;  // req_component
-  localparam int O_UNNORM  = O_COMP + 2;        // cfg_smp_unnormalized
-  localparam int O_REDUCE  = O_UNNORM + 1;      // cfg_smp_reduction
-  localparam int O_DERIV   = O_REDUCE + tex_pkg::REDUCTION_W;  // with DERIV only: req_deriv, the 4 derivatives,
-  localparam int O_DUDX    = O_DERIV + 1;      // cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2
-  localparam int O_DVDX    = O_DUDX + UW;
+  localparam int O_DERIV   = O_BORDER + 64;    // with DERIV only: req_deriv, the 4 derivatives,
+  localparam int O_DUDX    = O_DERIV + 1;      // cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2, req_op,
+  localparam int O_DVDX    = O_DUDX + UW;      // req_component, cfg_smp_unnormalized, cfg_smp_reduction
   localparam int O_DUDY    = O_DVDX + UW;
   localparam int O_DVDY    = O_DUDY + UW;
   localparam int O_ANISO   = O_DVDY + UW;
   localparam int O_POW2    = O_ANISO + 4;
-  localparam int NIN       = DERIV != 0 ? O_POW2 + 1 : O_DERIV;
+  localparam int O_OP      = O_POW2 + 1;
+  localparam int O_COMP    = O_OP + tex_pkg::OP_W;
+  localparam int O_UNNORM  = O_COMP + 2;
+  localparam int O_REDUCE  = O_UNNORM + 1;
+  localparam int NIN       = DERIV != 0 ? O_REDUCE + tex_pkg::REDUCTION_W : O_DERIV;
 
   logic [NIN-1:0] in_bits;
   always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
@@ -75,6 +77,10 @@ module tex_ice40_top #(
   logic             req_deriv, cfg_smp_aniso_pow2;
   logic [UW-1:0]    req_dudx, req_dvdx, req_dudy, req_dvdy;
   logic [3:0]       cfg_smp_max_aniso_m1;
+  logic [tex_pkg::OP_W-1:0]        req_op;
+  logic [1:0]                      req_component;
+  logic                            cfg_smp_unnormalized;
+  logic [tex_pkg::REDUCTION_W-1:0] cfg_smp_reduction;
   if (DERIV != 0) begin : g_deriv
     assign req_deriv        = in_bits[O_DERIV];
     assign req_dudx         = in_bits[O_DUDX +: UW];
@@ -83,11 +89,20 @@ module tex_ice40_top #(
     assign req_dvdy         = in_bits[O_DVDY +: UW];
     assign cfg_smp_max_aniso_m1 = in_bits[O_ANISO +: 4];
     assign cfg_smp_aniso_pow2   = in_bits[O_POW2];
+    assign req_op               = in_bits[O_OP +: tex_pkg::OP_W];
+    assign req_component        = in_bits[O_COMP +: 2];
+    assign cfg_smp_unnormalized = in_bits[O_UNNORM];
+    assign cfg_smp_reduction    = in_bits[O_REDUCE +: tex_pkg::REDUCTION_W];
   end else begin : g_no_deriv
-    // λ requests only: the LOD / anisotropy unit is optimized away.
+    // λ sample requests only: the LOD / anisotropy unit, and the min/max, fetch and gather logic,
+    // are optimized away.
     assign req_deriv        = 1'b0;
     assign {req_dudx, req_dvdx, req_dudy, req_dvdy} = '0;
     assign cfg_smp_max_aniso_m1 = 4'd0;
+    assign req_op               = tex_pkg::OP_SAMPLE;
+    assign req_component        = 2'd0;
+    assign cfg_smp_unnormalized = 1'b0;
+    assign cfg_smp_reduction    = tex_pkg::REDUCE_AVERAGE;
     assign cfg_smp_aniso_pow2   = 1'b0;
   end
   tex_unit #(.MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W)) u_unit (
@@ -106,8 +121,8 @@ module tex_ice40_top #(
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2),
     .cfg_smp_border_rgba(in_bits[O_BORDER +: 64]),
-    .req_op(in_bits[O_OP +: tex_pkg::OP_W]), .req_component(in_bits[O_COMP +: 2]), .cfg_smp_unnormalized(in_bits[O_UNNORM]),
-    .cfg_smp_reduction(in_bits[O_REDUCE +: tex_pkg::REDUCTION_W]),
+    .req_op(req_op), .req_component(req_component), .cfg_smp_unnormalized(cfg_smp_unnormalized),
+    .cfg_smp_reduction(cfg_smp_reduction),
     .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag)
   );
   always_ff @(posedge clk) sout <= ^{rsp_rgba, rsp_tag};
