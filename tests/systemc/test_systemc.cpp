@@ -333,11 +333,25 @@ struct OneShotInitiator : sc_core::sc_module {
 }  // namespace
 
 TEST(SystemcErrors, MalformedTransactionGetsAnErrorStatus) {
-  // A transaction with a wrong data length, sent straight to the target's socket (the model's
-  // b_transport, the RTL's nb_transport_fw): the target sets an error status at once and never
-  // samples it. (The socket's b<->nb adapters need a running simulation: the initiator test above.)
+  // Transactions sent straight to the target's socket (the model's b_transport, the RTL's
+  // nb_transport_fw): a wrong data length, an operation the unit has not got (2: compare, not yet),
+  // a texel fetch with derivatives, a gather of component 4. The target sets an error status at
+  // once and never samples them. (The socket's b<->nb adapters need a running simulation: the
+  // initiator test above.)
+  struct Bad {
+    const char* what;
+    int shorter;  // bytes cut from the data length
+    uint8_t op, component;
+    uint32_t has_derivatives;
+    const char* status;
+  };
+  const Bad bads[] = {{"short", 4, 0, 0, 0, "TLM_BURST_ERROR_RESPONSE"},
+                      {"op 2", 0, 2, 0, 0, "TLM_GENERIC_ERROR_RESPONSE"},
+                      {"fetch with derivatives", 0, uint8_t(Op::Fetch), 0, 1, "TLM_GENERIC_ERROR_RESPONSE"},
+                      {"gather of component 4", 0, uint8_t(Op::Gather), 4, 0, "TLM_GENERIC_ERROR_RESPONSE"}};
   const std::pair<Backend, bool> cases[] = {{Backend::Model, true}, {Backend::Rtl, false}};
-  for (const auto& [backend, blocking] : cases) {
+  for (const Bad& bad : bads)
+    for (const auto& [backend, blocking] : cases) {
       const Pyramid pyr = small_pyramid();
       const EngineResult r = run_forked([&] {
         const sc_core::sc_time period(10, sc_core::SC_NS);
@@ -346,12 +360,15 @@ TEST(SystemcErrors, MalformedTransactionGetsAnErrorStatus) {
         auto& socket = initiator.socket;
         socket.bind(unit.socket);
         SampleTransfer data;
+        data.op = bad.op;
+        data.component = bad.component;
+        data.has_derivatives = bad.has_derivatives;
         tlm::tlm_generic_payload t;
         t.set_command(tlm::TLM_READ_COMMAND);
         t.set_address(kSampleAddress);
         t.set_data_ptr(reinterpret_cast<unsigned char*>(&data));
-        t.set_data_length(sizeof data - 4);
-        t.set_streaming_width(sizeof data - 4);
+        t.set_data_length(uint32_t(sizeof data) - uint32_t(bad.shorter));
+        t.set_streaming_width(uint32_t(sizeof data) - uint32_t(bad.shorter));
         sc_core::sc_start(sc_core::SC_ZERO_TIME);
         sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
         if (blocking) {
@@ -364,9 +381,9 @@ TEST(SystemcErrors, MalformedTransactionGetsAnErrorStatus) {
         out.stats.engine = t.get_response_string();
         return out;
       });
-      EXPECT_EQ(r.stats.engine, "TLM_BURST_ERROR_RESPONSE") << (backend == Backend::Rtl ? "rtl" : "model")
-                                                            << (blocking ? " b_transport" : " nb_transport");
-  }
+      EXPECT_EQ(r.stats.engine, bad.status) << bad.what << ", " << (backend == Backend::Rtl ? "rtl" : "model")
+                                            << (blocking ? " b_transport" : " nb_transport");
+    }
 }
 
 TEST(SystemcErrors, TooLargeTextureForTheRtlIsOneLineError) {
