@@ -434,7 +434,7 @@ int main(int argc, char** argv) {
   sample_opts.add_to(*sample);
   sample->add_option("--queries,-q", queries,
                      "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy, either with a leading tex column, or "
-                     "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper; with --op fetch i,j,level (- = standard input)")
+                     "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper; with --op gather u,v, with --op fetch i,j,level (- = standard input)")
       ->required();
   std::string sample_op = "sample", sample_component = "0";
   sample->add_option("--op", sample_op,
