@@ -640,3 +640,58 @@ TEST(GlSamplerStates, GatherAgreesWithLlvmpipe) {
   std::printf("  %d gathers in %d sampler states compared with llvmpipe: max %.2f LSB (%d near a footprint edge "
               "not compared)\n", compared, states, worst / 100.0, excluded);
 }
+
+// Fetch and gather through a view (GL_TEXTURE_BASE_LEVEL 2, GL_TEXTURE_MAX_LEVEL 4 of 37x23): the
+// fetch's level counts from the view's base and stops at its last level, the gather reads the
+// view's base level. The model samples view_pyramid; RGBA8, so both must be exact. A model that
+// ignores the view (the whole pyramid) disagrees.
+TEST(GlSamplerStates, FetchAndGatherThroughAViewAgreeWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  const Pyramid whole = build_pyramid(make_pattern("noise", 37, 23));
+  const Pyramid view = view_pyramid(whole, 2, 4);  // 9x5, 4x2, 2x1
+  gl.upload(whole);
+  gl.view(2, 4);
+  std::mt19937 rng(47);
+  std::vector<std::array<float, 4>> fetches(size_t(kW) * kH), gathers(size_t(kW) * kH);
+  std::vector<Request> fetch_reqs(fetches.size()), gather_reqs(gathers.size());
+  for (size_t n = 0; n < fetches.size(); ++n) {
+    const int k = int(rng() % 5) - 1;  // -1 .. 3: one below the view and one past its last
+    const Extent e = level_extent(view.extent0(), std::clamp(k, 0, view.last_level()));
+    const int i = int(rng() % uint32_t(e.w + 2)) - 1, j = int(rng() % uint32_t(e.h + 2)) - 1;
+    fetches[n] = {float(i), float(j), float(k), 0.f};
+    fetch_reqs[n] = fetch_request(i, j, k);
+    const double u = (int(rng() % (2 << 16)) - (1 << 15)) / 65536.0, v = (int(rng() % (2 << 16)) - (1 << 15)) / 65536.0;
+    const int c = int(rng() % 4);
+    gathers[n] = {float(u), float(v), float(c), 0.f};
+    int32_t fu = 0, fv = 0;
+    EXPECT_TRUE(to_coord_fixed(u, fu) && to_coord_fixed(v, fv));
+    gather_reqs[n] = gather_request(fu, fv, c);
+  }
+  SamplerConfig cfg;  // repeat, trilinear (a gather does not filter)
+  const std::vector<std::array<float, 4>> got_fetch = gl.fetch(fetches), got_gather = gl.gather(cfg, gathers);
+  Sampler model(view, cfg), wrong(whole, cfg);
+  int compared = 0, ignored_view = 0;
+  auto equal = [](const Texel& m, const std::array<float, 4>& g) {
+    for (int c = 0; c < 4; ++c)
+      if (std::lround(g[size_t(c)] * 255) != m[size_t(c)]) return false;
+    return true;
+  };
+  for (size_t n = 0; n < fetch_reqs.size(); ++n) {
+    ASSERT_TRUE(equal(model.sample(fetch_reqs[n]), got_fetch[n]))
+        << "fetch (" << fetch_reqs[n].u << ", " << fetch_reqs[n].v << ") level " << fetch_reqs[n].lod;
+    ignored_view += !equal(wrong.sample(fetch_reqs[n]), got_fetch[n]);
+    ++compared;
+    bool edge = false;  // (a footprint edge within 1/64 texel: either footprint is right)
+    for (double t : {gathers[n][0] * view.extent0().w - 0.5, gathers[n][1] * view.extent0().h - 0.5})
+      edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
+    if (edge) continue;
+    ASSERT_TRUE(equal(model.sample(gather_reqs[n]), got_gather[n]))
+        << "gather " << int(gather_reqs[n].component) << " at (" << gathers[n][0] << ", " << gathers[n][1] << ")";
+    ignored_view += !equal(wrong.sample(gather_reqs[n]), got_gather[n]);
+    ++compared;
+  }
+  EXPECT_GT(compared, 3 * kW * kH / 2);
+  EXPECT_GT(ignored_view, compared / 2) << "a model that ignores the view went unnoticed";
+  gl.view(0, whole.last_level());
+}
