@@ -1,6 +1,5 @@
 // texsim: the command-line tool. Sample query traces, build and dump pyramids, render scenes.
 #include <CLI/CLI.hpp>
-#include <bit>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -185,9 +184,6 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   SamplerTable samplers;  // entry i: list line i's
   for (const TextureListEntry& e : list) samplers.push_back(e.sampler);
   const uint32_t unnormalized = unnormalized_samplers(samplers);  // their queries give texel coordinates
-  if (op == Op::Gather && unnormalized)  // (VkSamplerCreateInfo: not with OpImage*Gather)
-    throw Error("--op gather: Vulkan does not gather through an unnormalized sampler (sampler " +
-                std::to_string(std::countr_zero(unnormalized)) + ")");
   const QueryForm form{unnormalized, uint8_t(component)};
   std::optional<QueryReader> reader;
   std::optional<QueryFileParser> parser;

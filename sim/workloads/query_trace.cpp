@@ -536,11 +536,14 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag, QueryF
     r.lod = int32_t(q.lod);
     return r;
   }
+  const bool texels = form.unnormalized >> r.sampler & 1;
   if (q.gather) {
+    if (texels)  // (VkSamplerCreateInfo: not with OpImage*Gather)
+      throw Error(at() + "a gather through sampler " + std::to_string(r.sampler) +
+                  ", which is unnormalized: Vulkan does not gather so");
     r.op = Op::Gather;
     r.component = form.component;
-  }
-  const bool texels = form.unnormalized >> r.sampler & 1;  // an unnormalized sampler's: texels of level 0, Q16.16
+  }  // an unnormalized sampler's: texels of level 0, Q16.16
   auto coordinate = [&](double value, const char* axis, int32_t& out) {
     if (texels ? to_texel_coord_fixed(value, out) : to_coord_fixed(value, out)) return;
     throw Error(at() + axis + " = " + std::to_string(value) +

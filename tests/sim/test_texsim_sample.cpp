@@ -274,7 +274,14 @@ TEST_F(TexsimCli, GatherReadsTheLinearFiltersFourTexels) {
   expect_clean_failure("sample -t t.png --op gather --component 4 -q q.csv -o bad.csv", "bad.csv", {"--component", "4"});
   expect_clean_failure("sample -t t.png --component b -q f.csv -o bad.csv", "bad.csv", {"--component", "gather"});
   expect_clean_failure("sample -t t.png --op gather --unnormalized -w clamp -f point -q q.csv -o bad.csv", "bad.csv",
-                       {"gather", "unnormalized"});
+                       {"q.csv:2", "gather", "unnormalized"});
+  // A table with an unnormalized sampler: gathers through the other one are fine, through it not.
+  write_text(dir / "list.txt", "0 t.png clamp\n1 t.png clamp unnormalized min=nearest mag=nearest mip=none\n");
+  write_text(dir / "ts.csv", "tex,smp,u,v\n0,0,0.5,0.5\n1,0,0.25,0.75\n");
+  ASSERT_EQ(run("sample --textures list.txt --memory cached --op gather -q ts.csv -o ts_out.csv").exit_code, 0);
+  write_text(dir / "ts.csv", "tex,smp,u,v\n0,0,0.5,0.5\n0,1,2,3\n");
+  expect_clean_failure("sample --textures list.txt --memory cached --op gather -q ts.csv -o bad.csv", "bad.csv",
+                       {"ts.csv:3", "sampler 1", "unnormalized"});
 }
 
 TEST_F(TexsimCli, GrayBecomesOpaqueRgbAndRgbGetsOpaqueAlpha) {
