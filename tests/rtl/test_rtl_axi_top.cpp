@@ -26,7 +26,7 @@
 //   MEM_BYTES, OUT_STALL, REQ_STALL, MEM_WAIT (tex_cached_fetch's head_waits, public for the
 //   harness); LOOKUPS and MISSES against the model's cache statistics, MEM_BYTES = MISSES x line.
 // - Planted bugs: a descriptor committed with other wrap modes than the model's table, and a
-//   model that expects the memory error on a later read, are caught.
+//   model that expects the memory error 64 reads later, are caught.
 // - A descriptor rewritten and requests naming it right after the commit's B handshake.
 #include <gtest/gtest.h>
 #include <verilated.h>
@@ -462,7 +462,7 @@ TEST(RtlAxiTop, EndToEndAgainstModel) {
 }
 
 // The checkers fire: the unit's sampler 1 committed with other wrap modes than the model's table
-// gives a sample mismatch; a model that expects the memory error on a later line read disagrees on
+// gives a sample mismatch; a model that expects the memory error 64 line reads later disagrees on
 // a flag. The same case with the model right passes.
 TEST(RtlAxiTop, PlantedBugsAreCaught) {
   AxiTop top(11);
@@ -484,9 +484,11 @@ TEST(RtlAxiTop, PlantedBugsAreCaught) {
   EXPECT_EQ(wrap.first_mismatch.rfind("sample ", 0), 0u) << "a wrong wrap mode went unnoticed";
   std::printf("[ planted  ] wrap modes: %s\n", wrap.first_mismatch.c_str());
 
-  // (Reads 7 and 20 go to different samples in this case: a read late changes which are flagged.)
+  // Reads 7 and 7 + 64 go to different samples whatever the stream (a sample reads at most 8
+  // lines, in order), so the model's expectation moved to the later one flags other samples.
   c.memory.error_reads = {7};
-  const std::vector<uint64_t> late = {20};
+  const std::vector<uint64_t> late = {7 + 64};
+  ASSERT_GT(good.reads, 7u + 64u) << "too few lines read for the planted error";
   const CaseResult flag = run_case(top, c, nullptr, &late);
   EXPECT_NE(flag.first_mismatch.find("rsp_error"), std::string::npos) << flag.first_mismatch;
   std::printf("[ planted  ] error read: %s\n", flag.first_mismatch.c_str());
