@@ -1,5 +1,6 @@
 // texsim: the command-line tool. Sample query traces, build and dump pyramids, render scenes.
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -147,10 +148,11 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   // Everything is checked before the work: options, engine, outputs, texture, every query.
   Op op{};
   if (!parse_op(op_option, op)) throw Error("--op " + quote_clipped(op_option) + " is not sample, gather or fetch");
-  static const std::string kComponents[] = {"r", "g", "b", "a"};
-  int component = -1;
+  int component = -1;  // 0..3, or r g b a in either case
   for (int c = 0; c < 4; ++c)
-    if (component_option == std::to_string(c) || component_option == kComponents[c]) component = c;
+    if (component_option == std::to_string(c) ||
+        (component_option.size() == 1 && std::tolower(static_cast<unsigned char>(component_option[0])) == "rgba"[c]))
+      component = c;
   if (component < 0) throw Error("--component " + quote_clipped(component_option) + " is not 0, 1, 2, 3 (r, g, b, a)");
   if (component != 0 && op != Op::Gather) throw Error("--component is a gather's (--op gather)");
   const SamplerConfig cfg = o.config();
@@ -438,7 +440,7 @@ int main(int argc, char** argv) {
                      "texels a linear filter weighs at the base level (header u,v); fetch: texelFetch of texel (i, j) "
                      "of a level, no filter, 0 outside the texture (Vulkan robust image access; header i,j,level)")
       ->capture_default_str();
-  sample->add_option("--component", sample_component, "the component a gather gathers: 0 1 2 3 or r g b a")
+  sample->add_option("--component", sample_component, "the component a gather gathers: 0 1 2 3 or r g b a (R G B A)")
       ->capture_default_str();
   sample->add_option("--out,-o", out, "result CSV: header r,g,b,a (- = standard output)")->required();
   std::string textures_list;

@@ -250,7 +250,7 @@ TEST_F(TexsimCli, GatherReadsTheLinearFiltersFourTexels) {
   write_text(dir / "q.csv", q);
   for (int c = 0; c < 4; ++c) {
     const std::string out = "g" + std::to_string(c) + ".csv";
-    const Result r = run("sample -t t.png -w clamp --op gather --component " + std::string(1, "rgba"[c]) + " -q q.csv -o " + out);
+    const Result r = run("sample -t t.png -w clamp --op gather --component " + std::string(1, "rgBa"[c]) + " -q q.csv -o " + out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find(std::string("gathers of ") + "RGBA"[c]), std::string::npos) << r.out;
     std::string h;
