@@ -348,6 +348,46 @@ TestTextures test_textures() {
           build_srgb_pyramid(make_pattern("testcard", 25, 48), PyramidMode::Exact)};
 }
 
+// The largest difference between the model's texel (R, G, B, A; its channels taken `rotate` places
+// on: a planted reordering) and GL's, in 1/100 of an 8-bit step (an sRGB texture's results are
+// linear unorm16). 0: the same texel.
+int error_lsb_x100(const Texel& model, const std::array<float, 4>& gl, bool srgb, int rotate = 0) {
+  int err = 0;
+  for (int c = 0; c < 4; ++c) {
+    const double mine = model[size_t((c + rotate) % 4)] * (srgb ? 255.0 / 65535 : 1.0);
+    err = std::max(err, int(std::lround(std::fabs(mine - double(gl[size_t(c)]) * 255) * 100)));
+  }
+  return err;
+}
+
+// A texel fetch of level k: (i, j) up to one texel beyond the level's sides (k clamped to the
+// texture's levels for the size). The GL query (i, j, k) and the model's request.
+void fetch_query(std::mt19937& rng, Extent size0, int last, int k, std::array<float, 4>& query, Request& request) {
+  const Extent e = level_extent(size0, std::clamp(k, 0, last));
+  const int i = int(rng() % uint32_t(e.w + 2)) - 1, j = int(rng() % uint32_t(e.h + 2)) - 1;
+  query = {float(i), float(j), float(k), 0.f};
+  request = fetch_request(i, j, k);
+}
+
+// A gather of a random component at u, v on the 2^-16 grid (exact in float and in Q8.24) in
+// [lo, lo + span): the GL query (u, v, component) and the model's request.
+void gather_query(std::mt19937& rng, double lo, int span, std::array<float, 4>& query, Request& request) {
+  const double u = lo + int(rng() % uint32_t(span << 16)) / 65536.0, v = lo + int(rng() % uint32_t(span << 16)) / 65536.0;
+  const int c = int(rng() % 4);
+  query = {float(u), float(v), float(c), 0.f};
+  int32_t fu = 0, fv = 0;
+  EXPECT_TRUE(to_coord_fixed(u, fu) && to_coord_fixed(v, fv));
+  request = gather_request(fu, fv, c);
+}
+
+// Whether a gather at the query's (u, v) lies within 1/64 texel of where the footprint moves
+// (u w - 1/2 a whole number): GL and the unit may each take either footprint there.
+bool near_footprint_edge(const std::array<float, 4>& query, Extent size0) {
+  bool edge = false;
+  for (double t : {query[0] * size0.w - 0.5, query[1] * size0.h - 0.5}) edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
+  return edge;
+}
+
 std::string name_of(const SamplerConfig& c) {
   return "min " + filter_name(Filter{c.filter.texel, c.filter.mip}) + ", mag " + texel_filter_name(c.filter.mag) +
          ", wrap " + wrap_name(c.wrap_u) + "/" + wrap_name(c.wrap_v) + ", border " + border_color_name(c.border);
@@ -532,13 +572,9 @@ TEST(GlSamplerStates, TexelFetchAgreesWithLlvmpipe) {
     const int last = pyr->last_level();
     std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
     std::vector<Request> requests(queries.size());
-    for (size_t n = 0; n < queries.size(); ++n) {
-      // A level of the texture, 1 in 8 one beyond either end; indices up to 1 texel beyond its sides.
+    for (size_t n = 0; n < queries.size(); ++n) {  // a level of the texture, 1 in 8 one beyond either end
       const int k = rng() % 8 == 0 ? (rng() % 2 ? -1 : last + 1) : int(rng() % uint32_t(last + 1));
-      const Extent e = level_extent(pyr->extent0(), std::clamp(k, 0, last));
-      const int i = int(rng() % uint32_t(e.w + 2)) - 1, j = int(rng() % uint32_t(e.h + 2)) - 1;
-      queries[n] = {float(i), float(j), float(k), 0.f};
-      requests[n] = fetch_request(i, j, k);
+      fetch_query(rng, pyr->extent0(), last, k, queries[n], requests[n]);
     }
     const std::vector<std::array<float, 4>> got = gl.fetch(queries);
     Sampler model(*pyr, SamplerConfig{});
@@ -551,25 +587,13 @@ TEST(GlSamplerStates, TexelFetchAgreesWithLlvmpipe) {
         if (got[n] != std::array<float, 4>{0, 0, 0, 0}) continue;  // (undefined in GL)
         ++outside_zero;
       }
-      int err = 0;
-      for (int c = 0; c < 4; ++c) {
-        const double mine = pyr->srgb ? m[size_t(c)] / 65535.0 * 255 : m[size_t(c)];
-        err = std::max(err, int(std::lround(std::fabs(mine - double(got[n][size_t(c)]) * 255) * 100)));
-      }
+      const int err = error_lsb_x100(m, got[n], pyr->srgb);
       ASSERT_LE(err, pyr->srgb ? 35 : 0) << (pyr->srgb ? "sRGB " : "RGBA8 ") << pyr->extent0().w << "x"
                                          << pyr->extent0().h << " fetch (" << r.u << ", " << r.v << ") level " << r.lod;
       worst = std::max(worst, err);
       ++compared;
       // The check fires: a model that fetches the texel to the right (RGBA8) disagrees.
-      if (!pyr->srgb && inside) {
-        const Texel right = model.sample(fetch_request(r.u + 1, r.v, r.lod));
-        for (int c = 0; c < 4; ++c) {
-          if (std::lround(got[n][size_t(c)] * 255) != right[size_t(c)]) {
-            ++planted;
-            break;
-          }
-        }
-      }
+      if (!pyr->srgb && inside) planted += error_lsb_x100(model.sample(fetch_request(r.u + 1, r.v, r.lod)), got[n], false) > 0;
     }
   }
   EXPECT_GT(planted, kW * kH / 2) << "a fetch one texel off went unnoticed";
@@ -599,36 +623,21 @@ TEST(GlSamplerStates, GatherAgreesWithLlvmpipe) {
       cfg.lod_bias = int32_t(rng() % 512);
       std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
       std::vector<Request> requests(queries.size());
-      for (size_t n = 0; n < queries.size(); ++n) {
-        const double u = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0, v = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0;
-        const int c = int(rng() % 4);
-        queries[n] = {float(u), float(v), float(c), 0.f};
-        int32_t fu = 0, fv = 0;
-        EXPECT_TRUE(to_coord_fixed(u, fu) && to_coord_fixed(v, fv));
-        requests[n] = gather_request(fu, fv, c);
-      }
+      for (size_t n = 0; n < queries.size(); ++n) gather_query(rng, -1.5, 4, queries[n], requests[n]);
       const std::vector<std::array<float, 4>> got = gl.gather(cfg, queries);
       Sampler model(*pyr, cfg);
       for (size_t n = 0; n < requests.size(); ++n) {
-        bool edge = false;
-        for (double t : {queries[n][0] * e.w - 0.5, queries[n][1] * e.h - 0.5}) edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
-        if (edge) {
+        if (near_footprint_edge(queries[n], e)) {
           ++excluded;
           continue;
         }
         const Texel m = model.sample(requests[n]);
-        int err = 0, err_rotated = 0;
-        for (int c = 0; c < 4; ++c) {
-          const double scale = pyr->srgb ? 255.0 / 65535 : 1.0;
-          err = std::max(err, int(std::lround(std::fabs(m[size_t(c)] * scale - double(got[n][size_t(c)]) * 255) * 100)));
-          err_rotated = std::max(err_rotated, int(std::lround(std::fabs(m[size_t((c + 1) % 4)] * scale -
-                                                                           double(got[n][size_t(c)]) * 255) * 100)));
-        }
+        const int err = error_lsb_x100(m, got[n], pyr->srgb);
         ASSERT_LE(err, pyr->srgb ? 35 : 0) << (pyr->srgb ? "sRGB " : "RGBA8 ") << e.w << "x" << e.h << " "
                                            << name_of(cfg) << " gather " << requests[n].component << " at ("
                                            << queries[n][0] << ", " << queries[n][1] << ")";
         worst = std::max(worst, err);
-        rotated += err_rotated > 100;
+        rotated += error_lsb_x100(m, got[n], pyr->srgb, 1) > 100;
         ++compared;
       }
       ++states;
@@ -657,38 +666,22 @@ TEST(GlSamplerStates, FetchAndGatherThroughAViewAgreeWithLlvmpipe) {
   std::vector<Request> fetch_reqs(fetches.size()), gather_reqs(gathers.size());
   for (size_t n = 0; n < fetches.size(); ++n) {
     const int k = int(rng() % 5) - 1;  // -1 .. 3: one below the view and one past its last
-    const Extent e = level_extent(view.extent0(), std::clamp(k, 0, view.last_level()));
-    const int i = int(rng() % uint32_t(e.w + 2)) - 1, j = int(rng() % uint32_t(e.h + 2)) - 1;
-    fetches[n] = {float(i), float(j), float(k), 0.f};
-    fetch_reqs[n] = fetch_request(i, j, k);
-    const double u = (int(rng() % (2 << 16)) - (1 << 15)) / 65536.0, v = (int(rng() % (2 << 16)) - (1 << 15)) / 65536.0;
-    const int c = int(rng() % 4);
-    gathers[n] = {float(u), float(v), float(c), 0.f};
-    int32_t fu = 0, fv = 0;
-    EXPECT_TRUE(to_coord_fixed(u, fu) && to_coord_fixed(v, fv));
-    gather_reqs[n] = gather_request(fu, fv, c);
+    fetch_query(rng, view.extent0(), view.last_level(), k, fetches[n], fetch_reqs[n]);
+    gather_query(rng, -0.5, 2, gathers[n], gather_reqs[n]);
   }
   SamplerConfig cfg;  // repeat, trilinear (a gather does not filter)
   const std::vector<std::array<float, 4>> got_fetch = gl.fetch(fetches), got_gather = gl.gather(cfg, gathers);
   Sampler model(view, cfg), wrong(whole, cfg);
   int compared = 0, ignored_view = 0;
-  auto equal = [](const Texel& m, const std::array<float, 4>& g) {
-    for (int c = 0; c < 4; ++c)
-      if (std::lround(g[size_t(c)] * 255) != m[size_t(c)]) return false;
-    return true;
-  };
   for (size_t n = 0; n < fetch_reqs.size(); ++n) {
-    ASSERT_TRUE(equal(model.sample(fetch_reqs[n]), got_fetch[n]))
+    ASSERT_EQ(error_lsb_x100(model.sample(fetch_reqs[n]), got_fetch[n], false), 0)
         << "fetch (" << fetch_reqs[n].u << ", " << fetch_reqs[n].v << ") level " << fetch_reqs[n].lod;
-    ignored_view += !equal(wrong.sample(fetch_reqs[n]), got_fetch[n]);
+    ignored_view += error_lsb_x100(wrong.sample(fetch_reqs[n]), got_fetch[n], false) > 0;
     ++compared;
-    bool edge = false;  // (a footprint edge within 1/64 texel: either footprint is right)
-    for (double t : {gathers[n][0] * view.extent0().w - 0.5, gathers[n][1] * view.extent0().h - 0.5})
-      edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
-    if (edge) continue;
-    ASSERT_TRUE(equal(model.sample(gather_reqs[n]), got_gather[n]))
+    if (near_footprint_edge(gathers[n], view.extent0())) continue;
+    ASSERT_EQ(error_lsb_x100(model.sample(gather_reqs[n]), got_gather[n], false), 0)
         << "gather " << int(gather_reqs[n].component) << " at (" << gathers[n][0] << ", " << gathers[n][1] << ")";
-    ignored_view += !equal(wrong.sample(gather_reqs[n]), got_gather[n]);
+    ignored_view += error_lsb_x100(wrong.sample(gather_reqs[n]), got_gather[n], false) > 0;
     ++compared;
   }
   EXPECT_GT(compared, 3 * kW * kH / 2);
