@@ -6,6 +6,28 @@
 set -euo pipefail
 case "${1:-}" in -h|--help) sed -n '2,/^set -/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0;; esac
 cd "$(dirname "$0")/.."
+# clean WHAT CMD...: the Verilator run CMD must pass and print nothing; else its output and
+# "lint: FAILED for WHAT", and the group stops.
+clean() {
+  local what=$1 out
+  shift
+  if ! out=$("$@" 2>&1) || [ -n "$out" ]; then
+    echo "$out" >&2
+    echo "lint: FAILED for $what" >&2
+    exit 1
+  fi
+}
+# fires PATTERN WHAT CMD...: the run CMD must fail with a message matching PATTERN (a parameter
+# check's); else its output and one line naming WHAT.
+fires() {
+  local pattern=$1 what=$2 out
+  shift 2
+  if out=$("$@" 2>&1) || ! grep -q "$pattern" <<< "$out"; then
+    echo "$out" >&2
+    echo "lint: $what: the parameter check did not fire (or not with its message)" >&2
+    exit 1
+  fi
+}
 lint() { verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit "$@" 2>&1; }
 lint_cached() { verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit_cached "$@" 2>&1; }
 cached=("-GMAX_LOG2_W=6 -GMAX_LOG2_H=3" "-GCW=16 -GMAX_LOG2_W=5 -GMAX_LOG2_H=4 -GBLOCK_W=2 -GMEM_W=64 -GBLOCK_FORMATS=0"
@@ -22,38 +44,18 @@ lint_unit() {
   configs=("4 4 8" "6 3 8" "10 10 8" "0 0 8" "11 2 16" "3 7 1")  # MAX_LOG2_W MAX_LOG2_H CW
   for cfg in "${configs[@]}"; do
     set -- $cfg
-    if ! out=$(lint -GMAX_LOG2_W="$1" -GMAX_LOG2_H="$2" -GCW="$3") || [ -n "$out" ]; then
-      echo "$out" >&2
-      echo "lint: FAILED for MAX_LOG2_W=$1 MAX_LOG2_H=$2 CW=$3" >&2
-      exit 1
-    fi
+    clean "MAX_LOG2_W=$1 MAX_LOG2_H=$2 CW=$3" lint -GMAX_LOG2_W="$1" -GMAX_LOG2_H="$2" -GCW="$3"
   done
   # Out-of-range parameters: lint must fail, naming the parameter.
   bad=("MAX_LOG2_W=12" "MAX_LOG2_H=-1" "CW=0" "CW=17" "TAG_W=0")
-  for p in "${bad[@]}"; do
-    if out=$(lint -G"$p"); then
-      echo "lint: parameter check did not fire for $p" >&2
-      exit 1
-    fi
-    if ! grep -q "tex_unit: parameter ${p%%=*} must" <<< "$out"; then
-      echo "$out" >&2
-      echo "lint: $p failed without tex_unit's parameter message" >&2
-      exit 1
-    fi
-  done
+  for p in "${bad[@]}"; do fires "tex_unit: parameter ${p%%=*} must" "tex_unit $p" lint -G"$p"; done
   echo "lint: verilator -Wall clean for ${#configs[@]} configurations (MAX_LOG2_W MAX_LOG2_H CW: ${configs[*]/%/;});" \
        "parameter checks fire for ${bad[*]}"
 }
 
 # tex_unit_cached (docs/memory.md): cache, block, FIFO and beat parameters.
 lint_cached_configs() {
-  for cfg in "${cached[@]}"; do
-    if ! out=$(lint_cached $cfg) || [ -n "$out" ]; then
-      echo "$out" >&2
-      echo "lint: FAILED for tex_unit_cached $cfg" >&2
-      exit 1
-    fi
-  done
+  for cfg in "${cached[@]}"; do clean "tex_unit_cached $cfg" lint_cached $cfg; done
   echo "lint: verilator -Wall clean for ${#cached[@]} tex_unit_cached configurations"
 }
 
@@ -62,11 +64,7 @@ lint_cached_checks() {
   for p in "${bad_cached[@]}"; do
     name=${p%%=*}
     [ "$p" = CW=16 ] && name=BLOCK_FORMATS  # the decoders take 8-bit memory channels (CW 8, or SRGB)
-    if out=$(lint_cached -G"$p") || ! grep -q "tex_unit_cached: parameter $name must" <<< "$out"; then
-      echo "$out" >&2
-      echo "lint: tex_unit_cached's parameter check did not fire for $p" >&2
-      exit 1
-    fi
+    fires "tex_unit_cached: parameter $name must" "tex_unit_cached $p" lint_cached -G"$p"
   done
   echo "lint: tex_unit_cached's parameter checks fire for ${bad_cached[*]}"
 }
@@ -75,42 +73,19 @@ lint_cached_checks() {
 lint_blocks() {
   # The LOD unit on its own (its own test bench; in the units it sits inside tex_probe); alone it uses
   # few of tex_pkg's constants.
-  if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_lambda.sv \
-               --top-module tex_lambda 2>&1) || [ -n "$out" ]; then
-    echo "$out" >&2
-    echo "lint: FAILED for tex_lambda" >&2
-    exit 1
-  fi
+  clean tex_lambda verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_lambda.sv \
+    --top-module tex_lambda
   echo "lint: verilator -Wall clean for tex_lambda"
   # The block decoders and the sRGB table on their own, through their harnesses (tex_unit_cached's
   # taps call them; linted there too).
-  if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
-               rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
-               --top-module tex_bc_decode_top 2>&1) || [ -n "$out" ]; then
-    echo "$out" >&2
-    echo "lint: FAILED for tex_bc_decode" >&2
-    exit 1
-  fi
-  if ! out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM -DSYNTHESIS rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
-               rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
-               --top-module tex_bc_decode_top 2>&1) || [ -n "$out" ]; then
-    echo "$out" >&2
-    echo "lint: FAILED for tex_bc_decode (-DSYNTHESIS: the synthesis form)" >&2
-    exit 1
-  fi
-  if out=$(verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
-             rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
-             --top-module tex_bc_decode_top -GFORMAT=8 2>&1) || ! grep -q "tex_bc_decode_top: parameter FORMAT must be" <<< "$out"; then
-    echo "$out" >&2
-    echo "lint: tex_bc_decode_top's FORMAT check did not fire for FORMAT=8" >&2
-    exit 1
-  fi
-  if ! out=$(verilator --lint-only -Irtl -Wall rtl/tex_srgb_decode.sv rtl/synth/tex_srgb_decode_top.sv \
-               --top-module tex_srgb_decode_top 2>&1) || [ -n "$out" ]; then
-    echo "$out" >&2
-    echo "lint: FAILED for tex_srgb_decode" >&2
-    exit 1
-  fi
+  lint_decode() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
+                    rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
+                    --top-module tex_bc_decode_top "$@"; }
+  clean tex_bc_decode lint_decode
+  clean "tex_bc_decode (-DSYNTHESIS: the synthesis form)" lint_decode -DSYNTHESIS
+  fires "tex_bc_decode_top: parameter FORMAT must be" "tex_bc_decode_top FORMAT=8" lint_decode -GFORMAT=8
+  clean tex_srgb_decode verilator --lint-only -Irtl -Wall rtl/tex_srgb_decode.sv rtl/synth/tex_srgb_decode_top.sv \
+    --top-module tex_srgb_decode_top
   echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7; as simulated and with -DSYNTHESIS) and tex_srgb_decode; FORMAT check fires for FORMAT=8"
   # The AXI4-Lite configuration slave on its own (-Wno-UNUSEDPARAM: alone it uses few of tex_pkg's
   # constants; inside tex_unit_axi below it is linted with all warnings), and the AXI top.
@@ -118,39 +93,17 @@ lint_blocks() {
                   --top-module tex_axil_config "$@" 2>&1; }
   axil=("" "-GADDR_W=8 -GTEXTURES=1 -GSAMPLERS=1 -GMAX_WAYS=1 -GLINES=16 -GFIFO_DEPTH=2 -GBEAT_BYTES=1 -GLINE_BYTES=1"
         "-GADDR_W=32 -GFIFO_DEPTH=1024 -GBEAT_BYTES=64 -GSRGB=1 -GBLOCK_FORMATS=0 -GMAX_LOG2_W=13 -GMAX_LOG2_H=0")
-  for cfg in "${axil[@]}"; do
-    if ! out=$(lint_axil $cfg) || [ -n "$out" ]; then
-      echo "$out" >&2
-      echo "lint: FAILED for tex_axil_config ${cfg:-(defaults)}" >&2
-      exit 1
-    fi
-  done
+  for cfg in "${axil[@]}"; do clean "tex_axil_config ${cfg:-(defaults)}" lint_axil $cfg; done
   bad_axil=("ADDR_W=7" "ADDR_W=33" "MAX_LOG2_W=14" "MAX_LOG2_H=-1" "LINES=24" "MAX_WAYS=3" "FIFO_DEPTH=3" "TEXTURES=3"
             "SAMPLERS=5" "BLOCK_FORMATS=2" "SRGB=2" "LINE_BYTES=48" "BEAT_BYTES=128")
-  for p in "${bad_axil[@]}"; do
-    if out=$(lint_axil -G"$p") || ! grep -q "tex_axil_config: parameter ${p%%=*} must" <<< "$out"; then
-      echo "$out" >&2
-      echo "lint: tex_axil_config's parameter check did not fire for $p" >&2
-      exit 1
-    fi
-  done
+  for p in "${bad_axil[@]}"; do fires "tex_axil_config: parameter ${p%%=*} must" "tex_axil_config $p" lint_axil -G"$p"; done
   lint_top() { verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt -f rtl/tex_files.f --top-module tex_unit_axi "$@" 2>&1; }
   top=("" "-GCW=16 -GSRGB=1 -GMEM_W=32 -GAXI_ID_W=4 -GADDR_W=8 -GTEXTURES=2 -GMAX_LOG2_W=6 -GMAX_LOG2_H=3"
        "-GBLOCK_W=2 -GBLOCK_H=4 -GBLOCK_FORMATS=0 -GMEM_W=256 -GADDR_W=32 -GLINES=16 -GMAX_WAYS=1")
-  for cfg in "${top[@]}"; do
-    if ! out=$(lint_top $cfg) || [ -n "$out" ]; then
-      echo "$out" >&2
-      echo "lint: FAILED for tex_unit_axi ${cfg:-(defaults)}" >&2
-      exit 1
-    fi
-  done
+  for cfg in "${top[@]}"; do clean "tex_unit_axi ${cfg:-(defaults)}" lint_top $cfg; done
   # Its parameters reach both parts: each part's check fires.
   for p in "ADDR_W=7:tex_axil_config" "MEM_W=16:tex_unit_cached"; do
-    if out=$(lint_top -G"${p%%:*}") || ! grep -q "${p#*:}: parameter ${p%%=*} " <<< "$out"; then
-      echo "$out" >&2
-      echo "lint: tex_unit_axi: ${p#*:}'s parameter check did not fire for ${p%%:*}" >&2
-      exit 1
-    fi
+    fires "${p#*:}: parameter ${p%%=*} " "tex_unit_axi ${p%%:*} (${p#*:})" lint_top -G"${p%%:*}"
   done
   echo "lint: verilator -Wall clean for ${#axil[@]} tex_axil_config and ${#top[@]} tex_unit_axi configurations;" \
        "parameter checks fire for ${bad_axil[*]} (tex_axil_config), ADDR_W=7 and MEM_W=16 (tex_unit_axi)"
