@@ -133,15 +133,21 @@ Texel Sampler::gather(const Request& r) {
   if (r.has_derivatives) throw Error("sampler: a gather carries no derivatives");
   ++samples_;
   ++probes_[1];
-  const Extent e = memory_->shape(0);
   const int32_t ru = stage::reduce(r.u, config_.wrap_u, config_.unnormalized), rv = stage::reduce(r.v, config_.wrap_v, config_.unnormalized);
-  const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w, config_.unnormalized), TexelFilter::Linear);
-  const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h, config_.unnormalized), TexelFilter::Linear);
-  stage::Footprint d;
-  d.taps = memory_->fetch(0, stage::wrap(tu.i0, e.w, config_.wrap_u), stage::wrap(tu.i1, e.w, config_.wrap_u, true),
-                          stage::wrap(tv.i0, e.h, config_.wrap_v), stage::wrap(tv.i1, e.h, config_.wrap_v, true), false,
-                          border_);
-  return stage::gather(d, r.component);
+  return stage::gather(footprint(0, ru, rv, TexelFilter::Linear, true), r.component);
+}
+
+// The 2x2 footprint of level k at the reduced coordinates (all four taps read, or only the first
+// for a nearest filter unless `all_taps`), with the weights of the second taps.
+stage::Footprint Sampler::footprint(int k, int32_t ru, int32_t rv, TexelFilter filter, bool all_taps) {
+  const Extent e = memory_->shape(k);
+  const stage::WrappedTaps tu = stage::axis_taps(ru, e.w, config_.wrap_u, filter, config_.unnormalized);
+  const stage::WrappedTaps tv = stage::axis_taps(rv, e.h, config_.wrap_v, filter, config_.unnormalized);
+  stage::Footprint f;
+  f.taps = memory_->fetch(k, tu.i0, tu.i1, tv.i0, tv.i1, !all_taps && filter == TexelFilter::Nearest, border_);
+  f.fx = tu.w;
+  f.fy = tv.w;
+  return f;
 }
 
 stage::Unrounded Sampler::sample_probe(const Request& r) {
@@ -156,17 +162,7 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   // f = 0 the blend returns slot 0 exactly).
   stage::Footprint slot[2];
   const int slots = sel.two_levels ? 2 : 1;
-  for (int s = 0; s < slots; ++s) {
-    const int k = s == 0 ? sel.d : sel.d1;
-    const Extent e = memory_->shape(k);
-    const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w, config_.unnormalized), texel_filter);
-    const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h, config_.unnormalized), texel_filter);
-    slot[s].taps = memory_->fetch(k, stage::wrap(tu.i0, e.w, config_.wrap_u), stage::wrap(tu.i1, e.w, config_.wrap_u, true),
-                                 stage::wrap(tv.i0, e.h, config_.wrap_v), stage::wrap(tv.i1, e.h, config_.wrap_v, true),
-                                 !linear, border_);
-    slot[s].fx = tu.w;
-    slot[s].fy = tv.w;
-  }
+  for (int s = 0; s < slots; ++s) slot[s] = footprint(s == 0 ? sel.d : sel.d1, ru, rv, texel_filter, false);
   if (config_.reduction != Reduction::WeightedAverage)  // compares, no multiplies
     return stage::reduce_taps(slot[0], slot[sel.two_levels ? 1 : 0], sel.f, config_.reduction == Reduction::Max);
   multiplies_ += (linear ? 3 : 0) * slots + (sel.two_levels ? 1 : 0);

@@ -160,6 +160,7 @@ class Sampler {
  private:
   Texel fetch(const Request& r);   // sample() of an Op::Fetch request
   Texel gather(const Request& r);  // and of an Op::Gather one
+  stage::Footprint footprint(int level, int32_t ru, int32_t rv, TexelFilter filter, bool all_taps);
   void write_packed(int level, int32_t x, int32_t y, const Texel& t);
 
   SamplerConfig config_;

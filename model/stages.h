@@ -137,6 +137,18 @@ inline int32_t wrap(int32_t i, int32_t n, Wrap mode, bool second = false) {
   return 0;
 }
 
+// One axis of a footprint at a level of n texels, from the reduced coordinate: both taps' indices
+// after the address mode (i1 as the second tap: the repeat seam's copy) and the weight of i1.
+// (tex_scale, tex_address, tex_wrap)
+struct WrappedTaps {
+  int32_t i0 = 0, i1 = 0;
+  int w = 0;
+};
+inline WrappedTaps axis_taps(int32_t reduced, int n, Wrap mode, TexelFilter filter, bool unnormalized) {
+  const AxisTaps t = address(scale(reduced, n, unnormalized), filter);
+  return {wrap(t.i0, n, mode), wrap(t.i1, n, mode, true), t.w};
+}
+
 // The border colour in a level's channel width: the sampler's unorm16 value c as
 // round(c * (2^CW - 1) / 65535), exact (CW = 16: c itself). An sRGB texture's filter takes linear
 // unorm16 texels, so its border colour is linear, never decoded. (tex_border)

@@ -144,32 +144,28 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     out.slot[0].level = r.lod;
     out.slot[0].needed = stage::fetch_inside(r.u, r.v, r.lod, layout.levels() - 1, layout.size0());
     taps[0] = {{r.u, r.u}, {r.v, r.v}};
-  } else if (r.op == Op::Gather) {  // the linear filter's four taps at the base level, all read
-    const Extent e = layout.level_size(0);
-    const stage::AxisTaps tu = stage::address(stage::scale(stage::reduce(r.u, smp.wrap_u, smp.unnormalized), e.w, smp.unnormalized), TexelFilter::Linear);
-    const stage::AxisTaps tv = stage::address(stage::scale(stage::reduce(r.v, smp.wrap_v, smp.unnormalized), e.h, smp.unnormalized), TexelFilter::Linear);
-    out.slot[0].needed = true;
-    taps[0] = {{stage::wrap(tu.i0, e.w, smp.wrap_u), stage::wrap(tu.i1, e.w, smp.wrap_u, true)},
-               {stage::wrap(tv.i0, e.h, smp.wrap_v), stage::wrap(tv.i1, e.h, smp.wrap_v, true)},
-               2,
-               2};
   } else {
-    const stage::LevelSelect sel =
-        stage::lod(r.lod, smp.lod_bias + r.bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);
     const int32_t ru = stage::reduce(r.u, smp.wrap_u, smp.unnormalized), rv = stage::reduce(r.v, smp.wrap_v, smp.unnormalized);
-    const TexelFilter texel_filter = stage::texel_filter(sel, smp.filter);
-    for (int s = 0; s < 2; ++s) {
-      SlotLookup& sl = out.slot[size_t(s)];
-      sl.level = s == 0 ? sel.d : sel.d1;
-      sl.needed = s == 0 || sel.f != 0;
-      if (!sl.needed) continue;
-      const Extent e = layout.level_size(sl.level);
-      const stage::AxisTaps tu = stage::address(stage::scale(ru, e.w, smp.unnormalized), texel_filter);
-      const stage::AxisTaps tv = stage::address(stage::scale(rv, e.h, smp.unnormalized), texel_filter);
-      taps[s] = {{stage::wrap(tu.i0, e.w, smp.wrap_u), stage::wrap(tu.i1, e.w, smp.wrap_u, true)},
-                 {stage::wrap(tv.i0, e.h, smp.wrap_v), stage::wrap(tv.i1, e.h, smp.wrap_v, true)},
-                 tu.w != 0 ? 2 : 1,
-                 tv.w != 0 ? 2 : 1};
+    // The footprint of level k: a tap whose weight is 0 reads nothing, unless `all` (a gather).
+    auto footprint = [&](int k, TexelFilter filter, bool all) -> Taps {
+      const Extent e = layout.level_size(k);
+      const stage::WrappedTaps tu = stage::axis_taps(ru, e.w, smp.wrap_u, filter, smp.unnormalized);
+      const stage::WrappedTaps tv = stage::axis_taps(rv, e.h, smp.wrap_v, filter, smp.unnormalized);
+      return {{tu.i0, tu.i1}, {tv.i0, tv.i1}, all || tu.w != 0 ? 2 : 1, all || tv.w != 0 ? 2 : 1};
+    };
+    if (r.op == Op::Gather) {  // the linear filter's four taps at the base level, all read
+      out.slot[0].needed = true;
+      taps[0] = footprint(0, TexelFilter::Linear, true);
+    } else {
+      const stage::LevelSelect sel =
+          stage::lod(r.lod, smp.lod_bias + r.bias, smp.min_lod, smp.max_lod, smp.filter.mip, layout.levels() - 1);
+      const TexelFilter texel_filter = stage::texel_filter(sel, smp.filter);
+      for (int s = 0; s < 2; ++s) {
+        SlotLookup& sl = out.slot[size_t(s)];
+        sl.level = s == 0 ? sel.d : sel.d1;
+        sl.needed = s == 0 || sel.f != 0;
+        if (sl.needed) taps[s] = footprint(sl.level, texel_filter, false);
+      }
     }
   }
   for (int s = 0; s < 2; ++s) {
