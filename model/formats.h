@@ -25,6 +25,7 @@ constexpr int kLodMax = (1 << 15) - 1;
 constexpr int kMaxAniso = 16;       // anisotropic filtering: at most 16 probes per sample
 constexpr int kMaxTextures = 16;    // entries of the cached unit's texture descriptor table
 constexpr int kMaxSamplers = 16;    // and of its sampler table
+constexpr int kMaxLayers = 256;     // layers of an array texture (the cached unit's cfg_desc_layers_m1: 8 bits)
 
 // Address modes (Vulkan's VkSamplerAddressMode, GL's TEXTURE_WRAP_*): repeat, clamp to edge, mirrored
 // repeat, clamp to border (a tap outside the level takes the sampler's border colour), mirror clamp

@@ -35,8 +35,10 @@ bool parse_block_size(const std::string& text, LayoutParams& out) {
 std::string block_size_name(const LayoutParams& p) { return std::to_string(p.block_w) + "x" + std::to_string(p.block_h); }
 
 MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format,
-                           int levels)
-    : params_(params), size0_(size0), channel_bits_(channel_bits), format_(format) {
+                           int levels, int layers)
+    : params_(params), size0_(size0), channel_bits_(channel_bits), format_(format), layers_(layers) {
+  if (layers < 1 || layers > kMaxLayers)
+    throw Error(std::to_string(layers) + " layers: an array texture has 1 to " + std::to_string(kMaxLayers));
   for (const int s : {size0.w, size0.h})
     if (s < 1 || s > kMaxSize)
       throw Error("texture side " + std::to_string(s) + " texels: must be 1 to " + std::to_string(kMaxSize));
@@ -90,10 +92,11 @@ MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& p
     if (at > (uint64_t(1) << 32)) break;  // (reported below)
   }
   // The last byte must have a 32-bit address: the image may end exactly at 2^32.
-  if (at > (uint64_t(1) << 32))
-    throw Error("the texture's memory image ends at byte " + std::to_string(at) +
+  const uint64_t end = params.base + (at - params.base) * uint64_t(layers);
+  if (at > (uint64_t(1) << 32) || end > (uint64_t(1) << 32))
+    throw Error("the texture's memory image ends at byte " + std::to_string(std::max(at, end)) +
                 ", beyond the 32-bit address space of the memory port");
-  image_bytes_ = at - params.base;
+  layer_bytes_ = uint32_t(at - params.base);
 }
 
 uint32_t MemoryLayout::block_index(int level, uint32_t bx, uint32_t by) const {
@@ -105,8 +108,11 @@ uint32_t MemoryLayout::block_index(int level, uint32_t bx, uint32_t by) const {
   return uint32_t(interleave_bits(bx & low, by & low)) | ((bx >> m) | (by >> m)) << (2 * m);
 }
 
-bool MemoryLayout::locate_line(uint32_t address, int& level, uint32_t& bx, uint32_t& by) const {
+bool MemoryLayout::locate_line(uint32_t address, int& layer, int& level, uint32_t& bx, uint32_t& by) const {
   if (address < params_.base || (address - params_.base) % uint32_t(line_bytes_) != 0) return false;
+  layer = int((address - params_.base) / layer_bytes_);
+  if (layer >= layers_) return false;
+  address -= uint32_t(layer) * layer_bytes_;
   for (level = levels() - 1; level >= 0 && address < levels_[size_t(level)].base; --level) {
   }
   if (level < 0) return false;
@@ -133,10 +139,11 @@ bool MemoryLayout::locate_line(uint32_t address, int& level, uint32_t& bx, uint3
 }
 
 bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
-                 const std::function<void(int level, int x, int y, const Texel& t)>& texel, bool seam_copies) {
-  int level = 0;
+                 const std::function<void(int layer, int level, int x, int y, const Texel& t)>& texel,
+                 bool seam_copies) {
+  int layer = 0, level = 0;
   uint32_t bx = 0, by = 0;
-  if (!layout.locate_line(address, level, bx, by)) return false;
+  if (!layout.locate_line(address, layer, level, bx, by)) return false;
   const int bw = layout.block_w(), bh = layout.block_h(), tb = layout.texel_bytes();
   const uint32_t w = uint32_t(layout.level_size(level).w), h = uint32_t(layout.level_size(level).h);
   const bool blocks = is_compressed(layout.format());
@@ -161,61 +168,67 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
       } else {
         for (size_t c = 0; c < 4; ++c) t[c] = tb == 4 ? at[c] : uint16_t(at[2 * c] | at[2 * c + 1] << 8);
       }
-      texel(level, int(ox), int(oy), t);
+      texel(layer, level, int(ox), int(oy), t);
     }
   return true;
 }
 
-std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout) {
-  if (pyramid.extent0() != layout.size0() || pyramid.memory_channel_bits() != layout.channel_bits() ||
-      int(pyramid.levels.size()) != layout.levels() || pyramid.format != layout.format())
-    throw Error("the memory layout is for a " + std::to_string(layout.size0().w) + "x" +
-                std::to_string(layout.size0().h) + " texture of " + std::to_string(layout.channel_bits()) +
-                "-bit channels; the pyramid is " + std::to_string(pyramid.levels[0].width) + "x" +
-                std::to_string(pyramid.levels[0].height) + ", " + std::to_string(pyramid.memory_channel_bits()) +
-                "-bit, " + std::to_string(pyramid.levels.size()) + " levels" +
-                (pyramid.format != layout.format() ? std::string(", ") + format_info(pyramid.format).name + " not " +
-                                                         format_info(layout.format()).name
-                                                   : std::string()));
+std::vector<uint8_t> build_memory_image(const std::vector<const Pyramid*>& layers, const MemoryLayout& layout) {
+  if (int(layers.size()) != layout.layers())
+    throw Error("the memory layout is for " + std::to_string(layout.layers()) + " layers; the texture has " +
+                std::to_string(layers.size()));
   std::vector<uint8_t> image(size_t(layout.image_bytes()), 0);
   const uint32_t base = layout.params().base;
-  // Each place texel (x, y) of level k goes: itself, and for column (row) 0 of a side with a seam
-  // its copy (a block format: the block's, at the seam block column).
-  auto each_place = [&](int k, uint32_t x, uint32_t y, auto&& put) {
-    with_seam_copies(int(x), int(y), int(layout.seam_x(k)), int(layout.seam_y(k)),
-                     [&](int sx, int sy) { put(uint32_t(sx), uint32_t(sy)); });
-  };
-  if (is_compressed(layout.format())) {  // each 4x4 block where its top-left texel goes
-    const size_t bytes = size_t(format_info(layout.format()).block_bytes);
+  for (int layer = 0; layer < layout.layers(); ++layer) {
+    const Pyramid& pyramid = *layers[size_t(layer)];
+    if (pyramid.extent0() != layout.size0() || pyramid.memory_channel_bits() != layout.channel_bits() ||
+        int(pyramid.levels.size()) != layout.levels() || pyramid.format != layout.format())
+      throw Error("the memory layout is for a " + std::to_string(layout.size0().w) + "x" +
+                  std::to_string(layout.size0().h) + " texture of " + std::to_string(layout.channel_bits()) +
+                  "-bit channels; the pyramid is " + std::to_string(pyramid.levels[0].width) + "x" +
+                  std::to_string(pyramid.levels[0].height) + ", " + std::to_string(pyramid.memory_channel_bits()) +
+                  "-bit, " + std::to_string(pyramid.levels.size()) + " levels" +
+                  (pyramid.format != layout.format() ? std::string(", ") + format_info(pyramid.format).name + " not " +
+                                                           format_info(layout.format()).name
+                                                     : std::string()));
+    // Each place texel (x, y) of level k goes: itself, and for column (row) 0 of a side with a seam
+    // its copy (a block format: the block's, at the seam block column).
+    auto each_place = [&](int k, uint32_t x, uint32_t y, auto&& put) {
+      with_seam_copies(int(x), int(y), int(layout.seam_x(k)), int(layout.seam_y(k)),
+                       [&](int sx, int sy) { put(uint32_t(sx), uint32_t(sy)); });
+    };
+    if (is_compressed(layout.format())) {  // each 4x4 block where its top-left texel goes
+      const size_t bytes = size_t(format_info(layout.format()).block_bytes);
+      for (int k = 0; k < layout.levels(); ++k) {
+        const Image& img = pyramid.levels[size_t(k)];
+        const int nbx = (img.width + 3) / 4, nby = (img.height + 3) / 4;
+        for (int by = 0; by < nby; ++by)
+          for (int bx = 0; bx < nbx; ++bx)
+            each_place(k, uint32_t(bx) * 4, uint32_t(by) * 4, [&](uint32_t x, uint32_t y) {
+              std::copy_n(&pyramid.blocks[size_t(k)][(size_t(by) * size_t(nbx) + size_t(bx)) * bytes], bytes,
+                          &image[layout.line_address(k, x, y, layer) - base + layout.texel_offset(x, y)]);
+            });
+      }
+      continue;
+    }
+    const int tb = layout.texel_bytes();
     for (int k = 0; k < layout.levels(); ++k) {
-      const Image& img = pyramid.levels[size_t(k)];
-      const int nbx = (img.width + 3) / 4, nby = (img.height + 3) / 4;
-      for (int by = 0; by < nby; ++by)
-        for (int bx = 0; bx < nbx; ++bx)
-          each_place(k, uint32_t(bx) * 4, uint32_t(by) * 4, [&](uint32_t x, uint32_t y) {
-            std::copy_n(&pyramid.blocks[size_t(k)][(size_t(by) * size_t(nbx) + size_t(bx)) * bytes], bytes,
-                        &image[layout.line_address(k, x, y) - base + layout.texel_offset(x, y)]);
+      const Image& img = pyramid.srgb ? pyramid.codes[size_t(k)] : pyramid.levels[size_t(k)];  // what memory holds
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+          each_place(k, uint32_t(x), uint32_t(y), [&](uint32_t ux, uint32_t uy) {
+            uint8_t* at = &image[layout.line_address(k, ux, uy, layer) - base + layout.texel_offset(ux, uy)];
+            const Texel& t = img.at(x, y);
+            for (size_t c = 0; c < 4; ++c) {
+              if (tb == 4) {
+                at[c] = uint8_t(t[c]);
+              } else {
+                at[2 * c] = uint8_t(t[c]);
+                at[2 * c + 1] = uint8_t(t[c] >> 8);
+              }
+            }
           });
     }
-    return image;
-  }
-  const int tb = layout.texel_bytes();
-  for (int k = 0; k < layout.levels(); ++k) {
-    const Image& img = pyramid.srgb ? pyramid.codes[size_t(k)] : pyramid.levels[size_t(k)];  // what memory holds
-    for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x)
-        each_place(k, uint32_t(x), uint32_t(y), [&](uint32_t ux, uint32_t uy) {
-        uint8_t* at = &image[layout.line_address(k, ux, uy) - base + layout.texel_offset(ux, uy)];
-        const Texel& t = img.at(x, y);
-        for (size_t c = 0; c < 4; ++c) {
-          if (tb == 4) {
-            at[c] = uint8_t(t[c]);
-          } else {
-            at[2 * c] = uint8_t(t[c]);
-            at[2 * c + 1] = uint8_t(t[c] >> 8);
-          }
-        }
-        });
   }
   return image;
 }

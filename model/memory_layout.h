@@ -48,9 +48,10 @@ class MemoryLayout {
   // a block side, a base not aligned to the line, an image ending beyond the 32-bit address space,
   // a block format with channels other than 8 bits or a line smaller than one of its blocks.
   // `levels`: the chain's levels 0..levels-1 (Vulkan's mipLevels; 0: the full chain down to 1x1;
-  // more than the full chain is an error).
+  // more than the full chain is an error). `layers`: an array texture's layers, 1..kMaxLayers, each
+  // a whole pyramid, one after another from the base (layer l at base + l * layer_bytes()).
   MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format = TexelFormat::Rgba8,
-               int levels = 0);
+               int levels = 0, int layers = 1);
 
   const LayoutParams& params() const { return params_; }
   Extent size0() const { return size0_; }
@@ -84,21 +85,23 @@ class MemoryLayout {
     const Level& l = levels_[size_t(level)];
     return y == uint32_t(l.size.h) ? l.seam_y : y;
   }
-  uint32_t level_base(int level) const { return levels_[size_t(level)].base; }
-  uint64_t image_bytes() const { return image_bytes_; }  // from base to the end of the last level
+  uint32_t level_base(int level) const { return levels_[size_t(level)].base; }  // (of layer 0)
+  int layers() const { return layers_; }
+  uint32_t layer_bytes() const { return layer_bytes_; }  // one layer's pyramid: a whole number of lines
+  uint64_t image_bytes() const { return uint64_t(layer_bytes_) * uint64_t(layers_); }  // every layer
 
   // Index of block (bx, by) within its level (row-major or Morton).
   uint32_t block_index(int level, uint32_t bx, uint32_t by) const;
-  // Byte address of the line holding block (bx, by) of `level`.
-  uint32_t block_address(int level, uint32_t bx, uint32_t by) const {
-    return level_base(level) + block_index(level, bx, by) * uint32_t(line_bytes_);
+  // Byte address of the line holding block (bx, by) of `level` (of layer `layer`).
+  uint32_t block_address(int level, uint32_t bx, uint32_t by, int layer = 0) const {
+    return level_base(level) + uint32_t(layer) * layer_bytes_ + block_index(level, bx, by) * uint32_t(line_bytes_);
   }
   // Byte address of the line holding stored texel (x, y) of `level` (stored_x/y of a tap index).
-  uint32_t line_address(int level, uint32_t x, uint32_t y) const {
-    return block_address(level, x >> log2_bw_, y >> log2_bh_);
+  uint32_t line_address(int level, uint32_t x, uint32_t y, int layer = 0) const {
+    return block_address(level, x >> log2_bw_, y >> log2_bh_, layer);
   }
-  // The level and block of the line at `address`; false if no level's block starts there.
-  bool locate_line(uint32_t address, int& level, uint32_t& bx, uint32_t& by) const;
+  // The layer, level and block of the line at `address`; false if no level's block starts there.
+  bool locate_line(uint32_t address, int& layer, int& level, uint32_t& bx, uint32_t& by) const;
   // Byte offset of texel (x, y) inside its line; in a block format, of the 4x4 block holding it.
   uint32_t texel_offset(uint32_t x, uint32_t y) const {
     const uint32_t lx = x & ((1u << log2_bw_) - 1), ly = y & ((1u << log2_bh_) - 1);
@@ -121,27 +124,33 @@ class MemoryLayout {
   int texel_bytes_, line_bytes_, log2_bw_, log2_bh_;
   int block_bytes_ = 0;  // a block format's bytes per 4x4 block; 0 for RGBA
   std::vector<Level> levels_;
-  uint64_t image_bytes_ = 0;
+  int layers_ = 1;
+  uint32_t layer_bytes_ = 0;
 };
 
-// The layout of a pyramid as it is: its size, channel width in memory, format and level count.
-inline MemoryLayout layout_of(const Pyramid& pyramid, const LayoutParams& params) {
+// The layout of a pyramid as it is: its size, channel width in memory, format and level count (and
+// of an array of `layers` such pyramids).
+inline MemoryLayout layout_of(const Pyramid& pyramid, const LayoutParams& params, int layers = 1) {
   return MemoryLayout(pyramid.extent0(), pyramid.memory_channel_bits(), params, pyramid.format,
-                      int(pyramid.levels.size()));
+                      int(pyramid.levels.size()), layers);
 }
 
-// Calls texel(level, x, y, value) for every texel of the level stored in the line at `address`
+// Calls texel(layer, level, x, y, value) for every texel of the level stored in the line at `address`
 // (`line`: its line_bytes() bytes as memory holds them; blocks decoded); padding is skipped, and so
 // are the repeat seam's copies unless `seam_copies`: then each copy is reported as the texel it
 // copies (column 0, row 0: the same value; a unit whose taps read the copy needs it even when the
 // original's line was never read). False if the address is not a line of the layout.
 bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
-                 const std::function<void(int level, int x, int y, const Texel& t)>& texel, bool seam_copies = false);
+                 const std::function<void(int layer, int level, int x, int y, const Texel& t)>& texel,
+                 bool seam_copies = false);
 
 // The bytes at addresses base .. base + image_bytes - 1 (padding 0): texels, or a block format's
-// blocks as the pyramid keeps them. Throws tex::Error when the pyramid is not the one the layout
-// was made for (sizes, channel width, format).
-std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout);
+// blocks as the pyramids keep them, layer after layer. Throws tex::Error when a pyramid is not the
+// one the layout was made for (sizes, channel width, format), or the layer counts differ.
+std::vector<uint8_t> build_memory_image(const std::vector<const Pyramid*>& layers, const MemoryLayout& layout);
+inline std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout) {
+  return build_memory_image(std::vector<const Pyramid*>{&pyramid}, layout);
+}
 
 // The memory image file of `texsim mip --memory-image`: header (docs/memory.md §1), then the image.
 std::vector<uint8_t> memory_image_file(const Pyramid& pyramid, const MemoryLayout& layout);

@@ -28,32 +28,41 @@ void check_sampler(const SamplerConfig& config, const std::string& where) {
   if (const std::string p = config.unnormalized_problem(); !p.empty()) throw Error(where + p);
 }
 
-Sampler::Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPaths paths)
+Sampler::Sampler(const std::vector<const Pyramid*>& layers, const SamplerConfig& config, SamplerPaths paths)
     : config_(config),
-      channel_bits_(pyramid.levels[0].channel_bits),
-      border_(stage::border_texel(config.border_unorm16(), pyramid.levels[0].channel_bits)),
-      size0_(pyramid.extent0()),
-      last_level_(int(pyramid.levels.size()) - 1) {
+      channel_bits_(layers.empty() ? 8 : layers[0]->levels[0].channel_bits),
+      border_(stage::border_texel(config.border_unorm16(), channel_bits_)),
+      size0_(layers.empty() ? Extent{} : layers[0]->extent0()),
+      last_level_(layers.empty() ? 0 : layers[0]->last_level()),
+      layers_(int(layers.size())) {
+  if (layers_ < 1 || layers_ > kMaxLayers)
+    throw Error("sampler: " + std::to_string(layers_) + " layers; an array texture has 1 to " + std::to_string(kMaxLayers));
+  for (int l = 1; l < layers_; ++l)
+    if (layers[size_t(l)]->extent0() != size0_ || layers[size_t(l)]->last_level() != last_level_ ||
+        layers[size_t(l)]->levels[0].channel_bits != channel_bits_ || layers[size_t(l)]->format != layers[0]->format)
+      throw Error("sampler: layer " + std::to_string(l) + " differs from layer 0 in size, level count, format or channel width");
   check_sampler(config, "sampler: ");
   if (paths == SamplerPaths::FastOnly && channel_bits_ != 8)
     throw Error("sampler: the fast path takes 8-bit channels; this texture has " + std::to_string(channel_bits_));
   if (paths == SamplerPaths::FastOnly && !fast_path_takes(config))
     throw Error("sampler: the fast path takes neither clamp to border nor a magnification filter of its own");
-  if (paths == SamplerPaths::Both) memory_.emplace(pyramid);
+  if (paths == SamplerPaths::Both)
+    for (const Pyramid* p : layers) memory_.emplace_back(*p);
   if (channel_bits_ == 8)
-    for (const Image& img : pyramid.levels) {
-      packed_.emplace_back(size_t(stored_side(img.width)) * size_t(stored_side(img.height)));
-      const int k = int(packed_.size()) - 1;
-      for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) write_packed(k, x, y, img.at(x, y));
-    }
+    for (int l = 0; l < layers_; ++l)
+      for (const Image& img : layers[size_t(l)]->levels) {
+        packed_.emplace_back(size_t(stored_side(img.width)) * size_t(stored_side(img.height)));
+        const int k = int(packed_.size()) - 1 - l * (last_level_ + 1);
+        for (int y = 0; y < img.height; ++y)
+          for (int x = 0; x < img.width; ++x) write_packed(l, k, x, y, img.at(x, y));
+      }
 }
 
-void Sampler::write_packed(int level, int32_t x, int32_t y, const Texel& t) {
+void Sampler::write_packed(int layer, int level, int32_t x, int32_t y, const Texel& t) {
   const Extent e = level_extent(size0_, level);
   const size_t stride = size_t(stored_side(e.w));
   const uint32_t v = uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
-  BigVector<uint32_t>& p = packed_[size_t(level)];
+  BigVector<uint32_t>& p = packed_[size_t(layer * (last_level_ + 1) + level)];
   with_seam_copies(x, y, seam_copy(e.w), seam_copy(e.h),
                    [&](int32_t sx, int32_t sy) { p[size_t(sy) * stride + size_t(sx)] = v; });
 }
@@ -63,9 +72,14 @@ bool Sampler::fast_path_takes(const SamplerConfig& config) {
          config.reduction == Reduction::WeightedAverage;
 }
 
-void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t) {
-  if (memory_) memory_->write(level, x, y, t);
-  if (channel_bits_ == 8) write_packed(level, x, y, t);
+void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t, int layer) {
+  if (!memory_.empty()) memory_[size_t(layer)].write(level, x, y, t);
+  if (channel_bits_ == 8) write_packed(layer, level, x, y, t);
+}
+
+BankedMipMemory& Sampler::memory_of(const Request& r) {
+  if (memory_.empty()) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
+  return memory_[size_t(stage::array_layer(r.layer, layers_))];
 }
 
 Probes tex_probe(const Request& r, const SamplerConfig& config, Extent size0) {
@@ -119,39 +133,40 @@ Texel Sampler::sample(const Request& r) {
 
 // texelFetch: one probe, no filter (the filter's point sampling returns the texel exactly).
 Texel Sampler::fetch(const Request& r) {
-  if (!memory_) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
+  if (memory_.empty()) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
   if (r.has_derivatives) throw Error("sampler: a texel fetch carries no derivatives");
   ++samples_;
   ++probes_[1];
-  if (!stage::fetch_inside(r.u, r.v, r.lod, last_level(), size0_)) return {};
-  return memory_->fetch(r.lod, r.u, r.u, r.v, r.v, true, border_)[0];
+  if (!stage::fetch_inside(r.u, r.v, r.lod, last_level(), size0_) || !stage::fetch_layer_inside(r.layer, layers_)) return {};
+  return memory_[size_t(r.layer)].fetch(r.lod, r.u, r.u, r.v, r.v, true, border_)[0];
 }
 
 // textureGather: the linear filter's four taps at the base level, one component of each.
 Texel Sampler::gather(const Request& r) {
-  if (!memory_) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
+  BankedMipMemory& memory = memory_of(r);
   if (r.has_derivatives) throw Error("sampler: a gather carries no derivatives");
   ++samples_;
   ++probes_[1];
   const int32_t ru = stage::reduce(r.u, config_.wrap_u, config_.unnormalized), rv = stage::reduce(r.v, config_.wrap_v, config_.unnormalized);
-  return stage::gather(footprint(0, ru, rv, TexelFilter::Linear, true), r.component);
+  return stage::gather(footprint(memory, 0, ru, rv, TexelFilter::Linear, true), r.component);
 }
 
 // The 2x2 footprint of level k at the reduced coordinates (all four taps read, or only the first
 // for a nearest filter unless `all_taps`), with the weights of the second taps.
-stage::Footprint Sampler::footprint(int k, int32_t ru, int32_t rv, TexelFilter filter, bool all_taps) {
-  const Extent e = memory_->shape(k);
+stage::Footprint Sampler::footprint(BankedMipMemory& memory, int k, int32_t ru, int32_t rv, TexelFilter filter,
+                                    bool all_taps) {
+  const Extent e = memory.shape(k);
   const stage::WrappedTaps tu = stage::axis_taps(ru, e.w, config_.wrap_u, filter, config_.unnormalized);
   const stage::WrappedTaps tv = stage::axis_taps(rv, e.h, config_.wrap_v, filter, config_.unnormalized);
   stage::Footprint f;
-  f.taps = memory_->fetch(k, tu.i0, tu.i1, tv.i0, tv.i1, !all_taps && filter == TexelFilter::Nearest, border_);
+  f.taps = memory.fetch(k, tu.i0, tu.i1, tv.i0, tv.i1, !all_taps && filter == TexelFilter::Nearest, border_);
   f.fx = tu.w;
   f.fy = tv.w;
   return f;
 }
 
 stage::Unrounded Sampler::sample_probe(const Request& r) {
-  if (!memory_) throw Error("sampler: built for the fast path only (SamplerPaths::FastOnly); sample_rgba8 samples it");
+  BankedMipMemory& memory = memory_of(r);
   const stage::LevelSelect sel =
       stage::lod(r.lod, config_.lod_bias + r.bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
   const int32_t ru = stage::reduce(r.u, config_.wrap_u, config_.unnormalized), rv = stage::reduce(r.v, config_.wrap_v, config_.unnormalized);
@@ -162,7 +177,7 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   // f = 0 the blend returns slot 0 exactly).
   stage::Footprint slot[2];
   const int slots = sel.two_levels ? 2 : 1;
-  for (int s = 0; s < slots; ++s) slot[s] = footprint(s == 0 ? sel.d : sel.d1, ru, rv, texel_filter, false);
+  for (int s = 0; s < slots; ++s) slot[s] = footprint(memory, s == 0 ? sel.d : sel.d1, ru, rv, texel_filter, false);
   if (config_.reduction != Reduction::WeightedAverage)  // compares, no multiplies
     return stage::reduce_taps(slot[0], slot[sel.two_levels ? 1 : 0], sel.f, config_.reduction == Reduction::Max);
   multiplies_ += (linear ? 3 : 0) * slots + (sel.two_levels ? 1 : 0);
@@ -287,13 +302,15 @@ template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
 }
 
 template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
-void sample_batch(const FastLevel* levels, int last, Extent size0, const SamplerConfig& cfg,
+void sample_batch(const FastLevel* layer0, int last, int layers, Extent size0, const SamplerConfig& cfg,
                   const Request* requests, size_t n, uint32_t* out) {
   constexpr uint64_t kHalf = (uint64_t(1) << 23) | (uint64_t(1) << 55);  // rounding of both channels
   for (size_t i = 0; i < n; ++i) {
     const Request& r = requests[i];
+    const int layer = stage::request_layer(r.op, r.layer, layers);
+    const FastLevel* levels = layer0 + size_t(layer < 0 ? 0 : layer) * size_t(last + 1);
     if (r.op == Op::Fetch) [[unlikely]] {
-      out[i] = stage::fetch_inside(r.u, r.v, r.lod, last, size0)
+      out[i] = layer >= 0 && stage::fetch_inside(r.u, r.v, r.lod, last, size0)
                    ? levels[r.lod].texels[size_t(r.v) * levels[r.lod].stride + size_t(r.u)]
                    : 0;
       continue;
@@ -360,33 +377,47 @@ void Sampler::sample_rgba8(const Request* requests, size_t n, uint32_t* out) con
     throw Error("sample_rgba8: texture has " + std::to_string(channel_bits_) + "-bit channels; it takes 8-bit only");
   if (!fast_path_takes(config_))
     throw Error("sample_rgba8: clamp to border and a magnification filter of its own take the reference path");
-  // Built per call rather than stored, so a copied Sampler never points into another's texels.
-  FastLevel levels[kMaxLevels];
-  const int last = int(packed_.size()) - 1;
-  for (int k = 0; k <= last; ++k) {
-    const Extent e = level_extent(size0_, k);
-    levels[k] = {packed_[size_t(k)].data(), size_t(stored_side(e.w)), e.w, e.h, is_power_of_two(e.w) ? 0 : e.w,
+  // Built per call rather than stored, so a copied Sampler never points into another's texels; an
+  // array's layers one after another (layer l's level k at l * (last + 1) + k).
+  const int last = last_level_;
+  FastLevel one_layer[kMaxLevels];
+  std::vector<FastLevel> array_levels(layers_ > 1 ? packed_.size() : 0);
+  FastLevel* levels = layers_ > 1 ? array_levels.data() : one_layer;
+  for (size_t i = 0; i < packed_.size(); ++i) {
+    const Extent e = level_extent(size0_, int(i % size_t(last + 1)));
+    levels[i] = {packed_[i].data(), size_t(stored_side(e.w)), e.w, e.h, is_power_of_two(e.w) ? 0 : e.w,
                  is_power_of_two(e.h) ? 0 : e.h};
   }
+  const int layers = layers_;
   const SamplerConfig& cfg = config_;
   with_texel_filter(cfg.filter.texel, [&](auto tf) {
     with_mip(cfg.filter.mip, [&](auto mm) {
       with_wrap(cfg.wrap_u, [&](auto wu) {
         with_wrap(cfg.wrap_v, [&](auto wv) {
           sample_batch<decltype(tf)::value, decltype(mm)::value, decltype(wu)::value, decltype(wv)::value>(
-              levels, last, size0_, cfg, requests, n, out);
+              levels, last, layers, size0_, cfg, requests, n, out);
         });
       });
     });
   });
 }
 
-SamplerStats Sampler::stats() const { return {samples_, multiplies_, memory_ ? memory_->stats() : BankStats{}, probes_}; }
+SamplerStats Sampler::stats() const {
+  BankStats banks;  // every layer's reads, per level and bank
+  for (const BankedMipMemory& m : memory_) {
+    const BankStats& b = m.stats();
+    banks.reads += b.reads;
+    if (banks.bank_reads.size() < b.bank_reads.size()) banks.bank_reads.resize(b.bank_reads.size());
+    for (size_t k = 0; k < b.bank_reads.size(); ++k)
+      for (size_t i = 0; i < 4; ++i) banks.bank_reads[k][i] += b.bank_reads[k][i];
+  }
+  return {samples_, multiplies_, banks, probes_};
+}
 
 void Sampler::reset_stats() {
   samples_ = multiplies_ = 0;
   probes_ = {};
-  if (memory_) memory_->reset_stats();
+  for (BankedMipMemory& m : memory_) m.reset_stats();
 }
 
 }  // namespace tex

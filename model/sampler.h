@@ -74,6 +74,7 @@ struct Request {
   uint8_t sampler = 0;   // cached unit: the sampler-table entry it is sampled with (0..kMaxSamplers-1)
   Op op = Op::Sample;    // Op::Fetch: u, v, lod are the integers i, j and the level (stage::fetch_inside)
   uint8_t component = 0; // Op::Gather: the channel gathered, 0 (R) .. 3 (A)
+  int32_t layer = 0;     // an array texture's layer coordinate, Q16.16 (stage::array_layer); Op::Fetch: the integer layer
   bool has_derivatives = false;  // (a fetch has none)
   LodDerivatives deriv;  // Q8.24 texture widths per pixel (requests with derivatives)
 };
@@ -136,7 +137,13 @@ class Sampler {
   static bool fast_path_takes(const SamplerConfig& config);
   // Throws tex::Error for FastOnly with channels other than 8 bits or a configuration the fast path
   // does not take.
-  Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPaths paths = SamplerPaths::Both);
+  Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPaths paths = SamplerPaths::Both)
+      : Sampler(std::vector<const Pyramid*>{&pyramid}, config, paths) {}
+  // An array texture: its layers (1..kMaxLayers pyramids of one size, format and level count; a
+  // request reads the layer stage::request_layer gives). Throws tex::Error naming a layer that
+  // differs from layer 0, or a layer count outside 1..kMaxLayers.
+  Sampler(const std::vector<const Pyramid*>& layers, const SamplerConfig& config,
+          SamplerPaths paths = SamplerPaths::Both);
 
   // Reference path: every stage in order, counting reads and multiplies (not with FastOnly: throws
   // tex::Error).
@@ -148,30 +155,35 @@ class Sampler {
   // Bit-identical to sample() (tests/test_sampler.cpp checks it).
   void sample_rgba8(const Request* requests, size_t n, uint32_t* out) const;
 
-  // Replaces one texel of the pyramid the sampler reads (both paths).
-  void write_texel(int level, int32_t x, int32_t y, const Texel& t);
+  // Replaces one texel of the pyramid (of an array, of layer `layer`) the sampler reads (both paths).
+  void write_texel(int level, int32_t x, int32_t y, const Texel& t, int layer = 0);
 
   SamplerStats stats() const;
   void reset_stats();
   const SamplerConfig& config() const { return config_; }
   int last_level() const { return last_level_; }
+  int layers() const { return layers_; }
   int channel_bits() const { return channel_bits_; }
 
  private:
   Texel fetch(const Request& r);   // sample() of an Op::Fetch request
   Texel gather(const Request& r);  // and of an Op::Gather one
-  stage::Footprint footprint(int level, int32_t ru, int32_t rv, TexelFilter filter, bool all_taps);
-  void write_packed(int level, int32_t x, int32_t y, const Texel& t);
+  stage::Footprint footprint(BankedMipMemory& memory, int level, int32_t ru, int32_t rv, TexelFilter filter,
+                             bool all_taps);
+  BankedMipMemory& memory_of(const Request& r);  // the reference path's memories of r's layer
+  void write_packed(int layer, int level, int32_t x, int32_t y, const Texel& t);
 
   SamplerConfig config_;
-  std::optional<BankedMipMemory> memory_;  // the reference path's memories (not with FastOnly)
+  std::vector<BankedMipMemory> memory_;  // the reference path's memories, per layer (none with FastOnly)
   int channel_bits_;
   Texel border_;  // the border colour in the levels' channel width
   Extent size0_;
   int last_level_;
+  int layers_;
   uint64_t samples_ = 0, multiplies_ = 0;
   std::array<uint64_t, kMaxAniso + 1> probes_{};
-  // Per level, row-major RGBA8 of the stored sides (stored_side: with the seam copies), fast path only.
+  // Per layer and level (at layer * (last_level + 1) + level), row-major RGBA8 of the stored sides
+  // (stored_side: with the seam copies), fast path only.
   std::vector<BigVector<uint32_t>> packed_;
 };
 

@@ -173,6 +173,24 @@ inline bool fetch_inside(int32_t i, int32_t j, int32_t level, int last_level, Ex
   return i >= 0 && i < e.w && j >= 0 && j < e.h;
 }
 
+// ---------------------------------------------------------------- array layer (tex_layer)
+
+// The layer an array request reads (Vulkan "Image Operations", the layer of an array image):
+// clamp(RNE(a), 0, layers - 1) of the Q16.16 layer coordinate a, rounding a tie to the even layer
+// (no filtering across layers; a 2D texture is an array of one layer). A texel fetch's layer is an
+// integer: a layer outside 0..layers - 1 reads nothing (fetch_layer_inside).
+inline int array_layer(int32_t a, int layers) {
+  const int64_t whole = int64_t(a) >> kTexelCoordFracBits;
+  const int64_t rounded = (int64_t(a) + (int64_t(1) << (kTexelCoordFracBits - 1)) - 1 + (whole & 1)) >> kTexelCoordFracBits;
+  return int(std::clamp<int64_t>(rounded, 0, layers - 1));
+}
+inline bool fetch_layer_inside(int32_t layer, int layers) { return layer >= 0 && layer < layers; }
+// The layer a request reads: array_layer, or a fetch's integer layer (-1 when it reads nothing).
+inline int request_layer(Op op, int32_t a, int layers) {
+  if (op == Op::Fetch) return fetch_layer_inside(a, layers) ? int(a) : -1;
+  return array_layer(a, layers);
+}
+
 // ---------------------------------------------------------------- fetch (tex_fetch, tex_bank)
 
 // The bank of a texel: its parity in x and y.

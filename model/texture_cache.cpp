@@ -9,7 +9,7 @@ namespace tex {
 
 std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int channel_bits,
                                        const LayoutParams& params, const std::vector<TexelFormat>& formats,
-                                       const std::vector<int>& levels) {
+                                       const std::vector<int>& levels, const std::vector<int>& layers) {
   std::vector<MemoryLayout> out;
   LayoutParams p = params;
   uint64_t next = params.base;
@@ -19,7 +19,8 @@ std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int cha
     p.base = uint32_t(next);
     const TexelFormat f = out.size() < formats.size() ? formats[out.size()] : TexelFormat::Rgba8;
     const int n = out.size() < levels.size() ? levels[out.size()] : 0;
-    out.emplace_back(size, channel_bits, p, f, n);  // throws when it ends beyond 2^32
+    const int l = out.size() < layers.size() ? layers[out.size()] : 1;
+    out.emplace_back(size, channel_bits, p, f, n, l);  // throws when it ends beyond 2^32
     next += out.back().image_bytes();                   // a whole number of lines
   }
   return out;
@@ -140,9 +141,10 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     int32_t x[2], y[2];
     int nx = 1, ny = 1;
   } taps[2];
+  const int layer = stage::request_layer(r.op, r.layer, layout.layers());  // (-1: a fetch outside the layers)
   if (r.op == Op::Fetch) {
     out.slot[0].level = r.lod;
-    out.slot[0].needed = stage::fetch_inside(r.u, r.v, r.lod, layout.levels() - 1, layout.size0());
+    out.slot[0].needed = layer >= 0 && stage::fetch_inside(r.u, r.v, r.lod, layout.levels() - 1, layout.size0());
     taps[0] = {{r.u, r.u}, {r.v, r.v}};
   } else {
     const int32_t ru = stage::reduce(r.u, smp.wrap_u, smp.unnormalized), rv = stage::reduce(r.v, smp.wrap_v, smp.unnormalized);
@@ -196,7 +198,7 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     bool same = last_[size_t(cache)].mask == sl.block_mask;
     for (int p = 0; p < 4; ++p)
       if (sl.block_mask >> p & 1) {
-        address[size_t(p)] = layout.block_address(k, bx_of[p], by_of[p]);
+        address[size_t(p)] = layout.block_address(k, bx_of[p], by_of[p], layer);
         same = same && address[size_t(p)] == last_[size_t(cache)].address[size_t(p)];
       }
     LastLookup& last = last_[size_t(cache)];

@@ -50,12 +50,13 @@ struct TextureDescriptor {
   MemoryLayout layout;
 };
 
-// Layouts of several pyramids of `channel_bits` texels packed one after another from params.base
-// (each starts on a line); sizes are level 0's, formats and level counts one per pyramid (none:
-// all RGBA, full chains). Throws tex::Error when they do not fit the 32-bit address space.
+// Layouts of several textures of `channel_bits` texels packed one after another from params.base
+// (each starts on a line); sizes are level 0's, formats, level counts and layer counts one per
+// texture (none: all RGBA, full chains, one layer). Throws tex::Error when they do not fit the
+// 32-bit address space.
 std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int channel_bits,
                                        const LayoutParams& params, const std::vector<TexelFormat>& formats = {},
-                                       const std::vector<int>& levels = {});
+                                       const std::vector<int>& levels = {}, const std::vector<int>& layers = {});
 
 class TextureCache {
  public:

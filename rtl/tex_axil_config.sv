@@ -84,6 +84,7 @@ module tex_axil_config #(
   output logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_last_level,
   output logic [tex_pkg::FORMAT_W-1:0]      cfg_desc_format,
   output logic                              cfg_desc_srgb,
+  output logic [tex_pkg::LAYER_W-1:0]       cfg_desc_layers_m1,
   input  logic                              cfg_desc_ready,
   output logic                              cfg_smp_we,
   output logic [tex_pkg::SMP_ID_W-1:0]      cfg_smp_index,
@@ -181,7 +182,7 @@ module tex_axil_config #(
   localparam int NCNT = 9;  // CYCLES, SAMPLES, SAMPLE_ERRORS, LOOKUPS, MISSES, MEM_BYTES,
                             // OUT_STALL, MEM_WAIT, REQ_STALL
   localparam logic [31:0] ID      = 32'h5445_5855;  // "TEXU"
-  localparam logic [31:0] VERSION = 32'h0003_0002;  // major 3 (any texture size: DESC_SIZE), minor 2
+  localparam logic [31:0] VERSION = 32'h0003_0003;  // major 3 (any texture size: DESC_SIZE), minor 3 (layers)
                                                     // (FILTER.unnormalized, FILTER.reduction)
 
   localparam int FLW       = $clog2(FIFO_DEPTH + 1);
@@ -226,6 +227,7 @@ module tex_axil_config #(
   logic [tex_pkg::MEM_ADDR_W-1:0]   desc_base;
   logic [3:0]                       desc_attr;  // {srgb, format} (DESC_ATTR bits 19:16)
   logic [tex_pkg::LEVEL_W-1:0]      desc_last;  // DESC_ATTR bits 11:8
+  logic [tex_pkg::LAYER_W-1:0]      desc_layers_m1;  // DESC_ATTR bits 31:24
   logic [tex_pkg::SIZE_W-1:0]       desc_w, desc_h;
   logic                             smp_we;
   logic [tex_pkg::SMP_ID_W-1:0]     smp_index;
@@ -337,6 +339,7 @@ module tex_axil_config #(
       desc_base      <= '0;
       desc_attr      <= '0;
       desc_last      <= '1;  // every level of the chain
+      desc_layers_m1 <= '0;  // one layer
       desc_w         <= tex_pkg::SIZE_W'(1);
       desc_h         <= tex_pkg::SIZE_W'(1);
       smp_we         <= 1'b0;
@@ -362,7 +365,7 @@ module tex_axil_config #(
       if (wr_en && sel_min)    min_lod <= wd[15:0];
       if (wr_en && sel_max)    max_lod <= wd[15:0];
       if (wr_en && sel_base)   desc_base <= wd;
-      if (wr_en && sel_attr)   {desc_attr, desc_last} <= {wd[19:16], wd[11:8]};
+      if (wr_en && sel_attr)   {desc_layers_m1, desc_attr, desc_last} <= {wd[31:24], wd[19:16], wd[11:8]};
       if (wr_en && sel_size)   {desc_h, desc_w} <= {wd[16 +: tex_pkg::SIZE_W], wd[0 +: tex_pkg::SIZE_W]};
       if (wr_en && sel_wrap)   wrap <= wd[6:0] & 7'h77;
       if (wr_en && sel_smp_commit) smp_index <= wd[3:0];
@@ -381,6 +384,7 @@ module tex_axil_config #(
   assign cfg_desc_last_level = desc_last;
   assign cfg_desc_format  = attr_format;
   assign cfg_desc_srgb    = attr_srgb;
+  assign cfg_desc_layers_m1 = desc_layers_m1;
   assign cfg_smp_we       = smp_we;
   assign cfg_smp_index    = smp_index;
   assign cfg_smp_wrap_u   = wrap_u;
@@ -477,7 +481,7 @@ module tex_axil_config #(
         R_MIN_LOD:     rd_data = {16'd0, min_lod};
         R_MAX_LOD:     rd_data = {16'd0, max_lod};
         R_DESC_BASE:   rd_data = desc_base;
-        R_DESC_ATTR:   rd_data = {12'd0, desc_attr, 4'd0, desc_last, 8'd0};
+        R_DESC_ATTR:   rd_data = {desc_layers_m1, 4'd0, desc_attr, 4'd0, desc_last, 8'd0};
         R_DESC_SIZE:   rd_data = {2'd0, desc_h, 2'd0, desc_w};
         R_DESC_COMMIT: rd_data = {28'd0, desc_index};
         R_BORDER_RG:   rd_data = border[31:0];
@@ -532,9 +536,9 @@ module tex_axil_config #(
   // wraps, min/mag linear, mip mode, 3 LODs, aniso cap and pow2, border, unnormalized, reduction
   localparam int FSW = 2 * tex_pkg::WRAP_W + 2 + tex_pkg::MIP_W + 3 * tex_pkg::LOD_W + 5 + 64 + 1 + tex_pkg::REDUCTION_W;
   localparam int FCW = 1 + tex_pkg::TEX_ID_W + tex_pkg::SMP_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::SIZE_W + tex_pkg::LEVEL_W
-                       + tex_pkg::FORMAT_W + 2 + SETS_W + WAYS_W + FLW + FSW;
+                       + tex_pkg::FORMAT_W + tex_pkg::LAYER_W + 2 + SETS_W + WAYS_W + FLW + FSW;
   logic [FCW-1:0] f_cfg, f_cfg_q;        // unit_rst and every cfg_* output but the two we pulses
-  logic [2*tex_pkg::SIZE_W+39:0] f_desc, f_desc_q;  // the staged descriptor (cfg_desc_base .. _srgb)
+  logic [2*tex_pkg::SIZE_W+tex_pkg::LAYER_W+39:0] f_desc, f_desc_q;  // the staged descriptor (cfg_desc_base .. _layers_m1)
   logic [FSW-1:0] f_smp, f_smp_q;        // the staged sampler (cfg_smp_wrap_u .. _border_rgba)
   logic          f_desc_we_q, f_smp_we_q, f_clear_q, f_desc_ready_q;
   logic          f_b_new, f_r_new;       // a B (R) response that was not there last clock
@@ -555,9 +559,10 @@ module tex_axil_config #(
   endfunction
 
   assign f_cfg = {unit_rst, cfg_desc_index, cfg_smp_index, cfg_desc_base, cfg_desc_w, cfg_desc_h, cfg_desc_last_level,
-                  cfg_desc_format, cfg_desc_srgb, cfg_block_morton, cfg_log2_sets, cfg_log2_ways,
+                  cfg_desc_format, cfg_desc_srgb, cfg_desc_layers_m1, cfg_block_morton, cfg_log2_sets, cfg_log2_ways,
                   cfg_fifo_limit, f_smp};
-  assign f_desc = {cfg_desc_base, cfg_desc_srgb, cfg_desc_format, cfg_desc_last_level, cfg_desc_h, cfg_desc_w};
+  assign f_desc = {cfg_desc_base, cfg_desc_layers_m1, cfg_desc_srgb, cfg_desc_format, cfg_desc_last_level, cfg_desc_h,
+                   cfg_desc_w};
   assign f_smp  = {cfg_smp_wrap_u, cfg_smp_wrap_v, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_mip_mode,
                    cfg_smp_lod_bias, cfg_smp_min_lod, cfg_smp_max_lod, cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2,
                    cfg_smp_border_rgba, cfg_smp_unnormalized, cfg_smp_reduction};

@@ -10,6 +10,9 @@
 //            power of two, the repeat seam's copy of column (row) 0; its first line = the last
 //            one's + NBX * NBY (row-major) or + 2^(ceil log2 NBX + ceil log2 NBY) (Morton). One
 //            multiplier, used once per level, where one per level in a single clock would be 16.
+//            At the chain's last level (the smaller of desc_last_level and floor(log2 max(w, h)))
+//            the lines so far are the layer stride: an array's layers are whole pyramids one after
+//            another (layer l at the base + l x stride lines; model MemoryLayout::layer_bytes).
 // Handshake: busy (a register output) is high from the clock after desc_we until the set-up has
 //   written the last level, 1 + 2^LEVEL_W clocks; desc_we must stay low while busy is high, and
 //   tex_unit_cached takes no request meanwhile. The table is not reset (an entry is valid once
@@ -21,10 +24,12 @@
 //                       the pyramid at byte address desc_base (line aligned) of desc_w x desc_h
 //                       texels (1..2^MAX_LOG2_W, 1..2^MAX_LOG2_H; unsigned SIZE_W bits), levels
 //                       0..desc_last_level (LEVEL_W bits; the set-up walks all 16 slots anyway),
-//                       format desc_format (tex_pkg::FMT_*), sRGB if desc_srgb
+//                       format desc_format (tex_pkg::FMT_*), sRGB if desc_srgb, desc_layers_m1 + 1
+//                       layers (unsigned LAYER_W bits)
 //   block_morton      : the block order of every level (a registered cfg pin; set under reset)
 //   size_tex_a/_b     : two entries whose size is read: size_a, size_b = {h, w}, SIZE_W bits each;
-//                       last_b: entry b's last level
+//                       last_b: entry b's last level; layers_a: entry a's layer count - 1
+//   stride_tex, stride : an entry and its layer stride, in lines (LNW bits)
 //   tag_tex, tag_level: the tag stage's entry and its two slots' levels ({d1, d}, LEVEL_W each);
 //   tag_line          : per slot, the level's first line (a line number, MEM_ADDR_W - log2 line bytes)
 //   tag_pitch         : per slot, NBX (row-major: the block row's pitch), PTW bits unsigned
@@ -56,14 +61,18 @@ module tex_desc_table #(
   input  logic [tex_pkg::LEVEL_W-1:0]     desc_last_level,
   input  logic [tex_pkg::FORMAT_W-1:0]    desc_format,
   input  logic                            desc_srgb,
+  input  logic [tex_pkg::LAYER_W-1:0]     desc_layers_m1,
   input  logic                            block_morton,
   output logic                            busy,
 
   input  logic [TXW-1:0]                  size_tex_a,
   output logic [2*tex_pkg::SIZE_W-1:0]    size_a,
+  output logic [tex_pkg::LAYER_W-1:0]     layers_a,
   input  logic [TXW-1:0]                  size_tex_b,
   output logic [2*tex_pkg::SIZE_W-1:0]    size_b,
   output logic [tex_pkg::LEVEL_W-1:0]     last_b,
+  input  logic [TXW-1:0]                  stride_tex,
+  output logic [LNW-1:0]                  stride,
 
   input  logic [TXW-1:0]                  tag_tex,
   input  logic [2*tex_pkg::LEVEL_W-1:0]   tag_level,
@@ -78,6 +87,7 @@ module tex_desc_table #(
   localparam int VW      = tex_pkg::LEVEL_W;
   localparam int NW      = tex_pkg::SIZE_W;
   localparam int FW      = tex_pkg::FORMAT_W;
+  localparam int YL      = tex_pkg::LAYER_W;
   localparam int LOG2_LB = $clog2(LINE_BYTES);
   localparam int LEVELS  = 1 << VW;
   localparam int EW      = LNW + PTW + VW;  // a level entry: {first line, pitch, square}
@@ -98,6 +108,7 @@ module tex_desc_table #(
   logic [VW-1:0]          last_q;
   logic [FW-1:0]          format_q;
   logic                   srgb_q;
+  logic [YL-1:0]          layers_q;
   always_ff @(posedge clk) begin
     we_q <= !rst && desc_we;
     if (desc_we) begin  // (held through the set-up: no write while busy)
@@ -108,6 +119,7 @@ module tex_desc_table #(
       last_q   <= desc_last_level;
       format_q <= (BLOCK_FORMATS != 0) ? desc_format : tex_pkg::FMT_RGBA8;
       srgb_q   <= (SRGB != 0) && desc_srgb;
+      layers_q <= desc_layers_m1;
     end
   end
 
@@ -153,12 +165,22 @@ module tex_desc_table #(
     lines = block_morton ? LNW'(1) << (5'(lbx) + 5'(lby)) : LNW'(nbx) * LNW'(nby);
   end
   assign busy = we_q || walking;
+  // The chain's last level: desc_last_level, or floor(log2 max(w, h)) if the chain reaches 1x1 first.
+  logic [VW-1:0] chain_last;
+  always_comb begin
+    logic [VW-1:0] lead;
+    lead = '0;
+    for (int b = 1; b < NW; b++) if (w_q[b] || h_q[b]) lead = VW'(b);
+    chain_last = (last_q < lead) ? last_q : lead;
+  end
 
   logic [NW-1:0]  size_w [TEXTURES];
   logic [NW-1:0]  size_h [TEXTURES];
   logic [VW-1:0]  last   [TEXTURES];
   logic [FW-1:0]  format [TEXTURES];
   logic           srgb   [TEXTURES];
+  logic [YL-1:0]  layers [TEXTURES];
+  logic [LNW-1:0] strides [TEXTURES];
   logic [EW-1:0]  level  [TEXTURES * LEVELS];  // entry t, level k at t * LEVELS + k
   always_ff @(posedge clk) begin
     if (we_q) begin
@@ -167,9 +189,12 @@ module tex_desc_table #(
       last[index_q]   <= last_q;
       format[index_q] <= format_q;
       srgb[index_q]   <= srgb_q;
+      layers[index_q] <= layers_q;
     end
     if (walking)
       level[(32'(index_q) << VW) + 32'(lev)] <= {acc, nbx, (lbx < lby) ? lbx : lby};
+    if (walking && lev == chain_last)
+      strides[index_q] <= acc + lines - base_q;
   end
   always_ff @(posedge clk) begin
     if (rst) begin
@@ -192,6 +217,8 @@ module tex_desc_table #(
   assign size_a = {size_h[size_tex_a], size_w[size_tex_a]};
   assign size_b = {size_h[size_tex_b], size_w[size_tex_b]};
   assign last_b = last[size_tex_b];
+  assign layers_a = layers[size_tex_a];
+  assign stride   = strides[stride_tex];
   generate
     for (genvar s = 0; s < 2; s++) begin : g_slot
       logic [EW-1:0] e;

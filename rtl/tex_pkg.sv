@@ -25,6 +25,7 @@ package tex_pkg;
   localparam int LOG2_WAYS_W   = 2;   // cfg_log2_ways: 0, 1, 2 = 1, 2, 4 ways
   localparam int TEX_ID_W      = 4;   // req_tex: a texture descriptor-table entry, 0..15
   localparam int SMP_ID_W      = 4;   // req_sampler: a sampler-table entry, 0..15
+  localparam int LAYER_W       = 8;   // cfg_desc_layers_m1: an array texture's layers - 1 (1..256 layers)
 
   // ---- cfg_smp_wrap_u / cfg_smp_wrap_v
   localparam int WRAP_W = 3;

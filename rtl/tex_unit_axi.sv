@@ -11,7 +11,7 @@
 //   configuration write reaches the unit's pins 1 clock after the write's edge (BVALID with it).
 // Throughput: tex_unit_cached's (1 probe per clock while lines hit).
 // Ports: req_* / rsp_* as tex_unit_cached (req_u, req_v, req_dudx .. req_dvdy signed Q8.24;
-//   req_lod, req_bias signed Q8.8; req_tex a descriptor entry, req_sampler a sampler entry; rsp_rgba {A, B, G, R} CW-bit unsigned;
+//   req_lod, req_bias signed Q8.8; req_layer signed Q16.16; req_tex a descriptor entry, req_sampler a sampler entry; rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   rsp_error: the sample read a line the memory answered with an error, rsp_rgba 0);
 //   s_axi_* 32-bit data, ADDR_W-bit byte addresses; m_axi_* MEM_W-bit data,
 //   tex_pkg::MEM_ADDR_W-bit byte addresses, AXI_ID_W-bit IDs.
@@ -75,6 +75,7 @@ module tex_unit_axi #(
   input  logic [tex_pkg::SMP_ID_W-1:0]           req_sampler,
   input  logic [tex_pkg::OP_W-1:0]               req_op,
   input  logic [1:0]                             req_component,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_layer,
   input  logic [TAG_W-1:0]                       req_tag,
   output logic                                   rsp_valid,
   input  logic                                   rsp_ready,
@@ -111,6 +112,7 @@ module tex_unit_axi #(
   logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base;
   logic [tex_pkg::SIZE_W-1:0]        cfg_desc_w, cfg_desc_h;
   logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_last_level;
+  logic [tex_pkg::LAYER_W-1:0]       cfg_desc_layers_m1;
   logic                              cfg_desc_ready;
   logic                              cfg_smp_we;
   logic [tex_pkg::SMP_ID_W-1:0]      cfg_smp_index;
@@ -146,7 +148,7 @@ module tex_unit_axi #(
     .cfg_desc_last_level(cfg_desc_last_level),
     .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
     .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
-    .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
+    .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb), .cfg_desc_layers_m1(cfg_desc_layers_m1),
     .cfg_smp_min_linear(cfg_smp_min_linear), .cfg_smp_mag_linear(cfg_smp_mag_linear), .cfg_smp_mip_mode(cfg_smp_mip_mode),
     .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
     .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
@@ -172,7 +174,7 @@ module tex_unit_axi #(
     .cfg_desc_last_level(cfg_desc_last_level),
     .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
     .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
-    .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb),
+    .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb), .cfg_desc_layers_m1(cfg_desc_layers_m1),
     .cfg_smp_min_linear(cfg_smp_min_linear), .cfg_smp_mag_linear(cfg_smp_mag_linear), .cfg_smp_mip_mode(cfg_smp_mip_mode),
     .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
     .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
@@ -181,7 +183,8 @@ module tex_unit_axi #(
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v),
     .req_lod(req_lod), .req_bias(req_bias), .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx),
-    .req_dudy(req_dudy), .req_dvdy(req_dvdy), .req_tex(req_tex), .req_sampler(req_sampler), .req_op(req_op), .req_component(req_component), .req_tag(req_tag),
+    .req_dudy(req_dudy), .req_dvdy(req_dvdy), .req_tex(req_tex), .req_sampler(req_sampler), .req_op(req_op), .req_component(req_component),
+    .req_layer(req_layer), .req_tag(req_tag),
     .rsp_valid(rsp_valid), .rsp_ready(rsp_ready), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag),
     .rsp_error(rsp_error),
     .m_axi_arvalid(m_axi_arvalid), .m_axi_arready(m_axi_arready), .m_axi_araddr(m_axi_araddr),

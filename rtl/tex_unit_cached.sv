@@ -27,6 +27,9 @@
 //   req_tex          : the request's texture descriptor-table entry, 0..TEXTURES-1
 //   req_sampler      : the request's sampler-table entry, 0..SAMPLERS-1
 //   req_op, req_component : as tex_unit's (a sample, a gather or a texel fetch of the request's texture)
+//   req_layer        : the layer of an array texture, signed Q16.16 layers (rounded to the nearest,
+//                      a tie to the even, clamped to the texture's layers: tex_layer); a texel
+//                      fetch's: a signed integer (outside the layers: the fetch answers 0)
 //   cfg_smp_*        : a sampler write (cfg_smp_we high for one clock): entry cfg_smp_index gets
 //                      the fields of tex_unit's cfg_smp_* pins (filters, mip mode, LOD bias and
 //                      clamp signed Q8.8, anisotropy cap, wrap modes, reduction, border colour
@@ -39,7 +42,9 @@
 //                      2^MAX_LOG2_W x 2^MAX_LOG2_H, any size; a chain of levels of GL's sizes
 //                      from 0 to cfg_desc_last_level, or to 1x1 if that comes first: docs/memory.md §1) in format cfg_desc_format (tex_pkg::FMT_*: RGBA, or with BLOCK_FORMATS a
 //                      block format, decoded after the cache to unorm8 texels; docs/memory.md §1),
-//                      its R, G, B sRGB-encoded if cfg_desc_srgb (SRGB only; not BC4, BC5).
+//                      its R, G, B sRGB-encoded if cfg_desc_srgb (SRGB only; not BC4, BC5); an
+//                      array of cfg_desc_layers_m1 + 1 such pyramids one after another (1..256
+//                      layers; each layer's first line a whole number of lines after the last's).
 //                      Written before the requests that name the entry (and rewritten between
 //                      frames, with no request of that entry in flight); the caches need no flush
 //                      (they are tagged by address). The unit then sets the entry up (its levels'
@@ -91,6 +96,7 @@ module tex_unit_cached #(
   input  logic [tex_pkg::LEVEL_W-1:0]            cfg_desc_last_level,
   input  logic [tex_pkg::FORMAT_W-1:0]           cfg_desc_format,
   input  logic                                   cfg_desc_srgb,
+  input  logic [tex_pkg::LAYER_W-1:0]            cfg_desc_layers_m1,
   output logic                                   cfg_desc_ready,
   input  logic                                   cfg_smp_we,
   input  logic [tex_pkg::SMP_ID_W-1:0]           cfg_smp_index,
@@ -127,6 +133,7 @@ module tex_unit_cached #(
   input  logic [tex_pkg::SMP_ID_W-1:0]           req_sampler,
   input  logic [tex_pkg::OP_W-1:0]               req_op,
   input  logic [1:0]                             req_component,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_layer,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -255,6 +262,10 @@ module tex_unit_cached #(
   logic [tex_pkg::FORMAT_W-1:0] format_s4;
   logic            srgb_s4;
   logic [VW-1:0]   log2_lw_s4, log2_lh_s4;
+  localparam int YL = tex_pkg::LAYER_W;
+  logic [YL-1:0]   req_layers_m1;            // the request's texture's layer count - 1
+  logic [TXW-1:0]  stride_tex;               // the front's clock-3 texture
+  logic [LNW-1:0]  stride;                   // and its layer stride, in lines
   tex_desc_table #(
     .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .TEXTURES(TEXTURES), .BW(BLOCK_W), .BH(BLOCK_H),
     .LINE_BYTES(LINE_BITS / 8), .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB)
@@ -262,10 +273,10 @@ module tex_unit_cached #(
     .clk(clk), .rst(rst), .desc_we(cfg_desc_we), .desc_index(TXW'(cfg_desc_index)),
     .desc_base(cfg_desc_base), .desc_w(cfg_desc_w), .desc_h(cfg_desc_h),
     .desc_last_level(cfg_desc_last_level), .desc_format(cfg_desc_format), .desc_srgb(cfg_desc_srgb),
-    .block_morton(cfg_block_morton_q),
+    .desc_layers_m1(cfg_desc_layers_m1), .block_morton(cfg_block_morton_q),
     .busy(desc_busy),
-    .size_tex_a(TXW'(req_tex)), .size_a(req_size), .size_tex_b(probe_tex), .size_b(probe_size),
-    .last_b(probe_last_level),
+    .size_tex_a(TXW'(req_tex)), .size_a(req_size), .layers_a(req_layers_m1), .size_tex_b(probe_tex),
+    .size_b(probe_size), .last_b(probe_last_level), .stride_tex(stride_tex), .stride(stride),
     .tag_tex(tex_s4), .tag_level(level_s4), .tag_line(line_s4), .tag_pitch(pitch_s4),
     .tag_square(square_s4), .tag_format(format_s4), .tag_srgb(srgb_s4),
     .tag_log2_lw(log2_lw_s4), .tag_log2_lh(log2_lh_s4)
@@ -307,6 +318,14 @@ module tex_unit_cached #(
   logic [4:0] req_aniso;  // the request's sampler's cap, taken with the request
   assign req_aniso = smp_aniso[SXW'(req_sampler)];
 
+  // ---------------------------------------------------------------- the request's layer
+  // Resolved at the port (the texture's layer count is read there as its size is) and carried in
+  // tex_probe's tag: 9 bits where the coordinate would be 32.
+  logic [YL-1:0] req_layer_index;
+  logic          req_layer_outside;
+  tex_layer u_layer (.coord(req_layer), .fetch(req_op == tex_pkg::OP_FETCH), .layers_m1(req_layers_m1),
+                     .layer(req_layer_index), .outside(req_layer_outside));
+
   // ---------------------------------------------------------------- requests 1-4: tex_probe
   logic en_front, en_back;
   logic probe_ready;  // tex_probe takes a request (while no descriptor is being set up)
@@ -319,18 +338,19 @@ module tex_unit_cached #(
   logic [SXW-1:0]                         probe_smp;   // and its sampler
   logic [tex_pkg::OP_W-1:0]               probe_op;    // and its operation
   logic [1:0]                             probe_component;
+  logic [YL:0]                            probe_layer;  // {a fetch outside the layers, the layer}
   logic [2:0]                             probe_held;  // requests in tex_probe
-  tex_probe #(.TAG_W(2 + tex_pkg::OP_W + SXW + TXW + TGW)) u_probe (
+  tex_probe #(.TAG_W(YL + 3 + tex_pkg::OP_W + SXW + TXW + TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front),
     .req_valid(req_valid && !desc_busy), .req_ready(probe_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_w(req_size[0 +: NW]), .req_h(req_size[NW +: NW]),
     .req_max_aniso_m1(req_aniso[3:0]), .req_aniso_pow2(req_aniso[4]),
-    .req_tag({req_component, req_op, SXW'(req_sampler), TXW'(req_tex), req_tag}),
+    .req_tag({req_layer_outside, req_layer_index, req_component, req_op, SXW'(req_sampler), TXW'(req_tex), req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n),
-    .probe_tag({probe_component, probe_op, probe_smp, probe_tex, probe_tag}),
+    .probe_tag({probe_layer, probe_component, probe_op, probe_smp, probe_tex, probe_tag}),
     .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
   );
   // The probe's sampler's fields for the front (taken at its clock 1; its texture's size likewise).
@@ -365,6 +385,24 @@ module tex_unit_cached #(
   end
 
   assign tex_s4 = tex_f[3*TXW +: TXW];
+
+  // The layer: its first line's offset, layer x stride, made in clock 3 from the texture's stride
+  // (one multiplier) and registered for the tag stage, which adds it to both slots' level lines;
+  // a fetch outside the layers makes every tap a border tap and the fetch zero, as tex_front's
+  // fetch outside the texture does.
+  logic [YL:0]    layer_f1, layer_f2, layer_f3;
+  logic [LNW-1:0] layer_offset_s4;
+  logic           layer_outside_s4;
+  assign stride_tex = tex_f[2*TXW +: TXW];
+  always_ff @(posedge clk) begin
+    if (en_front) begin
+      layer_f1 <= probe_layer;
+      layer_f2 <= layer_f1;
+      layer_f3 <= layer_f2;
+      layer_offset_s4  <= LNW'(layer_f3[YL-1:0]) * stride;
+      layer_outside_s4 <= layer_f3[YL];
+    end
+  end
   logic [WB-1:0]   f_s4;
   logic [4*WB-1:0] w_s4;
   logic [4*NW-1:0] size_s4;       // the slots' level sizes
@@ -372,6 +410,8 @@ module tex_unit_cached #(
   logic [4*YW-1:0] y;
   logic [3:0]      border_x, border_y;  // slot s tap j at [s*2 + j]: outside its level (mode border)
   logic            zero_s4;             // a texel fetch that reads nothing (its blend is 0)
+  logic [3:0]      border_x_front, border_y_front;  // tex_front's (before a fetch's layer)
+  logic            zero_front;
   tex_front #(.XW(XW), .YW(YW)) u_front (
     .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
     .req_w(probe_size[0 +: NW]), .req_h(probe_size[NW +: NW]), .req_last_level(probe_last_level),
@@ -382,8 +422,13 @@ module tex_unit_cached #(
     .req_max_lod(probe_smp_front[2*WW + 2 + PW + 2*LW +: LW]), .req_unnormalized(probe_smp_front[FRW - 1]),
     .req_fetch(probe_op == tex_pkg::OP_FETCH), .req_gather(probe_op == tex_pkg::OP_GATHER),
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
-    .border_x(border_x), .border_y(border_y), .zero(zero_s4)
+    .border_x(border_x_front), .border_y(border_y_front), .zero(zero_front)
   );
+  assign border_x = border_x_front | {4{layer_outside_s4}};
+  assign border_y = border_y_front | {4{layer_outside_s4}};
+  assign zero_s4  = zero_front || layer_outside_s4;
+  logic [2*LNW-1:0] layer_line_s4;  // the slots' level lines in the request's layer
+  assign layer_line_s4 = {line_s4[LNW +: LNW] + layer_offset_s4, line_s4[0 +: LNW] + layer_offset_s4};
 
   // ---------------------------------------------------------------- AXI4 read master
   // The miss ring's line reads and the fill FIFO's beats are the AR and R channels: one INCR burst
@@ -418,7 +463,7 @@ module tex_unit_cached #(
     .clk(clk), .rst(rst), .en_front(en_front), .en_back(en_back),
     .front_valid(valid_f[4]), .front_tag({zero_s4, tag_f4}), .front_smp(smp_f[3*SXW +: SXW]), .level_odd(level_s4[0]),
     .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
-    .front_line(line_s4), .front_pitch(pitch_s4), .front_square(square_s4), .front_format(format_s4),
+    .front_line(layer_line_s4), .front_pitch(pitch_s4), .front_square(square_s4), .front_format(format_s4),
     .front_srgb(srgb_s4), .front_log2_lw(log2_lw_s4), .front_log2_lh(log2_lh_s4),
     .border_x(border_x), .border_y(border_y),
     .smp_we(smp_we_q), .smp_index(smp_index_q), .smp_border_rgba(smp_border_q),
@@ -500,6 +545,7 @@ module tex_unit_cached #(
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [tex_pkg::OP_W-1:0]               req_op_q;
   logic [1:0]                             req_component_q;
+  logic [tex_pkg::REQ_COORD_W-1:0]        req_layer_q;
   logic [tex_pkg::TEX_ID_W-1:0]           req_tex_q;
   logic [tex_pkg::SMP_ID_W-1:0]           req_sampler_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
@@ -522,6 +568,7 @@ module tex_unit_cached #(
       req_tag_q <= req_tag;
       req_op_q  <= req_op;
       req_component_q <= req_component;
+      req_layer_q <= req_layer;
       req_tex_q <= req_tex;
       req_sampler_q <= req_sampler;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
@@ -567,7 +614,7 @@ module tex_unit_cached #(
         else $error("tex_unit_cached: req_tex %0d is beyond the descriptor table (TEXTURES = %0d)", req_tex, TEXTURES);
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
-              && req_tag == req_tag_q && req_op == req_op_q && req_component == req_component_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
+              && req_tag == req_tag_q && req_op == req_op_q && req_component == req_component_q && req_layer == req_layer_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin

@@ -103,7 +103,9 @@ module tex_ice40_cached_top #(
   localparam int O_COMP    = O_OP + tex_pkg::OP_W;  // req_component
   localparam int O_UNNORM  = O_COMP + 2;        // cfg_smp_unnormalized
   localparam int O_REDUCE  = O_UNNORM + 1;      // cfg_smp_reduction
-  localparam int NIN       = O_REDUCE + tex_pkg::REDUCTION_W;
+  localparam int O_LAYER   = O_REDUCE + tex_pkg::REDUCTION_W;  // req_layer
+  localparam int O_LAYERS  = O_LAYER + UW;      // cfg_desc_layers_m1
+  localparam int NIN       = O_LAYERS + tex_pkg::LAYER_W;
 
   logic [NIN-1:0] in_bits;
   always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
@@ -142,6 +144,7 @@ module tex_ice40_cached_top #(
     .req_valid(in_bits[O_VALID]), .req_ready(req_ready), .req_u(in_bits[O_U +: UW]),
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
     .req_op(in_bits[O_OP +: tex_pkg::OP_W]), .req_component(in_bits[O_COMP +: 2]),
+    .req_layer(in_bits[O_LAYER +: UW]), .cfg_desc_layers_m1(in_bits[O_LAYERS +: tex_pkg::LAYER_W]),
     .req_bias('0),  // lambda requests (textureLod) have no bias of their own
     // Lambda requests only (the LOD / anisotropy unit is tied off and optimized away: a fit
     // of the probe datapath on the HX8K is not measured here).

@@ -143,7 +143,8 @@ std::string op_label(Op op, int component, const SamplerConfig& c) {
 }
 
 int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& textures_path,
-               const std::string& out_path, const std::string& op_option, const std::string& component_option) {
+               const std::string& texture_layers, const std::string& out_path, const std::string& op_option,
+               const std::string& component_option) {
   const auto t0 = std::chrono::steady_clock::now();
   // Everything is checked before the work: options, engine, outputs, texture, every query.
   Op op{};
@@ -160,14 +161,30 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   EngineOptions eo = o.engine_options();
   OutputSet outputs;
   std::vector<TextureListEntry> list;
+  // --texture-layers: an array of those images, in place of --texture.
+  std::vector<std::string> layer_paths;
+  if (!texture_layers.empty()) {
+    if (o.texture_opt->count() || !textures_path.empty())
+      throw Error("sample: give one of --texture, --texture-layers and --textures");
+    for (size_t at = 0;;) {
+      const size_t comma = texture_layers.find(',', at);
+      layer_paths.push_back(texture_layers.substr(at, comma - at));
+      if (layer_paths.back().empty()) throw Error("--texture-layers " + quote_clipped(texture_layers) + ": an empty path");
+      if (comma == std::string::npos) break;
+      at = comma + 1;
+    }
+    for (const std::string& p : layer_paths) outputs.add_input(p, "--texture-layers");
+  }
   if (!textures_path.empty()) {
     if (o.texture_opt->count()) throw Error("sample: give --texture or --textures, not both");
     list = read_texture_list(textures_path, cfg);
     outputs.add_input(textures_path, "--textures");
     for (const TextureListEntry& e : list) outputs.add_input(e.path, "--textures");
-  } else {
+  } else if (layer_paths.empty()) {
     o.add_inputs(outputs);
     list.push_back({o.texture, cfg, false, {}, {}, ""});
+  } else {
+    list.push_back({layer_paths[0], cfg, false, {}, {}, ""});
   }
   outputs.add_input(queries_path, "--queries");
   OutputFile& result = outputs.declare(out_path, "--out");
@@ -201,8 +218,8 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   } catch (...) {
     query_error = std::current_exception();
   }
-  std::vector<Pyramid> pyramids;
-  pyramids.reserve(list.size());
+  std::vector<std::vector<Pyramid>> arrays;  // each texture's layers (a 2D texture: one)
+  arrays.reserve(list.size());
   TextureTable table;
   for (const TextureListEntry& e : list) {
     TextureOptions entry = topts;
@@ -211,13 +228,16 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
     entry.max_level = e.max_level.value_or(entry.max_level);
     if (e.base_level || e.max_level)
       entry.view_given_by = e.at + "base=" + std::to_string(entry.base_level) + " max=" + std::to_string(entry.max_level);
-    pyramids.push_back(load_pyramid(e.path, entry));
-    table.push_back({&pyramids.back()});
+    const std::vector<Pyramid>& layers = arrays.emplace_back(load_array(layer_paths.empty() ? std::vector<std::string>{e.path} : layer_paths, entry));
+    BoundTexture bound(&layers[0]);
+    for (size_t l = 1; l < layers.size(); ++l) bound.more_layers.push_back(&layers[l]);
+    table.push_back(bound);
   }
   if (query_error) std::rethrow_exception(query_error);
+  check_tables(table, samplers, eo.memory);  // (before any output: an array needs the cached unit)
   const bool kept = parser && parser->kept();
   if (parser && (!kept || o.engine != "model")) parser->wait();
-  const Pyramid& pyr = pyramids[0];
+  const Pyramid& pyr = arrays[0][0];
   if (trace) eo.trace_path = trace->write_path();
 
   std::optional<MissTraceWriter> misses;
@@ -270,10 +290,11 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
     std::fprintf(report, "texsim sample: %zu queries, %s, %zu textures, engine %s -> %s (%.2f s)\n", count,
                  op_label(op, component, cfg).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
   else
-    std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture, engine %s -> %s (%.2f s)\n",
+    std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture%s, engine %s -> %s (%.2f s)\n",
                  count, op_label(op, component, cfg).c_str(), wrap_name(samplers[0].wrap_u).c_str(),
-                 wrap_name(samplers[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height, o.engine.c_str(),
-                 out_path.c_str(), secs);
+                 wrap_name(samplers[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height,
+                 table[0].layers() > 1 ? (" x " + std::to_string(table[0].layers()) + " layers").c_str() : "",
+                 o.engine.c_str(), out_path.c_str(), secs);
   return 0;
 }
 
@@ -432,7 +453,8 @@ int main(int argc, char** argv) {
   sample_opts.add_to(*sample);
   sample->add_option("--queries,-q", queries,
                      "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy, either with a leading tex column, or "
-                     "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper; with --op gather u,v, with --op fetch i,j,level (- = standard input)")
+                     "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper; with --op gather u,v, with --op fetch i,j,level; "
+                     "an array's layer as a column after u,v (i,j): u,v,layer,lod, i,j,layer,level, ... (- = standard input)")
       ->required();
   std::string sample_op = "sample", sample_component = "0";
   sample->add_option("--op", sample_op,
@@ -443,7 +465,12 @@ int main(int argc, char** argv) {
   sample->add_option("--component", sample_component, "the component a gather gathers: 0 1 2 3 or r g b a (R G B A)")
       ->capture_default_str();
   sample->add_option("--out,-o", out, "result CSV: header r,g,b,a (- = standard output)")->required();
-  std::string textures_list;
+  std::string textures_list, texture_layers;
+  sample->add_option("--texture-layers", texture_layers,
+                     "an array texture, in place of --texture: its layers' image files A,B,C,... (1 to 256 of one size; "
+                     "each gets its own pyramid); --texture also takes DDS/KTX/KTX2 array files. A query's layer "
+                     "is rounded to the nearest (a tie to the even) and clamped to the layers; a fetch's outside "
+                     "them answers 0");
   sample->add_option("--textures", textures_list,
                      "a descriptor table instead of --texture: one `id path [wrap_u [wrap_v]]` per line, ids 0, 1, ... "
                      "(what render --trace-queries writes); the trace's tex column names the entry");
@@ -592,7 +619,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (*sample) return cmd_sample(sample_opts, queries, textures_list, out, sample_op, sample_component);
+    if (*sample) return cmd_sample(sample_opts, queries, textures_list, texture_layers, out, sample_op, sample_component);
     if (*mip)
       return cmd_mip(mip_texture, mip_mode, mip_resize, mip_format, mip_format_opt->count() > 0, mip_srgb, dump_dir, layout,
                      image);

@@ -202,6 +202,12 @@ void check_tables(const TextureTable& textures, const SamplerTable& samplers, Me
   if (samplers.size() > 1 && memory != Memory::Cached)
     throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one sampler; "
                 "use --memory cached, whose sampler table holds up to " + std::to_string(kMaxSamplers));
+  if (textures[0].layers() > 1 && memory != Memory::Cached)
+    throw Error("an array of " + std::to_string(textures[0].layers()) +
+                " layers: the on-chip unit holds one 2D texture (the paper's per-level memories); use --memory cached");
+  for (const BoundTexture& t : textures)
+    if (t.layers() > kMaxLayers)
+      throw Error("an array of " + std::to_string(t.layers()) + " layers: a texture has 1 to " + std::to_string(kMaxLayers));
 }
 
 void check_request_tables(const Request& r, size_t textures, size_t samplers) {
@@ -218,9 +224,9 @@ SamplerPairs::SamplerPairs(const TextureTable& textures, const SamplerTable& sam
   check_tables(textures, samplers, Memory::Cached);
 }
 
-void SamplerPairs::write_texel(int texture, int level, int x, int y, const Texel& t) {
+void SamplerPairs::write_texel(int texture, int level, int x, int y, const Texel& t, int layer) {
   for (size_t s = 0; s < samplers_.size(); ++s)
-    if (Sampler* p = pairs_[size_t(texture) * samplers_.size() + s].get()) p->write_texel(level, x, y, t);
+    if (Sampler* p = pairs_[size_t(texture) * samplers_.size() + s].get()) p->write_texel(level, x, y, t, layer);
 }
 
 std::vector<const Sampler*> SamplerPairs::built() const {
@@ -236,7 +242,7 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
                 std::to_string(kMaxTextures));
   std::vector<Extent> sizes;
   std::vector<TexelFormat> formats;
-  std::vector<int> levels;
+  std::vector<int> levels, layers;
   const int bits = textures[0].pyramid->memory_channel_bits();
   for (const BoundTexture& t : textures) {
     if (t.pyramid->memory_channel_bits() != bits)
@@ -245,8 +251,9 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
     sizes.push_back(t.pyramid->extent0());
     formats.push_back(t.pyramid->format);
     levels.push_back(int(t.pyramid->levels.size()));
+    layers.push_back(t.layers());
   }
-  const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout, formats, levels);
+  const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout, formats, levels, layers);
   std::vector<TextureDescriptor> out;
   for (size_t i = 0; i < textures.size(); ++i) out.push_back({layouts[i]});
   return out;
@@ -255,7 +262,7 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
 std::vector<uint8_t> frame_memory_image(const TextureTable& textures, const std::vector<TextureDescriptor>& descriptors) {
   std::vector<uint8_t> image;
   for (size_t i = 0; i < textures.size(); ++i) {
-    const std::vector<uint8_t> bytes = build_memory_image(*textures[i].pyramid, descriptors[i].layout);
+    const std::vector<uint8_t> bytes = build_memory_image(textures[i].all_layers(), descriptors[i].layout);
     image.insert(image.end(), bytes.begin(), bytes.end());  // packed: each starts where the last ended
   }
   return image;

@@ -168,7 +168,16 @@ EngineResult run_collected(const std::vector<Request>& requests,
 // name an entry by Request::texture, and the sampler-table entry they read it with by
 // Request::sampler (a frame's SamplerTable).
 struct BoundTexture {
-  const Pyramid* pyramid = nullptr;
+  BoundTexture(const Pyramid* layer0 = nullptr, std::vector<const Pyramid*> more = {})
+      : pyramid(layer0), more_layers(std::move(more)) {}
+  const Pyramid* pyramid;                   // layer 0 (a 2D texture's one layer)
+  std::vector<const Pyramid*> more_layers;  // an array texture's layers 1.. (the size, format and levels of layer 0)
+  int layers() const { return 1 + int(more_layers.size()); }
+  std::vector<const Pyramid*> all_layers() const {
+    std::vector<const Pyramid*> out{pyramid};
+    out.insert(out.end(), more_layers.begin(), more_layers.end());
+    return out;
+  }
 };
 using TextureTable = std::vector<BoundTexture>;
 
@@ -188,14 +197,14 @@ class SamplerPairs {
     if (r.texture >= textures_.size() || r.sampler >= samplers_.size()) [[unlikely]]
       check_request_tables(r, textures_.size(), samplers_.size());
     std::unique_ptr<Sampler>& s = pairs_[size_t(r.texture) * samplers_.size() + r.sampler];
-    if (!s) [[unlikely]] s = std::make_unique<Sampler>(*textures_[r.texture].pyramid, samplers_[r.sampler], paths_);
+    if (!s) [[unlikely]] s = std::make_unique<Sampler>(textures_[r.texture].all_layers(), samplers_[r.sampler], paths_);
     return *s;
   }
   // Every pair built so far, for counters.
   std::vector<const Sampler*> built() const;
   // A texel of a texture written into every pair of it built so far (a pair built later takes the
   // texture as it then stands).
-  void write_texel(int texture, int level, int x, int y, const Texel& t);
+  void write_texel(int texture, int level, int x, int y, const Texel& t, int layer = 0);
 
  private:
   TextureTable textures_;

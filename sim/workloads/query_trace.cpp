@@ -145,8 +145,9 @@ namespace {
 struct TraceFormat {
   const char* header;
   // a tex column; a smp column; u,v,lod (else the four derivatives); a bias column; quad,x,y,helper;
-  // i,j,level (a texel fetch, in place of u,v,lod); u,v alone (a gather)
-  bool texture, sampler, lod, bias, quad, fetch = false, gather = false;
+  // i,j,level (a texel fetch, in place of u,v,lod); u,v alone (a gather); a layer column after u,v
+  // (i,j) (an array texture's layer: layered_formats)
+  bool texture, sampler, lod, bias, quad, fetch = false, gather = false, layer = false;
 };
 constexpr TraceFormat kFormats[] = {
     {"u,v,lod", false, false, true, false, false},
@@ -168,10 +169,32 @@ constexpr TraceFormat kFormats[] = {
 };
 constexpr int kMaxColumns = 11;
 
+// kFormats and, for each but the frame trace, its form with a layer column after u,v (i,j).
+struct NamedFormat {
+  std::string header;
+  TraceFormat format;
+};
+const std::vector<NamedFormat>& layered_formats() {
+  static const std::vector<NamedFormat> all = [] {
+    std::vector<NamedFormat> out;
+    for (const TraceFormat& f : kFormats) {
+      out.push_back({f.header, f});
+      if (f.quad) continue;
+      std::string h = f.header;
+      const size_t at = h.find(f.fetch ? "i,j" : "u,v") + 3;
+      TraceFormat l = f;
+      l.layer = true;
+      out.push_back({h.insert(at, ",layer"), l});
+    }
+    return out;
+  }();
+  return all;
+}
+
 // The headers of kFormats, in short: [tex,[smp,]] before u,v,lod and u,v,dudx,...
 std::string known_headers() {
-  return "[tex,[smp,]] then u,v,lod, u,v,dudx,dvdx,dudy,dvdy[,bias], u,v (gather) or i,j,level (fetch), or " +
-         std::string(kFrameTraceHeader);
+  return "[tex,[smp,]] then u,v[,layer] and ,lod or ,dudx,dvdx,dudy,dvdy[,bias] or nothing (gather), "
+         "i,j[,layer],level (fetch); or tex,u,v,...,helper";
 }
 
 }  // namespace
@@ -262,8 +285,8 @@ void QueryReader::read_header() {
     const int n = split(line, f, kMaxColumns);
     std::string header;
     for (int i = 0; i < std::min(n, kMaxColumns); ++i) header += (i ? "," : "") + std::string(f[i]);
-    for (const TraceFormat& format : kFormats)
-      if (header == format.header && n <= kMaxColumns) {
+    for (const auto& [name, format] : layered_formats())
+      if (header == name && n <= kMaxColumns) {
         columns_ = int(std::count(header.begin(), header.end(), ',')) + 1;
         texture_ = format.texture;
         sampler_ = format.sampler;
@@ -272,6 +295,7 @@ void QueryReader::read_header() {
         quad_ = format.quad;
         fetch_ = format.fetch;
         gather_ = format.gather;
+        layer_ = format.layer;
         header_ = header;
       }
     if (columns_ == 0) throw Error(at + "unknown header " + quote_clipped(line) + " (expected " + known_headers() + ")");
@@ -311,11 +335,13 @@ bool QueryReader::next(Query& q) {
       q.fetch = true;
       q.u = double(whole(c++, INT32_MIN, INT32_MAX, "i"));
       q.v = double(whole(c++, INT32_MIN, INT32_MAX, "j"));
+      if (layer_) q.layer = double(whole(c++, INT32_MIN, INT32_MAX, "layer"));
       q.lod = double(whole(c++, kLodMin, kLodMax, "level"));
       return true;
     }
     q.u = v[c++];
     q.v = v[c++];
+    if (layer_) q.layer = v[c++];
     if (gather_) {
       q.gather = true;
       return true;
@@ -534,8 +560,11 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag, QueryF
     r.u = int32_t(q.u);
     r.v = int32_t(q.v);
     r.lod = int32_t(q.lod);
+    r.layer = int32_t(q.layer);
     return r;
   }
+  if (!to_texel_coord_fixed(q.layer, r.layer))
+    throw Error(at() + "layer = " + std::to_string(q.layer) + " is outside [-32768, 32768)");
   const bool texels = form.unnormalized >> r.sampler & 1;
   if (q.gather) {
     if (texels)  // (VkSamplerCreateInfo: not with OpImage*Gather)

@@ -22,6 +22,7 @@ struct Query {
   bool fetch = false;  // a texel fetch (header i,j,level): u, v, lod hold the integers i, j, level
   bool gather = false; // a gather (header u,v): u, v alone
   double u = 0, v = 0;
+  double layer = 0;   // an array texture's layer coordinate (a `layer` column; a fetch's: a whole number)
   bool explicit_lod = true;
   double lod = 0;     // levels, when explicit_lod
   Derivatives deriv;  // otherwise
@@ -46,7 +47,8 @@ constexpr const char* kFrameTraceHeader = "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,
 // sampler-table entry, 0..15), the derivative forms optionally with a trailing `bias` column (the
 // request's own LOD bias in levels, GLSL texture(s, uv, bias)), or kFrameTraceHeader; texel
 // fetches: `i,j,level` (whole numbers: i, j 32-bit, level 16-bit), gathers `u,v`, each also with
-// `tex` or `tex,smp`; `#` lines are
+// `tex` or `tex,smp`; each but the frame trace with a `layer` column after u,v (i,j): an array
+// texture's layer coordinate (Q16.16 when converted; a fetch's a whole number); `#` lines are
 // comments, blank lines are skipped; a UTF-8 byte-order mark is skipped. A file with only the
 // header has no queries (not an error). Throws tex::Error naming the file, the line number and
 // the text of a bad line (quoted once, at most 80 characters): no header, a NUL byte (a binary
@@ -85,7 +87,8 @@ class QueryReader {
   uint64_t file_pos_ = 0, file_end_ = UINT64_MAX;  // offset of buf_[end_]; where reading stops
   bool eof_ = false;
   int line_no_ = 0, columns_ = 0;
-  bool texture_ = false, sampler_ = false, lod_ = false, bias_ = false, quad_ = false, fetch_ = false, gather_ = false;  // the header's columns
+  bool texture_ = false, sampler_ = false, lod_ = false, bias_ = false, quad_ = false, fetch_ = false, gather_ = false,
+       layer_ = false;  // the header's columns
   std::string header_;
 };
 

@@ -1,6 +1,7 @@
 #include "workloads/texture_files.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <squish.h>
 #include <fstream>
@@ -175,6 +176,78 @@ uint64_t bytes_of_level(const TextureFile& t, int k) {
   return level_bytes(t.format, s.width(), s.height());
 }
 
+std::string hex(uint32_t v) {
+  char b[16];
+  std::snprintf(b, sizeof b, "0x%X", v);
+  return b;
+}
+
+const char* const kFaceNames[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+
+// An array's element count from the header field `field` (in KTX, 0: not an array).
+int check_layers(const Reader& r, const std::string& field, uint32_t count, bool zero_is_one) {
+  if (count == 0 && zero_is_one) return 1;
+  if (count < 1 || count > uint32_t(kMaxLayers))
+    r.fail(field + " " + std::to_string(count) + ": an array texture has 1 to " + std::to_string(kMaxLayers) + " layers" +
+           (zero_is_one ? " (0: not an array)" : ""));
+  return int(count);
+}
+
+int check_faces(const Reader& r, const std::string& field, uint32_t faces) {
+  if (faces != 1 && faces != 6) r.fail(field + " " + std::to_string(faces) + ": a texture has 1 face, or 6 (a cube map)");
+  return int(faces);
+}
+
+// After check_shape: the layers and faces, and a cube's square faces. (Layers <= kMaxLayers and
+// faces 1 or 6 keep layers x faces <= 6 x kMaxLayers.)
+void set_images(const Reader& r, TextureFile& t, int layers, int faces) {
+  t.layers = layers;
+  t.faces = faces;
+  if (faces == 6 && t.width != t.height)
+    r.fail("width " + std::to_string(t.width) + ", height " + std::to_string(t.height) + ": a cube map's faces are square");
+}
+
+int image_count(const TextureFile& t) { return t.layers * t.faces; }
+
+// "", "layer 3 ", "face -Y ", "layer 3 face -Y ": where an error is.
+std::string image_name(const TextureFile& t, int i) {
+  std::string s;
+  if (t.layers > 1) s += "layer " + std::to_string(i / t.faces) + " ";
+  if (t.faces > 1) s += "face " + std::string(kFaceNames[i % t.faces]) + " ";
+  return s;
+}
+
+// The images of a level in words: "a bc1 level", "4 layers x 6 faces of a bc1 level".
+std::string level_words(const TextureFile& t, int images) {
+  const std::string one = std::string("a ") + format_info(t.format).name + " level";
+  if (images == 1) return one;
+  std::string s;
+  if (t.layers > 1) s = std::to_string(t.layers) + " layers";
+  if (t.faces > 1) s += (s.empty() ? "" : " x ") + std::to_string(t.faces) + " faces";
+  return s + " of " + one;
+}
+
+// Copies image i's level k from offset_of(i, k), every image and level, after checking every range
+// against the file first: a header claiming more than the file holds fails before anything is
+// allocated.
+template <class OffsetOf>
+void take_images(const Reader& r, TextureFile& t, int levels, OffsetOf offset_of) {
+  const int images = image_count(t);
+  for (int i = 0; i < images; ++i)
+    for (int k = 0; k < levels; ++k)
+      r.at(offset_of(i, k), bytes_of_level(t, k), image_name(t, i) + "level " + std::to_string(k));
+  t.levels.clear();
+  t.more_images.assign(size_t(images - 1), {});
+  for (int i = 0; i < images; ++i) {
+    std::vector<std::vector<uint8_t>>& image = i == 0 ? t.levels : t.more_images[size_t(i - 1)];
+    for (int k = 0; k < levels; ++k) {
+      const uint64_t n = bytes_of_level(t, k);
+      const uint8_t* p = r.at(offset_of(i, k), n, "level " + std::to_string(k));
+      image.emplace_back(p, p + n);
+    }
+  }
+}
+
 TextureFile read_dds(const Reader& r) {
   TextureFile t;
   if (r.u32(4, "the DDS header") != 124) r.fail("not a DDS header (size " + std::to_string(r.u32(4, "")) + ", not 124)");
@@ -182,17 +255,36 @@ TextureFile read_dds(const Reader& r) {
   const uint32_t depth = r.u32(24, "the DDS header"), mips = r.u32(28, "the DDS header");
   const uint32_t pf_flags = r.u32(80, "the DDS header"), fourcc = r.u32(84, "the DDS header");
   const uint32_t caps2 = r.u32(112, "the DDS header");
-  if (caps2 & 0x200) r.fail("a cube map: the unit reads 2D textures");
-  if ((caps2 & 0x200000) || ((flags & 0x800000) && depth > 1)) r.fail("a volume texture: the unit reads 2D textures");
+  if ((caps2 & 0x200000) || ((flags & 0x800000) && depth > 1))
+    r.fail("a volume texture (caps2 " + hex(caps2) + ", depth " + std::to_string(depth) +
+           "): the unit reads 2D textures, arrays and cube maps");
   uint64_t offset = 128;
+  int layers = 1, faces = 1;
   char cc[5] = {};
   std::memcpy(cc, r.at(84, 4, "the DDS header"), 4);
-  if ((pf_flags & 0x4) && std::string(cc) == "DX10") {
+  const bool dx10 = (pf_flags & 0x4) && std::string(cc) == "DX10";
+  if (!dx10 && (caps2 & 0x200)) {  // a legacy cube map: caps2 names the faces stored (0x400 +X .. 0x8000 -Z)
+    std::string missing;
+    int present = 0;
+    for (int f = 0; f < 6; ++f) {
+      if (caps2 & (0x400u << f)) ++present;
+      else missing += (missing.empty() ? "" : ", ") + std::string(kFaceNames[f]);
+    }
+    if (present != 6)
+      r.fail("caps2 " + hex(caps2) + ": a cube map with " + std::to_string(present) + " of its 6 faces (" + missing +
+             " missing): the unit reads whole cubes");
+    faces = 6;
+  }
+  if (dx10) {
     const uint32_t dxgi = r.u32(128, "the DX10 header"), dimension = r.u32(132, "the DX10 header");
     const uint32_t misc = r.u32(136, "the DX10 header"), array = r.u32(140, "the DX10 header");
-    if (misc & 0x4) r.fail("a cube map: the unit reads 2D textures");
     if (dimension != 3) r.fail("resource dimension " + std::to_string(dimension) + ": the unit reads 2D textures (3)");
-    if (array > 1) r.fail("an array of " + std::to_string(array) + " textures: the unit reads one");
+    // The DX10 header decides (arraySize counts cubes); caps2 may repeat its cube flag, not contradict it.
+    layers = check_layers(r, "arraySize", array, false);
+    faces = (misc & 0x4) ? 6 : 1;
+    if (faces == 1 && (caps2 & 0x200))
+      r.fail("caps2 " + hex(caps2) + " marks a cube map, the DX10 header's miscFlag " + hex(misc) +
+             " does not (TEXTURECUBE, 0x4)");
     const Known& k = known(kDxgi, dxgi, "DXGI format", r, "DXGI_FORMAT_");
     t.format = k.format;
     t.srgb = k.srgb;
@@ -227,15 +319,22 @@ TextureFile read_dds(const Reader& r) {
     t.format_name = "RGBA8";
   }
   const int levels = check_shape(r, t, width, height, mips);
+  set_images(r, t, layers, faces);
+  // Image after image (a cube's faces +X .. -Z, cube after cube), each with its whole chain.
+  std::vector<uint64_t> in_chain(static_cast<size_t>(levels), 0);
+  uint64_t chain = 0;
   for (int k = 0; k < levels; ++k) {
-    const uint64_t n = bytes_of_level(t, k);
-    const uint8_t* p = r.at(offset, n, "level " + std::to_string(k));
-    t.levels.emplace_back(p, p + n);
-    offset += n;
+    in_chain[size_t(k)] = chain;
+    chain += bytes_of_level(t, k);
   }
-  if (offset != r.size())
-    r.fail(std::to_string(r.size() - offset) + " bytes after the last of " + std::to_string(levels) +
-           " levels (the block count does not match the size " + std::to_string(width) + "x" + std::to_string(height) + ")");
+  const uint64_t first = offset;
+  auto offset_of = [&](int i, int k) { return first + uint64_t(i) * chain + in_chain[size_t(k)]; };
+  const uint64_t end = offset_of(image_count(t), 0);
+  if (end < r.size())
+    r.fail(std::to_string(r.size() - end) + " bytes after the last of " + std::to_string(levels) + " levels" +
+           (image_count(t) > 1 ? " of " + std::to_string(image_count(t)) + " images" : "") +
+           " (the block count does not match the size " + std::to_string(width) + "x" + std::to_string(height) + ")");
+  take_images(r, t, levels, offset_of);  // (a file shorter than `end` fails there, naming the level)
   return t;
 }
 
@@ -247,9 +346,10 @@ TextureFile read_ktx1(const Reader& r) {
                  height = r.u32(40, "the KTX header"), depth = r.u32(44, "the KTX header"),
                  array = r.u32(48, "the KTX header"), faces = r.u32(52, "the KTX header"),
                  mips = r.u32(56, "the KTX header"), kv = r.u32(60, "the KTX header");
-  if (faces != 1) r.fail(std::to_string(faces) + " faces (a cube map): the unit reads 2D textures");
-  if (depth > 0) r.fail("a volume texture (depth " + std::to_string(depth) + "): the unit reads 2D textures");
-  if (array > 0) r.fail("an array of " + std::to_string(array) + " textures: the unit reads one");
+  if (depth > 0)
+    r.fail("pixelDepth " + std::to_string(depth) + " (a volume texture): the unit reads 2D textures, arrays and cube maps");
+  const int layers = check_layers(r, "numberOfArrayElements", array, true);
+  const int nfaces = check_faces(r, "numberOfFaces", faces);
   const Known& k = known(kGl, internal, "glInternalFormat", r);
   t.format = k.format;
   t.srgb = k.srgb;
@@ -257,19 +357,30 @@ TextureFile read_ktx1(const Reader& r) {
   if (t.format == TexelFormat::Rgba8 && (r.u32(16, "") != 0x1401 || r.u32(24, "") != 0x1908))
     r.fail("glType/glFormat other than GL_UNSIGNED_BYTE/GL_RGBA for " + std::string(k.name));
   const int levels = check_shape(r, t, width, height, mips);
+  set_images(r, t, layers, nfaces);
+  // Level after level: imageSize, then every element's every face. A cube map that is not an array
+  // is the exception: imageSize counts one face, and each face is padded to 4 bytes (cubePadding).
+  const bool lone_cube = nfaces == 6 && array == 0;
+  const int images = image_count(t);
+  std::vector<uint64_t> level_at(static_cast<size_t>(levels)), stride(static_cast<size_t>(levels));
   uint64_t offset = 64 + uint64_t(kv);
   for (int l = 0; l < levels; ++l) {
     const uint64_t n = bytes_of_level(t, l);
-    const uint32_t stored = r.u32(offset, ("the size of level " + std::to_string(l)).c_str());
-    if (stored != n)
-      r.fail("level " + std::to_string(l) + " has " + std::to_string(stored) + " bytes; a " + format_info(t.format).name +
-             " level of that size has " + std::to_string(n));
-    const uint8_t* p = r.at(offset + 4, n, "level " + std::to_string(l));
-    t.levels.emplace_back(p, p + n);
-    offset += 4 + (n + 3) / 4 * 4;  // each level padded to 4 bytes
+    const uint64_t want = lone_cube ? n : n * uint64_t(images);
+    const uint32_t stored = r.u32(offset, ("the imageSize of level " + std::to_string(l)).c_str());
+    if (stored != want)
+      r.fail("level " + std::to_string(l) + " has " + std::to_string(stored) + " bytes (imageSize); " +
+             (lone_cube ? std::string("a ") + format_info(t.format).name + " face" : level_words(t, images)) +
+             " of that size " + (images == 1 || lone_cube ? "has " : "have ") + std::to_string(want));
+    level_at[size_t(l)] = offset + 4;
+    stride[size_t(l)] = lone_cube ? (n + 3) / 4 * 4 : n;
+    for (int i = 0; i < images; ++i)  // in the file's order, so a short file names where it ends
+      r.at(level_at[size_t(l)] + uint64_t(i) * stride[size_t(l)], n, image_name(t, i) + "level " + std::to_string(l));
+    offset += 4 + (uint64_t(images) * stride[size_t(l)] + 3) / 4 * 4;  // each level padded to 4 bytes
   }
   if (offset != r.size())
     r.fail(std::to_string(r.size() - offset) + " bytes after the last of " + std::to_string(levels) + " levels");
+  take_images(r, t, levels, [&](int i, int l) { return level_at[size_t(l)] + uint64_t(i) * stride[size_t(l)]; });
   return t;
 }
 
@@ -284,24 +395,30 @@ TextureFile read_ktx2(const Reader& r) {
     r.fail("supercompression " + (scheme < 4 ? std::string(names[scheme]) : std::to_string(scheme)) +
            " is not supported (store the levels uncompressed)");
   }
-  if (faces != 1) r.fail(std::to_string(faces) + " faces (a cube map): the unit reads 2D textures");
-  if (depth > 0) r.fail("a volume texture (depth " + std::to_string(depth) + "): the unit reads 2D textures");
-  if (layers > 0) r.fail("an array of " + std::to_string(layers) + " textures: the unit reads one");
+  if (depth > 0)
+    r.fail("pixelDepth " + std::to_string(depth) + " (a volume texture): the unit reads 2D textures, arrays and cube maps");
+  const int nlayers = check_layers(r, "layerCount", layers, true);
+  const int nfaces = check_faces(r, "faceCount", faces);
   const Known& k = known(kVk, vk, "vkFormat", r);
   t.format = k.format;
   t.srgb = k.srgb;
   t.format_name = k.name;
   const int levels = check_shape(r, t, width, height, mips);
+  set_images(r, t, nlayers, nfaces);
+  // The level index gives each level's place; a level holds every layer's every face, back to back.
+  const int images = image_count(t);
+  std::vector<uint64_t> level_at(static_cast<size_t>(levels));
   for (int l = 0; l < levels; ++l) {
     const uint64_t entry = 80 + 24 * uint64_t(l);
     const uint64_t offset = r.u64(entry, "the level index"), length = r.u64(entry + 8, "the level index");
-    const uint64_t n = bytes_of_level(t, l);
-    if (length != n)
-      r.fail("level " + std::to_string(l) + " has " + std::to_string(length) + " bytes; a " + format_info(t.format).name +
-             " level of that size has " + std::to_string(n));
-    const uint8_t* p = r.at(offset, n, "level " + std::to_string(l));
-    t.levels.emplace_back(p, p + n);
+    const uint64_t want = bytes_of_level(t, l) * uint64_t(images);
+    if (length != want)
+      r.fail("level " + std::to_string(l) + " has " + std::to_string(length) + " bytes (byteLength); " + level_words(t, images) +
+             " of that size " + (images == 1 ? "has " : "have ") + std::to_string(want));
+    r.at(offset, want, "level " + std::to_string(l));
+    level_at[size_t(l)] = offset;
   }
+  take_images(r, t, levels, [&](int i, int l) { return level_at[size_t(l)] + uint64_t(i) * bytes_of_level(t, l); });
   return t;
 }
 
@@ -409,36 +526,35 @@ Pyramid make_pyramid(Image level0, const TextureOptions& o) {
   return view_of(std::move(p), o);
 }
 
-Pyramid load_pyramid(const std::string& spec, const TextureOptions& o) {
-  if (!is_texture_file(spec)) return make_pyramid(load_texture(spec, o.resize), o);
-  const TextureFile file = read_texture_file(spec);
+namespace {
+
+// A texture file as the options may take it: its format kept (--format and --srgb must agree).
+TextureFile read_for(const std::string& spec, const TextureOptions& o) {
+  TextureFile file = read_texture_file(spec);
   if (o.format_given && o.format != file.format)
     throw Error(spec + ": --format " + format_info(o.format).name + ", but the file holds " + file.format_name +
                 " (a texture file keeps its format)");
   if (o.srgb && !file.srgb)
     throw Error(spec + ": --srgb, but the file holds " + file.format_name + ", not an sRGB format (a texture file keeps its own)");
-  try {
-    return view_of(pyramid_of(file, o.mode), o);
-  } catch (const Error& e) {
-    throw Error(spec + ": " + e.what());
-  }
+  return file;
 }
 
-Pyramid pyramid_of(const TextureFile& file, PyramidMode mode) {
+// One image's pyramid (`levels`: level 0 first, as stored), as pyramid_of describes.
+Pyramid image_pyramid(const TextureFile& file, const std::vector<std::vector<uint8_t>>& levels, PyramidMode mode) {
   auto decoded = [&](int k) {
     const Extent s = level_extent({file.width, file.height}, k);
     if (!is_compressed(file.format)) {
       Image img(s.width(), s.height(), 8);
       for (size_t i = 0; i < img.texels.size(); ++i)
-        for (int c = 0; c < 4; ++c) img.texels[i][size_t(c)] = file.levels[size_t(k)][i * 4 + size_t(c)];
+        for (int c = 0; c < 4; ++c) img.texels[i][size_t(c)] = levels[size_t(k)][i * 4 + size_t(c)];
       return img;
     }
-    return decode_level(file.format, file.levels[size_t(k)].data(), s.width(), s.height());
+    return decode_level(file.format, levels[size_t(k)].data(), s.width(), s.height());
   };
-  if (file.levels.size() == 1) {
+  if (levels.size() == 1) {
     Pyramid p = compress_pyramid(box_pyramid(decoded(0), mode, file.srgb), file.format);
     if (is_compressed(file.format)) {  // level 0 as the file has it
-      p.blocks[0] = file.levels[0];
+      p.blocks[0] = levels[0];
       p.levels[0] = decoded(0);
     }
     if (file.srgb) decode_srgb_levels(p);
@@ -447,12 +563,91 @@ Pyramid pyramid_of(const TextureFile& file, PyramidMode mode) {
   Pyramid p;
   p.mode = mode;
   p.format = file.format;
-  for (int k = 0; k < int(file.levels.size()); ++k) {
+  for (int k = 0; k < int(levels.size()); ++k) {
     p.levels.push_back(decoded(k));
-    if (is_compressed(file.format)) p.blocks.push_back(file.levels[size_t(k)]);
+    if (is_compressed(file.format)) p.blocks.push_back(levels[size_t(k)]);
   }
   if (file.srgb) decode_srgb_levels(p);
   return p;
+}
+
+// "an array of 4 layers", "a cube map (6 faces)", "a cube-map array of 3 cubes x 6 faces".
+std::string shape_words(const TextureFile& f) {
+  if (f.faces == 1) return "an array of " + std::to_string(f.layers) + " layers";
+  if (f.layers == 1) return "a cube map (" + std::to_string(f.faces) + " faces)";
+  return "a cube-map array of " + std::to_string(f.layers) + " cubes x " + std::to_string(f.faces) + " faces";
+}
+
+}  // namespace
+
+Pyramid load_pyramid(const std::string& spec, const TextureOptions& o) {
+  if (!is_texture_file(spec)) return make_pyramid(load_texture(spec, o.resize), o);
+  const TextureFile file = read_for(spec, o);
+  if (file.layers * file.faces > 1)
+    throw Error(spec + ": " + shape_words(file) + ": this takes one 2D texture (texsim sample takes arrays)");
+  try {
+    return view_of(pyramid_of(file, o.mode), o);
+  } catch (const Error& e) {
+    throw Error(spec + ": " + e.what());
+  }
+}
+
+std::vector<Pyramid> load_layers(const std::string& spec, const TextureOptions& o, int* faces) {
+  if (faces) *faces = 1;
+  if (!is_texture_file(spec)) return {make_pyramid(load_texture(spec, o.resize), o)};
+  const TextureFile file = read_for(spec, o);
+  std::vector<Pyramid> layers;
+  try {
+    layers = pyramids_of(file, o.mode);
+    for (Pyramid& p : layers) p = view_of(std::move(p), o);
+  } catch (const Error& e) {
+    throw Error(spec + ": " + e.what());
+  }
+  if (faces) *faces = file.faces;
+  return layers;
+}
+
+std::vector<Pyramid> load_array(const std::vector<std::string>& specs, const TextureOptions& o) {
+  if (specs.empty()) throw Error("an array texture needs at least one layer");
+  std::vector<Pyramid> layers;
+  if (specs.size() == 1) {
+    int faces = 1;
+    layers = load_layers(specs[0], o, &faces);
+    if (faces != 1)
+      throw Error(specs[0] + ": a cube map (" + std::to_string(layers.size() / 6) +
+                  " x 6 faces): the unit does not sample cube maps yet (docs/cube-maps.md)");
+  } else {
+    for (const std::string& spec : specs) layers.push_back(load_pyramid(spec, o));
+  }
+  if (layers.size() > size_t(kMaxLayers))
+    throw Error(specs[0] + (specs.size() > 1 ? " ...: " : ": ") + std::to_string(layers.size()) +
+                " layers: an array texture has 1 to " + std::to_string(kMaxLayers));
+  auto shape = [](const Pyramid& p) {
+    return std::to_string(p.extent0().w) + "x" + std::to_string(p.extent0().h) + " " + format_info(p.format).name +
+           (p.srgb ? " sRGB" : "") + ", " + std::to_string(p.levels.size()) + " levels";
+  };
+  for (size_t l = 1; l < layers.size(); ++l) {
+    const Pyramid &a = layers[0], &b = layers[l];
+    if (b.extent0() != a.extent0() || b.format != a.format || b.srgb != a.srgb || b.levels.size() != a.levels.size() ||
+        b.levels[0].channel_bits != a.levels[0].channel_bits)
+      throw Error((specs.size() > 1 ? specs[l] : specs[0] + " layer " + std::to_string(l)) + ": " + shape(b) +
+                  "; layer 0 (" + specs[0] + ") is " + shape(a) + ": an array's layers have one size, format and level count");
+  }
+  return layers;
+}
+
+Pyramid pyramid_of(const TextureFile& file, PyramidMode mode) { return image_pyramid(file, file.levels, mode); }
+
+std::vector<Pyramid> pyramids_of(const TextureFile& file, PyramidMode mode) {
+  const size_t images = size_t(file.layers) * size_t(file.faces);
+  if (file.layers < 1 || (file.faces != 1 && file.faces != 6) || file.more_images.size() + 1 != images)
+    throw Error("pyramids_of: " + std::to_string(file.layers) + " layers x " + std::to_string(file.faces) + " faces, but " +
+                std::to_string(file.more_images.size() + 1) + " images");
+  std::vector<Pyramid> out;
+  out.reserve(images);
+  out.push_back(image_pyramid(file, file.levels, mode));
+  for (const auto& levels : file.more_images) out.push_back(image_pyramid(file, levels, mode));
+  return out;
 }
 
 }  // namespace tex

@@ -126,6 +126,27 @@ Request random_gather(std::mt19937_64& rng, Extent size) {
   return gather_request(u, v, int(rng() % 4));
 }
 
+int32_t random_layer(std::mt19937_64& rng, int layers) {
+  constexpr int32_t kOne = 1 << kTexelCoordFracBits;
+  const int32_t l = int32_t(rng() % uint64_t(layers + 4)) - 2;  // -2 .. layers + 1
+  switch (rng() % 6) {
+    case 0: return l * kOne + kOne / 2;                               // a tie: to the even layer
+    case 1: return l * kOne + kOne / 2 + int32_t(rng() % 3) - 1;      // a raw unit off a tie
+    case 2: return l * kOne;                                          // on a layer
+    case 3: return int32_t(rng() % uint64_t((layers + 4) * kOne)) - 2 * kOne;
+    case 4: return rng() % 2 ? INT32_MIN + int32_t(rng() % 4) : INT32_MAX - int32_t(rng() % 4);
+    default: return int32_t(uint32_t(rng()));
+  }
+}
+
+int32_t random_fetch_layer(std::mt19937_64& rng, int layers) {
+  if (rng() % 16 == 0) {
+    constexpr int32_t far[] = {INT32_MIN, INT32_MAX, 256, 255, -256};
+    return far[rng() % 5];
+  }
+  return int32_t(rng() % uint64_t(layers + 4)) - 2;
+}
+
 Request random_footprint(std::mt19937_64& rng, Extent size, int probes, int axis) {
   Request r;
   r.has_derivatives = true;
@@ -239,6 +260,18 @@ Image random_image(int w, int h, int cw, uint64_t seed, int style) {
 
 Pyramid random_pyramid(Extent size, uint64_t seed) {
   return build_pyramid(random_image(size.w, size.h, 8, seed), PyramidMode::Exact);
+}
+
+std::vector<Pyramid> random_layers(Extent size, int layers, uint64_t seed) {
+  std::vector<Pyramid> out;
+  for (int l = 0; l < layers; ++l) out.push_back(random_pyramid(size, seed * 1000003 + uint64_t(l)));
+  return out;
+}
+
+std::vector<const Pyramid*> pointers_to(const std::vector<Pyramid>& layers) {
+  std::vector<const Pyramid*> out;
+  for (const Pyramid& p : layers) out.push_back(&p);
+  return out;
 }
 
 Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed) {

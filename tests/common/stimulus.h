@@ -66,6 +66,22 @@ void fetches_and_gathers_among(std::mt19937_64& rng, std::vector<Request>& reque
     }
 }
 
+// An array's layer coordinate (Q16.16) for `layers` layers: on a tie between two layers (exactly,
+// or a raw unit off), on a layer, anywhere from -2 to layers + 2, far outside (+-2^15), or any
+// 32-bit value.
+int32_t random_layer(std::mt19937_64& rng, int layers);
+// A texel fetch's integer layer: -2 .. layers + 1, now and then far outside (+-2^31 - 1, 256).
+int32_t random_fetch_layer(std::mt19937_64& rng, int layers);
+// Gives every request the layer of its texture's array (layers_of_texture(texture) layers):
+// random_fetch_layer for a fetch, else random_layer.
+template <class LayersOf>
+void layers_among(std::mt19937_64& rng, std::vector<Request>& requests, LayersOf layers_of_texture) {
+  for (Request& r : requests) {
+    const int n = layers_of_texture(r.texture);
+    r.layer = r.op == Op::Fetch ? random_fetch_layer(rng, n) : random_layer(rng, n);
+  }
+}
+
 // ---------------------------------------------------------------- samplers
 // The six filters (texel filter x mip mode).
 std::vector<Filter> all_filters();
@@ -109,6 +125,10 @@ void texel_coordinates_where_unnormalized(std::mt19937_64& rng, std::vector<Requ
 Image random_image(int w, int h, int cw, uint64_t seed, int style = 0);
 // An exact-mode pyramid of random_image noise, 8-bit channels.
 Pyramid random_pyramid(Extent size, uint64_t seed);
+// `layers` of them (an array texture), each of its own noise.
+std::vector<Pyramid> random_layers(Extent size, int layers, uint64_t seed);
+// Pointers to each, for BoundTexture and Sampler.
+std::vector<const Pyramid*> pointers_to(const std::vector<Pyramid>& layers);
 // Random blocks of a block format (sides >= 1), every level: each BC7 block in a random one of its
 // 8 modes and 1 in 16 in the reserved mode (decoded to 0).
 Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed);

@@ -316,7 +316,7 @@ TEST(MemoryLayout, DecodingEveryLineGivesBackThePyramid) {
     // Every line decodes, but in Morton order a grid that is not a power of two has holes.
     const bool holes = c.order == BlockOrder::Morton && (!is_power_of_two(c.w) || !is_power_of_two(c.h));
     for (uint64_t off = 0; off < image.size(); off += uint64_t(layout.line_bytes())) {
-      const bool line = decode_line(layout, c.base + uint32_t(off), &image[off], [&](int level, int x, int y, const Texel& t) {
+      const bool line = decode_line(layout, c.base + uint32_t(off), &image[off], [&](int, int level, int x, int y, const Texel& t) {
         EXPECT_EQ(t, pyr.levels[size_t(level)].at(x, y)) << "level " << level << " (" << x << ", " << y << ")";
         ++seen[size_t(level)][size_t(y * pyr.levels[size_t(level)].width + x)];
       });
@@ -328,7 +328,7 @@ TEST(MemoryLayout, DecodingEveryLineGivesBackThePyramid) {
     // side that is not a power of two, row 0 likewise, texel (0, 0) a fourth time with both.
     for (std::vector<int>& s : seen) std::fill(s.begin(), s.end(), 0);
     for (uint64_t off = 0; off < image.size(); off += uint64_t(layout.line_bytes()))
-      decode_line(layout, c.base + uint32_t(off), &image[off], [&](int level, int x, int y, const Texel& t) {
+      decode_line(layout, c.base + uint32_t(off), &image[off], [&](int, int level, int x, int y, const Texel& t) {
         EXPECT_EQ(t, pyr.levels[size_t(level)].at(x, y)) << "level " << level << " (" << x << ", " << y << ")";
         ++seen[size_t(level)][size_t(y * pyr.levels[size_t(level)].width + x)];
       }, true);
@@ -340,7 +340,7 @@ TEST(MemoryLayout, DecodingEveryLineGivesBackThePyramid) {
           ASSERT_EQ(seen[k][size_t(y * l.width + x)], 1 + (sx && x == 0) + (sy && y == 0) + (sx && sy && x == 0 && y == 0))
               << "level " << k << " (" << x << ", " << y << ") of " << c.w << "x" << c.h;
     }
-    const auto ignore = [](int, int, int, const Texel&) {};
+    const auto ignore = [](int, int, int, int, const Texel&) {};
     EXPECT_FALSE(decode_line(layout, c.base + 4, image.data(), ignore));  // not a line start
     EXPECT_FALSE(decode_line(layout, c.base + uint32_t(image.size()), image.data(), ignore));  // past the image
     if (c.base) {
@@ -408,7 +408,7 @@ TEST(MemoryLayout, CompressedImageDecodesToTheLevels) {
       for (const Image& level : pyr.levels) seen.emplace_back(size_t(level.width) * level.height, 0);
       const bool holes = order == BlockOrder::Morton && (!is_power_of_two(size.w) || !is_power_of_two(size.h));
       for (uint32_t a = 512; a < 512 + l.image_bytes(); a += uint32_t(l.line_bytes())) {
-        const bool line = decode_line(l, a, &img[a - 512], [&](int k, int x, int y, const Texel& t) {
+        const bool line = decode_line(l, a, &img[a - 512], [&](int, int k, int x, int y, const Texel& t) {
           ++seen[size_t(k)][size_t(y) * pyr.levels[size_t(k)].width + size_t(x)];
           EXPECT_EQ(t, pyr.levels[size_t(k)].at(x, y)) << format_info(f).name << " level " << k << " (" << x << ", " << y << ")";
         });

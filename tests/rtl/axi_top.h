@@ -60,6 +60,8 @@ inline std::string describe(const Request& r) {
          std::to_string(r.deriv.dudy) + "," + std::to_string(r.deriv.dvdy) + ")";
   else
     s += " lod=" + std::to_string(r.lod);
+  if (r.op != Op::Sample) s += " op " + std::to_string(int(r.op)) + " component " + std::to_string(r.component);
+  if (r.layer) s += " layer=" + std::to_string(r.layer);
   return s;
 }
 
@@ -247,6 +249,7 @@ class AxiTop {
       t.req_sampler = q.sampler;
       t.req_op = uint8_t(q.op);
       t.req_component = q.component;
+      t.req_layer = uint32_t(q.layer);
       t.req_tag = uint16_t(next_req_);
     } else {
       t.req_u = junk();
@@ -262,6 +265,7 @@ class AxiTop {
       t.req_sampler = junk() & 15;
       t.req_op = junk() & 3;
       t.req_component = junk() & 3;
+      t.req_layer = junk();
       t.req_tag = uint16_t(junk());
     }
     t.req_valid = req_valid;

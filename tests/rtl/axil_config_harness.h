@@ -102,7 +102,7 @@ struct Reference {
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
       case kDescBase: desc_base = d; break;
-      case kDescAttr: desc_attr = d & 0xF0F00; break;
+      case kDescAttr: desc_attr = d & 0xFF0F0F00; break;
       case kDescSize: desc_size = d & 0x3FFF3FFF; break;
       case kWrap: wrap = d & 0x77; break;
       case kSmpCommit: smp_index = d & 15; break;
@@ -139,7 +139,7 @@ struct Reference {
     }
     switch (a) {
       case kId: return {0x54455855u, kOkay};
-      case kVersion: return {0x00030002u, kOkay};
+      case kVersion: return {0x00030003u, kOkay};
       case kCaps0: return {caps0(), kOkay};
       case kCaps1: return {caps1(), kOkay};
       case kControl: return {control, kOkay};
@@ -448,6 +448,7 @@ class Slave {
     EXPECT_EQ(t.cfg_desc_format, (r.desc_attr >> 16) & 7);
     EXPECT_EQ(t.cfg_desc_last_level, (r.desc_attr >> 8) & 15);
     EXPECT_EQ(t.cfg_desc_srgb, (r.desc_attr >> 19) & 1);
+    EXPECT_EQ(t.cfg_desc_layers_m1, (r.desc_attr >> 24) & 255);
     EXPECT_EQ(t.cfg_smp_border_rgba, uint64_t(r.border_rg) | uint64_t(r.border_ba) << 32);
     EXPECT_EQ(t.cfg_smp_min_linear, r.filter & 1);
     EXPECT_EQ(t.cfg_smp_mag_linear, (r.filter >> 1) & 1);

@@ -43,6 +43,7 @@ std::string describe(const Request& r) {
   std::ostringstream o;
   if (r.op == Op::Fetch) {
     o << "fetch i=" << r.u << " j=" << r.v << " level=" << r.lod;
+    if (r.layer) o << " layer=" << r.layer;
     if (r.texture || r.sampler) o << " texture " << int(r.texture) << " sampler " << int(r.sampler);
     return o.str();
   }
@@ -53,6 +54,7 @@ std::string describe(const Request& r) {
   else
     o << " lod=" << r.lod << " (" << r.lod / 256.0 << ")";
   if (r.bias) o << " bias=" << r.bias << " (" << r.bias / 256.0 << ")";
+  if (r.layer) o << " layer=" << r.layer << " (" << r.layer / 65536.0 << ")";
   if (r.texture || r.sampler) o << " texture " << int(r.texture) << " sampler " << int(r.sampler);
   return o.str();
 }

@@ -104,17 +104,25 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
   std::mt19937_64 rng(seed);
   Case c;
   const int n = 2 + int(rng() % (kTextures - 1));
-  c.pyramids.reserve(size_t(n));
+  c.pyramids.reserve(size_t(n) * 4);
   for (int i = 0; i < n; ++i) {
     Extent size{1 << kMaxLog2W, 1 << kMaxLog2H};
     if (i > 0 && rng() % 2) size = {1 << (rng() % (kMaxLog2W + 1)), 1 << (rng() % (kMaxLog2H + 1))};
     else if (i > 0) size = {1 + int(rng() % (1u << kMaxLog2W)), 1 + int(rng() % (1u << kMaxLog2H))};
-    c.pyramids.push_back(random_pyramid(size, rng()));
-    if (i > 0 && rng() % 3 == 0) {  // a view: its chain cut (DESC_ATTR's last level)
-      const int b = int(rng() % uint64_t(c.pyramids.back().levels.size()));
-      c.pyramids.back() = view_pyramid(c.pyramids.back(), b, b + int(rng() % 3));
+    const int layers = i > 0 && rng() % 3 == 0 ? 2 + int(rng() % 3) : 1;  // arrays (DESC_ATTR's layers)
+    const bool view = i > 0 && rng() % 3 == 0;  // a view: its chain cut (DESC_ATTR's last level)
+    const uint64_t b = rng(), span = rng() % 3;
+    BoundTexture t;
+    for (int l = 0; l < layers; ++l) {
+      c.pyramids.push_back(random_pyramid(size, rng()));
+      if (view) {
+        const int first = int(b % uint64_t(c.pyramids.back().levels.size()));
+        c.pyramids.back() = view_pyramid(c.pyramids.back(), first, first + int(span));
+      }
+      if (l == 0) t.pyramid = &c.pyramids.back();
+      else t.more_layers.push_back(&c.pyramids.back());
     }
-    c.table.push_back({&c.pyramids.back()});
+    c.table.push_back(t);
   }
   const int ns = rng() % 4 == 0 ? kSamplers : 1 + int(rng() % kSamplers);
   for (int i = 0; i < ns; ++i) c.samplers.push_back(random_sampler(rng, 6));  // 1 in 6 unnormalized
@@ -145,6 +153,7 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
   texel_coordinates_where_unnormalized(rng, c.requests, c.samplers,
                                        [&](int t) { return c.table[size_t(t)].pyramid->extent0(); });
   fetches_and_gathers_among(rng, c.requests, 16, [&](int t) { return c.table[size_t(t)].pyramid->extent0(); });
+  layers_among(rng, c.requests, [&](int t) { return c.table[size_t(t)].layers(); });
   return c;
 }
 
@@ -265,7 +274,7 @@ CaseResult run_case(AxiTop& top, const Case& c, const SamplerTable* model_sample
   // The memory image: the pyramids packed from the layout's base.
   std::vector<uint8_t> image;
   for (size_t i = 0; i < desc.size(); ++i) {
-    const std::vector<uint8_t> bytes = build_memory_image(*c.table[i].pyramid, desc[i].layout);
+    const std::vector<uint8_t> bytes = build_memory_image(c.table[i].all_layers(), desc[i].layout);
     const size_t at = desc[i].layout.params().base - c.layout.base;
     if (image.size() < at + bytes.size()) image.resize(at + bytes.size());
     std::copy(bytes.begin(), bytes.end(), image.begin() + std::ptrdiff_t(at));
@@ -468,7 +477,8 @@ TEST(RtlAxiTop, PlantedBugsAreCaught) {
   AxiTop top(11);
   Case c = random_case(0xBAD, 1500, false);
   c.samplers.assign(2, SamplerConfig{});  // trilinear, no LOD clamp
-  c.pyramids[1] = random_pyramid({32, 4}, 3);  // (in place: the table points at it)
+  c.pyramids[1] = random_pyramid({32, 4}, 3);  // (in place: the table points at it; texture 0 has one layer)
+  c.table[1] = BoundTexture{&c.pyramids[1]};   // (one layer)
   c.samplers[1].wrap_u = Wrap::Clamp;
   c.samplers[1].wrap_v = Wrap::Repeat;
   std::mt19937_64 rng(5);

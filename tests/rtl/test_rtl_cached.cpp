@@ -385,17 +385,18 @@ void run_descriptor_tables(const std::string& config, int cases) {
   auto unit = rtl::Driver::create(rc, {});
   unit->reset();
   uint64_t samples = 0, switches = 0, sampler_switches = 0, reads = 0, flagged = 0;
-  int full_tables = 0, full_samplers = 0, failures = 0, block_textures = 0, srgb_textures = 0;
+  int full_tables = 0, full_samplers = 0, failures = 0, block_textures = 0, srgb_textures = 0, array_textures = 0;
+  std::map<std::string, uint64_t> layer_cases;
   for (int ci = 0; ci < cases * scale(); ++ci) {
     const uint64_t seed = mix64(base + uint64_t(ci));
     if (only && *only != seed) continue;
     std::mt19937_64 rng(seed);
     const int n = ci % 4 == 0 ? kMaxTextures : 2 + int(rng() % (kMaxTextures - 1));
     full_tables += n == kMaxTextures;
-    std::vector<Pyramid> pyramids;
-    pyramids.reserve(size_t(n));
+    std::vector<std::vector<Pyramid>> arrays(static_cast<size_t>(n));  // each texture's layers
     TextureTable table;
     for (int t = 0; t < n; ++t) {
+      std::vector<Pyramid>& pyramids = arrays[size_t(t)];
       // Up to the configuration's 64x8, half of them of powers of two; half of the textures in a
       // block format (sides >= 4).
       const TexelFormat format =
@@ -406,14 +407,23 @@ void run_descriptor_tables(const std::string& config, int cases) {
         size = {1 << (blocks ? 2 + int(rng() % 5) : int(rng() % 7)), 1 << (blocks ? 2 + int(rng() % 2) : int(rng() % 4))};
       else
         size = {blocks ? 4 + int(rng() % 61) : 1 + int(rng() % 64), blocks ? 4 + int(rng() % 5) : 1 + int(rng() % 8)};
-      pyramids.push_back(random_pyramid(rc, format, size, srgb, rng()));
-      if (rng() % 4 == 0) {  // a view: levels b..b+0..3 (the descriptor's last level)
-        const int b = int(rng() % uint64_t(pyramids.back().levels.size()));
-        pyramids.back() = view_pyramid(pyramids.back(), b, b + int(rng() % 4));
+      // A third of them arrays of 2 to 8 layers, now and then of 256 (each layer its own texels).
+      const int layers = rng() % 3 ? 1 : rng() % 8 == 0 ? kMaxLayers : 2 + int(rng() % 7);
+      const bool view = rng() % 4 == 0;  // a view: levels b..b+0..3 (the descriptor's last level)
+      const uint64_t b = rng(), span = rng() % 4;
+      for (int l = 0; l < layers; ++l) {
+        pyramids.push_back(random_pyramid(rc, format, size, srgb, rng()));
+        if (view) {
+          const int first = int(b % uint64_t(pyramids.back().levels.size()));
+          pyramids.back() = view_pyramid(pyramids.back(), first, first + int(span));
+        }
       }
       block_textures += blocks;
       srgb_textures += pyramids.back().srgb;
-      table.push_back({&pyramids.back()});
+      array_textures += layers > 1;
+      BoundTexture bound{&pyramids[0], {}};
+      for (int l = 1; l < layers; ++l) bound.more_layers.push_back(&pyramids[size_t(l)]);
+      table.push_back(bound);
     }
     // The sampler table: 1 to 16 entries (a quarter full), every field random.
     const int ns = ci % 4 == 1 ? kMaxSamplers : 1 + int(rng() % kMaxSamplers);
@@ -434,6 +444,17 @@ void run_descriptor_tables(const std::string& config, int cases) {
     }
     texel_coordinates_where_unnormalized(rng, requests, samplers, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
     fetches_and_gathers_among(rng, requests, 16, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
+    layers_among(rng, requests, [&](int t) { return table[size_t(t)].layers(); });
+    for (const Request& q : requests) {  // the layer cases of arrays, counted
+      const int nl = table[q.texture].layers();
+      if (nl == 1) continue;
+      const int64_t whole = q.layer >> 16;
+      if (q.op == Op::Fetch) ++layer_cases[stage::fetch_layer_inside(q.layer, nl) ? "fetch inside the layers" : "fetch outside the layers"];
+      else if (q.layer < 0) ++layer_cases["below layer 0"];
+      else if (whole >= nl) ++layer_cases["beyond the last layer"];
+      else if ((q.layer & 0xFFFF) == 0x8000) ++layer_cases[whole % 2 ? "a tie, rounded up to even" : "a tie, rounded down to even"];
+      else ++layer_cases["between two layers"];
+    }
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
     const CaseResult r = run_case(*unit, table, samplers, layout, cache, memory, requests, stim, rng(), nullptr, nullptr,
                                   -1, 0, nullptr, errors);
@@ -450,13 +471,17 @@ void run_descriptor_tables(const std::string& config, int cases) {
   }
   std::printf("[ cached   ] descriptor and sampler tables: %llu samples (%llu flagged by memory errors), %llu "
               "texture and %llu sampler switches between consecutive requests, %llu lines read, %d full descriptor "
-              "tables of %d, %d full sampler tables of %d, %d block-format textures, %d sRGB (%s)\n",
+              "tables of %d, %d full sampler tables of %d, %d block-format textures, %d sRGB, %d arrays (%s)\n",
               (unsigned long long)samples, (unsigned long long)flagged, (unsigned long long)switches,
               (unsigned long long)sampler_switches, (unsigned long long)reads, full_tables, kMaxTextures,
-              full_samplers, kMaxSamplers, block_textures, srgb_textures, config.c_str());
+              full_samplers, kMaxSamplers, block_textures, srgb_textures, array_textures, config.c_str());
   if (only) return;
   EXPECT_GT(full_tables, 0);
   EXPECT_GT(full_samplers, 0);
+  EXPECT_GT(array_textures, 0);
+  for (const char* c : {"fetch inside the layers", "fetch outside the layers", "below layer 0", "beyond the last layer",
+                        "a tie, rounded up to even", "a tie, rounded down to even", "between two layers"})
+    EXPECT_GT(layer_cases[c], 0u) << "array requests: " << c;
   EXPECT_GT(sampler_switches, samples / 2);
   EXPECT_GT(flagged, 0u);
   EXPECT_EQ(block_textures > 0, rc.formats);
@@ -491,8 +516,8 @@ TEST(RtlCached, DescriptorTableMixesSrgbAndLinear) {
 }
 
 // Planted bugs: a model whose sampler table has the entries' wrap modes swapped, whose border
-// colours differ, or whose descriptor table has its entries in the other order (each request then
-// names the other texture), sees other samples.
+// colours differ, whose array has its layers in the other order, or whose descriptor table has its
+// entries in the other order (each request then names the other texture), sees other samples.
 TEST(RtlCached, DescriptorTableCheckersCatchPlantedBugs) {
   const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
   auto unit = rtl::Driver::create(rc, {});
@@ -526,6 +551,17 @@ TEST(RtlCached, DescriptorTableCheckersCatchPlantedBugs) {
   const CaseResult colour = run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr,
                                      -1, 0, nullptr, {}, nullptr, &recoloured);
   EXPECT_EQ(colour.failure.rfind("sample ", 0), 0u) << colour.failure;
+  unit->reset();
+  // An array whose model has its layers in the other order.
+  const Pyramid c = build_pyramid(random_image(32, 4, 8, 3), PyramidMode::Exact);
+  const TextureTable arrays = {{&a}, {&b, {&c}}}, swapped = {{&a}, {&c, {&b}}};
+  std::vector<Request> layered = requests;
+  for (Request& q : layered) q.layer = q.texture == 1 ? int32_t(rng() % 2) << 16 : 0;
+  EXPECT_EQ(run_case(*unit, arrays, samplers, LayoutParams{}, cache, {}, layered, {}, 1, nullptr).failure, "");
+  unit->reset();
+  const CaseResult layers = run_case(*unit, arrays, samplers, LayoutParams{}, cache, {}, layered, {}, 1, nullptr, nullptr,
+                                     -1, 0, &swapped);
+  EXPECT_EQ(layers.failure.rfind("sample ", 0), 0u) << layers.failure;
   unit->reset();
   const TextureTable reordered = {table[1], table[0]};
   const CaseResult order = run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr,

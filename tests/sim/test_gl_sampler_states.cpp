@@ -135,6 +135,38 @@ class GlSampling {
                : c == 2 ? textureGather(tex, q.xy, 2) : textureGather(tex, q.xy, 3);
       })";
     gather_program_ = link(vs, gather_fs, 0);
+    // The same three on an array texture (unit 3): the query's w is the layer coordinate of a
+    // sample, the integer layer of a fetch; a gather's layer is its z, the component its w.
+    const char* array_fs = R"(#version 330 core
+      uniform sampler2DArray tex;
+      uniform sampler2D queries;
+      out vec4 colour;
+      void main() {
+        vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
+        colour = textureLod(tex, q.xyw, q.z);
+      })";
+    array_program_ = link(vs, array_fs, 3);
+    const char* array_fetch_fs = R"(#version 330 core
+      uniform sampler2DArray tex;
+      uniform sampler2D queries;
+      out vec4 colour;
+      void main() {
+        vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
+        colour = texelFetch(tex, ivec3(q.xyw), int(q.z));
+      })";
+    array_fetch_program_ = link(vs, array_fetch_fs, 3);
+    const char* array_gather_fs = R"(#version 400 core
+      uniform sampler2DArray tex;
+      uniform sampler2D queries;
+      out vec4 colour;
+      void main() {
+        vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
+        int c = int(q.w);
+        colour = c == 0 ? textureGather(tex, q.xyz, 0) : c == 1 ? textureGather(tex, q.xyz, 1)
+               : c == 2 ? textureGather(tex, q.xyz, 2) : textureGather(tex, q.xyz, 3);
+      })";
+    array_gather_program_ = link(vs, array_gather_fs, 3);
+    glGenTextures(1, &array_);
     glGenVertexArrays(1, &vao_);
     glBindVertexArray(vao_);
     glGenTextures(1, &tex_);
@@ -171,6 +203,39 @@ class GlSampling {
     glTexImage2D(GL_TEXTURE_RECTANGLE, 0, p.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, levels[0].width, levels[0].height, 0,
                  GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   }
+  // An array texture (GL_TEXTURE_2D_ARRAY, unit 3): every level of every layer, RGBA8.
+  void upload_array(const std::vector<const Pyramid*>& layers) {
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, array_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (size_t k = 0; k < layers[0]->levels.size(); ++k) {
+      std::vector<uint8_t> rgba;
+      for (const Pyramid* p : layers)
+        for (const Texel& t : p->levels[k].texels)
+          for (int c = 0; c < 4; ++c) rgba.push_back(uint8_t(t[size_t(c)]));
+      const Image& img = layers[0]->levels[k];
+      glTexImage3D(GL_TEXTURE_2D_ARRAY, GLint(k), GL_RGBA8, img.width, img.height, GLsizei(layers.size()), 0, GL_RGBA,
+                   GL_UNSIGNED_BYTE, rgba.data());
+    }
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, GLint(layers[0]->levels.size()) - 1);
+  }
+  std::vector<std::array<float, 4>> sample_array(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(array_program_);
+    apply(c, GL_TEXTURE_2D_ARRAY);
+    return draw(q);
+  }
+  std::vector<std::array<float, 4>> fetch_array(const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(array_fetch_program_);
+    apply(SamplerConfig{}, GL_TEXTURE_2D_ARRAY);
+    return draw(q);
+  }
+  std::vector<std::array<float, 4>> gather_array(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(array_gather_program_);
+    apply(c, GL_TEXTURE_2D_ARRAY);
+    return draw(q);
+  }
+
   // A view of the uploaded texture: TEXTURE_BASE_LEVEL and TEXTURE_MAX_LEVEL.
   void view(int base_level, int max_level) {
     glActiveTexture(GL_TEXTURE0);
@@ -203,11 +268,12 @@ class GlSampling {
   }
 
  private:
-  // The sampler state of `c` on the texture (the rectangle texture for an unnormalized sampler).
-  void apply(const SamplerConfig& c) {
-    const GLenum target = c.unnormalized ? GL_TEXTURE_RECTANGLE : GL_TEXTURE_2D;
-    glActiveTexture(c.unnormalized ? GL_TEXTURE2 : GL_TEXTURE0);
-    glBindTexture(target, c.unnormalized ? rect_ : tex_);
+  // The sampler state of `c` on the texture (the rectangle texture for an unnormalized sampler; the
+  // array texture for GL_TEXTURE_2D_ARRAY).
+  void apply(const SamplerConfig& c, GLenum array = 0) {
+    const GLenum target = array ? array : c.unnormalized ? GL_TEXTURE_RECTANGLE : GL_TEXTURE_2D;
+    glActiveTexture(array ? GL_TEXTURE3 : c.unnormalized ? GL_TEXTURE2 : GL_TEXTURE0);
+    glBindTexture(target, array ? array_ : c.unnormalized ? rect_ : tex_);
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, c.unnormalized ? (c.filter.texel == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST)
                                                                   : gl_min_filter(c.filter));
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, c.filter.mag == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST);
@@ -239,7 +305,8 @@ class GlSampling {
   OSMesaContext ctx_ = nullptr;
   std::vector<uint8_t> window_ = std::vector<uint8_t>(size_t(kW) * kH * 4);
   GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, fetch_program_ = 0, gather_program_ = 0, vao_ = 0,
-         tex_ = 0, rect_ = 0, queries_ = 0;
+         tex_ = 0, rect_ = 0, queries_ = 0, array_program_ = 0, array_fetch_program_ = 0, array_gather_program_ = 0,
+         array_ = 0;
   bool ready_ = false;
 };
 
@@ -252,8 +319,11 @@ struct Outcome {
 // each 2x2 pixel quad one lambda. A nearest filter's texel, or a level choice, at an edge within
 // 1/64 texel or level is either side's (both are right): such queries are not compared.
 // `model_cfg`: the model's sampler instead of cfg (a planted bug).
+// `layers`: the queries sample the array texture (GlSampling::upload_array; pyr its layer 0) at a
+// layer coordinate on a 1/256 grid from -1.5 to 1.5 past the last layer; one within 1/64 of a tie
+// between two layers is not compared (GL rounds a tie as it likes; the unit to even).
 Outcome compare(GlSampling& gl, const Pyramid& pyr, const SamplerConfig& cfg, uint32_t seed,
-                const SamplerConfig* model_cfg = nullptr) {
+                const SamplerConfig* model_cfg = nullptr, const std::vector<const Pyramid*>* layers = nullptr) {
   std::mt19937 rng(seed);
   const int q = pyr.last_level();
   std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
@@ -270,12 +340,17 @@ Outcome compare(GlSampling& gl, const Pyramid& pyr, const SamplerConfig& cfg, ui
       const double lambda = (x & 1) || (y & 1) ? queries[size_t(y & ~1) * kW + size_t(x & ~1)][2]
                                                  : (int(rng() % uint32_t((q + 4) * 256)) - 2 * 256) / 256.0;
       queries[i] = {float(u), float(v), float(lambda), 0.f};
+      if (layers) {
+        const double a = (int(rng() % uint32_t((layers->size() + 3) * 256)) - 384) / 256.0;
+        queries[i][3] = float(a);
+        EXPECT_TRUE(to_texel_coord_fixed(a, requests[i].layer));
+      }
       const bool coords = cfg.unnormalized ? to_texel_coord_fixed(u, requests[i].u) && to_texel_coord_fixed(v, requests[i].v)
                                            : to_coord_fixed(u, requests[i].u) && to_coord_fixed(v, requests[i].v);
       EXPECT_TRUE(coords && to_lod_fixed(lambda, requests[i].lod));
     }
-  const std::vector<std::array<float, 4>> got = gl.sample(cfg, queries);
-  Sampler model(pyr, model_cfg ? *model_cfg : cfg);
+  const std::vector<std::array<float, 4>> got = layers ? gl.sample_array(cfg, queries) : gl.sample(cfg, queries);
+  Sampler model(layers ? *layers : std::vector<const Pyramid*>{&pyr}, model_cfg ? *model_cfg : cfg);
   const bool srgb = pyr.srgb;
   Outcome o;
   for (size_t i = 0; i < requests.size(); ++i) {
@@ -301,6 +376,7 @@ Outcome compare(GlSampling& gl, const Pyramid& pyr, const SamplerConfig& cfg, ui
             edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
       if (!magnify && cfg.filter.mip == MipMode::Linear) edge = edge || std::fabs(lambda - std::round(lambda)) < 1.0 / 64;
     }
+    if (layers) edge = edge || std::fabs(queries[i][3] - std::floor(queries[i][3]) - 0.5) < 1.0 / 64;
     if (edge) {
       ++o.excluded;
       continue;
@@ -687,4 +763,108 @@ TEST(GlSamplerStates, FetchAndGatherThroughAViewAgreeWithLlvmpipe) {
   EXPECT_GT(compared, 3 * kW * kH / 2);
   EXPECT_GT(ignored_view, compared / 2) << "a model that ignores the view went unnoticed";
   gl.view(0, whole.last_level());
+}
+
+// 2D arrays (sampler2DArray, the unit's layers): five RGBA8 layers of 37x23, each its own texels.
+// llvmpipe samples them under every filter (a wrap pair each), fetches (i, j, layer, level) and
+// gathers at a layer coordinate; the model's are its within the precision of a 2D texture (fetch
+// and gather exactly), away from the ties between two layers; at the ties llvmpipe takes the even
+// layer, as the unit does (Vulkan's RNE). A model with its layers in the other order is caught.
+TEST(GlSamplerStates, ArrayLayersAgreeWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  constexpr int kLayers = 5;
+  std::vector<Pyramid> layers;
+  for (int l = 0; l < kLayers; ++l) {
+    Image img = make_pattern("noise", 37, 23);
+    for (Texel& t : img.texels)
+      for (uint16_t& c : t) c = uint16_t((c * (l + 1) + 40 * l) & 255);
+    layers.push_back(build_pyramid(std::move(img)));
+  }
+  std::vector<const Pyramid*> array;
+  for (const Pyramid& p : layers) array.push_back(&p);
+  const std::vector<const Pyramid*> reversed(array.rbegin(), array.rend());
+  gl.upload_array(array);
+  const Pyramid& pyr = layers[0];
+  const int last = pyr.last_level();
+  std::mt19937 rng(48);
+  int states = 0, compared = 0, worst = 0;
+  for (int mip = 0; mip < 3; ++mip)
+    for (int texel = 0; texel < 2; ++texel) {
+      SamplerConfig cfg{{TexelFilter(texel), MipMode(mip)}, kWraps[rng() % 5], kWraps[rng() % 5]};
+      cfg.border = BorderColor(rng() % (kBorderColors - 1));
+      const Outcome o = compare(gl, pyr, cfg, 100 + uint32_t(states), nullptr, &array);
+      SCOPED_TRACE("array, " + name_of(cfg));
+      expect_gl_precision(o, pyr, cfg);
+      worst = std::max(worst, o.max_lsb_x100);
+      compared += o.compared;
+      ++states;
+    }
+  const Outcome planted = compare(gl, pyr, SamplerConfig{}, 99, nullptr, &reversed);
+  EXPECT_GT(planted.max_lsb_x100, 2000) << "a model with its layers reversed went unnoticed";
+
+  // Fetches: a level of the texture, a layer from -1 to one past the last; inside exactly, outside
+  // the layers 0 in the model (GL: undefined; compared where llvmpipe answers 0 too).
+  std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
+  std::vector<Request> requests(queries.size());
+  for (size_t n = 0; n < queries.size(); ++n) {
+    fetch_query(rng, pyr.extent0(), last, int(rng() % uint32_t(last + 1)), queries[n], requests[n]);
+    const int layer = int(rng() % (kLayers + 2)) - 1;
+    queries[n][3] = float(layer);
+    requests[n].layer = layer;
+  }
+  std::vector<std::array<float, 4>> got = gl.fetch_array(queries);
+  Sampler model(array, SamplerConfig{});
+  int fetched = 0, outside_layers = 0;
+  for (size_t n = 0; n < requests.size(); ++n) {
+    const Request& r = requests[n];
+    const bool inside = stage::fetch_inside(r.u, r.v, r.lod, last, pyr.extent0()) && stage::fetch_layer_inside(r.layer, kLayers);
+    if (!inside && got[n] != std::array<float, 4>{0, 0, 0, 0}) continue;  // (undefined in GL)
+    outside_layers += !stage::fetch_layer_inside(r.layer, kLayers);
+    ASSERT_EQ(error_lsb_x100(model.sample(r), got[n], false), 0)
+        << "fetch (" << r.u << ", " << r.v << ") layer " << r.layer << " level " << r.lod;
+    ++fetched;
+  }
+  EXPECT_GT(fetched, kW * kH / 2);
+
+  // Gathers at a layer coordinate on a 1/256 grid (away from ties and footprint edges), and at
+  // ties exactly: which way llvmpipe rounds those.
+  int gathered = 0, ties = 0, tie_even = 0, tie_up = 0;
+  SamplerConfig cfg;
+  cfg.wrap_u = Wrap::Clamp;
+  for (size_t n = 0; n < queries.size(); ++n) {
+    gather_query(rng, -0.5, 2, queries[n], requests[n]);
+    const bool tie = n % 8 == 0;
+    const double a = tie ? int(rng() % (kLayers + 1)) - 0.5 : (int(rng() % ((kLayers + 2) * 256)) - 256) / 256.0;
+    std::swap(queries[n][2], queries[n][3]);  // (u, v, layer, component)
+    queries[n][2] = float(a);
+    EXPECT_TRUE(to_texel_coord_fixed(a, requests[n].layer));
+  }
+  got = gl.gather_array(cfg, queries);
+  Sampler gather_model(array, cfg);
+  for (size_t n = 0; n < requests.size(); ++n) {
+    const std::array<float, 4> uv = {queries[n][0], queries[n][1], 0, 0};
+    if (near_footprint_edge(uv, pyr.extent0())) continue;
+    const Request& r = requests[n];
+    if (n % 8 == 0) {  // a tie: to the even layer (the model) or up?
+      Request up = r;
+      up.layer += 1;
+      ++ties;
+      tie_even += error_lsb_x100(gather_model.sample(r), got[n], false) == 0;
+      tie_up += error_lsb_x100(gather_model.sample(up), got[n], false) == 0;
+      continue;
+    }
+    if (std::fabs(queries[n][2] - std::floor(queries[n][2]) - 0.5) < 1.0 / 64) continue;
+    ASSERT_EQ(error_lsb_x100(gather_model.sample(r), got[n], false), 0)
+        << "gather " << int(r.component) << " at (" << queries[n][0] << ", " << queries[n][1] << ") layer " << queries[n][2];
+    ++gathered;
+  }
+  EXPECT_GT(gathered, kW * kH / 2);
+  // llvmpipe rounds a tie to the even layer as the unit does; rounding up would differ in some.
+  EXPECT_EQ(tie_even, ties);
+  EXPECT_LT(tie_up, ties * 3 / 4);
+  std::printf("  arrays of %d layers compared with llvmpipe: %d samples in %d sampler states (max %.2f LSB), %d "
+              "fetches (%d outside the layers), %d gathers exact; of %d ties between two layers llvmpipe takes "
+              "the even one in %d (rounding up would agree in %d)\n", kLayers, compared, states, worst / 100.0,
+              fetched, outside_layers, gathered, ties, tie_even, tie_up);
 }

@@ -236,6 +236,81 @@ TEST_F(TexsimCli, TexelFetchReadsTexelsAndZeroOutside) {
   expect_clean_failure("sample -t t.png --op fetch -q half.csv -o bad.csv", "bad.csv", {"half.csv:3", "i", "1.5"});
 }
 
+// --texture-layers A,B,C: an array texture. A query's layer column picks the layer, rounded to the
+// nearest with a tie to the even one and clamped to the layers: each layer's rows are what sampling
+// that image alone as --texture gives, for samples, gathers and fetches (a fetch outside the layers
+// answers 0); every cached engine gives the model's bytes. Layers of other sizes, an array on the
+// on-chip unit, a list with --texture: one line, nothing written.
+TEST_F(TexsimCli, TextureLayersSampleTheLayerNamed) {
+  for (int l = 0; l < 3; ++l)
+    write_image(dir / ("l" + std::to_string(l) + ".png"), 7, 5, 4,
+                [l](int x, int y, int c) { return (13 + x * 29 + y * 41 + c * 70 + l * 90) % 256; });
+  write_image(dir / "small.png", 6, 5, 4, [](int x, int, int) { return x; });
+  // Layer coordinates and the layer each reads: 0, 1, 2, 0.5 -> 0, 1.5 -> 2, 2.5 -> 2 (clamped),
+  // -3 -> 0, 1.49 -> 1, 0.51 -> 1.
+  const std::vector<std::pair<std::string, int>> layers = {{"0", 0},   {"1", 1},    {"2", 2},    {"0.5", 0},    {"1.5", 2},
+                                                           {"2.5", 2}, {"-3", 0},   {"1.49", 1}, {"0.51", 1}};
+  std::string q = "u,v,layer,lod\n", g = "u,v,layer\n", f = "i,j,layer,level\n";
+  std::string single = "u,v,lod\n", single_g = "u,v\n", single_f = "i,j,level\n";
+  for (const auto& [a, l] : layers) {
+    q += "0.37,0.61," + a + ",0.4\n";
+    g += "0.37,0.61," + a + "\n";
+  }
+  single += "0.37,0.61,0.4\n";
+  single_g += "0.37,0.61\n";
+  for (int l = -1; l <= 3; ++l) f += "3,2," + std::to_string(l) + ",0\n";
+  single_f += "3,2,0\n";
+  write_text(dir / "q.csv", q);
+  write_text(dir / "g.csv", g);
+  write_text(dir / "f.csv", f);
+  write_text(dir / "single.csv", single);
+  write_text(dir / "single_g.csv", single_g);
+  write_text(dir / "single_f.csv", single_f);
+  const std::string array = "sample --texture-layers l0.png,l1.png,l2.png --memory cached ";
+  ASSERT_EQ(run(array + "-q q.csv -o a.csv").exit_code, 0);
+  ASSERT_EQ(run(array + "--op gather --component g -q g.csv -o ag.csv").exit_code, 0);
+  const Result fr = run(array + "--op fetch -q f.csv -o af.csv");
+  ASSERT_EQ(fr.exit_code, 0) << fr.err;
+  EXPECT_NE(fr.out.find("7x5 texture x 3 layers"), std::string::npos) << fr.out;
+  std::string h;
+  const auto rows = read_csv_rows(dir / "a.csv", h), grows = read_csv_rows(dir / "ag.csv", h),
+             frows = read_csv_rows(dir / "af.csv", h);
+  ASSERT_EQ(rows.size(), layers.size());
+  ASSERT_EQ(grows.size(), layers.size());
+  ASSERT_EQ(frows.size(), 5u);
+  std::vector<std::vector<int>> alone(3), alone_g(3), alone_f(3);
+  for (int l = 0; l < 3; ++l) {
+    const std::string t = " -t l" + std::to_string(l) + ".png --memory cached ";
+    ASSERT_EQ(run("sample" + t + "-q single.csv -o s.csv").exit_code, 0);
+    alone[size_t(l)] = read_csv_rows(dir / "s.csv", h).at(0);
+    ASSERT_EQ(run("sample" + t + "--op gather --component g -q single_g.csv -o s.csv").exit_code, 0);
+    alone_g[size_t(l)] = read_csv_rows(dir / "s.csv", h).at(0);
+    ASSERT_EQ(run("sample" + t + "--op fetch -q single_f.csv -o s.csv").exit_code, 0);
+    alone_f[size_t(l)] = read_csv_rows(dir / "s.csv", h).at(0);
+  }
+  EXPECT_NE(alone[0], alone[1]);
+  for (size_t i = 0; i < layers.size(); ++i) {
+    EXPECT_EQ(rows[i], alone[size_t(layers[i].second)]) << "layer coordinate " << layers[i].first;
+    EXPECT_EQ(grows[i], alone_g[size_t(layers[i].second)]) << "gather, layer coordinate " << layers[i].first;
+  }
+  EXPECT_EQ(frows[0], (std::vector<int>{0, 0, 0, 0})) << "fetch of layer -1";
+  for (int l = 0; l < 3; ++l) EXPECT_EQ(frows[size_t(l + 1)], alone_f[size_t(l)]) << "fetch of layer " << l;
+  EXPECT_EQ(frows[4], (std::vector<int>{0, 0, 0, 0})) << "fetch of layer 3";
+  for (const char* engine : {"-e rtl", "-e systemc", "-e systemc-model"}) {
+    ASSERT_EQ(run(array + "-q q.csv -o e.csv " + engine).exit_code, 0) << engine;
+    EXPECT_EQ(read_text(dir / "e.csv"), read_text(dir / "a.csv")) << engine;
+    ASSERT_EQ(run(array + "--op fetch -q f.csv -o e.csv " + engine).exit_code, 0) << engine;
+    EXPECT_EQ(read_text(dir / "e.csv"), read_text(dir / "af.csv")) << engine;
+  }
+  expect_clean_failure("sample --texture-layers l0.png,small.png --memory cached -q q.csv -o bad.csv", "bad.csv",
+                       {"small.png", "6x5", "7x5"});
+  expect_clean_failure("sample --texture-layers l0.png,l1.png -q q.csv -o bad.csv", "bad.csv", {"on-chip", "--memory cached"});
+  expect_clean_failure("sample --texture-layers l0.png,l1.png -t l2.png --memory cached -q q.csv -o bad.csv", "bad.csv",
+                       {"--texture-layers"});
+  expect_clean_failure("sample --texture-layers l0.png,,l1.png --memory cached -q q.csv -o bad.csv", "bad.csv",
+                       {"empty path"});
+}
+
 // --op gather (textureGather) --component C: at the corner between texels (x, y) and (x+1, y+1)
 // the four texels the linear filter weighs, component C of (x, y+1), (x+1, y+1), (x+1, y), (x, y)
 // as R, G, B, A, read from the PNG's pixels; clamp at the texture's edge; every engine and both RTL

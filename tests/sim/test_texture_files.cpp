@@ -1,11 +1,15 @@
 // Texture files (sim/workloads/texture_files.h): DDS with legacy and DX10 headers, KTX 1 and KTX2
-// with every level, read back block for block; OpenImageIO reads the same DDS files level by level
-// and decodes them as the model does (within the 1 LSB of docs/numerics.md); every bad input is one
-// error naming the file and the value; libsquish's BC1-BC5 keep the picture.
+// with every level, read back block for block, arrays and cube maps image by image; OpenImageIO
+// reads the same DDS files (cube maps too) level by level and decodes them as the model does
+// (within the 1 LSB of docs/numerics.md); every bad input is one error naming the file and the
+// value, found before anything the file cannot hold is allocated; libsquish's BC1-BC5 keep the
+// picture.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -53,55 +57,90 @@ std::vector<std::vector<uint8_t>> random_levels(TexelFormat f, int w, int h, int
   return levels;
 }
 
-// DDS: a FourCC, or "DX10" with a DXGI format.
-std::vector<uint8_t> dds(const char* fourcc, uint32_t dxgi, int w, int h, const std::vector<std::vector<uint8_t>>& levels) {
+using Levels = std::vector<std::vector<uint8_t>>;
+
+void set32(std::vector<uint8_t>& out, size_t at, uint32_t v) {
+  for (int i = 0; i < 4; ++i) out[at + size_t(i)] = uint8_t(v >> (8 * i));
+}
+
+// DDS: a FourCC, or "DX10" with a DXGI format. Its images one after another, each with its whole
+// chain; caps2 (0x200 | 0xFC00: a cube map of six faces), and the DX10 header's miscFlag (0x4: a
+// cube) and arraySize.
+std::vector<uint8_t> dds_of(const char* fourcc, uint32_t dxgi, int w, int h, const std::vector<Levels>& images,
+                            uint32_t caps2 = 0, uint32_t misc = 0, uint32_t array = 1) {
   std::vector<uint8_t> out = {'D', 'D', 'S', ' '};
-  const uint32_t head[31] = {124, 0x1 | 0x2 | 0x4 | 0x1000 | 0x20000, uint32_t(h), uint32_t(w), 0, 0, uint32_t(levels.size()),
+  const uint32_t head[31] = {124, 0x1 | 0x2 | 0x4 | 0x1000 | 0x20000, uint32_t(h), uint32_t(w), 0, 0, uint32_t(images[0].size()),
                              0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,  // reserved
                              32, 0x4, 0, 0, 0, 0, 0, 0,        // pixel format (FourCC below)
-                             0x1000 | 0x400000 | 0x8, 0, 0, 0, 0};
+                             0x1000 | 0x400000 | 0x8, caps2, 0, 0, 0};
   for (uint32_t v : head) put32(out, v);
   std::memcpy(&out[84], fourcc, 4);
   if (std::string(fourcc) == "DX10")
-    for (uint32_t v : {dxgi, 3u, 0u, 1u, 0u}) put32(out, v);
-  for (const auto& l : levels) out.insert(out.end(), l.begin(), l.end());
+    for (uint32_t v : {dxgi, 3u, misc, array, 0u}) put32(out, v);
+  for (const Levels& image : images)
+    for (const auto& l : image) out.insert(out.end(), l.begin(), l.end());
   return out;
 }
+std::vector<uint8_t> dds(const char* fourcc, uint32_t dxgi, int w, int h, const Levels& levels) {
+  return dds_of(fourcc, dxgi, w, h, {levels});
+}
 
-std::vector<uint8_t> ktx1(uint32_t internal, int w, int h, const std::vector<std::vector<uint8_t>>& levels) {
+// KTX 1: numberOfArrayElements `elements` (0: not an array), numberOfFaces `faces`; level after
+// level, imageSize then every image. A cube map that is not an array: imageSize counts one face.
+std::vector<uint8_t> ktx1_of(uint32_t internal, int w, int h, const std::vector<Levels>& images, uint32_t elements = 0,
+                             uint32_t faces = 1) {
   std::vector<uint8_t> out = {0xAB, 'K', 'T', 'X', ' ', '1', '1', 0xBB, '\r', '\n', 0x1A, '\n'};
   const bool rgba8 = internal == 0x8058 || internal == 0x8C43;  // glType, glFormat: 0 when compressed
   for (uint32_t v : {0x04030201u, rgba8 ? 0x1401u : 0u, 1u, rgba8 ? 0x1908u : 0u, internal, 0x1908u, uint32_t(w),
-                     uint32_t(h), 0u, 0u, 1u, uint32_t(levels.size()), 0u})
+                     uint32_t(h), 0u, elements, faces, uint32_t(images[0].size()), 0u})
     put32(out, v);
-  for (const auto& l : levels) {
-    put32(out, uint32_t(l.size()));
-    out.insert(out.end(), l.begin(), l.end());
+  const bool lone_cube = faces == 6 && elements == 0;
+  for (size_t k = 0; k < images[0].size(); ++k) {
+    put32(out, uint32_t(images[0][k].size() * (lone_cube ? 1 : images.size())));
+    for (const Levels& image : images) {
+      out.insert(out.end(), image[k].begin(), image[k].end());
+      while (lone_cube && out.size() % 4) out.push_back(0);
+    }
     while (out.size() % 4) out.push_back(0);
   }
   return out;
 }
+std::vector<uint8_t> ktx1(uint32_t internal, int w, int h, const Levels& levels) { return ktx1_of(internal, w, h, {levels}); }
 
-std::vector<uint8_t> ktx2(uint32_t vk, int w, int h, const std::vector<std::vector<uint8_t>>& levels) {
+// KTX2: layerCount `layers` (0: not an array), faceCount `faces`; each level every image in turn.
+std::vector<uint8_t> ktx2_of(uint32_t vk, int w, int h, const std::vector<Levels>& images, uint32_t layers = 0,
+                             uint32_t faces = 1) {
   std::vector<uint8_t> out = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
-  for (uint32_t v : {vk, 1u, uint32_t(w), uint32_t(h), 0u, 0u, 1u, uint32_t(levels.size()), 0u}) put32(out, v);
+  const size_t count = images[0].size();
+  for (uint32_t v : {vk, 1u, uint32_t(w), uint32_t(h), 0u, layers, faces, uint32_t(count), 0u}) put32(out, v);
   for (int i = 0; i < 4; ++i) put32(out, 0);  // no DFD, no key/value data
   put64(out, 0);
   put64(out, 0);
   // Level index (level 0 first), the data smallest level first, as KTX2 writers store it.
-  uint64_t at = out.size() + 24 * levels.size();
-  std::vector<uint64_t> offsets(levels.size());
-  for (size_t k = levels.size(); k-- > 0;) {
+  std::vector<uint64_t> sizes(count, 0), offsets(count);
+  for (const Levels& image : images)
+    for (size_t k = 0; k < count; ++k) sizes[k] += image[k].size();
+  uint64_t at = out.size() + 24 * count;
+  for (size_t k = count; k-- > 0;) {
     offsets[k] = at;
-    at += levels[k].size();
+    at += sizes[k];
   }
-  for (size_t k = 0; k < levels.size(); ++k) {
+  for (size_t k = 0; k < count; ++k) {
     put64(out, offsets[k]);
-    put64(out, levels[k].size());
-    put64(out, levels[k].size());
+    put64(out, sizes[k]);
+    put64(out, sizes[k]);
   }
-  for (size_t k = levels.size(); k-- > 0;) out.insert(out.end(), levels[k].begin(), levels[k].end());
+  for (size_t k = count; k-- > 0;)
+    for (const Levels& image : images) out.insert(out.end(), image[k].begin(), image[k].end());
   return out;
+}
+std::vector<uint8_t> ktx2(uint32_t vk, int w, int h, const Levels& levels) { return ktx2_of(vk, w, h, {levels}); }
+
+// `count` images of distinct random levels (image i from seed + i).
+std::vector<Levels> random_images(TexelFormat f, int w, int h, int levels, int count, uint64_t seed) {
+  std::vector<Levels> images;
+  for (int i = 0; i < count; ++i) images.push_back(random_levels(f, w, h, levels, seed + uint64_t(i)));
+  return images;
 }
 
 std::string error_of(const fs::path& p) {
@@ -270,5 +309,292 @@ TEST(TextureFiles, EncodersKeepThePicture) {
     // trip of a 16-texel ramp, measured through Mesa's decoder too): a looser bound, and the mean.
     EXPECT_LE(worst, f == TexelFormat::Bc7 ? 40 : 10) << format_info(f).name;
     EXPECT_LE(sum / n, 4.0) << format_info(f).name;
+  }
+}
+
+namespace {
+
+// A level as the sampler takes it: RGBA8 bytes as texels, a block format decoded.
+Image decoded(TexelFormat f, const std::vector<uint8_t>& bytes, int w, int h) {
+  if (is_compressed(f)) return decode_level(f, bytes.data(), w, h);
+  Image img(w, h, 8);
+  for (size_t i = 0; i < img.texels.size(); ++i)
+    for (int c = 0; c < 4; ++c) img.texels[i][size_t(c)] = bytes[i * 4 + size_t(c)];
+  return img;
+}
+
+}  // namespace
+
+// Arrays, cube maps and cube arrays in every container: every image's every level where the file
+// put it (each image's bytes its own, so a swapped layer or face fails), one pyramid per image,
+// and load_layers / load_pyramid on them.
+TEST(TextureFiles, ArraysAndCubeMapsGiveBackEveryImage) {
+  Scratch s;
+  const struct {
+    TexelFormat format;
+    const char* fourcc;  // legacy DDS ("DX10": none)
+    uint32_t dxgi, gl, vk;
+  } formats[] = {{TexelFormat::Bc1, "DXT1", 71, 0x83F1, 133},
+                 {TexelFormat::Bc7, "DX10", 98, 0x8E8C, 145},
+                 {TexelFormat::Rgba8, "DX10", 28, 0x8058, 37}};
+  const struct {
+    int layers, faces;
+    bool array;  // the header says array (an array of one is still one layer)
+    int w, h, levels;
+    const char* refused;  // load_pyramid's words ("": it takes the file)
+  } shapes[] = {{3, 1, true, 32, 8, 6, "an array of 3 layers"},
+                {1, 6, false, 16, 16, 5, "a cube map (6 faces)"},
+                {2, 6, true, 8, 8, 1, "a cube-map array of 2 cubes x 6 faces"},
+                {1, 1, true, 16, 16, 5, ""}};
+  uint64_t seed = 100;
+  for (const auto& f : formats)
+    for (const auto& sh : shapes) {
+      const int count = sh.layers * sh.faces;
+      const auto images = random_images(f.format, sh.w, sh.h, sh.levels, count, seed += 10);
+      const uint32_t caps2 = sh.faces == 6 ? 0x200 | 0xFC00 : 0;
+      std::vector<std::pair<std::string, std::vector<uint8_t>>> files = {
+          // DX10: a cube map's caps2 as DirectX writes it; the cube array's DX10 header alone
+          {"dx10.dds", dds_of("DX10", f.dxgi, sh.w, sh.h, images, sh.layers > 1 ? 0 : caps2, sh.faces == 6 ? 4 : 0,
+                              uint32_t(sh.layers))},
+          {"a.ktx", ktx1_of(f.gl, sh.w, sh.h, images, sh.array ? uint32_t(sh.layers) : 0, uint32_t(sh.faces))},
+          {"a.ktx2", ktx2_of(f.vk, sh.w, sh.h, images, sh.array ? uint32_t(sh.layers) : 0, uint32_t(sh.faces))}};
+      if (std::string(f.fourcc) != "DX10" && sh.layers == 1)  // legacy DDS: cube maps, no arrays
+        files.push_back({"legacy.dds", dds_of(f.fourcc, 0, sh.w, sh.h, images, caps2)});
+      for (const auto& [name, bytes] : files) {
+        const std::string what = std::string(format_info(f.format).name) + " " + name + " " +
+                                 std::to_string(sh.layers) + "x" + std::to_string(sh.faces);
+        const fs::path p = s / name;
+        save(p, bytes);
+        const TextureFile t = read_texture_file(p.string());
+        EXPECT_EQ(t.layers, sh.layers) << what;
+        EXPECT_EQ(t.faces, sh.faces) << what;
+        EXPECT_EQ(t.width, sh.w);
+        EXPECT_EQ(t.height, sh.h);
+        EXPECT_EQ(t.format, f.format);
+        ASSERT_EQ(t.more_images.size(), size_t(count - 1)) << what;
+        for (int i = 0; i < count; ++i)
+          EXPECT_EQ(i == 0 ? t.levels : t.more_images[size_t(i - 1)], images[size_t(i)]) << what << " image " << i;
+
+        const std::vector<Pyramid> pyramids = pyramids_of(t, PyramidMode::Exact);
+        ASSERT_EQ(pyramids.size(), size_t(count)) << what;
+        const int full = level_count({sh.w, sh.h});
+        for (int i = 0; i < count; ++i) {
+          const Pyramid& pyr = pyramids[size_t(i)];
+          ASSERT_EQ(pyr.levels.size(), size_t(full)) << what << " image " << i;
+          EXPECT_EQ(pyr.format, f.format);
+          for (int k = 0; k < sh.levels; ++k) {  // the file's levels (one level: the rest built from it)
+            const Extent e = level_extent({sh.w, sh.h}, k);
+            EXPECT_EQ(pyr.levels[size_t(k)].texels, decoded(f.format, images[size_t(i)][size_t(k)], e.width(), e.height()).texels)
+                << what << " image " << i << " level " << k;
+            if (is_compressed(f.format)) {
+              EXPECT_EQ(pyr.blocks[size_t(k)], images[size_t(i)][size_t(k)]);
+            }
+          }
+          if (sh.levels == 1 && !is_compressed(f.format)) {  // each image's chain from its own level 0
+            EXPECT_EQ(pyr.levels.back().texels, build_pyramid(decoded(f.format, images[size_t(i)][0], sh.w, sh.h)).levels.back().texels)
+                << what << " image " << i;
+          }
+        }
+        EXPECT_EQ(pyramid_of(t, PyramidMode::Exact).levels[0].texels, pyramids[0].levels[0].texels);
+
+        // load_layers: every image, with the view; load_pyramid: one image only.
+        TextureOptions o;
+        o.base_level = sh.levels > 1 ? 1 : 0;
+        int faces = 0;
+        const std::vector<Pyramid> layers = load_layers(p.string(), o, &faces);
+        EXPECT_EQ(faces, sh.faces);
+        ASSERT_EQ(layers.size(), size_t(count));
+        for (int i = 0; i < count; ++i) {
+          EXPECT_EQ(layers[size_t(i)].extent0(), level_extent({sh.w, sh.h}, o.base_level)) << what;
+          EXPECT_EQ(layers[size_t(i)].levels[0].texels, pyramids[size_t(i)].levels[size_t(o.base_level)].texels) << what << " image " << i;
+        }
+        if (*sh.refused) {
+          try {
+            load_pyramid(p.string(), o);
+            ADD_FAILURE() << what << ": load_pyramid took " << count << " images";
+          } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(p.string() + ": " + sh.refused), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("texsim sample takes arrays"), std::string::npos) << e.what();
+          }
+        } else {
+          EXPECT_EQ(load_pyramid(p.string(), o).levels[0].texels, layers[0].levels[0].texels) << what;
+        }
+      }
+    }
+  // An image file or pattern is one layer.
+  int faces = 0;
+  TextureOptions o;
+  const std::vector<Pyramid> one = load_layers("checker:16x8", o, &faces);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(faces, 1);
+  EXPECT_EQ(one[0].extent0(), (Extent{16, 8}));
+  EXPECT_EQ(one[0].levels[0].texels, load_pyramid("checker:16x8", o).levels[0].texels);
+  // A TextureFile whose images do not match its counts.
+  save(s / "three.dds", dds_of("DXT1", 0, 8, 8, random_images(TexelFormat::Bc1, 8, 8, 4, 1, 5)));
+  TextureFile t = read_texture_file((s / "three.dds").string());
+  t.layers = 3;
+  EXPECT_THROW(pyramids_of(t, PyramidMode::Exact), Error);
+}
+
+// OpenImageIO's DDS reader takes a cube map (caps2, legacy or with a DX10 header) as one image of
+// its six faces stacked, +X at the top (its 1x6 layout); each face decodes as the model decodes
+// that image. OpenImageIO 2.4 gives a cube map's level k >= 1 the sides of level k - 1 (its seek
+// halves them once too few; 16x16 faces: levels of 16, 16, 8, 4, 2), so a level it mislabels is
+// skipped: level 0 always compared (every level's place: ArraysAndCubeMapsGiveBackEveryImage).
+TEST(TextureFiles, OpenImageIoReadsTheSameCubeFaces) {
+  Scratch s;
+  int compared = 0;
+  for (TexelFormat f : {TexelFormat::Bc1, TexelFormat::Bc7}) {
+    const auto images = random_images(f, 16, 16, 5, 6, 60 + uint64_t(f));
+    const fs::path p = s / "cube.dds";
+    save(p, f == TexelFormat::Bc7 ? dds_of("DX10", 98, 16, 16, images, 0x200 | 0xFC00, 4, 1)
+                                  : dds_of("DXT1", 0, 16, 16, images, 0x200 | 0xFC00));
+    const std::vector<Pyramid> faces = pyramids_of(read_texture_file(p.string()), PyramidMode::Exact);
+    ASSERT_EQ(faces.size(), 6u);
+    auto in = OIIO::ImageInput::open(p.string());
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("textureformat"), "CubeFace Environment");
+    for (int k = 0; k < 5; ++k) {
+      ASSERT_TRUE(in->seek_subimage(0, k)) << k;
+      const int w = in->spec().width, h = in->spec().height;
+      const Image& level0 = faces[0].levels[size_t(k)];
+      if (k > 0 && w != level0.width) continue;  // OpenImageIO 2.4's size of level k - 1 (above)
+      ASSERT_EQ(w, level0.width) << "level " << k;
+      ASSERT_EQ(h, 6 * level0.height) << "level " << k;
+      ++compared;
+      std::vector<uint8_t> px(size_t(w) * h * 4);
+      ASSERT_TRUE(in->read_image(0, k, 0, 4, OIIO::TypeDesc::UINT8, px.data()));
+      for (int face = 0; face < 6; ++face) {
+        const Image& mine = faces[size_t(face)].levels[size_t(k)];
+        int worst = 0;
+        for (int y = 0; y < mine.height; ++y)
+          for (int x = 0; x < mine.width; ++x)
+            for (int c = 0; c < 4; ++c)
+              worst = std::max(worst, std::abs(int(mine.at(x, y)[size_t(c)]) -
+                                               px[((size_t(face) * mine.height + y) * w + x) * 4 + size_t(c)]));
+        EXPECT_LE(worst, f == TexelFormat::Bc7 ? 0 : 1) << format_info(f).name << " face " << face << " level " << k;
+      }
+    }
+  }
+  EXPECT_GE(compared, 2);  // level 0 of each cube map
+}
+
+TEST(TextureFiles, BadArraysAndCubeMapsNameTheProblem) {
+  Scratch s;
+  const auto four = random_images(TexelFormat::Bc1, 16, 16, 5, 4, 1);
+  const auto six = random_images(TexelFormat::Bc1, 16, 16, 5, 6, 2);
+  const auto flat = random_images(TexelFormat::Bc1, 16, 8, 5, 6, 3);  // 16x8
+  auto expect_error = [&](const std::string& name, const std::vector<uint8_t>& bytes, const std::string& want) {
+    save(s / name, bytes);
+    const std::string e = error_of(s / name);
+    EXPECT_NE(e.find(want), std::string::npos) << name << ": " << e;
+    EXPECT_NE(e.find(name), std::string::npos) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  };
+  auto cut = [](std::vector<uint8_t> b, size_t n) { return std::vector<uint8_t>(b.begin(), b.end() - std::ptrdiff_t(n)); };
+  // Truncated: the error names the image and level where the file ends.
+  expect_error("array.dds", cut(dds_of("DX10", 71, 16, 16, four, 0, 0, 4), 3), "truncated: layer 3 level 4 needs 8 bytes");
+  expect_error("array.ktx", cut(ktx1_of(0x83F1, 16, 16, four, 4), 3), "truncated: layer 3 level 4 needs 8 bytes");
+  expect_error("cube.ktx", cut(ktx1_of(0x83F1, 16, 16, six, 0, 6), 3), "truncated: face -Z level 4 needs 8 bytes");
+  expect_error("cubes.ktx", cut(ktx1_of(0x83F1, 16, 16, six, 1, 6), 3), "truncated: face -Z level 4 needs 8 bytes");
+  expect_error("array.ktx2", cut(ktx2_of(133, 16, 16, four, 4), 3), "truncated: level 0 needs 512 bytes");
+  std::vector<uint8_t> extra = dds_of("DX10", 71, 16, 16, four, 0, 0, 4);
+  extra.push_back(0);
+  expect_error("extra.dds", extra, "1 bytes after the last of 5 levels of 4 images");
+  // Faces: a legacy cube map without -Z, a DX10 header that contradicts caps2, face counts.
+  expect_error("five.dds", dds_of("DXT1", 0, 16, 16, {six.begin(), six.end() - 1}, 0x200 | 0x7C00),
+               "caps2 0x7E00: a cube map with 5 of its 6 faces (-Z missing)");
+  expect_error("x.dds", dds_of("DXT1", 0, 16, 16, {six[0]}, 0x200 | 0x400), "a cube map with 1 of its 6 faces (-X, +Y, -Y, +Z, -Z missing)");
+  expect_error("misc.dds", dds_of("DX10", 71, 16, 16, six, 0x200 | 0xFC00, 0, 1),
+               "caps2 0xFE00 marks a cube map, the DX10 header's miscFlag 0x0 does not");
+  expect_error("faces.ktx", ktx1_of(0x83F1, 16, 16, {six.begin(), six.end() - 1}, 0, 5), "numberOfFaces 5: a texture has 1 face, or 6");
+  expect_error("faces.ktx2", ktx2_of(133, 16, 16, {six[0], six[1]}, 0, 2), "faceCount 2: a texture has 1 face, or 6");
+  // A cube's faces are square.
+  expect_error("flat.dds", dds_of("DXT1", 0, 16, 8, flat, 0x200 | 0xFC00), "width 16, height 8: a cube map's faces are square");
+  expect_error("flat10.dds", dds_of("DX10", 71, 16, 8, flat, 0, 4, 1), "width 16, height 8: a cube map's faces are square");
+  expect_error("flat.ktx", ktx1_of(0x83F1, 16, 8, flat, 0, 6), "width 16, height 8: a cube map's faces are square");
+  expect_error("flat.ktx2", ktx2_of(133, 16, 8, flat, 0, 6), "width 16, height 8: a cube map's faces are square");
+  // Layer counts: 1..256 (KTX: 0 is not an array).
+  expect_error("257.dds", dds_of("DX10", 71, 16, 16, four, 0, 0, 257), "arraySize 257: an array texture has 1 to 256 layers");
+  expect_error("0.dds", dds_of("DX10", 71, 16, 16, four, 0, 0, 0), "arraySize 0: an array texture has 1 to 256 layers");
+  expect_error("257.ktx", ktx1_of(0x83F1, 16, 16, four, 257), "numberOfArrayElements 257: an array texture has 1 to 256 layers");
+  expect_error("257.ktx2", ktx2_of(133, 16, 16, four, 257), "layerCount 257: an array texture has 1 to 256 layers");
+  // Sizes the header and the layout disagree on.
+  std::vector<uint8_t> size1 = ktx1_of(0x83F1, 16, 16, four, 4);
+  set32(size1, 64, 128);  // level 0's imageSize: one layer's
+  expect_error("size.ktx", size1, "level 0 has 128 bytes (imageSize); 4 layers of a bc1 level of that size have 512");
+  std::vector<uint8_t> size2 = ktx2_of(133, 16, 16, six, 0, 6);
+  set32(size2, 80 + 8, 128);  // level 0's byteLength: one face's
+  expect_error("size.ktx2", size2, "level 0 has 128 bytes (byteLength); 6 faces of a bc1 level of that size have 768");
+  // Volumes are still refused.
+  std::vector<uint8_t> volume = ktx2_of(133, 16, 16, four, 0, 1);
+  set32(volume, 28, 4);
+  expect_error("volume.ktx2", volume, "pixelDepth 4 (a volume texture)");
+  expect_error("volume.dds", dds_of("DXT1", 0, 16, 16, four, 0x200000), "a volume texture (caps2 0x200000");
+}
+
+// Headers that claim far more than the file holds (256 cubes of 8192x8192 RGBA8 with every level,
+// about 550 GB, in a file of 1 KB) fail at once, naming where the file ends, and allocate none of
+// it: while each is read the address space is held to the process's own plus 256 MB, so that an
+// allocation of what the header claims would throw std::bad_alloc rather than tex::Error.
+TEST(TextureFiles, HeadersClaimingMoreThanTheFileFailWithoutAllocatingIt) {
+  Scratch s;
+  auto padded = [](std::vector<uint8_t> b) {
+    b.resize(1024, 0);
+    return b;
+  };
+  const auto one = random_images(TexelFormat::Rgba8, 4, 4, 1, 1, 9);
+  std::vector<uint8_t> dds_bytes = dds_of("DX10", 28, 4, 4, one, 0x200 | 0xFC00, 4, 256);
+  set32(dds_bytes, 12, 8192);
+  set32(dds_bytes, 16, 8192);
+  set32(dds_bytes, 28, 14);
+  // KTX 1's imageSize holds 32 bits: 256 layers of 1024x1024 RGBA8 (1 GB) in one level.
+  std::vector<uint8_t> ktx_bytes = ktx1_of(0x8058, 4, 4, one, 256, 1);
+  set32(ktx_bytes, 36, 1024);
+  set32(ktx_bytes, 40, 1024);
+  set32(ktx_bytes, 64, 1u << 30);
+  // KTX2: the level index of 14 levels, each level's byteLength as 256 cubes of it have.
+  std::vector<uint8_t> ktx2_bytes = ktx2_of(37, 4, 4, one, 256, 6);
+  ktx2_bytes.resize(80);  // the header; the level index follows
+  set32(ktx2_bytes, 20, 8192);
+  set32(ktx2_bytes, 24, 8192);
+  set32(ktx2_bytes, 40, 14);
+  for (int k = 0; k < 14; ++k) {
+    const Extent e = level_extent({8192, 8192}, k);
+    const uint64_t n = level_bytes(TexelFormat::Rgba8, e.width(), e.height()) * 256 * 6;
+    put64(ktx2_bytes, 512);
+    put64(ktx2_bytes, n);
+    put64(ktx2_bytes, n);
+  }
+  const std::pair<std::string, std::vector<uint8_t>> files[] = {
+      {"claims.dds", padded(dds_bytes)},
+      {"claims.ktx", padded(ktx_bytes)},
+      {"claims.ktx2", padded(ktx2_bytes)}};
+  const std::string want[] = {"truncated: layer 0 face +X level 0 needs 268435456 bytes at offset 148, the file has 1024",
+                              "truncated: layer 0 level 0 needs 4194304 bytes at offset 68, the file has 1024",
+                              "truncated: level 0 needs 412316860416 bytes at offset 512, the file has 1024"};
+  for (size_t i = 0; i < 3; ++i) {
+    save(s / files[i].first, files[i].second);
+    std::ifstream statm("/proc/self/statm");
+    uint64_t pages = 0;
+    statm >> pages;
+    rlimit old{};
+    ASSERT_EQ(getrlimit(RLIMIT_AS, &old), 0);
+    rlimit held = old;
+    held.rlim_cur = std::min<rlim_t>(old.rlim_max, rlim_t(pages * uint64_t(sysconf(_SC_PAGESIZE)) + (256ull << 20)));
+    ASSERT_EQ(setrlimit(RLIMIT_AS, &held), 0);
+    const auto start = std::chrono::steady_clock::now();
+    std::string e;
+    bool bad_alloc = false;
+    try {
+      e = error_of(s / files[i].first);
+    } catch (const std::bad_alloc&) {
+      bad_alloc = true;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    setrlimit(RLIMIT_AS, &old);
+    EXPECT_FALSE(bad_alloc) << files[i].first << ": allocated what the header claims";
+    EXPECT_NE(e.find(files[i].first + ": " + want[i]), std::string::npos) << e;
+    EXPECT_LT(seconds, 1.0) << files[i].first;
   }
 }

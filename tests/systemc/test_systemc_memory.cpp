@@ -253,8 +253,8 @@ TEST(SystemcMemory, ExamplePlatformRuns) {
   std::remove("platform.txt");
 }
 
-// A frame as a real one binds it: four textures in the descriptor table (RGBA8 with sides that are
-// not powers of two, BC1 sRGB, BC7, RGBA8 sRGB) and five random samplers, random requests over
+// A frame as a real one binds it: five textures in the descriptor table (RGBA8 with sides that are
+// not powers of two, BC1 sRGB, BC7, RGBA8 sRGB, an RGBA8 array of 3 layers) and five random samplers, random requests over
 // them (tests/common/stimulus.h), the memory jittering. Both backends give the golden model's texels
 // and its miss stream, in order.
 TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
@@ -270,11 +270,16 @@ TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
     table.push_back({&p});
     sizes.push_back(p.extent0());
   }
+  const std::vector<Pyramid> layers = stimulus::random_layers({23, 40}, 3, 6);  // and an array of 3 layers
+  std::vector<const Pyramid*> array = stimulus::pointers_to(layers);
+  table.push_back({array[0], {array.begin() + 1, array.end()}});
+  sizes.push_back(layers[0].extent0());
   std::mt19937_64 rng(5);
   SamplerTable samplers;
   for (int i = 0; i < 5; ++i) samplers.push_back(stimulus::random_sampler(rng));
   std::vector<Request> requests = stimulus::random_requests(rng, sizes, samplers.size(), 3000);
   stimulus::fetches_and_gathers_among(rng, requests, 16, [&](int t) { return sizes[size_t(t)]; });
+  stimulus::layers_among(rng, requests, [&](int t) { return table[size_t(t)].layers(); });
   EngineOptions o = cached(60, 4);
   o.mem_jitter = 40;
   o.seed = 9;

@@ -23,6 +23,7 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_sampler = r.sampler;
   in.req_op = uint8_t(r.op);
   in.req_component = r.component & 3;
+  in.req_layer = r.layer;
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, const Pyramid& pyramid) {
@@ -205,7 +206,7 @@ void Driver::load_textures(const TextureTable& textures) {
     const MemoryLayout& layout = table[i].layout;
     descriptors_.push_back({uint8_t(i), layout.params().base, uint16_t(layout.size0().w),
                             uint16_t(layout.size0().h), uint8_t(layout.levels() - 1), uint8_t(layout.format()),
-                            textures[i].pyramid->srgb});
+                            textures[i].pyramid->srgb, uint8_t(layout.layers() - 1)});
   }
   if (options_.memory_port) {
     port_ = options_.memory_port;

@@ -44,6 +44,7 @@ struct PinsIn {
   uint8_t req_sampler = 0;       // tex_unit_cached: the sampler-table entry
   uint8_t req_op = 0;            // tex_pkg::OP_*: a sample, a gather, or a texel fetch (req_u, req_v, req_lod: i, j, level)
   uint8_t req_component = 0;     // a gather's channel, 0..3
+  int32_t req_layer = 0;         // tex_unit_cached: an array's layer, Q16.16 (a fetch: the integer layer)
   bool rsp_ready = true;
   // AXI4 read port of tex_unit_cached: driven by the driver's memory model (ignored otherwise).
   bool ar_ready = false;
@@ -83,6 +84,7 @@ struct DescriptorPins {
   uint8_t last_level = 15; // the chain's last level (a view's: docs/rtl-interface.md)
   uint8_t format = 0;  // tex_pkg::FMT_* = TexelFormat
   bool srgb = false;   // R, G, B are sRGB codes (a configuration with the formats)
+  uint8_t layers_m1 = 0;  // an array's layers - 1 (0..255)
 };
 
 // One sampler, the cfg_smp_* pins (SamplerConfig field for field): tex_unit's static pins, or

@@ -12,16 +12,20 @@ namespace tex::rtl {
 
 namespace {
 
-// Checks each request against the RTL's ports and the frame's tables as it is read.
+// Checks each request against the RTL's ports and the frame's tables as it is read (the on-chip
+// unit has no layer pin: its fetches are of layer 0).
 class CheckedSource final : public RequestSource {
  public:
-  CheckedSource(RequestSource& inner, size_t textures, size_t samplers)
-      : inner_(inner), textures_(textures), samplers_(samplers) {}
+  CheckedSource(RequestSource& inner, size_t textures, size_t samplers, bool cached)
+      : inner_(inner), textures_(textures), samplers_(samplers), cached_(cached) {}
   size_t read(Request* out, size_t max) override {
     const size_t n = inner_.read(out, max);
     for (size_t i = 0; i < n; ++i) {
       check_request(out[i], count_ + i);
       check_request_tables(out[i], textures_, samplers_);
+      if (!cached_ && out[i].op == Op::Fetch && out[i].layer != 0)
+        throw Error("request " + std::to_string(count_ + i) + ": a fetch of layer " + std::to_string(out[i].layer) +
+                    ": the on-chip unit holds one 2D texture (use --memory cached for arrays)");
     }
     count_ += n;
     return n;
@@ -30,6 +34,7 @@ class CheckedSource final : public RequestSource {
  private:
   RequestSource& inner_;
   size_t textures_, samplers_;
+  bool cached_;
   size_t count_ = 0;
 };
 
@@ -88,7 +93,7 @@ class RtlEngine final : public Engine {
     }
     const auto t1 = std::chrono::steady_clock::now();
 
-    CheckedSource checked(source, textures.size(), samplers.size());
+    CheckedSource checked(source, textures.size(), samplers.size(), cached);
     std::optional<MissChecker> misses;
     std::optional<PredictingSource> predicting;
     if (cached) predicting.emplace(checked, misses.emplace(*cache, options_.miss_sink));

@@ -91,6 +91,7 @@ class VerilatedTexUnit final : public Driver {
       t.m_axi_rid = 0;
       t.req_tex = in.req_tex;
       t.req_sampler = in.req_sampler;
+      t.req_layer = uint32_t(in.req_layer);
     } else {
       t.wr_en = in.wr_en;
       t.wr_level = in.wr_level;
@@ -194,6 +195,7 @@ class VerilatedTexUnit final : public Driver {
       t.cfg_desc_last_level = d.last_level;
       t.cfg_desc_format = d.format;
       t.cfg_desc_srgb = d.srgb;
+      t.cfg_desc_layers_m1 = d.layers_m1;
       t.eval();
     } else {
       throw Error(config_.name + " has no texture descriptors");

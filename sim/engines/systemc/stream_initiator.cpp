@@ -80,6 +80,7 @@ StreamInitiator::Slot* StreamInitiator::take_slot(const Request& q, size_t index
   s->data.sampler = q.sampler;
   s->data.op = uint8_t(q.op);
   s->data.component = q.component;
+  s->data.layer = q.layer;
   s->set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   ++issued_;
   return s;

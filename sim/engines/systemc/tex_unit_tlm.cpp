@@ -29,11 +29,13 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const TextureTable&
     TextureTable sampled = textures;
     if (cached) {
       // The unit's memories start blank: only the lines it reads over the bus fill them.
-      views_.reserve(textures.size());
+      views_.resize(textures.size());
       for (size_t t = 0; t < textures.size(); ++t) {
-        Pyramid& blank = views_.emplace_back(*textures[t].pyramid);
-        for (Image& level : blank.levels) std::fill(level.texels.begin(), level.texels.end(), Texel{});
-        sampled[t].pyramid = &blank;
+        views_[t].assign(size_t(textures[t].layers()), *textures[t].pyramid);
+        for (Pyramid& blank : views_[t])
+          for (Image& level : blank.levels) std::fill(level.texels.begin(), level.texels.end(), Texel{});
+        sampled[t].pyramid = &views_[t][0];
+        for (size_t l = 1; l < views_[t].size(); ++l) sampled[t].more_layers[l - 1] = &views_[t][l];
       }
       line_data_.assign(size_t(descriptors_[0].layout.line_bytes()), 0);
     }
@@ -91,6 +93,7 @@ Request request_of(const SampleTransfer& s) {
   q.sampler = s.sampler;
   q.op = Op(s.op);
   q.component = s.component;
+  q.layer = s.layer;
   return q;
 }
 }  // namespace
@@ -171,14 +174,14 @@ void TexUnitTlm::read_line(uint32_t address, sc_time& delay) {
   for (size_t t = 0; t < descriptors_.size(); ++t) {
     const bool is_srgb = textures_[t].pyramid->srgb;
     const bool mine = decode_line(descriptors_[t].layout, address, line_data_.data(),
-                                  [&](int level, int x, int y, const Texel& code) {
+                                  [&](int layer, int level, int x, int y, const Texel& code) {
       Texel texel = code;
       if (is_srgb) {
         for (size_t c = 0; c < 3; ++c) texel[c] = srgb[code[c] & 255];
         texel[3] = uint16_t(code[3] * 257);
       }
-      views_[t].levels[size_t(level)].at(x, y) = texel;
-      model_samplers_->write_texel(int(t), level, x, y, texel);
+      views_[t][size_t(layer)].levels[size_t(level)].at(x, y) = texel;
+      model_samplers_->write_texel(int(t), level, x, y, texel, layer);
     }, true);  // a repeat seam's copy as its original: the taps may read the copy's line alone
     if (mine) return;
   }

@@ -113,7 +113,7 @@ class TexUnitTlm : public sc_core::sc_module {
   std::vector<uint8_t> line_data_;
   // Model backend: a Sampler per (texture, sampler) pair, built at its first request; cached: from
   // the texture's memory view (views_), which the lines read fill.
-  std::vector<Pyramid> views_;
+  std::vector<std::vector<Pyramid>> views_;  // [texture][layer]
   std::optional<SamplerPairs> model_samplers_;
   std::unique_ptr<rtl::Driver> driver_;  // RTL backend
   std::string error_;
