@@ -152,6 +152,7 @@ bool parse_op(const std::string& name, Op& out) {
   const std::string n = name_key(name, "");
   if (n == "sample") out = Op::Sample;
   else if (n == "gather" || n == "texturegather") out = Op::Gather;
+  else if (n == "compare" || n == "dref") out = Op::Compare;
   else if (n == "fetch" || n == "texelfetch") out = Op::Fetch;
   else return false;
   return true;
@@ -161,10 +162,30 @@ std::string op_name(Op op) {
   switch (op) {
     case Op::Sample: return "sample";
     case Op::Gather: return "gather";
+    case Op::Compare: return "compare";
     case Op::Fetch: return "fetch";
   }
   return "?";
 }
+
+namespace {
+constexpr const char* kCompareNames[kCompareOps] = {"never",   "less",      "equal",            "less-or-equal",
+                                                    "greater", "not-equal", "greater-or-equal", "always"};
+constexpr const char* kGlCompareNames[kCompareOps] = {"never",   "less",     "equal",  "lequal",
+                                                      "greater", "notequal", "gequal", "always"};
+}  // namespace
+
+bool parse_compare_op(const std::string& name, CompareOp& out) {
+  const std::string n = name_key(name, "vk_compare_op_");
+  for (int i = 0; i < kCompareOps; ++i)
+    if (n == name_key(kCompareNames[i], "") || n == kGlCompareNames[i]) {
+      out = CompareOp(i);
+      return true;
+    }
+  return false;
+}
+
+std::string compare_op_name(CompareOp op) { return int(op) < kCompareOps ? kCompareNames[int(op)] : "?"; }
 
 bool parse_pyramid_mode(const std::string& name, PyramidMode& out) {
   if (name == "exact") out = PyramidMode::Exact;

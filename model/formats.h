@@ -80,10 +80,19 @@ constexpr int kReductions = 3;
 
 // What a request asks of the unit (the RTL's req_op, tex_pkg::OP_*): a filtered sample (GLSL
 // texture*); textureGather: one component of the four texels a linear filter weighs at the base
-// level (stage::gather); or texelFetch: the texel (i, j) of one level, no filter, no address mode,
-// 0 outside the level or the view's levels (Vulkan's robust image access). Code 2 is kept for
-// compare (issue 35).
-enum class Op : uint8_t { Sample = 0, Gather = 1, Fetch = 3 };
+// level (stage::gather); a depth compare (GLSL texture* of a shadow sampler, SPIR-V
+// OpImageSampleDref*): each texel's depth compared with the request's reference by the sampler's
+// compare op, then filtered (percentage-closer filtering; stage::compare_taps); or texelFetch: the
+// texel (i, j) of one level, no filter, no address mode, 0 outside the level or the view's levels
+// (Vulkan's robust image access).
+enum class Op : uint8_t { Sample = 0, Gather = 1, Compare = 2, Fetch = 3 };
+
+// A depth compare's operator (Vulkan's VkCompareOp, whose values these are; GL's
+// TEXTURE_COMPARE_FUNC): the test is `reference OP texel depth`, 1 where it passes, else 0.
+enum class CompareOp : uint8_t {
+  Never = 0, Less = 1, Equal = 2, LessOrEqual = 3, Greater = 4, NotEqual = 5, GreaterOrEqual = 6, Always = 7
+};
+constexpr int kCompareOps = 8;
 
 // Names: point, bilinear, trilinear, mip_nearest (bilinear in the nearest level), anisotropic
 // (trilinear probes), and the six GL names (nearest, linear, nearest_mipmap_nearest, ...).
@@ -112,9 +121,14 @@ bool parse_pyramid_mode(const std::string& name, PyramidMode& out);
 // weighted-average | min | max (and the Vulkan names, VK_SAMPLER_REDUCTION_MODE_MIN, ...).
 bool parse_reduction(const std::string& name, Reduction& out);
 std::string reduction_name(Reduction r);
-// sample | gather | fetch (also textureGather, texelFetch).
+// sample | gather | compare | fetch (also textureGather, texelFetch).
 bool parse_op(const std::string& name, Op& out);
 std::string op_name(Op op);
+// never | less | equal | less-or-equal | greater | not-equal | greater-or-equal | always, GL's
+// names (GL_LEQUAL, gequal, notequal, ...) and Vulkan's (VK_COMPARE_OP_LESS_OR_EQUAL, ...).
+bool parse_compare_op(const std::string& name, CompareOp& out);
+std::string compare_op_name(CompareOp op);
+constexpr const char* kCompareOpNames = "never | less | equal | less-or-equal | greater | not-equal | greater-or-equal | always";
 
 constexpr bool is_power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
 // ceil(log2 n) for n >= 1 (log2 n itself for a power of two).

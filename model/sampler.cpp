@@ -24,6 +24,14 @@ std::string SamplerConfig::unnormalized_problem() const {
   return "";
 }
 
+std::string SamplerConfig::compare_problem() const {
+  if (reduction != Reduction::WeightedAverage)
+    return "a depth compare filters the weighted average of the tests, not their " + reduction_name(reduction) +
+           " (Vulkan: compareEnable with reductionMode WEIGHTED_AVERAGE only)";
+  if (unnormalized) return "a depth compare takes normalized coordinates (Vulkan: not with unnormalizedCoordinates)";
+  return "";
+}
+
 void check_sampler(const SamplerConfig& config, const std::string& where) {
   if (const std::string p = config.unnormalized_problem(); !p.empty()) throw Error(where + p);
 }
@@ -34,7 +42,8 @@ Sampler::Sampler(const std::vector<const Pyramid*>& layers, const SamplerConfig&
       border_(stage::border_texel(config.border_unorm16(), channel_bits_)),
       size0_(layers.empty() ? Extent{} : layers[0]->extent0()),
       last_level_(layers.empty() ? 0 : layers[0]->last_level()),
-      layers_(int(layers.size())) {
+      layers_(int(layers.size())),
+      srgb_(!layers.empty() && layers[0]->srgb) {
   if (layers_ < 1 || layers_ > kMaxLayers)
     throw Error("sampler: " + std::to_string(layers_) + " layers; an array texture has 1 to " + std::to_string(kMaxLayers));
   for (int l = 1; l < layers_; ++l)
@@ -112,6 +121,10 @@ int tex_probe_count(const Request& r, const SamplerConfig& config, Extent size0)
 Texel Sampler::sample(const Request& r) {
   if (r.op == Op::Fetch) return fetch(r);
   if (r.op == Op::Gather) return gather(r);
+  if (r.op == Op::Compare) {
+    if (const std::string p = config_.compare_problem(); !p.empty()) throw Error("sampler: " + p);
+    if (srgb_) throw Error("sampler: a depth compare of an sRGB texture (a depth is no colour)");
+  }
   const Probes p = tex_probe(r, config_, size0_);
   ++samples_;
   ++probes_[size_t(p.n)];
@@ -178,6 +191,9 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   stage::Footprint slot[2];
   const int slots = sel.two_levels ? 2 : 1;
   for (int s = 0; s < slots; ++s) slot[s] = footprint(memory, s == 0 ? sel.d : sel.d1, ru, rv, texel_filter, false);
+  if (r.op == Op::Compare)  // each tap's test, then the filter weighs the passes
+    for (int s = 0; s < slots; ++s)
+      stage::compare_taps(slot[s], config_.compare_op, stage::compare_reference(r.ref, channel_bits_), channel_bits_);
   if (config_.reduction != Reduction::WeightedAverage)  // compares, no multiplies
     return stage::reduce_taps(slot[0], slot[sel.two_levels ? 1 : 0], sel.f, config_.reduction == Reduction::Max);
   multiplies_ += (linear ? 3 : 0) * slots + (sel.two_levels ? 1 : 0);
@@ -238,15 +254,27 @@ struct Packed2x2 {
   uint64_t rb, ga;
 };
 
-// `u`, `v`: stage::reduce of the probe's coordinates.
-template <TexelFilter TF, Wrap WU, Wrap WV>
-[[gnu::always_inline]] inline Packed2x2 filter_level(const FastLevel& lv, int32_t u, int32_t v) {
+// A depth compare's test (stage::compare_taps): a texel becomes R = A = 255 where it passes, else
+// A = 255 alone.
+struct DepthTest {
+  CompareOp op = CompareOp::Always;
+  uint32_t reference = 0;  // stage::compare_reference, 8 bits
+  uint32_t operator()(uint32_t t) const { return stage::compare_passes(op, reference, t & 255) ? 0xFF0000FFu : 0xFF000000u; }
+};
+
+// `u`, `v`: stage::reduce of the probe's coordinates. CMP: each texel replaced by its depth test.
+template <TexelFilter TF, Wrap WU, Wrap WV, bool CMP = false>
+[[gnu::always_inline]] inline Packed2x2 filter_level(const FastLevel& lv, int32_t u, int32_t v, const DepthTest& test = {}) {
   const int32_t tu = stage::scale(u, lv.w), tv = stage::scale(v, lv.h);
+  auto texel = [&](uint32_t t) {
+    if constexpr (CMP) return test(t);
+    return t;
+  };
   if constexpr (TF == TexelFilter::Nearest) {
     // i0 = floor(u * size) = t9 >> 9; weights are 0, so the result is texel a, scaled to CW.16.
     const int32_t x = wrap_first<WU>(tu >> 9, lv.w);
     const int32_t y = wrap_first<WV>(tv >> 9, lv.h);
-    const uint32_t a = lv.texels[size_t(y) * lv.stride + size_t(x)];
+    const uint32_t a = texel(lv.texels[size_t(y) * lv.stride + size_t(x)]);
     return {spread_rb(a) << 16, spread_ga(a) << 16};
   } else {
     const int32_t pu = (tu - 255) >> 1, pv = (tv - 255) >> 1;
@@ -255,7 +283,7 @@ template <TexelFilter TF, Wrap WU, Wrap WV>
     const int32_t y0 = wrap_first<WV>(pv >> 8, lv.h), y1 = wrap_second<WV>((pv >> 8) + 1, lv.h, lv.seam_h);
     const uint32_t* row0 = lv.texels + size_t(y0) * lv.stride;
     const uint32_t* row1 = lv.texels + size_t(y1) * lv.stride;
-    const uint32_t a = row0[x0], b = row0[x1], c = row1[x0], e = row1[x1];
+    const uint32_t a = texel(row0[x0]), b = texel(row0[x1]), c = texel(row1[x0]), e = texel(row1[x1]);
     const uint64_t top_rb = lerp2(spread_rb(a), spread_rb(b), wx), bot_rb = lerp2(spread_rb(c), spread_rb(e), wx);
     const uint64_t top_ga = lerp2(spread_ga(a), spread_ga(b), wx), bot_ga = lerp2(spread_ga(c), spread_ga(e), wx);
     return {lerp2(top_rb, bot_rb, wy), lerp2(top_ga, bot_ga, wy)};
@@ -276,9 +304,9 @@ inline uint32_t gather_level(const FastLevel& lv, int32_t u, int32_t v, int comp
 }
 
 // One probe: the trilinear (or nearest-level) value before rounding, CW.24 per channel.
-template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
+template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV, bool CMP = false>
 [[gnu::always_inline]] inline Packed2x2 probe_packed(const FastLevel* levels, int last, const SamplerConfig& cfg, int32_t u_in, int32_t v_in,
-                              int32_t lambda) {
+                              int32_t lambda, const DepthTest& test = {}) {
   const int32_t u = stage::reduce(u_in, WU), v = stage::reduce(v_in, WV);
   const int32_t lod = stage::lod_clamp(lambda, cfg.lod_bias, cfg.min_lod, cfg.max_lod);
   if constexpr (MM == MipMode::Linear) {
@@ -290,13 +318,13 @@ template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
     const int d = past_last ? last : l >> kLodFracBits;
     const uint32_t f = past_last ? 0u : uint32_t(l & 255);
     const int d1 = d < last ? d + 1 : last;
-    const Packed2x2 b0 = filter_level<TF, WU, WV>(levels[d], u, v);
-    const Packed2x2 b1 = filter_level<TF, WU, WV>(levels[d1], u, v);
+    const Packed2x2 b0 = filter_level<TF, WU, WV, CMP>(levels[d], u, v, test);
+    const Packed2x2 b1 = filter_level<TF, WU, WV, CMP>(levels[d1], u, v, test);
     return {lerp2(b0.rb, b1.rb, f), lerp2(b0.ga, b1.ga, f)};
   } else {
     int d = 0;
     if constexpr (MM == MipMode::Nearest) d = lod > 0 ? std::min((lod + 127) >> kLodFracBits, last) : 0;
-    const Packed2x2 b0 = filter_level<TF, WU, WV>(levels[d], u, v);
+    const Packed2x2 b0 = filter_level<TF, WU, WV, CMP>(levels[d], u, v, test);
     return {b0.rb << 8, b0.ga << 8};
   }
 }
@@ -319,13 +347,20 @@ void sample_batch(const FastLevel* layer0, int last, int layers, Extent size0, c
       out[i] = gather_level<WU, WV>(levels[0], stage::reduce(r.u, WU), stage::reduce(r.v, WV), r.component);
       continue;
     }
+    // A depth compare's probes test each texel first (stage::compare_taps).
+    const bool compare = r.op == Op::Compare;
+    const DepthTest test{cfg.compare_op, compare ? stage::compare_reference(r.ref, 8) : 0};
+    auto probe = [&](const Request& q) {
+      if (compare) [[unlikely]]
+        return probe_packed<TF, MM, WU, WV, true>(levels, last, cfg, q.u, q.v, q.lod + q.bias, test);
+      return probe_packed<TF, MM, WU, WV>(levels, last, cfg, q.u, q.v, q.lod + q.bias);
+    };
     if (r.has_derivatives) {
       // The probes of tex_probe, summed per channel (16 probes of CW.24 need 36 bits: unpacked).
       const Probes p = tex_probe(r, cfg, size0);
       stage::Unrounded sum{};
       for (int k = 0; k < p.n; ++k) {
-        const Request& q = p.at[size_t(k)];
-        const Packed2x2 t = probe_packed<TF, MM, WU, WV>(levels, last, cfg, q.u, q.v, q.lod + q.bias);
+        const Packed2x2 t = probe(p.at[size_t(k)]);
         sum[0] += int64_t(t.rb & 0xFFFFFFFFu);
         sum[1] += int64_t(t.ga & 0xFFFFFFFFu);
         sum[2] += int64_t(t.rb >> 32);
@@ -335,7 +370,7 @@ void sample_batch(const FastLevel* layer0, int last, int layers, Extent size0, c
       out[i] = uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
       continue;
     }
-    Packed2x2 tri = probe_packed<TF, MM, WU, WV>(levels, last, cfg, r.u, r.v, r.lod + r.bias);
+    Packed2x2 tri = probe(r);
     // The one rounding, half up, of all four channels; then back to packed RGBA8.
     tri.rb = (tri.rb + kHalf) >> 24;
     tri.ga = (tri.ga + kHalf) >> 24;

@@ -35,6 +35,9 @@ struct SamplerConfig {
   // Vulkan's reductionMode (GL_TEXTURE_REDUCTION_MODE_ARB): the weighted average, or the minimum or
   // maximum of the texels weighed (stage::reduce_taps).
   Reduction reduction = Reduction::WeightedAverage;
+  // Vulkan's compareOp (GL's TEXTURE_COMPARE_FUNC): how an Op::Compare request's reference is
+  // tested against each texel's depth (stage::compare_taps). Other requests do not use it.
+  CompareOp compare_op = CompareOp::LessOrEqual;
   // The cap tex_aniso applies: max_aniso for the anisotropic filter, else 1 (one probe).
   int probe_cap() const { return filter.anisotropic ? max_aniso : 1; }
   // The border colour as RGBA unorm16 (stage::border_texel takes it to a level's channel width).
@@ -56,6 +59,9 @@ struct SamplerConfig {
   // equal to the minification filter, no anisotropy, and the base level only (mipmap mode none,
   // or a max LOD of at most 0, as Vulkan's nearest mipmaps with minLod = maxLod = 0 give).
   std::string unnormalized_problem() const;
+  // Why a depth compare cannot be sampled through this sampler, or "": Vulkan's rules (a compare
+  // takes the weighted average, not a min/max reduction, and normalized coordinates).
+  std::string compare_problem() const;
 };
 // Throws tex::Error naming the field and its value when the sampler is one the unit cannot take
 // (unnormalized_problem); `where` prefixes the message (a file and line, an option).
@@ -75,6 +81,7 @@ struct Request {
   Op op = Op::Sample;    // Op::Fetch: u, v, lod are the integers i, j and the level (stage::fetch_inside)
   uint8_t component = 0; // Op::Gather: the channel gathered, 0 (R) .. 3 (A)
   int32_t layer = 0;     // an array texture's layer coordinate, Q16.16 (stage::array_layer); Op::Fetch: the integer layer
+  int32_t ref = 0;       // Op::Compare: the depth reference Dref, Q8.24 (stage::compare_reference)
   bool has_derivatives = false;  // (a fetch has none)
   LodDerivatives deriv;  // Q8.24 texture widths per pixel (requests with derivatives)
 };
@@ -180,6 +187,7 @@ class Sampler {
   Extent size0_;
   int last_level_;
   int layers_;
+  bool srgb_;  // (no depth compare: a depth is no colour)
   uint64_t samples_ = 0, multiplies_ = 0;
   std::array<uint64_t, kMaxAniso + 1> probes_{};
   // Per layer and level (at layer * (last_level + 1) + level), row-major RGBA8 of the stored sides

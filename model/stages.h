@@ -262,6 +262,40 @@ inline Texel gather(const Footprint& d, int component) {
   return {d.taps[2][c], d.taps[3][c], d.taps[1][c], d.taps[0][c]};
 }
 
+// ---------------------------------------------------------------- depth compare (tex_filter)
+
+// A depth compare's reference (Op::Compare: Request::ref, Dref, signed Q8.24) in a cw-bit depth's
+// codes: clamped to [0, 1] (Vulkan clamps a unorm depth's Dref), then round(Dref * (2^cw - 1)),
+// half up, so that a reference and a texel compare as codes of one precision and EQUAL means the
+// same code. (tex_unit_cached: at the request port; a cw-bit code rides with the request.)
+inline uint32_t compare_reference(int32_t ref, int cw) {
+  const int64_t r = std::clamp<int64_t>(ref, 0, int64_t(1) << kCoordFracBits);
+  return uint32_t((r * ((int64_t(1) << cw) - 1) + (int64_t(1) << (kCoordFracBits - 1))) >> kCoordFracBits);
+}
+// `reference OP depth` (VkCompareOp's text: "reference < test" for LESS, ...).
+inline bool compare_passes(CompareOp op, uint32_t reference, uint32_t depth) {
+  switch (op) {
+    case CompareOp::Never: return false;
+    case CompareOp::Less: return reference < depth;
+    case CompareOp::Equal: return reference == depth;
+    case CompareOp::LessOrEqual: return reference <= depth;
+    case CompareOp::Greater: return reference > depth;
+    case CompareOp::NotEqual: return reference != depth;
+    case CompareOp::GreaterOrEqual: return reference >= depth;
+    case CompareOp::Always: return true;
+  }
+  return false;
+}
+// Percentage-closer filtering: each tap's depth (its R channel, a cw-bit unorm code: D16 in a unit
+// of 16-bit channels) compared before the filter, the tap becoming (1, 0, 0, 1) where the test
+// passes and (0, 0, 0, 1) where it fails — a border tap's depth is the border colour's R. The
+// filter then weighs the passes: R is the filtered fraction, G = B = 0, A = 1, Vulkan's [D, 0, 0, 1].
+// (tex_filter's clock 1, before its lerps.)
+inline void compare_taps(Footprint& f, CompareOp op, uint32_t reference, int cw) {
+  const uint16_t one = uint16_t((1u << cw) - 1);
+  for (Texel& t : f.taps) t = {compare_passes(op, reference, t[0]) ? one : uint16_t(0), 0, 0, one};
+}
+
 // The mean of n probes (the sum of their CW.24 values) and the one rounding, half up, to CW bits:
 // round(sum / (n * 2^24)). With n = 1 this is blend_and_round. (tex_accum; the RTL divides by n
 // with a reciprocal multiply, docs/numerics.md stage 6, equal for every sum it can see.)

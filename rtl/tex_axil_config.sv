@@ -101,6 +101,7 @@ module tex_axil_config #(
   output logic [63:0]                       cfg_smp_border_rgba,
   output logic                              cfg_smp_unnormalized,
   output logic [tex_pkg::REDUCTION_W-1:0]   cfg_smp_reduction,
+  output logic [tex_pkg::COMPARE_W-1:0]     cfg_smp_compare_op,
   output logic                              cfg_block_morton,
   output logic [tex_pkg::LOG2_SETS_W-1:0]   cfg_log2_sets,
   output logic [tex_pkg::LOG2_WAYS_W-1:0]   cfg_log2_ways,
@@ -182,7 +183,7 @@ module tex_axil_config #(
   localparam int NCNT = 9;  // CYCLES, SAMPLES, SAMPLE_ERRORS, LOOKUPS, MISSES, MEM_BYTES,
                             // OUT_STALL, MEM_WAIT, REQ_STALL
   localparam logic [31:0] ID      = 32'h5445_5855;  // "TEXU"
-  localparam logic [31:0] VERSION = 32'h0003_0003;  // major 3 (any texture size: DESC_SIZE), minor 3 (layers)
+  localparam logic [31:0] VERSION = 32'h0003_0003;  // major 3 (any texture size: DESC_SIZE), minor 3 (layers, compare op)
                                                     // (FILTER.unnormalized, FILTER.reduction)
 
   localparam int FLW       = $clog2(FIFO_DEPTH + 1);
@@ -232,7 +233,7 @@ module tex_axil_config #(
   logic                             smp_we;
   logic [tex_pkg::SMP_ID_W-1:0]     smp_index;
   logic [6:0]                       wrap;       // {wrap_v, 0, wrap_u}
-  logic [15:0]                      filter;     // {reduction, unnormalized, pow2, aniso_m1, 2'b0, mip_mode, 2'b0, mag, linear}
+  logic [18:0]                      filter;     // {compare_op, reduction, unnormalized, pow2, aniso_m1, 2'b0, mip_mode, 2'b0, mag, linear}
   logic [63:0]                      border;     // {A, B, G, R} unorm16
   logic signed [tex_pkg::LOD_W-1:0] lod_bias, min_lod, max_lod;
   logic                             block_morton;
@@ -346,7 +347,7 @@ module tex_axil_config #(
       smp_index      <= '0;
       wrap           <= '0;
       border         <= '0;
-      filter         <= 16'h0023;  // linear texels (minification and magnification), MIP_LINEAR
+      filter         <= 19'h30023;  // linear texels (minification and magnification), MIP_LINEAR, compare LESS_OR_EQUAL
       lod_bias       <= '0;
       min_lod        <= 16'sh8000;
       max_lod        <= 16'sh7FFF;
@@ -360,7 +361,7 @@ module tex_axil_config #(
       if (wr_en && sel_control) {ctl_freeze, ctl_unit_reset} <= wd[1:0];
       if (wr_en && sel_cache) {log2_ways, log2_sets, block_morton} <= {wd[17:16], wd[12:8], wd[0]};
       if (wr_en && sel_fifo)   fifo_limit <= wd[FLW-1:0];
-      if (wr_en && sel_filter) filter <= wd[15:0] & 16'hFF33;
+      if (wr_en && sel_filter) filter <= wd[18:0] & 19'h7FF33;
       if (wr_en && sel_bias)   lod_bias <= wd[15:0];
       if (wr_en && sel_min)    min_lod <= wd[15:0];
       if (wr_en && sel_max)    max_lod <= wd[15:0];
@@ -396,6 +397,7 @@ module tex_axil_config #(
   assign cfg_smp_aniso_pow2   = filter[12];
   assign cfg_smp_unnormalized = filter[13];
   assign cfg_smp_reduction    = filter[15:14];
+  assign cfg_smp_compare_op   = filter[18:16];
   assign cfg_smp_border_rgba  = border;
   assign cfg_smp_lod_bias     = lod_bias;
   assign cfg_smp_min_lod      = min_lod;
@@ -534,7 +536,8 @@ module tex_axil_config #(
   logic [1:0]    f_bresp_q;
   logic [33:0]   f_r_q;                  // {rresp, rdata}, last clock
   // wraps, min/mag linear, mip mode, 3 LODs, aniso cap and pow2, border, unnormalized, reduction
-  localparam int FSW = 2 * tex_pkg::WRAP_W + 2 + tex_pkg::MIP_W + 3 * tex_pkg::LOD_W + 5 + 64 + 1 + tex_pkg::REDUCTION_W;
+  localparam int FSW = 2 * tex_pkg::WRAP_W + 2 + tex_pkg::MIP_W + 3 * tex_pkg::LOD_W + 5 + 64 + 1 + tex_pkg::REDUCTION_W
+                       + tex_pkg::COMPARE_W;
   localparam int FCW = 1 + tex_pkg::TEX_ID_W + tex_pkg::SMP_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::SIZE_W + tex_pkg::LEVEL_W
                        + tex_pkg::FORMAT_W + tex_pkg::LAYER_W + 2 + SETS_W + WAYS_W + FLW + FSW;
   logic [FCW-1:0] f_cfg, f_cfg_q;        // unit_rst and every cfg_* output but the two we pulses
@@ -565,7 +568,7 @@ module tex_axil_config #(
                    cfg_desc_w};
   assign f_smp  = {cfg_smp_wrap_u, cfg_smp_wrap_v, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_mip_mode,
                    cfg_smp_lod_bias, cfg_smp_min_lod, cfg_smp_max_lod, cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2,
-                   cfg_smp_border_rgba, cfg_smp_unnormalized, cfg_smp_reduction};
+                   cfg_smp_border_rgba, cfg_smp_unnormalized, cfg_smp_reduction, cfg_smp_compare_op};
   assign f_b_take = s_axi_bvalid && s_axi_bready;
   assign f_r_take = s_axi_rvalid && s_axi_rready;
   assign f_b_new  = s_axi_bvalid && !f_b_stall_q;

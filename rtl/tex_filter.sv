@@ -11,6 +11,12 @@
 // texel value * 2^24 (exact: tex_accum's rounding returns it).
 // A gather (the model's stage::gather) takes the same path with channel c of clock 1 holding
 // component `component` of slot 0's tap c, e, b, a for c = R, G, B, A (f is 0).
+// A depth compare (the model's stage::compare_taps; percentage-closer filtering) tests each tap's
+// R, its depth code, in clock 1: `dref OP R`, the tap then (1, 0, 0, 1) where it passes and
+// (0, 0, 0, 1) where not, and the lerps weigh those as any taps: clock 1's lerps of two such taps
+// are written as their closed form, one * ((256 - w) * pass0 + w * pass1) with one = 2^DW - 1 (DW:
+// the bits of the depth codes in the CW-bit channels: 8 in a unit whose memory holds 8-bit
+// channels filtered at CW = 16, where an 8-bit texel stays an 8-bit value).
 // Handshake: stall-enable; every register loads when en is high.
 // Latency: 3 clocks. Throughput: 1 per clock.
 // Ports:
@@ -21,10 +27,13 @@
 //   f    : unsigned WEIGHT_BITS, weight of slot 1 (level d1) in 1/256
 //   reduction : tex_pkg::REDUCE_*, with the taps (the sampler's reduction mode; code 3 as min)
 //   gather, component : with the taps: a gather of channel `component` (0 R .. 3 A)
+//   depth_test, compare_op, dref : with the taps: a depth compare, its tex_pkg::CMP_* operator and
+//          its reference as a DW-bit code (tex_compare_ref)
 //   blend: channel c at [c*(CW+24) +: CW+24] (R, G, B, A), unsigned CW.24, exact
 `include "tex_param_error.svh"
 module tex_filter #(
-  parameter int CW = 8
+  parameter int CW = 8,
+  parameter int DW = CW  // bits of a depth code (<= CW)
 ) (
   input  logic                                clk,
   input  logic                                en,
@@ -34,6 +43,9 @@ module tex_filter #(
   input  logic [tex_pkg::REDUCTION_W-1:0]     reduction,
   input  logic                                gather,
   input  logic [1:0]                          component,
+  input  logic                                depth_test,
+  input  logic [tex_pkg::COMPARE_W-1:0]       compare_op,
+  input  logic [DW-1:0]                       dref,
   output logic [4*(CW+24)-1:0]                blend
 );
   localparam int WB = tex_pkg::WEIGHT_BITS;
@@ -54,6 +66,31 @@ module tex_filter #(
       {compare_s8, take_max_s8} <= {compare_s7, take_max_s7};
     end
   end
+
+  // `dref OP depth` (tex_pkg::CMP_*: Vulkan's VkCompareOp). Called only in the branches of a depth
+  // test, so a simulator evaluates it only then.
+  function automatic logic passes(input logic [tex_pkg::COMPARE_W-1:0] op, input logic [DW-1:0] r,
+                                  input logic [CW-1:0] d);
+    case (op)
+      tex_pkg::CMP_NEVER:   passes = 1'b0;
+      tex_pkg::CMP_LESS:    passes = CW'(r) < d;
+      tex_pkg::CMP_EQUAL:   passes = CW'(r) == d;
+      tex_pkg::CMP_LEQUAL:  passes = CW'(r) <= d;
+      tex_pkg::CMP_GREATER: passes = CW'(r) > d;
+      tex_pkg::CMP_NEQUAL:  passes = CW'(r) != d;
+      tex_pkg::CMP_GEQUAL:  passes = CW'(r) >= d;
+      tex_pkg::CMP_ALWAYS:  passes = 1'b1;
+      default:              passes = 1'b1;
+    endcase
+  endfunction
+  // The lerp of two tested taps of channel c: R one * ((256 - w) * p0 + w * p1), G = B = 0, A one * 256 (CW.8).
+  function automatic logic [CW+WB-1:0] tested_lerp(input int c, input logic p0, input logic p1, input logic [WB-1:0] wt);
+    logic [WB:0] k;  // (256 - wt) * p0 + wt * p1, 0..256
+    k = (p0 ? (WB+1)'(1 << WB) - (WB+1)'(wt) : '0) + (p1 ? (WB+1)'(wt) : '0);
+    if (c == 0) tested_lerp = ((CW+WB)'(k) << DW) - (CW+WB)'(k);
+    else if (c == 3) tested_lerp = (CW+WB)'({{DW{1'b1}}, WB'(0)});
+    else tested_lerp = '0;
+  endfunction
 
   genvar c, s;
   generate
@@ -80,7 +117,15 @@ module tex_filter #(
         assign wy = w[(s*2 + 1)*WB +: WB] != '0;
         always_ff @(posedge clk) begin
           if (en) begin
-            if (s == 0 && gather) begin
+            if (depth_test) begin : g_test  // each tap's R tested; the lerps' closed form
+              logic pa, pb, pc, pe;
+              pa = passes(compare_op, dref, taps[((s*4 + 0)*4)*CW +: CW]);
+              pb = passes(compare_op, dref, taps[((s*4 + 1)*4)*CW +: CW]);
+              pc = passes(compare_op, dref, taps[((s*4 + 2)*4)*CW +: CW]);
+              pe = passes(compare_op, dref, taps[((s*4 + 3)*4)*CW +: CW]);
+              top_s7 <= tested_lerp(c, pa, pb, w[(s*2)*WB +: WB]);
+              bot_s7 <= tested_lerp(c, pc, pe, w[(s*2)*WB +: WB]);
+            end else if (s == 0 && gather) begin
               case (component)
                 2'd0:    top_s7 <= {taps[(GT*4 + 0)*CW +: CW], WB'(0)};
                 2'd1:    top_s7 <= {taps[(GT*4 + 1)*CW +: CW], WB'(0)};
@@ -98,7 +143,7 @@ module tex_filter #(
             end else begin
               top_s7 <= top_next;
             end
-            bot_s7 <= bot_next;
+            if (!depth_test) bot_s7 <= bot_next;
           end
         end
         tex_lerp #(.IN_W(CW+WB)) u_bil (.a(top_s7), .b(bot_s7), .w(fy_s7[s*WB +: WB]), .y(bil_next));
@@ -122,6 +167,9 @@ module tex_filter #(
   endgenerate
 
   generate
+    if (DW < 1 || DW > CW) begin : g_bad_dw
+      `TEX_PARAM_ERROR("tex_filter: DW must be in 1..CW")
+    end
     if (3 * WB != 24) begin : g_bad_weights
       `TEX_PARAM_ERROR("tex_filter: blend is CW.24 (tex_pkg::WEIGHT_BITS = 8)")
     end

@@ -47,10 +47,22 @@ package tex_pkg;
   localparam logic [REDUCTION_W-1:0] REDUCE_MIN     = 2'd1;  // the minimum of the weighed taps
   localparam logic [REDUCTION_W-1:0] REDUCE_MAX     = 2'd2;  // their maximum
 
+  // ---- cfg_smp_compare_op (model/formats.h CompareOp, Vulkan's VkCompareOp values): `ref OP depth`
+  localparam int COMPARE_W = 3;
+  localparam logic [COMPARE_W-1:0] CMP_NEVER   = 3'd0;
+  localparam logic [COMPARE_W-1:0] CMP_LESS    = 3'd1;
+  localparam logic [COMPARE_W-1:0] CMP_EQUAL   = 3'd2;
+  localparam logic [COMPARE_W-1:0] CMP_LEQUAL  = 3'd3;
+  localparam logic [COMPARE_W-1:0] CMP_GREATER = 3'd4;
+  localparam logic [COMPARE_W-1:0] CMP_NEQUAL  = 3'd5;
+  localparam logic [COMPARE_W-1:0] CMP_GEQUAL  = 3'd6;
+  localparam logic [COMPARE_W-1:0] CMP_ALWAYS  = 3'd7;
+
   // ---- req_op (model/formats.h Op): what a request asks
   localparam int OP_W = 2;
   localparam logic [OP_W-1:0] OP_SAMPLE = 2'd0;  // a filtered sample
   localparam logic [OP_W-1:0] OP_GATHER = 2'd1;  // textureGather: req_component of the linear taps at level 0
+  localparam logic [OP_W-1:0] OP_COMPARE = 2'd2; // a depth compare: each texel's R tested against req_ref, then filtered
   localparam logic [OP_W-1:0] OP_FETCH  = 2'd3;  // texelFetch: req_u, req_v, req_lod are i, j, level
 
   // ---- texel formats (model/block_formats.h TexelFormat): how memory holds a texture

@@ -18,6 +18,8 @@
 //   (req_u, req_v, req_lod the signed integers i, j and level; req_deriv 0; the texel, or 0 where
 //   there is none: tex_front), OP_GATHER textureGather (req_component 0..3 of the four texels a
 //   linear filter weighs at level 0, in GL's order as R, G, B, A: tex_front, tex_filter),
+//   OP_COMPARE a depth compare (each texel's R tested `req_ref OP R` by cfg_smp_compare_op, then
+//   filtered: tex_compare_ref, tex_filter); req_ref signed Q8.24 (1.0 = 2^24);
 //   cfg_smp_min_lod, cfg_smp_max_lod signed Q8.8; req_deriv selects req_lod (0) or the derivatives
 //   req_dudx, req_dvdx, req_dudy, req_dvdy (1, signed Q8.24 texture widths per pixel);
 //   cfg_smp_max_aniso_m1 the probes per sample at most less one (0..15; 0 = trilinear),
@@ -77,6 +79,7 @@ module tex_unit #(
   input  logic [63:0]                            cfg_smp_border_rgba,
   input  logic                                   cfg_smp_unnormalized,
   input  logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction,
+  input  logic [tex_pkg::COMPARE_W-1:0]          cfg_smp_compare_op,
 
   input  logic                                   wr_en,
   input  logic [tex_pkg::LEVEL_W-1:0]            wr_level,
@@ -97,6 +100,7 @@ module tex_unit #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
   input  logic [tex_pkg::OP_W-1:0]               req_op,
   input  logic [1:0]                             req_component,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_ref,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -152,8 +156,11 @@ module tex_unit #(
   logic [TGW-1:0]                         probe_tag;
   logic [tex_pkg::OP_W-1:0]               probe_op;    // (ride in tex_probe's tag, above req_tag)
   logic [1:0]                             probe_component;
+  logic [CWD-1:0]                         probe_ref;   // a depth compare's reference code
   logic [2:0]                             probe_held;  // requests in tex_probe
-  localparam int PTW = TGW + tex_pkg::OP_W + 2;
+  localparam int PTW = TGW + tex_pkg::OP_W + 2 + CWD;
+  logic [CWD-1:0] req_ref_code;  // (at the port: CW bits ride where the 32-bit reference would)
+  tex_compare_ref #(.CW(CWD)) u_compare_ref (.dref(req_ref), .code(req_ref_code));
 `ifdef FORMAL
   logic [4:1]                             f_probe_valid;
   logic [4*PTW-1:0]                       f_probe_tags;
@@ -164,9 +171,9 @@ module tex_unit #(
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_w(cfg_w), .req_h(cfg_h),
-    .req_max_aniso_m1(cfg_smp_max_aniso_m1), .req_aniso_pow2(cfg_smp_aniso_pow2), .req_tag({req_component, req_op, req_tag}),
+    .req_max_aniso_m1(cfg_smp_max_aniso_m1), .req_aniso_pow2(cfg_smp_aniso_pow2), .req_tag({req_ref_code, req_component, req_op, req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
-    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag({probe_component, probe_op, probe_tag}),
+    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n), .probe_tag({probe_ref, probe_component, probe_op, probe_tag}),
     .held(probe_held)
 `ifdef FORMAL
     , .f_valid(f_probe_valid), .f_tags(f_probe_tags)
@@ -179,9 +186,9 @@ module tex_unit #(
   end
 
   // g_tag[n].tag: the tag of the probe in the clock-n register, with its place in the sample
-  // {n, last, first} and, above, whether it is a gather and of which component (for tex_filter)
-  // (it rides along, not reset).
-  localparam int SW = TGW + 10;
+  // {n, last, first} and, above, whether it is a gather and of which component, whether a depth
+  // compare and its reference code (for tex_filter) (it rides along, not reset).
+  localparam int SW = TGW + 11 + CWD;
   logic [NSTAGE:1] last;           // last[n]: the clock-n probe is its sample's last
   genvar n;
   generate
@@ -190,7 +197,8 @@ module tex_unit #(
       assign last[n] = tag[TGW+1];
       if (n == 1) begin : g_capture
         always_ff @(posedge clk)
-          if (en) tag <= {probe_component, probe_op == tex_pkg::OP_GATHER, probe_n, probe_last, probe_first, probe_tag};
+          if (en) tag <= {probe_ref, probe_op == tex_pkg::OP_COMPARE, probe_component, probe_op == tex_pkg::OP_GATHER,
+                          probe_n, probe_last, probe_first, probe_tag};
       end else begin : g_shift
         always_ff @(posedge clk) if (en) tag <= g_tag[n-1].tag;
       end
@@ -270,10 +278,12 @@ module tex_unit #(
   logic [32*CWD-1:0] taps_b_s6;
   tex_border #(.CW(CWD)) u_border (.rgba16(cfg_border_q), .rgba(border_next));
   logic [tex_pkg::REDUCTION_W-1:0] cfg_reduction_q;  // (the filter's and tex_accum's)
+  logic [tex_pkg::COMPARE_W-1:0]   cfg_compare_q;    // (the filter's)
   always_ff @(posedge clk) begin
     cfg_border_q    <= cfg_smp_border_rgba;
     border_rgba     <= border_next;
     cfg_reduction_q <= cfg_smp_reduction;
+    cfg_compare_q   <= cfg_smp_compare_op;
   end
   always_comb begin
     for (int t = 0; t < 8; t++) begin
@@ -288,7 +298,8 @@ module tex_unit #(
   logic [4*(CWD+24)-1:0] blend_s9;
   tex_filter #(.CW(CWD)) u_filter (
     .clk(clk), .en(en), .taps(taps_b_s6), .w(w_s6), .f(f_s6), .reduction(cfg_reduction_q),
-    .gather(g_tag[6].tag[TGW+7]), .component(g_tag[6].tag[TGW+8 +: 2]), .blend(blend_s9)
+    .gather(g_tag[6].tag[TGW+7]), .component(g_tag[6].tag[TGW+8 +: 2]), .depth_test(g_tag[6].tag[TGW+10]),
+    .compare_op(cfg_compare_q), .dref(g_tag[6].tag[TGW+11 +: CWD]), .blend(blend_s9)
   );
 
   // ---------------------------------------------------------------- clocks 10-11: tex_accum
@@ -367,6 +378,7 @@ module tex_unit #(
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [tex_pkg::OP_W-1:0]               req_op_q;
   logic [1:0]                             req_component_q;
+  logic [tex_pkg::REQ_COORD_W-1:0]        req_ref_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
   // (The payload copies are taken only in a stalled cycle, the only time they are compared.)
   always_ff @(posedge clk) begin
@@ -380,6 +392,7 @@ module tex_unit #(
       req_tag_q <= req_tag;
       req_op_q  <= req_op;
       req_component_q <= req_component;
+      req_ref_q <= req_ref;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
     end
     if (rsp_valid && !rsp_ready) begin
@@ -389,6 +402,7 @@ module tex_unit #(
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
               && req_tag == req_tag_q && req_op == req_op_q && req_component === req_component_q  // (don't-care but with a gather)
+              && req_ref === req_ref_q  // (don't-care but with a compare)
               // (=== : a lambda request's derivative pins are don't-care, X in the 4-state run)
               && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} === req_deriv_q)
         else $error("tex_unit: req_valid dropped or request changed while req_ready was low");
@@ -398,7 +412,8 @@ module tex_unit #(
         else $error("tex_unit: rsp_valid dropped or response changed while rsp_ready was low");
     end
     if (!rst && req_valid)
-      assert (req_op == tex_pkg::OP_SAMPLE || ((req_op == tex_pkg::OP_FETCH || req_op == tex_pkg::OP_GATHER) && !req_deriv))
+      assert (req_op == tex_pkg::OP_SAMPLE || req_op == tex_pkg::OP_COMPARE
+              || ((req_op == tex_pkg::OP_FETCH || req_op == tex_pkg::OP_GATHER) && !req_deriv))
         else $error("tex_unit: req_op %0d with req_deriv %0d is not an operation of this unit", req_op, req_deriv);
   end
 `endif

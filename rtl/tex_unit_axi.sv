@@ -11,7 +11,7 @@
 //   configuration write reaches the unit's pins 1 clock after the write's edge (BVALID with it).
 // Throughput: tex_unit_cached's (1 probe per clock while lines hit).
 // Ports: req_* / rsp_* as tex_unit_cached (req_u, req_v, req_dudx .. req_dvdy signed Q8.24;
-//   req_lod, req_bias signed Q8.8; req_layer signed Q16.16; req_tex a descriptor entry, req_sampler a sampler entry; rsp_rgba {A, B, G, R} CW-bit unsigned;
+//   req_lod, req_bias signed Q8.8; req_layer signed Q16.16; req_ref signed Q8.24; req_tex a descriptor entry, req_sampler a sampler entry; rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   rsp_error: the sample read a line the memory answered with an error, rsp_rgba 0);
 //   s_axi_* 32-bit data, ADDR_W-bit byte addresses; m_axi_* MEM_W-bit data,
 //   tex_pkg::MEM_ADDR_W-bit byte addresses, AXI_ID_W-bit IDs.
@@ -76,6 +76,7 @@ module tex_unit_axi #(
   input  logic [tex_pkg::OP_W-1:0]               req_op,
   input  logic [1:0]                             req_component,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_layer,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_ref,
   input  logic [TAG_W-1:0]                       req_tag,
   output logic                                   rsp_valid,
   input  logic                                   rsp_ready,
@@ -108,6 +109,7 @@ module tex_unit_axi #(
   logic                              cfg_desc_we, cfg_desc_srgb, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_aniso_pow2;
   logic                              cfg_smp_unnormalized;
   logic [tex_pkg::REDUCTION_W-1:0]   cfg_smp_reduction;
+  logic [tex_pkg::COMPARE_W-1:0]     cfg_smp_compare_op;
   logic [tex_pkg::TEX_ID_W-1:0]      cfg_desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]    cfg_desc_base;
   logic [tex_pkg::SIZE_W-1:0]        cfg_desc_w, cfg_desc_h;
@@ -153,6 +155,7 @@ module tex_unit_axi #(
     .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
     .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
     .cfg_smp_unnormalized(cfg_smp_unnormalized), .cfg_smp_reduction(cfg_smp_reduction),
+    .cfg_smp_compare_op(cfg_smp_compare_op),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     // the counters' events, at the unit's ports
@@ -179,12 +182,13 @@ module tex_unit_axi #(
     .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
     .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
     .cfg_smp_unnormalized(cfg_smp_unnormalized), .cfg_smp_reduction(cfg_smp_reduction),
+    .cfg_smp_compare_op(cfg_smp_compare_op),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
     .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v),
     .req_lod(req_lod), .req_bias(req_bias), .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx),
     .req_dudy(req_dudy), .req_dvdy(req_dvdy), .req_tex(req_tex), .req_sampler(req_sampler), .req_op(req_op), .req_component(req_component),
-    .req_layer(req_layer), .req_tag(req_tag),
+    .req_layer(req_layer), .req_ref(req_ref), .req_tag(req_tag),
     .rsp_valid(rsp_valid), .rsp_ready(rsp_ready), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag),
     .rsp_error(rsp_error),
     .m_axi_arvalid(m_axi_arvalid), .m_axi_arready(m_axi_arready), .m_axi_araddr(m_axi_araddr),

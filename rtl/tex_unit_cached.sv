@@ -27,12 +27,16 @@
 //   req_tex          : the request's texture descriptor-table entry, 0..TEXTURES-1
 //   req_sampler      : the request's sampler-table entry, 0..SAMPLERS-1
 //   req_op, req_component : as tex_unit's (a sample, a gather or a texel fetch of the request's texture)
+//   req_ref          : a depth compare's reference (req_op OP_COMPARE), signed Q8.24: each texel's R,
+//                      its depth, tested `ref OP R` by the request's sampler's cfg_smp_compare_op, then
+//                      filtered (tex_compare_ref, tex_filter; the depth codes are the memory's
+//                      channel width: 8 bits with SRGB)
 //   req_layer        : the layer of an array texture, signed Q16.16 layers (rounded to the nearest,
 //                      a tie to the even, clamped to the texture's layers: tex_layer); a texel
 //                      fetch's: a signed integer (outside the layers: the fetch answers 0)
 //   cfg_smp_*        : a sampler write (cfg_smp_we high for one clock): entry cfg_smp_index gets
 //                      the fields of tex_unit's cfg_smp_* pins (filters, mip mode, LOD bias and
-//                      clamp signed Q8.8, anisotropy cap, wrap modes, reduction, border colour
+//                      clamp signed Q8.8, anisotropy cap, wrap modes, reduction, compare op, border colour
 //                      {A, B, G, R} unorm16). Written before the requests that name the entry; requests of
 //                      different samplers interleave freely (no flush: the fields ride with
 //                      each request).
@@ -113,6 +117,7 @@ module tex_unit_cached #(
   input  logic [63:0]                            cfg_smp_border_rgba,
   input  logic                                   cfg_smp_unnormalized,
   input  logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction,
+  input  logic [tex_pkg::COMPARE_W-1:0]          cfg_smp_compare_op,
   input  logic                                   cfg_block_morton,
   input  logic [tex_pkg::LOG2_SETS_W-1:0]        cfg_log2_sets,
   input  logic [tex_pkg::LOG2_WAYS_W-1:0]        cfg_log2_ways,
@@ -134,6 +139,7 @@ module tex_unit_cached #(
   input  logic [tex_pkg::OP_W-1:0]               req_op,
   input  logic [1:0]                             req_component,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_layer,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_ref,
   input  logic [TAG_W-1:0]                       req_tag,
 
   output logic                                   rsp_valid,
@@ -292,15 +298,18 @@ module tex_unit_cached #(
   localparam int LW  = tex_pkg::LOD_W, PW = tex_pkg::MIP_W, WW = tex_pkg::WRAP_W;
   localparam int FRW = 2*WW + 2 + PW + 3*LW + 1;  // the front's fields
   localparam int RDW = tex_pkg::REDUCTION_W;
+  localparam int CPW = tex_pkg::COMPARE_W;
   logic            smp_we_q;
   logic [SXW-1:0]  smp_index_q;
   logic [4:0]      smp_aniso_q;    // {pow2, max_aniso_m1}
   logic [FRW-1:0]  smp_front_q;    // {unnormalized, max, min, bias, mip mode, mag linear, min linear, wrap v, wrap u}
   logic [RDW-1:0]  smp_reduction_q;
+  logic [CPW-1:0]  smp_compare_q;
   logic [63:0]     smp_border_q;
   logic [4:0]      smp_aniso [SAMPLERS];
   logic [FRW-1:0]  smp_front [SAMPLERS];
   logic [RDW-1:0]  smp_reduction [SAMPLERS];
+  logic [CPW-1:0]  smp_compare [SAMPLERS];
   always_ff @(posedge clk) begin
     smp_we_q     <= !rst && cfg_smp_we;
     smp_index_q  <= SXW'(cfg_smp_index);
@@ -308,11 +317,13 @@ module tex_unit_cached #(
     smp_front_q  <= {cfg_smp_unnormalized, cfg_smp_max_lod, cfg_smp_min_lod, cfg_smp_lod_bias, cfg_smp_mip_mode, cfg_smp_mag_linear,
                      cfg_smp_min_linear, cfg_smp_wrap_v, cfg_smp_wrap_u};
     smp_reduction_q <= cfg_smp_reduction;
+    smp_compare_q <= cfg_smp_compare_op;
     smp_border_q <= cfg_smp_border_rgba;
     if (smp_we_q) begin
       smp_aniso[smp_index_q] <= smp_aniso_q;
       smp_front[smp_index_q] <= smp_front_q;
       smp_reduction[smp_index_q] <= smp_reduction_q;
+      smp_compare[smp_index_q] <= smp_compare_q;
     end
   end
   logic [4:0] req_aniso;  // the request's sampler's cap, taken with the request
@@ -325,6 +336,13 @@ module tex_unit_cached #(
   logic          req_layer_outside;
   tex_layer u_layer (.coord(req_layer), .fetch(req_op == tex_pkg::OP_FETCH), .layers_m1(req_layers_m1),
                      .layer(req_layer_index), .outside(req_layer_outside));
+
+  // ---------------------------------------------------------------- a compare's reference
+  // In the depth's codes at the port (DW bits ride in the tags where the 32-bit reference would):
+  // the memory's channel width (with SRGB an 8-bit texel stays an 8-bit value in the filter).
+  localparam int DW = (SRGB != 0) ? 8 : CWD;
+  logic [DW-1:0] req_ref_code;
+  tex_compare_ref #(.CW(DW)) u_compare_ref (.dref(req_ref), .code(req_ref_code));
 
   // ---------------------------------------------------------------- requests 1-4: tex_probe
   logic en_front, en_back;
@@ -339,18 +357,20 @@ module tex_unit_cached #(
   logic [tex_pkg::OP_W-1:0]               probe_op;    // and its operation
   logic [1:0]                             probe_component;
   logic [YL:0]                            probe_layer;  // {a fetch outside the layers, the layer}
+  logic [DW-1:0]                          probe_ref;    // a compare's reference code
   logic [2:0]                             probe_held;  // requests in tex_probe
-  tex_probe #(.TAG_W(YL + 3 + tex_pkg::OP_W + SXW + TXW + TGW)) u_probe (
+  tex_probe #(.TAG_W(DW + YL + 3 + tex_pkg::OP_W + SXW + TXW + TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front),
     .req_valid(req_valid && !desc_busy), .req_ready(probe_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
     .req_bias(req_bias),
     .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
     .req_dvdy(req_dvdy), .req_w(req_size[0 +: NW]), .req_h(req_size[NW +: NW]),
     .req_max_aniso_m1(req_aniso[3:0]), .req_aniso_pow2(req_aniso[4]),
-    .req_tag({req_layer_outside, req_layer_index, req_component, req_op, SXW'(req_sampler), TXW'(req_tex), req_tag}),
+    .req_tag({req_ref_code, req_layer_outside, req_layer_index, req_component, req_op, SXW'(req_sampler), TXW'(req_tex),
+              req_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n),
-    .probe_tag({probe_layer, probe_component, probe_op, probe_smp, probe_tex, probe_tag}),
+    .probe_tag({probe_ref, probe_layer, probe_component, probe_op, probe_smp, probe_tex, probe_tag}),
     .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
   );
   // The probe's sampler's fields for the front (taken at its clock 1; its texture's size likewise).
@@ -358,11 +378,12 @@ module tex_unit_cached #(
   assign probe_smp_front = smp_front[probe_smp];
 
   // ---------------------------------------------------------------- front: probe clocks 1-4
-  // A probe's tag carries its place in the sample, its sampler's reduction and whether it is a
-  // gather and of which component through the front, {component, gather, reduction, n, last,
-  // first, tag}; from the front's clock 4 on, with tex_front's zero (a texel fetch that reads
-  // nothing) above them, through the FIFO.
-  localparam int FTW = TGW + 7 + RDW + 3;
+  // A probe's tag carries its place in the sample, its sampler's reduction, whether it is a
+  // gather and of which component, and whether a depth compare with its sampler's operator and
+  // its reference code, through the front: {ref, compare op, compare, component, gather,
+  // reduction, n, last, first, tag}; from the front's clock 4 on, with tex_front's zero (a texel
+  // fetch that reads nothing) above them, through the FIFO.
+  localparam int FTW = TGW + 7 + RDW + 3 + 1 + CPW + DW;
   localparam int SW  = FTW + 1;
   // The tags are one register per clock: an unpacked array or a wide packed vector would cost a
   // delayed-write shadow copy in every clock in Verilator, a narrow register does not.
@@ -374,8 +395,8 @@ module tex_unit_cached #(
     if (rst) valid_f <= '0;
     else if (en_front) valid_f <= {valid_f[3:1], probe_valid};
     if (en_front) begin
-      tag_f1 <= {probe_component, probe_op == tex_pkg::OP_GATHER, smp_reduction[probe_smp], probe_n, probe_last,
-                 probe_first, probe_tag};
+      tag_f1 <= {probe_ref, smp_compare[probe_smp], probe_op == tex_pkg::OP_COMPARE, probe_component,
+                 probe_op == tex_pkg::OP_GATHER, smp_reduction[probe_smp], probe_n, probe_last, probe_first, probe_tag};
       tag_f2 <= tag_f1;
       tag_f3 <= tag_f2;
       tag_f4 <= tag_f3;
@@ -496,9 +517,10 @@ module tex_unit_cached #(
     end
   end
   logic [4*(CWD+24)-1:0] blend;
-  tex_filter #(.CW(CWD)) u_filter (
+  tex_filter #(.CW(CWD), .DW(DW)) u_filter (
     .clk(clk), .en(filter_en), .taps(taps), .w(fetch_w), .f(fetch_f), .reduction(fetch_tag[TGW+7 +: RDW]),
-    .gather(fetch_tag[TGW+7+RDW]), .component(fetch_tag[TGW+8+RDW +: 2]), .blend(blend)
+    .gather(fetch_tag[TGW+7+RDW]), .component(fetch_tag[TGW+8+RDW +: 2]), .depth_test(fetch_tag[TGW+10+RDW]),
+    .compare_op(fetch_tag[TGW+11+RDW +: CPW]), .dref(fetch_tag[TGW+11+RDW+CPW +: DW]), .blend(blend)
   );
 
   // ---------------------------------------------------------------- clocks 12-13: tex_accum
@@ -545,7 +567,7 @@ module tex_unit_cached #(
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [tex_pkg::OP_W-1:0]               req_op_q;
   logic [1:0]                             req_component_q;
-  logic [tex_pkg::REQ_COORD_W-1:0]        req_layer_q;
+  logic [tex_pkg::REQ_COORD_W-1:0]        req_layer_q, req_ref_q;
   logic [tex_pkg::TEX_ID_W-1:0]           req_tex_q;
   logic [tex_pkg::SMP_ID_W-1:0]           req_sampler_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
@@ -569,6 +591,7 @@ module tex_unit_cached #(
       req_op_q  <= req_op;
       req_component_q <= req_component;
       req_layer_q <= req_layer;
+      req_ref_q <= req_ref;
       req_tex_q <= req_tex;
       req_sampler_q <= req_sampler;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
@@ -607,14 +630,15 @@ module tex_unit_cached #(
         else $error("tex_unit_cached: req_sampler %0d is beyond the sampler table (SAMPLERS = %0d)",
                     req_sampler, SAMPLERS);
     if (!rst && req_valid)
-      assert (req_op == tex_pkg::OP_SAMPLE || ((req_op == tex_pkg::OP_FETCH || req_op == tex_pkg::OP_GATHER) && !req_deriv))
+      assert (req_op == tex_pkg::OP_SAMPLE || req_op == tex_pkg::OP_COMPARE
+              || ((req_op == tex_pkg::OP_FETCH || req_op == tex_pkg::OP_GATHER) && !req_deriv))
         else $error("tex_unit_cached: req_op %0d with req_deriv %0d is not an operation of this unit", req_op, req_deriv);
     if (!rst && req_valid)
       assert (32'(req_tex) < TEXTURES)
         else $error("tex_unit_cached: req_tex %0d is beyond the descriptor table (TEXTURES = %0d)", req_tex, TEXTURES);
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
-              && req_tag == req_tag_q && req_op == req_op_q && req_component == req_component_q && req_layer == req_layer_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
+              && req_tag == req_tag_q && req_op == req_op_q && req_component == req_component_q && req_layer == req_layer_q && req_ref == req_ref_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin

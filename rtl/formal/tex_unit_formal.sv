@@ -44,6 +44,8 @@ module tex_unit_formal #(
   input  logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction,
   input  logic [tex_pkg::OP_W-1:0]               req_op,
   input  logic [1:0]                             req_component,
+  input  logic [tex_pkg::COMPARE_W-1:0]          cfg_smp_compare_op,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_ref,
   input  logic [TAG_W-1:0]                       req_tag,
   input  logic                                   rsp_ready
 );

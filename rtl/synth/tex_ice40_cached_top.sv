@@ -105,7 +105,9 @@ module tex_ice40_cached_top #(
   localparam int O_REDUCE  = O_UNNORM + 1;      // cfg_smp_reduction
   localparam int O_LAYER   = O_REDUCE + tex_pkg::REDUCTION_W;  // req_layer
   localparam int O_LAYERS  = O_LAYER + UW;      // cfg_desc_layers_m1
-  localparam int NIN       = O_LAYERS + tex_pkg::LAYER_W;
+  localparam int O_CMP     = O_LAYERS + tex_pkg::LAYER_W;  // cfg_smp_compare_op
+  localparam int O_REF     = O_CMP + tex_pkg::COMPARE_W;   // req_ref
+  localparam int NIN       = O_REF + UW;
 
   logic [NIN-1:0] in_bits;
   always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
@@ -145,6 +147,7 @@ module tex_ice40_cached_top #(
     .req_v(in_bits[O_V +: UW]), .req_lod(in_bits[O_LOD +: LW]), .req_tag(in_bits[O_TAG +: TAG_W]),
     .req_op(in_bits[O_OP +: tex_pkg::OP_W]), .req_component(in_bits[O_COMP +: 2]),
     .req_layer(in_bits[O_LAYER +: UW]), .cfg_desc_layers_m1(in_bits[O_LAYERS +: tex_pkg::LAYER_W]),
+    .cfg_smp_compare_op(in_bits[O_CMP +: tex_pkg::COMPARE_W]), .req_ref(in_bits[O_REF +: UW]),
     .req_bias('0),  // lambda requests (textureLod) have no bias of their own
     // Lambda requests only (the LOD / anisotropy unit is tied off and optimized away: a fit
     // of the probe datapath on the HX8K is not measured here).

@@ -58,7 +58,8 @@ module tex_ice40_top #(
   localparam int O_BORDER  = O_READY + 1;      // cfg_smp_border_rgba
   localparam int O_DERIV   = O_BORDER + 64;    // with DERIV only: req_deriv, the 4 derivatives,
   localparam int O_DUDX    = O_DERIV + 1;      // cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2, req_op,
-  localparam int O_DVDX    = O_DUDX + UW;      // req_component, cfg_smp_unnormalized, cfg_smp_reduction
+  localparam int O_DVDX    = O_DUDX + UW;      // req_component, cfg_smp_unnormalized, cfg_smp_reduction,
+                                               // cfg_smp_compare_op, req_ref
   localparam int O_DUDY    = O_DVDX + UW;
   localparam int O_DVDY    = O_DUDY + UW;
   localparam int O_ANISO   = O_DVDY + UW;
@@ -67,7 +68,9 @@ module tex_ice40_top #(
   localparam int O_COMP    = O_OP + tex_pkg::OP_W;
   localparam int O_UNNORM  = O_COMP + 2;
   localparam int O_REDUCE  = O_UNNORM + 1;
-  localparam int NIN       = DERIV != 0 ? O_REDUCE + tex_pkg::REDUCTION_W : O_DERIV;
+  localparam int O_CMP     = O_REDUCE + tex_pkg::REDUCTION_W;
+  localparam int O_REF     = O_CMP + tex_pkg::COMPARE_W;
+  localparam int NIN       = DERIV != 0 ? O_REF + UW : O_DERIV;
 
   logic [NIN-1:0] in_bits;
   always_ff @(posedge clk) in_bits <= {in_bits[NIN-2:0], sin};
@@ -81,6 +84,8 @@ module tex_ice40_top #(
   logic [1:0]                      req_component;
   logic                            cfg_smp_unnormalized;
   logic [tex_pkg::REDUCTION_W-1:0] cfg_smp_reduction;
+  logic [tex_pkg::COMPARE_W-1:0]   cfg_smp_compare_op;
+  logic [UW-1:0]                   req_ref;
   if (DERIV != 0) begin : g_deriv
     assign req_deriv        = in_bits[O_DERIV];
     assign req_dudx         = in_bits[O_DUDX +: UW];
@@ -93,9 +98,11 @@ module tex_ice40_top #(
     assign req_component        = in_bits[O_COMP +: 2];
     assign cfg_smp_unnormalized = in_bits[O_UNNORM];
     assign cfg_smp_reduction    = in_bits[O_REDUCE +: tex_pkg::REDUCTION_W];
+    assign cfg_smp_compare_op   = in_bits[O_CMP +: tex_pkg::COMPARE_W];
+    assign req_ref              = in_bits[O_REF +: UW];
   end else begin : g_no_deriv
-    // λ sample requests only: the LOD / anisotropy unit, and the min/max, fetch and gather logic,
-    // are optimized away.
+    // λ sample requests only: the LOD / anisotropy unit, and the min/max, fetch, gather and
+    // compare logic, are optimized away.
     assign req_deriv        = 1'b0;
     assign {req_dudx, req_dvdx, req_dudy, req_dvdy} = '0;
     assign cfg_smp_max_aniso_m1 = 4'd0;
@@ -103,6 +110,8 @@ module tex_ice40_top #(
     assign req_component        = 2'd0;
     assign cfg_smp_unnormalized = 1'b0;
     assign cfg_smp_reduction    = tex_pkg::REDUCE_AVERAGE;
+    assign cfg_smp_compare_op   = tex_pkg::CMP_ALWAYS;
+    assign req_ref              = '0;
     assign cfg_smp_aniso_pow2   = 1'b0;
   end
   tex_unit #(.MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W)) u_unit (
@@ -122,7 +131,7 @@ module tex_ice40_top #(
     .req_dvdy(req_dvdy), .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2),
     .cfg_smp_border_rgba(in_bits[O_BORDER +: 64]),
     .req_op(req_op), .req_component(req_component), .cfg_smp_unnormalized(cfg_smp_unnormalized),
-    .cfg_smp_reduction(cfg_smp_reduction),
+    .cfg_smp_reduction(cfg_smp_reduction), .cfg_smp_compare_op(cfg_smp_compare_op), .req_ref(req_ref),
     .rsp_valid(rsp_valid), .rsp_ready(in_bits[O_READY]), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag)
   );
   always_ff @(posedge clk) sout <= ^{rsp_rgba, rsp_tag};

@@ -69,6 +69,7 @@ struct SamplingOptions {
   std::string wrap_u, wrap_v;
   std::string mag_filter, min_filter, mipmap_mode, border_color;
   std::string reduction = "weighted-average";
+  std::string compare_op = "less-or-equal";
   std::string pyramid = "exact";
   std::string format = "rgba8";
   bool srgb = false;
@@ -122,6 +123,10 @@ struct SamplingOptions {
     cmd.add_option("--reduction", reduction,
                    "weighted-average | min | max (or Vulkan names): how the filter combines the texels it weighs "
                    "(Vulkan reductionMode; min and max: the texels of weight above 0, both levels, every probe)")
+        ->capture_default_str();
+    cmd.add_option("--compare-op", compare_op,
+                   std::string("a depth compare's test, `reference OP texel depth` (Vulkan compareOp; GL's LEQUAL, ... "
+                               "too): ") + kCompareOpNames + "; queries with a ref column (texsim sample --op compare)")
         ->capture_default_str();
     cmd.add_flag("--unnormalized", unnormalized,
                  "u, v in texels of the base level, not texture widths (Vulkan unnormalizedCoordinates, GL "
@@ -226,6 +231,8 @@ struct SamplingOptions {
     if (!border_color.empty()) parse_border(c);
     if (!parse_reduction(reduction, c.reduction))
       throw Error("--reduction " + quote_clipped(reduction) + " is not weighted-average, min or max");
+    if (!parse_compare_op(compare_op, c.compare_op))
+      throw Error("--compare-op " + quote_clipped(compare_op) + " is not " + kCompareOpNames);
     if (!to_lod_fixed(lod_bias, c.lod_bias)) throw Error("--lod-bias " + std::to_string(lod_bias) + " is outside [-128, 128)");
     if (!to_lod_fixed(min_lod, c.min_lod)) throw Error("--min-lod " + std::to_string(min_lod) + " is outside [-128, 128)");
     if (!to_lod_fixed(max_lod, c.max_lod)) throw Error("--max-lod " + std::to_string(max_lod) + " is outside [-128, 128)");

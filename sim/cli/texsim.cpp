@@ -27,7 +27,7 @@ namespace {
 using namespace tex;
 
 // --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M]
-// [border=C] [reduction=R] [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
+// [border=C] [reduction=R] [compare=OP] [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
 // patterns as they are; `srgb`: the texels are sRGB codes; `unnormalized`: the sampler takes texel
 // coordinates, the trace's u, v of this entry are texels). Line t is texture t of the
 // descriptor table and sampler t of the sampler table: the options' sampler with the line's wrap
@@ -45,7 +45,7 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (!f) throw Error(path + ": cannot open texture list");
   const std::string form =
-      "`id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M] [border=C] [reduction=R] [base=N] [max=N]`";
+      "`id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M] [border=C] [reduction=R] [compare=OP] [base=N] [max=N]`";
   std::vector<TextureListEntry> out;
   char buf[4096];
   int line_no = 0;
@@ -100,6 +100,9 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
         } else if (key == "reduction") {
           if (!parse_reduction(value, e.sampler.reduction))
             throw Error(at + "reduction=" + quote_clipped(value) + ": not weighted-average, min or max");
+        } else if (key == "compare") {
+          if (!parse_compare_op(value, e.sampler.compare_op))
+            throw Error(at + "compare=" + quote_clipped(value) + ": not " + kCompareOpNames);
         } else if (key == "base" || key == "max") {
           int level = -1;
           size_t used = 0;
@@ -112,7 +115,7 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
             throw Error(at + key + "=" + quote_clipped(value) + ": not a level 0 to " + std::to_string(kMaxLevels - 1));
           (key == "base" ? e.base_level : e.max_level) = level;
         } else {
-          throw Error(at + "unknown field " + quote_clipped(key) + " (min, mag, mip, border, reduction, base, max)");
+          throw Error(at + "unknown field " + quote_clipped(key) + " (min, mag, mip, border, reduction, compare, base, max)");
         }
       }
       check_sampler(e.sampler, at);
@@ -139,6 +142,7 @@ std::string filter_label(const SamplerConfig& c) {
 std::string op_label(Op op, int component, const SamplerConfig& c) {
   if (op == Op::Fetch) return "texel fetches";
   if (op == Op::Gather) return std::string("gathers of ") + "RGBA"[component];
+  if (op == Op::Compare) return "depth compares (" + compare_op_name(c.compare_op) + ", " + filter_label(c) + ")";
   return filter_label(c);
 }
 
@@ -148,7 +152,7 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   const auto t0 = std::chrono::steady_clock::now();
   // Everything is checked before the work: options, engine, outputs, texture, every query.
   Op op{};
-  if (!parse_op(op_option, op)) throw Error("--op " + quote_clipped(op_option) + " is not sample, gather or fetch");
+  if (!parse_op(op_option, op)) throw Error("--op " + quote_clipped(op_option) + " is not sample, gather, compare or fetch");
   int component = -1;  // 0..3, or r g b a in either case
   for (int c = 0; c < 4; ++c)
     if (component_option == std::to_string(c) ||
@@ -203,7 +207,8 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   SamplerTable samplers;  // entry i: list line i's
   for (const TextureListEntry& e : list) samplers.push_back(e.sampler);
   const uint32_t unnormalized = unnormalized_samplers(samplers);  // their queries give texel coordinates
-  const QueryForm form{unnormalized, uint8_t(component)};
+  QueryForm form{unnormalized, uint8_t(component)};
+  for (size_t s = 0; s < samplers.size(); ++s) form.no_compare |= uint32_t(!samplers[s].compare_problem().empty()) << s;
   std::optional<QueryReader> reader;
   std::optional<QueryFileParser> parser;
   std::exception_ptr query_error;
@@ -213,7 +218,9 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
       throw Error(reader->name() + ": header " + reader->header() + " is a " + op_name(reader->op()) + "'s" +
                   (op == Op::Sample ? ": give --op " + op_name(reader->op())
                                     : "; --op " + op_name(op) + " takes " +
-                                          (op == Op::Fetch ? "[tex,[smp,]]i,j,level" : "[tex,[smp,]]u,v")));
+                                          (op == Op::Fetch    ? "[tex,[smp,]]i,j[,layer],level"
+                                           : op == Op::Gather ? "[tex,[smp,]]u,v[,layer]"
+                                                              : "[tex,[smp,]]u,v[,layer],ref,...")));
     if (reader->rewindable()) parser.emplace(queries_path, 2, true, form);
   } catch (...) {
     query_error = std::current_exception();
@@ -235,6 +242,11 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   }
   if (query_error) std::rethrow_exception(query_error);
   check_tables(table, samplers, eo.memory);  // (before any output: an array needs the cached unit)
+  if (op == Op::Compare)
+    for (size_t t = 0; t < table.size(); ++t)
+      if (table[t].pyramid->srgb)
+        throw Error((list.size() > 1 ? list[t].at : "") + "--op compare of an sRGB texture (" + list[t].path +
+                    "): a depth compare reads the R channel as a depth, not as a colour");
   const bool kept = parser && parser->kept();
   if (parser && (!kept || o.engine != "model")) parser->wait();
   const Pyramid& pyr = arrays[0][0];
@@ -458,9 +470,12 @@ int main(int argc, char** argv) {
       ->required();
   std::string sample_op = "sample", sample_component = "0";
   sample->add_option("--op", sample_op,
-                     "sample | gather | fetch: what each query asks; gather: textureGather, one component of the four "
-                     "texels a linear filter weighs at the base level (header u,v); fetch: texelFetch of texel (i, j) "
-                     "of a level, no filter, 0 outside the texture (Vulkan robust image access; header i,j,level)")
+                     "sample | gather | compare | fetch: what each query asks; gather: textureGather, one component of "
+                     "the four texels a linear filter weighs at the base level (header u,v); compare: a depth compare "
+                     "(shadow lookup): each texel's R, the depth, tested `ref OP depth` (--compare-op) and the tests "
+                     "filtered (header u,v,ref,lod or u,v,ref,dudx,...; result R, 0, 0, 1); fetch: texelFetch of "
+                     "texel (i, j) of a level, no filter, 0 outside the texture (Vulkan robust image access; header "
+                     "i,j,level)")
       ->capture_default_str();
   sample->add_option("--component", sample_component, "the component a gather gathers: 0 1 2 3 or r g b a (R G B A)")
       ->capture_default_str();

@@ -146,8 +146,9 @@ struct TraceFormat {
   const char* header;
   // a tex column; a smp column; u,v,lod (else the four derivatives); a bias column; quad,x,y,helper;
   // i,j,level (a texel fetch, in place of u,v,lod); u,v alone (a gather); a layer column after u,v
-  // (i,j) (an array texture's layer: layered_formats)
-  bool texture, sampler, lod, bias, quad, fetch = false, gather = false, layer = false;
+  // (i,j) (an array texture's layer) and a ref column after those (a depth compare's reference):
+  // layered_formats
+  bool texture, sampler, lod, bias, quad, fetch = false, gather = false, layer = false, ref = false;
 };
 constexpr TraceFormat kFormats[] = {
     {"u,v,lod", false, false, true, false, false},
@@ -169,7 +170,8 @@ constexpr TraceFormat kFormats[] = {
 };
 constexpr int kMaxColumns = 11;
 
-// kFormats and, for each but the frame trace, its form with a layer column after u,v (i,j).
+// kFormats and, for each but the frame trace, its forms with a layer column after u,v (i,j), and
+// for a sample's a ref column after those (a depth compare).
 struct NamedFormat {
   std::string header;
   TraceFormat format;
@@ -180,11 +182,16 @@ const std::vector<NamedFormat>& layered_formats() {
     for (const TraceFormat& f : kFormats) {
       out.push_back({f.header, f});
       if (f.quad) continue;
-      std::string h = f.header;
-      const size_t at = h.find(f.fetch ? "i,j" : "u,v") + 3;
-      TraceFormat l = f;
-      l.layer = true;
-      out.push_back({h.insert(at, ",layer"), l});
+      for (int layer = 0; layer < 2; ++layer)
+        for (int ref = 0; ref < 2; ++ref) {
+          if ((!layer && !ref) || (ref && (f.fetch || f.gather))) continue;
+          std::string h = f.header;
+          h.insert(h.find(f.fetch ? "i,j" : "u,v") + 3, std::string(layer ? ",layer" : "") + (ref ? ",ref" : ""));
+          TraceFormat v = f;
+          v.layer = layer;
+          v.ref = ref;
+          out.push_back({h, v});
+        }
     }
     return out;
   }();
@@ -193,8 +200,8 @@ const std::vector<NamedFormat>& layered_formats() {
 
 // The headers of kFormats, in short: [tex,[smp,]] before u,v,lod and u,v,dudx,...
 std::string known_headers() {
-  return "[tex,[smp,]] then u,v[,layer] and ,lod or ,dudx,dvdx,dudy,dvdy[,bias] or nothing (gather), "
-         "i,j[,layer],level (fetch); or tex,u,v,...,helper";
+  return "[tex,[smp,]]u,v[,layer][,ref], then lod or dudx,dvdx,dudy,dvdy[,bias]; u,v[,layer] (gather); "
+         "i,j[,layer],level (fetch); tex,u,v,...,helper";
 }
 
 }  // namespace
@@ -296,6 +303,7 @@ void QueryReader::read_header() {
         fetch_ = format.fetch;
         gather_ = format.gather;
         layer_ = format.layer;
+        ref_ = format.ref;
         header_ = header;
       }
     if (columns_ == 0) throw Error(at + "unknown header " + quote_clipped(line) + " (expected " + known_headers() + ")");
@@ -305,7 +313,7 @@ void QueryReader::read_header() {
 
 Op QueryReader::op() {
   if (columns_ == 0) read_header();
-  return fetch_ ? Op::Fetch : gather_ ? Op::Gather : Op::Sample;
+  return fetch_ ? Op::Fetch : gather_ ? Op::Gather : ref_ ? Op::Compare : Op::Sample;
 }
 
 bool QueryReader::next(Query& q) {
@@ -342,6 +350,10 @@ bool QueryReader::next(Query& q) {
     q.u = v[c++];
     q.v = v[c++];
     if (layer_) q.layer = v[c++];
+    if (ref_) {
+      q.compare = true;
+      q.ref = v[c++];
+    }
     if (gather_) {
       q.gather = true;
       return true;
@@ -566,6 +578,13 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag, QueryF
   if (!to_texel_coord_fixed(q.layer, r.layer))
     throw Error(at() + "layer = " + std::to_string(q.layer) + " is outside [-32768, 32768)");
   const bool texels = form.unnormalized >> r.sampler & 1;
+  if (q.compare) {
+    if (form.no_compare >> r.sampler & 1)  // (VkSamplerCreateInfo: compareEnable rules)
+      throw Error(at() + "a depth compare through sampler " + std::to_string(r.sampler) +
+                  ", which has a min/max reduction or unnormalized coordinates: Vulkan does not compare so");
+    r.op = Op::Compare;
+    if (!to_coord_fixed(q.ref, r.ref)) throw Error(at() + "ref = " + std::to_string(q.ref) + " is outside [-128, 128)");
+  }
   if (q.gather) {
     if (texels)  // (VkSamplerCreateInfo: not with OpImage*Gather)
       throw Error(at() + "a gather through sampler " + std::to_string(r.sampler) +

@@ -23,6 +23,8 @@ struct Query {
   bool gather = false; // a gather (header u,v): u, v alone
   double u = 0, v = 0;
   double layer = 0;   // an array texture's layer coordinate (a `layer` column; a fetch's: a whole number)
+  bool compare = false;  // a depth compare (a `ref` column after u,v[,layer])
+  double ref = 0;        // its reference depth, 0..1 (clamped by the unit)
   bool explicit_lod = true;
   double lod = 0;     // levels, when explicit_lod
   Derivatives deriv;  // otherwise
@@ -48,7 +50,8 @@ constexpr const char* kFrameTraceHeader = "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,
 // request's own LOD bias in levels, GLSL texture(s, uv, bias)), or kFrameTraceHeader; texel
 // fetches: `i,j,level` (whole numbers: i, j 32-bit, level 16-bit), gathers `u,v`, each also with
 // `tex` or `tex,smp`; each but the frame trace with a `layer` column after u,v (i,j): an array
-// texture's layer coordinate (Q16.16 when converted; a fetch's a whole number); `#` lines are
+// texture's layer coordinate (Q16.16 when converted; a fetch's a whole number), and each sample form
+// with a `ref` column after those: a depth compare's reference (Q8.24); `#` lines are
 // comments, blank lines are skipped; a UTF-8 byte-order mark is skipped. A file with only the
 // header has no queries (not an error). Throws tex::Error naming the file, the line number and
 // the text of a bad line (quoted once, at most 80 characters): no header, a NUL byte (a binary
@@ -63,7 +66,7 @@ class QueryReader {
   bool next(Query& q);  // false at the end
   const std::string& name() const { return name_; }
   // The header's operation (it reads the header if not yet read): Op::Fetch for i,j,level,
-  // Op::Gather for u,v.
+  // Op::Gather for u,v, Op::Compare with a ref column.
   Op op();
   std::string header() const { return header_; }  // (after op() or next())
   // True for a regular file: it can be read twice (QueryFileParser before the work).
@@ -88,7 +91,7 @@ class QueryReader {
   bool eof_ = false;
   int line_no_ = 0, columns_ = 0;
   bool texture_ = false, sampler_ = false, lod_ = false, bias_ = false, quad_ = false, fetch_ = false, gather_ = false,
-       layer_ = false;  // the header's columns
+       layer_ = false, ref_ = false;  // the header's columns
   std::string header_;
 };
 
@@ -114,6 +117,7 @@ uint32_t unnormalized_samplers(const SamplerTable& samplers);
 struct QueryForm {
   uint32_t unnormalized = 0;
   uint8_t component = 0;
+  uint32_t no_compare = 0;  // bit s: sampler s takes no depth compare (SamplerConfig::compare_problem)
 };
 
 // The queries of a reader as the hardware's fixed-point requests (tag = index), for the engines.

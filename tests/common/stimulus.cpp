@@ -240,7 +240,17 @@ SamplerConfig random_sampler(std::mt19937_64& rng, int unnormalized_one_in) {
   randomize_lod_controls(rng, s);
   randomize_reduction(rng, s);
   if (unnormalized_one_in > 0 && rng() % uint64_t(unnormalized_one_in) == 0) make_unnormalized(rng, s);
+  s.compare_op = CompareOp(rng() % kCompareOps);
   return s;
+}
+
+int32_t random_reference(std::mt19937_64& rng) {
+  constexpr int32_t kOne = 1 << kCoordFracBits;
+  switch (rng() % 5) {
+    case 0: return int32_t(rng() % 5) - 2 + (rng() % 2 ? 0 : kOne);        // at 0 or 1, a few units off
+    case 1: return int32_t(uint32_t(rng()));                              // any value (clamped)
+    default: return int32_t(rng() % uint64_t(kOne + kOne / 4)) - kOne / 8;  // [-1/8, 9/8)
+  }
 }
 
 Image random_image(int w, int h, int cw, uint64_t seed, int style) {

@@ -103,8 +103,8 @@ void randomize_aniso(std::mt19937_64& rng, SamplerConfig& c);
 // none, or its mode with max LOD clamped to <= 0).
 void make_unnormalized(std::mt19937_64& rng, SamplerConfig& c);
 // Everything at random: a filter (half the default trilinear, a third anisotropic), both address
-// modes, the border colour, the magnification filter, the LOD controls, the reduction;
-// unnormalized in 1 of `unnormalized_one_in` (0: never).
+// modes, the border colour, the magnification filter, the LOD controls, the reduction, the compare
+// operator; unnormalized in 1 of `unnormalized_one_in` (0: never).
 SamplerConfig random_sampler(std::mt19937_64& rng, int unnormalized_one_in = 0);
 
 // Gives the requests of the table's unnormalized samplers texel coordinates of their texture.
@@ -116,6 +116,23 @@ void texel_coordinates_where_unnormalized(std::mt19937_64& rng, std::vector<Requ
       const Extent e = size_of_texture(r.texture);
       r.u = texel_coordinate(rng, e.w);
       r.v = texel_coordinate(rng, e.h);
+    }
+}
+
+// A depth compare's reference (Q8.24): in [-1/8, 9/8), at 0 or 1 give or take a few raw units, or
+// any 32-bit value.
+int32_t random_reference(std::mt19937_64& rng);
+// One in `one_in` of the sample requests made depth compares (random_reference) where their sampler
+// takes one (SamplerConfig::compare_problem) and compares(texture) says the texture does (not an
+// sRGB texture: a depth is no colour).
+template <class Compares>
+void compares_among(std::mt19937_64& rng, std::vector<Request>& requests, int one_in, const SamplerTable& samplers,
+                    Compares compares) {
+  for (Request& r : requests)
+    if (r.op == Op::Sample && rng() % uint64_t(one_in) == 0 && samplers[r.sampler].compare_problem().empty() &&
+        compares(r.texture)) {
+      r.op = Op::Compare;
+      r.ref = random_reference(rng);
     }
 }
 

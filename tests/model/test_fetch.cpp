@@ -43,7 +43,7 @@ TEST(TexelFetch, NamesOfTheOperation) {
   EXPECT_EQ(op, Op::Fetch);
   EXPECT_TRUE(parse_op("sample", op));
   EXPECT_EQ(op, Op::Sample);
-  EXPECT_FALSE(parse_op("compare", op));  // (not yet an operation of the unit)
+  EXPECT_FALSE(parse_op("sampel", op));
   EXPECT_EQ(op_name(Op::Fetch), "fetch");
 }
 

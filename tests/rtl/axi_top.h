@@ -250,6 +250,7 @@ class AxiTop {
       t.req_op = uint8_t(q.op);
       t.req_component = q.component;
       t.req_layer = uint32_t(q.layer);
+      t.req_ref = uint32_t(q.ref);
       t.req_tag = uint16_t(next_req_);
     } else {
       t.req_u = junk();
@@ -266,6 +267,7 @@ class AxiTop {
       t.req_op = junk() & 3;
       t.req_component = junk() & 3;
       t.req_layer = junk();
+      t.req_ref = junk();
       t.req_tag = uint16_t(junk());
     }
     t.req_valid = req_valid;

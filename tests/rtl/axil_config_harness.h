@@ -49,7 +49,7 @@ struct Events {
 struct Reference {
   uint32_t control = 1;                      // unit_reset after reset
   uint32_t cache = (2u << 16) | (6u << 8);   // 4 ways, 64 sets (LINES / MAX_WAYS), row-major
-  uint32_t fifo_limit = 0, filter = 0x23, lod_bias = 0, min_lod = 0x8000, max_lod = 0x7FFF;
+  uint32_t fifo_limit = 0, filter = 0x30023, lod_bias = 0, min_lod = 0x8000, max_lod = 0x7FFF;
   uint32_t desc_base = 0, desc_attr = 0xF00, desc_size = 0x00010001, desc_index = 0, border_rg = 0, border_ba = 0, wrap = 0, smp_index = 0;
   std::array<uint64_t, kCounters> counters{};
   Events ev_q;  // the registered events (counted at the next edge)
@@ -97,7 +97,7 @@ struct Reference {
       case kControl: control = d & 3; break;
       case kCache: cache = d & 0x31F01; break;
       case kFifoLimit: fifo_limit = d & ((1u << kFifoLimitBits) - 1); break;
-      case kFilter: filter = d & 0xFF33; break;
+      case kFilter: filter = d & 0x7FF33; break;
       case kLodBias: lod_bias = d & 0xFFFF; break;
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
@@ -457,6 +457,7 @@ class Slave {
     EXPECT_EQ(t.cfg_smp_aniso_pow2, (r.filter >> 12) & 1);
     EXPECT_EQ(t.cfg_smp_unnormalized, (r.filter >> 13) & 1);
     EXPECT_EQ(t.cfg_smp_reduction, (r.filter >> 14) & 3);
+    EXPECT_EQ(t.cfg_smp_compare_op, (r.filter >> 16) & 7);
     EXPECT_EQ(t.cfg_smp_lod_bias, r.lod_bias);
     EXPECT_EQ(t.cfg_smp_min_lod, r.min_lod);
     EXPECT_EQ(t.cfg_smp_max_lod, r.max_lod);

@@ -160,6 +160,11 @@ Coverage::Coverage(int max_log2_w, int max_log2_h) : max_level_(std::max(max_log
   g_gather_ = make("gather: component x footprint inside level 0 or across its edge");
   for (const char* c : {"R", "G", "B", "A"})
     for (const char* where : {"inside", "across an edge"}) group(g_gather_).add(std::string(c) + " " + where);
+
+  g_compare_ = make("depth compare: operator x reference below 0, in [0, 1], above 1 (clamped)");
+  for (int op = 0; op < kCompareOps; ++op)
+    for (const char* where : {"below 0", "in [0, 1]", "above 1"})
+      group(g_compare_).add(compare_op_name(CompareOp(op)) + " " + where);
 }
 
 void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Request& q) {
@@ -186,6 +191,8 @@ void Coverage::sample(const Pyramid& pyr, const SamplerConfig& cfg, const Reques
     ++group(g_gather_).hits[size_t(q.component & 3) * 2 + across];
     return;
   }
+  if (q.op == Op::Compare)  // (then filtered as a sample: the bins below too)
+    ++group(g_compare_).hits[size_t(cfg.compare_op) * 3 + (q.ref < 0 ? 0 : q.ref <= (1 << kCoordFracBits) ? 1 : 2)];
   const size_t fi = fi_of(cfg.filter);
   ++group(g_filter_wrap_).hits[(fi * kNumWraps + size_t(cfg.wrap_u)) * kNumWraps + size_t(cfg.wrap_v)];
   ++group(g_pyramid_).hits[size_t(pyr.mode)];

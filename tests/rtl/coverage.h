@@ -47,7 +47,7 @@ class Coverage {
   std::vector<CoverGroup> groups_;
   void sample_probe(const Pyramid& pyramid, const SamplerConfig& config, const Request& probe);
   size_t g_filter_wrap_, g_level_case_, g_level_d_, g_taps_, g_sign_, g_timing_, g_pyramid_, g_deriv_, g_aniso_,
-      g_mag_, g_unnorm_, g_reduce_, g_fetch_, g_gather_;
+      g_mag_, g_unnorm_, g_reduce_, g_fetch_, g_gather_, g_compare_;
   int max_level_;
   size_t level_case_bin_[6][7] = {};  // [filter][level case] -> bin of g_level_case_ (only the cases of its mip mode)
 };

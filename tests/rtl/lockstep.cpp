@@ -48,6 +48,7 @@ std::string describe(const Request& r) {
     return o.str();
   }
   if (r.op == Op::Gather) o << "gather component " << int(r.component) << " ";
+  if (r.op == Op::Compare) o << "compare ref=" << r.ref << " (" << r.ref / 16777216.0 << ") ";
   o << "u=" << r.u << " (" << r.u / 16777216.0 << ") v=" << r.v << " (" << r.v / 16777216.0 << ")";
   if (r.has_derivatives)
     o << " dudx=" << r.deriv.dudx << " dvdx=" << r.deriv.dvdx << " dudy=" << r.deriv.dudy << " dvdy=" << r.deriv.dvdy;

@@ -154,6 +154,7 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
                                        [&](int t) { return c.table[size_t(t)].pyramid->extent0(); });
   fetches_and_gathers_among(rng, c.requests, 16, [&](int t) { return c.table[size_t(t)].pyramid->extent0(); });
   layers_among(rng, c.requests, [&](int t) { return c.table[size_t(t)].layers(); });
+  compares_among(rng, c.requests, 16, c.samplers, [](int) { return true; });
   return c;
 }
 

@@ -32,7 +32,7 @@ TEST(RtlAxilConfig, IdVersionCapabilitiesAndResetValues) {
   EXPECT_EQ(s.read(kControl).data, 1u);
   EXPECT_TRUE(s.top().unit_rst);
   EXPECT_EQ(s.read(kCache).data, (2u << 16) | (6u << 8));
-  EXPECT_EQ(s.read(kFilter).data, 0x23u);
+  EXPECT_EQ(s.read(kFilter).data, 0x30023u);  // (compare op LESS_OR_EQUAL)
   EXPECT_EQ(s.read(kMinLod).data, 0x8000u);
   EXPECT_EQ(s.read(kMaxLod).data, 0x7FFFu);
   for (uint32_t a : defined_registers()) EXPECT_EQ(s.read(a).resp, kOkay) << std::hex << a;

@@ -291,6 +291,8 @@ void run_suite(const CachedSuite& suite) {
     std::vector<Request> requests = unnormalized ? random_texel_requests(rng, pyr.extent0(), suite.requests_per_case)
                                                  : random_requests(rng, size, suite.requests_per_case);
     fetches_and_gathers_among(rng, requests, 16, [&](int) { return pyr.extent0(); });  // texelFetch and textureGather, 1 in 16
+    cfg.compare_op = CompareOp(rng() % kCompareOps);
+    compares_among(rng, requests, 16, SamplerTable{cfg}, [&](int) { return !pyr.srgb; });  // depth compares, 1 in 16
     // A quarter of the cases use a shallower FIFO (cfg_fifo_limit), down to 1 sample.
     const uint32_t fifo_depth = rng() % 4 == 0 ? 1 + uint32_t(rng() % uint64_t(rc.fifo_depth)) : 0;
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
@@ -445,6 +447,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
     texel_coordinates_where_unnormalized(rng, requests, samplers, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
     fetches_and_gathers_among(rng, requests, 16, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
     layers_among(rng, requests, [&](int t) { return table[size_t(t)].layers(); });
+    compares_among(rng, requests, 16, samplers, [&](int t) { return !table[size_t(t)].pyramid->srgb; });
     for (const Request& q : requests) {  // the layer cases of arrays, counted
       const int nl = table[q.texture].layers();
       if (nl == 1) continue;

@@ -82,6 +82,8 @@ void run_suite(const RandomSuite& suite) {
         q.deriv = random_footprint(rng, pyr->extent0(), int(rng() % 16) + 1, int(rng() % 4)).deriv;
       }
     fetches_and_gathers_among(rng, reqs, 16, [&](int) { return pyr->extent0(); });  // texelFetch and textureGather, 1 in 16
+    cfg.compare_op = CompareOp(rng() % kCompareOps);
+    compares_among(rng, reqs, 16, SamplerTable{cfg}, [](int) { return true; });  // depth compares, 1 in 16
     const LockstepResult r = lockstep(*unit, *pyr, cfg, reqs, timing, rng());
 
     ++totals.rounds;

@@ -167,6 +167,17 @@ class GlSampling {
       })";
     array_gather_program_ = link(vs, array_gather_fs, 3);
     glGenTextures(1, &array_);
+    // A shadow lookup (unit 4): textureLod of a sampler2DShadow at (u, v) with reference q.w, level q.z.
+    const char* shadow_fs = R"(#version 330 core
+      uniform sampler2DShadow tex;
+      uniform sampler2D queries;
+      out vec4 colour;
+      void main() {
+        vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
+        colour = vec4(textureLod(tex, vec3(q.xy, q.w), q.z), 0.0, 0.0, 1.0);
+      })";
+    shadow_program_ = link(vs, shadow_fs, 4);
+    glGenTextures(1, &depth_);
     glGenVertexArrays(1, &vao_);
     glBindVertexArray(vao_);
     glGenTextures(1, &tex_);
@@ -236,6 +247,32 @@ class GlSampling {
     return draw(q);
   }
 
+  // A depth texture (GL_DEPTH_COMPONENT16, unit 4): every level's R channel (16-bit codes).
+  void upload_depth(const Pyramid& p) {
+    glActiveTexture(GL_TEXTURE4);
+    glBindTexture(GL_TEXTURE_2D, depth_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    for (size_t k = 0; k < p.levels.size(); ++k) {
+      const Image& img = p.levels[k];
+      std::vector<uint16_t> d;
+      for (const Texel& t : img.texels) d.push_back(t[0]);
+      glTexImage2D(GL_TEXTURE_2D, GLint(k), GL_DEPTH_COMPONENT16, img.width, img.height, 0, GL_DEPTH_COMPONENT,
+                   GL_UNSIGNED_SHORT, d.data());
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(p.levels.size()) - 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  }
+  // A shadow lookup per query (u, v, lambda, reference) under the sampler state of `c`, its compare op.
+  std::vector<std::array<float, 4>> sample_shadow(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(shadow_program_);
+    apply(c, 0, true);
+    static constexpr GLenum kFuncs[kCompareOps] = {GL_NEVER,   GL_LESS,     GL_EQUAL,  GL_LEQUAL,
+                                                   GL_GREATER, GL_NOTEQUAL, GL_GEQUAL, GL_ALWAYS};
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, kFuncs[int(c.compare_op)]);
+    return draw(q);
+  }
+
   // A view of the uploaded texture: TEXTURE_BASE_LEVEL and TEXTURE_MAX_LEVEL.
   void view(int base_level, int max_level) {
     glActiveTexture(GL_TEXTURE0);
@@ -270,10 +307,10 @@ class GlSampling {
  private:
   // The sampler state of `c` on the texture (the rectangle texture for an unnormalized sampler; the
   // array texture for GL_TEXTURE_2D_ARRAY).
-  void apply(const SamplerConfig& c, GLenum array = 0) {
+  void apply(const SamplerConfig& c, GLenum array = 0, bool depth = false) {
     const GLenum target = array ? array : c.unnormalized ? GL_TEXTURE_RECTANGLE : GL_TEXTURE_2D;
-    glActiveTexture(array ? GL_TEXTURE3 : c.unnormalized ? GL_TEXTURE2 : GL_TEXTURE0);
-    glBindTexture(target, array ? array_ : c.unnormalized ? rect_ : tex_);
+    glActiveTexture(depth ? GL_TEXTURE4 : array ? GL_TEXTURE3 : c.unnormalized ? GL_TEXTURE2 : GL_TEXTURE0);
+    glBindTexture(target, depth ? depth_ : array ? array_ : c.unnormalized ? rect_ : tex_);
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, c.unnormalized ? (c.filter.texel == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST)
                                                                   : gl_min_filter(c.filter));
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, c.filter.mag == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST);
@@ -306,7 +343,7 @@ class GlSampling {
   std::vector<uint8_t> window_ = std::vector<uint8_t>(size_t(kW) * kH * 4);
   GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, fetch_program_ = 0, gather_program_ = 0, vao_ = 0,
          tex_ = 0, rect_ = 0, queries_ = 0, array_program_ = 0, array_fetch_program_ = 0, array_gather_program_ = 0,
-         array_ = 0;
+         array_ = 0, shadow_program_ = 0, depth_ = 0;
   bool ready_ = false;
 };
 
@@ -867,4 +904,86 @@ TEST(GlSamplerStates, ArrayLayersAgreeWithLlvmpipe) {
               "fetches (%d outside the layers), %d gathers exact; of %d ties between two layers llvmpipe takes "
               "the even one in %d (rounding up would agree in %d)\n", kLayers, compared, states, worst / 100.0,
               fetched, outside_layers, gathered, ties, tie_even, tie_up);
+}
+
+// Depth compare (sampler2DShadow, GL_COMPARE_REF_TO_TEXTURE; the unit's Op::Compare) on a
+// GL_DEPTH_COMPONENT16 texture, the model's D16 (16-bit R) pyramid: llvmpipe's percentage-closer
+// filtering under the 8 compare functions, every filter and address modes, agrees with the model's
+// within a linear filter's precision (nearest filters exactly). The unit rounds a reference to the
+// depth's code before testing, GL compares it as a float: the textures hold even codes, the
+// references sit near odd codes, so that no texel's depth equals a reference's code and both
+// readings agree; at references exactly on a code (where the two may differ) the agreement is
+// counted. A model that tests `depth OP reference` (the operands swapped) is caught.
+TEST(GlSamplerStates, DepthCompareAgreesWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  Pyramid depth = build_pyramid(make_pattern("noise", 37, 23));
+  for (Image& img : depth.levels) {  // 16-bit depth codes, every one even
+    img.channel_bits = 16;
+    for (Texel& t : img.texels) t = {uint16_t((t[0] * 257 + t[1]) & ~1), 0, 0, 65535};
+  }
+  gl.upload_depth(depth);
+  std::mt19937 rng(49);
+  int states = 0, compared = 0, worst = 0, swapped = 0, on_code = 0, on_code_agree = 0;
+  for (int op = 0; op < kCompareOps; ++op)
+    for (int mip = 0; mip < 3; ++mip)
+      for (int texel = 0; texel < 2; ++texel) {
+        SamplerConfig cfg{{TexelFilter(texel), MipMode(mip)}, kWraps[rng() % 5], kWraps[rng() % 5]};
+        cfg.border = BorderColor(rng() % (kBorderColors - 1));
+        cfg.compare_op = CompareOp(op);
+        std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
+        std::vector<Request> requests(queries.size());
+        for (size_t n = 0; n < queries.size(); ++n) {
+          const double u = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0, v = (int(rng() % (4 << 16)) - (3 << 15)) / 65536.0;
+          const double lambda = (int(rng() % uint32_t((depth.last_level() + 3) * 256)) - 256) / 256.0;
+          const bool exact = n % 16 == 0;  // on an even code exactly, else near an odd one
+          const int code = exact ? int(rng() % 32768) * 2 : int(rng() % 32767) * 2 + 1;
+          const double ref = exact ? code / 65535.0 : (code + (int(rng() % 101) - 50) / 200.0) / 65535.0;
+          queries[n] = {float(u), float(v), float(lambda), float(ref)};
+          Request& r = requests[n];
+          r.op = Op::Compare;
+          EXPECT_TRUE(to_coord_fixed(u, r.u) && to_coord_fixed(v, r.v) && to_lod_fixed(lambda, r.lod) &&
+                      to_coord_fixed(double(float(ref)), r.ref));
+        }
+        const std::vector<std::array<float, 4>> got = gl.sample_shadow(cfg, queries);
+        Sampler model(depth, cfg);
+        for (size_t n = 0; n < requests.size(); ++n) {
+          const double lambda = requests[n].lod / 256.0;
+          const TexelFilter tf = lambda <= 0 ? cfg.filter.mag : cfg.filter.texel;
+          bool edge = std::fabs(lambda) < 1.0 / 64;  // (as compare(): a filter or level choice either side)
+          if (lambda > 0 && cfg.filter.mip == MipMode::Nearest) edge = edge || std::fabs(lambda - std::floor(lambda) - 0.5) < 1.0 / 64;
+          if (tf == TexelFilter::Nearest)
+            for (const Image& img : depth.levels)
+              for (double t : {queries[n][0] * img.width, queries[n][1] * img.height}) edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
+          if (edge) continue;
+          const Texel m = model.sample(requests[n]);
+          const int err = int(std::lround(std::fabs(m[0] / 65535.0 - double(got[n][0])) * 255 * 100));
+          if (n % 16 == 0) {  // a reference on a code
+            ++on_code;
+            on_code_agree += err <= 200;
+            continue;
+          }
+          const bool nearest = tf == TexelFilter::Nearest && cfg.filter.mip != MipMode::Linear;
+          ASSERT_LE(err, nearest ? 0 : 200) << "compare " << compare_op_name(cfg.compare_op) << ", " << name_of(cfg)
+                                            << " at (" << queries[n][0] << ", " << queries[n][1] << ") lod " << lambda
+                                            << " ref " << queries[n][3] << ": model " << m[0] << ", GL " << got[n][0];
+          EXPECT_EQ(m[1], 0);
+          EXPECT_EQ(m[3], 65535);
+          worst = std::max(worst, err);
+          ++compared;
+          // The operands swapped (`depth OP ref`): another result where a tap's depth differs from
+          // the reference (every one here) for the ordered operators.
+          if (op == int(CompareOp::Less) || op == int(CompareOp::Greater)) {
+            SamplerConfig flipped = cfg;
+            flipped.compare_op = op == int(CompareOp::Less) ? CompareOp::Greater : CompareOp::Less;
+            swapped += std::abs(int(Sampler(depth, flipped).sample(requests[n])[0]) - int(m[0])) > 1000;
+          }
+        }
+        ++states;
+      }
+  EXPECT_EQ(states, 48);
+  EXPECT_GT(compared, 48 * kW * kH / 2);
+  EXPECT_GT(swapped, kW * kH / 4) << "a model with the operands swapped went unnoticed";
+  std::printf("  %d depth compares in %d sampler states compared with llvmpipe: max %.2f LSB; references exactly on "
+              "a depth code: %d of %d agree\n", compared, states, worst / 100.0, on_code_agree, on_code);
 }

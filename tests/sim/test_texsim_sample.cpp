@@ -9,6 +9,8 @@
 #include <vector>
 #include <nlohmann/json.hpp>
 
+#include <functional>
+
 #include "cli_fixture.h"
 #include "engines/engine.h"
 #include "model/image.h"
@@ -309,6 +311,58 @@ TEST_F(TexsimCli, TextureLayersSampleTheLayerNamed) {
                        {"--texture-layers"});
   expect_clean_failure("sample --texture-layers l0.png,,l1.png --memory cached -q q.csv -o bad.csv", "bad.csv",
                        {"empty path"});
+}
+
+// --op compare (a shadow lookup): each texel's R, its depth, tested `ref OP R` by --compare-op and
+// the tests filtered. At texel centres with the point filter the result is 255 or 0 by the PNG's
+// own values and the operator's words; at the corner of four texels the bilinear filter gives the
+// fraction that passes; G = B = 0, A = 255. Every engine gives the model's bytes. A header
+// without ref, a min/max sampler, an sRGB texture, an unknown operator: one line, nothing written.
+TEST_F(TexsimCli, DepthCompareFiltersTheTests) {
+  auto depth = [](int x, int y) { return (x * 37 + y * 23) % 256; };
+  write_image(dir / "d.png", 8, 8, 4, [&](int x, int y, int c) { return c == 0 ? depth(x, y) : 200; });
+  std::string q = "u,v,ref,lod\n";
+  std::vector<std::pair<int, int>> centres;
+  for (int y = 0; y < 8; y += 3)
+    for (int x = 0; x < 8; x += 2) {
+      centres.push_back({x, y});
+      q += std::to_string((x + 0.5) / 8) + "," + std::to_string((y + 0.5) / 8) + ",0.5,0\n";
+    }
+  q += "0.25,0.25,0.5,0\n";  // the corner of texels (1, 1), (2, 1), (1, 2), (2, 2)
+  write_text(dir / "q.csv", q);
+  const int ref_code = 128;  // round(0.5 * 255)
+  const std::vector<std::pair<const char*, std::function<bool(int, int)>>> ops = {
+      {"less", [](int r, int d) { return r < d; }},           {"lequal", [](int r, int d) { return r <= d; }},
+      {"greater", [](int r, int d) { return r > d; }},        {"gequal", [](int r, int d) { return r >= d; }},
+      {"equal", [](int r, int d) { return r == d; }},         {"not-equal", [](int r, int d) { return r != d; }},
+      {"never", [](int, int) { return false; }},              {"always", [](int, int) { return true; }}};
+  for (const auto& [name, pass] : ops) {
+    const std::string base = std::string("sample -t d.png --op compare --compare-op ") + name + " -q q.csv ";
+    ASSERT_EQ(run(base + "-f point -o p.csv").exit_code, 0) << name;
+    std::string h;
+    const auto rows = read_csv_rows(dir / "p.csv", h);
+    ASSERT_EQ(rows.size(), centres.size() + 1);
+    for (size_t i = 0; i < centres.size(); ++i) {
+      const int d = depth(centres[i].first, centres[i].second);
+      EXPECT_EQ(rows[i], (std::vector<int>{pass(ref_code, d) ? 255 : 0, 0, 0, 255})) << name << " depth " << d;
+    }
+    ASSERT_EQ(run(base + "-f bilinear -o b.csv").exit_code, 0) << name;
+    const auto corner = read_csv_rows(dir / "b.csv", h).back();
+    int passes = 0;
+    for (int y : {1, 2})
+      for (int x : {1, 2}) passes += pass(ref_code, depth(x, y));
+    EXPECT_EQ(corner, (std::vector<int>{(passes * 255 + 2) / 4, 0, 0, 255})) << name << ": the corner's four tests";
+  }
+  ASSERT_EQ(run("sample -t d.png --op compare --compare-op greater -q q.csv -o m.csv").exit_code, 0);
+  for (const char* engine : {"-e rtl", "-e rtl --memory cached", "-e systemc --memory cached", "-e systemc-model"}) {
+    ASSERT_EQ(run(std::string("sample -t d.png --op compare --compare-op greater -q q.csv -o e.csv ") + engine).exit_code, 0) << engine;
+    EXPECT_EQ(read_text(dir / "e.csv"), read_text(dir / "m.csv")) << engine;
+  }
+  write_text(dir / "plain.csv", "u,v,lod\n0.5,0.5,0\n");
+  expect_clean_failure("sample -t d.png --op compare -q plain.csv -o bad.csv", "bad.csv", {"plain.csv", "ref"});
+  expect_clean_failure("sample -t d.png --op compare --reduction max -q q.csv -o bad.csv", "bad.csv", {"q.csv:2", "min/max"});
+  expect_clean_failure("sample -t d.png --srgb --op compare -q q.csv -o bad.csv", "bad.csv", {"sRGB", "depth"});
+  expect_clean_failure("sample -t d.png --op compare --compare-op lesser -q q.csv -o bad.csv", "bad.csv", {"lesser", "less-or-equal"});
 }
 
 // --op gather (textureGather) --component C: at the corner between texels (x, y) and (x+1, y+1)

@@ -280,6 +280,7 @@ TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
   std::vector<Request> requests = stimulus::random_requests(rng, sizes, samplers.size(), 3000);
   stimulus::fetches_and_gathers_among(rng, requests, 16, [&](int t) { return sizes[size_t(t)]; });
   stimulus::layers_among(rng, requests, [&](int t) { return table[size_t(t)].layers(); });
+  stimulus::compares_among(rng, requests, 16, samplers, [&](int t) { return !table[size_t(t)].pyramid->srgb; });
   EngineOptions o = cached(60, 4);
   o.mem_jitter = 40;
   o.seed = 9;

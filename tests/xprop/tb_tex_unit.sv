@@ -58,6 +58,8 @@ module tb_tex_unit #(
   logic [63:0]                            cfg_smp_border_rgba = 'x;
   logic                                   cfg_smp_unnormalized = 1'b0;  // (the vectors' samplers are normalized)
   logic [tex_pkg::REDUCTION_W-1:0]        cfg_smp_reduction = 'x;
+  logic [tex_pkg::COMPARE_W-1:0]          cfg_smp_compare_op = 'x;
+  logic signed [tex_pkg::REQ_COORD_W-1:0] req_ref = 'x;
   logic [TAG_W-1:0]                       req_tag = 'x;
   logic [tex_pkg::OP_W-1:0]               req_op = 'x;
   logic [1:0]                             req_component = 'x;
@@ -202,6 +204,7 @@ module tb_tex_unit #(
     req_tag = 'x;
     req_op = 'x;
     req_component = 'x;
+    req_ref = 'x;
   endtask
 
   task automatic idle_write_pins;
@@ -260,7 +263,8 @@ module tb_tex_unit #(
 
   task automatic request(input int gap, input logic signed [31:0] u, input logic signed [31:0] v,
                          input int lod, input logic [TAG_W-1:0] tag, input int wr, input int wl,
-                         input int wx, input int wy, input logic [63:0] wd, input int op, input int component);
+                         input int wx, input int wy, input logic [63:0] wd, input int op, input int component,
+                         input logic signed [31:0] dref);
     int waited;
     idle_request_pins();
     if (wr != 0) begin
@@ -280,6 +284,7 @@ module tb_tex_unit #(
     req_tag = tag;
     req_op = op[tex_pkg::OP_W-1:0];
     req_component = (op == 1) ? component[1:0] : 'x;  // (don't-care but with a gather, OP_GATHER)
+    req_ref = (op == 2) ? dref : 'x;                   // (don't-care but with a compare, OP_COMPARE)
     step();
     idle_write_pins();
     waited = 0;
@@ -294,9 +299,9 @@ module tb_tex_unit #(
   // ---------------------------------------------------------------- main
   initial begin : main
     byte op;
-    int a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11;
+    int a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12;
     logic [63:0] h0, h1;
-    logic signed [31:0] s0, s1;
+    logic signed [31:0] s0, s1, s2;
     bit done;
 
     if (!$value$plusargs("vectors=%s", dir)) dir = ".";
@@ -325,7 +330,7 @@ module tb_tex_unit #(
         fail(2, "stimulus.txt ends without E");
         done = 1;
       end else if (op == "C") begin
-        r = $fscanf(stim_fd, "%d %d %d %d %d %d %d %d %d %d %d %h %d", a0, a1, a10, a2, a3, a4, a5, a6, a7, a8, a9, h0, a11);
+        r = $fscanf(stim_fd, "%d %d %d %d %d %d %d %d %d %d %d %h %d %d", a0, a1, a10, a2, a3, a4, a5, a6, a7, a8, a9, h0, a11, a12);
         if (accepted != answered) fail(2, "stimulus: cfg changed with requests in flight");
         cfg_w = a0;
         cfg_h = a1;
@@ -340,6 +345,7 @@ module tb_tex_unit #(
         cfg_smp_mag_linear = a9[0];
         cfg_smp_border_rgba = h0;
         cfg_smp_reduction = a11[1:0];
+        cfg_smp_compare_op = a12[2:0];
         configs++;
       end else if (op == "W") begin
         r = $fscanf(stim_fd, "%d %d %d %h", a0, a1, a2, h0);
@@ -353,9 +359,9 @@ module tb_tex_unit #(
         idle_request_pins();
         repeat (a0) step();
       end else if (op == "R") begin
-        r = $fscanf(stim_fd, "%d %d %d %d %h %d %d %d %d %h %d %d", a0, s0, s1, a1, h0, a2, a3, a4, a5, h1, a11, a6);
-        if (r != 12) $fatal(1, "xprop: FAIL bad R line in stimulus.txt (%0d fields)", r);
-        request(a0, s0, s1, a1, h0[TAG_W-1:0], a2, a3, a4, a5, h1, a11, a6);
+        r = $fscanf(stim_fd, "%d %d %d %d %h %d %d %d %d %h %d %d %d", a0, s0, s1, a1, h0, a2, a3, a4, a5, h1, a11, a6, s2);
+        if (r != 13) $fatal(1, "xprop: FAIL bad R line in stimulus.txt (%0d fields)", r);
+        request(a0, s0, s1, a1, h0[TAG_W-1:0], a2, a3, a4, a5, h1, a11, a6, s2);
       end else if (op == "Z") begin
         r = $fscanf(stim_fd, "%d %d", a0, a1);
         do_reset(a0, a1);

@@ -8,15 +8,15 @@
 //   stimulus.txt   one command per line, in order (numbers decimal unless marked hex):
 //     H max_log2_w max_log2_h cw tag_w requests ready_len   header (checked by the bench)
 //     C w h last_level wrap_u wrap_v texel_linear mip_mode lod_bias min_lod max_lod mag_linear
-//       border(hex, {A, B, G, R} unorm16) reduction
+//       border(hex, {A, B, G, R} unorm16) reduction compare_op
 //                    the cfg pins from now on (only after a drain: nothing in flight)
 //     W level x y data(hex)                       one clock with wr_en high
 //     I clocks                                    idle clocks (req_valid and wr_en low)
-//     R gap u v lod tag(hex) wr level x y data(hex) op component
+//     R gap u v lod tag(hex) wr level x y data(hex) op component ref
 //                    gap idle clocks, then the request offered until taken; wr = 1: the write
 //                    (x, y) of `level` <- data (the texel it already holds) in the first of them;
-//                    op: req_op (a sample, a gather of `component`, or a texel fetch: u, v,
-//                    lod are i, j, level)
+//                    op: req_op (a sample, a gather of `component`, a depth compare with
+//                    reference `ref` (Q8.24), or a texel fetch: u, v, lod are i, j, level)
 //     Z hold clocks  hold clocks with rsp_ready low and no request, then rst high for `clocks`
 //                    clocks: the requests in flight are dropped; the next ones are answered
 //     D              drain: no request until every accepted one is answered, then idle clocks
@@ -100,7 +100,7 @@ struct Gen {
     std::snprintf(hex, sizeof hex, "%llx",
                   static_cast<unsigned long long>(uint64_t(b[0]) | uint64_t(b[1]) << 16 | uint64_t(b[2]) << 32 |
                                                   uint64_t(b[3]) << 48));
-    stim << hex << ' ' << int(c.reduction) << '\n';
+    stim << hex << ' ' << int(c.reduction) << ' ' << int(c.compare_op) << '\n';
   }
 
   void write_line(int level, int x, int y, uint64_t data) {
@@ -135,6 +135,10 @@ struct Gen {
         r.u = stimulus::random_coordinate(rng, p.extent0().w, last);
         r.v = stimulus::random_coordinate(rng, p.extent0().h, last);
         r.lod = stimulus::random_lod(rng, last);
+        if (below(8) == 0 && c.compare_problem().empty()) {  // a depth compare, its reference in [-1/8, 9/8]
+          r.op = Op::Compare;
+          r.ref = int32_t(between(-(1 << 21), (1 << 24) + (1 << 21)));
+        }
       }
       const uint64_t tag = issued++ & ((uint64_t(1) << kTagBits) - 1);
       // Input gaps: none in about 60% of the requests, else 1..3, now and then up to 12.
@@ -151,10 +155,10 @@ struct Gen {
         wy = int(below(uint64_t(img.height)));
         wd = pack_rgba(img.at(wx, wy), opt.cw);
       }
-      char line[160];
-      std::snprintf(line, sizeof line, "R %llu %d %d %d %llx %d %d %d %d %llx %d %d\n", static_cast<unsigned long long>(gap),
+      char line[192];
+      std::snprintf(line, sizeof line, "R %llu %d %d %d %llx %d %d %d %d %llx %d %d %d\n", static_cast<unsigned long long>(gap),
                     r.u, r.v, int(r.lod), static_cast<unsigned long long>(tag), wr, wl, wx, wy,
-                    static_cast<unsigned long long>(wd), int(r.op), int(r.component));
+                    static_cast<unsigned long long>(wd), int(r.op), int(r.component), r.ref);
       stim << line;
       std::snprintf(line, sizeof line, "%llx %llx\n", static_cast<unsigned long long>(tag),
                     static_cast<unsigned long long>(pack_rgba(model.sample(r), opt.cw)));
@@ -236,6 +240,7 @@ int run(const Options& opt) {
       stimulus::randomize_border(g.rng, c);
       stimulus::randomize_lod_controls(g.rng, c);
       stimulus::randomize_reduction(g.rng, c);
+      c.compare_op = CompareOp(g.below(kCompareOps));
       g.stim << "D\n";
       g.cfg_line(pyr, c);
       const bool reset_here = std::find(reset_cases.begin(), reset_cases.end(), case_index) != reset_cases.end();

@@ -129,7 +129,7 @@ void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::ve
 }
 
 void check_request(const Request& request, size_t index) {
-  if (request.op != Op::Sample && request.has_derivatives)
+  if (request.op != Op::Sample && request.op != Op::Compare && request.has_derivatives)
     throw Error("request " + std::to_string(index) + ": a " + op_name(request.op) + " carries no derivatives");
   if (request.component > 3)
     throw Error("request " + std::to_string(index) + ": component " + std::to_string(request.component) + " is not 0..3");

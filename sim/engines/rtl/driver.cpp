@@ -24,6 +24,7 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_op = uint8_t(r.op);
   in.req_component = r.component & 3;
   in.req_layer = r.layer;
+  in.req_ref = r.ref;
 }
 
 CfgPins cfg_pins(const SamplerConfig& config, const Pyramid& pyramid) {
@@ -50,6 +51,7 @@ SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index) {
   c.aniso_pow2 = config.aniso_pow2;
   c.unnormalized = config.unnormalized;
   c.reduction = uint8_t(config.reduction);
+  c.compare_op = uint8_t(config.compare_op);
   const Texel b = config.border_unorm16();
   c.border_rgba = uint64_t(b[0]) | uint64_t(b[1]) << 16 | uint64_t(b[2]) << 32 | uint64_t(b[3]) << 48;
   return c;

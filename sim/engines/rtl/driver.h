@@ -45,6 +45,7 @@ struct PinsIn {
   uint8_t req_op = 0;            // tex_pkg::OP_*: a sample, a gather, or a texel fetch (req_u, req_v, req_lod: i, j, level)
   uint8_t req_component = 0;     // a gather's channel, 0..3
   int32_t req_layer = 0;         // tex_unit_cached: an array's layer, Q16.16 (a fetch: the integer layer)
+  int32_t req_ref = 0;           // a depth compare's reference, Q8.24
   bool rsp_ready = true;
   // AXI4 read port of tex_unit_cached: driven by the driver's memory model (ignored otherwise).
   bool ar_ready = false;
@@ -101,6 +102,7 @@ struct SamplerPins {
   uint64_t border_rgba = 0;  // the border colour, {A, B, G, R} unorm16
   bool unnormalized = false; // req_u, req_v are Q16.16 texels
   uint8_t reduction = 0;     // tex_pkg::REDUCE_*: the weighted average, min or max
+  uint8_t compare_op = 3;    // tex_pkg::CMP_* (VkCompareOp): a depth compare's test
 };
 SamplerPins sampler_pins(const SamplerConfig& config, uint8_t index = 0);
 

@@ -27,7 +27,7 @@ constexpr const char* kCounterNames[kCounters] = {"CYCLES",    "SAMPLES",   "SAM
 
 // Constants and CONTROL's bits.
 constexpr uint32_t kIdValue = 0x54455855;       // "TEXU"
-constexpr uint32_t kVersionValue = 0x00030003;  // 3.3: any texture size (DESC_SIZE), FILTER.unnormalized, .reduction, DESC_ATTR.layers
+constexpr uint32_t kVersionValue = 0x00030003;  // 3.3: any texture size (DESC_SIZE), FILTER.unnormalized, .reduction, .compare_op, DESC_ATTR.layers
 constexpr uint32_t kUnitReset = 1, kFreeze = 2, kClear = 4;
 constexpr uint32_t kOkay = 0, kSlverr = 2;
 
@@ -48,7 +48,7 @@ constexpr Register kRegisters[] = {
 inline uint32_t filter_word(const SamplerConfig& c) {
   return uint32_t(c.filter.texel == TexelFilter::Linear) | uint32_t(c.filter.mag == TexelFilter::Linear) << 1 |
          uint32_t(c.filter.mip) << 4 | uint32_t(c.probe_cap() - 1) << 8 | uint32_t(c.aniso_pow2) << 12 |
-         uint32_t(c.unnormalized) << 13 | uint32_t(c.reduction) << 14;
+         uint32_t(c.unnormalized) << 13 | uint32_t(c.reduction) << 14 | uint32_t(c.compare_op) << 16;
 }
 inline uint32_t wrap_word(const SamplerConfig& c) { return uint32_t(c.wrap_u) | uint32_t(c.wrap_v) << 4; }
 inline uint32_t border_rg_word(const SamplerConfig& c) {

@@ -112,6 +112,7 @@ class VerilatedTexUnit final : public Driver {
     t.req_tag = in.req_tag;
     t.req_op = in.req_op;
     t.req_component = in.req_component;
+    t.req_ref = uint32_t(in.req_ref);
     t.rsp_ready = in.rsp_ready;
     t.clk = 0;
     t.eval();
@@ -159,6 +160,7 @@ class VerilatedTexUnit final : public Driver {
     t.cfg_smp_aniso_pow2 = c.aniso_pow2;
     t.cfg_smp_unnormalized = c.unnormalized;
     t.cfg_smp_reduction = c.reduction;
+    t.cfg_smp_compare_op = c.compare_op;
   }
 
   void apply_cfg(const CfgPins& c) override {

@@ -24,15 +24,16 @@ struct SampleTransfer {
   int32_t dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;  // Q8.24 texture widths / heights per pixel
   int32_t bias = 0;      // Q8.8, the request's own LOD bias (added to the sampler's); 16-bit RTL port
   int32_t layer = 0;     // an array texture's layer, Q16.16 (req_layer); a texel fetch's: the integer layer
+  int32_t ref = 0;       // a depth compare's reference, Q8.24 (req_ref)
   uint8_t texture = 0;   // the descriptor-table entry (req_tex); beyond the unit's table: an error response
   uint8_t sampler = 0;   // the sampler-table entry (req_sampler); likewise
-  uint8_t op = 0;        // req_op: 0 a sample, 1 a gather, 3 a texel fetch (u, v, lod: the integers
+  uint8_t op = 0;        // req_op: 0 a sample, 1 a gather, 2 a depth compare, 3 a texel fetch (u, v, lod: the integers
                          // i, j, level); another value: an error response
   uint8_t component = 0; // a gather's channel, 0..3 (req_component)
   // Response (written by the target).
   uint16_t rgba[4] = {0, 0, 0, 0};  // R, G, B, A; channel width of the texture (8 bits on the RTL)
 };
-static_assert(sizeof(SampleTransfer) == 56, "SampleTransfer is the socket's wire format");
+static_assert(sizeof(SampleTransfer) == 60, "SampleTransfer is the socket's wire format");
 
 // Debug transport (transport_dbg, TLM_READ_COMMAND) on the same socket reads texels of the unit's
 // memory view: texel (x, y) of `level` and the ones after it along x in the same row, 8 bytes each

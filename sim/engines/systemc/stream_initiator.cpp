@@ -81,6 +81,7 @@ StreamInitiator::Slot* StreamInitiator::take_slot(const Request& q, size_t index
   s->data.op = uint8_t(q.op);
   s->data.component = q.component;
   s->data.layer = q.layer;
+  s->data.ref = q.ref;
   s->set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   ++issued_;
   return s;

@@ -94,6 +94,7 @@ Request request_of(const SampleTransfer& s) {
   q.op = Op(s.op);
   q.component = s.component;
   q.layer = s.layer;
+  q.ref = s.ref;
   return q;
 }
 }  // namespace
@@ -119,8 +120,11 @@ SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
   }
   auto* s = reinterpret_cast<SampleTransfer*>(trans.get_data_ptr());
   if (s->texture >= textures_.size() || s->sampler >= samplers_.size() ||  // beyond the tables
-      (s->op != uint8_t(Op::Sample) && s->op != uint8_t(Op::Gather) && s->op != uint8_t(Op::Fetch)) ||
-      (s->op != uint8_t(Op::Sample) && s->has_derivatives) || s->component > 3) {  // no such operation
+      s->op > uint8_t(Op::Fetch) ||
+      (s->op != uint8_t(Op::Sample) && s->op != uint8_t(Op::Compare) && s->has_derivatives) ||
+      s->component > 3 ||  // no such operation
+      (s->op == uint8_t(Op::Compare) &&  // a compare the sampler or the texture cannot take
+       (!samplers_[s->sampler].compare_problem().empty() || textures_[s->texture].pyramid->srgb))) {
     trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return nullptr;
   }
