@@ -87,6 +87,11 @@ constexpr int kReductions = 3;
 // (Vulkan's robust image access).
 enum class Op : uint8_t { Sample = 0, Gather = 1, Compare = 2, Fetch = 3 };
 
+// What a texture's layers are (Vulkan's image view types): 2D images (a 2D texture: one layer; a 2D
+// array: several), or cube maps, six faces a cube (+X, -X, +Y, -Y, +Z, -Z: layers 6c .. 6c + 5 of
+// cube c; a cube array: several cubes), sampled by a direction across the faces' seams.
+enum class TextureKind : uint8_t { Texture2D = 0, Cube = 1 };
+
 // A depth compare's operator (Vulkan's VkCompareOp, whose values these are; GL's
 // TEXTURE_COMPARE_FUNC): the test is `reference OP texel depth`, 1 where it passes, else 0.
 enum class CompareOp : uint8_t {

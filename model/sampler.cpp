@@ -3,6 +3,7 @@
 #include <string>
 #include <type_traits>
 
+#include "cube_map.h"
 #include "error.h"
 #include "stages.h"
 
@@ -36,14 +37,42 @@ void check_sampler(const SamplerConfig& config, const std::string& where) {
   if (const std::string p = config.unnormalized_problem(); !p.empty()) throw Error(where + p);
 }
 
-Sampler::Sampler(const std::vector<const Pyramid*>& layers, const SamplerConfig& config, SamplerPaths paths)
+Request cube_face_request(const Request& r, int& face) {
+  const stage::CubeFace f = stage::cube_face(r.u, r.v, r.w);
+  face = f.face;
+  Request q = r;
+  q.u = f.s;
+  q.v = f.t;
+  q.w = 0;
+  if (r.has_derivatives) {
+    const std::array<int32_t, 3> dx = stage::cube_axes(f.face, r.deriv.dudx, r.deriv.dvdx, r.dwdx);
+    const std::array<int32_t, 3> dy = stage::cube_axes(f.face, r.deriv.dudy, r.deriv.dvdy, r.dwdy);
+    q.deriv = {stage::cube_derivative(dx[0], f.sc, dx[2], f.rc), stage::cube_derivative(dx[1], f.tc, dx[2], f.rc),
+               stage::cube_derivative(dy[0], f.sc, dy[2], f.rc), stage::cube_derivative(dy[1], f.tc, dy[2], f.rc)};
+    q.dwdx = q.dwdy = 0;
+  }
+  return q;
+}
+
+int cube_probe(int face, Request& probe) {
+  constexpr int32_t one = 1 << kCoordFracBits;
+  if (probe.u >= 0 && probe.u <= one && probe.v >= 0 && probe.v <= one) return face;
+  const stage::CubeFace f = stage::cube_reproject(face, probe.u, probe.v);
+  probe.u = f.s;
+  probe.v = f.t;
+  return f.face;
+}
+
+Sampler::Sampler(const std::vector<const Pyramid*>& layers, const SamplerConfig& config, SamplerPaths paths,
+                 TextureKind kind)
     : config_(config),
       channel_bits_(layers.empty() ? 8 : layers[0]->levels[0].channel_bits),
       border_(stage::border_texel(config.border_unorm16(), channel_bits_)),
       size0_(layers.empty() ? Extent{} : layers[0]->extent0()),
       last_level_(layers.empty() ? 0 : layers[0]->last_level()),
       layers_(int(layers.size())),
-      srgb_(!layers.empty() && layers[0]->srgb) {
+      srgb_(!layers.empty() && layers[0]->srgb),
+      kind_(kind) {
   if (layers_ < 1 || layers_ > kMaxLayers)
     throw Error("sampler: " + std::to_string(layers_) + " layers; an array texture has 1 to " + std::to_string(kMaxLayers));
   for (int l = 1; l < layers_; ++l)
@@ -55,6 +84,12 @@ Sampler::Sampler(const std::vector<const Pyramid*>& layers, const SamplerConfig&
     throw Error("sampler: the fast path takes 8-bit channels; this texture has " + std::to_string(channel_bits_));
   if (paths == SamplerPaths::FastOnly && !fast_path_takes(config))
     throw Error("sampler: the fast path takes neither clamp to border nor a magnification filter of its own");
+  if (kind == TextureKind::Cube) {  // skirted faces, the reference path
+    if (paths == SamplerPaths::FastOnly) throw Error("sampler: a cube map is sampled by the reference path");
+    if (config.unnormalized) throw Error("sampler: a cube map takes normalized coordinates (Vulkan: not unnormalizedCoordinates)");
+    for (const Pyramid& p : cube_skirts(layers)) memory_.emplace_back(p);
+    return;
+  }
   if (paths == SamplerPaths::Both)
     for (const Pyramid* p : layers) memory_.emplace_back(*p);
   if (channel_bits_ == 8)
@@ -82,6 +117,7 @@ bool Sampler::fast_path_takes(const SamplerConfig& config) {
 }
 
 void Sampler::write_texel(int level, int32_t x, int32_t y, const Texel& t, int layer) {
+  if (kind_ == TextureKind::Cube) throw Error("sampler: a cube map's texels are written with their skirts (cube_skirts)");
   if (!memory_.empty()) memory_[size_t(layer)].write(level, x, y, t);
   if (channel_bits_ == 8) write_packed(layer, level, x, y, t);
 }
@@ -125,20 +161,33 @@ Texel Sampler::sample(const Request& r) {
     if (const std::string p = config_.compare_problem(); !p.empty()) throw Error("sampler: " + p);
     if (srgb_) throw Error("sampler: a depth compare of an sRGB texture (a depth is no colour)");
   }
-  const Probes p = tex_probe(r, config_, size0_);
+  // A cube: the face's 2D request, each probe on the face it lies over (a cube array: the layer
+  // picks the cube).
+  int face = 0;
+  const bool cube = kind_ == TextureKind::Cube;
+  const Request q = cube ? cube_face_request(r, face) : r;
+  const size_t cube_base = cube ? size_t(6 * stage::array_layer(r.layer, layers_ / 6)) : 0;
+  auto value = [&](const Request& probe) {
+    if (!cube) return sample_probe(probe);
+    if (memory_.empty()) throw Error("sampler: built for the fast path only");
+    Request on_face = probe;
+    const int f = cube_probe(face, on_face);
+    return probe_value(memory_[cube_base + size_t(f)], on_face, true);
+  };
+  const Probes p = tex_probe(q, config_, size0_);
   ++samples_;
   ++probes_[size_t(p.n)];
   if (config_.reduction != Reduction::WeightedAverage) {  // the min or max over the probes too
-    stage::Unrounded m = sample_probe(p.at[0]);
+    stage::Unrounded m = value(p.at[0]);
     for (int i = 1; i < p.n; ++i) {
-      const stage::Unrounded t = sample_probe(p.at[size_t(i)]);
+      const stage::Unrounded t = value(p.at[size_t(i)]);
       for (size_t c = 0; c < 4; ++c) m[c] = config_.reduction == Reduction::Max ? std::max(m[c], t[c]) : std::min(m[c], t[c]);
     }
     return stage::average_and_round(m, 1);
   }
   stage::Unrounded sum{};
   for (int i = 0; i < p.n; ++i) {
-    const stage::Unrounded t = sample_probe(p.at[size_t(i)]);
+    const stage::Unrounded t = value(p.at[size_t(i)]);
     for (size_t c = 0; c < 4; ++c) sum[c] += t[c];
   }
   return stage::average_and_round(sum, p.n);
@@ -151,11 +200,21 @@ Texel Sampler::fetch(const Request& r) {
   ++samples_;
   ++probes_[1];
   if (!stage::fetch_inside(r.u, r.v, r.lod, last_level(), size0_) || !stage::fetch_layer_inside(r.layer, layers_)) return {};
-  return memory_[size_t(r.layer)].fetch(r.lod, r.u, r.u, r.v, r.v, true, border_)[0];
+  const int32_t skirt = kind_ == TextureKind::Cube;  // (a cube face's texel (i, j) is stored at (i + 1, j + 1))
+  return memory_[size_t(r.layer)].fetch(r.lod, r.u + skirt, r.u + skirt, r.v + skirt, r.v + skirt, true, border_)[0];
 }
 
 // textureGather: the linear filter's four taps at the base level, one component of each.
 Texel Sampler::gather(const Request& r) {
+  if (kind_ == TextureKind::Cube) {
+    if (memory_.empty()) throw Error("sampler: built for the fast path only");
+    int face = 0;
+    const Request q = cube_face_request(r, face);
+    ++samples_;
+    ++probes_[1];
+    BankedMipMemory& m = memory_[size_t(6 * stage::array_layer(r.layer, layers_ / 6) + face)];
+    return stage::gather(footprint(m, 0, q.u, q.v, TexelFilter::Linear, true, true), r.component);
+  }
   BankedMipMemory& memory = memory_of(r);
   if (r.has_derivatives) throw Error("sampler: a gather carries no derivatives");
   ++samples_;
@@ -167,10 +226,12 @@ Texel Sampler::gather(const Request& r) {
 // The 2x2 footprint of level k at the reduced coordinates (all four taps read, or only the first
 // for a nearest filter unless `all_taps`), with the weights of the second taps.
 stage::Footprint Sampler::footprint(BankedMipMemory& memory, int k, int32_t ru, int32_t rv, TexelFilter filter,
-                                    bool all_taps) {
-  const Extent e = memory.shape(k);
-  const stage::WrappedTaps tu = stage::axis_taps(ru, e.w, config_.wrap_u, filter, config_.unnormalized);
-  const stage::WrappedTaps tv = stage::axis_taps(rv, e.h, config_.wrap_v, filter, config_.unnormalized);
+                                    bool all_taps, bool cube) {
+  const Extent e = level_extent(size0_, k);  // (a skirted face's memory is 2 wider)
+  const stage::WrappedTaps tu = cube ? stage::cube_taps(ru, e.w, filter)
+                                     : stage::axis_taps(ru, e.w, config_.wrap_u, filter, config_.unnormalized);
+  const stage::WrappedTaps tv = cube ? stage::cube_taps(rv, e.h, filter)
+                                     : stage::axis_taps(rv, e.h, config_.wrap_v, filter, config_.unnormalized);
   stage::Footprint f;
   f.taps = memory.fetch(k, tu.i0, tu.i1, tv.i0, tv.i1, !all_taps && filter == TexelFilter::Nearest, border_);
   f.fx = tu.w;
@@ -179,10 +240,16 @@ stage::Footprint Sampler::footprint(BankedMipMemory& memory, int k, int32_t ru, 
 }
 
 stage::Unrounded Sampler::sample_probe(const Request& r) {
-  BankedMipMemory& memory = memory_of(r);
+  if (kind_ == TextureKind::Cube) throw Error("sampler: a cube map's probes are sample()'s (their faces)");
+  return probe_value(memory_of(r), r, false);
+}
+
+stage::Unrounded Sampler::probe_value(BankedMipMemory& memory, const Request& r, bool cube) {
   const stage::LevelSelect sel =
       stage::lod(r.lod, config_.lod_bias + r.bias, config_.min_lod, config_.max_lod, config_.filter.mip, last_level());
-  const int32_t ru = stage::reduce(r.u, config_.wrap_u, config_.unnormalized), rv = stage::reduce(r.v, config_.wrap_v, config_.unnormalized);
+  // (A cube face's s, t are in [0, 1] already: no address mode.)
+  const int32_t ru = cube ? r.u : stage::reduce(r.u, config_.wrap_u, config_.unnormalized);
+  const int32_t rv = cube ? r.v : stage::reduce(r.v, config_.wrap_v, config_.unnormalized);
   const TexelFilter texel_filter = stage::texel_filter(sel, config_.filter);
   const bool linear = texel_filter == TexelFilter::Linear;
 
@@ -190,7 +257,7 @@ stage::Unrounded Sampler::sample_probe(const Request& r) {
   // f = 0 the blend returns slot 0 exactly).
   stage::Footprint slot[2];
   const int slots = sel.two_levels ? 2 : 1;
-  for (int s = 0; s < slots; ++s) slot[s] = footprint(memory, s == 0 ? sel.d : sel.d1, ru, rv, texel_filter, false);
+  for (int s = 0; s < slots; ++s) slot[s] = footprint(memory, s == 0 ? sel.d : sel.d1, ru, rv, texel_filter, false, cube);
   if (r.op == Op::Compare)  // each tap's test, then the filter weighs the passes
     for (int s = 0; s < slots; ++s)
       stage::compare_taps(slot[s], config_.compare_op, stage::compare_reference(r.ref, channel_bits_), channel_bits_);

@@ -82,6 +82,10 @@ struct Request {
   uint8_t component = 0; // Op::Gather: the channel gathered, 0 (R) .. 3 (A)
   int32_t layer = 0;     // an array texture's layer coordinate, Q16.16 (stage::array_layer); Op::Fetch: the integer layer
   int32_t ref = 0;       // Op::Compare: the depth reference Dref, Q8.24 (stage::compare_reference)
+  // A cube map's direction is (u, v, w), Q8.24 (any length); with derivatives, deriv's (dudx, dvdx,
+  // dudy, dvdy) and these are its derivatives per pixel (texture widths: the cube's unit).
+  int32_t w = 0;
+  int32_t dwdx = 0, dwdy = 0;
   bool has_derivatives = false;  // (a fetch has none)
   LodDerivatives deriv;  // Q8.24 texture widths per pixel (requests with derivatives)
 };
@@ -113,6 +117,14 @@ inline Request lambda_request(int32_t u, int32_t v, int32_t lod, uint32_t tag = 
   r.tag = tag;
   return r;
 }
+
+// A cube request (its direction (u, v, w) and derivatives) as the 2D request of the face it
+// selects (stage::cube_face, stage::cube_derivative): u, v the face's (s, t) in [0, 1], the
+// derivatives those of s and t in face widths per pixel; `face` 0..5 (+X, -X, +Y, -Y, +Z, -Z).
+Request cube_face_request(const Request& r, int& face);
+// A probe of a face's request (tex_probe's) that lies beyond the face (an anisotropic probe near a
+// seam): moved onto the face it lies over (stage::cube_reproject). Returns the probe's face.
+int cube_probe(int face, Request& probe);
 
 // The trilinear probes of one request (tex_probe): a request without derivatives is one probe at its
 // own (u, v, lod); one with derivatives takes lambda' and N from tex_aniso (with the filter's cap,
@@ -147,10 +159,14 @@ class Sampler {
   Sampler(const Pyramid& pyramid, const SamplerConfig& config, SamplerPaths paths = SamplerPaths::Both)
       : Sampler(std::vector<const Pyramid*>{&pyramid}, config, paths) {}
   // An array texture: its layers (1..kMaxLayers pyramids of one size, format and level count; a
-  // request reads the layer stage::request_layer gives). Throws tex::Error naming a layer that
-  // differs from layer 0, or a layer count outside 1..kMaxLayers.
+  // request reads the layer stage::request_layer gives). A cube map (TextureKind::Cube): 6 faces a
+  // cube, square (a cube array: several cubes; the request's layer picks the cube), sampled by
+  // direction across the seams (cube_skirts), on the reference path only; a fetch's layer is the
+  // face's (6c + face). Throws tex::Error naming a layer that differs from layer 0, a layer count
+  // outside 1..kMaxLayers (a cube's: not a multiple of 6), a cube with unnormalized coordinates or
+  // for the fast path.
   Sampler(const std::vector<const Pyramid*>& layers, const SamplerConfig& config,
-          SamplerPaths paths = SamplerPaths::Both);
+          SamplerPaths paths = SamplerPaths::Both, TextureKind kind = TextureKind::Texture2D);
 
   // Reference path: every stage in order, counting reads and multiplies (not with FastOnly: throws
   // tex::Error).
@@ -176,7 +192,10 @@ class Sampler {
   Texel fetch(const Request& r);   // sample() of an Op::Fetch request
   Texel gather(const Request& r);  // and of an Op::Gather one
   stage::Footprint footprint(BankedMipMemory& memory, int level, int32_t ru, int32_t rv, TexelFilter filter,
-                             bool all_taps);
+                             bool all_taps, bool cube = false);
+  // One probe's trilinear value (sample_probe) in `memory`: a 2D texture's layer, or a skirted cube
+  // face (cube: u, v are the face's s, t).
+  stage::Unrounded probe_value(BankedMipMemory& memory, const Request& probe, bool cube);
   BankedMipMemory& memory_of(const Request& r);  // the reference path's memories of r's layer
   void write_packed(int layer, int level, int32_t x, int32_t y, const Texel& t);
 
@@ -188,6 +207,7 @@ class Sampler {
   int last_level_;
   int layers_;
   bool srgb_;  // (no depth compare: a depth is no colour)
+  TextureKind kind_;
   uint64_t samples_ = 0, multiplies_ = 0;
   std::array<uint64_t, kMaxAniso + 1> probes_{};
   // Per layer and level (at layer * (last_level + 1) + level), row-major RGBA8 of the stored sides

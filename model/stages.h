@@ -173,6 +173,106 @@ inline bool fetch_inside(int32_t i, int32_t j, int32_t level, int last_level, Ex
   return i >= 0 && i < e.w && j >= 0 && j < e.h;
 }
 
+// ---------------------------------------------------------------- cube face (tex_cube)
+
+// The face a direction (rx, ry, rz) selects and its coordinates (Vulkan "Cube Map Face Selection"):
+// the major axis, a tie going to rz over ry and rx and to ry over rx; faces +X, -X, +Y, -Y, +Z, -Z
+// are 0..5 (the layers of a cube), and (sc, tc, rc) by the specification's table. s = (sc / |rc| +
+// 1) / 2 and t likewise, each the exact quotient rounded to the nearest Q8.24 (half up), so in
+// [0, 1]. A direction of (0, 0, 0) selects +Z at the face's centre.
+struct CubeFace {
+  int face = 4;
+  int32_t s = 1 << 23, t = 1 << 23;  // Q8.24, 0..1
+  int32_t sc = 0, tc = 0, rc = 0;    // the table's components (Q8.24), for the derivatives
+};
+// floor(num / den + 1/2) for den > 0: the nearest integer, a half up.
+inline __int128 round_quotient(__int128 num, __int128 den) {
+  const __int128 n2 = 2 * num + den, d2 = 2 * den;
+  return n2 >= 0 ? n2 / d2 : -((-n2 + d2 - 1) / d2);
+}
+inline int32_t cube_coordinate(int64_t sc, int64_t arc) {  // round((sc / arc + 1) / 2 * 2^24), arc > 0
+  return int32_t(round_quotient((__int128(sc) + arc) << (kCoordFracBits - 1), arc));  // (sc + |rc|) 2^23 / |rc|
+}
+inline CubeFace cube_face(int32_t rx, int32_t ry, int32_t rz) {
+  const int64_t ax = std::abs(int64_t(rx)), ay = std::abs(int64_t(ry)), az = std::abs(int64_t(rz));
+  CubeFace f;
+  if (az >= ax && az >= ay) {
+    f.face = rz >= 0 ? 4 : 5;
+    f.sc = rz >= 0 ? rx : -rx;
+    f.tc = -ry;
+    f.rc = rz;
+  } else if (ay >= ax) {
+    f.face = ry >= 0 ? 2 : 3;
+    f.sc = rx;
+    f.tc = ry >= 0 ? rz : -rz;
+    f.rc = ry;
+  } else {
+    f.face = rx >= 0 ? 0 : 1;
+    f.sc = rx >= 0 ? -rz : rz;
+    f.tc = -ry;
+    f.rc = rx;
+  }
+  const int64_t arc = std::abs(int64_t(f.rc));
+  if (arc == 0) return f;  // (0, 0, 0): +Z, its centre
+  f.s = cube_coordinate(f.sc, arc);
+  f.t = cube_coordinate(f.tc, arc);
+  return f;
+}
+// The face's derivatives of s and t from those of the direction (Vulkan "Cube Map Derivative
+// Transformation", the quotient rule): ds/dx = (dsc/dx |rc| - sc d|rc|/dx) / (2 rc^2), with dsc and
+// drc the direction's derivatives picked and signed by the face's table; each the exact rational
+// rounded to the nearest Q8.24 (half up) and saturated to 32 bits. In face widths per pixel, what
+// tex_lambda takes with the face's size.
+inline int32_t cube_derivative(int64_t dsc, int64_t sc, int64_t drc, int64_t rc) {
+  if (rc == 0) return 0;
+  const int64_t arc = std::abs(rc), darc = rc < 0 ? -drc : drc;
+  const __int128 num = (__int128(dsc) * arc - __int128(sc) * darc) << (kCoordFracBits - 1);
+  __int128 q = round_quotient(num, __int128(rc) * rc);
+  if (q > INT32_MAX) q = INT32_MAX;
+  if (q < INT32_MIN) q = INT32_MIN;
+  return int32_t(q);
+}
+// The face coordinates (s, t) of `face`, Q8.24, as a direction on the unit cube (the table
+// inverted: sc = 2s - 1, tc = 2t - 1, |rc| = 1), then the face and coordinates that direction
+// selects: a point beyond a face's edge (an anisotropic probe) on the face it lies over.
+inline CubeFace cube_reproject(int face, int32_t s, int32_t t) {
+  constexpr int64_t one = int64_t(1) << kCoordFracBits;
+  const int64_t sc = 2 * int64_t(s) - one, tc = 2 * int64_t(t) - one;
+  auto c = [](int64_t v) { return int32_t(std::clamp<int64_t>(v, INT32_MIN, INT32_MAX)); };
+  switch (face) {
+    case 0: return cube_face(c(one), c(-tc), c(-sc));
+    case 1: return cube_face(c(-one), c(-tc), c(sc));
+    case 2: return cube_face(c(sc), c(one), c(tc));
+    case 3: return cube_face(c(sc), c(-one), c(-tc));
+    case 4: return cube_face(c(sc), c(-tc), c(one));
+    default: return cube_face(c(-sc), c(-tc), c(-one));
+  }
+}
+// A cube face's taps along one axis (s or t, Q8.24 in [0, 1]) at a level of n texels, in the
+// skirted face's stored indices (MemoryLayout, cube_skirts: the face at 1..n, its neighbours' edge
+// texels at 0 and n + 1): a linear filter's i0 in -1..n-1 and i1 = i0 + 1 moved by one; a nearest
+// texel clamped to the face (Vulkan: a nearest filter clamps within the face), then moved by one.
+inline WrappedTaps cube_taps(int32_t s, int n, TexelFilter filter) {
+  const AxisTaps a = address(scale(s, n), filter);
+  if (filter == TexelFilter::Nearest) {
+    const int32_t i = std::clamp(a.i0, 0, n - 1) + 1;
+    return {i, i, 0};
+  }
+  return {std::clamp(a.i0, -1, n) + 1, std::clamp(a.i1, -1, n) + 1, a.w};
+}
+
+// The direction's derivative along one screen axis, (drx, dry, drz), as the face's (dsc, dtc, drc).
+inline std::array<int32_t, 3> cube_axes(int face, int32_t drx, int32_t dry, int32_t drz) {
+  switch (face) {
+    case 0: return {-drz, -dry, drx};
+    case 1: return {drz, -dry, drx};
+    case 2: return {drx, drz, dry};
+    case 3: return {drx, -drz, dry};
+    case 4: return {drx, -dry, drz};
+    default: return {-drx, -dry, drz};
+  }
+}
+
 // ---------------------------------------------------------------- array layer (tex_layer)
 
 // The layer an array request reads (Vulkan "Image Operations", the layer of an array image):

@@ -178,6 +178,19 @@ class GlSampling {
       })";
     shadow_program_ = link(vs, shadow_fs, 4);
     glGenTextures(1, &depth_);
+    // A cube map (unit 5), seamless: textureLod at direction q.xyz, level q.w; textureGrad with the
+    // derivatives of a second query texture (unit 6).
+    const char* cube_fs = R"(#version 330 core
+      uniform samplerCube tex;
+      uniform sampler2D queries;
+      out vec4 colour;
+      void main() {
+        vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
+        colour = textureLod(tex, q.xyz, q.w);
+      })";
+    cube_program_ = link(vs, cube_fs, 5);
+    glGenTextures(1, &cube_);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glGenVertexArrays(1, &vao_);
     glBindVertexArray(vao_);
     glGenTextures(1, &tex_);
@@ -273,6 +286,33 @@ class GlSampling {
     return draw(q);
   }
 
+  // A cube map (unit 5): faces +X, -X, +Y, -Y, +Z, -Z, every level, RGBA8.
+  void upload_cube(const std::vector<const Pyramid*>& faces) {
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, cube_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int f = 0; f < 6; ++f)
+      for (size_t k = 0; k < faces[size_t(f)]->levels.size(); ++k) {
+        const Image& img = faces[size_t(f)]->levels[k];
+        std::vector<uint8_t> rgba;
+        for (const Texel& t : img.texels)
+          for (int c = 0; c < 4; ++c) rgba.push_back(uint8_t(t[size_t(c)]));
+        glTexImage2D(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), GLint(k), GL_RGBA8, img.width, img.height, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, rgba.data());
+      }
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, GLint(faces[0]->levels.size()) - 1);
+  }
+  // textureLod of the cube at (x, y, z) = q.xyz, level q.w, under the filters of `c`.
+  std::vector<std::array<float, 4>> sample_cube(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(cube_program_);
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, cube_);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, gl_min_filter(c.filter));
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, c.filter.mag == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST);
+    return draw(q);
+  }
+
   // A view of the uploaded texture: TEXTURE_BASE_LEVEL and TEXTURE_MAX_LEVEL.
   void view(int base_level, int max_level) {
     glActiveTexture(GL_TEXTURE0);
@@ -343,7 +383,7 @@ class GlSampling {
   std::vector<uint8_t> window_ = std::vector<uint8_t>(size_t(kW) * kH * 4);
   GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, fetch_program_ = 0, gather_program_ = 0, vao_ = 0,
          tex_ = 0, rect_ = 0, queries_ = 0, array_program_ = 0, array_fetch_program_ = 0, array_gather_program_ = 0,
-         array_ = 0, shadow_program_ = 0, depth_ = 0;
+         array_ = 0, shadow_program_ = 0, depth_ = 0, cube_program_ = 0, cube_ = 0;
   bool ready_ = false;
 };
 
@@ -986,4 +1026,103 @@ TEST(GlSamplerStates, DepthCompareAgreesWithLlvmpipe) {
   EXPECT_GT(swapped, kW * kH / 4) << "a model with the operands swapped went unnoticed";
   std::printf("  %d depth compares in %d sampler states compared with llvmpipe: max %.2f LSB; references exactly on "
               "a depth code: %d of %d agree\n", compared, states, worst / 100.0, on_code_agree, on_code);
+}
+
+// Cube maps (samplerCube, GL_TEXTURE_CUBE_MAP_SEAMLESS; the unit's TextureKind::Cube over skirted
+// faces): six 16x16 faces of their own noise, every level. Directions anywhere and, half of them,
+// within two texels of a face's edge or corner; textureLod under every filter. The model's texels
+// are llvmpipe's within a linear filter's precision (nearest filters exactly), away from a tie
+// between two major axes (either face is right), texel and level edges. A model that clamps to
+// its face instead of reading across the seam is caught near the edges.
+TEST(GlSamplerStates, CubeMapsAgreeWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  constexpr int kN = 16;
+  std::vector<Pyramid> faces;
+  for (int f = 0; f < 6; ++f) {
+    Image img = make_pattern("noise", kN, kN);
+    for (Texel& t : img.texels)
+      for (uint16_t& c : t) c = uint16_t((c * (f + 2) + 41 * f) & 255);
+    faces.push_back(build_pyramid(std::move(img)));
+  }
+  std::vector<const Pyramid*> cube;
+  for (const Pyramid& p : faces) cube.push_back(&p);
+  gl.upload_cube(cube);
+  std::mt19937 rng(50);
+  auto grid = [&](double lo, double hi) { return lo + int(rng() % uint32_t((hi - lo) * 65536)) / 65536.0; };
+  int states = 0, compared = 0, worst = 0, seam = 0, clamped_differs = 0;
+  double sum = 0;
+  for (int mip = 0; mip < 3; ++mip)
+    for (int texel = 0; texel < 2; ++texel) {
+      SamplerConfig cfg{{TexelFilter(texel), MipMode(mip)}};
+      std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
+      std::vector<bool> near_seam(queries.size());
+      std::vector<Request> requests(queries.size());
+      for (size_t n = 0; n < queries.size(); ++n) {
+        double d[3];
+        if (n % 2) {
+          for (double& c : d) c = grid(-1, 1);
+        } else {  // a face's point within two texels of its edge (or corner), on the unit cube
+          const int f = int(rng() % 6);
+          auto near_edge = [&] { return rng() % 2 ? grid(0, 2.0 / kN) : 1 - grid(0, 2.0 / kN); };
+          const double s = near_edge(), t = rng() % 3 ? grid(0, 1) : near_edge();
+          const double sc = 2 * s - 1, tc = 2 * t - 1;
+          const double table[6][3] = {{1, -tc, -sc}, {-1, -tc, sc}, {sc, 1, tc}, {sc, -1, -tc}, {sc, -tc, 1}, {-sc, -tc, -1}};
+          for (int c = 0; c < 3; ++c) d[c] = table[f][c];
+          near_seam[n] = true;
+        }
+        const double lambda = (int(rng() % uint32_t(7 * 256)) - 2 * 256) / 256.0;
+        queries[n] = {float(d[0]), float(d[1]), float(d[2]), float(lambda)};
+        Request& r = requests[n];
+        EXPECT_TRUE(to_coord_fixed(d[0], r.u) && to_coord_fixed(d[1], r.v) && to_coord_fixed(d[2], r.w) &&
+                    to_lod_fixed(lambda, r.lod));
+      }
+      const std::vector<std::array<float, 4>> got = gl.sample_cube(cfg, queries);
+      Sampler model(cube, cfg, SamplerPaths::Both, TextureKind::Cube);
+      for (size_t n = 0; n < requests.size(); ++n) {
+        const Request& r = requests[n];
+        double a[3] = {std::fabs(queries[n][0]), std::fabs(queries[n][1]), std::fabs(queries[n][2])};
+        std::sort(a, a + 3);
+        if (a[2] == 0 || a[2] - a[1] < 1e-5 * a[2]) continue;  // a tie of two major axes
+        const double lambda = r.lod / 256.0;
+        const TexelFilter tf = lambda <= 0 ? cfg.filter.mag : cfg.filter.texel;
+        bool edge = std::fabs(lambda) < 1.0 / 64;
+        if (lambda > 0 && cfg.filter.mip == MipMode::Nearest) edge = edge || std::fabs(lambda - std::floor(lambda) - 0.5) < 1.0 / 64;
+        int face = 0;
+        const Request q = cube_face_request(r, face);
+        if (tf == TexelFilter::Nearest)
+          for (int k = 0; k < 5; ++k)
+            for (int32_t c : {q.u, q.v}) {
+              const double t = c / 16777216.0 * (kN >> k);
+              edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
+            }
+        if (edge) continue;
+        const Texel m = model.sample(r);
+        const int err = error_lsb_x100(m, got[n], false);
+        const bool nearest = tf == TexelFilter::Nearest && cfg.filter.mip != MipMode::Linear;
+        ASSERT_LE(err, nearest ? 0 : 200) << filter_name(cfg.filter) << " direction (" << queries[n][0] << ", "
+                                          << queries[n][1] << ", " << queries[n][2] << ") lod " << lambda << " face "
+                                          << face << ": model " << m[0] << "," << m[1] << "," << m[2] << "," << m[3];
+        worst = std::max(worst, err);
+        sum += err / 100.0;
+        ++compared;
+        if (near_seam[n]) {
+          ++seam;
+          // The face alone, clamped at its edges: what a unit without seamless filtering gives.
+          SamplerConfig clamp = cfg;
+          clamp.wrap_u = clamp.wrap_v = Wrap::Clamp;
+          Request flat = q;
+          flat.has_derivatives = false;
+          clamped_differs += error_lsb_x100(Sampler(faces[size_t(face)], clamp).sample(flat), got[n], false) > 200;
+        }
+      }
+      ++states;
+    }
+  EXPECT_EQ(states, 6);
+  EXPECT_GT(compared, 6 * kW * kH * 3 / 4);
+  EXPECT_LE(sum / compared, 0.4);
+  EXPECT_GT(clamped_differs, seam / 20) << "a cube clamped at its face edges went unnoticed";
+  std::printf("  %d cube lookups (%d within two texels of a seam) in %d filters compared with llvmpipe: max %.2f LSB, "
+              "mean %.3f; a face clamped at its edges instead differs in %d\n", compared, seam, states, worst / 100.0,
+              sum / compared, clamped_differs);
 }

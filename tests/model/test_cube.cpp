@@ -1,0 +1,174 @@
+// Cube maps (stage::cube_face, cube_derivative, cube_reproject, cube_skirts): the face and its
+// coordinates against long double arithmetic of the specification's table (the tie rules at
+// exact ties); the derivatives by the quotient rule in long double; the skirts hold the texels
+// across each edge (each skirt texel the neighbour's texel whose centre is nearest the skirt
+// texel's direction) and the average of three at the corners; a sample inside a face away from its
+// edges is the face's own 2D sample.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "model/cube_map.h"
+#include "model/error.h"
+#include "model/image.h"
+#include "model/sampler.h"
+#include "model/stages.h"
+
+using namespace tex;
+
+namespace {
+constexpr long double kOne = 16777216.0L;
+
+// The table in long double: face, sc, tc, rc.
+void table(long double x, long double y, long double z, int& face, long double& sc, long double& tc, long double& rc) {
+  const long double ax = std::fabs(x), ay = std::fabs(y), az = std::fabs(z);
+  if (az >= ax && az >= ay) {
+    face = z >= 0 ? 4 : 5, sc = z >= 0 ? x : -x, tc = -y, rc = z;
+  } else if (ay >= ax) {
+    face = y >= 0 ? 2 : 3, sc = x, tc = y >= 0 ? z : -z, rc = y;
+  } else {
+    face = x >= 0 ? 0 : 1, sc = x >= 0 ? -z : z, tc = -y, rc = x;
+  }
+}
+}  // namespace
+
+TEST(CubeFace, FaceAndCoordinatesAsTheTableGivesThem) {
+  std::mt19937_64 rng(21);
+  int checked = 0;
+  for (int i = 0; i < 400000; ++i) {
+    int32_t d[3];
+    for (int32_t& c : d) {
+      switch (rng() % 4) {
+        case 0: c = int32_t(uint32_t(rng())); break;                              // any
+        case 1: c = int32_t(rng() % (2u << 24)) - (1 << 24); break;              // in [-1, 1)
+        case 2: c = (rng() % 2 ? 1 : -1) * int32_t(1 << 24); break;               // +-1
+        default: c = int32_t(rng() % 5) - 2; break;                               // near 0
+      }
+    }
+    if (rng() % 8 == 0) d[1] = rng() % 2 ? d[0] : -d[0];  // ties between axes
+    if (rng() % 8 == 0) d[2] = rng() % 2 ? d[1] : -d[1];
+    const stage::CubeFace f = stage::cube_face(d[0], d[1], d[2]);
+    int face = 0;
+    long double sc = 0, tc = 0, rc = 0;
+    table(d[0], d[1], d[2], face, sc, tc, rc);
+    ASSERT_EQ(f.face, face) << d[0] << " " << d[1] << " " << d[2];
+    if (rc == 0) {
+      EXPECT_EQ(f.s, 1 << 23);
+      continue;
+    }
+    for (const auto& [got, c] : {std::pair<int32_t, long double>{f.s, sc}, {f.t, tc}}) {
+      const long double exact = (c / std::fabs(rc) + 1) / 2 * kOne;
+      if (std::fabs(exact - std::floor(exact) - 0.5L) < 1e-9L) continue;  // (a half: long double may miss it)
+      ASSERT_EQ(got, int32_t(std::floor(exact + 0.5L))) << d[0] << " " << d[1] << " " << d[2];
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 700000);
+  // The ties: rz over ry and rx, ry over rx.
+  EXPECT_EQ(stage::cube_face(5, 5, 5).face, 4);
+  EXPECT_EQ(stage::cube_face(5, -5, 3).face, 3);
+  EXPECT_EQ(stage::cube_face(-5, 0, -5).face, 5);
+  EXPECT_EQ(stage::cube_face(0, 0, 0).face, 4);
+}
+
+TEST(CubeFace, DerivativesByTheQuotientRule) {
+  std::mt19937_64 rng(22);
+  for (int i = 0; i < 200000; ++i) {
+    const int32_t d[3] = {int32_t(rng() % (4u << 24)) - (2 << 24), int32_t(rng() % (4u << 24)) - (2 << 24),
+                          int32_t(rng() % (4u << 24)) - (2 << 24)};
+    const int32_t dx[3] = {int32_t(rng() % (1u << 22)) - (1 << 21), int32_t(rng() % (1u << 22)) - (1 << 21),
+                           int32_t(rng() % (1u << 22)) - (1 << 21)};
+    const stage::CubeFace f = stage::cube_face(d[0], d[1], d[2]);
+    if (f.rc == 0) continue;
+    const std::array<int32_t, 3> a = stage::cube_axes(f.face, dx[0], dx[1], dx[2]);
+    const long double arc = std::fabs((long double)f.rc), sign = f.rc < 0 ? -1 : 1;
+    const long double exact = ((long double)a[0] * arc - (long double)f.sc * sign * a[2]) / (2 * arc * arc) * kOne;
+    if (std::fabs(exact) > 2e9L || std::fabs(exact - std::floor(exact) - 0.5L) < 1e-6L) continue;
+    ASSERT_EQ(stage::cube_derivative(a[0], f.sc, a[2], f.rc), int32_t(std::floor(exact + 0.5L)));
+  }
+}
+
+// Every skirt texel is the neighbour's texel nearest its direction; the corners average three.
+TEST(CubeSkirts, EdgesHoldTheNeighboursAndCornersTheAverageOfThree) {
+  std::vector<Pyramid> faces;
+  for (int f = 0; f < 6; ++f) {
+    Image img(4, 4, 8);
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) img.at(x, y) = {uint16_t(f * 40 + x), uint16_t(y), uint16_t(f), 255};
+    faces.push_back(build_pyramid(std::move(img)));
+  }
+  std::vector<const Pyramid*> p;
+  for (const Pyramid& f : faces) p.push_back(&f);
+  const std::vector<Pyramid> s = cube_skirts(p);
+  ASSERT_EQ(s.size(), 6u);
+  // +Z's left edge (-x side) is -X's right column... by the table: +Z texel (-1, j) lies on -X.
+  const CubeTexel left = cube_neighbour(4, -1, 2, 4);
+  EXPECT_EQ(left.face, 1);
+  EXPECT_EQ(left.x, 3);  // -X's column nearest +Z (its s = 1 side: sc = +rz)
+  EXPECT_EQ(left.y, 2);
+  EXPECT_EQ(s[4].levels[0].at(0, 3), faces[1].levels[0].at(3, 2));
+  // +Z's top edge (t < 0, ry > 0) lies on +Y, whose t = 1 row meets +Z (tc = rz).
+  const CubeTexel top = cube_neighbour(4, 1, -1, 4);
+  EXPECT_EQ(top.face, 2);
+  EXPECT_EQ(top.y, 3);
+  EXPECT_EQ(top.x, 1);
+  // Every edge texel of every face and level: the neighbour's texel, which in turn has this
+  // face's edge texel as its neighbour (the adjacency is symmetric).
+  for (int f = 0; f < 6; ++f)
+    for (size_t k = 0; k < faces[0].levels.size(); ++k) {
+      const int n = faces[0].levels[k].width;
+      for (int i = 0; i < n; ++i)
+        for (const auto& [x, y] : {std::pair<int, int>{-1, i}, {n, i}, {i, -1}, {i, n}}) {
+          const CubeTexel c = cube_neighbour(f, x, y, n);
+          ASSERT_NE(c.face, f);
+          EXPECT_EQ(s[size_t(f)].levels[k].at(x + 1, y + 1), faces[size_t(c.face)].levels[k].at(c.x, c.y));
+          // Back across: from the neighbour's texel one step towards this face lands on (x, y) clamped.
+          bool back = false;
+          for (const auto& [dx, dy] : {std::pair<int, int>{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
+            const int bx = c.x + dx, by = c.y + dy;
+            if (bx >= 0 && bx < n && by >= 0 && by < n) continue;
+            const CubeTexel b = cube_neighbour(c.face, bx, by, n);
+            back = back || (b.face == f && b.x == std::clamp(x, 0, n - 1) && b.y == std::clamp(y, 0, n - 1));
+          }
+          EXPECT_TRUE(back) << "face " << f << " (" << x << ", " << y << ") level " << k;
+        }
+      const Image& img = s[size_t(f)].levels[k];
+      const Texel &a = img.at(1, 1), &b = img.at(0, 1), &c = img.at(1, 0), &corner = img.at(0, 0);
+      for (size_t ch = 0; ch < 4; ++ch) EXPECT_EQ(corner[ch], (a[ch] + b[ch] + c[ch] + 1) / 3);
+    }
+  std::vector<const Pyramid*> five(p.begin(), p.begin() + 5);
+  EXPECT_THROW(cube_skirts(five), Error);
+  const Pyramid wide = build_pyramid(Image(8, 4, 8));
+  EXPECT_THROW(cube_skirts({&wide, &wide, &wide, &wide, &wide, &wide}), Error);
+}
+
+// Inside a face, away from its edges, a cube sample is the face's 2D sample at (s, t).
+TEST(CubeSkirts, InsideAFaceIsTheFacesOwnSample) {
+  std::vector<Pyramid> faces;
+  for (int f = 0; f < 6; ++f) faces.push_back(build_pyramid(make_pattern("noise", 32, 32)));
+  for (int f = 0; f < 6; ++f)
+    for (Texel& t : faces[size_t(f)].levels[0].texels) t[0] = uint16_t((t[0] + 37 * f) & 255);
+  for (Pyramid& p : faces) p = build_pyramid(p.levels[0]);
+  std::vector<const Pyramid*> cube;
+  for (const Pyramid& p : faces) cube.push_back(&p);
+  std::mt19937_64 rng(23);
+  SamplerConfig cfg;
+  Sampler s(cube, cfg, SamplerPaths::Both, TextureKind::Cube);
+  int checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Request r;
+    r.u = int32_t(rng() % (2u << 24)) - (1 << 24);
+    r.v = int32_t(rng() % (2u << 24)) - (1 << 24);
+    r.w = int32_t(rng() % (2u << 24)) - (1 << 24);
+    r.lod = int32_t(rng() % 256);  // levels 0 and 1: footprints of 2 texels of 32 or 16
+    int face = 0;
+    const Request q = cube_face_request(r, face);
+    const int32_t margin = 3 << 20;  // 3/16 of the face: away from the edges at levels 0..1
+    if (q.u < margin || q.u > (1 << 24) - margin || q.v < margin || q.v > (1 << 24) - margin) continue;
+    Sampler flat(faces[size_t(face)], cfg);
+    ASSERT_EQ(s.sample(r), flat.sample(q)) << "face " << face;
+    ++checked;
+  }
+  EXPECT_GT(checked, 5000);
+}
