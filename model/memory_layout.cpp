@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "cube_map.h"
 #include "error.h"
 
 namespace tex {
@@ -35,8 +36,13 @@ bool parse_block_size(const std::string& text, LayoutParams& out) {
 std::string block_size_name(const LayoutParams& p) { return std::to_string(p.block_w) + "x" + std::to_string(p.block_h); }
 
 MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format,
-                           int levels, int layers)
-    : params_(params), size0_(size0), channel_bits_(channel_bits), format_(format), layers_(layers) {
+                           int levels, int layers, TextureKind kind)
+    : params_(params), size0_(size0), channel_bits_(channel_bits), format_(format), layers_(layers), kind_(kind) {
+  const bool cube = kind == TextureKind::Cube;
+  if (cube && (layers % 6 != 0 || size0.w != size0.h || is_compressed(format)))
+    throw Error("a cube map of " + std::to_string(layers) + " layers of " + std::to_string(size0.w) + "x" +
+                std::to_string(size0.h) + " " + format_info(format).name +
+                ": it takes 6 layers a cube, square faces, RGBA texels");
   if (layers < 1 || layers > kMaxLayers)
     throw Error(std::to_string(layers) + " layers: an array texture has 1 to " + std::to_string(kMaxLayers));
   for (const int s : {size0.w, size0.h})
@@ -72,8 +78,11 @@ MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& p
   // The seam copy's index along a side n: none for a power of two, else n (texels) or n rounded up
   // to the 4x4 block (a block format), and the texels a level row then spans.
   const uint32_t seam_align = block_bytes_ ? 4 : 1;
-  auto seam_of = [&](int n) { return is_power_of_two(n) ? 0u : (uint32_t(n) + seam_align - 1) / seam_align * seam_align; };
-  auto span_of = [&](int n) { return is_power_of_two(n) ? uint32_t(n) : seam_of(n) + seam_align; };
+  // A cube face: its skirt on both sides and no seam copy.
+  auto seam_of = [&](int n) {
+    return cube || is_power_of_two(n) ? 0u : (uint32_t(n) + seam_align - 1) / seam_align * seam_align;
+  };
+  auto span_of = [&](int n) { return cube ? uint32_t(n) + 2 : is_power_of_two(n) ? uint32_t(n) : seam_of(n) + seam_align; };
   uint64_t at = params.base;
   for (int k = 0; k < levels; ++k) {
     Level l;
@@ -149,7 +158,12 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
   const bool blocks = is_compressed(layout.format());
   // A stored column (row) past the side: the seam copy's (of column 0 .. align - 1) or padding.
   const uint32_t align = blocks ? 4 : 1, seam_x = layout.seam_x(level), seam_y = layout.seam_y(level);
+  const bool cube = layout.kind() == TextureKind::Cube;
   auto original = [&](uint32_t i, uint32_t n, uint32_t seam, uint32_t& o) {
+    if (cube) {  // the face at 1..n; the skirt (0, n + 1) holds copies
+      o = i - 1;
+      return i >= 1 && i <= n;
+    }
     o = i;
     if (i < n) return true;
     o = i - seam;
@@ -173,12 +187,44 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
   return true;
 }
 
+namespace {
+// A texel as memory holds it: 4 bytes (channels of 8 bits) or 8 (16-bit channels, little-endian).
+void store_texel(uint8_t* at, const Texel& t, int texel_bytes) {
+  for (size_t c = 0; c < 4; ++c) {
+    if (texel_bytes == 4) {
+      at[c] = uint8_t(t[c]);
+    } else {
+      at[2 * c] = uint8_t(t[c]);
+      at[2 * c + 1] = uint8_t(t[c] >> 8);
+    }
+  }
+}
+}  // namespace
+
 std::vector<uint8_t> build_memory_image(const std::vector<const Pyramid*>& layers, const MemoryLayout& layout) {
   if (int(layers.size()) != layout.layers())
     throw Error("the memory layout is for " + std::to_string(layout.layers()) + " layers; the texture has " +
                 std::to_string(layers.size()));
   std::vector<uint8_t> image(size_t(layout.image_bytes()), 0);
   const uint32_t base = layout.params().base;
+  if (layout.kind() == TextureKind::Cube) {  // the skirted faces, every texel where it stands
+    const std::vector<Pyramid> skirted = cube_skirts(layers);
+    const int tb = layout.texel_bytes();
+    for (int layer = 0; layer < layout.layers(); ++layer)
+      for (int k = 0; k < layout.levels(); ++k) {
+        const Pyramid& p = skirted[size_t(layer)];
+        if (int(p.levels.size()) != layout.levels() || p.levels[size_t(k)].width != layout.level_size(k).w + 2)
+          throw Error("the memory layout is for cube faces of " + std::to_string(layout.size0().w) + " texels");
+        const Image& img = p.srgb ? p.codes[size_t(k)] : p.levels[size_t(k)];
+        for (int y = 0; y < img.height; ++y)
+          for (int x = 0; x < img.width; ++x) {
+            uint8_t* at = &image[layout.line_address(k, uint32_t(x), uint32_t(y), layer) - base +
+                                 layout.texel_offset(uint32_t(x), uint32_t(y))];
+            store_texel(at, img.at(x, y), tb);
+          }
+      }
+    return image;
+  }
   for (int layer = 0; layer < layout.layers(); ++layer) {
     const Pyramid& pyramid = *layers[size_t(layer)];
     if (pyramid.extent0() != layout.size0() || pyramid.memory_channel_bits() != layout.channel_bits() ||
@@ -218,15 +264,7 @@ std::vector<uint8_t> build_memory_image(const std::vector<const Pyramid*>& layer
         for (int x = 0; x < img.width; ++x)
           each_place(k, uint32_t(x), uint32_t(y), [&](uint32_t ux, uint32_t uy) {
             uint8_t* at = &image[layout.line_address(k, ux, uy, layer) - base + layout.texel_offset(ux, uy)];
-            const Texel& t = img.at(x, y);
-            for (size_t c = 0; c < 4; ++c) {
-              if (tb == 4) {
-                at[c] = uint8_t(t[c]);
-              } else {
-                at[2 * c] = uint8_t(t[c]);
-                at[2 * c + 1] = uint8_t(t[c] >> 8);
-              }
-            }
+            store_texel(at, img.at(x, y), tb);
           });
     }
   }

@@ -49,9 +49,11 @@ class MemoryLayout {
   // a block format with channels other than 8 bits or a line smaller than one of its blocks.
   // `levels`: the chain's levels 0..levels-1 (Vulkan's mipLevels; 0: the full chain down to 1x1;
   // more than the full chain is an error). `layers`: an array texture's layers, 1..kMaxLayers, each
-  // a whole pyramid, one after another from the base (layer l at base + l * layer_bytes()).
+  // a whole pyramid, one after another from the base (layer l at base + l * layer_bytes()). A cube
+  // map (TextureKind::Cube): 6 layers a cube, square faces, each level stored with its skirt
+  // (cube_skirts): level k spans n_k + 2 texels a side, no repeat-seam copies; RGBA only.
   MemoryLayout(Extent size0, int channel_bits, const LayoutParams& params, TexelFormat format = TexelFormat::Rgba8,
-               int levels = 0, int layers = 1);
+               int levels = 0, int layers = 1, TextureKind kind = TextureKind::Texture2D);
 
   const LayoutParams& params() const { return params_; }
   Extent size0() const { return size0_; }
@@ -87,6 +89,7 @@ class MemoryLayout {
   }
   uint32_t level_base(int level) const { return levels_[size_t(level)].base; }  // (of layer 0)
   int layers() const { return layers_; }
+  TextureKind kind() const { return kind_; }
   uint32_t layer_bytes() const { return layer_bytes_; }  // one layer's pyramid: a whole number of lines
   uint64_t image_bytes() const { return uint64_t(layer_bytes_) * uint64_t(layers_); }  // every layer
 
@@ -126,16 +129,19 @@ class MemoryLayout {
   std::vector<Level> levels_;
   int layers_ = 1;
   uint32_t layer_bytes_ = 0;
+  TextureKind kind_ = TextureKind::Texture2D;
 };
 
 // The layout of a pyramid as it is: its size, channel width in memory, format and level count (and
 // of an array of `layers` such pyramids).
-inline MemoryLayout layout_of(const Pyramid& pyramid, const LayoutParams& params, int layers = 1) {
+inline MemoryLayout layout_of(const Pyramid& pyramid, const LayoutParams& params, int layers = 1,
+                              TextureKind kind = TextureKind::Texture2D) {
   return MemoryLayout(pyramid.extent0(), pyramid.memory_channel_bits(), params, pyramid.format,
-                      int(pyramid.levels.size()), layers);
+                      int(pyramid.levels.size()), layers, kind);
 }
 
 // Calls texel(layer, level, x, y, value) for every texel of the level stored in the line at `address`
+// (a cube face's: its own texels, (x, y) in the face; its skirt is copies)
 // (`line`: its line_bytes() bytes as memory holds them; blocks decoded); padding is skipped, and so
 // are the repeat seam's copies unless `seam_copies`: then each copy is reported as the texel it
 // copies (column 0, row 0: the same value; a unit whose taps read the copy needs it even when the
@@ -145,7 +151,7 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
                  bool seam_copies = false);
 
 // The bytes at addresses base .. base + image_bytes - 1 (padding 0): texels, or a block format's
-// blocks as the pyramids keep them, layer after layer. Throws tex::Error when a pyramid is not the
+// blocks as the pyramids keep them, layer after layer (a cube's faces with their skirts). Throws tex::Error when a pyramid is not the
 // one the layout was made for (sizes, channel width, format), or the layer counts differ.
 std::vector<uint8_t> build_memory_image(const std::vector<const Pyramid*>& layers, const MemoryLayout& layout);
 inline std::vector<uint8_t> build_memory_image(const Pyramid& pyramid, const MemoryLayout& layout) {

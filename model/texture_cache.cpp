@@ -3,13 +3,15 @@
 #include <stdexcept>
 
 #include "error.h"
+#include "sampler.h"
 #include "stages.h"
 
 namespace tex {
 
 std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int channel_bits,
                                        const LayoutParams& params, const std::vector<TexelFormat>& formats,
-                                       const std::vector<int>& levels, const std::vector<int>& layers) {
+                                       const std::vector<int>& levels, const std::vector<int>& layers,
+                                       const std::vector<TextureKind>& kinds) {
   std::vector<MemoryLayout> out;
   LayoutParams p = params;
   uint64_t next = params.base;
@@ -20,7 +22,8 @@ std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int cha
     const TexelFormat f = out.size() < formats.size() ? formats[out.size()] : TexelFormat::Rgba8;
     const int n = out.size() < levels.size() ? levels[out.size()] : 0;
     const int l = out.size() < layers.size() ? layers[out.size()] : 1;
-    out.emplace_back(size, channel_bits, p, f, n, l);  // throws when it ends beyond 2^32
+    const TextureKind k = out.size() < kinds.size() ? kinds[out.size()] : TextureKind::Texture2D;
+    out.emplace_back(size, channel_bits, p, f, n, l, k);  // throws when it ends beyond 2^32
     next += out.back().image_bytes();                   // a whole number of lines
   }
   return out;
@@ -113,6 +116,22 @@ void TextureCache::bad_sampler(const Request& r) const {
 RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>* misses) {
   const MemoryLayout& layout = texture(r).layout;
   RequestWork w;
+  if (layout.kind() == TextureKind::Cube && r.op != Op::Fetch && r.has_derivatives) {
+    // The face's request and its probes, each on the face it lies over (as Sampler::sample).
+    int face = 0;
+    const Request q = cube_face_request(r, face);
+    const int base = 6 * stage::array_layer(r.layer, layout.layers() / 6);
+    const Probes p = tex_probe(q, sampler(r), layout.size0());
+    w.probes = uint8_t(p.n);
+    for (int i = 0; i < p.n; ++i) {
+      Request probe = p.at[size_t(i)];
+      const int f = cube_probe(face, probe);
+      const SampleLookup l = lookup_at(probe, base + f, true, misses);
+      w.set_fills(i, uint32_t(l.slot[0].misses + l.slot[1].misses));
+      w.error = w.error || l.error();
+    }
+    return w;
+  }
   if (!r.has_derivatives) {  // (one probe: the request itself)
     const SampleLookup l = lookup(r, misses);
     w.set_fills(0, uint32_t(l.slot[0].misses + l.slot[1].misses));
@@ -132,6 +151,16 @@ RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>*
 SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misses) {
   if (r.has_derivatives) throw Error("texture cache: lookup() takes a probe; use lookup_sample() for a request");
   const MemoryLayout& layout = texture(r).layout;
+  if (layout.kind() == TextureKind::Cube && r.op != Op::Fetch) {  // the direction's face
+    int face = 0;
+    const Request q = cube_face_request(r, face);
+    return lookup_at(q, 6 * stage::array_layer(r.layer, layout.layers() / 6) + face, true, misses);
+  }
+  return lookup_at(r, stage::request_layer(r.op, r.layer, layout.layers()), layout.kind() == TextureKind::Cube, misses);
+}
+
+SampleLookup TextureCache::lookup_at(const Request& r, int layer, bool cube, std::vector<uint32_t>* misses) {
+  const MemoryLayout& layout = texture(r).layout;
   const SamplerConfig& smp = sampler(r);
   SampleLookup out;
   // Each slot's level and taps: (x0, y0) always, x1 / y1 when their weight is not 0; a
@@ -141,18 +170,20 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     int32_t x[2], y[2];
     int nx = 1, ny = 1;
   } taps[2];
-  const int layer = stage::request_layer(r.op, r.layer, layout.layers());  // (-1: a fetch outside the layers)
+  // (layer -1: a fetch outside the layers. A cube face's texel (i, j) is stored at (i + 1, j + 1):
+  // a cube's (u, v) here are its face's (s, t), its taps stage::cube_taps.)
   if (r.op == Op::Fetch) {
     out.slot[0].level = r.lod;
     out.slot[0].needed = layer >= 0 && stage::fetch_inside(r.u, r.v, r.lod, layout.levels() - 1, layout.size0());
-    taps[0] = {{r.u, r.u}, {r.v, r.v}};
+    taps[0] = {{r.u + cube, r.u + cube}, {r.v + cube, r.v + cube}};
   } else {
-    const int32_t ru = stage::reduce(r.u, smp.wrap_u, smp.unnormalized), rv = stage::reduce(r.v, smp.wrap_v, smp.unnormalized);
+    const int32_t ru = cube ? r.u : stage::reduce(r.u, smp.wrap_u, smp.unnormalized);
+    const int32_t rv = cube ? r.v : stage::reduce(r.v, smp.wrap_v, smp.unnormalized);
     // The footprint of level k: a tap whose weight is 0 reads nothing, unless `all` (a gather).
     auto footprint = [&](int k, TexelFilter filter, bool all) -> Taps {
       const Extent e = layout.level_size(k);
-      const stage::WrappedTaps tu = stage::axis_taps(ru, e.w, smp.wrap_u, filter, smp.unnormalized);
-      const stage::WrappedTaps tv = stage::axis_taps(rv, e.h, smp.wrap_v, filter, smp.unnormalized);
+      const stage::WrappedTaps tu = cube ? stage::cube_taps(ru, e.w, filter) : stage::axis_taps(ru, e.w, smp.wrap_u, filter, smp.unnormalized);
+      const stage::WrappedTaps tv = cube ? stage::cube_taps(rv, e.h, filter) : stage::axis_taps(rv, e.h, smp.wrap_v, filter, smp.unnormalized);
       return {{tu.i0, tu.i1}, {tv.i0, tv.i1}, all || tu.w != 0 ? 2 : 1, all || tv.w != 0 ? 2 : 1};
     };
     if (r.op == Op::Gather) {  // the linear filter's four taps at the base level, all read
@@ -182,8 +213,9 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
     for (int j = 0; j < nx; ++j)
       for (int i = 0; i < ny; ++i) {
         if (x[j] == stage::kBorderTap || y[i] == stage::kBorderTap) continue;
-        const uint32_t bx = layout.stored_x(k, uint32_t(x[j])) >> layout.log2_block_w();
-        const uint32_t by = layout.stored_y(k, uint32_t(y[i])) >> layout.log2_block_h();
+        const uint32_t sx = cube ? uint32_t(x[j]) : layout.stored_x(k, uint32_t(x[j]));  // (a cube: no seam copy)
+        const uint32_t sy = cube ? uint32_t(y[i]) : layout.stored_y(k, uint32_t(y[i]));
+        const uint32_t bx = sx >> layout.log2_block_w(), by = sy >> layout.log2_block_h();
         const int p = int((by & 1) << 1 | (bx & 1));
         // Two blocks of one parity would need two lookups in one set group: the layout (the
         // seam copies included) rules it out.

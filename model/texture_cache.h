@@ -52,11 +52,12 @@ struct TextureDescriptor {
 
 // Layouts of several textures of `channel_bits` texels packed one after another from params.base
 // (each starts on a line); sizes are level 0's, formats, level counts and layer counts one per
-// texture (none: all RGBA, full chains, one layer). Throws tex::Error when they do not fit the
+// texture, and kinds (none: all RGBA, full chains, one layer, 2D). Throws tex::Error when they do not fit the
 // 32-bit address space.
 std::vector<MemoryLayout> pack_layouts(const std::vector<Extent>& sizes, int channel_bits,
                                        const LayoutParams& params, const std::vector<TexelFormat>& formats = {},
-                                       const std::vector<int>& levels = {}, const std::vector<int>& layers = {});
+                                       const std::vector<int>& levels = {}, const std::vector<int>& layers = {},
+                                       const std::vector<TextureKind>& kinds = {});
 
 class TextureCache {
  public:
@@ -72,6 +73,8 @@ class TextureCache {
   // in request order, updates the LRU state, and appends the line address of every miss to
   // `misses` (if not null), in the order docs/memory.md gives.
   SampleLookup lookup(const Request& probe, std::vector<uint32_t>* misses);
+  // (A cube map's probe: its face's 2D probe, in `layer`.)
+  SampleLookup lookup_at(const Request& probe, int layer, bool cube, std::vector<uint32_t>* misses);
   // A whole request: its probes (tex_probe) one after another, as the RTL's FIFO holds them.
   // Returns what its timing depends on: the probes and the lines each misses; and whether a line
   // it looked up came from memory with an error (RequestWork::error).

@@ -147,8 +147,8 @@ std::string op_label(Op op, int component, const SamplerConfig& c) {
 }
 
 int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& textures_path,
-               const std::string& texture_layers, const std::string& out_path, const std::string& op_option,
-               const std::string& component_option) {
+               const std::string& texture_layers, const std::string& cube_faces, const std::string& out_path,
+               const std::string& op_option, const std::string& component_option) {
   const auto t0 = std::chrono::steady_clock::now();
   // Everything is checked before the work: options, engine, outputs, texture, every query.
   Op op{};
@@ -165,19 +165,22 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   EngineOptions eo = o.engine_options();
   OutputSet outputs;
   std::vector<TextureListEntry> list;
-  // --texture-layers: an array of those images, in place of --texture.
+  // --texture-layers: an array of those images, in place of --texture; --cube: a cube map (or cube
+  // array) of those faces.
   std::vector<std::string> layer_paths;
-  if (!texture_layers.empty()) {
-    if (o.texture_opt->count() || !textures_path.empty())
-      throw Error("sample: give one of --texture, --texture-layers and --textures");
+  const std::string& layers_option = cube_faces.empty() ? texture_layers : cube_faces;
+  const char* layers_name = cube_faces.empty() ? "--texture-layers" : "--cube";
+  if (!layers_option.empty()) {
+    if (o.texture_opt->count() || !textures_path.empty() || (!texture_layers.empty() && !cube_faces.empty()))
+      throw Error("sample: give one of --texture, --texture-layers, --cube and --textures");
     for (size_t at = 0;;) {
-      const size_t comma = texture_layers.find(',', at);
-      layer_paths.push_back(texture_layers.substr(at, comma - at));
-      if (layer_paths.back().empty()) throw Error("--texture-layers " + quote_clipped(texture_layers) + ": an empty path");
+      const size_t comma = layers_option.find(',', at);
+      layer_paths.push_back(layers_option.substr(at, comma - at));
+      if (layer_paths.back().empty()) throw Error(std::string(layers_name) + " " + quote_clipped(layers_option) + ": an empty path");
       if (comma == std::string::npos) break;
       at = comma + 1;
     }
-    for (const std::string& p : layer_paths) outputs.add_input(p, "--texture-layers");
+    for (const std::string& p : layer_paths) outputs.add_input(p, layers_name);
   }
   if (!textures_path.empty()) {
     if (o.texture_opt->count()) throw Error("sample: give --texture or --textures, not both");
@@ -235,13 +238,24 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
     entry.max_level = e.max_level.value_or(entry.max_level);
     if (e.base_level || e.max_level)
       entry.view_given_by = e.at + "base=" + std::to_string(entry.base_level) + " max=" + std::to_string(entry.max_level);
-    const std::vector<Pyramid>& layers = arrays.emplace_back(load_array(layer_paths.empty() ? std::vector<std::string>{e.path} : layer_paths, entry));
-    BoundTexture bound(&layers[0]);
+    TextureKind kind = cube_faces.empty() ? TextureKind::Texture2D : TextureKind::Cube;
+    const std::vector<Pyramid>& layers =
+        arrays.emplace_back(load_array(layer_paths.empty() ? std::vector<std::string>{e.path} : layer_paths, entry, &kind));
+    BoundTexture bound(&layers[0], {}, kind);
     for (size_t l = 1; l < layers.size(); ++l) bound.more_layers.push_back(&layers[l]);
     table.push_back(bound);
   }
   if (query_error) std::rethrow_exception(query_error);
   check_tables(table, samplers, eo.memory);  // (before any output: an array needs the cached unit)
+  for (const BoundTexture& t : table)  // (before any output)
+    if (t.kind == TextureKind::Cube && o.engine != "model")
+      throw Error("a cube map: the " + o.engine + " engine samples 2D textures and arrays (cube maps: -e model; docs/cube-maps.md)");
+  if (reader && !query_error && op != Op::Fetch)  // the header's coordinates are the textures' kind's
+    for (size_t t = 0; t < table.size(); ++t)
+      if ((table[t].kind == TextureKind::Cube) != reader->cube())
+        throw Error(reader->name() + ": header " + reader->header() + (reader->cube() ? " is a cube map's; " : " is a 2D texture's; ") +
+                    (list.size() > 1 ? list[t].at : "") + list[t].path +
+                    (table[t].kind == TextureKind::Cube ? " is a cube map (its queries: x,y,z,...)" : " is not a cube map (its queries: u,v,...)"));
   if (op == Op::Compare)
     for (size_t t = 0; t < table.size(); ++t)
       if (table[t].pyramid->srgb)
@@ -302,10 +316,13 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
     std::fprintf(report, "texsim sample: %zu queries, %s, %zu textures, engine %s -> %s (%.2f s)\n", count,
                  op_label(op, component, cfg).c_str(), table.size(), o.engine.c_str(), out_path.c_str(), secs);
   else
-    std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d texture%s, engine %s -> %s (%.2f s)\n",
+    std::fprintf(report, "texsim sample: %zu queries, %s, %s/%s, %dx%d%s, engine %s -> %s (%.2f s)\n",
                  count, op_label(op, component, cfg).c_str(), wrap_name(samplers[0].wrap_u).c_str(),
                  wrap_name(samplers[0].wrap_v).c_str(), pyr.levels[0].width, pyr.levels[0].height,
-                 table[0].layers() > 1 ? (" x " + std::to_string(table[0].layers()) + " layers").c_str() : "",
+                 (table[0].kind == TextureKind::Cube
+                      ? (table[0].layers() == 6 ? std::string(" cube map") : " cube map x " + std::to_string(table[0].layers() / 6) + " cubes")
+                  : table[0].layers() > 1 ? " texture x " + std::to_string(table[0].layers()) + " layers"
+                                          : std::string(" texture")).c_str(),
                  o.engine.c_str(), out_path.c_str(), secs);
   return 0;
 }
@@ -465,8 +482,10 @@ int main(int argc, char** argv) {
   sample_opts.add_to(*sample);
   sample->add_option("--queries,-q", queries,
                      "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy, either with a leading tex column, or "
-                     "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper; with --op gather u,v, with --op fetch i,j,level; "
-                     "an array's layer as a column after u,v (i,j): u,v,layer,lod, i,j,layer,level, ... (- = standard input)")
+                     "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper; with --op gather u,v, with --op fetch i,j,level, "
+                     "with --op compare a ref column after u,v (u,v,ref,lod, ...); an array's layer as a column after "
+                     "u,v (i,j): u,v,layer,lod, i,j,layer,level, ...; a cube map's direction x,y,z for u,v: x,y,z,lod, "
+                     "x,y,z,dxdx,dydx,dzdx,dxdy,dydy,dzdy[,bias], x,y,z,layer,ref,lod, ... (- = standard input)")
       ->required();
   std::string sample_op = "sample", sample_component = "0";
   sample->add_option("--op", sample_op,
@@ -480,12 +499,17 @@ int main(int argc, char** argv) {
   sample->add_option("--component", sample_component, "the component a gather gathers: 0 1 2 3 or r g b a (R G B A)")
       ->capture_default_str();
   sample->add_option("--out,-o", out, "result CSV: header r,g,b,a (- = standard output)")->required();
-  std::string textures_list, texture_layers;
+  std::string textures_list, texture_layers, cube_faces;
   sample->add_option("--texture-layers", texture_layers,
                      "an array texture, in place of --texture: its layers' image files A,B,C,... (1 to 256 of one size; "
                      "each gets its own pyramid); --texture also takes DDS/KTX/KTX2 array files. A query's layer "
                      "is rounded to the nearest (a tie to the even) and clamped to the layers; a fetch's outside "
                      "them answers 0");
+  sample->add_option("--cube", cube_faces,
+                     "a cube map, in place of --texture: its faces' image files +X,-X,+Y,-Y,+Z,-Z (square, of one "
+                     "size; six more for each further cube of a cube array); --texture also takes DDS/KTX/KTX2 cube "
+                     "files. Queries give a direction: x,y,z,lod or x,y,z,dxdx,dydx,dzdx,dxdy,dydy,dzdy (with "
+                     "--memory cached; the model engine)");
   sample->add_option("--textures", textures_list,
                      "a descriptor table instead of --texture: one `id path [wrap_u [wrap_v]]` per line, ids 0, 1, ... "
                      "(what render --trace-queries writes); the trace's tex column names the entry");
@@ -634,7 +658,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (*sample) return cmd_sample(sample_opts, queries, textures_list, texture_layers, out, sample_op, sample_component);
+    if (*sample)
+      return cmd_sample(sample_opts, queries, textures_list, texture_layers, cube_faces, out, sample_op, sample_component);
     if (*mip)
       return cmd_mip(mip_texture, mip_mode, mip_resize, mip_format, mip_format_opt->count() > 0, mip_srgb, dump_dir, layout,
                      image);

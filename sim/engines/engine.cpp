@@ -203,7 +203,8 @@ void check_tables(const TextureTable& textures, const SamplerTable& samplers, Me
     throw Error(std::to_string(samplers.size()) + " samplers: the on-chip unit has one sampler; "
                 "use --memory cached, whose sampler table holds up to " + std::to_string(kMaxSamplers));
   if (textures[0].layers() > 1 && memory != Memory::Cached)
-    throw Error("an array of " + std::to_string(textures[0].layers()) +
+    throw Error(std::string(textures[0].kind == TextureKind::Cube ? "a cube map" : "an array") + " of " +
+                std::to_string(textures[0].layers()) +
                 " layers: the on-chip unit holds one 2D texture (the paper's per-level memories); use --memory cached");
   for (const BoundTexture& t : textures)
     if (t.layers() > kMaxLayers)
@@ -243,6 +244,7 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
   std::vector<Extent> sizes;
   std::vector<TexelFormat> formats;
   std::vector<int> levels, layers;
+  std::vector<TextureKind> kinds;
   const int bits = textures[0].pyramid->memory_channel_bits();
   for (const BoundTexture& t : textures) {
     if (t.pyramid->memory_channel_bits() != bits)
@@ -252,8 +254,9 @@ std::vector<TextureDescriptor> texture_descriptors(const TextureTable& textures,
     formats.push_back(t.pyramid->format);
     levels.push_back(int(t.pyramid->levels.size()));
     layers.push_back(t.layers());
+    kinds.push_back(t.kind);
   }
-  const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout, formats, levels, layers);
+  const std::vector<MemoryLayout> layouts = pack_layouts(sizes, bits, options.layout, formats, levels, layers, kinds);
   std::vector<TextureDescriptor> out;
   for (size_t i = 0; i < textures.size(); ++i) out.push_back({layouts[i]});
   return out;

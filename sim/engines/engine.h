@@ -168,10 +168,12 @@ EngineResult run_collected(const std::vector<Request>& requests,
 // name an entry by Request::texture, and the sampler-table entry they read it with by
 // Request::sampler (a frame's SamplerTable).
 struct BoundTexture {
-  BoundTexture(const Pyramid* layer0 = nullptr, std::vector<const Pyramid*> more = {})
-      : pyramid(layer0), more_layers(std::move(more)) {}
-  const Pyramid* pyramid;                   // layer 0 (a 2D texture's one layer)
+  BoundTexture(const Pyramid* layer0 = nullptr, std::vector<const Pyramid*> more = {},
+               TextureKind k = TextureKind::Texture2D)
+      : pyramid(layer0), more_layers(std::move(more)), kind(k) {}
+  const Pyramid* pyramid;                   // layer 0 (a 2D texture's one layer; a cube's +X face)
   std::vector<const Pyramid*> more_layers;  // an array texture's layers 1.. (the size, format and levels of layer 0)
+  TextureKind kind;                         // a cube map: 6 layers a cube
   int layers() const { return 1 + int(more_layers.size()); }
   std::vector<const Pyramid*> all_layers() const {
     std::vector<const Pyramid*> out{pyramid};
@@ -197,7 +199,11 @@ class SamplerPairs {
     if (r.texture >= textures_.size() || r.sampler >= samplers_.size()) [[unlikely]]
       check_request_tables(r, textures_.size(), samplers_.size());
     std::unique_ptr<Sampler>& s = pairs_[size_t(r.texture) * samplers_.size() + r.sampler];
-    if (!s) [[unlikely]] s = std::make_unique<Sampler>(textures_[r.texture].all_layers(), samplers_[r.sampler], paths_);
+    if (!s) [[unlikely]] {
+      const BoundTexture& t = textures_[r.texture];
+      s = std::make_unique<Sampler>(t.all_layers(), samplers_[r.sampler],
+                                    t.kind == TextureKind::Cube ? SamplerPaths::Both : paths_, t.kind);
+    }
     return *s;
   }
   // Every pair built so far, for counters.

@@ -97,7 +97,8 @@ EngineStats run_model(const TextureTable& textures, const SamplerTable& samplers
   check_tables(textures, samplers, options.memory);
   const bool cached = options.memory == Memory::Cached;
   bool fast = !options.count_reads;  // the fast path: 8-bit textures and samplers it takes only
-  for (const BoundTexture& t : textures) fast = fast && t.pyramid->levels[0].channel_bits == 8;
+  for (const BoundTexture& t : textures)  // (a cube map: the reference path)
+    fast = fast && t.pyramid->levels[0].channel_bits == 8 && t.kind == TextureKind::Texture2D;
   for (const SamplerConfig& s : samplers) fast = fast && Sampler::fast_path_takes(s);
   SamplerPairs pairs(textures, samplers, fast ? SamplerPaths::FastOnly : SamplerPaths::Both);
   pairs.at(Request{});  // the first pair's set-up is part of the load, as with one texture

@@ -147,8 +147,8 @@ struct TraceFormat {
   // a tex column; a smp column; u,v,lod (else the four derivatives); a bias column; quad,x,y,helper;
   // i,j,level (a texel fetch, in place of u,v,lod); u,v alone (a gather); a layer column after u,v
   // (i,j) (an array texture's layer) and a ref column after those (a depth compare's reference):
-  // layered_formats
-  bool texture, sampler, lod, bias, quad, fetch = false, gather = false, layer = false, ref = false;
+  // layered_formats; a cube's x,y,z direction in place of u,v and its six derivatives
+  bool texture, sampler, lod, bias, quad, fetch = false, gather = false, layer = false, ref = false, cube = false;
 };
 constexpr TraceFormat kFormats[] = {
     {"u,v,lod", false, false, true, false, false},
@@ -168,10 +168,11 @@ constexpr TraceFormat kFormats[] = {
     {"tex,u,v", true, false, false, false, false, false, true},
     {"tex,smp,u,v", true, true, false, false, false, false, true},
 };
-constexpr int kMaxColumns = 11;
+constexpr int kMaxColumns = 14;  // tex,smp,x,y,z,layer,ref,dxdx,dydx,dzdx,dxdy,dydy,dzdy,bias
 
 // kFormats and, for each but the frame trace, its forms with a layer column after u,v (i,j), and
-// for a sample's a ref column after those (a depth compare).
+// for a sample's a ref column after those (a depth compare); and each form of u,v as a cube map's
+// x,y,z (its derivatives dxdx,dydx,dzdx,dxdy,dydy,dzdy).
 struct NamedFormat {
   std::string header;
   TraceFormat format;
@@ -193,6 +194,18 @@ const std::vector<NamedFormat>& layered_formats() {
           out.push_back({h, v});
         }
     }
+    const size_t planar = out.size();
+    for (size_t i = 0; i < planar; ++i) {  // the cube forms
+      const NamedFormat& n = out[i];
+      if (n.format.quad || n.format.fetch) continue;
+      std::string h = n.header;
+      h.replace(h.find("u,v"), 3, "x,y,z");
+      if (const size_t d = h.find("dudx,dvdx,dudy,dvdy"); d != std::string::npos)
+        h.replace(d, 19, "dxdx,dydx,dzdx,dxdy,dydy,dzdy");
+      TraceFormat c = n.format;
+      c.cube = true;
+      out.push_back({h, c});
+    }
     return out;
   }();
   return all;
@@ -200,8 +213,8 @@ const std::vector<NamedFormat>& layered_formats() {
 
 // The headers of kFormats, in short: [tex,[smp,]] before u,v,lod and u,v,dudx,...
 std::string known_headers() {
-  return "[tex,[smp,]]u,v[,layer][,ref], then lod or dudx,dvdx,dudy,dvdy[,bias]; u,v[,layer] (gather); "
-         "i,j[,layer],level (fetch); tex,u,v,...,helper";
+  return "[tex,[smp,]]u,v|x,y,z[,layer][,ref],lod|dudx,...[,bias] (gather: no lod), i,j[,layer],level, or "
+         "tex,u,v,...,helper; texsim sample --help";
 }
 
 }  // namespace
@@ -304,11 +317,17 @@ void QueryReader::read_header() {
         gather_ = format.gather;
         layer_ = format.layer;
         ref_ = format.ref;
+        cube_ = format.cube;
         header_ = header;
       }
     if (columns_ == 0) throw Error(at + "unknown header " + quote_clipped(line) + " (expected " + known_headers() + ")");
   }
   if (columns_ == 0) throw Error(name_ + ": no header line (expected " + known_headers() + ")");
+}
+
+bool QueryReader::cube() {
+  if (columns_ == 0) read_header();
+  return cube_;
 }
 
 Op QueryReader::op() {
@@ -349,6 +368,10 @@ bool QueryReader::next(Query& q) {
     }
     q.u = v[c++];
     q.v = v[c++];
+    if (cube_) {
+      q.cube = true;
+      q.w = v[c++];
+    }
     if (layer_) q.layer = v[c++];
     if (ref_) {
       q.compare = true;
@@ -362,8 +385,15 @@ bool QueryReader::next(Query& q) {
     if (lod_) {
       q.lod = v[c++];
     } else {
-      q.deriv = {v[c], v[c + 1], v[c + 2], v[c + 3]};
-      c += 4;
+      if (cube_) {  // dxdx,dydx,dzdx,dxdy,dydy,dzdy
+        q.deriv = {v[c], v[c + 1], v[c + 3], v[c + 4]};
+        q.dwdx = v[c + 2];
+        q.dwdy = v[c + 5];
+        c += 6;
+      } else {
+        q.deriv = {v[c], v[c + 1], v[c + 2], v[c + 3]};
+        c += 4;
+      }
       if (bias_) q.bias = v[c++];
     }
     if (quad_) {
@@ -598,13 +628,24 @@ Request to_request(const Query& q, const std::string& name, uint32_t tag, QueryF
                 (texels ? " texels (unnormalized sampler " + std::to_string(r.sampler) + ") is outside [-32768, 32768)"
                         : std::string(" is outside [-128, 128)")));
   };
-  coordinate(q.u, "u", r.u);
-  coordinate(q.v, "v", r.v);
+  coordinate(q.u, q.cube ? "x" : "u", r.u);
+  coordinate(q.v, q.cube ? "y" : "v", r.v);
+  if (q.cube) {
+    if (texels) throw Error(at() + "a cube map's direction through sampler " + std::to_string(r.sampler) +
+                            ", which is unnormalized: Vulkan does not sample a cube so");
+    coordinate(q.w, "z", r.w);
+  }
   if (q.gather) return r;
   if (q.explicit_lod) {
     if (!to_lod_fixed(q.lod, r.lod)) throw Error(at() + "lod = " + std::to_string(q.lod) + " is outside [-128, 128)");
   } else {
     if (!to_lod_derivatives(q.deriv, r.deriv)) throw Error(at() + "a derivative is not a finite number");
+    if (q.cube) {  // dz/dx, dz/dy as the others (saturated at +-128)
+      LodDerivatives z;
+      if (!to_lod_derivatives({q.dwdx, q.dwdy, 0, 0}, z)) throw Error(at() + "a derivative is not a finite number");
+      r.dwdx = z.dudx;
+      r.dwdy = z.dvdx;
+    }
     r.has_derivatives = true;
     if (!to_lod_fixed(q.bias, r.bias)) throw Error(at() + "bias = " + std::to_string(q.bias) + " is outside [-128, 128)");
   }

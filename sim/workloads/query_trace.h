@@ -24,6 +24,9 @@ struct Query {
   double u = 0, v = 0;
   double layer = 0;   // an array texture's layer coordinate (a `layer` column; a fetch's: a whole number)
   bool compare = false;  // a depth compare (a `ref` column after u,v[,layer])
+  bool cube = false;     // a cube map's direction (x, y, z) = (u, v, w) (an x,y,z header)
+  double w = 0;
+  double dwdx = 0, dwdy = 0;  // with derivatives: dz/dx, dz/dy (deriv: dx/dx, dy/dx, dx/dy, dy/dy)
   double ref = 0;        // its reference depth, 0..1 (clamped by the unit)
   bool explicit_lod = true;
   double lod = 0;     // levels, when explicit_lod
@@ -68,6 +71,7 @@ class QueryReader {
   // The header's operation (it reads the header if not yet read): Op::Fetch for i,j,level,
   // Op::Gather for u,v, Op::Compare with a ref column.
   Op op();
+  bool cube();  // the header is a cube map's (x,y,z)
   std::string header() const { return header_; }  // (after op() or next())
   // True for a regular file: it can be read twice (QueryFileParser before the work).
   bool rewindable() const { return rewindable_; }
@@ -91,7 +95,7 @@ class QueryReader {
   bool eof_ = false;
   int line_no_ = 0, columns_ = 0;
   bool texture_ = false, sampler_ = false, lod_ = false, bias_ = false, quad_ = false, fetch_ = false, gather_ = false,
-       layer_ = false, ref_ = false;  // the header's columns
+       layer_ = false, ref_ = false, cube_ = false;  // the header's columns
   std::string header_;
 };
 

@@ -607,15 +607,15 @@ std::vector<Pyramid> load_layers(const std::string& spec, const TextureOptions& 
   return layers;
 }
 
-std::vector<Pyramid> load_array(const std::vector<std::string>& specs, const TextureOptions& o) {
+std::vector<Pyramid> load_array(const std::vector<std::string>& specs, const TextureOptions& o, TextureKind* kind) {
   if (specs.empty()) throw Error("an array texture needs at least one layer");
   std::vector<Pyramid> layers;
-  if (specs.size() == 1) {
+  if (specs.size() == 1 && !(kind && *kind == TextureKind::Cube)) {
     int faces = 1;
     layers = load_layers(specs[0], o, &faces);
-    if (faces != 1)
-      throw Error(specs[0] + ": a cube map (" + std::to_string(layers.size() / 6) +
-                  " x 6 faces): the unit does not sample cube maps yet (docs/cube-maps.md)");
+    if (faces != 1 && !kind)
+      throw Error(specs[0] + ": a cube map (" + std::to_string(layers.size() / 6) + " x 6 faces): this takes 2D textures");
+    if (kind) *kind = faces == 6 ? TextureKind::Cube : TextureKind::Texture2D;
   } else {
     for (const std::string& spec : specs) layers.push_back(load_pyramid(spec, o));
   }
@@ -632,6 +632,17 @@ std::vector<Pyramid> load_array(const std::vector<std::string>& specs, const Tex
         b.levels[0].channel_bits != a.levels[0].channel_bits)
       throw Error((specs.size() > 1 ? specs[l] : specs[0] + " layer " + std::to_string(l)) + ": " + shape(b) +
                   "; layer 0 (" + specs[0] + ") is " + shape(a) + ": an array's layers have one size, format and level count");
+  }
+  if (kind && *kind == TextureKind::Cube) {
+    if (layers.size() % 6 != 0)
+      throw Error(specs[0] + (specs.size() > 1 ? " ...: " : ": ") + std::to_string(layers.size()) +
+                  " faces: a cube map has 6 (+X, -X, +Y, -Y, +Z, -Z) per cube");
+    if (layers[0].extent0().w != layers[0].extent0().h)
+      throw Error(specs[0] + ": cube faces of " + std::to_string(layers[0].extent0().w) + "x" +
+                  std::to_string(layers[0].extent0().h) + " texels: a cube's faces are square");
+    if (is_compressed(layers[0].format))
+      throw Error(specs[0] + std::string(": a cube map in ") + format_info(layers[0].format).name +
+                  ": the unit holds cube maps in RGBA (their skirts: docs/cube-maps.md)");
   }
   return layers;
 }

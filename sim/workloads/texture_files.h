@@ -93,10 +93,13 @@ Pyramid load_pyramid(const std::string& spec, const TextureOptions& options);
 // file's 1 or 6; an image file or pattern as one layer, `*faces` 1. Throws tex::Error.
 std::vector<Pyramid> load_layers(const std::string& spec, const TextureOptions& options, int* faces = nullptr);
 
-// An array texture's layers (texsim sample's --texture, --texture-layers): one spec's load_layers
-// (an image, a DDS/KTX file of one image or an array), or several specs' load_pyramid one layer
-// each. Throws tex::Error, one line naming the file: a cube map (not sampled yet), more than
-// kMaxLayers layers, a layer whose size, format, sRGB flag or level count differs from layer 0's.
-std::vector<Pyramid> load_array(const std::vector<std::string>& specs, const TextureOptions& options);
+// An array texture's layers (texsim sample's --texture, --texture-layers, --cube): one spec's
+// load_layers (an image, a DDS/KTX file of one image, an array, a cube map or cube array: `*kind`
+// then Cube), or several specs' load_pyramid one layer each (`kind` as given: Cube for --cube's six
+// faces a cube). Throws tex::Error, one line naming the file: a cube map file where `kind` is null,
+// more than kMaxLayers layers, a layer whose size, format, sRGB flag or level count differs from
+// layer 0's; for a cube, faces that are not square or a count that is not a multiple of 6.
+std::vector<Pyramid> load_array(const std::vector<std::string>& specs, const TextureOptions& options,
+                                TextureKind* kind = nullptr);
 
 }  // namespace tex

@@ -10,6 +10,8 @@
 #include <random>
 
 #include "model/cube_map.h"
+#include "model/memory_layout.h"
+#include "model/texture_cache.h"
 #include "model/error.h"
 #include "model/image.h"
 #include "model/sampler.h"
@@ -171,4 +173,69 @@ TEST(CubeSkirts, InsideAFaceIsTheFacesOwnSample) {
     ++checked;
   }
   EXPECT_GT(checked, 5000);
+}
+
+// A cube's memory image: each face's level k as (n_k + 2)^2 skirted texels at the layout's lines
+// (decode_line gives back every face texel; the skirt bytes are cube_skirts'), and a cold cache's
+// misses for a request are the lines of the taps its face, level and cube_taps name.
+TEST(CubeSkirts, MemoryImageAndCacheLines) {
+  std::vector<Pyramid> faces;
+  for (int f = 0; f < 12; ++f) {  // a cube array of two
+    Image img = make_pattern("noise", 8, 8);
+    for (Texel& t : img.texels) t[1] = uint16_t((t[1] + 19 * f) & 255);
+    faces.push_back(build_pyramid(std::move(img)));
+  }
+  std::vector<const Pyramid*> p;
+  for (const Pyramid& f : faces) p.push_back(&f);
+  LayoutParams params;
+  params.base = 1 << 16;
+  const MemoryLayout layout = layout_of(faces[0], params, 12, TextureKind::Cube);
+  const std::vector<uint8_t> image = build_memory_image(p, layout);
+  const std::vector<Pyramid> skirted = cube_skirts(p);
+  int texels = 0;
+  for (uint64_t off = 0; off < image.size(); off += uint64_t(layout.line_bytes()))
+    decode_line(layout, params.base + uint32_t(off), &image[off], [&](int layer, int k, int x, int y, const Texel& t) {
+      ASSERT_EQ(t, faces[size_t(layer)].levels[size_t(k)].at(x, y));
+      ++texels;
+    });
+  EXPECT_EQ(texels, 12 * (64 + 16 + 4 + 1));
+  for (int layer : {0, 7})
+    for (int k = 0; k < layout.levels(); ++k) {
+      const int n = layout.level_size(k).w;
+      for (const auto& [x, y] : {std::pair<int, int>{0, 0}, {n + 1, 1}, {0, n + 1}, {n + 1, n + 1}}) {
+        const uint32_t a = layout.line_address(k, uint32_t(x), uint32_t(y), layer) - params.base + layout.texel_offset(uint32_t(x), uint32_t(y));
+        const Texel& want = skirted[size_t(layer)].levels[size_t(k)].at(x, y);
+        for (size_t c = 0; c < 4; ++c) EXPECT_EQ(image[a + c], want[c]) << "layer " << layer << " level " << k;
+      }
+    }
+  std::mt19937_64 rng(24);
+  SamplerConfig cfg;
+  for (int i = 0; i < 3000; ++i) {
+    Request r;
+    for (int32_t* c : {&r.u, &r.v, &r.w}) *c = int32_t(rng() % (2u << 24)) - (1 << 24);
+    r.lod = int32_t(rng() % 1024) - 128;
+    r.layer = int32_t(rng() % 2) << 16;
+    TextureCache cache(layout, CacheParams{}, cfg);
+    std::vector<uint32_t> misses;
+    cache.lookup_sample(r, &misses);
+    // The taps, from the stage functions: the face, the levels and their 2x2 footprints.
+    int face = 0;
+    const Request q = cube_face_request(r, face);
+    const stage::LevelSelect sel = stage::lod(q.lod, 0, cfg.min_lod, cfg.max_lod, cfg.filter.mip, layout.levels() - 1);
+    std::vector<uint32_t> want;
+    for (int s = 0; s < (sel.f != 0 ? 2 : 1); ++s) {
+      const int k = s == 0 ? sel.d : sel.d1, n = layout.level_size(k).w;
+      const TexelFilter tf = stage::texel_filter(sel, cfg.filter);
+      const stage::WrappedTaps tu = stage::cube_taps(q.u, n, tf), tv = stage::cube_taps(q.v, n, tf);
+      for (int32_t y : {tv.i0, tv.i1})
+        for (int32_t x : {tu.i0, tu.i1}) {
+          if ((x == tu.i1 && tu.w == 0) || (y == tv.i1 && tv.w == 0)) continue;
+          const uint32_t a = layout.line_address(k, uint32_t(x), uint32_t(y), (r.layer >> 16) * 6 + face);
+          if (std::find(want.begin(), want.end(), a) == want.end()) want.push_back(a);
+        }
+    }
+    std::sort(misses.begin(), misses.end());
+    std::sort(want.begin(), want.end());
+    ASSERT_EQ(misses, want) << "request " << i << " face " << face;
+  }
 }

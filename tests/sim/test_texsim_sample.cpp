@@ -365,6 +365,43 @@ TEST_F(TexsimCli, DepthCompareFiltersTheTests) {
   expect_clean_failure("sample -t d.png --op compare --compare-op lesser -q q.csv -o bad.csv", "bad.csv", {"lesser", "less-or-equal"});
 }
 
+// --cube +X,-X,+Y,-Y,+Z,-Z: a cube map sampled by direction (x,y,z headers), seamless. Faces of
+// constant R (2x2 texels): the six axis directions give each face's value; the midpoint of the
+// +Z/+X edge (a tie: +Z, Vulkan's rule) weighs +Z's edge texel and +X's half and half; the corner
+// (1, 1, 1) weighs +Z's corner texel, +Y's, +X's and the skirt's corner, the average of the three:
+// round((30 + 97 + 250 + 10) / 4) with 97 = round((10 + 30 + 250) / 3). Faces of other sizes,
+// non-square faces, five faces, an RTL engine, a u,v header: one line, nothing written.
+TEST_F(TexsimCli, CubeMapsSampleAcrossTheSeams) {
+  const int r[6] = {10, 80, 30, 160, 250, 200};
+  std::string faces;
+  for (int f = 0; f < 6; ++f) {
+    const std::string name = "f" + std::to_string(f) + ".png";
+    write_image(dir / name, 2, 2, 4, [&](int, int, int c) { return c == 0 ? r[f] : c == 3 ? 255 : 0; });
+    faces += (f ? "," : "") + name;
+  }
+  write_image(dir / "big.png", 4, 4, 4, [](int, int, int) { return 9; });
+  write_image(dir / "wide.png", 4, 2, 4, [](int, int, int) { return 9; });
+  write_text(dir / "q.csv", "x,y,z,lod\n1,0,0,0\n-1,0,0,0\n0,1,0,0\n0,-1,0,0\n0,0,1,0\n0,0,-1,0\n1,0,1,0\n1,1,1,0\n");
+  const Result res = run("sample --cube " + faces + " --memory cached -f bilinear -q q.csv -o c.csv");
+  ASSERT_EQ(res.exit_code, 0) << res.err;
+  EXPECT_NE(res.out.find("2x2 cube map"), std::string::npos) << res.out;
+  std::string h;
+  const auto rows = read_csv_rows(dir / "c.csv", h);
+  ASSERT_EQ(rows.size(), 8u);
+  for (int f = 0; f < 6; ++f) EXPECT_EQ(rows[size_t(f)], (std::vector<int>{r[f], 0, 0, 255})) << "face " << f;
+  EXPECT_EQ(rows[6][0], (250 + 10) / 2) << "the +Z / +X seam";
+  EXPECT_EQ(rows[7][0], 97) << "the +X / +Y / +Z corner";
+  const std::string rest = ",f1.png,f2.png,f3.png,f4.png,f5.png --memory cached -q q.csv -o bad.csv";
+  expect_clean_failure("sample --cube big.png" + rest, "bad.csv", {"f1.png", "4x4", "2x2"});
+  expect_clean_failure("sample --cube wide.png,wide.png,wide.png,wide.png,wide.png,wide.png --memory cached -q q.csv -o bad.csv",
+                       "bad.csv", {"wide.png", "square"});
+  expect_clean_failure("sample --cube f0.png,f1.png,f2.png,f3.png,f4.png --memory cached -q q.csv -o bad.csv", "bad.csv",
+                       {"5 faces"});
+  expect_clean_failure("sample --cube " + faces + " --memory cached -e rtl -q q.csv -o bad.csv", "bad.csv", {"cube map", "rtl"});
+  write_text(dir / "uv.csv", "u,v,lod\n0.5,0.5,0\n");
+  expect_clean_failure("sample --cube " + faces + " --memory cached -q uv.csv -o bad.csv", "bad.csv", {"uv.csv", "cube map"});
+}
+
 // --op gather (textureGather) --component C: at the corner between texels (x, y) and (x+1, y+1)
 // the four texels the linear filter weighs, component C of (x, y+1), (x+1, y+1), (x+1, y), (x, y)
 // as R, G, B, A, read from the PNG's pixels; clamp at the texture's edge; every engine and both RTL

@@ -188,6 +188,10 @@ void Driver::write_tables() {
 }
 
 void Driver::load_textures(const TextureTable& textures) {
+  for (const BoundTexture& t : textures)
+    if (t.kind == TextureKind::Cube)
+      throw Error(config_.name + ": a cube map; the RTL samples 2D textures and arrays (cube maps: the model engine; "
+                  "docs/cube-maps.md)");
   if (!config_.cached) {
     if (textures.size() != 1)
       throw Error(config_.name + " holds one texture (the on-chip unit); the table has " + std::to_string(textures.size()));

@@ -66,6 +66,9 @@ class RtlEngine final : public Engine {
                   TexelSink& sink) override {
     const bool cached = options_.memory == Memory::Cached;
     check_tables(textures, samplers, options_.memory);
+    for (const BoundTexture& t : textures)  // (before the unit is built)
+      if (t.kind == TextureKind::Cube)
+        throw Error("a cube map: the RTL samples 2D textures and arrays (cube maps: the model engine; docs/cube-maps.md)");
     const Pyramid& pyramid = *textures[0].pyramid;
     const RtlConfig& rc =
         smallest_config_for(textures, options_.memory, options_.layout.block_w, options_.layout.block_h,

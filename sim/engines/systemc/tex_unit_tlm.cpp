@@ -19,6 +19,10 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const TextureTable&
       textures_(textures), samplers_(samplers), options_(options) {
   socket.register_transport_dbg(this, &TexUnitTlm::transport_dbg);
   check_tables(textures, samplers, options.memory);
+  for (const BoundTexture& t : textures)
+    if (t.kind == TextureKind::Cube)
+      throw Error("a cube map: the SystemC unit samples 2D textures and arrays (cube maps: the model engine; "
+                  "docs/cube-maps.md)");
   const bool cached = options.memory == Memory::Cached;
   if (cached) {
     descriptors_ = texture_descriptors(textures, options);
