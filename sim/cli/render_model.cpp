@@ -61,8 +61,18 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   if (trace) eo.trace_path = trace->write_path();
   OutputFile* queries_out = a.trace_queries.empty() ? nullptr : &outputs.declare(a.trace_queries, "--trace-queries");
 
+  // --envmap: the model as a mirror of a cube map, the one texture; the model engine samples cubes.
+  const bool mirror = !a.envmap.empty();
+  if (mirror) {
+    if (a.model.empty()) throw Error("--envmap takes --model (one model drawn as a mirror)");
+    if (!a.trace_queries.empty()) throw Error("--envmap: --trace-queries writes 2D queries; a mirror's are a cube's");
+    if (o.engine != "model")
+      throw Error("--envmap: the " + o.engine + " engine samples 2D textures and arrays (cube maps: -e model)");
+    outputs.add_input(a.envmap, "--envmap");
+  }
+
   // The model: its meshes and textures, each texture a descriptor-table entry.
-  const MeshScene scene = a.model.empty() ? load_models(read_scene_file(a.scene_file)) : load_model(a.model);
+  const MeshScene scene = a.model.empty() ? load_models(read_scene_file(a.scene_file)) : load_model(a.model, mirror);
   if (scene.textures.size() > size_t(kMaxTextures))
     throw Error("the scene has " + std::to_string(scene.textures.size()) + " textures; the descriptor table holds " +
                 std::to_string(kMaxTextures));
@@ -70,6 +80,14 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   pyramids.reserve(scene.textures.size());
   TextureTable table;
   SamplerTable samplers;  // entry i: texture i's (the options' sampler with its file's filters and wrap modes)
+  std::string envmap_how;
+  if (mirror) {
+    pyramids = load_envmap(a.envmap, o.texture_options(), envmap_how);
+    std::vector<const Pyramid*> faces;
+    for (const Pyramid& p : pyramids) faces.push_back(&p);
+    table.push_back(BoundTexture(faces[0], {faces.begin() + 1, faces.end()}, TextureKind::Cube));
+    samplers.push_back(cfg);
+  }
   for (const SceneTexture& t : scene.textures) {
     // --format for every texture; sRGB where the file says so (glTF 2 base colour) or --srgb.
     TextureOptions topts = o.texture_options();
@@ -87,7 +105,9 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   // sRGB texture is held as 16-bit channels on chip, and those units are small).
   std::string memory_chosen;
   if (eo.memory != Memory::Cached && !o.memory_opt->count()) {
-    if (scene.textures.size() > 1) {
+    if (mirror) {
+      memory_chosen = "a cube map";
+    } else if (scene.textures.size() > 1) {
       memory_chosen = "the on-chip unit holds one texture";
     } else if (engine_info(o.engine).cycle_accurate) {
       try {
@@ -141,6 +161,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   ro.height = a.height;
   ro.order = a.order;
   ro.tile = a.tile;
+  ro.reflect = mirror;
   for (int f = first; f <= last; ++f) {
     const Camera cam = fixed_camera ? *fixed_camera
                        : !path.empty() ? camera_on_path(path, f, a.frames)
@@ -207,9 +228,11 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
       names.push_back(n);
   std::string filters;
   for (const std::string& n : names) filters += (filters.empty() ? "" : ", ") + n;
-  std::printf("texsim render: %s, %zu meshes, %zu textures, %dx%d, frame%s %d..%d of %d, %s, %s order, engine %s, "
+  std::printf("texsim render: %s, %zu meshes, %s, %dx%d, frame%s %d..%d of %d, %s, %s order, engine %s, "
               "%s memory%s -> %s (%.2f s)\n",
-              a.model.empty() ? a.scene_file.c_str() : a.model.c_str(), scene.meshes.size(), scene.textures.size(),
+              a.model.empty() ? a.scene_file.c_str() : a.model.c_str(), scene.meshes.size(),
+              mirror ? ("a mirror of " + a.envmap + " (" + envmap_how + ")").c_str()
+                     : (std::to_string(scene.textures.size()) + " textures").c_str(),
               a.width, a.height, first == last ? "" : "s", first, last, a.frames, filters.c_str(),
               a.order == PixelOrder::Tiled ? "tiled" : "scanline", o.engine.c_str(), memory_name(eo.memory).c_str(),
               memory_chosen.empty() ? "" : (" (chosen: " + memory_chosen + ")").c_str(), a.out.c_str(), secs);

@@ -11,6 +11,7 @@ struct ModelRenderArgs {
   std::string model, scene_file;      // exactly one of them
   std::string camera, camera_path;    // at most one; neither: the orbit
   std::string out, trace_queries;
+  std::string envmap;                 // render the model as a mirror of this environment (a cube map)
   int width = 640, height = 480;
   int frame = 0, frames = 1;
   bool all_frames = false;            // --frames M without --frame: every frame to OUT_000.png ...

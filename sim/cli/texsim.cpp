@@ -556,6 +556,11 @@ int main(int argc, char** argv) {
   CLI::Option* camera_path_opt = render->add_option(
       "--camera-path", model_args.camera_path,
       "models: JSON {\"keyframes\": [{\"eye\", \"target\", \"fovy\"}, ...]} interpolated over --frames");
+  render->add_option("--envmap", model_args.envmap,
+                     "models: the paper's reflection mapping: --model drawn as a mirror of this environment, a cube "
+                     "map (a DDS/KTX/KTX2 cube file, or six images +X,-X,+Y,-Y,+Z,-Z) or one equirectangular image or "
+                     "pattern (converted once), which also fills the background; each pixel samples it along the "
+                     "reflected view ray, derivatives from its quad (the model engine, cached memory)");
   CLI::Option* trace_queries_opt = render->add_option(
       "--trace-queries", model_args.trace_queries,
       "models: write the frames' requests (tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper) to this CSV, and its "

@@ -180,8 +180,8 @@ void compute_bounds(MeshScene& scene) {
 
 class ModelLoader {
  public:
-  ModelLoader(const aiScene& ai, const std::string& path, MeshScene& out)
-      : ai_(ai), path_(path), dir_(fs::path(path).parent_path()), out_(out), textures_(out),
+  ModelLoader(const aiScene& ai, const std::string& path, MeshScene& out, bool mirror = false)
+      : mirror_(mirror), ai_(ai), path_(path), dir_(fs::path(path).parent_path()), out_(out), textures_(out),
         material_texture_(ai.mNumMaterials, kUnknown), mesh_noted_(ai.mNumMeshes, false),
         fixed_transforms_(gltf1_transforms(ai, path)), gltf2_(source_format(ai) == "glTF2 Importer") {}
 
@@ -208,6 +208,7 @@ class ModelLoader {
     const aiMesh& m = *ai_.mMeshes[index];
     DrawMesh d;
     d.name = m.mName.length ? m.mName.C_Str() : "mesh " + std::to_string(index);
+    if (mirror_) return add_mirror(m, index, world, std::move(d));
     if (!m.HasTextureCoords(0)) return skip(index, d.name, "no texture coordinates");
     if (m.mMaterialIndex >= ai_.mNumMaterials) return skip(index, d.name, "no material");
     d.texture = texture_of(m.mMaterialIndex);
@@ -242,6 +243,34 @@ class ModelLoader {
       d.indices.insert(d.indices.end(), {i[0], mirrored ? i[2] : i[1], mirrored ? i[1] : i[2]});
     }
     if (d.indices.empty()) return skip(index, d.name, "no triangles");
+    out_.meshes.push_back(std::move(d));
+  }
+
+  // A mirror's mesh: positions and world-space normals (by the inverse transpose), no texture.
+  void add_mirror(const aiMesh& m, unsigned index, const glm::dmat4& world, DrawMesh d) {
+    if (!m.HasNormals()) return skip(index, d.name, "no normals");
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(world)));
+    for (unsigned i = 0; i < m.mNumVertices; ++i) {
+      const aiVector3D& p = m.mVertices[i];
+      const aiVector3D& n = m.mNormals[i];
+      const glm::dvec3 w(world * glm::dvec4(p.x, p.y, p.z, 1.0)), wn = normal_matrix * glm::dvec3(n.x, n.y, n.z);
+      if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z) || !std::isfinite(wn.x) ||
+          !std::isfinite(wn.y) || !std::isfinite(wn.z))
+        throw Error(path_ + ": mesh " + in_quotes(d.name) + ": vertex " + std::to_string(i) + " has a non-finite position or normal");
+      d.positions.push_back(w);
+      d.uvs.emplace_back(0.0, 0.0);
+      d.normals.push_back(wn);
+    }
+    const bool mirrored = glm::determinant(glm::dmat3(world)) < 0;
+    for (unsigned f = 0; f < m.mNumFaces; ++f) {
+      const aiFace& face = m.mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      const unsigned* i = face.mIndices;
+      if (std::max({i[0], i[1], i[2]}) >= m.mNumVertices) continue;
+      d.indices.insert(d.indices.end(), {i[0], mirrored ? i[2] : i[1], mirrored ? i[1] : i[2]});
+    }
+    if (d.indices.empty()) return skip(index, d.name, "no triangles");
+    d.texture = 0;
     out_.meshes.push_back(std::move(d));
   }
 
@@ -334,6 +363,7 @@ class ModelLoader {
     return textures_.add(std::move(t));
   }
 
+  bool mirror_;                        // render --envmap: every mesh, with normals, no texture
   const aiScene& ai_;
   const std::string& path_;
   fs::path dir_;
@@ -382,7 +412,7 @@ void check_off_header(const std::string& path) {
                 " bytes hold at most " + std::to_string(size / 6) + " and " + std::to_string(size / 8));
 }
 
-MeshScene load_model(const std::string& path) {
+MeshScene load_model(const std::string& path, bool mirror) {
   check_regular_file(path, "model");
   check_off_header(path);
   // No Assimp DefaultLogger is created: Assimp stays silent, the one error line is ours.
@@ -390,7 +420,8 @@ MeshScene load_model(const std::string& path) {
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                          aiProcess_ValidateDataStructure |  // bad indices etc. fail the import, not us
-                         aiProcess_FlipUVs;  // Assimp's v = 0 is the image's bottom (GL); ours is its top
+                         aiProcess_FlipUVs |  // Assimp's v = 0 is the image's bottom (GL); ours is its top
+                         (mirror ? aiProcess_GenSmoothNormals : 0u);  // (a mirror's normals, where the file has none)
   const aiScene* ai = nullptr;
   try {
     ai = importer.ReadFile(path, flags);
@@ -402,7 +433,7 @@ MeshScene load_model(const std::string& path) {
     throw Error(path + ": cannot read model: " + (why.empty() ? "no scene" : why));
   }
   MeshScene scene;
-  ModelLoader(*ai, path, scene).walk(*ai->mRootNode, glm::dmat4(1.0));
+  ModelLoader(*ai, path, scene, mirror).walk(*ai->mRootNode, glm::dmat4(1.0));
   if (scene.meshes.empty()) {  // say why, from the first skip note ("<path>: mesh 'x' skipped: ...")
     std::string why = "no meshes";
     for (const std::string& note : scene.notes)

@@ -53,6 +53,7 @@ struct DrawMesh {
   std::string name;             // mesh name in the file (or "mesh N"), for messages
   std::vector<glm::dvec3> positions;
   std::vector<glm::dvec2> uvs;  // one per position
+  std::vector<glm::dvec3> normals;  // world space, one per position (a mirror's: load_model's `mirror`)
   std::vector<uint32_t> indices;
   int texture = 0;              // index into MeshScene::textures
   bool double_sided = false;    // material: no back-face culling
@@ -80,7 +81,9 @@ struct ModelPlacement {
 // texture (material and path), NaN or infinite vertex data (mesh name), nothing textured left.
 // Meshes without texture coordinates (or whose material has no base-colour/diffuse texture) are
 // skipped with a note.
-MeshScene load_model(const std::string& path);
+// `mirror` (render --envmap): every triangle mesh is kept, textured or not (texture 0, no texture
+// loaded), with smooth world-space normals (the file's, or Assimp's where it has none).
+MeshScene load_model(const std::string& path, bool mirror = false);
 
 // Several models in one world: the placements in order, their textures merged (the same file
 // used twice is one texture).

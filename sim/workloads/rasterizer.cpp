@@ -23,6 +23,7 @@ constexpr double kGuard = 4096.0;
 struct ClipVertex {
   glm::dvec4 clip;
   glm::dvec2 uv;
+  glm::dvec3 pos{0.0}, normal{0.0};  // world space (a mirror's)
 };
 
 // One plane a * sx + b * sy + c over screen positions, sx, sy in pixels.
@@ -37,6 +38,7 @@ struct Primitive {
   std::vector<std::array<int64_t, 2>> v;  // snapped positions, kSubBits fraction bits, clockwise on screen
   std::vector<int64_t> bias;              // per edge: 0 for top and left edges, 1 otherwise (fill rule)
   Plane u_w, v_w, q, z;                   // q = 1/w
+  std::array<Plane, 6> pn_w;              // a mirror's world position and normal over w
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;     // pixel bounding box, inclusive, inside the screen
 };
 
@@ -50,7 +52,8 @@ std::vector<ClipVertex> clip_against(const std::vector<ClipVertex>& in, const gl
     if (da >= 0) out.push_back(a);
     if ((da >= 0) != (db >= 0)) {
       const double t = da / (da - db);
-      out.push_back({a.clip + (b.clip - a.clip) * t, a.uv + (b.uv - a.uv) * t});
+      out.push_back({a.clip + (b.clip - a.clip) * t, a.uv + (b.uv - a.uv) * t, a.pos + (b.pos - a.pos) * t,
+                     a.normal + (b.normal - a.normal) * t});
     }
   }
   return out;
@@ -100,8 +103,11 @@ bool setup(const std::vector<ClipVertex>& poly, int width, int height, bool doub
     p.bias.push_back((dy == 0 && dx > 0) || dy < 0 ? 0 : 1);
   }
   // Attribute planes from the three vertices spanning the largest area (the best conditioned).
-  std::vector<glm::dvec4> attr;  // u/w, v/w, 1/w, z/w per vertex, in the same (possibly reversed) order
-  for (const ClipVertex& c : poly) attr.emplace_back(c.uv.x / c.clip.w, c.uv.y / c.clip.w, 1 / c.clip.w, c.clip.z / c.clip.w);
+  std::vector<std::array<double, 10>> attr;  // u/w, v/w, 1/w, z/w, position/w, normal/w per vertex
+  for (const ClipVertex& c : poly)
+    attr.push_back({c.uv.x / c.clip.w, c.uv.y / c.clip.w, 1 / c.clip.w, c.clip.z / c.clip.w, c.pos.x / c.clip.w,
+                    c.pos.y / c.clip.w, c.pos.z / c.clip.w, c.normal.x / c.clip.w, c.normal.y / c.clip.w,
+                    c.normal.z / c.clip.w});
   if (area < 0) std::reverse(attr.begin(), attr.end());
   size_t bi = 1, bj = 2;
   double best = 0;
@@ -125,6 +131,7 @@ bool setup(const std::vector<ClipVertex>& poly, int width, int height, bool doub
   p.v_w = plane(1);
   p.q = plane(2);
   p.z = plane(3);
+  for (int k = 0; k < 6; ++k) p.pn_w[size_t(k)] = plane(4 + k);
   // Bounding box of the pixel centres that can be inside.
   int64_t lo_x = INT64_MAX, lo_y = INT64_MAX, hi_x = INT64_MIN, hi_y = INT64_MIN;
   for (const auto& v : p.v) {
@@ -163,7 +170,10 @@ std::vector<ScenePrimitive> setup_scene(const MeshScene& scene, const glm::dmat4
     for (size_t i = 0; i < clip.size(); ++i) clip[i] = vp * glm::dvec4(m.positions[i], 1.0);
     for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
       std::vector<ClipVertex> poly;
-      for (int k = 0; k < 3; ++k) poly.push_back({clip[m.indices[t + k]], m.uvs[m.indices[t + k]]});
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t i = m.indices[t + k];
+        poly.push_back({clip[i], m.uvs[i], m.positions[i], m.normals.empty() ? glm::dvec3(0.0) : m.normals[i]});
+      }
       for (const glm::dvec4& k : planes) {
         poly = clip_against(poly, k);
         if (poly.size() < 3) break;
@@ -217,11 +227,59 @@ RasterFrame rasterize(const MeshScene& scene, const Camera& camera, const Raster
       }
   }
 
+  // A quad of cube-map queries: each lane's direction (a helper lane beyond the primitive's horizon
+  // takes the first live lane's), the quad's differences its derivatives.
+  auto cube_quad = [&](int qx, int qy, const std::array<bool, 4>& live, std::array<glm::dvec3, 4> r,
+                       const std::array<bool, 4>& valid) {
+    int first = 0;
+    while (!live[size_t(first)]) ++first;
+    for (int l = 0; l < 4; ++l)
+      if (!valid[size_t(l)]) r[size_t(l)] = r[size_t(first)];
+    const glm::dvec3 dx = r[1] - r[0], dy = r[2] - r[0];
+    for (int l = 0; l < 4; ++l) {
+      Query qr;
+      qr.cube = true;
+      qr.u = r[size_t(l)].x;
+      qr.v = r[size_t(l)].y;
+      qr.w = r[size_t(l)].z;
+      qr.explicit_lod = false;
+      qr.deriv = {dx.x, dx.y, dy.x, dy.y};
+      qr.dwdx = dx.z;
+      qr.dwdy = dy.z;
+      qr.texture = 0;
+      qr.quad = uint32_t(frame.quads);
+      qr.x = qx + (l & 1);
+      qr.y = qy + (l >> 1);
+      qr.helper = !live[size_t(l)];
+      qr.line = int(frame.queries.size() + 1);
+      frame.queries.push_back(qr);
+      frame.helper_samples += qr.helper;
+    }
+    ++frame.quads;
+  };
+  // A mirror's quad: the view ray reflected by the normal, R = I - 2 (N.I) N (unit vectors).
+  auto mirror_quad = [&](const Primitive& p, int qx, int qy, const std::array<bool, 4>& live) {
+    std::array<glm::dvec3, 4> r;
+    std::array<bool, 4> valid{};
+    for (int l = 0; l < 4; ++l) {
+      const double sx = qx + (l & 1) + 0.5, sy = qy + (l >> 1) + 0.5, q = p.q.at(sx, sy);
+      const glm::dvec3 pos(p.pn_w[0].at(sx, sy) / q, p.pn_w[1].at(sx, sy) / q, p.pn_w[2].at(sx, sy) / q);
+      const glm::dvec3 n(p.pn_w[3].at(sx, sy) / q, p.pn_w[4].at(sx, sy) / q, p.pn_w[5].at(sx, sy) / q);
+      const glm::dvec3 view = pos - camera.eye;
+      const double ln = glm::length(n), lv = glm::length(view);
+      valid[size_t(l)] = q > 0 && std::isfinite(ln) && ln > 0 && std::isfinite(lv) && lv > 0;
+      if (!valid[size_t(l)]) continue;
+      const glm::dvec3 in = view / lv, nn = n / ln;
+      r[size_t(l)] = in - 2 * glm::dot(nn, in) * nn;
+    }
+    cube_quad(qx, qy, live, r, valid);
+  };
+
   // Shading pass: every quad with a visible lane of the primitive, in the walk order.
   const int tile = o.order == PixelOrder::Tiled ? o.tile : 0;
   for (size_t i = 0; i < prims.size(); ++i) {
     const Primitive& p = prims[i].prim;
-    const SceneTexture& tex = scene.textures[size_t(prims[i].texture)];
+    const SceneTexture* tex = o.reflect ? nullptr : &scene.textures[size_t(prims[i].texture)];  // (a mirror has none)
     auto shade_quad = [&](int qx, int qy) {
       std::array<bool, 4> live{};
       bool any = false;
@@ -231,6 +289,7 @@ RasterFrame rasterize(const MeshScene& scene, const Camera& camera, const Raster
         any |= live[l];
       }
       if (!any) return;
+      if (o.reflect) return mirror_quad(p, qx, qy, live);
       std::array<double, 4> u, v;
       for (int l = 0; l < 4; ++l) {
         const double sx = qx + (l & 1) + 0.5, sy = qy + (l >> 1) + 0.5;
@@ -247,8 +306,8 @@ RasterFrame rasterize(const MeshScene& scene, const Camera& camera, const Raster
           u[l] = u[size_t(first_live)], v[l] = v[size_t(first_live)];
       // Coarse derivatives: one per quad, from its top row and left column.
       Derivatives d{u[1] - u[0], v[1] - v[0], u[2] - u[0], v[2] - v[0]};
-      reduce(u, tex.wrap_u);
-      reduce(v, tex.wrap_v);
+      reduce(u, tex->wrap_u);
+      reduce(v, tex->wrap_v);
       for (int l = 0; l < 4; ++l) {
         Query qr;
         qr.u = u[l];
@@ -276,6 +335,27 @@ RasterFrame rasterize(const MeshScene& scene, const Camera& camera, const Raster
           for (int qy = std::max(ty, qy0); qy < std::min(ty + tile, p.y1 + 1); qy += 2)
             for (int qx = std::max(tx, qx0); qx < std::min(tx + tile, p.x1 + 1); qx += 2) shade_quad(qx, qy);
     }
+  }
+  if (o.reflect) {  // the environment behind: the view ray of every pixel no mesh covers
+    const glm::dmat4 inv = glm::inverse(vp);
+    auto ray = [&](int x, int y) {
+      const double nx = 2.0 * (x + 0.5) / o.width - 1, ny = 1 - 2.0 * (y + 0.5) / o.height;
+      const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1, 1), b = inv * glm::dvec4(nx, ny, 1, 1);
+      return glm::normalize(glm::dvec3(b) / b.w - glm::dvec3(a) / a.w);
+    };
+    for (int qy = 0; qy < o.height; qy += 2)
+      for (int qx = 0; qx < o.width; qx += 2) {
+        std::array<bool, 4> live{};
+        bool any = false;
+        std::array<glm::dvec3, 4> r;
+        for (int l = 0; l < 4; ++l) {
+          const int x = qx + (l & 1), y = qy + (l >> 1);
+          live[size_t(l)] = x < o.width && y < o.height && owner[size_t(y) * o.width + x] < 0;
+          any = any || live[size_t(l)];
+          r[size_t(l)] = ray(x, y);
+        }
+        if (any) cube_quad(qx, qy, live, r, {true, true, true, true});
+      }
   }
   return frame;
 }

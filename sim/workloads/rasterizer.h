@@ -18,6 +18,11 @@ struct RasterOptions {
   int width = 640, height = 480;
   PixelOrder order = PixelOrder::Tiled;  // quads of a primitive: 8x8-pixel tiles, or quad rows
   int tile = 8;                          // tiled order: tile side in pixels (even, 2 to 256)
+  // Reflection mapping (the paper's §4, render --envmap): every mesh a mirror. A visible lane
+  // queries the cube map (texture 0) along the view ray reflected by the interpolated normal,
+  // R = I - 2 (N.I) N, its derivatives the quad's differences of R; every pixel no mesh covers
+  // queries the environment along the view ray itself (its quads, helper lanes where a mesh is).
+  bool reflect = false;
 };
 
 struct RasterFrame {

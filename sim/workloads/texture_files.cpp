@@ -647,6 +647,63 @@ std::vector<Pyramid> load_array(const std::vector<std::string>& specs, const Tex
   return layers;
 }
 
+std::vector<Pyramid> load_envmap(const std::string& spec, const TextureOptions& o, std::string& how) {
+  TextureKind kind = TextureKind::Cube;
+  if (spec.find(',') != std::string::npos) {  // six images (a face each)
+    std::vector<std::string> faces;
+    for (size_t at = 0;;) {
+      const size_t comma = spec.find(',', at);
+      faces.push_back(spec.substr(at, comma - at));
+      if (comma == std::string::npos) break;
+      at = comma + 1;
+    }
+    how = std::to_string(faces.size()) + " face images";
+    return load_array(faces, o, &kind);
+  }
+  if (is_texture_file(spec)) {
+    TextureKind file_kind = TextureKind::Texture2D;
+    std::vector<Pyramid> faces = load_array({spec}, o, &file_kind);
+    if (file_kind != TextureKind::Cube || faces.size() != 6)
+      throw Error(spec + ": not a cube map (" + std::to_string(faces.size()) + " images): --envmap takes a cube file, "
+                  "six face images or an equirectangular image");
+    how = "cube map file";
+    return faces;
+  }
+  const Image equirect = load_texture(spec, false);
+  int n = 1;
+  while (n * 2 <= equirect.width / 4 && n * 2 <= 1024) n *= 2;
+  how = "equirectangular " + std::to_string(equirect.width) + "x" + std::to_string(equirect.height) + " to 6 x " +
+        std::to_string(n) + "x" + std::to_string(n);
+  constexpr double kPi = 3.14159265358979323846;
+  auto at = [&](int x, int y) -> const Texel& {
+    x = ((x % equirect.width) + equirect.width) % equirect.width;  // longitude wraps, latitude clamps
+    return equirect.at(x, std::clamp(y, 0, equirect.height - 1));
+  };
+  std::vector<Pyramid> faces;
+  for (int f = 0; f < 6; ++f) {
+    Image img(n, n, equirect.channel_bits);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double sc = 2.0 * (x + 0.5) / n - 1, tc = 2.0 * (y + 0.5) / n - 1;
+        const double table[6][3] = {{1, -tc, -sc}, {-1, -tc, sc}, {sc, 1, tc}, {sc, -1, -tc}, {sc, -tc, 1}, {-sc, -tc, -1}};
+        const double* d = table[f];
+        const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        const double u = 0.5 + std::atan2(d[0], -d[2]) / (2 * kPi), v = 0.5 - std::asin(d[1] / len) / kPi;
+        const double px = u * equirect.width - 0.5, py = v * equirect.height - 0.5;
+        const int x0 = int(std::floor(px)), y0 = int(std::floor(py));
+        const double fx = px - x0, fy = py - y0;
+        Texel& t = img.at(x, y);
+        for (size_t c = 0; c < 4; ++c) {
+          const double top = at(x0, y0)[c] * (1 - fx) + at(x0 + 1, y0)[c] * fx;
+          const double bottom = at(x0, y0 + 1)[c] * (1 - fx) + at(x0 + 1, y0 + 1)[c] * fx;
+          t[c] = uint16_t(std::lround(top * (1 - fy) + bottom * fy));
+        }
+      }
+    faces.push_back(make_pyramid(std::move(img), o));
+  }
+  return faces;
+}
+
 Pyramid pyramid_of(const TextureFile& file, PyramidMode mode) { return image_pyramid(file, file.levels, mode); }
 
 std::vector<Pyramid> pyramids_of(const TextureFile& file, PyramidMode mode) {

@@ -102,4 +102,12 @@ std::vector<Pyramid> load_layers(const std::string& spec, const TextureOptions& 
 std::vector<Pyramid> load_array(const std::vector<std::string>& specs, const TextureOptions& options,
                                 TextureKind* kind = nullptr);
 
+// An environment as a cube map (render --envmap): a DDS/KTX/KTX2 cube file, six images
+// +X,-X,+Y,-Y,+Z,-Z (comma-separated), or one equirectangular image or pattern (longitude
+// atan2(x, -z) across, u = 1/2 + longitude / 2 pi; latitude asin(y) down from the top row,
+// v = 1/2 - latitude / pi) converted once: faces of the largest power of two up to a quarter of its
+// width (1024 at most), each texel the bilinear of the image at its centre's direction, then their
+// pyramids. `how` says which. Throws tex::Error, one line naming the file.
+std::vector<Pyramid> load_envmap(const std::string& spec, const TextureOptions& options, std::string& how);
+
 }  // namespace tex

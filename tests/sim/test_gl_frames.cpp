@@ -23,6 +23,7 @@
 #include "cli_fixture.h"
 #include "model/pyramid.h"
 #include "model/srgb.h"
+#include "workloads/texture_files.h"
 
 namespace {
 
@@ -260,4 +261,167 @@ TEST_F(GlFrames, UpsideDownTexturesAreCaught) {
               g.coverage, g.close, g.mean);
   EXPECT_GT(g.coverage, 0.999);  // the geometry is the same
   EXPECT_LT(g.close, 0.9);
+}
+
+// The paper's reflection mapping (render --envmap): the duck as a mirror of a cube map, drawn by
+// OpenGL with a GLSL shader that reflects the view ray by the interpolated normal per pixel and
+// samples a seamless samplerCube (implicit derivatives: llvmpipe's quad differences), on the faces
+// texsim converts the equirectangular environment to (load_envmap, every level uploaded). texsim's
+// mirror pixels agree with OpenGL's but for LOD and filter rounding; GL reflecting the reversed view
+// ray (the eye's direction from the surface, a sign slip that gives -R) disagrees.
+namespace {
+
+GLuint shader(GLenum kind, const char* text) {
+  const GLuint s = glCreateShader(kind);
+  glShaderSource(s, 1, &text, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  char log[1024] = {};
+  glGetShaderInfoLog(s, sizeof log, nullptr, log);
+  EXPECT_TRUE(ok) << log;
+  return s;
+}
+
+// The mirror drawn by GL: rgb and which pixels it drew.
+struct MirrorFrame {
+  std::vector<uint8_t> rgb;
+  std::vector<bool> drawn;
+};
+MirrorFrame render_gl_mirror(const std::string& path, const std::vector<tex::Pyramid>& faces, const double eye[3],
+                             const double target[3], double radius, bool reversed) {
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                                                     aiProcess_GenSmoothNormals);
+  EXPECT_TRUE(scene) << importer.GetErrorString();
+  MirrorFrame f;
+  if (!scene) return f;
+  std::vector<uint8_t> buffer(size_t(kW) * kH * 4);
+  OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
+  EXPECT_TRUE(ctx && OSMesaMakeCurrent(ctx, buffer.data(), GL_UNSIGNED_BYTE, kW, kH));
+  glViewport(0, 0, kW, kH);
+  glClearColor(0, 0, 0, 0);  // alpha 0: not drawn
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  gluPerspective(45.0, double(kW) / kH, radius * 0.05, radius * 10);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  gluLookAt(eye[0], eye[1], eye[2], target[0], target[1], target[2], 0, 1, 0);
+  GLuint cube = 0;
+  glGenTextures(1, &cube);
+  glBindTexture(GL_TEXTURE_CUBE_MAP, cube);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (int face = 0; face < 6; ++face)
+    for (size_t k = 0; k < faces[size_t(face)].levels.size(); ++k) {
+      const tex::Image& img = faces[size_t(face)].levels[k];
+      std::vector<uint8_t> rgba;
+      for (const tex::Texel& t : img.texels)
+        for (int c = 0; c < 4; ++c) rgba.push_back(uint8_t(t[size_t(c)]));
+      glTexImage2D(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), GLint(k), GL_RGBA8, img.width, img.height, 0, GL_RGBA,
+                   GL_UNSIGNED_BYTE, rgba.data());
+    }
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, shader(GL_VERTEX_SHADER, R"(#version 120
+    varying vec3 world, normal;
+    void main() {
+      world = gl_Vertex.xyz;  // (PreTransformVertices: world space; the modelview is the view alone)
+      normal = gl_Normal;
+      gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex;
+    })"));
+  glAttachShader(program, shader(GL_FRAGMENT_SHADER, R"(#version 120
+    uniform samplerCube env;
+    uniform vec3 eye;
+    uniform float sign;
+    varying vec3 world, normal;
+    void main() {
+      vec3 r = reflect(sign * normalize(world - eye), normalize(normal));
+      gl_FragColor = vec4(textureCube(env, r).rgb, 1.0);
+    })"));
+  glLinkProgram(program);
+  glUseProgram(program);
+  glUniform1i(glGetUniformLocation(program, "env"), 0);
+  glUniform3f(glGetUniformLocation(program, "eye"), float(eye[0]), float(eye[1]), float(eye[2]));
+  glUniform1f(glGetUniformLocation(program, "sign"), reversed ? -1.f : 1.f);
+  glBegin(GL_TRIANGLES);
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    for (unsigned t = 0; t < mesh->mNumFaces; ++t) {
+      if (mesh->mFaces[t].mNumIndices != 3) continue;
+      for (int k = 0; k < 3; ++k) {
+        const unsigned i = mesh->mFaces[t].mIndices[k];
+        glNormal3f(mesh->mNormals[i].x, mesh->mNormals[i].y, mesh->mNormals[i].z);
+        glVertex3f(mesh->mVertices[i].x, mesh->mVertices[i].y, mesh->mVertices[i].z);
+      }
+    }
+  }
+  glEnd();
+  glFinish();
+  f.rgb.resize(size_t(kW) * kH * 3);
+  f.drawn.resize(size_t(kW) * kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const uint8_t* p = &buffer[(size_t(kH - 1 - y) * kW + x) * 4];
+      for (int c = 0; c < 3; ++c) f.rgb[(size_t(y) * kW + x) * 3 + c] = p[c];
+      f.drawn[size_t(y) * kW + x] = p[3] != 0;
+    }
+  OSMesaDestroyContext(ctx);
+  return f;
+}
+
+}  // namespace
+
+TEST_F(GlFrames, ChromeDuckReflectsAsOpenGLDrawsIt) {
+  const std::string model = "/usr/share/assimp/models/Collada/duck.dae";
+  const std::string env = "gradient:256x128";
+  std::string how;
+  const std::vector<tex::Pyramid> faces = tex::load_envmap(env, tex::TextureOptions{}, how);
+  const GlFrame view = render_gl(model, true, false);  // (its camera)
+  double radius = 0;
+  for (int c = 0; c < 3; ++c) radius += (view.eye[c] - view.target[c]) * (view.eye[c] - view.target[c]);
+  radius = std::sqrt(radius) / 2.6;
+  char camera[256];
+  std::snprintf(camera, sizeof camera, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,45", view.eye[0], view.eye[1], view.eye[2],
+                view.target[0], view.target[1], view.target[2]);
+  const Result r = run("render --model " + model + " --envmap " + env + " --camera " + camera + " --width " +
+                       std::to_string(kW) + " --height " + std::to_string(kH) + " --out mirror.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("a mirror of"), std::string::npos) << r.out;
+  int w = 0, h = 0;
+  const std::vector<uint8_t> ours = read_image(dir / "mirror.png", w, h);
+  ASSERT_EQ(w, kW);
+  for (bool reversed : {false, true}) {
+    const MirrorFrame gl = render_gl_mirror(model, faces, view.eye, view.target, radius, reversed);
+    size_t drawn = 0, close = 0;
+    double sum = 0;
+    for (size_t p = 0; p < size_t(kW) * kH; ++p) {
+      if (!gl.drawn[p]) continue;
+      ++drawn;
+      int worst = 0;
+      for (int c = 0; c < 3; ++c) {
+        const int d = std::abs(int(gl.rgb[p * 3 + c]) - int(ours[p * 4 + size_t(c)]));
+        worst = std::max(worst, d);
+        sum += d;
+      }
+      close += worst <= 24;
+    }
+    const double fraction = double(close) / double(drawn), mean = sum / (3.0 * double(drawn));
+    std::printf("[ gl       ] chrome duck%s: %zu mirror pixels, within 24 LSB %.4f, mean difference %.2f LSB\n",
+                reversed ? " (GL planted with the view ray reversed)" : "", drawn, fraction, mean);
+    EXPECT_GT(drawn, size_t(kW) * kH / 8);
+    if (reversed) {
+      EXPECT_LT(fraction, 0.9) << "a mirror reflecting the reversed view ray went unnoticed";
+    } else {
+      EXPECT_GT(fraction, 0.98);
+      EXPECT_LT(mean, 3.0);
+    }
+  }
 }
