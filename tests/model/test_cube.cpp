@@ -239,3 +239,41 @@ TEST(CubeSkirts, MemoryImageAndCacheLines) {
     ASSERT_EQ(misses, want) << "request " << i << " face " << face;
   }
 }
+
+// The derivative rule itself, against finite differences of the face coordinates in long double:
+// s(P + h dP) - s(P - h dP) over 2h, on the same face, for random directions and derivatives.
+TEST(CubeFace, DerivativesMatchFiniteDifferences) {
+  std::mt19937_64 rng(25);
+  int checked = 0;
+  for (int i = 0; i < 100000; ++i) {
+    long double p[3], dp[3];
+    for (long double& c : p) c = (long double)(int64_t(rng() % 4000001) - 2000000) / 1e6L;
+    for (long double& c : dp) c = (long double)(int64_t(rng() % 2001) - 1000) / 1e5L;  // |d| < 0.01
+    int face = 0, face_a = 0, face_b = 0;
+    long double sc, tc, rc, sca, tca, rca, scb, tcb, rcb;
+    table(p[0], p[1], p[2], face, sc, tc, rc);
+    const long double h = 1e-6L;
+    table(p[0] + h * dp[0], p[1] + h * dp[1], p[2] + h * dp[2], face_a, sca, tca, rca);
+    table(p[0] - h * dp[0], p[1] - h * dp[1], p[2] - h * dp[2], face_b, scb, tcb, rcb);
+    if (face_a != face || face_b != face || std::fabs(rc) < 0.05L) continue;  // (near a seam or the origin)
+    const long double ds = ((sca / std::fabs(rca) + 1) / 2 - (scb / std::fabs(rcb) + 1) / 2) / (2 * h);
+    const long double dt = ((tca / std::fabs(rca) + 1) / 2 - (tcb / std::fabs(rcb) + 1) / 2) / (2 * h);
+    Request r;
+    r.u = int32_t(std::lround(p[0] * kOne));
+    r.v = int32_t(std::lround(p[1] * kOne));
+    r.w = int32_t(std::lround(p[2] * kOne));
+    r.has_derivatives = true;
+    r.deriv.dudx = int32_t(std::lround(dp[0] * kOne));
+    r.deriv.dvdx = int32_t(std::lround(dp[1] * kOne));
+    r.dwdx = int32_t(std::lround(dp[2] * kOne));
+    int f = 0;
+    const Request q = cube_face_request(r, f);
+    ASSERT_EQ(f, face);
+    // Within the Q8.24 rounding of the inputs (relative 2^-24 of values up to 1/|rc| < 20) and of the output.
+    const long double tol = 64 / kOne + 1e-4L * (std::fabs(ds) + std::fabs(dt));
+    ASSERT_NEAR((long double)q.deriv.dudx / kOne, ds, tol) << "face " << face;
+    ASSERT_NEAR((long double)q.deriv.dvdx / kOne, dt, tol) << "face " << face;
+    ++checked;
+  }
+  EXPECT_GT(checked, 50000);
+}
