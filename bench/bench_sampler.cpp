@@ -175,6 +175,28 @@ void BM_model_reference(benchmark::State& state, const QuerySet* set) {
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(set->requests.size()));
 }
 
+// Cube maps on the reference path (the model samples them there): six 256x256 faces, random
+// directions, lambda in [-1, 8), trilinear.
+void BM_model_cube(benchmark::State& state) {
+  std::vector<tex::Pyramid> faces;
+  for (int f = 0; f < 6; ++f) faces.push_back(tex::build_pyramid(tex::make_pattern("noise", 256, 256)));
+  std::vector<const tex::Pyramid*> cube;
+  for (const tex::Pyramid& p : faces) cube.push_back(&p);
+  tex::Sampler sampler(cube, tex::SamplerConfig{}, tex::SamplerPaths::Both, tex::TextureKind::Cube);
+  std::mt19937_64 rng(5);
+  std::vector<tex::Request> requests(65536);
+  for (tex::Request& r : requests) {
+    for (int32_t* c : {&r.u, &r.v, &r.w}) *c = int32_t(rng() % (2u << 24)) - (1 << 24);
+    r.lod = int32_t(rng() % (9 * 256)) - 256;
+  }
+  for (auto _ : state) {
+    uint32_t sum = 0;
+    for (const tex::Request& r : requests) sum += sampler.sample(r)[0];
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(requests.size()));
+}
+
 void BM_oiio_texturesystem(benchmark::State& state, const QuerySet* set) {
   OIIO::TextureOpt opt = trilinear_opt();
   for (auto _ : state) {
@@ -385,6 +407,7 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(("oiio_texturesystem/" + s.name).c_str(), BM_oiio_texturesystem, &s)
           ->MinTime(kMinTime);
     }
+    benchmark::RegisterBenchmark("model_cube/random", BM_model_cube)->MinTime(kMinTime);
     const std::vector<std::string> rtl_runs = bench::register_rtl_benchmarks(kMinTime);
     const std::vector<std::string> csv_runs = bench::register_csv_benchmarks(kMinTime);
     std::vector<std::pair<std::string, const std::vector<tex::Request>*>> timing_sets;
