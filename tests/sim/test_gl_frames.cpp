@@ -21,6 +21,7 @@
 #include <cstdio>
 
 #include "cli_fixture.h"
+#include "gl_shader.h"
 #include "model/pyramid.h"
 #include "model/srgb.h"
 #include "workloads/texture_files.h"
@@ -271,18 +272,6 @@ TEST_F(GlFrames, UpsideDownTexturesAreCaught) {
 // ray (the eye's direction from the surface, a sign slip that gives -R) disagrees.
 namespace {
 
-GLuint shader(GLenum kind, const char* text) {
-  const GLuint s = glCreateShader(kind);
-  glShaderSource(s, 1, &text, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  char log[1024] = {};
-  glGetShaderInfoLog(s, sizeof log, nullptr, log);
-  EXPECT_TRUE(ok) << log;
-  return s;
-}
-
 // The mirror drawn by GL: rgb and which pixels it drew.
 struct MirrorFrame {
   std::vector<uint8_t> rgb;
@@ -320,9 +309,7 @@ MirrorFrame render_gl_mirror(const std::string& path, const std::vector<tex::Pyr
   for (int face = 0; face < 6; ++face)
     for (size_t k = 0; k < faces[size_t(face)].levels.size(); ++k) {
       const tex::Image& img = faces[size_t(face)].levels[k];
-      std::vector<uint8_t> rgba;
-      for (const tex::Texel& t : img.texels)
-        for (int c = 0; c < 4; ++c) rgba.push_back(uint8_t(t[size_t(c)]));
+      const std::vector<uint8_t> rgba = rgba8_bytes(img);
       glTexImage2D(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), GLint(k), GL_RGBA8, img.width, img.height, 0, GL_RGBA,
                    GL_UNSIGNED_BYTE, rgba.data());
     }
@@ -330,14 +317,14 @@ MirrorFrame render_gl_mirror(const std::string& path, const std::vector<tex::Pyr
   glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   const GLuint program = glCreateProgram();
-  glAttachShader(program, shader(GL_VERTEX_SHADER, R"(#version 120
+  glAttachShader(program, compile_shader(GL_VERTEX_SHADER, R"(#version 120
     varying vec3 world, normal;
     void main() {
       world = gl_Vertex.xyz;  // (PreTransformVertices: world space; the modelview is the view alone)
       normal = gl_Normal;
       gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex;
     })"));
-  glAttachShader(program, shader(GL_FRAGMENT_SHADER, R"(#version 120
+  glAttachShader(program, compile_shader(GL_FRAGMENT_SHADER, R"(#version 120
     uniform samplerCube env;
     uniform vec3 eye;
     uniform float sign;

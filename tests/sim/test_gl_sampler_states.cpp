@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "gl_shader.h"
 #include "model/image.h"
 #include "model/sampler.h"
 #include "model/srgb.h"
@@ -50,25 +51,11 @@ GLint gl_min_filter(Filter f) {
   return GL_LINEAR;
 }
 
-GLuint compile(GLenum kind, const char* text) {
-  const GLuint s = glCreateShader(kind);
-  glShaderSource(s, 1, &text, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = {};
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    ADD_FAILURE() << "GLSL: " << log;
-  }
-  return s;
-}
-
 // A program of the two shaders, its sampler `tex` on texture unit `unit` and `queries` on unit 1.
 GLuint link(const char* vs, const char* fs, GLint unit) {
   const GLuint p = glCreateProgram();
-  glAttachShader(p, compile(GL_VERTEX_SHADER, vs));
-  glAttachShader(p, compile(GL_FRAGMENT_SHADER, fs));
+  glAttachShader(p, compile_shader(GL_VERTEX_SHADER, vs));
+  glAttachShader(p, compile_shader(GL_FRAGMENT_SHADER, fs));
   glLinkProgram(p);
   glUseProgram(p);
   glUniform1i(glGetUniformLocation(p, "tex"), unit);
@@ -210,9 +197,7 @@ class GlSampling {
     const std::vector<Image>& levels = p.srgb ? p.codes : p.levels;
     for (size_t k = 0; k < levels.size(); ++k) {
       const Image& img = levels[k];
-      std::vector<uint8_t> rgba;
-      for (const Texel& t : img.texels)
-        for (int c = 0; c < 4; ++c) rgba.push_back(uint8_t(t[size_t(c)]));
+      const std::vector<uint8_t> rgba = rgba8_bytes(img);
       glTexImage2D(GL_TEXTURE_2D, GLint(k), p.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height, 0, GL_RGBA,
                    GL_UNSIGNED_BYTE, rgba.data());
     }
@@ -221,9 +206,7 @@ class GlSampling {
     // Level 0 as a rectangle texture too (unnormalized samplers).
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_RECTANGLE, rect_);
-    std::vector<uint8_t> rgba;
-    for (const Texel& t : levels[0].texels)
-      for (int c = 0; c < 4; ++c) rgba.push_back(uint8_t(t[size_t(c)]));
+    const std::vector<uint8_t> rgba = rgba8_bytes(levels[0]);
     glTexImage2D(GL_TEXTURE_RECTANGLE, 0, p.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, levels[0].width, levels[0].height, 0,
                  GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   }
@@ -234,9 +217,10 @@ class GlSampling {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (size_t k = 0; k < layers[0]->levels.size(); ++k) {
       std::vector<uint8_t> rgba;
-      for (const Pyramid* p : layers)
-        for (const Texel& t : p->levels[k].texels)
-          for (int c = 0; c < 4; ++c) rgba.push_back(uint8_t(t[size_t(c)]));
+      for (const Pyramid* p : layers) {
+        const std::vector<uint8_t> layer = rgba8_bytes(p->levels[k]);
+        rgba.insert(rgba.end(), layer.begin(), layer.end());
+      }
       const Image& img = layers[0]->levels[k];
       glTexImage3D(GL_TEXTURE_2D_ARRAY, GLint(k), GL_RGBA8, img.width, img.height, GLsizei(layers.size()), 0, GL_RGBA,
                    GL_UNSIGNED_BYTE, rgba.data());
@@ -294,9 +278,7 @@ class GlSampling {
     for (int f = 0; f < 6; ++f)
       for (size_t k = 0; k < faces[size_t(f)]->levels.size(); ++k) {
         const Image& img = faces[size_t(f)]->levels[k];
-        std::vector<uint8_t> rgba;
-        for (const Texel& t : img.texels)
-          for (int c = 0; c < 4; ++c) rgba.push_back(uint8_t(t[size_t(c)]));
+        const std::vector<uint8_t> rgba = rgba8_bytes(img);
         glTexImage2D(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), GLint(k), GL_RGBA8, img.width, img.height, 0, GL_RGBA,
                      GL_UNSIGNED_BYTE, rgba.data());
       }
