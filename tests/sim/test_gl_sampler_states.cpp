@@ -176,6 +176,18 @@ class GlSampling {
         colour = textureLod(tex, q.xyz, q.w);
       })";
     cube_program_ = link(vs, cube_fs, 5);
+    // A cube array (unit 7): direction q.xyz, cube q.w, level `lod`.
+    const char* cube_array_fs = R"(#version 400 core
+      uniform samplerCubeArray tex;
+      uniform sampler2D queries;
+      uniform float lod;
+      out vec4 colour;
+      void main() {
+        vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
+        colour = textureLod(tex, q, lod);
+      })";
+    cube_array_program_ = link(vs, cube_array_fs, 7);
+    glGenTextures(1, &cube_array_);
     glGenTextures(1, &cube_);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glGenVertexArrays(1, &vao_);
@@ -285,6 +297,36 @@ class GlSampling {
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_BASE_LEVEL, 0);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, GLint(faces[0]->levels.size()) - 1);
   }
+  // A cube array (unit 7): faces 6c + f of cube c, every level, RGBA8.
+  void upload_cube_array(const std::vector<const Pyramid*>& faces) {
+    glActiveTexture(GL_TEXTURE7);
+    glBindTexture(GL_TEXTURE_CUBE_MAP_ARRAY, cube_array_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (size_t k = 0; k < faces[0]->levels.size(); ++k) {
+      std::vector<uint8_t> rgba;
+      for (const Pyramid* p : faces) {
+        const std::vector<uint8_t> layer = rgba8_bytes(p->levels[k]);
+        rgba.insert(rgba.end(), layer.begin(), layer.end());
+      }
+      const Image& img = faces[0]->levels[k];
+      glTexImage3D(GL_TEXTURE_CUBE_MAP_ARRAY, GLint(k), GL_RGBA8, img.width, img.height, GLsizei(faces.size()), 0,
+                   GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    }
+    glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_MAX_LEVEL, GLint(faces[0]->levels.size()) - 1);
+  }
+  // textureLod of the cube array at (x, y, z) = q.xyz of cube q.w, level `lod`, under the filters of `c`.
+  std::vector<std::array<float, 4>> sample_cube_array(const SamplerConfig& c, float lod,
+                                                      const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(cube_array_program_);
+    glUniform1f(glGetUniformLocation(cube_array_program_, "lod"), lod);
+    glActiveTexture(GL_TEXTURE7);
+    glBindTexture(GL_TEXTURE_CUBE_MAP_ARRAY, cube_array_);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_MIN_FILTER, gl_min_filter(c.filter));
+    glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_MAG_FILTER, c.filter.mag == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST);
+    return draw(q);
+  }
+
   // textureLod of the cube at (x, y, z) = q.xyz, level q.w, under the filters of `c`.
   std::vector<std::array<float, 4>> sample_cube(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
     glUseProgram(cube_program_);
@@ -365,7 +407,8 @@ class GlSampling {
   std::vector<uint8_t> window_ = std::vector<uint8_t>(size_t(kW) * kH * 4);
   GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, fetch_program_ = 0, gather_program_ = 0, vao_ = 0,
          tex_ = 0, rect_ = 0, queries_ = 0, array_program_ = 0, array_fetch_program_ = 0, array_gather_program_ = 0,
-         array_ = 0, shadow_program_ = 0, depth_ = 0, cube_program_ = 0, cube_ = 0;
+         array_ = 0, shadow_program_ = 0, depth_ = 0, cube_program_ = 0, cube_ = 0, cube_array_program_ = 0,
+         cube_array_ = 0;
   bool ready_ = false;
 };
 
@@ -1107,4 +1150,79 @@ TEST(GlSamplerStates, CubeMapsAgreeWithLlvmpipe) {
   std::printf("  %d cube lookups (%d within two texels of a seam) in %d filters compared with llvmpipe: max %.2f LSB, "
               "mean %.3f; a face clamped at its edges instead differs in %d\n", compared, seam, states, worst / 100.0,
               sum / compared, clamped_differs);
+}
+
+// Cube arrays (samplerCubeArray): three cubes of six 8x8 faces each of their own noise, the cube
+// index a layer coordinate from -1 to 3.5 (rounded and clamped as an array's layer; ties between
+// two cubes not compared); every filter at levels -0.5, 0.3, 1.6. The model's texels are llvmpipe's
+// within a linear filter's precision (nearest exact). A model with its cubes in the other order is
+// caught.
+TEST(GlSamplerStates, CubeArraysAgreeWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  constexpr int kN = 8, kCubes = 3;
+  std::vector<Pyramid> faces;
+  for (int f = 0; f < 6 * kCubes; ++f) {
+    Image img = make_pattern("noise", kN, kN);
+    for (Texel& t : img.texels)
+      for (uint16_t& c : t) c = uint16_t((c * (f % 7 + 2) + 29 * f) & 255);
+    faces.push_back(build_pyramid(std::move(img)));
+  }
+  std::vector<const Pyramid*> cubes;
+  for (const Pyramid& p : faces) cubes.push_back(&p);
+  std::vector<const Pyramid*> swapped(cubes.begin() + 6, cubes.begin() + 12);  // cubes 1, 0, 2
+  swapped.insert(swapped.end(), cubes.begin(), cubes.begin() + 6);
+  swapped.insert(swapped.end(), cubes.begin() + 12, cubes.end());
+  gl.upload_cube_array(cubes);
+  std::mt19937 rng(51);
+  int compared = 0, worst = 0, caught = 0;
+  for (int mip = 0; mip < 3; ++mip)
+    for (int texel = 0; texel < 2; ++texel)
+      for (const double lambda : {-0.5, 0.3, 1.6}) {
+        SamplerConfig cfg{{TexelFilter(texel), MipMode(mip)}};
+        std::vector<std::array<float, 4>> queries(size_t(kW) * kH);
+        std::vector<Request> requests(queries.size());
+        for (size_t n = 0; n < queries.size(); ++n) {
+          double d[3];
+          for (double& c : d) c = (int(rng() % (2 << 16)) - (1 << 16)) / 65536.0;
+          const double layer = (int(rng() % (18 * 64)) - 4 * 64) / 256.0;  // -1 .. 3.5 on a 1/256 grid
+          queries[n] = {float(d[0]), float(d[1]), float(d[2]), float(layer)};
+          Request& r = requests[n];
+          EXPECT_TRUE(to_coord_fixed(d[0], r.u) && to_coord_fixed(d[1], r.v) && to_coord_fixed(d[2], r.w) &&
+                      to_texel_coord_fixed(layer, r.layer) && to_lod_fixed(lambda, r.lod));
+        }
+        const std::vector<std::array<float, 4>> got = gl.sample_cube_array(cfg, float(lambda), queries);
+        Sampler model(cubes, cfg, SamplerPaths::Both, TextureKind::Cube), wrong(swapped, cfg, SamplerPaths::Both, TextureKind::Cube);
+        for (size_t n = 0; n < requests.size(); ++n) {
+          const Request& r = requests[n];
+          double a[3] = {std::fabs(queries[n][0]), std::fabs(queries[n][1]), std::fabs(queries[n][2])};
+          std::sort(a, a + 3);
+          if (a[2] == 0 || a[2] - a[1] < 1e-5 * a[2]) continue;  // a tie of two major axes
+          if (std::fabs(queries[n][3] - std::floor(queries[n][3]) - 0.5) < 1.0 / 64) continue;  // a tie of two cubes
+          const TexelFilter tf = lambda <= 0 ? cfg.filter.mag : cfg.filter.texel;
+          int face = 0;
+          const Request q = cube_face_request(r, face);
+          bool edge = cfg.filter.mip == MipMode::Nearest && std::fabs(lambda - std::floor(lambda) - 0.5) < 1.0 / 64;
+          if (tf == TexelFilter::Nearest)
+            for (int k = 0; k < 4; ++k)
+              for (int32_t c : {q.u, q.v}) {
+                const double t = c / 16777216.0 * (kN >> k);
+                edge = edge || std::fabs(t - std::round(t)) < 1.0 / 64;
+              }
+          if (edge) continue;
+          const Texel m = model.sample(r);
+          const int err = error_lsb_x100(m, got[n], false);
+          const bool nearest = tf == TexelFilter::Nearest && cfg.filter.mip != MipMode::Linear;
+          ASSERT_LE(err, nearest ? 0 : 200) << filter_name(cfg.filter) << " lod " << lambda << " direction ("
+                                            << queries[n][0] << ", " << queries[n][1] << ", " << queries[n][2]
+                                            << ") cube " << queries[n][3];
+          worst = std::max(worst, err);
+          caught += error_lsb_x100(wrong.sample(r), got[n], false) > 200;
+          ++compared;
+        }
+      }
+  EXPECT_GT(compared, 18 * kW * kH / 2);
+  EXPECT_GT(caught, compared / 4) << "a model with two cubes swapped went unnoticed";
+  std::printf("  %d cube-array lookups (3 cubes) compared with llvmpipe: max %.2f LSB; cubes 0 and 1 swapped differ "
+              "in %d\n", compared, worst / 100.0, caught);
 }
