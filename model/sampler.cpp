@@ -166,11 +166,10 @@ Texel Sampler::sample(const Request& r) {
   int face = 0;
   const bool cube = kind_ == TextureKind::Cube;
   const Request q = cube ? cube_face_request(r, face) : r;
-  const size_t cube_base = cube ? size_t(6 * stage::array_layer(r.layer, layers_ / 6)) : 0;
+  const size_t cube_base = cube ? size_t(stage::cube_base_layer(r.layer, layers_)) : 0;
   auto value = [&](const Request& probe) {
     if (!cube) return sample_probe(probe);
-    if (memory_.empty()) throw Error("sampler: built for the fast path only");
-    Request on_face = probe;
+    Request on_face = probe;  // (a cube's memories are always built: the reference path)
     const int f = cube_probe(face, on_face);
     return probe_value(memory_[cube_base + size_t(f)], on_face, true);
   };
@@ -206,17 +205,16 @@ Texel Sampler::fetch(const Request& r) {
 
 // textureGather: the linear filter's four taps at the base level, one component of each.
 Texel Sampler::gather(const Request& r) {
+  if (r.has_derivatives) throw Error("sampler: a gather carries no derivatives");
   if (kind_ == TextureKind::Cube) {
-    if (memory_.empty()) throw Error("sampler: built for the fast path only");
     int face = 0;
     const Request q = cube_face_request(r, face);
     ++samples_;
     ++probes_[1];
-    BankedMipMemory& m = memory_[size_t(6 * stage::array_layer(r.layer, layers_ / 6) + face)];
+    BankedMipMemory& m = memory_[size_t(stage::cube_base_layer(r.layer, layers_) + face)];
     return stage::gather(footprint(m, 0, q.u, q.v, TexelFilter::Linear, true, true), r.component);
   }
   BankedMipMemory& memory = memory_of(r);
-  if (r.has_derivatives) throw Error("sampler: a gather carries no derivatives");
   ++samples_;
   ++probes_[1];
   const int32_t ru = stage::reduce(r.u, config_.wrap_u, config_.unnormalized), rv = stage::reduce(r.v, config_.wrap_v, config_.unnormalized);
@@ -396,13 +394,42 @@ template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV, bool CMP = false>
   }
 }
 
+// One sample or depth compare (CMP: each texel tested first, stage::compare_taps) as packed RGBA8.
+template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV, bool CMP>
+[[gnu::always_inline]] inline uint32_t sample_packed(const FastLevel* levels, int last, Extent size0,
+                                                     const SamplerConfig& cfg, const Request& r, const DepthTest& test) {
+  if (r.has_derivatives) {
+    // The probes of tex_probe, summed per channel (16 probes of CW.24 need 36 bits: unpacked).
+    const Probes p = tex_probe(r, cfg, size0);
+    stage::Unrounded sum{};
+    for (int k = 0; k < p.n; ++k) {
+      const Request& q = p.at[size_t(k)];
+      const Packed2x2 t = probe_packed<TF, MM, WU, WV, CMP>(levels, last, cfg, q.u, q.v, q.lod + q.bias, test);
+      sum[0] += int64_t(t.rb & 0xFFFFFFFFu);
+      sum[1] += int64_t(t.ga & 0xFFFFFFFFu);
+      sum[2] += int64_t(t.rb >> 32);
+      sum[3] += int64_t(t.ga >> 32);
+    }
+    const Texel t = stage::average_and_round(sum, p.n);
+    return uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
+  }
+  constexpr uint64_t kHalf = (uint64_t(1) << 23) | (uint64_t(1) << 55);  // rounding of both channels
+  Packed2x2 tri = probe_packed<TF, MM, WU, WV, CMP>(levels, last, cfg, r.u, r.v, r.lod + r.bias, test);
+  // The one rounding, half up, of all four channels; then back to packed RGBA8.
+  tri.rb = (tri.rb + kHalf) >> 24;
+  tri.ga = (tri.ga + kHalf) >> 24;
+  return uint32_t(tri.rb & 0xFF) | uint32_t(tri.ga & 0xFF) << 8 | uint32_t(tri.rb >> 16 & 0xFF0000) |
+         uint32_t(tri.ga >> 8 & 0xFF000000u);
+}
+
 template <TexelFilter TF, MipMode MM, Wrap WU, Wrap WV>
 void sample_batch(const FastLevel* layer0, int last, int layers, Extent size0, const SamplerConfig& cfg,
                   const Request* requests, size_t n, uint32_t* out) {
-  constexpr uint64_t kHalf = (uint64_t(1) << 23) | (uint64_t(1) << 55);  // rounding of both channels
   for (size_t i = 0; i < n; ++i) {
     const Request& r = requests[i];
-    const int layer = stage::request_layer(r.op, r.layer, layers);
+    // (One layer: every sample reads it, a fetch of another layer nothing; no rounding to do.)
+    const int layer = layers == 1 ? (r.op == Op::Fetch && r.layer != 0 ? -1 : 0)
+                                  : stage::request_layer(r.op, r.layer, layers);
     const FastLevel* levels = layer0 + size_t(layer < 0 ? 0 : layer) * size_t(last + 1);
     if (r.op == Op::Fetch) [[unlikely]] {
       out[i] = layer >= 0 && stage::fetch_inside(r.u, r.v, r.lod, last, size0)
@@ -414,35 +441,12 @@ void sample_batch(const FastLevel* layer0, int last, int layers, Extent size0, c
       out[i] = gather_level<WU, WV>(levels[0], stage::reduce(r.u, WU), stage::reduce(r.v, WV), r.component);
       continue;
     }
-    // A depth compare's probes test each texel first (stage::compare_taps).
-    const bool compare = r.op == Op::Compare;
-    const DepthTest test{cfg.compare_op, compare ? stage::compare_reference(r.ref, 8) : 0};
-    auto probe = [&](const Request& q) {
-      if (compare) [[unlikely]]
-        return probe_packed<TF, MM, WU, WV, true>(levels, last, cfg, q.u, q.v, q.lod + q.bias, test);
-      return probe_packed<TF, MM, WU, WV>(levels, last, cfg, q.u, q.v, q.lod + q.bias);
-    };
-    if (r.has_derivatives) {
-      // The probes of tex_probe, summed per channel (16 probes of CW.24 need 36 bits: unpacked).
-      const Probes p = tex_probe(r, cfg, size0);
-      stage::Unrounded sum{};
-      for (int k = 0; k < p.n; ++k) {
-        const Packed2x2 t = probe(p.at[size_t(k)]);
-        sum[0] += int64_t(t.rb & 0xFFFFFFFFu);
-        sum[1] += int64_t(t.ga & 0xFFFFFFFFu);
-        sum[2] += int64_t(t.rb >> 32);
-        sum[3] += int64_t(t.ga >> 32);
-      }
-      const Texel t = stage::average_and_round(sum, p.n);
-      out[i] = uint32_t(t[0]) | uint32_t(t[1]) << 8 | uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
+    if (r.op == Op::Compare) [[unlikely]] {
+      out[i] = sample_packed<TF, MM, WU, WV, true>(levels, last, size0, cfg, r,
+                                                   DepthTest{cfg.compare_op, stage::compare_reference(r.ref, 8)});
       continue;
     }
-    Packed2x2 tri = probe(r);
-    // The one rounding, half up, of all four channels; then back to packed RGBA8.
-    tri.rb = (tri.rb + kHalf) >> 24;
-    tri.ga = (tri.ga + kHalf) >> 24;
-    out[i] = uint32_t(tri.rb & 0xFF) | uint32_t(tri.ga & 0xFF) << 8 | uint32_t(tri.rb >> 16 & 0xFF0000) |
-             uint32_t(tri.ga >> 8 & 0xFF000000u);
+    out[i] = sample_packed<TF, MM, WU, WV, false>(levels, last, size0, cfg, r, DepthTest{});
   }
 }
 

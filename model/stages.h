@@ -285,6 +285,8 @@ inline int array_layer(int32_t a, int layers) {
   return int(std::clamp<int64_t>(rounded, 0, layers - 1));
 }
 inline bool fetch_layer_inside(int32_t layer, int layers) { return layer >= 0 && layer < layers; }
+// A cube array's first layer of the cube its layer coordinate picks (6 layers, +X .. -Z, a cube).
+inline int cube_base_layer(int32_t a, int layers) { return 6 * array_layer(a, layers / 6); }
 // The layer a request reads: array_layer, or a fetch's integer layer (-1 when it reads nothing).
 inline int request_layer(Op op, int32_t a, int layers) {
   if (op == Op::Fetch) return fetch_layer_inside(a, layers) ? int(a) : -1;

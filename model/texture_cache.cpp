@@ -120,7 +120,7 @@ RequestWork TextureCache::lookup_sample(const Request& r, std::vector<uint32_t>*
     // The face's request and its probes, each on the face it lies over (as Sampler::sample).
     int face = 0;
     const Request q = cube_face_request(r, face);
-    const int base = 6 * stage::array_layer(r.layer, layout.layers() / 6);
+    const int base = stage::cube_base_layer(r.layer, layout.layers());
     const Probes p = tex_probe(q, sampler(r), layout.size0());
     w.probes = uint8_t(p.n);
     for (int i = 0; i < p.n; ++i) {
@@ -154,7 +154,7 @@ SampleLookup TextureCache::lookup(const Request& r, std::vector<uint32_t>* misse
   if (layout.kind() == TextureKind::Cube && r.op != Op::Fetch) {  // the direction's face
     int face = 0;
     const Request q = cube_face_request(r, face);
-    return lookup_at(q, 6 * stage::array_layer(r.layer, layout.layers() / 6) + face, true, misses);
+    return lookup_at(q, stage::cube_base_layer(r.layer, layout.layers()) + face, true, misses);
   }
   return lookup_at(r, stage::request_layer(r.op, r.layer, layout.layers()), layout.kind() == TextureKind::Cube, misses);
 }

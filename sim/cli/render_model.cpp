@@ -68,7 +68,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
     if (!a.trace_queries.empty()) throw Error("--envmap: --trace-queries writes 2D queries; a mirror's are a cube's");
     if (o.engine != "model")
       throw Error("--envmap: the " + o.engine + " engine samples 2D textures and arrays (cube maps: -e model)");
-    outputs.add_input(a.envmap, "--envmap");
+    for (const std::string& face : split_commas(a.envmap)) outputs.add_input(face, "--envmap");  // (six faces: each)
   }
 
   // The model: its meshes and textures, each texture a descriptor-table entry.

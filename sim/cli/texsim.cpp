@@ -173,13 +173,9 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   if (!layers_option.empty()) {
     if (o.texture_opt->count() || !textures_path.empty() || (!texture_layers.empty() && !cube_faces.empty()))
       throw Error("sample: give one of --texture, --texture-layers, --cube and --textures");
-    for (size_t at = 0;;) {
-      const size_t comma = layers_option.find(',', at);
-      layer_paths.push_back(layers_option.substr(at, comma - at));
-      if (layer_paths.back().empty()) throw Error(std::string(layers_name) + " " + quote_clipped(layers_option) + ": an empty path");
-      if (comma == std::string::npos) break;
-      at = comma + 1;
-    }
+    layer_paths = split_commas(layers_option);
+    for (const std::string& p : layer_paths)
+      if (p.empty()) throw Error(std::string(layers_name) + " " + quote_clipped(layers_option) + ": an empty path");
     for (const std::string& p : layer_paths) outputs.add_input(p, layers_name);
   }
   if (!textures_path.empty()) {

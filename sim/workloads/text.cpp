@@ -8,4 +8,14 @@ std::string quote_clipped(std::string_view text) {
   return "\"" + std::string(text.substr(0, kMax - 3)) + "...\" (" + std::to_string(text.size()) + " characters)";
 }
 
+std::vector<std::string> split_commas(std::string_view text) {
+  std::vector<std::string> out;
+  for (size_t at = 0;;) {
+    const size_t comma = text.find(',', at);
+    out.emplace_back(text.substr(at, comma == std::string_view::npos ? std::string_view::npos : comma - at));
+    if (comma == std::string_view::npos) return out;
+    at = comma + 1;
+  }
+}
+
 }  // namespace tex

@@ -11,6 +11,7 @@
 #include "model/pyramid.h"
 #include "model/srgb.h"
 #include "workloads/image_module.h"
+#include "workloads/text.h"
 #include "workloads/texture_io.h"
 
 namespace tex {
@@ -650,13 +651,7 @@ std::vector<Pyramid> load_array(const std::vector<std::string>& specs, const Tex
 std::vector<Pyramid> load_envmap(const std::string& spec, const TextureOptions& o, std::string& how) {
   TextureKind kind = TextureKind::Cube;
   if (spec.find(',') != std::string::npos) {  // six images (a face each)
-    std::vector<std::string> faces;
-    for (size_t at = 0;;) {
-      const size_t comma = spec.find(',', at);
-      faces.push_back(spec.substr(at, comma - at));
-      if (comma == std::string::npos) break;
-      at = comma + 1;
-    }
+    const std::vector<std::string> faces = split_commas(spec);
     how = std::to_string(faces.size()) + " face images";
     return load_array(faces, o, &kind);
   }

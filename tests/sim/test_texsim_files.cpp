@@ -357,7 +357,7 @@ TEST_F(TexsimCli, SampleStreamsInConstantMemory) {
   // in memory (issue: 5 M queries took 1.1 GB). The peak is texsim's own (--stats'
   // peak_memory_bytes, VmHWM): a forked child's maxrss would include this test's memory.
   // Streamed (above 48 MiB): 2.4 M and 4.8 M queries, model and RTL. Kept: at most a Request per
-  // query (44 bytes) more.
+  // query (sizeof(Request): 64 bytes) more.
   write_text(dir / "small.csv", random_queries(100000));
   write_text(dir / "kept.csv", random_queries(1000000, 2));
   write_text(dir / "large.csv", random_queries(2400000, 3));
