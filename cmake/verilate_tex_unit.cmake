@@ -1,8 +1,9 @@
-# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [TRACE_FST] [FORMATS] [CACHED BW BH LINES FIFO MEM_W MISS]):
+# verilate_tex_unit(TARGET PREFIX LOG2_W LOG2_H [CW bits] [TRACE_FST] [FORMATS] [CUBES] [CACHED BW BH LINES FIFO MEM_W MISS]):
 # tex_unit of rtl/ verilated into TARGET as class PREFIX, for textures up to 2^LOG2_W x 2^LOG2_H
 # with CW-bit channels (default 8); with CACHED, tex_unit_cached with those BLOCK_W, BLOCK_H,
 # LINES, FIFO_DEPTH, MEM_W and MISS_DEPTH; with FORMATS also the block decoders and the sRGB tables
-# (BLOCK_FORMATS = SRGB = 1: 8-bit channels in memory, CW 16), else neither. (The decoders are
+# (BLOCK_FORMATS = SRGB = 1: 8-bit channels in memory, CW 16), else neither; with CUBES cube maps
+# (CUBE_MAPS = 1, else 0). (The decoders are
 # functions that the taps call only for block and sRGB texels: they cost simulation time only in
 # the clocks that use them.)
 # One set of options for every build: -Wall (make lint keeps it at zero warnings), assertions on,
@@ -15,7 +16,7 @@ set(TEX_VERILATOR_EXTRA_ARGS "" CACHE STRING "extra Verilator options for every 
 include(${CMAKE_CURRENT_LIST_DIR}/verilate_unity.cmake)
 
 function(verilate_tex_unit target prefix log2_w log2_h)
-  cmake_parse_arguments(ARG "TRACE_FST;FORMATS" "CW" "CACHED" ${ARGN})
+  cmake_parse_arguments(ARG "TRACE_FST;FORMATS;CUBES" "CW" "CACHED" ${ARGN})
   if(NOT ARG_CW)
     set(ARG_CW 8)
   endif()
@@ -55,8 +56,12 @@ function(verilate_tex_unit target prefix log2_w log2_h)
     if(ARG_FORMATS)
       set(formats 1)
     endif()
+    set(cubes 0)
+    if(ARG_CUBES)
+      set(cubes 1)
+    endif()
     set(cache_params -GBLOCK_W=${bw} -GBLOCK_H=${bh} -GLINES=${lines} -GFIFO_DEPTH=${fifo} -GMEM_W=${mem_w}
-                     -GMISS_DEPTH=${miss} -GBLOCK_FORMATS=${formats} -GSRGB=${formats})
+                     -GMISS_DEPTH=${miss} -GBLOCK_FORMATS=${formats} -GSRGB=${formats} -GCUBE_MAPS=${cubes})
   endif()
   verilate_unity(${target} ${mode}
     PREFIX ${prefix}

@@ -45,10 +45,9 @@ Request cube_face_request(const Request& r, int& face) {
   q.v = f.t;
   q.w = 0;
   if (r.has_derivatives) {
-    const std::array<int32_t, 3> dx = stage::cube_axes(f.face, r.deriv.dudx, r.deriv.dvdx, r.dwdx);
-    const std::array<int32_t, 3> dy = stage::cube_axes(f.face, r.deriv.dudy, r.deriv.dvdy, r.dwdy);
-    q.deriv = {stage::cube_derivative(dx[0], f.sc, dx[2], f.rc), stage::cube_derivative(dx[1], f.tc, dx[2], f.rc),
-               stage::cube_derivative(dy[0], f.sc, dy[2], f.rc), stage::cube_derivative(dy[1], f.tc, dy[2], f.rc)};
+    const std::array<int32_t, 2> dx = stage::cube_derivatives(f, r.deriv.dudx, r.deriv.dvdx, r.dwdx);
+    const std::array<int32_t, 2> dy = stage::cube_derivatives(f, r.deriv.dudy, r.deriv.dvdy, r.dwdy);
+    q.deriv = {dx[0], dx[1], dy[0], dy[1]};
     q.dwdx = q.dwdy = 0;
   }
   return q;

@@ -119,7 +119,7 @@ inline Request lambda_request(int32_t u, int32_t v, int32_t lod, uint32_t tag = 
 }
 
 // A cube request (its direction (u, v, w) and derivatives) as the 2D request of the face it
-// selects (stage::cube_face, stage::cube_derivative): u, v the face's (s, t) in [0, 1], the
+// selects (stage::cube_face, stage::cube_derivatives): u, v the face's (s, t) in [0, 1], the
 // derivatives those of s and t in face widths per pixel; `face` 0..5 (+X, -X, +Y, -Y, +Z, -Z).
 Request cube_face_request(const Request& r, int& face);
 // A probe of a face's request (tex_probe's) that lies beyond the face (an anisotropic probe near a

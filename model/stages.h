@@ -183,7 +183,7 @@ inline bool fetch_inside(int32_t i, int32_t j, int32_t level, int last_level, Ex
 struct CubeFace {
   int face = 4;
   int32_t s = 1 << 23, t = 1 << 23;  // Q8.24, 0..1
-  int32_t sc = 0, tc = 0, rc = 0;    // the table's components (Q8.24), for the derivatives
+  int64_t sc = 0, tc = 0, rc = 0;    // the table's components (Q8.24; -INT32_MIN fits), for the derivatives
 };
 // floor(num / den + 1/2) for den > 0: the nearest integer, a half up.
 inline __int128 round_quotient(__int128 num, __int128 den) {
@@ -194,43 +194,86 @@ inline int32_t cube_coordinate(int64_t sc, int64_t arc) {  // round((sc / arc + 
   return int32_t(round_quotient((__int128(sc) + arc) << (kCoordFracBits - 1), arc));  // (sc + |rc|) 2^23 / |rc|
 }
 inline CubeFace cube_face(int32_t rx, int32_t ry, int32_t rz) {
-  const int64_t ax = std::abs(int64_t(rx)), ay = std::abs(int64_t(ry)), az = std::abs(int64_t(rz));
+  const int64_t x = rx, y = ry, z = rz;  // (-INT32_MIN must not wrap)
+  const int64_t ax = std::abs(x), ay = std::abs(y), az = std::abs(z);
   CubeFace f;
   if (az >= ax && az >= ay) {
-    f.face = rz >= 0 ? 4 : 5;
-    f.sc = rz >= 0 ? rx : -rx;
-    f.tc = -ry;
-    f.rc = rz;
+    f.face = z >= 0 ? 4 : 5;
+    f.sc = z >= 0 ? x : -x;
+    f.tc = -y;
+    f.rc = z;
   } else if (ay >= ax) {
-    f.face = ry >= 0 ? 2 : 3;
-    f.sc = rx;
-    f.tc = ry >= 0 ? rz : -rz;
-    f.rc = ry;
+    f.face = y >= 0 ? 2 : 3;
+    f.sc = x;
+    f.tc = y >= 0 ? z : -z;
+    f.rc = y;
   } else {
-    f.face = rx >= 0 ? 0 : 1;
-    f.sc = rx >= 0 ? -rz : rz;
-    f.tc = -ry;
-    f.rc = rx;
+    f.face = x >= 0 ? 0 : 1;
+    f.sc = x >= 0 ? -z : z;
+    f.tc = -y;
+    f.rc = x;
   }
-  const int64_t arc = std::abs(int64_t(f.rc));
+  const int64_t arc = std::abs(f.rc);
   if (arc == 0) return f;  // (0, 0, 0): +Z, its centre
   f.s = cube_coordinate(f.sc, arc);
   f.t = cube_coordinate(f.tc, arc);
   return f;
 }
-// The face's derivatives of s and t from those of the direction (Vulkan "Cube Map Derivative
-// Transformation", the quotient rule): ds/dx = (dsc/dx |rc| - sc d|rc|/dx) / (2 rc^2), with dsc and
-// drc the direction's derivatives picked and signed by the face's table; each the exact rational
-// rounded to the nearest Q8.24 (half up) and saturated to 32 bits. In face widths per pixel, what
-// tex_lambda takes with the face's size.
-inline int32_t cube_derivative(int64_t dsc, int64_t sc, int64_t drc, int64_t rc) {
-  if (rc == 0) return 0;
-  const int64_t arc = std::abs(rc), darc = rc < 0 ? -drc : drc;
-  const __int128 num = (__int128(dsc) * arc - __int128(sc) * darc) << (kCoordFracBits - 1);
-  __int128 q = round_quotient(num, __int128(rc) * rc);
-  if (q > INT32_MAX) q = INT32_MAX;
-  if (q < INT32_MIN) q = INT32_MIN;
-  return int32_t(q);
+// 1/D for D in [2^31, 2^32) as R <= 2^62 / D, within 2^-25 of it (tex_cube): a 128-entry table of
+// 9 bits, floor(2^16 / (129 + i)) for D's 7 bits below its leading one, then two Newton steps
+// R' = R + R (2^62 - D R) / 2^62, each product truncated (the steps approach 1/D from below).
+inline uint32_t cube_reciprocal(uint32_t d) {
+  auto newton = [d](uint64_t r) {
+    const uint64_t delta = ((uint64_t(1) << 62) - uint64_t(d) * r) >> 30;
+    return r + ((r * delta) >> 32);
+  };
+  const uint64_t r0 = uint64_t(65536u / (129u + ((d >> 24) & 127u))) << 22;
+  return uint32_t(newton(newton(r0)));
+}
+// The position of the leading one of v > 0.
+inline int leading_one(uint64_t v) { return 63 - __builtin_clzll(v); }
+// The face's derivatives of s and t along one screen axis from the direction's (drx, dry, drz)
+// (Vulkan "Cube Map Derivative Transformation", the quotient rule): ds = (dsc - sc' drc') / (2 |rc|)
+// with sc' = 2s - 1 (the exact s), dsc and drc' = sign(rc) drc picked and signed by the face's
+// table; dt likewise. In face widths per pixel, Q8.24, what tex_lambda takes with the
+// face's size. The arithmetic is tex_cube's, in block floating point (it feeds a LOD of 8 fraction
+// bits, which tex_lambda takes from 16-bit magnitudes): the axis' three derivatives share a shift
+// e that leaves them 18 bits (a, b), sc' keeps 17 bits (c = (2s - 2^24) >> 8), g = a 2^16 - c b,
+// g keeps 18 bits (shift f), times the reciprocal's 18 bits (R >> 14 of cube_reciprocal of |rc|
+// normalized by k to [2^31, 2^32)), then shifted by e + k + f - 41, rounded half up and saturated
+// to 32 bits. Within 2^-13 of the largest of the axis' terms (tex_lambda resolves 2^-8 of a level);
+// 0 for rc = 0.
+inline std::array<int32_t, 2> cube_derivatives(const CubeFace& f, int32_t drx, int32_t dry, int32_t drz) {
+  if (f.rc == 0) return {0, 0};
+  int64_t dsc = 0, dtc = 0, drc = 0;
+  switch (f.face) {  // (int64: -INT32_MIN)
+    case 0: dsc = -int64_t(drz), dtc = -int64_t(dry), drc = drx; break;
+    case 1: dsc = drz, dtc = -int64_t(dry), drc = drx; break;
+    case 2: dsc = drx, dtc = drz, drc = dry; break;
+    case 3: dsc = drx, dtc = -int64_t(drz), drc = dry; break;
+    case 4: dsc = drx, dtc = -int64_t(dry), drc = drz; break;
+    default: dsc = -int64_t(drx), dtc = -int64_t(dry), drc = drz; break;
+  }
+  const int64_t darc = f.rc < 0 ? -drc : drc;
+  const uint64_t arc = uint64_t(std::abs(f.rc));
+  const int k = 31 - leading_one(arc);
+  const int64_t r18 = int64_t(cube_reciprocal(uint32_t(arc << k)) >> 14);
+  const uint64_t m = std::max({uint64_t(std::abs(dsc)), uint64_t(std::abs(dtc)), uint64_t(std::abs(darc))});
+  const int e = m >= (1u << 17) ? leading_one(m) - 16 : 0;
+  std::array<int32_t, 2> out{};
+  for (int axis = 0; axis < 2; ++axis) {
+    const int64_t a = (axis == 0 ? dsc : dtc) >> e, b = darc >> e;
+    const int64_t c = ((2 * int64_t(axis == 0 ? f.s : f.t)) - (int64_t(1) << kCoordFracBits)) >> 8;
+    const int64_t g = a * 65536 - c * b;
+    const uint64_t ag = uint64_t(std::abs(g));
+    const int fs = ag >= (1u << 17) ? leading_one(ag) - 16 : 0;
+    const int64_t p = (g >> fs) * r18;
+    const int sh = e + k + fs - 41;
+    // (sh in [-41, 23] and |p| <= 2^34: the shifted product fits 64 bits)
+    const int64_t q = sh >= 0 ? p * (int64_t(1) << sh) : (p + (int64_t(1) << (-sh - 1))) >> -sh;
+    out[size_t(axis)] = int32_t(std::clamp<int64_t>(q, INT32_MIN, INT32_MAX));
+  }
+  return out;
 }
 // The face coordinates (s, t) of `face`, Q8.24, as a direction on the unit cube (the table
 // inverted: sc = 2s - 1, tc = 2t - 1, |rc| = 1), then the face and coordinates that direction
@@ -259,18 +302,6 @@ inline WrappedTaps cube_taps(int32_t s, int n, TexelFilter filter) {
     return {i, i, 0};
   }
   return {std::clamp(a.i0, -1, n) + 1, std::clamp(a.i1, -1, n) + 1, a.w};
-}
-
-// The direction's derivative along one screen axis, (drx, dry, drz), as the face's (dsc, dtc, drc).
-inline std::array<int32_t, 3> cube_axes(int face, int32_t drx, int32_t dry, int32_t drz) {
-  switch (face) {
-    case 0: return {-drz, -dry, drx};
-    case 1: return {drz, -dry, drx};
-    case 2: return {drx, drz, dry};
-    case 3: return {drx, -drz, dry};
-    case 4: return {drx, -dry, drz};
-    default: return {-drx, -dry, drz};
-  }
 }
 
 // ---------------------------------------------------------------- array layer (tex_layer)

@@ -46,7 +46,7 @@ UnitClock::UnitClock(const UnitShape& shape, const MemoryChannel* memory, bool a
 // tex_probe (rtl/tex_probe.sv): req_ready = en && !hold; the clock-4 register holds a request
 // while the sequencer issues its probes, one per clock with en.
 bool UnitClock::probe_stage(const RequestWork* offer, bool en, bool& probe_valid, bool& probe_last,
-                            uint8_t& probe_fills) {
+                            uint8_t& probe_fills, bool& ready) {
   probe_valid = (probe_valid_ & 8u) != 0;
   const RequestWork& w = probe_work_[probe_head_ & 3];
   const bool hold = probe_valid && index_ != uint32_t(w.probes) - 1;
@@ -54,6 +54,7 @@ bool UnitClock::probe_stage(const RequestWork* offer, bool en, bool& probe_valid
   probe_last = !hold;
   probe_fills = probe_valid ? uint8_t(w.fills(int(index_ & (kMaxAniso - 1)))) : 0;
   const bool accepted = offer && en_up;
+  ready = en_up;
   if (en_up) {
     index_ = 0;
     if (probe_valid) ++probe_head_;
@@ -90,7 +91,8 @@ UnitClock::Edge UnitClock::clock_onchip(const RequestWork* offer, bool ready) {
   }
   bool probe_valid = false, probe_last = false;
   uint8_t fills = 0;
-  if (probe_stage(offer, en, probe_valid, probe_last, fills)) flags |= Edge::kAccepted;
+  bool probe_ready = false;
+  if (probe_stage(offer, en, probe_valid, probe_last, fills, probe_ready)) flags |= Edge::kAccepted;
   if (en) {
     pipe_valid_ = (pipe_valid_ << 1 | uint32_t(probe_valid)) & 0x1FFu;
     pipe_last_ = (pipe_last_ << 1 | uint32_t(probe_last)) & 0x1FFu;
@@ -162,7 +164,24 @@ UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
   if (en_front) {  // (a stalled front keeps every register: nothing to do)
     bool probe_valid = false, probe_last = false;
     uint8_t fills = 0;
-    if (probe_stage(offer, true, probe_valid, probe_last, fills)) flags |= Edge::kAccepted;
+    bool ready = false;
+    if (shape_.cube_clocks == 0) {
+      if (probe_stage(offer, true, probe_valid, probe_last, fills, ready)) flags |= Edge::kAccepted;
+    } else {
+      // tex_cube's line: tex_probe takes its last register; it advances, taking the offer, with
+      // tex_probe's req_ready (the unit's req_ready).
+      const uint32_t end = 1u << (shape_.cube_clocks - 1);
+      const RequestWork* head = (line_valid_ & end) ? &line_work_[line_head_ & 7] : nullptr;
+      probe_stage(head, true, probe_valid, probe_last, fills, ready);
+      if (ready) {
+        if (head) ++line_head_;
+        line_valid_ = (line_valid_ << 1 | uint32_t(offer != nullptr)) & (2 * end - 1);
+        if (offer) {
+          line_work_[line_tail_++ & 7] = *offer;
+          flags |= Edge::kAccepted;
+        }
+      }
+    }
     front_valid_ = (front_valid_ << 1 | uint32_t(probe_valid)) & 0xFu;
     front_fills_ = {fills, front_fills_[0], front_fills_[1], front_fills_[2]};
     front_last_ = {probe_last, front_last_[0], front_last_[1], front_last_[2]};

@@ -108,9 +108,11 @@ struct UnitShape {
   uint32_t miss_depth = 64;   // MISS_DEPTH
   uint32_t fill_depth = 4;    // FILL_DEPTH
   uint32_t line_beats = 1;    // beats per line (line bytes / beat bytes)
+  uint32_t cube_clocks = 0;   // CUBE_MAPS: tex_cube's clocks ahead of tex_probe (kCubeClocks), else 0
 };
 constexpr uint64_t kOnChipLatency = 16;  // tex_unit: request handshake -> response, one probe, no stall
-constexpr uint64_t kCachedLatency = 19;  // tex_unit_cached, every line hitting
+constexpr uint64_t kCachedLatency = 19;  // tex_unit_cached, every line hitting (CUBE_MAPS: + kCubeClocks)
+constexpr uint32_t kCubeClocks = 6;      // tex_cube: every request's line ahead of tex_probe
 
 // Counters of a timed stream (the cycle-accurate engines' CycleStats and cache counters).
 struct TimingCounters {
@@ -160,7 +162,9 @@ class UnitClock {
   Edge clock_onchip(const RequestWork* offer, bool ready);
   Edge clock_cached(const RequestWork* offer, bool ready);
   // tex_probe with enable en: accepts the offer, issues one probe per clock (valid, last, fills).
-  bool probe_stage(const RequestWork* offer, bool en, bool& probe_valid, bool& probe_last, uint8_t& probe_fills);
+  // `ready`: tex_probe's req_ready (en and no request held for its probes).
+  bool probe_stage(const RequestWork* offer, bool en, bool& probe_valid, bool& probe_last, uint8_t& probe_fills,
+                   bool& ready);
   void skid_stage(bool sample_valid, bool ready);
 
   UnitShape shape_;
@@ -171,6 +175,11 @@ class UnitClock {
   std::array<RequestWork, 4> probe_work_{};
   uint32_t probe_head_ = 0, probe_tail_ = 0;
   uint32_t index_ = 0;
+  // CUBE_MAPS: the line of cube_clocks registers ahead of tex_probe (bit k-1: clock k), advancing
+  // with tex_probe's req_ready; its requests, oldest at line_head_.
+  uint32_t line_valid_ = 0;
+  std::array<RequestWork, 8> line_work_{};
+  uint32_t line_head_ = 0, line_tail_ = 0;
   // tex_unit: the probe registers 1-9 (bit n-1) and whether each holds its sample's last probe.
   uint32_t pipe_valid_ = 0, pipe_last_ = 0;
   // tex_accum's clock 1 and 2, tex_skid's output register and skid entry.

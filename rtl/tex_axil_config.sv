@@ -49,6 +49,7 @@ module tex_axil_config #(
   parameter int SAMPLERS      = 16,
   parameter int BLOCK_FORMATS = 1,
   parameter int SRGB          = 0,
+  parameter int CUBE_MAPS     = 1,
   parameter int LINE_BYTES    = 64,   // bytes of a cache line: descriptor bases are multiples
   parameter int BEAT_BYTES    = 16    // bytes counted per stat_mem_beat (power of two, 1..64)
 ) (
@@ -84,6 +85,7 @@ module tex_axil_config #(
   output logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_last_level,
   output logic [tex_pkg::FORMAT_W-1:0]      cfg_desc_format,
   output logic                              cfg_desc_srgb,
+  output logic                              cfg_desc_cube,
   output logic [tex_pkg::LAYER_W-1:0]       cfg_desc_layers_m1,
   input  logic                              cfg_desc_ready,
   output logic                              cfg_smp_we,
@@ -183,7 +185,7 @@ module tex_axil_config #(
   localparam int NCNT = 9;  // CYCLES, SAMPLES, SAMPLE_ERRORS, LOOKUPS, MISSES, MEM_BYTES,
                             // OUT_STALL, MEM_WAIT, REQ_STALL
   localparam logic [31:0] ID      = 32'h5445_5855;  // "TEXU"
-  localparam logic [31:0] VERSION = 32'h0003_0003;  // major 3 (any texture size: DESC_SIZE), minor 3 (layers, compare op)
+  localparam logic [31:0] VERSION = 32'h0003_0004;  // major 3 (any texture size: DESC_SIZE), minor 4 (layers, compare op, cube maps)
                                                     // (FILTER.unnormalized, FILTER.reduction)
 
   localparam int FLW       = $clog2(FIFO_DEPTH + 1);
@@ -192,7 +194,7 @@ module tex_axil_config #(
   localparam int LOG2_LINES = $clog2(LINES);
   localparam int LOG2_WAYS  = $clog2(MAX_WAYS);
   localparam logic [1:0] OKAY = 2'b00, SLVERR = 2'b10;
-  localparam logic [31:0] CAPS0 = {7'd0, 5'(SAMPLERS), 2'd0, 1'(SRGB), 1'(BLOCK_FORMATS), 3'd0,
+  localparam logic [31:0] CAPS0 = {7'd0, 5'(SAMPLERS), 1'd0, 1'(CUBE_MAPS), 1'(SRGB), 1'(BLOCK_FORMATS), 3'd0,
                                    5'(TEXTURES), 4'(MAX_LOG2_H), 4'(MAX_LOG2_W)};
   localparam logic [31:0] CAPS1 = {4'($clog2(BEAT_BYTES)), 4'($clog2(LINE_BYTES)), 3'd0,
                                    5'($clog2(FIFO_DEPTH)), 5'd0, 3'(MAX_WAYS), 3'd0, 5'(LOG2_LINES)};
@@ -226,7 +228,7 @@ module tex_axil_config #(
   logic                             desc_we;
   logic [tex_pkg::TEX_ID_W-1:0]     desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]   desc_base;
-  logic [3:0]                       desc_attr;  // {srgb, format} (DESC_ATTR bits 19:16)
+  logic [4:0]                       desc_attr;  // {cube, srgb, format} (DESC_ATTR bits 20:16)
   logic [tex_pkg::LEVEL_W-1:0]      desc_last;  // DESC_ATTR bits 11:8
   logic [tex_pkg::LAYER_W-1:0]      desc_layers_m1;  // DESC_ATTR bits 31:24
   logic [tex_pkg::SIZE_W-1:0]       desc_w, desc_h;
@@ -246,6 +248,8 @@ module tex_axil_config #(
   logic                         attr_srgb;
   assign attr_format = desc_attr[2:0];
   assign attr_srgb   = desc_attr[3];
+  logic                         attr_cube;
+  assign attr_cube   = desc_attr[4];
   logic [tex_pkg::WRAP_W-1:0] wrap_u, wrap_v;
   assign wrap_u = wrap[2:0];
   assign wrap_v = wrap[6:4];
@@ -275,7 +279,11 @@ module tex_axil_config #(
               && (attr_format == tex_pkg::FMT_RGBA8 || (BLOCK_FORMATS != 0 && attr_format != 3'd6))
               && (!attr_srgb || (SRGB != 0 && attr_format != tex_pkg::FMT_BC4
                                  && attr_format != tex_pkg::FMT_BC5))
-              && (desc_base & 32'(LINE_BYTES - 1)) == '0;
+              && (desc_base & 32'(LINE_BYTES - 1)) == '0
+              // a cube map: square RGBA faces of n + 2 <= the smaller side, 6 layers a cube
+              && (!attr_cube || (CUBE_MAPS != 0 && attr_format == tex_pkg::FMT_RGBA8 && desc_w == desc_h
+                                 && (32'(desc_layers_m1) + 1) % 6 == 0
+                                 && 32'(desc_w) + 2 <= (1 << ((MAX_LOG2_W < MAX_LOG2_H) ? MAX_LOG2_W : MAX_LOG2_H))));
     // SMP_COMMIT: an entry of the table, address modes and a mip mode the unit has; unnormalized
     // coordinates only as Vulkan allows them (clamp to edge or border, one texel filter, no
     // anisotropy, the base level only: mip mode none or a max LOD <= 0); a reduction the unit has
@@ -366,7 +374,7 @@ module tex_axil_config #(
       if (wr_en && sel_min)    min_lod <= wd[15:0];
       if (wr_en && sel_max)    max_lod <= wd[15:0];
       if (wr_en && sel_base)   desc_base <= wd;
-      if (wr_en && sel_attr)   {desc_layers_m1, desc_attr, desc_last} <= {wd[31:24], wd[19:16], wd[11:8]};
+      if (wr_en && sel_attr)   {desc_layers_m1, desc_attr, desc_last} <= {wd[31:24], wd[20:16], wd[11:8]};
       if (wr_en && sel_size)   {desc_h, desc_w} <= {wd[16 +: tex_pkg::SIZE_W], wd[0 +: tex_pkg::SIZE_W]};
       if (wr_en && sel_wrap)   wrap <= wd[6:0] & 7'h77;
       if (wr_en && sel_smp_commit) smp_index <= wd[3:0];
@@ -385,6 +393,7 @@ module tex_axil_config #(
   assign cfg_desc_last_level = desc_last;
   assign cfg_desc_format  = attr_format;
   assign cfg_desc_srgb    = attr_srgb;
+  assign cfg_desc_cube    = attr_cube;
   assign cfg_desc_layers_m1 = desc_layers_m1;
   assign cfg_smp_we       = smp_we;
   assign cfg_smp_index    = smp_index;
@@ -483,7 +492,7 @@ module tex_axil_config #(
         R_MIN_LOD:     rd_data = {16'd0, min_lod};
         R_MAX_LOD:     rd_data = {16'd0, max_lod};
         R_DESC_BASE:   rd_data = desc_base;
-        R_DESC_ATTR:   rd_data = {desc_layers_m1, 4'd0, desc_attr, 4'd0, desc_last, 8'd0};
+        R_DESC_ATTR:   rd_data = {desc_layers_m1, 3'd0, desc_attr, 4'd0, desc_last, 8'd0};
         R_DESC_SIZE:   rd_data = {2'd0, desc_h, 2'd0, desc_w};
         R_DESC_COMMIT: rd_data = {28'd0, desc_index};
         R_BORDER_RG:   rd_data = border[31:0];
@@ -539,9 +548,9 @@ module tex_axil_config #(
   localparam int FSW = 2 * tex_pkg::WRAP_W + 2 + tex_pkg::MIP_W + 3 * tex_pkg::LOD_W + 5 + 64 + 1 + tex_pkg::REDUCTION_W
                        + tex_pkg::COMPARE_W;
   localparam int FCW = 1 + tex_pkg::TEX_ID_W + tex_pkg::SMP_ID_W + tex_pkg::MEM_ADDR_W + 2 * tex_pkg::SIZE_W + tex_pkg::LEVEL_W
-                       + tex_pkg::FORMAT_W + tex_pkg::LAYER_W + 2 + SETS_W + WAYS_W + FLW + FSW;
+                       + tex_pkg::FORMAT_W + tex_pkg::LAYER_W + 3 + SETS_W + WAYS_W + FLW + FSW;
   logic [FCW-1:0] f_cfg, f_cfg_q;        // unit_rst and every cfg_* output but the two we pulses
-  logic [2*tex_pkg::SIZE_W+tex_pkg::LAYER_W+39:0] f_desc, f_desc_q;  // the staged descriptor (cfg_desc_base .. _layers_m1)
+  logic [2*tex_pkg::SIZE_W+tex_pkg::LAYER_W+40:0] f_desc, f_desc_q;  // the staged descriptor (cfg_desc_base .. _layers_m1)
   logic [FSW-1:0] f_smp, f_smp_q;        // the staged sampler (cfg_smp_wrap_u .. _border_rgba)
   logic          f_desc_we_q, f_smp_we_q, f_clear_q, f_desc_ready_q;
   logic          f_b_new, f_r_new;       // a B (R) response that was not there last clock
@@ -562,9 +571,9 @@ module tex_axil_config #(
   endfunction
 
   assign f_cfg = {unit_rst, cfg_desc_index, cfg_smp_index, cfg_desc_base, cfg_desc_w, cfg_desc_h, cfg_desc_last_level,
-                  cfg_desc_format, cfg_desc_srgb, cfg_desc_layers_m1, cfg_block_morton, cfg_log2_sets, cfg_log2_ways,
+                  cfg_desc_format, cfg_desc_srgb, cfg_desc_cube, cfg_desc_layers_m1, cfg_block_morton, cfg_log2_sets, cfg_log2_ways,
                   cfg_fifo_limit, f_smp};
-  assign f_desc = {cfg_desc_base, cfg_desc_layers_m1, cfg_desc_srgb, cfg_desc_format, cfg_desc_last_level, cfg_desc_h,
+  assign f_desc = {cfg_desc_base, cfg_desc_layers_m1, cfg_desc_cube, cfg_desc_srgb, cfg_desc_format, cfg_desc_last_level, cfg_desc_h,
                    cfg_desc_w};
   assign f_smp  = {cfg_smp_wrap_u, cfg_smp_wrap_v, cfg_smp_min_linear, cfg_smp_mag_linear, cfg_smp_mip_mode,
                    cfg_smp_lod_bias, cfg_smp_min_lod, cfg_smp_max_lod, cfg_smp_max_aniso_m1, cfg_smp_aniso_pow2,

@@ -10,6 +10,8 @@
 //            power of two, the repeat seam's copy of column (row) 0; its first line = the last
 //            one's + NBX * NBY (row-major) or + 2^(ceil log2 NBX + ceil log2 NBY) (Morton). One
 //            multiplier, used once per level, where one per level in a single clock would be 16.
+//            A cube map's faces (desc_cube) are stored with a one-texel skirt and no seam copy:
+//            a side spans n_k + 2 texels (model MemoryLayout, TextureKind::Cube).
 //            At the chain's last level (the smaller of desc_last_level and floor(log2 max(w, h)))
 //            the lines so far are the layer stride: an array's layers are whole pyramids one after
 //            another (layer l at the base + l x stride lines; model MemoryLayout::layer_bytes).
@@ -25,10 +27,14 @@
 //                       texels (1..2^MAX_LOG2_W, 1..2^MAX_LOG2_H; unsigned SIZE_W bits), levels
 //                       0..desc_last_level (LEVEL_W bits; the set-up walks all 16 slots anyway),
 //                       format desc_format (tex_pkg::FMT_*), sRGB if desc_srgb, desc_layers_m1 + 1
-//                       layers (unsigned LAYER_W bits)
+//                       layers (unsigned LAYER_W bits), a cube map (or cube array) if desc_cube:
+//                       6 layers a cube, +X .. -Z, square RGBA faces (CUBE_MAPS only)
 //   block_morton      : the block order of every level (a registered cfg pin; set under reset)
 //   size_tex_a/_b     : two entries whose size is read: size_a, size_b = {h, w}, SIZE_W bits each;
-//                       last_b: entry b's last level; layers_a: entry a's layer count - 1
+//                       last_b: entry b's last level; layers_a: entry a's layer count - 1,
+//                       cubes_a its cube count - 1 (a cube map's: the clamp of its cube index);
+//                       cube_b: entry b is a cube map
+//   cube_tex_c, cube_c : an entry and whether it is a cube map (read at the request port)
 //   stride_tex, stride : an entry and its layer stride, in lines (LNW bits)
 //   tag_tex, tag_level: the tag stage's entry and its two slots' levels ({d1, d}, LEVEL_W each);
 //   tag_line          : per slot, the level's first line (a line number, MEM_ADDR_W - log2 line bytes)
@@ -47,6 +53,7 @@ module tex_desc_table #(
   parameter int LINE_BYTES    = 64,
   parameter int BLOCK_FORMATS = 0,
   parameter int SRGB          = 0,
+  parameter int CUBE_MAPS     = 0,
   parameter int TXW = (TEXTURES > 1) ? $clog2(TEXTURES) : 1,  // derived, do not override
   parameter int PTW = ((MAX_LOG2_W > MAX_LOG2_H) ? MAX_LOG2_W : MAX_LOG2_H) + 1,
   parameter int LNW = tex_pkg::MEM_ADDR_W - $clog2(LINE_BYTES)
@@ -62,15 +69,20 @@ module tex_desc_table #(
   input  logic [tex_pkg::FORMAT_W-1:0]    desc_format,
   input  logic                            desc_srgb,
   input  logic [tex_pkg::LAYER_W-1:0]     desc_layers_m1,
+  input  logic                            desc_cube,
   input  logic                            block_morton,
   output logic                            busy,
 
   input  logic [TXW-1:0]                  size_tex_a,
   output logic [2*tex_pkg::SIZE_W-1:0]    size_a,
   output logic [tex_pkg::LAYER_W-1:0]     layers_a,
+  output logic [tex_pkg::LAYER_W-1:0]     cubes_a,
   input  logic [TXW-1:0]                  size_tex_b,
   output logic [2*tex_pkg::SIZE_W-1:0]    size_b,
   output logic [tex_pkg::LEVEL_W-1:0]     last_b,
+  output logic                            cube_b,
+  input  logic [TXW-1:0]                  cube_tex_c,
+  output logic                            cube_c,
   input  logic [TXW-1:0]                  stride_tex,
   output logic [LNW-1:0]                  stride,
 
@@ -109,6 +121,7 @@ module tex_desc_table #(
   logic [FW-1:0]          format_q;
   logic                   srgb_q;
   logic [YL-1:0]          layers_q;
+  logic                   cube_q;
   always_ff @(posedge clk) begin
     we_q <= !rst && desc_we;
     if (desc_we) begin  // (held through the set-up: no write while busy)
@@ -120,8 +133,13 @@ module tex_desc_table #(
       format_q <= (BLOCK_FORMATS != 0) ? desc_format : tex_pkg::FMT_RGBA8;
       srgb_q   <= (SRGB != 0) && desc_srgb;
       layers_q <= desc_layers_m1;
+      cube_q   <= (CUBE_MAPS != 0) && desc_cube;
     end
   end
+
+  // A cube array's cubes - 1: (layers_q + 1) / 6 - 1 (layers a multiple of 6, at most 252).
+  logic [YL-1:0] cubes_m1;
+  assign cubes_m1 = YL'((YL+1)'(layers_q) / (YL+1)'(6));
 
   // A format's line, in texels: log2 across and down.
   function automatic logic [2*VW-1:0] line_shape(input logic [FW-1:0] fmt);
@@ -132,13 +150,14 @@ module tex_desc_table #(
   endfunction
   // The blocks across one side of level k: the side max(1, n >> k) and, if that is not a power of
   // two, its seam copy (texels: at index n_k; a block format: a 4x4-block column at n_k rounded
-  // up to 4), in lines of 2^lb texels.
+  // up to 4), in lines of 2^lb texels; a cube face's n_k and its skirt's two.
   function automatic logic [PTW-1:0] side_blocks(input logic [NW-1:0] n, input logic [VW-1:0] k,
-                                                 input logic [VW-1:0] lb, input logic bc);
+                                                 input logic [VW-1:0] lb, input logic bc, input logic cube);
     logic [NW+2:0] nk, span;
     nk = (NW+3)'(n) >> k;
     if (nk == '0) nk = (NW+3)'(1);
-    if ((nk & (nk - 1'b1)) == '0) span = nk;                        // a power of two: no copy
+    if (cube) span = nk + (NW+3)'(2);
+    else if ((nk & (nk - 1'b1)) == '0) span = nk;                   // a power of two: no copy
     else if (bc) span = ((nk + (NW+3)'(3)) & ~(NW+3)'(3)) + (NW+3)'(4);
     else span = nk + 1'b1;
     side_blocks = PTW'((span + (NW+3)'((1 << lb) - 1)) >> lb);
@@ -158,8 +177,8 @@ module tex_desc_table #(
   logic [LNW-1:0] lines;    // the level's lines in memory
   assign {lh, lw} = line_shape(format_q);
   always_comb begin
-    nbx   = side_blocks(w_q, lev, lw, format_q != tex_pkg::FMT_RGBA8);
-    nby   = side_blocks(h_q, lev, lh, format_q != tex_pkg::FMT_RGBA8);
+    nbx   = side_blocks(w_q, lev, lw, format_q != tex_pkg::FMT_RGBA8, cube_q);
+    nby   = side_blocks(h_q, lev, lh, format_q != tex_pkg::FMT_RGBA8, cube_q);
     lbx   = log2_ceil(nbx);
     lby   = log2_ceil(nby);
     lines = block_morton ? LNW'(1) << (5'(lbx) + 5'(lby)) : LNW'(nbx) * LNW'(nby);
@@ -180,6 +199,8 @@ module tex_desc_table #(
   logic [FW-1:0]  format [TEXTURES];
   logic           srgb   [TEXTURES];
   logic [YL-1:0]  layers [TEXTURES];
+  logic [YL-1:0]  cubes  [TEXTURES];
+  logic           cube   [TEXTURES];
   logic [LNW-1:0] strides [TEXTURES];
   logic [EW-1:0]  level  [TEXTURES * LEVELS];  // entry t, level k at t * LEVELS + k
   always_ff @(posedge clk) begin
@@ -190,6 +211,8 @@ module tex_desc_table #(
       format[index_q] <= format_q;
       srgb[index_q]   <= srgb_q;
       layers[index_q] <= layers_q;
+      cubes[index_q]  <= cubes_m1;
+      cube[index_q]   <= cube_q;
     end
     if (walking)
       level[(32'(index_q) << VW) + 32'(lev)] <= {acc, nbx, (lbx < lby) ? lbx : lby};
@@ -218,6 +241,9 @@ module tex_desc_table #(
   assign size_b = {size_h[size_tex_b], size_w[size_tex_b]};
   assign last_b = last[size_tex_b];
   assign layers_a = layers[size_tex_a];
+  assign cubes_a  = cubes[size_tex_a];
+  assign cube_b   = cube[size_tex_b];
+  assign cube_c   = cube[cube_tex_c];
   assign stride   = strides[stride_tex];
   generate
     for (genvar s = 0; s < 2; s++) begin : g_slot

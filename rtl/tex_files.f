@@ -25,6 +25,7 @@ rtl/tex_bc_decode.sv
 rtl/tex_srgb_decode.sv
 rtl/tex_cache_data.sv
 rtl/tex_layer.sv
+rtl/tex_cube.sv
 rtl/tex_compare_ref.sv
 rtl/tex_desc_table.sv
 rtl/tex_fifo.sv

@@ -12,6 +12,10 @@
 // A gather (req_gather; the model's stage::gather) takes level 0 in both slots, f = 0 and the linear
 // filter's taps; its weights leave as 1/256 where they are 0, so that every tap is read (the
 // filter does not weigh a gather's taps).
+// A cube face (req_cube; the model's stage::cube_taps): req_u, req_v are the face's s, t in [0, 1]
+// (tex_cube's), reduced as in clamp-to-edge (unchanged) and wrapped in the internal skirt mode:
+// the face's texel i is stored at i + 1, its neighbours' edge texels at 0 and n + 1; a texel fetch
+// of a cube face reads texel (i + 1, j + 1) of the layer (face) it names.
 // Handshake: stall-enable; every register loads when en is high (the valid bits and tags are
 //   the top's). The texture's size (req_w, req_h) and the sampler's fields (req_wrap_*, req_min_linear
 //   .. req_max_lod: the request's sampler-table entry, or the on-chip unit's one sampler) are the
@@ -25,6 +29,7 @@
 //                           signed Q8.8, the request's own LOD bias (added to the sampler's)
 //   req_fetch             : a texel fetch: req_u, req_v, req_lod are the signed integers i, j, k
 //   req_gather            : a gather (req_lod, req_bias and the sampler's filters and LOD fields unused)
+//   req_cube              : the texture is a cube map (its faces stored with their skirts)
 //   req_w, req_h          : unsigned SIZE_W bits, level 0's size of the request's texture, each
 //                           1..2^max(XW, YW) (any value: GL's sizes)
 //   req_last_level        : unsigned LEVEL_W bits, the texture's last level (its level count - 1:
@@ -72,6 +77,7 @@ module tex_front #(
   input  logic                                   req_unnormalized,
   input  logic                                   req_fetch,
   input  logic                                   req_gather,
+  input  logic                                   req_cube,
   output logic [2*tex_pkg::LEVEL_W-1:0]          level,
   output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
@@ -111,6 +117,7 @@ module tex_front #(
   logic [2:0]                             unnorm_q;  // req_unnormalized at clocks 1..3
   logic [3:0]                             fetch_q;   // req_fetch at clocks 1..4
   logic [3:0]                             gather_q;  // req_gather at clocks 1..4
+  logic [3:0]                             cube_q;    // req_cube at clocks 1..4
   always_ff @(posedge clk) begin
     if (en) begin
       u_s1        <= req_u;
@@ -127,6 +134,7 @@ module tex_front #(
       unnorm_q <= {unnorm_q[1:0], req_unnormalized};
       fetch_q  <= {fetch_q[2:0], req_fetch};
       gather_q <= {gather_q[2:0], req_gather};
+      cube_q   <= {cube_q[2:0], req_cube};
     end
   end
   generate
@@ -210,7 +218,8 @@ module tex_front #(
                       | (tex_pkg::REQ_COORD_W'(1) <<< (tex_pkg::TEXEL_COORD_FRAC - 1));
       assign coord = fetch_q[0] ? centre : (a == 0) ? u_s1 : v_s1;
       tex_reduce #(.ML(ML)) u_reduce (.clk(clk), .en(en), .coord(coord),
-                                      .mode((a == 0) ? wrap_u_s1 : wrap_v_s1), .unnormalized(unnorm_q[0] || fetch_q[0]),
+                                      .mode(cube_q[0] ? tex_pkg::WRAP_CLAMP : (a == 0) ? wrap_u_s1 : wrap_v_s1),
+                                      .unnormalized(unnorm_q[0] || fetch_q[0]),
                                       .reduced(reduced_s2[a*RW +: RW]));
     end
   endgenerate
@@ -254,19 +263,22 @@ module tex_front #(
           end
         end
         assign size[(s*2 + a)*NW +: NW] = NW'(n_s4);
-        logic [tex_pkg::WRAP_W-1:0] mode;  // the sampler's, or a fetch's clamp to border
-        assign mode = fetch_q[3] ? tex_pkg::WRAP_BORDER : (a == 0) ? wrap_u_s4 : wrap_v_s4;
+        logic [tex_pkg::WRAP_W-1:0] mode;  // the sampler's, a fetch's clamp to border, a cube face's skirt
+        assign mode = fetch_q[3] ? tex_pkg::WRAP_BORDER : cube_q[3] ? tex_pkg::WRAP_SKIRT
+                    : (a == 0) ? wrap_u_s4 : wrap_v_s4;
+        logic [OW-1:0] skirt;  // a cube face's fetch: its texel i at i + 1
+        assign skirt = OW'(fetch_q[3] && cube_q[3]);
         tex_wrap #(.OUT_W(OW), .IW(IW), .NB(NB), .SECOND(1'b0)) u_wrap0 (.i(i0_s4), .n(n_s4), .pow2(pow2_s4),
                                         .mode(mode), .o(t0), .border(b0));
         tex_wrap #(.OUT_W(OW), .IW(IW), .NB(NB), .SECOND(1'b1)) u_wrap1 (.i(i1_s4), .n(n_s4), .pow2(pow2_s4),
                                         .mode(mode), .o(t1), .border(b1));
         if (a == 0) begin : g_x
-          assign x[(s*2 + 0)*XW +: XW] = t0;
-          assign x[(s*2 + 1)*XW +: XW] = t1;
+          assign x[(s*2 + 0)*XW +: XW] = t0 + skirt;
+          assign x[(s*2 + 1)*XW +: XW] = t1 + skirt;
           assign border_x[s*2 +: 2]    = {b1, b0} | {2{outside_s4}};
         end else begin : g_y
-          assign y[(s*2 + 0)*YW +: YW] = t0;
-          assign y[(s*2 + 1)*YW +: YW] = t1;
+          assign y[(s*2 + 0)*YW +: YW] = t0 + skirt;
+          assign y[(s*2 + 1)*YW +: YW] = t1 + skirt;
           assign border_y[s*2 +: 2]    = {b1, b0} | {2{outside_s4}};
         end
       end

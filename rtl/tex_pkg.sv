@@ -34,6 +34,8 @@ package tex_pkg;
   localparam logic [WRAP_W-1:0] WRAP_MIRROR       = 3'd2;  // MIRRORED_REPEAT
   localparam logic [WRAP_W-1:0] WRAP_BORDER       = 3'd3;  // CLAMP_TO_BORDER
   localparam logic [WRAP_W-1:0] WRAP_MIRROR_CLAMP = 3'd4;  // MIRROR_CLAMP_TO_EDGE
+  // (internal, never a sampler's: a cube face's taps in its skirted storage, tex_front and tex_wrap)
+  localparam logic [WRAP_W-1:0] WRAP_SKIRT        = 3'd5;
 
   // ---- cfg_smp_mip_mode
   localparam int MIP_W = 2;

@@ -10,7 +10,7 @@
 // Latency: tex_unit_cached's (19 clocks request to response when every line hits); a
 //   configuration write reaches the unit's pins 1 clock after the write's edge (BVALID with it).
 // Throughput: tex_unit_cached's (1 probe per clock while lines hit).
-// Ports: req_* / rsp_* as tex_unit_cached (req_u, req_v, req_dudx .. req_dvdy signed Q8.24;
+// Ports: req_* / rsp_* as tex_unit_cached (req_u, req_v, req_w, req_dudx .. req_dwdy signed Q8.24;
 //   req_lod, req_bias signed Q8.8; req_layer signed Q16.16; req_ref signed Q8.24; req_tex a descriptor entry, req_sampler a sampler entry; rsp_rgba {A, B, G, R} CW-bit unsigned;
 //   rsp_error: the sample read a line the memory answered with an error, rsp_rgba 0);
 //   s_axi_* 32-bit data, ADDR_W-bit byte addresses; m_axi_* MEM_W-bit data,
@@ -33,6 +33,7 @@ module tex_unit_axi #(
   parameter int SAMPLERS      = 16,
   parameter int BLOCK_FORMATS = 1,
   parameter int SRGB          = 0,
+  parameter int CUBE_MAPS     = 1,
   parameter int ADDR_W        = 12    // AXI4-Lite byte address bits, 8..32 (tex_axil_config)
 ) (
   input  logic                                   clk,
@@ -64,6 +65,7 @@ module tex_unit_axi #(
   output logic                                   req_ready,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_w,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
   input  logic                                   req_deriv,
@@ -71,6 +73,8 @@ module tex_unit_axi #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dwdx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dwdy,
   input  logic [tex_pkg::TEX_ID_W-1:0]           req_tex,
   input  logic [tex_pkg::SMP_ID_W-1:0]           req_sampler,
   input  logic [tex_pkg::OP_W-1:0]               req_op,
@@ -115,6 +119,7 @@ module tex_unit_axi #(
   logic [tex_pkg::SIZE_W-1:0]        cfg_desc_w, cfg_desc_h;
   logic [tex_pkg::LEVEL_W-1:0]       cfg_desc_last_level;
   logic [tex_pkg::LAYER_W-1:0]       cfg_desc_layers_m1;
+  logic                              cfg_desc_cube;
   logic                              cfg_desc_ready;
   logic                              cfg_smp_we;
   logic [tex_pkg::SMP_ID_W-1:0]      cfg_smp_index;
@@ -134,7 +139,7 @@ module tex_unit_axi #(
   tex_axil_config #(
     .ADDR_W(ADDR_W), .MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .LINES(LINES),
     .MAX_WAYS(MAX_WAYS), .FIFO_DEPTH(FIFO_DEPTH), .TEXTURES(TEXTURES), .SAMPLERS(SAMPLERS),
-    .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB), .LINE_BYTES(LINE_BYTES), .BEAT_BYTES(MEM_W / 8)
+    .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB), .CUBE_MAPS(CUBE_MAPS), .LINE_BYTES(LINE_BYTES), .BEAT_BYTES(MEM_W / 8)
   ) u_config (
     .clk(clk), .rst(rst),
     .s_axi_awvalid(s_axi_awvalid), .s_axi_awready(s_axi_awready), .s_axi_awaddr(s_axi_awaddr),
@@ -150,7 +155,7 @@ module tex_unit_axi #(
     .cfg_desc_last_level(cfg_desc_last_level),
     .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
     .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
-    .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb), .cfg_desc_layers_m1(cfg_desc_layers_m1),
+    .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb), .cfg_desc_layers_m1(cfg_desc_layers_m1), .cfg_desc_cube(cfg_desc_cube),
     .cfg_smp_min_linear(cfg_smp_min_linear), .cfg_smp_mag_linear(cfg_smp_mag_linear), .cfg_smp_mip_mode(cfg_smp_mip_mode),
     .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
     .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
@@ -169,7 +174,8 @@ module tex_unit_axi #(
     .MAX_LOG2_W(MAX_LOG2_W), .MAX_LOG2_H(MAX_LOG2_H), .CW(CW), .TAG_W(TAG_W),
     .BLOCK_W(BLOCK_W), .BLOCK_H(BLOCK_H), .LINES(LINES), .MAX_WAYS(MAX_WAYS),
     .FIFO_DEPTH(FIFO_DEPTH), .MISS_DEPTH(MISS_DEPTH), .FILL_DEPTH(FILL_DEPTH), .MEM_W(MEM_W),
-    .AXI_ID_W(AXI_ID_W), .TEXTURES(TEXTURES), .SAMPLERS(SAMPLERS), .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB)
+    .AXI_ID_W(AXI_ID_W), .TEXTURES(TEXTURES), .SAMPLERS(SAMPLERS), .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB),
+    .CUBE_MAPS(CUBE_MAPS)
   ) u_unit (
     .clk(clk), .rst(rst || unit_rst),  // (rst too: unit_rst is a register, random in the first clock)
     .cfg_desc_we(cfg_desc_we), .cfg_desc_index(cfg_desc_index), .cfg_desc_base(cfg_desc_base),
@@ -177,7 +183,7 @@ module tex_unit_axi #(
     .cfg_desc_last_level(cfg_desc_last_level),
     .cfg_smp_we(cfg_smp_we), .cfg_smp_index(cfg_smp_index),
     .cfg_smp_wrap_u(cfg_smp_wrap_u), .cfg_smp_wrap_v(cfg_smp_wrap_v),
-    .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb), .cfg_desc_layers_m1(cfg_desc_layers_m1),
+    .cfg_desc_format(cfg_desc_format), .cfg_desc_srgb(cfg_desc_srgb), .cfg_desc_layers_m1(cfg_desc_layers_m1), .cfg_desc_cube(cfg_desc_cube),
     .cfg_smp_min_linear(cfg_smp_min_linear), .cfg_smp_mag_linear(cfg_smp_mag_linear), .cfg_smp_mip_mode(cfg_smp_mip_mode),
     .cfg_smp_lod_bias(cfg_smp_lod_bias), .cfg_smp_min_lod(cfg_smp_min_lod), .cfg_smp_max_lod(cfg_smp_max_lod),
     .cfg_smp_max_aniso_m1(cfg_smp_max_aniso_m1), .cfg_smp_aniso_pow2(cfg_smp_aniso_pow2), .cfg_smp_border_rgba(cfg_smp_border_rgba),
@@ -185,9 +191,9 @@ module tex_unit_axi #(
     .cfg_smp_compare_op(cfg_smp_compare_op),
     .cfg_block_morton(cfg_block_morton), .cfg_log2_sets(cfg_log2_sets),
     .cfg_log2_ways(cfg_log2_ways), .cfg_fifo_limit(cfg_fifo_limit),
-    .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v),
+    .req_valid(req_valid), .req_ready(req_ready), .req_u(req_u), .req_v(req_v), .req_w(req_w),
     .req_lod(req_lod), .req_bias(req_bias), .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx),
-    .req_dudy(req_dudy), .req_dvdy(req_dvdy), .req_tex(req_tex), .req_sampler(req_sampler), .req_op(req_op), .req_component(req_component),
+    .req_dudy(req_dudy), .req_dvdy(req_dvdy), .req_dwdx(req_dwdx), .req_dwdy(req_dwdy), .req_tex(req_tex), .req_sampler(req_sampler), .req_op(req_op), .req_component(req_component),
     .req_layer(req_layer), .req_ref(req_ref), .req_tag(req_tag),
     .rsp_valid(rsp_valid), .rsp_ready(rsp_ready), .rsp_rgba(rsp_rgba), .rsp_tag(rsp_tag),
     .rsp_error(rsp_error),

@@ -14,7 +14,8 @@
 //   rsp_error set and rsp_rgba 0 (the unit keeps running; docs/memory.md §3). RLAST and RID are
 //   checked in simulation only (tex_axi_read counts the beats of a line).
 // Latency: 19 clocks from the request handshake edge to rsp_valid when every line hits, the
-//   request has one probe and the output is not stalled (requests 1-4 tex_probe; probes 1-4
+//   request has one probe and the output is not stalled, 25 with CUBE_MAPS (6 clocks of tex_cube
+//   for every request first; then requests 1-4 tex_probe; probes 1-4
 //   tex_front, 5 tag stage and FIFO push, 6 head, 7 data read, 8 taps, 9-11 tex_filter, 12-13
 //   tex_accum, 14 tex_skid); a miss adds the memory's latency, each further probe a clock.
 // Throughput: 1 probe per clock while lines hit (1 sample per clock for lambda requests and
@@ -31,6 +32,12 @@
 //                      its depth, tested `ref OP R` by the request's sampler's cfg_smp_compare_op, then
 //                      filtered (tex_compare_ref, tex_filter; the depth codes are the memory's
 //                      channel width: 8 bits with SRGB)
+//   req_w, req_dwdx, req_dwdy : a cube map's direction is (req_u, req_v, req_w), signed Q8.24 of any
+//                      length, its derivatives (req_dudx, req_dvdx, req_dwdx) and (.. req_dwdy);
+//                      tex_cube makes them the face's s, t and theirs (CUBE_MAPS; a texel fetch
+//                      of a cube names the face as its layer, 6 a cube). Isotropic only: a cube
+//                      lookup with derivatives through a sampler whose anisotropy cap is above 1
+//                      is not taken (its probes would leave the face; docs/cube-maps.md)
 //   req_layer        : the layer of an array texture, signed Q16.16 layers (rounded to the nearest,
 //                      a tie to the even, clamped to the texture's layers: tex_layer); a texel
 //                      fetch's: a signed integer (outside the layers: the fetch answers 0)
@@ -48,7 +55,11 @@
 //                      block format, decoded after the cache to unorm8 texels; docs/memory.md §1),
 //                      its R, G, B sRGB-encoded if cfg_desc_srgb (SRGB only; not BC4, BC5); an
 //                      array of cfg_desc_layers_m1 + 1 such pyramids one after another (1..256
-//                      layers; each layer's first line a whole number of lines after the last's).
+//                      layers; each layer's first line a whole number of lines after the last's);
+//                      a cube map or cube array if cfg_desc_cube (CUBE_MAPS): 6 layers a cube
+//                      (+X, -X, +Y, -Y, +Z, -Z), square RGBA faces of n x n texels, n + 2 at most
+//                      the configuration's smaller side, each level stored with its one-texel skirt
+//                      (n_k + 2 texels a side, no seam copies; docs/memory.md §1).
 //                      Written before the requests that name the entry (and rewritten between
 //                      frames, with no request of that entry in flight); the caches need no flush
 //                      (they are tagged by address). The unit then sets the entry up (its levels'
@@ -85,9 +96,11 @@ module tex_unit_cached #(
   parameter int SAMPLERS   = 16,   // sampler-table entries (power of two, 1..16)
   parameter int BLOCK_FORMATS = 1, // 1: BC1-BC5 and BC7 textures too, 8 decoders after the cache
                                    // (needs 8-bit memory channels and lines of at least 64 bytes)
-  parameter int SRGB       = 0     // 1: sRGB textures too: memory holds 8-bit channels, CW = 16;
+  parameter int SRGB       = 0,    // 1: sRGB textures too: memory holds 8-bit channels, CW = 16;
                                    // an sRGB texture's R, G, B decoded to linear unorm16 by a table
                                    // before the filter, a linear texture filtered as 8-bit values
+  parameter int CUBE_MAPS  = 1     // 1: cube maps and cube arrays too (tex_cube ahead of tex_probe:
+                                   // every request's latency 6 clocks longer)
 ) (
   input  logic                                   clk,
   input  logic                                   rst,
@@ -101,6 +114,7 @@ module tex_unit_cached #(
   input  logic [tex_pkg::FORMAT_W-1:0]           cfg_desc_format,
   input  logic                                   cfg_desc_srgb,
   input  logic [tex_pkg::LAYER_W-1:0]            cfg_desc_layers_m1,
+  input  logic                                   cfg_desc_cube,
   output logic                                   cfg_desc_ready,
   input  logic                                   cfg_smp_we,
   input  logic [tex_pkg::SMP_ID_W-1:0]           cfg_smp_index,
@@ -127,6 +141,7 @@ module tex_unit_cached #(
   output logic                                   req_ready,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_u,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_v,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_w,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_lod,
   input  logic signed [tex_pkg::LOD_W-1:0]       req_bias,
   input  logic                                   req_deriv,
@@ -134,6 +149,8 @@ module tex_unit_cached #(
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdx,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dudy,
   input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dvdy,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dwdx,
+  input  logic signed [tex_pkg::REQ_COORD_W-1:0] req_dwdy,
   input  logic [tex_pkg::TEX_ID_W-1:0]           req_tex,
   input  logic [tex_pkg::SMP_ID_W-1:0]           req_sampler,
   input  logic [tex_pkg::OP_W-1:0]               req_op,
@@ -234,6 +251,9 @@ module tex_unit_cached #(
     if (!(BLOCK_FORMATS == 0 || (BLOCK_FORMATS == 1 && (CW == 8 || SRGB == 1) && LINE_BITS >= 512))) begin : g_bad_block_formats
       `TEX_PARAM_ERROR("tex_unit_cached: parameter BLOCK_FORMATS must be 0, or 1 with 8-bit memory channels (CW = 8, or SRGB) and lines of at least 64 bytes (BLOCK_W * BLOCK_H >= 16)")
     end
+    if (!(CUBE_MAPS == 0 || CUBE_MAPS == 1)) begin : g_bad_cube_maps
+      `TEX_PARAM_ERROR("tex_unit_cached: parameter CUBE_MAPS must be 0 or 1")
+    end
   endgenerate
 
   // ---------------------------------------------------------------- input registers
@@ -269,20 +289,22 @@ module tex_unit_cached #(
   logic            srgb_s4;
   logic [VW-1:0]   log2_lw_s4, log2_lh_s4;
   localparam int YL = tex_pkg::LAYER_W;
-  logic [YL-1:0]   req_layers_m1;            // the request's texture's layer count - 1
+  logic [YL-1:0]   req_layers_m1;            // the request's texture's layer count - 1 (at tex_probe's port)
+  logic            probe_cube;               // the probe's texture is a cube map
   logic [TXW-1:0]  stride_tex;               // the front's clock-3 texture
   logic [LNW-1:0]  stride;                   // and its layer stride, in lines
   tex_desc_table #(
     .MAX_LOG2_W(MLW), .MAX_LOG2_H(MLH), .TEXTURES(TEXTURES), .BW(BLOCK_W), .BH(BLOCK_H),
-    .LINE_BYTES(LINE_BITS / 8), .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB)
+    .LINE_BYTES(LINE_BITS / 8), .BLOCK_FORMATS(BLOCK_FORMATS), .SRGB(SRGB), .CUBE_MAPS(CUBE_MAPS)
   ) u_desc (
     .clk(clk), .rst(rst), .desc_we(cfg_desc_we), .desc_index(TXW'(cfg_desc_index)),
     .desc_base(cfg_desc_base), .desc_w(cfg_desc_w), .desc_h(cfg_desc_h),
     .desc_last_level(cfg_desc_last_level), .desc_format(cfg_desc_format), .desc_srgb(cfg_desc_srgb),
-    .desc_layers_m1(cfg_desc_layers_m1), .block_morton(cfg_block_morton_q),
+    .desc_layers_m1(cfg_desc_layers_m1), .desc_cube(cfg_desc_cube), .block_morton(cfg_block_morton_q),
     .busy(desc_busy),
-    .size_tex_a(TXW'(req_tex)), .size_a(req_size), .layers_a(req_layers_m1), .size_tex_b(probe_tex),
-    .size_b(probe_size), .last_b(probe_last_level), .stride_tex(stride_tex), .stride(stride),
+    .size_tex_a(line_tex), .size_a(req_size), .layers_a(req_layers_m1), .cubes_a(line_cubes_m1),
+    .size_tex_b(probe_tex), .size_b(probe_size), .last_b(probe_last_level), .cube_b(probe_cube),
+    .cube_tex_c(TXW'(req_tex)), .cube_c(req_cube_tex), .stride_tex(stride_tex), .stride(stride),
     .tag_tex(tex_s4), .tag_level(level_s4), .tag_line(line_s4), .tag_pitch(pitch_s4),
     .tag_square(square_s4), .tag_format(format_s4), .tag_srgb(srgb_s4),
     .tag_log2_lw(log2_lw_s4), .tag_log2_lh(log2_lh_s4)
@@ -326,17 +348,6 @@ module tex_unit_cached #(
       smp_compare[smp_index_q] <= smp_compare_q;
     end
   end
-  logic [4:0] req_aniso;  // the request's sampler's cap, taken with the request
-  assign req_aniso = smp_aniso[SXW'(req_sampler)];
-
-  // ---------------------------------------------------------------- the request's layer
-  // Resolved at the port (the texture's layer count is read there as its size is) and carried in
-  // tex_probe's tag: 9 bits where the coordinate would be 32.
-  logic [YL-1:0] req_layer_index;
-  logic          req_layer_outside;
-  tex_layer u_layer (.coord(req_layer), .fetch(req_op == tex_pkg::OP_FETCH), .layers_m1(req_layers_m1),
-                     .layer(req_layer_index), .outside(req_layer_outside));
-
   // ---------------------------------------------------------------- a compare's reference
   // In the depth's codes at the port (DW bits ride in the tags where the 32-bit reference would):
   // the memory's channel width (with SRGB an 8-bit texel stays an 8-bit value in the filter).
@@ -344,9 +355,85 @@ module tex_unit_cached #(
   logic [DW-1:0] req_ref_code;
   tex_compare_ref #(.CW(DW)) u_compare_ref (.dref(req_ref), .code(req_ref_code));
 
+  // ---------------------------------------------------------------- cube: tex_cube (CUBE_MAPS)
+  // A lookup of a cube map (not a texel fetch) goes through tex_cube: its face, the face's s, t and
+  // their derivatives become a 2D request of the face's layer. Every request waits the same 6
+  // clocks beside it (a line advancing with tex_probe's req_ready), so that they stay in order;
+  // the line's end is the request tex_probe takes ("line_*"). Without CUBE_MAPS the line is wires.
+  localparam int RW = 2*LW + 1 + TXW + SXW + tex_pkg::OP_W + 2 + DW + TGW;  // the fields beside the coordinates
+  localparam int CC = tex_pkg::REQ_COORD_W;
+  logic               probe_ready;  // tex_probe takes a request
+  logic               line_valid, line_cube;
+  logic signed [CC-1:0] line_u, line_v, line_dudx, line_dvdx, line_dudy, line_dvdy, line_layer;
+  logic [RW-1:0]      line_rest;    // {lod, bias, deriv, tex, sampler, op, component, ref code, tag}
+  logic [2:0]         line_face;
+  logic [RW-1:0]      req_rest;
+  assign req_rest = {req_lod, req_bias, req_deriv, TXW'(req_tex), SXW'(req_sampler), req_op, req_component,
+                     req_ref_code, req_tag};
+  logic               req_cube_tex;  // the request's texture is a cube map
+  generate
+    if (CUBE_MAPS != 0) begin : g_cube
+      localparam int LINE_W = 1 + 1 + 7*CC + RW;  // {valid, cube, u, v, derivatives, layer, rest}
+      logic [LINE_W-1:0] line [6];
+      logic              req_cube;
+      assign req_cube = req_valid && !desc_busy && req_cube_tex && req_op != tex_pkg::OP_FETCH;
+      always_ff @(posedge clk) begin
+        if (rst) begin
+          for (int i = 0; i < 6; i++) line[i][LINE_W-1] <= 1'b0;
+        end else if (probe_ready) begin
+          line[0] <= {req_valid && !desc_busy, req_cube, req_u, req_v, req_dudx, req_dvdx, req_dudy, req_dvdy,
+                      req_layer, req_rest};
+          for (int i = 1; i < 6; i++) line[i] <= line[i-1];
+        end
+      end
+      logic signed [CC-1:0] s, t, dsdx, dtdx, dsdy, dtdy;
+      tex_cube u_cube (
+        .clk(clk), .en(probe_ready), .cube(req_cube), .rx(req_u), .ry(req_v), .rz(req_w),
+        .dxdx(req_dudx), .dydx(req_dvdx), .dzdx(req_dwdx), .dxdy(req_dudy), .dydy(req_dvdy), .dzdy(req_dwdy),
+        .face(line_face), .s(s), .t(t), .dsdx(dsdx), .dtdx(dtdx), .dsdy(dsdy), .dtdy(dtdy)
+      );
+      logic signed [CC-1:0] u5, v5, dudx5, dvdx5, dudy5, dvdy5;
+      assign {line_valid, line_cube, u5, v5, dudx5, dvdx5, dudy5, dvdy5, line_layer, line_rest} = line[5];
+      assign line_u    = line_cube ? s : u5;
+      assign line_v    = line_cube ? t : v5;
+      assign line_dudx = line_cube ? dsdx : dudx5;
+      assign line_dvdx = line_cube ? dtdx : dvdx5;
+      assign line_dudy = line_cube ? dsdy : dudy5;
+      assign line_dvdy = line_cube ? dtdy : dvdy5;
+    end else begin : g_no_cube
+      assign {line_valid, line_cube, line_u, line_v, line_dudx, line_dvdx, line_dudy, line_dvdy, line_layer, line_rest} =
+             {req_valid && !desc_busy, 1'b0, req_u, req_v, req_dudx, req_dvdx, req_dudy, req_dvdy, req_layer, req_rest};
+      assign line_face = '0;
+      logic unused_cube;
+      assign unused_cube = ^{req_w, req_dwdx, req_dwdy, req_cube_tex};
+    end
+  endgenerate
+  logic signed [LW-1:0] line_lod, line_bias;
+  logic                 line_deriv;
+  logic [TXW-1:0]       line_tex;
+  logic [SXW-1:0]       line_smp;
+  logic [tex_pkg::OP_W-1:0] line_op;
+  logic [1:0]           line_component;
+  logic [DW-1:0]        line_ref_code;
+  logic [TGW-1:0]       line_tag;
+  assign {line_lod, line_bias, line_deriv, line_tex, line_smp, line_op, line_component, line_ref_code, line_tag} = line_rest;
+  logic [4:0] line_aniso;  // the request's sampler's cap, taken with the request
+  assign line_aniso = smp_aniso[line_smp];
+
+  // ---------------------------------------------------------------- the request's layer
+  // Resolved where tex_probe takes the request (the texture's layer count is read there as its
+  // size is) and carried in tex_probe's tag: 9 bits where the coordinate would be 32. A cube map's
+  // lookup: the cube the layer picks (clamped to the cubes) times 6 plus the face tex_cube selected.
+  logic [YL-1:0] line_layer_index, line_cubes_m1;
+  logic          line_layer_outside;
+  tex_layer u_layer (.coord(line_layer), .fetch(line_op == tex_pkg::OP_FETCH),
+                     .layers_m1(line_cube ? line_cubes_m1 : req_layers_m1),
+                     .layer(line_layer_index), .outside(line_layer_outside));
+  logic [YL-1:0] line_layer_face;  // the layer the request reads
+  assign line_layer_face = line_cube ? YL'(line_layer_index * YL'(6) + YL'(line_face)) : line_layer_index;
+
   // ---------------------------------------------------------------- requests 1-4: tex_probe
   logic en_front, en_back;
-  logic probe_ready;  // tex_probe takes a request (while no descriptor is being set up)
   assign req_ready = probe_ready && !desc_busy;
   logic                                   probe_valid, probe_first, probe_last;
   logic [4:0]                             probe_n;
@@ -361,13 +448,13 @@ module tex_unit_cached #(
   logic [2:0]                             probe_held;  // requests in tex_probe
   tex_probe #(.TAG_W(DW + YL + 3 + tex_pkg::OP_W + SXW + TXW + TGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front),
-    .req_valid(req_valid && !desc_busy), .req_ready(probe_ready), .req_u(req_u), .req_v(req_v), .req_lod(req_lod),
-    .req_bias(req_bias),
-    .req_deriv(req_deriv), .req_dudx(req_dudx), .req_dvdx(req_dvdx), .req_dudy(req_dudy),
-    .req_dvdy(req_dvdy), .req_w(req_size[0 +: NW]), .req_h(req_size[NW +: NW]),
-    .req_max_aniso_m1(req_aniso[3:0]), .req_aniso_pow2(req_aniso[4]),
-    .req_tag({req_ref_code, req_layer_outside, req_layer_index, req_component, req_op, SXW'(req_sampler), TXW'(req_tex),
-              req_tag}),
+    .req_valid(line_valid), .req_ready(probe_ready), .req_u(line_u), .req_v(line_v), .req_lod(line_lod),
+    .req_bias(line_bias),
+    .req_deriv(line_deriv), .req_dudx(line_dudx), .req_dvdx(line_dvdx), .req_dudy(line_dudy),
+    .req_dvdy(line_dvdy), .req_w(req_size[0 +: NW]), .req_h(req_size[NW +: NW]),
+    .req_max_aniso_m1(line_aniso[3:0]), .req_aniso_pow2(line_aniso[4]),
+    .req_tag({line_ref_code, line_layer_outside, line_layer_face, line_component, line_op, line_smp, line_tex,
+              line_tag}),
     .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
     .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n),
     .probe_tag({probe_ref, probe_layer, probe_component, probe_op, probe_smp, probe_tex, probe_tag}),
@@ -441,7 +528,7 @@ module tex_unit_cached #(
     .req_mip_mode(probe_smp_front[2*WW + 2 +: PW]), .req_lod_bias(probe_smp_front[2*WW + 2 + PW +: LW]),
     .req_min_lod(probe_smp_front[2*WW + 2 + PW + LW +: LW]),
     .req_max_lod(probe_smp_front[2*WW + 2 + PW + 2*LW +: LW]), .req_unnormalized(probe_smp_front[FRW - 1]),
-    .req_fetch(probe_op == tex_pkg::OP_FETCH), .req_gather(probe_op == tex_pkg::OP_GATHER),
+    .req_fetch(probe_op == tex_pkg::OP_FETCH), .req_gather(probe_op == tex_pkg::OP_GATHER), .req_cube(probe_cube),
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .border_x(border_x_front), .border_y(border_y_front), .zero(zero_front)
   );
@@ -567,7 +654,7 @@ module tex_unit_cached #(
   logic [TAG_W-1:0]                       req_tag_q, rsp_tag_q;
   logic [tex_pkg::OP_W-1:0]               req_op_q;
   logic [1:0]                             req_component_q;
-  logic [tex_pkg::REQ_COORD_W-1:0]        req_layer_q, req_ref_q;
+  logic [tex_pkg::REQ_COORD_W-1:0]        req_layer_q, req_ref_q, req_w_q, req_dwdx_q, req_dwdy_q;
   logic [tex_pkg::TEX_ID_W-1:0]           req_tex_q;
   logic [tex_pkg::SMP_ID_W-1:0]           req_sampler_q;
   logic [4*CW-1:0]                        rsp_rgba_q;
@@ -592,6 +679,9 @@ module tex_unit_cached #(
       req_component_q <= req_component;
       req_layer_q <= req_layer;
       req_ref_q <= req_ref;
+      req_w_q <= req_w;
+      req_dwdx_q <= req_dwdx;
+      req_dwdy_q <= req_dwdy;
       req_tex_q <= req_tex;
       req_sampler_q <= req_sampler;
       req_deriv_q <= {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy};
@@ -621,6 +711,16 @@ module tex_unit_cached #(
       assert (SRGB != 0 && cfg_desc_format != tex_pkg::FMT_BC4 && cfg_desc_format != tex_pkg::FMT_BC5)
         else $error("tex_unit_cached: cfg_desc_srgb for format %0d (SRGB = %0d; BC4 and BC5 have no sRGB)",
                     cfg_desc_format, SRGB);
+    if (!rst && cfg_desc_we && cfg_desc_cube)
+      assert (CUBE_MAPS != 0 && cfg_desc_format == tex_pkg::FMT_RGBA8 && cfg_desc_w == cfg_desc_h
+              && (32'(cfg_desc_layers_m1) + 1) % 6 == 0 && 32'(cfg_desc_w) + 2 <= (1 << ((MLW < MLH) ? MLW : MLH)))
+        else $error("tex_unit_cached: cfg_desc_cube for a %0d x %0d texture of format %0d and %0d layers (CUBE_MAPS = %0d: square RGBA faces of n + 2 <= %0d texels, 6 layers a cube)",
+                    cfg_desc_w, cfg_desc_h, cfg_desc_format, 32'(cfg_desc_layers_m1) + 1, CUBE_MAPS,
+                    1 << ((MLW < MLH) ? MLW : MLH));
+    if (!rst && req_valid && req_ready && req_cube_tex && req_deriv && req_op != tex_pkg::OP_FETCH)
+      assert (smp_aniso[SXW'(req_sampler)][3:0] == '0)
+        else $error("tex_unit_cached: a cube map lookup with derivatives through sampler %0d, whose anisotropy cap is above 1 (cube maps are isotropic in this unit)",
+                    req_sampler);
     if (!rst && cfg_smp_we)
       assert (32'(cfg_smp_index) < SAMPLERS)
         else $error("tex_unit_cached: cfg_smp_index %0d is beyond the sampler table (SAMPLERS = %0d)",
@@ -638,7 +738,8 @@ module tex_unit_cached #(
         else $error("tex_unit_cached: req_tex %0d is beyond the descriptor table (TEXTURES = %0d)", req_tex, TEXTURES);
     if (!rst && req_stalled_q) begin
       assert (req_valid && req_u == req_u_q && req_v == req_v_q && req_lod == req_lod_q && req_bias == req_bias_q
-              && req_tag == req_tag_q && req_op == req_op_q && req_component == req_component_q && req_layer == req_layer_q && req_ref == req_ref_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
+              && req_tag == req_tag_q && req_op == req_op_q && req_component == req_component_q && req_layer == req_layer_q && req_ref == req_ref_q
+              && req_w == req_w_q && req_dwdx == req_dwdx_q && req_dwdy == req_dwdy_q && req_tex == req_tex_q && req_sampler == req_sampler_q && {req_deriv, req_dudx, req_dvdx, req_dudy, req_dvdy} == req_deriv_q)
         else $error("tex_unit_cached: req_valid dropped or request changed while req_ready was low");
     end
     if (!rst && rsp_stalled_q) begin

@@ -7,14 +7,17 @@
 //           pair n-1, copy sits in two parity banks)
 //   clamp: min(max(i, 0), n-1)      mirror: m = i < 0 ? -1-i : i; m < n ? m : max(2n-1-m, 0)
 //   border: min(max(i, 0), n-1), and border = (i < 0 || i >= n): the tap takes the border colour
-//   mirror-clamp: min(i < 0 ? -1-i : i, n-1)     (the unused codes 5..7 give 0)
+//   mirror-clamp: min(i < 0 ? -1-i : i, n-1)     (the unused codes 6, 7 give 0)
+//   skirt (internal: a cube face, stored with a one-texel skirt, face texel i at i + 1; the model's
+//          stage::cube_taps): the first tap min(i, n-1) + 1 (a linear filter's i in -1..n-1, a
+//          nearest filter's in 0..n clamped to the face), the second i + 1 (0..n+1)
 // Handshake: none (combinational; tex_unit clock 5). Latency: 0. Throughput: 1 per clock.
 // Ports:
 //   i      : signed IW bits, unwrapped integer texel index (tex_address)
 //   n      : unsigned NB bits, the level's side, 1..2^(NB-1) (registered, tex_front clock 4)
 //   pow2   : n is a power of two (registered beside it)
 //   mode   : tex_pkg::WRAP_*
-//   o      : unsigned OUT_W bits, the wrapped index: [0, n), or n at a repeat seam
+//   o      : unsigned OUT_W bits, the wrapped index: [0, n), or n at a repeat seam (skirt: 0..n+1)
 //   border : 1 bit, the tap is outside the level in mode border (o is then a don't-care index
 //            inside the level, never read as a texel)
 module tex_wrap #(
@@ -53,6 +56,9 @@ module tex_wrap #(
         border = negative || beyond;
       end
       tex_pkg::WRAP_MIRROR_CLAMP: o = folded_beyond ? OUT_W'(n - 1'b1) : OUT_W'(folded);
+      tex_pkg::WRAP_SKIRT:
+        if (SECOND) o = OUT_W'(ix + XW'(1));
+        else        o = beyond ? OUT_W'(n) : OUT_W'(ix + XW'(1));
       default:                    o = '0;
     endcase
   end

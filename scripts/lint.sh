@@ -35,9 +35,10 @@ cached=("-GMAX_LOG2_W=6 -GMAX_LOG2_H=3" "-GCW=16 -GMAX_LOG2_W=5 -GMAX_LOG2_H=4 -
         "-GMAX_LOG2_W=13 -GMAX_LOG2_H=13 -GLINES=1024 -GFIFO_DEPTH=1024 -GMEM_W=256 -GAXI_ID_W=4"
         "-GBLOCK_W=8 -GBLOCK_H=8 -GMEM_W=256" "-GBLOCK_W=2 -GBLOCK_H=4 -GBLOCK_FORMATS=0"
         "-GMAX_LOG2_W=13 -GMAX_LOG2_H=0 -GCW=16 -GTEXTURES=1 -GSAMPLERS=1 -GBLOCK_FORMATS=0" "-GTEXTURES=2 -GSAMPLERS=4"
-        "-GMAX_LOG2_W=6 -GMAX_LOG2_H=3 -GCW=16 -GSRGB=1" "-GCW=16 -GSRGB=1 -GBLOCK_FORMATS=0")
+        "-GMAX_LOG2_W=6 -GMAX_LOG2_H=3 -GCW=16 -GSRGB=1" "-GCW=16 -GSRGB=1 -GBLOCK_FORMATS=0" "-GCUBE_MAPS=0"
+        "-GCW=16 -GMAX_LOG2_W=5 -GMAX_LOG2_H=4 -GBLOCK_W=2 -GMEM_W=64 -GBLOCK_FORMATS=0 -GCUBE_MAPS=0")
 bad_cached=("MAX_LOG2_W=14" "BLOCK_W=3" "BLOCK_H=16" "MAX_WAYS=3" "LINES=24" "FIFO_DEPTH=3" "MISS_DEPTH=8" "MEM_W=1024" "MEM_W=16" "AXI_ID_W=0"
-            "TEXTURES=3" "TEXTURES=32" "SAMPLERS=0" "SAMPLERS=12" "SAMPLERS=32" "BLOCK_FORMATS=2" "CW=16" "SRGB=2" "SRGB=1")
+            "TEXTURES=3" "TEXTURES=32" "SAMPLERS=0" "SAMPLERS=12" "SAMPLERS=32" "BLOCK_FORMATS=2" "CW=16" "SRGB=2" "SRGB=1" "CUBE_MAPS=2")
 
 # tex_unit: six configurations, then out-of-range parameters (lint must fail, naming the parameter).
 lint_unit() {
@@ -75,7 +76,9 @@ lint_blocks() {
   # few of tex_pkg's constants.
   clean tex_lambda verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_lambda.sv \
     --top-module tex_lambda
-  echo "lint: verilator -Wall clean for tex_lambda"
+  clean tex_cube verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_cube.sv \
+    --top-module tex_cube
+  echo "lint: verilator -Wall clean for tex_lambda and tex_cube"
   # The block decoders and the sRGB table on their own, through their harnesses (tex_unit_cached's
   # taps call them; linted there too).
   lint_decode() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \

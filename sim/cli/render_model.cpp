@@ -61,13 +61,11 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   if (trace) eo.trace_path = trace->write_path();
   OutputFile* queries_out = a.trace_queries.empty() ? nullptr : &outputs.declare(a.trace_queries, "--trace-queries");
 
-  // --envmap: the model as a mirror of a cube map, the one texture; the model engine samples cubes.
+  // --envmap: the model as a mirror of a cube map, the one texture.
   const bool mirror = !a.envmap.empty();
   if (mirror) {
     if (a.model.empty()) throw Error("--envmap takes --model (one model drawn as a mirror)");
     if (!a.trace_queries.empty()) throw Error("--envmap: --trace-queries writes 2D queries; a mirror's are a cube's");
-    if (o.engine != "model")
-      throw Error("--envmap: the " + o.engine + " engine samples 2D textures and arrays (cube maps: -e model)");
     for (const std::string& face : split_commas(a.envmap)) outputs.add_input(face, "--envmap");  // (six faces: each)
   }
 

@@ -243,9 +243,6 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   }
   if (query_error) std::rethrow_exception(query_error);
   check_tables(table, samplers, eo.memory);  // (before any output: an array needs the cached unit)
-  for (const BoundTexture& t : table)  // (before any output)
-    if (t.kind == TextureKind::Cube && o.engine != "model")
-      throw Error("a cube map: the " + o.engine + " engine samples 2D textures and arrays (cube maps: -e model; docs/cube-maps.md)");
   if (reader && !query_error && op != Op::Fetch)  // the header's coordinates are the textures' kind's
     for (size_t t = 0; t < table.size(); ++t)
       if ((table[t].kind == TextureKind::Cube) != reader->cube())

@@ -253,6 +253,67 @@ int32_t random_reference(std::mt19937_64& rng) {
   }
 }
 
+std::array<int32_t, 3> cube_direction(std::mt19937_64& rng, int face, double s, double t) {
+  const double sc = 2 * s - 1, tc = 2 * t - 1;
+  double d[3] = {};
+  switch (face) {  // (stage::cube_face's table, inverted)
+    case 0: d[0] = 1, d[1] = -tc, d[2] = -sc; break;
+    case 1: d[0] = -1, d[1] = -tc, d[2] = sc; break;
+    case 2: d[0] = sc, d[1] = 1, d[2] = tc; break;
+    case 3: d[0] = sc, d[1] = -1, d[2] = -tc; break;
+    case 4: d[0] = sc, d[1] = -tc, d[2] = 1; break;
+    default: d[0] = -sc, d[1] = -tc, d[2] = -1; break;
+  }
+  const double scale = std::ldexp(1.0 + double(rng() % 1000) / 1000, int(rng() % 13) - 6);
+  std::array<int32_t, 3> out{};
+  for (int c = 0; c < 3; ++c) out[size_t(c)] = int32_t(std::lround(d[c] * scale * (1 << kCoordFracBits)));
+  return out;
+}
+
+Request cube_request(std::mt19937_64& rng, const Request& r, int n, int last_level, int layers) {
+  auto unit = [&] { return double(rng() % 1000001) / 1e6; };
+  Request q;
+  q.texture = r.texture;
+  q.sampler = r.sampler;
+  q.tag = r.tag;
+  const int cubes = std::max(1, layers / 6);
+  if (rng() % 8 == 0 && r.op != Op::Compare) {  // a texel fetch of a face
+    q.op = Op::Fetch;
+    q.u = int32_t(rng() % uint64_t(n + 2)) - (rng() % 8 == 0 ? 1 : 0);
+    q.v = int32_t(rng() % uint64_t(n + 2)) - (rng() % 8 == 0 ? 1 : 0);
+    q.lod = int32_t(rng() % uint64_t(last_level + 2));
+    q.layer = int32_t(rng() % uint64_t(layers + 1)) - (rng() % 16 == 0 ? 1 : 0);
+    return q;
+  }
+  const int face = int(rng() % 6);
+  double s = unit(), t = unit();
+  if (rng() % 2) {  // within a texel of an edge, a quarter of those at a corner
+    const double e = unit() / n;
+    (rng() % 2 ? s : t) = rng() % 2 ? e : 1 - e;
+    if (rng() % 4 == 0) (s < 1.0 / n || s > 1 - 1.0 / n ? t : s) = rng() % 2 ? unit() / n : 1 - unit() / n;
+  }
+  const std::array<int32_t, 3> d = cube_direction(rng, face, s, t);
+  q.u = d[0];
+  q.v = d[1];
+  q.w = d[2];
+  q.layer = cubes > 1 ? random_layer(rng, cubes) : 0;
+  q.op = r.op == Op::Compare ? Op::Compare : rng() % 8 == 0 ? Op::Gather : Op::Sample;
+  q.ref = r.ref;
+  q.component = uint8_t(rng() % 4);
+  if (q.op != Op::Gather && rng() % 3 == 0) {  // derivatives along the face, of a footprint of 1/4 to 4 texels at a level
+    q.has_derivatives = true;
+    const double len = std::ldexp(1.0, int(rng() % uint64_t(last_level + 4)) - 2) / n;
+    const double scale = std::hypot(std::hypot(double(d[0]), double(d[1])), double(d[2]));
+    auto deriv = [&] { return int32_t(std::lround((unit() * 2 - 1) * len * scale)); };
+    q.deriv = {deriv(), deriv(), deriv(), deriv()};
+    q.dwdx = deriv();
+    q.dwdy = deriv();
+  } else {
+    q.lod = random_lod(rng, last_level);
+  }
+  return q;
+}
+
 Image random_image(int w, int h, int cw, uint64_t seed, int style) {
   Image img(w, h, cw);
   std::mt19937_64 rng(seed);

@@ -3,6 +3,7 @@
 // stall profiles. Model types only (library texunit_stimulus, links texmodel alone), so that the
 // suites differ in what they drive, never in what they ask.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -135,6 +136,19 @@ void compares_among(std::mt19937_64& rng, std::vector<Request>& requests, int on
       r.ref = random_reference(rng);
     }
 }
+
+// ---------------------------------------------------------------- cube maps
+// A direction (Q8.24) onto face `face` (0..5: +X .. -Z) at its (s, t) in [0, 1], of any length: the
+// face table inverted (sc = 2s - 1, tc = 2t - 1, |rc| = 1), scaled by 2^-6 .. 2^6.
+std::array<int32_t, 3> cube_direction(std::mt19937_64& rng, int face, double s, double t);
+// A lookup of a cube map (or cube array of `layers` layers, 6 a cube) of n x n faces and levels
+// 0..last_level, keeping r's texture, sampler and tag: a direction onto every face, half of them
+// within a texel of an edge and a quarter of those at a corner (the skirt's neighbours and its
+// average of three); a lod, or (a third) isotropic derivatives of the direction; one in 8 a gather
+// of a random component, one in 8 a texel fetch of a face (i, j, face + 6 c, level; now and then
+// outside). A compare stays one (a new direction, its reference kept). The cube of an array:
+// random_layer's cases over the cubes.
+Request cube_request(std::mt19937_64& rng, const Request& r, int n, int last_level, int layers);
 
 // ---------------------------------------------------------------- textures
 // Texels of `cw`-bit channels: noise, near-black and near-white extremes, or a few values (style

@@ -1,6 +1,6 @@
-// Cube maps (stage::cube_face, cube_derivative, cube_reproject, cube_skirts): the face and its
+// Cube maps (stage::cube_face, cube_reciprocal, cube_derivatives, cube_reproject, cube_skirts): the face and its
 // coordinates against long double arithmetic of the specification's table (the tie rules at
-// exact ties); the derivatives by the quotient rule in long double; the skirts hold the texels
+// exact ties); the reciprocal tex_cube divides by; the derivatives by the quotient rule in long double; the skirts hold the texels
 // across each edge (each skirt texel the neighbour's texel whose centre is nearest the skirt
 // texel's direction) and the average of three at the corners; a sample inside a face away from its
 // edges is the face's own 2D sample.
@@ -74,21 +74,79 @@ TEST(CubeFace, FaceAndCoordinatesAsTheTableGivesThem) {
   EXPECT_EQ(stage::cube_face(0, 0, 0).face, 4);
 }
 
+// tex_cube's reciprocal of the major axis, normalized to D in [2^31, 2^32): never above 2^62 / D
+// and within 2^-25 of it, so that the quotient X R / 2^39 it estimates for s and t (X <= 2^33, the
+// quotient <= 2^24) is at most 1 below the exact rounded quotient, which tex_cube's correction step
+// (the remainder against 2D) then reaches: checked at every table interval's ends and 2 M random D.
+TEST(CubeFace, ReciprocalIsWithinTheCorrectionStepsReach) {
+  std::mt19937_64 rng(23);
+  std::vector<uint32_t> ds;
+  for (uint64_t i = 0; i < 128; ++i) {
+    const uint64_t lo = (128 + i) << 24, hi = ((129 + i) << 24) - 1;
+    for (uint64_t d : {lo, lo + 1, hi - 1, hi}) ds.push_back(uint32_t(d));
+  }
+  for (int i = 0; i < 2000000; ++i) ds.push_back(uint32_t(rng()) | 0x80000000u);
+  long double worst = 0;
+  int max_gap = 0;
+  for (const uint32_t d : ds) {
+    const uint32_t r = stage::cube_reciprocal(d);
+    ASSERT_LE(__int128(r) * d, __int128(1) << 62) << d;  // from below
+    const long double rel = 1.0L - (long double)r * d / 4611686018427387904.0L;
+    worst = std::max(worst, rel);
+    ASSERT_LT(rel, 1.0L / 33554432.0L) << d;
+    // The estimate at the largest X (2D: s = 1) and at random X, against the exact quotient.
+    for (const uint64_t x : {uint64_t(d) * 2, rng() % (uint64_t(d) * 2 + 1)}) {
+      const uint64_t q = uint64_t((__int128(x) * 16777216 + d) / (2 * __int128(d)));
+      const uint64_t est = uint64_t((__int128(x) * r + (__int128(1) << 38)) >> 39);
+      ASSERT_LE(est, q) << d << " " << x;
+      max_gap = std::max(max_gap, int(q - est));
+    }
+  }
+  EXPECT_EQ(max_gap, 1);  // (one correction step: needed, and enough)
+  RecordProperty("worst_relative_error", std::to_string(double(worst)));
+}
+
+// The derivatives by the quotient rule, against the exact rational in long double: within tex_cube's
+// block floating point (within 2^-13 of the axis' largest term), for directions of any length.
 TEST(CubeFace, DerivativesByTheQuotientRule) {
   std::mt19937_64 rng(22);
+  int checked = 0;
   for (int i = 0; i < 200000; ++i) {
+    const int scale = int(rng() % 8);  // directions and derivatives of many magnitudes
     const int32_t d[3] = {int32_t(rng() % (4u << 24)) - (2 << 24), int32_t(rng() % (4u << 24)) - (2 << 24),
                           int32_t(rng() % (4u << 24)) - (2 << 24)};
-    const int32_t dx[3] = {int32_t(rng() % (1u << 22)) - (1 << 21), int32_t(rng() % (1u << 22)) - (1 << 21),
-                           int32_t(rng() % (1u << 22)) - (1 << 21)};
-    const stage::CubeFace f = stage::cube_face(d[0], d[1], d[2]);
+    int32_t dir[3], dx[3];
+    for (int c = 0; c < 3; ++c) {
+      dir[c] = d[c] >> scale;
+      dx[c] = int32_t(rng() % (1u << 22)) - (1 << 21);
+      if (rng() % 4 == 0) dx[c] = int32_t(uint32_t(rng()));  // any
+    }
+    const stage::CubeFace f = stage::cube_face(dir[0], dir[1], dir[2]);
     if (f.rc == 0) continue;
-    const std::array<int32_t, 3> a = stage::cube_axes(f.face, dx[0], dx[1], dx[2]);
+    // The face's (dsc, dtc, drc), by the specification's table.
+    long double dsc = 0, dtc = 0, drc = 0;
+    const long double x = dx[0], y = dx[1], z = dx[2];
+    switch (f.face) {
+      case 0: dsc = -z, dtc = -y, drc = x; break;
+      case 1: dsc = z, dtc = -y, drc = x; break;
+      case 2: dsc = x, dtc = z, drc = y; break;
+      case 3: dsc = x, dtc = -z, drc = y; break;
+      case 4: dsc = x, dtc = -y, drc = z; break;
+      default: dsc = -x, dtc = -y, drc = z; break;
+    }
     const long double arc = std::fabs((long double)f.rc), sign = f.rc < 0 ? -1 : 1;
-    const long double exact = ((long double)a[0] * arc - (long double)f.sc * sign * a[2]) / (2 * arc * arc) * kOne;
-    if (std::fabs(exact) > 2e9L || std::fabs(exact - std::floor(exact) - 0.5L) < 1e-6L) continue;
-    ASSERT_EQ(stage::cube_derivative(a[0], f.sc, a[2], f.rc), int32_t(std::floor(exact + 0.5L)));
+    const std::array<int32_t, 2> got = stage::cube_derivatives(f, dx[0], dx[1], dx[2]);
+    const long double largest = std::max({std::fabs(dsc), std::fabs(dtc), std::fabs(drc)});
+    for (int axis = 0; axis < 2; ++axis) {
+      const long double c = axis == 0 ? (long double)f.sc : (long double)f.tc, dc = axis == 0 ? dsc : dtc;
+      const long double exact = (dc * arc - c * sign * drc) / (2 * arc * arc) * kOne;
+      if (std::fabs(exact) > 2e9L) continue;  // (saturates)
+      const long double tol = largest / (2 * arc) * kOne / 8192 + 1;  // 2^-13 of the largest term, and the rounding
+      ASSERT_NEAR((long double)got[size_t(axis)], exact, tol) << "face " << f.face << " axis " << axis;
+      ++checked;
+    }
   }
+  EXPECT_GT(checked, 300000);
 }
 
 // Every skirt texel is the neighbour's texel nearest its direction; the corners average three.

@@ -23,7 +23,7 @@ namespace axil_harness {
 
 // ---- the Verilated build's parameters (tests/rtl/CMakeLists.txt)
 constexpr int kAddrW = 12, kMaxLog2W = 10, kMaxLog2H = 9, kLines = 256, kMaxWays = 4, kFifoDepth = 256;
-constexpr int kTextures = 8, kSamplers = 4, kBlockFormats = 1, kSrgb = 1, kLineBytes = 64, kBeatBytes = 16;
+constexpr int kTextures = 8, kSamplers = 4, kBlockFormats = 1, kSrgb = 1, kLineBytes = 64, kBeatBytes = 16, kCubeMaps = 1;
 constexpr int kFifoLimitBits = 9;  // $clog2(FIFO_DEPTH + 1)
 
 // ---- the register map: sim/engines/rtl/register_map.h (test_register_map.cpp checks it against the RTL)
@@ -64,10 +64,12 @@ struct Reference {
   bool descriptor_ok(uint32_t d) const {
     const uint32_t index = d & 15, w = desc_size & 0x3FFF, h = (desc_size >> 16) & 0x3FFF;
     const uint32_t format = (desc_attr >> 16) & 7;
-    const bool srgb = (desc_attr >> 19) & 1;
+    const bool srgb = (desc_attr >> 19) & 1, cube = (desc_attr >> 20) & 1;
+    const uint32_t layers = (desc_attr >> 24) + 1;
     return index < kTextures && w >= 1 && w <= (1u << kMaxLog2W) && h >= 1 && h <= (1u << kMaxLog2H) &&
            (format == 0 || (kBlockFormats && format != 6)) && (!srgb || (kSrgb && format != 4 && format != 5)) &&
-           desc_base % kLineBytes == 0;
+           desc_base % kLineBytes == 0 &&
+           (!cube || (kCubeMaps && format == 0 && w == h && layers % 6 == 0 && w + 2 <= (1u << std::min(kMaxLog2W, kMaxLog2H))));
   }
   bool sampler_ok(uint32_t d) const {
     auto wrap_ok = [](uint32_t w) { return w <= 4; };  // the five address modes (5..7: none)
@@ -102,7 +104,7 @@ struct Reference {
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
       case kDescBase: desc_base = d; break;
-      case kDescAttr: desc_attr = d & 0xFF0F0F00; break;
+      case kDescAttr: desc_attr = d & 0xFF1F0F00; break;
       case kDescSize: desc_size = d & 0x3FFF3FFF; break;
       case kWrap: wrap = d & 0x77; break;
       case kSmpCommit: smp_index = d & 15; break;
@@ -112,7 +114,7 @@ struct Reference {
     }
   }
   static uint32_t caps0() {
-    return kMaxLog2W | kMaxLog2H << 4 | kTextures << 8 | kBlockFormats << 16 | kSrgb << 17 | kSamplers << 20;
+    return kMaxLog2W | kMaxLog2H << 4 | kTextures << 8 | kBlockFormats << 16 | kSrgb << 17 | kCubeMaps << 18 | kSamplers << 20;
   }
   static uint32_t caps1() {
     return log2i(kLines) | kMaxWays << 8 | log2i(kFifoDepth) << 16 | log2i(kLineBytes) << 24 | log2i(kBeatBytes) << 28;
@@ -139,7 +141,7 @@ struct Reference {
     }
     switch (a) {
       case kId: return {0x54455855u, kOkay};
-      case kVersion: return {0x00030003u, kOkay};
+      case kVersion: return {0x00030004u, kOkay};
       case kCaps0: return {caps0(), kOkay};
       case kCaps1: return {caps1(), kOkay};
       case kControl: return {control, kOkay};
@@ -448,6 +450,7 @@ class Slave {
     EXPECT_EQ(t.cfg_desc_format, (r.desc_attr >> 16) & 7);
     EXPECT_EQ(t.cfg_desc_last_level, (r.desc_attr >> 8) & 15);
     EXPECT_EQ(t.cfg_desc_srgb, (r.desc_attr >> 19) & 1);
+    EXPECT_EQ(t.cfg_desc_cube, (r.desc_attr >> 20) & 1);
     EXPECT_EQ(t.cfg_desc_layers_m1, (r.desc_attr >> 24) & 255);
     EXPECT_EQ(t.cfg_smp_border_rgba, uint64_t(r.border_rg) | uint64_t(r.border_ba) << 32);
     EXPECT_EQ(t.cfg_smp_min_linear, r.filter & 1);

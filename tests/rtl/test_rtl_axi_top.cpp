@@ -187,7 +187,7 @@ void program(AxiTop& top, const Case& c, const std::vector<TextureDescriptor>& d
   expect_read(kControl, kUnitReset, "CONTROL");
   expect_read(kId, kIdValue, "ID");
   expect_read(kVersion, kVersionValue, "VERSION");
-  expect_read(kCaps0, uint32_t(kMaxLog2W | kMaxLog2H << 4 | kTextures << 8 | kSamplers << 20), "CAPS0");
+  expect_read(kCaps0, uint32_t(kMaxLog2W | kMaxLog2H << 4 | kTextures << 8 | 1 << 18 | kSamplers << 20), "CAPS0");  // (CUBE_MAPS: the default)
   expect_read(kCaps1, uint32_t(log2i(kLines) | kMaxWays << 8 | log2i(kFifoDepth) << 16 | log2i(kLineBytes) << 24 |
                                log2i(kBeatBytes) << 28),
               "CAPS1");

@@ -25,8 +25,8 @@ using namespace axil_harness;
 TEST(RtlAxilConfig, IdVersionCapabilitiesAndResetValues) {
   Slave s(1);
   EXPECT_EQ(s.read(kId).data, 0x54455855u);  // "TEXU"
-  EXPECT_EQ(s.read(kVersion).data, 0x00030003u);
-  EXPECT_EQ(s.read(kCaps0).data, uint32_t(10 | 9 << 4 | 8 << 8 | 1 << 16 | 1 << 17 | 4 << 20));
+  EXPECT_EQ(s.read(kVersion).data, 0x00030004u);
+  EXPECT_EQ(s.read(kCaps0).data, uint32_t(10 | 9 << 4 | 8 << 8 | 1 << 16 | 1 << 17 | 1 << 18 | 4 << 20));
   EXPECT_EQ(s.read(kCaps1).data, uint32_t(8 | 4 << 8 | 8 << 16 | 6 << 24 | 4 << 28));
   // reset: the unit held in reset, the whole cache of 4 ways, trilinear, no LOD clamp
   EXPECT_EQ(s.read(kControl).data, 1u);

@@ -128,6 +128,10 @@ CaseResult run_case(rtl::Driver& unit, const TextureTable& table, const SamplerT
   std::vector<uint32_t> predicted;
   std::vector<RequestWork> work;  // each request's probes and their misses: what its timing depends on
   for (const Request& q : requests) {
+    if (mt.at(q.texture).kind == TextureKind::Cube) {  // (the face's request and probes: the cache's own)
+      work.push_back(model.lookup_sample(q, &predicted));
+      continue;
+    }
     const Pyramid& t = *mt.at(q.texture).pyramid;
     const Probes p = tex_probe(q, ms.at(q.sampler), t.extent0());
     RequestWork& w = work.emplace_back();
@@ -388,7 +392,8 @@ void run_descriptor_tables(const std::string& config, int cases) {
   unit->reset();
   uint64_t samples = 0, switches = 0, sampler_switches = 0, reads = 0, flagged = 0;
   int full_tables = 0, full_samplers = 0, failures = 0, block_textures = 0, srgb_textures = 0, array_textures = 0;
-  std::map<std::string, uint64_t> layer_cases;
+  int cube_textures = 0;
+  std::map<std::string, uint64_t> layer_cases, cube_cases;
   for (int ci = 0; ci < cases * scale(); ++ci) {
     const uint64_t seed = mix64(base + uint64_t(ci));
     if (only && *only != seed) continue;
@@ -401,8 +406,11 @@ void run_descriptor_tables(const std::string& config, int cases) {
       std::vector<Pyramid>& pyramids = arrays[size_t(t)];
       // Up to the configuration's 64x8, half of them of powers of two; half of the textures in a
       // block format (sides >= 4).
+      // With CUBE_MAPS, one in 4 a cube map of n x n RGBA faces (n + 2 <= the smaller side), one in
+      // 3 of those a cube array of 2 or 3 cubes.
+      const bool cube = rc.cube_maps && rng() % 4 == 0;
       const TexelFormat format =
-          !rc.formats || rng() % 2 ? TexelFormat::Rgba8 : kBlockFormats[rng() % kBlockFormats.size()];
+          cube || !rc.formats || rng() % 2 ? TexelFormat::Rgba8 : kBlockFormats[rng() % kBlockFormats.size()];
       const bool blocks = is_compressed(format), srgb = rng() % 2;
       Extent size;
       if (rng() % 2)
@@ -410,8 +418,13 @@ void run_descriptor_tables(const std::string& config, int cases) {
       else
         size = {blocks ? 4 + int(rng() % 61) : 1 + int(rng() % 64), blocks ? 4 + int(rng() % 5) : 1 + int(rng() % 8)};
       // A third of them arrays of 2 to 8 layers, now and then of 256 (each layer its own texels).
-      const int layers = rng() % 3 ? 1 : rng() % 8 == 0 ? kMaxLayers : 2 + int(rng() % 7);
-      const bool view = rng() % 4 == 0;  // a view: levels b..b+0..3 (the descriptor's last level)
+      int layers = rng() % 3 ? 1 : rng() % 8 == 0 ? kMaxLayers : 2 + int(rng() % 7);
+      if (cube) {
+        const int face = 1 + int(rng() % uint64_t(std::min(rc.max_cube_face(), 40)));
+        size = {face, face};
+        layers = 6 * (rng() % 3 ? 1 : 2 + int(rng() % 2));
+      }
+      const bool view = !cube && rng() % 4 == 0;  // a view: levels b..b+0..3 (the descriptor's last level)
       const uint64_t b = rng(), span = rng() % 4;
       for (int l = 0; l < layers; ++l) {
         pyramids.push_back(random_pyramid(rc, format, size, srgb, rng()));
@@ -422,8 +435,9 @@ void run_descriptor_tables(const std::string& config, int cases) {
       }
       block_textures += blocks;
       srgb_textures += pyramids.back().srgb;
-      array_textures += layers > 1;
-      BoundTexture bound{&pyramids[0], {}};
+      array_textures += !cube && layers > 1;
+      cube_textures += cube;
+      BoundTexture bound{&pyramids[0], {}, cube ? TextureKind::Cube : TextureKind::Texture2D};
       for (int l = 1; l < layers; ++l) bound.more_layers.push_back(&pyramids[size_t(l)]);
       table.push_back(bound);
     }
@@ -448,9 +462,37 @@ void run_descriptor_tables(const std::string& config, int cases) {
     fetches_and_gathers_among(rng, requests, 16, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
     layers_among(rng, requests, [&](int t) { return table[size_t(t)].layers(); });
     compares_among(rng, requests, 16, samplers, [&](int t) { return !table[size_t(t)].pyramid->srgb; });
+    // A cube map's requests: cube_request's, through a sampler the RTL takes for cubes (isotropic,
+    // normalized; a compare's, one that compares): sampler 0 is made one.
+    if (cube_textures) {
+      samplers[0].max_aniso = 1;
+      samplers[0].unnormalized = false;
+    }
+    for (Request& q : requests) {
+      const BoundTexture& t = table[q.texture];
+      if (t.kind != TextureKind::Cube) continue;
+      q = cube_request(rng, q, t.pyramid->extent0().w, t.pyramid->last_level(), t.layers());
+      auto takes = [&](const SamplerConfig& c) {
+        return c.probe_cap() == 1 && !c.unnormalized && (q.op != Op::Compare || c.compare_problem().empty());
+      };
+      if (!takes(samplers[q.sampler])) q.sampler = 0;
+      if (q.op == Op::Compare && (!takes(samplers[q.sampler]) || t.pyramid->srgb)) q.op = Op::Sample;
+      const int layer_of = q.op == Op::Fetch ? q.layer : -1;
+      ++cube_cases[q.op == Op::Fetch ? (layer_of >= 0 && layer_of < t.layers() ? "a face's texel fetch" : "a fetch outside the faces")
+                   : q.op == Op::Gather ? "a gather"
+                   : q.op == Op::Compare ? "a depth compare"
+                   : q.has_derivatives ? "derivatives" : "a lod"];
+      if (q.op != Op::Fetch) {
+        const stage::CubeFace f = stage::cube_face(q.u, q.v, q.w);
+        const int32_t n = t.pyramid->extent0().w, edge = (1 << kCoordFracBits) / n;
+        const bool near_s = f.s < edge || f.s > (1 << kCoordFracBits) - edge, near_t = f.t < edge || f.t > (1 << kCoordFracBits) - edge;
+        ++cube_cases[near_s && near_t ? "at a corner" : near_s || near_t ? "at an edge" : "inside a face"];
+        ++cube_cases["face " + std::to_string(f.face)];
+      }
+    }
     for (const Request& q : requests) {  // the layer cases of arrays, counted
       const int nl = table[q.texture].layers();
-      if (nl == 1) continue;
+      if (nl == 1 || table[q.texture].kind == TextureKind::Cube) continue;
       const int64_t whole = q.layer >> 16;
       if (q.op == Op::Fetch) ++layer_cases[stage::fetch_layer_inside(q.layer, nl) ? "fetch inside the layers" : "fetch outside the layers"];
       else if (q.layer < 0) ++layer_cases["below layer 0"];
@@ -478,10 +520,21 @@ void run_descriptor_tables(const std::string& config, int cases) {
               (unsigned long long)samples, (unsigned long long)flagged, (unsigned long long)switches,
               (unsigned long long)sampler_switches, (unsigned long long)reads, full_tables, kMaxTextures,
               full_samplers, kMaxSamplers, block_textures, srgb_textures, array_textures, config.c_str());
+  if (rc.cube_maps) {
+    std::printf("[ cached   ] %d cube maps:", cube_textures);
+    for (const auto& [c, k] : cube_cases) std::printf(" %s %llu;", c.c_str(), (unsigned long long)k);
+    std::printf("\n");
+  }
   if (only) return;
   EXPECT_GT(full_tables, 0);
   EXPECT_GT(full_samplers, 0);
   EXPECT_GT(array_textures, 0);
+  EXPECT_EQ(cube_textures > 0, rc.cube_maps);
+  if (rc.cube_maps)
+    for (const char* c : {"a face's texel fetch", "a fetch outside the faces", "a gather", "a depth compare", "derivatives",
+                          "a lod", "at a corner", "at an edge", "inside a face", "face 0", "face 1", "face 2", "face 3",
+                          "face 4", "face 5"})
+      EXPECT_GT(cube_cases[c], 0u) << "cube requests: " << c;
   for (const char* c : {"fetch inside the layers", "fetch outside the layers", "below layer 0", "beyond the last layer",
                         "a tie, rounded up to even", "a tie, rounded down to even", "between two layers"})
     EXPECT_GT(layer_cases[c], 0u) << "array requests: " << c;

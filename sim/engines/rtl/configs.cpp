@@ -12,9 +12,9 @@
 namespace tex::rtl {
 
 const std::vector<RtlConfig>& compiled_configs() {
-#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, formats) \
+#define TEX_RTL_CONFIG_ENTRY(prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, formats, cubes) \
   RtlConfig{#prefix, log2_w, log2_h, cw, cached, bw, bh, lines, fifo, mem_w, miss, cached ? kMaxTextures : 1, 4, \
-            formats != 0, cached ? kMaxSamplers : 1},
+            formats != 0, cached ? kMaxSamplers : 1, cubes != 0},
   static const std::vector<RtlConfig> configs = {TEX_RTL_CONFIGS(TEX_RTL_CONFIG_ENTRY)};
 #undef TEX_RTL_CONFIG_ENTRY
   return configs;
@@ -31,14 +31,14 @@ std::string size_text(int log2_w, int log2_h) { return std::to_string(1 << log2_
 std::string RtlConfig::max_texture() const { return size_text(max_log2_w, max_log2_h); }
 
 const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memory, int block_w, int block_h,
-                                     bool formats, Extent size) {
+                                     bool formats, Extent size, bool cubes) {
   const RtlConfig* best = nullptr;
   const RtlConfig* largest = nullptr;
   const bool cached = memory == Memory::Cached;
   // A unit with the formats also takes 8-bit linear textures (its filter's 16-bit channels hold
   // their 8-bit values: the same results); among units that fit, the smallest, then one without.
   auto takes = [&](const RtlConfig& c) {
-    return c.cached == cached && (formats ? c.formats : c.cw == cw || (c.formats && cw == 8));
+    return c.cached == cached && (formats ? c.formats : c.cw == cw || (c.formats && cw == 8)) && (!cubes || c.cube_maps);
   };
   auto area = [](const RtlConfig* c) { return c->max_log2_w + c->max_log2_h; };
   for (const RtlConfig& c : compiled_configs()) {
@@ -60,7 +60,8 @@ const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw, Memory memo
       throw Error("no cached RTL configuration is built for " + std::to_string(block_w) + "x" +
                   std::to_string(block_h) + " blocks of " + std::to_string(cw) + "-bit texels (built: " + built + ")");
     throw Error("no " + memory_name(memory) + " RTL configuration is built for " + std::to_string(cw) +
-                "-bit channels" + (formats ? " with the block decoders and sRGB tables" : ""));
+                "-bit channels" + (formats ? " with the block decoders and sRGB tables" : "") +
+                (cubes ? " and cube maps (CUBE_MAPS: tex_unit_cached only)" : ""));
   }
   const std::string named = size.w > 1 || size.h > 1 ? std::to_string(size.w) + "x" + std::to_string(size.h)
                                                       : size_text(log2_w, log2_h);
@@ -82,16 +83,20 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
   int log2_w = 0, log2_h = 0, cw = 8;
   Extent largest_size;  // the largest sides, as the error names them
   bool formats = false;  // cached: blocks or sRGB codes to decode after the cache (a CW = 16 unit)
+  bool cubes = false;    // a cube map: CUBE_MAPS, and its skirted faces (n + 2) fit both sides
   for (const BoundTexture& t : textures) {
-    log2_w = std::max(log2_w, log2_ceil(t.pyramid->extent0().w));
-    log2_h = std::max(log2_h, log2_ceil(t.pyramid->extent0().h));
+    const bool cube = t.kind == TextureKind::Cube;
+    cubes = cubes || cube;
+    const int skirt = cube ? log2_ceil(t.pyramid->extent0().w + 2) : 0;
+    log2_w = std::max({log2_w, log2_ceil(t.pyramid->extent0().w), skirt});
+    log2_h = std::max({log2_h, log2_ceil(t.pyramid->extent0().h), skirt});
     largest_size = {std::max(largest_size.w, t.pyramid->extent0().w), std::max(largest_size.h, t.pyramid->extent0().h)};
     cw = std::max(cw, t.pyramid->levels[0].channel_bits);
     formats = formats || t.pyramid->srgb || is_compressed(t.pyramid->format);
   }
   formats = formats && memory == Memory::Cached;
   const RtlConfig& fits =
-      smallest_config_for(log2_w, log2_h, formats ? 16 : cw, memory, block_w, block_h, formats, largest_size);
+      smallest_config_for(log2_w, log2_h, formats ? 16 : cw, memory, block_w, block_h, formats, largest_size, cubes);
   auto holds = [&](const RtlConfig& c) {
     return cache->size_bytes / c.line_bytes() <= c.lines && fifo_depth <= uint32_t(c.fifo_depth);
   };
@@ -99,7 +104,7 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
   // A larger configuration of the same kind whose caches hold the geometry asked for.
   const RtlConfig* best = nullptr;
   for (const RtlConfig& c : compiled_configs())
-    if (c.cached && (fits.formats ? c.formats : c.cw == fits.cw || (c.formats && fits.cw == 8)) &&
+    if (c.cached && (fits.formats ? c.formats : c.cw == fits.cw || (c.formats && fits.cw == 8)) && (!cubes || c.cube_maps) &&
         c.block_w == block_w && c.block_h == block_h &&
         c.fits(log2_w, log2_h) && holds(c) &&
         (!best || c.max_log2_w + c.max_log2_h < best->max_log2_w + best->max_log2_h))
@@ -126,6 +131,27 @@ void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::ve
     throw Error(std::string("a ") + format_info(pyramid.format).name + (pyramid.srgb ? " sRGB" : "") + " texture: " +
                 config.name + " has no block decoders or sRGB tables (built without FORMATS)");
   for (size_t i = 0; i < requests.size(); ++i) check_request(requests[i], i);
+}
+
+void check_cube(const RtlConfig& config, const BoundTexture& texture) {
+  const int n = texture.pyramid->extent0().w;
+  if (!config.cube_maps)
+    throw Error(config.name + ": a cube map; this configuration is built without cube maps (CUBE_MAPS = 0)");
+  if (n > config.max_cube_face())
+    throw Error(config.name + ": a cube map of " + std::to_string(n) + "x" + std::to_string(n) +
+                " faces; its faces take at most " + std::to_string(config.max_cube_face()) + "x" +
+                std::to_string(config.max_cube_face()) + " (stored with a one-texel skirt, n + 2 <= " +
+                std::to_string(config.max_cube_face() + 2) + ")");
+}
+
+void check_cube_samplers(const TextureTable& textures, const SamplerTable& samplers) {
+  if (std::none_of(textures.begin(), textures.end(), [](const BoundTexture& t) { return t.kind == TextureKind::Cube; }))
+    return;
+  for (size_t i = 0; i < samplers.size(); ++i)
+    if (samplers[i].probe_cap() > 1)
+      throw Error("sampler " + std::to_string(i) + ": anisotropy " + std::to_string(samplers[i].probe_cap()) +
+                  "x with a cube map in the table; the RTL samples cube maps isotropically (--max-aniso 1; the "
+                  "model engine takes anisotropic cubes; docs/cube-maps.md)");
 }
 
 void check_request(const Request& request, size_t index) {
@@ -177,6 +203,7 @@ UnitShape unit_shape(const RtlConfig& config, uint32_t fifo_depth) {
   s.miss_depth = uint32_t(config.miss_depth);
   s.fill_depth = uint32_t(config.fill_depth);
   s.line_beats = uint32_t(config.line_bytes() * 8 / config.mem_bits);
+  s.cube_clocks = config.cube_maps ? kCubeClocks : 0;
   return s;
 }
 

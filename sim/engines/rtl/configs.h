@@ -3,6 +3,7 @@
 // the shape the timing model clocks like it. No Verilated code and no pins: the model engine learns
 // the configurations here, not from the pin driver (driver.h).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -34,6 +35,10 @@ struct RtlConfig {
   // channels in memory, a CW = 16 filter (a linear 8-bit texture's values enter it as they are).
   bool formats = false;
   int samplers = 1;              // SAMPLERS: sampler-table entries (tex_unit: its one sampler)
+  // CUBE_MAPS = 1: cube maps and cube arrays (tex_cube ahead of tex_probe, 6 clocks more latency),
+  // faces of n x n texels with n + 2 at most the smaller side, isotropic.
+  bool cube_maps = false;
+  int max_cube_face() const { return (1 << std::min(max_log2_w, max_log2_h)) - 2; }
   int memory_channel_bits() const { return formats ? 8 : cw; }
   int line_bytes() const { return block_w * block_h * (memory_channel_bits() > 8 ? 8 : 4); }
   Memory memory() const { return cached ? Memory::Cached : Memory::OnChip; }
@@ -47,7 +52,8 @@ const std::vector<RtlConfig>& compiled_configs();
 // pyramid (cached: with the block shape asked for, and the formats if `formats`); throws tex::Error
 // naming the largest one when none does (and the texture: `size` if given, else 2^log2_w x 2^log2_h).
 const RtlConfig& smallest_config_for(int log2_w, int log2_h, int cw = 8, Memory memory = Memory::OnChip,
-                                     int block_w = 4, int block_h = 4, bool formats = false, Extent size = {});
+                                     int block_w = 4, int block_h = 4, bool formats = false, Extent size = {},
+                                     bool cubes = false);
 // The same for a descriptor table: the largest sides, the widest channels the filter takes, and,
 // cached, a configuration with the formats if any texture is block-compressed or sRGB, and the
 // smallest whose caches and FIFO hold `cache` and `fifo_depth` when one does (if none does, the
@@ -58,6 +64,13 @@ const RtlConfig& smallest_config_for(const TextureTable& textures, Memory memory
 // other channel widths than the configuration's, a lambda outside the 16-bit Q8.8 port.
 void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::vector<Request>& requests = {});
 void check_request(const Request& request, size_t index);  // lod and bias fit the 16-bit Q8.8 ports
+// A cube map the configuration cannot take (no CUBE_MAPS, a face larger than max_cube_face(), not
+// RGBA), as one tex::Error.
+void check_cube(const RtlConfig& config, const BoundTexture& texture);
+// Samplers the cached unit does not take with a cube map: with a cube in the table, each sampler's
+// anisotropy cap must be 1 (a footprint's probes would leave the face: cube maps are isotropic in
+// the RTL), as one tex::Error naming the sampler.
+void check_cube_samplers(const TextureTable& textures, const SamplerTable& samplers);
 
 // The cache pins of tex_unit_cached for a cache geometry (throws tex::Error when the
 // configuration cannot hold it).

@@ -19,6 +19,9 @@ void set_request_pins(PinsIn& in, const Request& r) {
   in.req_dvdx = r.deriv.dvdx;
   in.req_dudy = r.deriv.dudy;
   in.req_dvdy = r.deriv.dvdy;
+  in.req_w = r.w;
+  in.req_dwdx = r.dwdx;
+  in.req_dwdy = r.dwdy;
   in.req_tex = r.texture;
   in.req_sampler = r.sampler;
   in.req_op = uint8_t(r.op);
@@ -189,9 +192,7 @@ void Driver::write_tables() {
 
 void Driver::load_textures(const TextureTable& textures) {
   for (const BoundTexture& t : textures)
-    if (t.kind == TextureKind::Cube)
-      throw Error(config_.name + ": a cube map; the RTL samples 2D textures and arrays (cube maps: the model engine; "
-                  "docs/cube-maps.md)");
+    if (t.kind == TextureKind::Cube) check_cube(config_, t);
   if (!config_.cached) {
     if (textures.size() != 1)
       throw Error(config_.name + " holds one texture (the on-chip unit); the table has " + std::to_string(textures.size()));
@@ -212,7 +213,8 @@ void Driver::load_textures(const TextureTable& textures) {
     const MemoryLayout& layout = table[i].layout;
     descriptors_.push_back({uint8_t(i), layout.params().base, uint16_t(layout.size0().w),
                             uint16_t(layout.size0().h), uint8_t(layout.levels() - 1), uint8_t(layout.format()),
-                            textures[i].pyramid->srgb, uint8_t(layout.layers() - 1)});
+                            textures[i].pyramid->srgb, uint8_t(layout.layers() - 1),
+                            layout.kind() == TextureKind::Cube});
   }
   if (options_.memory_port) {
     port_ = options_.memory_port;

@@ -39,6 +39,7 @@ struct PinsIn {
   int16_t req_bias = 0;          // Q8.8, the request's own LOD bias
   bool req_deriv = false;        // the derivatives below instead of req_lod
   int32_t req_dudx = 0, req_dvdx = 0, req_dudy = 0, req_dvdy = 0;  // Q8.24
+  int32_t req_w = 0, req_dwdx = 0, req_dwdy = 0;  // tex_unit_cached: a cube's direction (u, v, w) and derivatives, Q8.24
   uint16_t req_tag = 0;
   uint8_t req_tex = 0;           // tex_unit_cached: the descriptor-table entry
   uint8_t req_sampler = 0;       // tex_unit_cached: the sampler-table entry
@@ -85,7 +86,8 @@ struct DescriptorPins {
   uint8_t last_level = 15; // the chain's last level (a view's: docs/rtl-interface.md)
   uint8_t format = 0;  // tex_pkg::FMT_* = TexelFormat
   bool srgb = false;   // R, G, B are sRGB codes (a configuration with the formats)
-  uint8_t layers_m1 = 0;  // an array's layers - 1 (0..255)
+  uint8_t layers_m1 = 0;  // an array's layers - 1 (0..255; a cube's: 6 a cube)
+  bool cube = false;      // a cube map or cube array (CUBE_MAPS)
 };
 
 // One sampler, the cfg_smp_* pins (SamplerConfig field for field): tex_unit's static pins, or

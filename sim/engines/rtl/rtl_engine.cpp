@@ -66,14 +66,15 @@ class RtlEngine final : public Engine {
                   TexelSink& sink) override {
     const bool cached = options_.memory == Memory::Cached;
     check_tables(textures, samplers, options_.memory);
-    for (const BoundTexture& t : textures)  // (before the unit is built)
-      if (t.kind == TextureKind::Cube)
-        throw Error("a cube map: the RTL samples 2D textures and arrays (cube maps: the model engine; docs/cube-maps.md)");
+    check_cube_samplers(textures, samplers);  // (before the unit is built)
     const Pyramid& pyramid = *textures[0].pyramid;
     const RtlConfig& rc =
         smallest_config_for(textures, options_.memory, options_.layout.block_w, options_.layout.block_h,
                             &options_.cache, options_.fifo_depth);
-    for (const BoundTexture& t : textures) check_inputs(rc, *t.pyramid);
+    for (const BoundTexture& t : textures) {
+      check_inputs(rc, *t.pyramid);
+      if (t.kind == TextureKind::Cube) check_cube(rc, t);
+    }
     std::optional<TextureCache> cache;
     if (cached) {
       cache_pins(rc, options_.layout, options_.cache, options_.fifo_depth);  // the geometry fits the configuration

@@ -92,6 +92,9 @@ class VerilatedTexUnit final : public Driver {
       t.req_tex = in.req_tex;
       t.req_sampler = in.req_sampler;
       t.req_layer = uint32_t(in.req_layer);
+      t.req_w = uint32_t(in.req_w);
+      t.req_dwdx = uint32_t(in.req_dwdx);
+      t.req_dwdy = uint32_t(in.req_dwdy);
     } else {
       t.wr_en = in.wr_en;
       t.wr_level = in.wr_level;
@@ -198,6 +201,7 @@ class VerilatedTexUnit final : public Driver {
       t.cfg_desc_format = d.format;
       t.cfg_desc_srgb = d.srgb;
       t.cfg_desc_layers_m1 = d.layers_m1;
+      t.cfg_desc_cube = d.cube;
       t.eval();
     } else {
       throw Error(config_.name + " has no texture descriptors");

@@ -25,6 +25,8 @@ struct SampleTransfer {
   int32_t bias = 0;      // Q8.8, the request's own LOD bias (added to the sampler's); 16-bit RTL port
   int32_t layer = 0;     // an array texture's layer, Q16.16 (req_layer); a texel fetch's: the integer layer
   int32_t ref = 0;       // a depth compare's reference, Q8.24 (req_ref)
+  int32_t w = 0;         // a cube map's direction is (u, v, w), Q8.24 of any length (req_w)
+  int32_t dwdx = 0, dwdy = 0;  // and with derivatives, those of w (req_dwdx, req_dwdy)
   uint8_t texture = 0;   // the descriptor-table entry (req_tex); beyond the unit's table: an error response
   uint8_t sampler = 0;   // the sampler-table entry (req_sampler); likewise
   uint8_t op = 0;        // req_op: 0 a sample, 1 a gather, 2 a depth compare, 3 a texel fetch (u, v, lod: the integers
@@ -33,7 +35,7 @@ struct SampleTransfer {
   // Response (written by the target).
   uint16_t rgba[4] = {0, 0, 0, 0};  // R, G, B, A; channel width of the texture (8 bits on the RTL)
 };
-static_assert(sizeof(SampleTransfer) == 60, "SampleTransfer is the socket's wire format");
+static_assert(sizeof(SampleTransfer) == 72, "SampleTransfer is the socket's wire format");
 
 // Debug transport (transport_dbg, TLM_READ_COMMAND) on the same socket reads texels of the unit's
 // memory view: texel (x, y) of `level` and the ones after it along x in the same row, 8 bytes each

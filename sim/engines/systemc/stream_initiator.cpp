@@ -82,6 +82,9 @@ StreamInitiator::Slot* StreamInitiator::take_slot(const Request& q, size_t index
   s->data.component = q.component;
   s->data.layer = q.layer;
   s->data.ref = q.ref;
+  s->data.w = q.w;
+  s->data.dwdx = q.dwdx;
+  s->data.dwdy = q.dwdy;
   s->set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   ++issued_;
   return s;

@@ -19,10 +19,7 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const TextureTable&
       textures_(textures), samplers_(samplers), options_(options) {
   socket.register_transport_dbg(this, &TexUnitTlm::transport_dbg);
   check_tables(textures, samplers, options.memory);
-  for (const BoundTexture& t : textures)
-    if (t.kind == TextureKind::Cube)
-      throw Error("a cube map: the SystemC unit samples 2D textures and arrays (cube maps: the model engine; "
-                  "docs/cube-maps.md)");
+  if (backend == Backend::Rtl) rtl::check_cube_samplers(textures, samplers);
   const bool cached = options.memory == Memory::Cached;
   if (cached) {
     descriptors_ = texture_descriptors(textures, options);
@@ -32,9 +29,12 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const TextureTable&
   if (backend == Backend::Model) {
     TextureTable sampled = textures;
     if (cached) {
-      // The unit's memories start blank: only the lines it reads over the bus fill them.
+      // The unit's memories start blank: only the lines it reads over the bus fill them. (A cube
+      // map's faces are sampled as loaded: a line of one face's skirt holds texels of its
+      // neighbours, which the sampler takes from their own faces.)
       views_.resize(textures.size());
       for (size_t t = 0; t < textures.size(); ++t) {
+        if (textures[t].kind == TextureKind::Cube) continue;
         views_[t].assign(size_t(textures[t].layers()), *textures[t].pyramid);
         for (Pyramid& blank : views_[t])
           for (Image& level : blank.levels) std::fill(level.texels.begin(), level.texels.end(), Texel{});
@@ -55,6 +55,8 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const TextureTable&
     d.memory_port = memory_port_.get();
     checker_.emplace(*cache_, options.miss_sink);
   }
+  for (const BoundTexture& t : textures)
+    if (t.kind == TextureKind::Cube) rtl::check_cube(rc, t);
   driver_ = rtl::Driver::create(rc, d);
   driver_->reset();
   if (cached) {
@@ -99,6 +101,9 @@ Request request_of(const SampleTransfer& s) {
   q.component = s.component;
   q.layer = s.layer;
   q.ref = s.ref;
+  q.w = s.w;
+  q.dwdx = s.dwdx;
+  q.dwdy = s.dwdy;
   return q;
 }
 }  // namespace
@@ -180,9 +185,10 @@ void TexUnitTlm::read_line(uint32_t address, sc_time& delay) {
   // the RTL's taps see them (blocks decoded by decode_line; sRGB codes to linear unorm16, A x 257).
   const std::array<uint16_t, 256>& srgb = srgb_decode_table();
   for (size_t t = 0; t < descriptors_.size(); ++t) {
-    const bool is_srgb = textures_[t].pyramid->srgb;
+    const bool is_srgb = textures_[t].pyramid->srgb, cube = textures_[t].kind == TextureKind::Cube;
     const bool mine = decode_line(descriptors_[t].layout, address, line_data_.data(),
                                   [&](int layer, int level, int x, int y, const Texel& code) {
+      if (cube) return;  // (sampled as loaded)
       Texel texel = code;
       if (is_srgb) {
         for (size_t c = 0; c < 3; ++c) texel[c] = srgb[code[c] & 255];
