@@ -40,6 +40,9 @@ UnitClock::UnitClock(const UnitShape& shape, const MemoryChannel* memory, bool a
     if (shape_.fill_depth < 1 || shape_.line_beats < 1) throw Error("fill FIFO and beats per line: at least 1");
     fifo_.assign(d, 0);
     fifo_limit_ = shape_.fifo_limit == 0 || shape_.fifo_limit > d ? d : shape_.fifo_limit;
+    if (shape_.cube_clocks != 0 && shape_.cube_clocks != kCubeClocks)
+      throw Error("cube clocks " + std::to_string(shape_.cube_clocks) + ": 0 or " + std::to_string(kCubeClocks));
+    front_clocks_ = 4 + (shape_.cube_clocks ? kSeamClocks : 0);
   }
 }
 
@@ -110,8 +113,10 @@ UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
   uint32_t flags = (out_valid_ ? Edge::kRspValid : 0) | (out_valid_ && ready ? Edge::kResponded : 0);
 
   // The tag stage pushes the front's clock-4 probe and its misses.
-  const bool push = en_front && (front_valid_ & 8u) != 0;
-  const uint32_t push_fills = push ? front_fills_[3] : 0;
+  const uint32_t front_last = front_clocks_ - 1;
+  const bool push = en_front && (front_valid_ >> front_last & 1u) != 0;
+  const uint32_t push_entry = uint32_t(front_probes_ >> (5 * front_last)) & 31u;  // {last, fills}
+  const uint32_t push_fills = push ? push_entry & 15u : 0;
   // Memory: a miss is issued when the channel is ready; a beat is taken when the fill FIFO has room.
   const bool issue = ring_unissued_ != 0 && memory_.request_ready();
   const bool beat_take = memory_.response_valid() && fill_count_ != shape_.fill_depth;
@@ -152,7 +157,7 @@ UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
     if (h_go) h_valid_ = false;
     if (fill_write) --h_fills_;
   }
-  if (push) fifo_[fifo_wr_++ & (shape_.fifo_depth - 1)] = uint16_t(push_fills | uint32_t(front_last_[3]) << 4);
+  if (push) fifo_[fifo_wr_++ & (shape_.fifo_depth - 1)] = uint16_t(push_entry);
   fifo_count_ = fifo_count_ + uint32_t(push) - uint32_t(pop);
   ring_used_ = ring_used_ + push_fills - uint32_t(fill_write);
   ring_unissued_ = ring_unissued_ + push_fills - uint32_t(issue);
@@ -182,9 +187,8 @@ UnitClock::Edge UnitClock::clock_cached(const RequestWork* offer, bool ready) {
         }
       }
     }
-    front_valid_ = (front_valid_ << 1 | uint32_t(probe_valid)) & 0xFu;
-    front_fills_ = {fills, front_fills_[0], front_fills_[1], front_fills_[2]};
-    front_last_ = {probe_last, front_last_[0], front_last_[1], front_last_[2]};
+    front_valid_ = (front_valid_ << 1 | uint32_t(probe_valid)) & ((1u << front_clocks_) - 1);
+    front_probes_ = (front_probes_ << 5 | fills | uint64_t(probe_last) << 4) & ((uint64_t(1) << (5 * front_clocks_)) - 1);
   }
   if (!always_ready_ && (out_valid_ || skid_valid_ || sample_valid)) skid_stage(sample_valid, ready);  // (else it stays empty)
   memory_.clock(issue, 0, beat_take);

@@ -108,11 +108,13 @@ struct UnitShape {
   uint32_t miss_depth = 64;   // MISS_DEPTH
   uint32_t fill_depth = 4;    // FILL_DEPTH
   uint32_t line_beats = 1;    // beats per line (line bytes / beat bytes)
-  uint32_t cube_clocks = 0;   // CUBE_MAPS: tex_cube's clocks ahead of tex_probe (kCubeClocks), else 0
+  uint32_t cube_clocks = 0;   // CUBE_MAPS: tex_cube's clocks ahead of tex_probe (kCubeClocks; and
+                              // tex_cube_seam's kSeamClocks after it), else 0
 };
 constexpr uint64_t kOnChipLatency = 16;  // tex_unit: request handshake -> response, one probe, no stall
-constexpr uint64_t kCachedLatency = 19;  // tex_unit_cached, every line hitting (CUBE_MAPS: + kCubeClocks)
+constexpr uint64_t kCachedLatency = 19;  // tex_unit_cached, every line hitting (CUBE_MAPS: + kCubeClocks + kSeamClocks)
 constexpr uint32_t kCubeClocks = 6;      // tex_cube: every request's line ahead of tex_probe
+constexpr uint32_t kSeamClocks = 4;      // tex_cube_seam: every probe's clocks ahead of the front (CUBE_MAPS)
 
 // Counters of a timed stream (the cycle-accurate engines' CycleStats and cache counters).
 struct TimingCounters {
@@ -187,9 +189,10 @@ class UnitClock {
   bool out_valid_ = false, skid_valid_ = false;
   // tex_unit_cached: en_front; the front's clock 1-4 (bit n-1), each probe's fills and last.
   bool en_front_ = true;
-  uint32_t front_valid_ = 0;
-  std::array<uint8_t, 4> front_fills_{};
-  std::array<bool, 4> front_last_{};
+  // (4 clocks, 8 with CUBE_MAPS: tex_cube_seam's 4 ahead of them; each clock's {last, fills} in 5
+  // bits of front_probes_, clock n at bits 5(n-1).)
+  uint32_t front_valid_ = 0, front_clocks_ = 4;
+  uint64_t front_probes_ = 0;
   // The sample FIFO: each entry's fills (low 4 bits) and last (bit 4). (16-bit entries: a write
   // through a char type would alias every member and force the clock's state out of registers.)
   std::vector<uint16_t> fifo_;

@@ -25,7 +25,9 @@ rtl/tex_bc_decode.sv
 rtl/tex_srgb_decode.sv
 rtl/tex_cache_data.sv
 rtl/tex_layer.sv
+rtl/tex_cube_face.sv
 rtl/tex_cube.sv
+rtl/tex_cube_seam.sv
 rtl/tex_compare_ref.sv
 rtl/tex_desc_table.sv
 rtl/tex_fifo.sv

@@ -14,8 +14,9 @@
 //   rsp_error set and rsp_rgba 0 (the unit keeps running; docs/memory.md §3). RLAST and RID are
 //   checked in simulation only (tex_axi_read counts the beats of a line).
 // Latency: 19 clocks from the request handshake edge to rsp_valid when every line hits, the
-//   request has one probe and the output is not stalled, 25 with CUBE_MAPS (6 clocks of tex_cube
-//   for every request first; then requests 1-4 tex_probe; probes 1-4
+//   request has one probe and the output is not stalled, 29 with CUBE_MAPS (6 clocks of tex_cube
+//   for every request first, 4 of tex_cube_seam for every probe after tex_probe; otherwise
+//   requests 1-4 tex_probe; probes 1-4
 //   tex_front, 5 tag stage and FIFO push, 6 head, 7 data read, 8 taps, 9-11 tex_filter, 12-13
 //   tex_accum, 14 tex_skid); a miss adds the memory's latency, each further probe a clock.
 // Throughput: 1 probe per clock while lines hit (1 sample per clock for lambda requests and
@@ -35,9 +36,8 @@
 //   req_w, req_dwdx, req_dwdy : a cube map's direction is (req_u, req_v, req_w), signed Q8.24 of any
 //                      length, its derivatives (req_dudx, req_dvdx, req_dwdx) and (.. req_dwdy);
 //                      tex_cube makes them the face's s, t and theirs (CUBE_MAPS; a texel fetch
-//                      of a cube names the face as its layer, 6 a cube). Isotropic only: a cube
-//                      lookup with derivatives through a sampler whose anisotropy cap is above 1
-//                      is not taken (its probes would leave the face; docs/cube-maps.md)
+//                      of a cube names the face as its layer, 6 a cube); an anisotropic probe
+//                      beyond its face moves onto the face it lies over (tex_cube_seam)
 //   req_layer        : the layer of an array texture, signed Q16.16 layers (rounded to the nearest,
 //                      a tie to the even, clamped to the texture's layers: tex_layer); a texel
 //                      fetch's: a signed integer (outside the layers: the fetch answers 0)
@@ -99,8 +99,8 @@ module tex_unit_cached #(
   parameter int SRGB       = 0,    // 1: sRGB textures too: memory holds 8-bit channels, CW = 16;
                                    // an sRGB texture's R, G, B decoded to linear unorm16 by a table
                                    // before the filter, a linear texture filtered as 8-bit values
-  parameter int CUBE_MAPS  = 1     // 1: cube maps and cube arrays too (tex_cube ahead of tex_probe:
-                                   // every request's latency 6 clocks longer)
+  parameter int CUBE_MAPS  = 1     // 1: cube maps and cube arrays too (tex_cube ahead of tex_probe,
+                                   // tex_cube_seam after it: every request's latency 10 clocks longer)
 ) (
   input  logic                                   clk,
   input  logic                                   rst,
@@ -429,12 +429,19 @@ module tex_unit_cached #(
   tex_layer u_layer (.coord(line_layer), .fetch(line_op == tex_pkg::OP_FETCH),
                      .layers_m1(line_cube ? line_cubes_m1 : req_layers_m1),
                      .layer(line_layer_index), .outside(line_layer_outside));
-  logic [YL-1:0] line_layer_face;  // the layer the request reads
-  assign line_layer_face = line_cube ? YL'(line_layer_index * YL'(6) + YL'(line_face)) : line_layer_index;
+  logic [YL-1:0] line_layer_base;  // the layer the request reads (a cube's: its first, +X; tex_cube_seam adds the face)
+  assign line_layer_base = line_cube ? YL'(line_layer_index * YL'(6)) : line_layer_index;
 
   // ---------------------------------------------------------------- requests 1-4: tex_probe
   logic en_front, en_back;
   assign req_ready = probe_ready && !desc_busy;
+  // tex_probe's probe (tp_*), then (CUBE_MAPS) tex_cube_seam's: the probe the front takes (probe_*).
+  localparam int PTGW = 4 + DW + YL + 3 + tex_pkg::OP_W + SXW + TXW + TGW;  // tex_probe's tag
+  logic                                   tp_valid, tp_first, tp_last;
+  logic [4:0]                             tp_n;
+  logic signed [tex_pkg::REQ_COORD_W-1:0] tp_u, tp_v;
+  logic signed [tex_pkg::LOD_W-1:0]       tp_lod, tp_bias;
+  logic [PTGW-1:0]                        tp_tag;
   logic                                   probe_valid, probe_first, probe_last;
   logic [4:0]                             probe_n;
   logic signed [tex_pkg::REQ_COORD_W-1:0] probe_u, probe_v;
@@ -446,20 +453,50 @@ module tex_unit_cached #(
   logic [YL:0]                            probe_layer;  // {a fetch outside the layers, the layer}
   logic [DW-1:0]                          probe_ref;    // a compare's reference code
   logic [2:0]                             probe_held;  // requests in tex_probe
-  tex_probe #(.TAG_W(DW + YL + 3 + tex_pkg::OP_W + SXW + TXW + TGW)) u_probe (
+  tex_probe #(.TAG_W(PTGW)) u_probe (
     .clk(clk), .rst(rst), .en(en_front),
     .req_valid(line_valid), .req_ready(probe_ready), .req_u(line_u), .req_v(line_v), .req_lod(line_lod),
     .req_bias(line_bias),
     .req_deriv(line_deriv), .req_dudx(line_dudx), .req_dvdx(line_dvdx), .req_dudy(line_dudy),
     .req_dvdy(line_dvdy), .req_w(req_size[0 +: NW]), .req_h(req_size[NW +: NW]),
     .req_max_aniso_m1(line_aniso[3:0]), .req_aniso_pow2(line_aniso[4]),
-    .req_tag({line_ref_code, line_layer_outside, line_layer_face, line_component, line_op, line_smp, line_tex,
-              line_tag}),
-    .probe_valid(probe_valid), .probe_u(probe_u), .probe_v(probe_v), .probe_lod(probe_lod), .probe_bias(probe_bias),
-    .probe_first(probe_first), .probe_last(probe_last), .probe_n(probe_n),
-    .probe_tag({probe_ref, probe_layer, probe_component, probe_op, probe_smp, probe_tex, probe_tag}),
+    .req_tag({line_cube, line_face, line_ref_code, line_layer_outside, line_layer_base, line_component, line_op,
+              line_smp, line_tex, line_tag}),
+    .probe_valid(tp_valid), .probe_u(tp_u), .probe_v(tp_v), .probe_lod(tp_lod), .probe_bias(tp_bias),
+    .probe_first(tp_first), .probe_last(tp_last), .probe_n(tp_n), .probe_tag(tp_tag),
     .held(probe_held)  // (its formal-only ports are for tex_unit's proof: unconnected here)
   );
+
+  // ---------------------------------------------------------------- probes: tex_cube_seam (CUBE_MAPS)
+  // A cube lookup's probe beyond its face (anisotropic, near a seam) moves onto the face it lies
+  // over; every probe waits the same 4 clocks beside it. The probe's layer is then its cube's first
+  // plus its face.
+  localparam int SDW = 1 + 2*LW + 2 + 5 + PTGW - 4;  // {cube, lod, bias, first, last, n, tag but cube and face}
+  logic           seam_cube;
+  logic [2:0]     seam_face;
+  logic [YL-1:0]  probe_layer_base;
+  logic           probe_layer_outside;
+  generate
+    if (CUBE_MAPS != 0) begin : g_seam
+      tex_cube_seam #(.SIDE_W(SDW)) u_seam (
+        .clk(clk), .rst(rst), .en(en_front), .in_valid(tp_valid), .in_cube(tp_tag[PTGW-1]), .in_u(tp_u), .in_v(tp_v),
+        .in_face(tp_tag[PTGW-2 -: 3]),
+        .in_side({tp_tag[PTGW-1], tp_lod, tp_bias, tp_first, tp_last, tp_n, tp_tag[PTGW-5:0]}),
+        .out_valid(probe_valid), .out_u(probe_u), .out_v(probe_v), .out_face(seam_face),
+        .out_side({seam_cube, probe_lod, probe_bias, probe_first, probe_last, probe_n, probe_ref,
+                   probe_layer_outside, probe_layer_base, probe_component, probe_op, probe_smp, probe_tex, probe_tag})
+      );
+    end else begin : g_no_seam
+      assign {probe_valid, probe_u, probe_v, probe_lod, probe_bias, probe_first, probe_last, probe_n} =
+             {tp_valid, tp_u, tp_v, tp_lod, tp_bias, tp_first, tp_last, tp_n};
+      assign {probe_ref, probe_layer_outside, probe_layer_base, probe_component, probe_op, probe_smp, probe_tex,
+              probe_tag} = tp_tag[PTGW-5:0];
+      assign {seam_cube, seam_face} = '0;
+      logic unused_seam;
+      assign unused_seam = ^tp_tag[PTGW-1 -: 4];
+    end
+  endgenerate
+  assign probe_layer = {probe_layer_outside, seam_cube ? YL'(probe_layer_base + YL'(seam_face)) : probe_layer_base};
   // The probe's sampler's fields for the front (taken at its clock 1; its texture's size likewise).
   logic [FRW-1:0] probe_smp_front;
   assign probe_smp_front = smp_front[probe_smp];
@@ -717,10 +754,6 @@ module tex_unit_cached #(
         else $error("tex_unit_cached: cfg_desc_cube for a %0d x %0d texture of format %0d and %0d layers (CUBE_MAPS = %0d: square RGBA faces of n + 2 <= %0d texels, 6 layers a cube)",
                     cfg_desc_w, cfg_desc_h, cfg_desc_format, 32'(cfg_desc_layers_m1) + 1, CUBE_MAPS,
                     1 << ((MLW < MLH) ? MLW : MLH));
-    if (!rst && req_valid && req_ready && req_cube_tex && req_deriv && req_op != tex_pkg::OP_FETCH)
-      assert (smp_aniso[SXW'(req_sampler)][3:0] == '0)
-        else $error("tex_unit_cached: a cube map lookup with derivatives through sampler %0d, whose anisotropy cap is above 1 (cube maps are isotropic in this unit)",
-                    req_sampler);
     if (!rst && cfg_smp_we)
       assert (32'(cfg_smp_index) < SAMPLERS)
         else $error("tex_unit_cached: cfg_smp_index %0d is beyond the sampler table (SAMPLERS = %0d)",

@@ -50,8 +50,10 @@ std::string describe(const Request& r) {
   if (r.op == Op::Gather) o << "gather component " << int(r.component) << " ";
   if (r.op == Op::Compare) o << "compare ref=" << r.ref << " (" << r.ref / 16777216.0 << ") ";
   o << "u=" << r.u << " (" << r.u / 16777216.0 << ") v=" << r.v << " (" << r.v / 16777216.0 << ")";
+  if (r.w) o << " w=" << r.w << " (" << r.w / 16777216.0 << ")";  // (a cube's direction)
   if (r.has_derivatives)
     o << " dudx=" << r.deriv.dudx << " dvdx=" << r.deriv.dvdx << " dudy=" << r.deriv.dudy << " dvdy=" << r.deriv.dvdy;
+  if (r.has_derivatives && (r.dwdx || r.dwdy)) o << " dwdx=" << r.dwdx << " dwdy=" << r.dwdy;
   else
     o << " lod=" << r.lod << " (" << r.lod / 256.0 << ")";
   if (r.bias) o << " bias=" << r.bias << " (" << r.bias / 256.0 << ")";

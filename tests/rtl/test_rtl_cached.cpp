@@ -451,7 +451,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
     std::string memory_name, timing_name;
     const rtl::MemoryTiming memory = random_memory(rng, rc, memory_name);
     const rtl::Timing stim = random_stalls(rng, timing_name);
-    std::vector<Request> requests = random_requests(rng, 6, 3, 4000);
+    std::vector<Request> requests = random_requests(rng, 6, 3, 4000);  // (cube maps': below)
     for (size_t i = 0; i < requests.size(); ++i) {
       requests[i].texture = uint8_t(rng() % uint64_t(n));
       requests[i].sampler = uint8_t(rng() % uint64_t(ns));
@@ -462,18 +462,15 @@ void run_descriptor_tables(const std::string& config, int cases) {
     fetches_and_gathers_among(rng, requests, 16, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
     layers_among(rng, requests, [&](int t) { return table[size_t(t)].layers(); });
     compares_among(rng, requests, 16, samplers, [&](int t) { return !table[size_t(t)].pyramid->srgb; });
-    // A cube map's requests: cube_request's, through a sampler the RTL takes for cubes (isotropic,
-    // normalized; a compare's, one that compares): sampler 0 is made one.
-    if (cube_textures) {
-      samplers[0].max_aniso = 1;
-      samplers[0].unnormalized = false;
-    }
+    // A cube map's requests: cube_request's, through a sampler a cube takes (normalized; a
+    // compare's, one that compares): sampler 0 is made one.
+    if (cube_textures) samplers[0].unnormalized = false;
     for (Request& q : requests) {
       const BoundTexture& t = table[q.texture];
       if (t.kind != TextureKind::Cube) continue;
       q = cube_request(rng, q, t.pyramid->extent0().w, t.pyramid->last_level(), t.layers());
       auto takes = [&](const SamplerConfig& c) {
-        return c.probe_cap() == 1 && !c.unnormalized && (q.op != Op::Compare || c.compare_problem().empty());
+        return !c.unnormalized && (q.op != Op::Compare || c.compare_problem().empty());
       };
       if (!takes(samplers[q.sampler])) q.sampler = 0;
       if (q.op == Op::Compare && (!takes(samplers[q.sampler]) || t.pyramid->srgb)) q.op = Op::Sample;
@@ -488,6 +485,14 @@ void run_descriptor_tables(const std::string& config, int cases) {
         const bool near_s = f.s < edge || f.s > (1 << kCoordFracBits) - edge, near_t = f.t < edge || f.t > (1 << kCoordFracBits) - edge;
         ++cube_cases[near_s && near_t ? "at a corner" : near_s || near_t ? "at an edge" : "inside a face"];
         ++cube_cases["face " + std::to_string(f.face)];
+        if (q.has_derivatives) {  // anisotropic probes beyond the face (tex_cube_seam moves them)
+          int face = 0;
+          const Probes p = tex_probe(cube_face_request(q, face), samplers[q.sampler], t.pyramid->extent0());
+          for (int i = 0; i < p.n; ++i) {
+            Request probe = p.at[size_t(i)];
+            if (cube_probe(face, probe) != face) ++cube_cases["a probe moved to another face"];
+          }
+        }
       }
     }
     for (const Request& q : requests) {  // the layer cases of arrays, counted
@@ -533,7 +538,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
   if (rc.cube_maps)
     for (const char* c : {"a face's texel fetch", "a fetch outside the faces", "a gather", "a depth compare", "derivatives",
                           "a lod", "at a corner", "at an edge", "inside a face", "face 0", "face 1", "face 2", "face 3",
-                          "face 4", "face 5"})
+                          "face 4", "face 5", "a probe moved to another face"})
       EXPECT_GT(cube_cases[c], 0u) << "cube requests: " << c;
   for (const char* c : {"fetch inside the layers", "fetch outside the layers", "below layer 0", "beyond the last layer",
                         "a tie, rounded up to even", "a tie, rounded down to even", "between two layers"})
@@ -623,6 +628,56 @@ TEST(RtlCached, DescriptorTableCheckersCatchPlantedBugs) {
   const CaseResult order = run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr,
                                     -1, 0, &reordered);
   EXPECT_EQ(order.failure.rfind("sample ", 0), 0u) << order.failure;
+}
+
+// Cube maps, planted bugs: a skirt corner that is not the average of three (its R flipped in
+// memory), a skirt texel across an edge from the wrong face (likewise), a model whose cube has two
+// faces swapped, each seen as other samples; the unplanted cube agrees. Lookups at +X's corner
+// (s, t near 0) and along its top edge at level 0, and anywhere on the cube.
+TEST(RtlCached, CubeCheckersCatchPlantedBugs) {
+  const rtl::RtlConfig& rc = config_named("Vtex_cached_6x3");
+  auto unit = rtl::Driver::create(rc, {});
+  unit->reset();
+  std::mt19937_64 rng(35);
+  const int n = 4;
+  std::vector<Pyramid> faces;
+  for (int f = 0; f < 6; ++f) faces.push_back(build_pyramid(random_image(n, n, 8, 60 + uint64_t(f)), PyramidMode::Exact));
+  std::vector<Pyramid> swapped = faces;
+  std::swap(swapped[2], swapped[3]);
+  auto cube_of = [](const std::vector<Pyramid>& f) {
+    const std::vector<const Pyramid*> p = pointers_to(f);
+    return TextureTable{BoundTexture(p[0], {p.begin() + 1, p.end()}, TextureKind::Cube)};
+  };
+  const TextureTable table = cube_of(faces), wrong = cube_of(swapped);
+  SamplerConfig bilinear;
+  bilinear.filter = Filter{TexelFilter::Linear, MipMode::None};
+  std::vector<Request> requests;
+  for (int i = 0; i < 3000; ++i) {
+    Request q;
+    q.tag = uint16_t(i);
+    if (i % 3 == 2) {
+      q = cube_request(rng, q, n, faces[0].last_level(), 6);
+      if (q.op == Op::Fetch) q.op = Op::Sample, q.lod = 0, q.layer = 0;
+    } else {  // +X at its corner (s, t < 1 / 2n) or along its top edge (t < 1 / 2n)
+      const double s = double(rng() % 1000) / 1000 / (i % 3 == 0 ? 2 * n : 1), t = double(rng() % 1000) / 1000 / (2 * n);
+      const std::array<int32_t, 3> d = cube_direction(rng, 0, s, t);
+      q.u = d[0], q.v = d[1], q.w = d[2];
+    }
+    requests.push_back(q);
+  }
+  const CacheParams cache{2048, 2};
+  const SamplerTable samplers{bilinear};
+  EXPECT_EQ(run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr).failure, "");
+  // (byte 0 of +X's level 0: its skirt's corner texel (0, 0); byte 4: the skirt texel (1, 0) above
+  // its texel (0, 0), a texel of +Y)
+  for (const int poke : {0, 4}) {
+    const CaseResult planted =
+        run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr, poke);
+    EXPECT_EQ(planted.failure.rfind("sample ", 0), 0u) << "byte " << poke << ": " << planted.failure;
+  }
+  const CaseResult faces_swapped =
+      run_case(*unit, table, samplers, LayoutParams{}, cache, {}, requests, {}, 1, nullptr, nullptr, -1, 0, &wrong);
+  EXPECT_EQ(faces_swapped.failure.rfind("sample ", 0), 0u) << faces_swapped.failure;
 }
 
 TEST(RtlCached, CheckersCatchPlantedBugs) {

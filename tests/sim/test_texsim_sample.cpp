@@ -370,8 +370,8 @@ TEST_F(TexsimCli, DepthCompareFiltersTheTests) {
 // +Z/+X edge (a tie: +Z, Vulkan's rule) weighs +Z's edge texel and +X's half and half; the corner
 // (1, 1, 1) weighs +Z's corner texel, +Y's, +X's and the skirt's corner, the average of the three:
 // round((30 + 97 + 250 + 10) / 4) with 97 = round((10 + 30 + 250) / 3). Faces of other sizes,
-// non-square faces, five faces, the on-chip RTL, an anisotropic cube through the RTL, a u,v header:
-// one line, nothing written. The cached RTL and SystemC sample it as the model does.
+// non-square faces, five faces, the on-chip RTL, a u,v header: one line, nothing written. The cached
+// RTL and SystemC sample it as the model does.
 TEST_F(TexsimCli, CubeMapsSampleAcrossTheSeams) {
   const int r[6] = {10, 80, 30, 160, 250, 200};
   std::string faces;
@@ -398,16 +398,14 @@ TEST_F(TexsimCli, CubeMapsSampleAcrossTheSeams) {
                        "bad.csv", {"wide.png", "square"});
   expect_clean_failure("sample --cube f0.png,f1.png,f2.png,f3.png,f4.png --memory cached -q q.csv -o bad.csv", "bad.csv",
                        {"5 faces"});
-  // The cached RTL (tex_cube) and SystemC give the model's samples; the on-chip unit holds no cube,
-  // the RTL no anisotropic cube.
+  // The cached RTL (tex_cube) and SystemC give the model's samples; the on-chip unit holds no cube.
   for (const char* engine : {"-e rtl --memory cached", "-e systemc --memory cached", "-e systemc-model --memory cached"}) {
     const Result e = run("sample --cube " + faces + " -f bilinear -q q.csv -o e.csv " + engine);
     ASSERT_EQ(e.exit_code, 0) << engine << ": " << e.err;
     EXPECT_EQ(read_text(dir / "e.csv"), read_text(dir / "c.csv")) << engine;
   }
   expect_clean_failure("sample --cube " + faces + " -e rtl -q q.csv -o bad.csv", "bad.csv", {"cube map", "--memory cached"});
-  expect_clean_failure("sample --cube " + faces + " --memory cached -e rtl -f anisotropic -q q.csv -o bad.csv", "bad.csv",
-                       {"anisotropy", "cube map", "--max-aniso 1"});
+
   write_text(dir / "uv.csv", "u,v,lod\n0.5,0.5,0\n");
   expect_clean_failure("sample --cube " + faces + " --memory cached -q uv.csv -o bad.csv", "bad.csv", {"uv.csv", "cube map"});
 }

@@ -144,16 +144,6 @@ void check_cube(const RtlConfig& config, const BoundTexture& texture) {
                 std::to_string(config.max_cube_face() + 2) + ")");
 }
 
-void check_cube_samplers(const TextureTable& textures, const SamplerTable& samplers) {
-  if (std::none_of(textures.begin(), textures.end(), [](const BoundTexture& t) { return t.kind == TextureKind::Cube; }))
-    return;
-  for (size_t i = 0; i < samplers.size(); ++i)
-    if (samplers[i].probe_cap() > 1)
-      throw Error("sampler " + std::to_string(i) + ": anisotropy " + std::to_string(samplers[i].probe_cap()) +
-                  "x with a cube map in the table; the RTL samples cube maps isotropically (--max-aniso 1; the "
-                  "model engine takes anisotropic cubes; docs/cube-maps.md)");
-}
-
 void check_request(const Request& request, size_t index) {
   if (request.op != Op::Sample && request.op != Op::Compare && request.has_derivatives)
     throw Error("request " + std::to_string(index) + ": a " + op_name(request.op) + " carries no derivatives");

@@ -35,8 +35,8 @@ struct RtlConfig {
   // channels in memory, a CW = 16 filter (a linear 8-bit texture's values enter it as they are).
   bool formats = false;
   int samplers = 1;              // SAMPLERS: sampler-table entries (tex_unit: its one sampler)
-  // CUBE_MAPS = 1: cube maps and cube arrays (tex_cube ahead of tex_probe, 6 clocks more latency),
-  // faces of n x n texels with n + 2 at most the smaller side, isotropic.
+  // CUBE_MAPS = 1: cube maps and cube arrays (tex_cube ahead of tex_probe, tex_cube_seam after it:
+  // 10 clocks more latency), faces of n x n texels with n + 2 at most the smaller side.
   bool cube_maps = false;
   int max_cube_face() const { return (1 << std::min(max_log2_w, max_log2_h)) - 2; }
   int memory_channel_bits() const { return formats ? 8 : cw; }
@@ -67,10 +67,6 @@ void check_request(const Request& request, size_t index);  // lod and bias fit t
 // A cube map the configuration cannot take (no CUBE_MAPS, a face larger than max_cube_face(), not
 // RGBA), as one tex::Error.
 void check_cube(const RtlConfig& config, const BoundTexture& texture);
-// Samplers the cached unit does not take with a cube map: with a cube in the table, each sampler's
-// anisotropy cap must be 1 (a footprint's probes would leave the face: cube maps are isotropic in
-// the RTL), as one tex::Error naming the sampler.
-void check_cube_samplers(const TextureTable& textures, const SamplerTable& samplers);
 
 // The cache pins of tex_unit_cached for a cache geometry (throws tex::Error when the
 // configuration cannot hold it).

@@ -66,7 +66,6 @@ class RtlEngine final : public Engine {
                   TexelSink& sink) override {
     const bool cached = options_.memory == Memory::Cached;
     check_tables(textures, samplers, options_.memory);
-    check_cube_samplers(textures, samplers);  // (before the unit is built)
     const Pyramid& pyramid = *textures[0].pyramid;
     const RtlConfig& rc =
         smallest_config_for(textures, options_.memory, options_.layout.block_w, options_.layout.block_h,

@@ -19,7 +19,6 @@ TexUnitTlm::TexUnitTlm(sc_module_name name, Backend backend, const TextureTable&
       textures_(textures), samplers_(samplers), options_(options) {
   socket.register_transport_dbg(this, &TexUnitTlm::transport_dbg);
   check_tables(textures, samplers, options.memory);
-  if (backend == Backend::Rtl) rtl::check_cube_samplers(textures, samplers);
   const bool cached = options.memory == Memory::Cached;
   if (cached) {
     descriptors_ = texture_descriptors(textures, options);
