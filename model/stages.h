@@ -219,16 +219,18 @@ inline CubeFace cube_face(int32_t rx, int32_t ry, int32_t rz) {
   f.t = cube_coordinate(f.tc, arc);
   return f;
 }
-// 1/D for D in [2^31, 2^32) as R <= 2^62 / D, within 2^-25 of it (tex_cube): a 128-entry table of
-// 9 bits, floor(2^16 / (129 + i)) for D's 7 bits below its leading one, then two Newton steps
-// R' = R + R (2^62 - D R) / 2^62, each product truncated (the steps approach 1/D from below).
+// 1/D for D in [2^31, 2^32) as R <= 2^62 / D, within 2^-25 of it (tex_cube_face): a 256-entry
+// table of 10 bits, t = floor(2^18 / (257 + i)) for D's 8 bits below its leading one (R0 = t 2^21),
+// then two Newton steps R' = R + R (2^62 - D R) / 2^62 with their products truncated, the second
+// from R1's top 18 bits (h = R1 >> 14): each step's products fit 18-bit multipliers (D x t, t x
+// delta1, D x h, h x delta2: 7 DSP tiles of 18 x 18) and the steps approach 1/D from below.
 inline uint32_t cube_reciprocal(uint32_t d) {
-  auto newton = [d](uint64_t r) {
-    const uint64_t delta = ((uint64_t(1) << 62) - uint64_t(d) * r) >> 30;
-    return r + ((r * delta) >> 32);
-  };
-  const uint64_t r0 = uint64_t(65536u / (129u + ((d >> 24) & 127u))) << 22;
-  return uint32_t(newton(newton(r0)));
+  const uint64_t t = 262144u / (257u + ((d >> 23) & 255u));            // 2^18 / (257 + i): 10 bits
+  const uint64_t delta1 = ((uint64_t(1) << 41) - uint64_t(d) * t) >> 9;  // (2^62 - D R0) >> 30
+  const uint64_t r1 = (t << 21) + ((t * delta1) >> 11);                 // R0 + (R0 delta1 >> 32)
+  const uint64_t h = r1 >> 14;                                           // <= 2^17
+  const uint64_t delta2 = ((uint64_t(1) << 48) - uint64_t(d) * h) >> 16;  // (2^62 - D h 2^14) >> 30
+  return uint32_t((h << 14) + ((h * delta2) >> 18));
 }
 // The position of the leading one of v > 0.
 inline int leading_one(uint64_t v) { return 63 - __builtin_clzll(v); }
@@ -239,8 +241,8 @@ inline int leading_one(uint64_t v) { return 63 - __builtin_clzll(v); }
 // face's size. The arithmetic is tex_cube's, in block floating point (it feeds a LOD of 8 fraction
 // bits, which tex_lambda takes from 16-bit magnitudes): the axis' three derivatives share a shift
 // e that leaves them 18 bits (a, b), sc' keeps 17 bits (c = (2s - 2^24) >> 8), g = a 2^16 - c b,
-// g keeps 18 bits (shift f), times the reciprocal's 18 bits (R >> 14 of cube_reciprocal of |rc|
-// normalized by k to [2^31, 2^32)), then shifted by e + k + f - 41, rounded half up and saturated
+// g keeps 18 bits (shift f), times the reciprocal's 17 bits (R >> 15 of cube_reciprocal of |rc|
+// normalized by k to [2^31, 2^32)), then shifted by e + k + f - 40, rounded half up and saturated
 // to 32 bits. Within 2^-13 of the largest of the axis' terms (tex_lambda resolves 2^-8 of a level);
 // 0 for rc = 0.
 inline std::array<int32_t, 2> cube_derivatives(const CubeFace& f, int32_t drx, int32_t dry, int32_t drz) {
@@ -257,7 +259,7 @@ inline std::array<int32_t, 2> cube_derivatives(const CubeFace& f, int32_t drx, i
   const int64_t darc = f.rc < 0 ? -drc : drc;
   const uint64_t arc = uint64_t(std::abs(f.rc));
   const int k = 31 - leading_one(arc);
-  const int64_t r18 = int64_t(cube_reciprocal(uint32_t(arc << k)) >> 14);
+  const int64_t r17 = int64_t(cube_reciprocal(uint32_t(arc << k)) >> 15);
   const uint64_t m = std::max({uint64_t(std::abs(dsc)), uint64_t(std::abs(dtc)), uint64_t(std::abs(darc))});
   const int e = m >= (1u << 17) ? leading_one(m) - 16 : 0;
   std::array<int32_t, 2> out{};
@@ -267,9 +269,9 @@ inline std::array<int32_t, 2> cube_derivatives(const CubeFace& f, int32_t drx, i
     const int64_t g = a * 65536 - c * b;
     const uint64_t ag = uint64_t(std::abs(g));
     const int fs = ag >= (1u << 17) ? leading_one(ag) - 16 : 0;
-    const int64_t p = (g >> fs) * r18;
-    const int sh = e + k + fs - 41;
-    // (sh in [-41, 23] and |p| <= 2^34: the shifted product fits 64 bits)
+    const int64_t p = (g >> fs) * r17;
+    const int sh = e + k + fs - 40;
+    // (sh in [-40, 24] and |p| <= 2^33: the shifted product fits 64 bits)
     const int64_t q = sh >= 0 ? p * (int64_t(1) << sh) : (p + (int64_t(1) << (-sh - 1))) >> -sh;
     out[size_t(axis)] = int32_t(std::clamp<int64_t>(q, INT32_MIN, INT32_MAX));
   }

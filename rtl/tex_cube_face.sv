@@ -6,11 +6,13 @@
 // tex_cube (a request's direction) and tex_cube_seam (a probe beyond its face).
 //   clock 1  face select, the table's picks, |rc| normalized by k to D in [2^31, 2^32), and
 //            X = sc + |rc| (tc + |rc|) shifted alike (the quotient X / D is unchanged)
-//   clock 2  R1: a 128-entry table of 9 bits, floor(2^16 / (129 + i)) for D's bits 30..24 = i,
-//            and a Newton step R' = R + R (2^62 - D R) / 2^62 (products truncated)
-//   clock 3  R2 = R1's Newton step: R2 <= 2^62 / D within 2^-25 (from below)
+//   clock 2  R1: a 256-entry table of 10 bits, t = floor(2^18 / (257 + i)) for D's bits 30..23 = i
+//            (R0 = t 2^21), and a Newton step R' = R + R (2^62 - D R) / 2^62, products truncated
+//   clock 3  R2: the Newton step from R1's top 18 bits h = R1 >> 14: R2 <= 2^62 / D within 2^-25
+//            (from below; the products D x t, t x delta1, D x h, h x delta2 are 7 DSP tiles)
 //   clock 4  the estimate Q = (X R2 + 2^38) >> 39, at most 1 below the exact rounded quotient
-//            floor((X 2^24 + D) / 2D), then the remainder against 2D: s, t exact
+//            floor((X 2^24 + D) / 2D), then the remainder against 2D (its low 36 bits: D Q in three
+//            18-bit tiles, the fourth lies above them): s, t exact
 // A direction (0, 0, 0) selects +Z at its centre.
 // Handshake: stall-enable: the registers of clock n load when en is high and clock n - 1 holds a
 //   direction (`valid` at the input); otherwise every register keeps its value (a simulator spends
@@ -22,7 +24,7 @@
 //   face                  : 0..5 = +X, -X, +Y, -Y, +Z, -Z (clock 4)
 //   s, t                  : the face's coordinates, signed Q8.24 in [0, 1] (clock 4)
 //   zero                  : the direction was (0, 0, 0) (clock 4)
-//   recip, k              : R2 >> 14 (unsigned, (2^16, 2^17]) and the normalizing shift (0..31),
+//   recip, k              : R2 >> 15 (unsigned, (2^15, 2^16]) and the normalizing shift (0..31),
 //                           for tex_cube's derivatives (clock 4)
 //   face_1, rc_negative_1 : clock 1's face and sign of rc (the table's picks of the derivatives)
 module tex_cube_face (
@@ -36,7 +38,7 @@ module tex_cube_face (
   output logic signed [tex_pkg::REQ_COORD_W-1:0] s,
   output logic signed [tex_pkg::REQ_COORD_W-1:0] t,
   output logic                                   zero,
-  output logic [17:0]                            recip,
+  output logic [16:0]                            recip,
   output logic [4:0]                             k,
   output logic [2:0]                             face_1,
   output logic                                   rc_negative_1
@@ -45,10 +47,10 @@ module tex_cube_face (
   localparam int EW = CW + 1;                // a table pick: -INT32_MIN fits
   localparam int FRAC = tex_pkg::COORD_FRAC; // 24
 
-  function automatic logic [128*9-1:0] recip_table();
-    for (int i = 0; i < 128; i++) recip_table[i*9 +: 9] = 9'(65536 / (129 + i));
+  function automatic logic [256*10-1:0] recip_table();
+    for (int i = 0; i < 256; i++) recip_table[i*10 +: 10] = 10'(262144 / (257 + i));
   endfunction
-  localparam logic [128*9-1:0] RECIP = recip_table();
+  localparam logic [256*10-1:0] RECIP = recip_table();
 
   // Which clocks hold a direction (bit n-1: clock n's registers).
   logic [3:1] held;
@@ -101,8 +103,8 @@ module tex_cube_face (
   end
 
   // ---------------------------------------------------------------- clock 2: R1
-  // 2^62 - D R >= 0 since R never passes 1/D, and it is below 2^62 * 2^-7 here (2^-14 in clock 3):
-  // 32 bits after >> 30.
+  // 2^62 - D R >= 0 since R never passes 1/D; it is below 2^62 * 2^-7 here (2^-14 in clock 3):
+  // delta1 = (2^62 - D R0) >> 30 = (2^41 - D t) >> 9 < 2^25, delta2 < 2^18.
   logic [CW-1:0] d_2, r_2;
   logic [CW+1:0] xs_2, xt_2;
   logic [4:0]    k_2;
@@ -110,13 +112,15 @@ module tex_cube_face (
   logic          zero_2;
   always_ff @(posedge clk) begin
     if (en && held[1]) begin
-      logic [63:0] r0, dr, rd;
-      logic [31:0] delta;
-      r0    = 64'(RECIP[32'(d_1[30:24]) * 9 +: 9]) << 22;
-      dr    = 64'(d_1) * r0;
-      delta = 32'(((64'd1 << 62) - dr) >> 30);
-      rd    = r0 * 64'(delta);
-      r_2   <= CW'(r0 + (rd >> 32));
+      logic [9:0]  r0;     // R0 = r0 2^21
+      logic [41:0] dt;
+      logic [24:0] delta1;
+      logic [34:0] td;
+      r0     = RECIP[32'(d_1[30:23]) * 10 +: 10];
+      dt     = 42'(d_1) * 42'(r0);
+      delta1 = 25'(((42'd1 << 41) - dt) >> 9);
+      td     = 35'(r0) * 35'(delta1);
+      r_2    <= (CW'(r0) << 21) + CW'(td >> 11);
       d_2   <= d_1;
       xs_2  <= xs_1;
       xt_2  <= xt_1;
@@ -134,12 +138,15 @@ module tex_cube_face (
   logic          zero_3;
   always_ff @(posedge clk) begin
     if (en && held[2]) begin
-      logic [63:0] dr, rd;
-      logic [31:0] delta;
-      dr    = 64'(d_2) * 64'(r_2);
-      delta = 32'(((64'd1 << 62) - dr) >> 30);
-      rd    = 64'(r_2) * 64'(delta);
-      r_3   <= r_2 + CW'(rd >> 32);
+      logic [17:0] h;
+      logic [49:0] dh;
+      logic [17:0] delta2;
+      logic [35:0] hd;
+      h      = 18'(r_2 >> 14);
+      dh     = 50'(d_2) * 50'(h);
+      delta2 = 18'(((50'd1 << 48) - dh) >> 16);
+      hd     = 36'(h) * 36'(delta2);
+      r_3    <= (CW'(h) << 14) + CW'(hd >> 18);
       d_3   <= d_2;
       xs_3  <= xs_2;
       xt_3  <= xt_2;
@@ -155,19 +162,22 @@ module tex_cube_face (
     if (en && held[3]) begin
       logic [65:0] prod;
       logic [FRAC:0] est;
-      logic [35:0] rem, two_d;
+      logic [35:0] rem, two_d, dq;
       for (int c = 0; c < 2; c++) begin
         prod  = ((c == 0) ? 66'(xs_3) : 66'(xt_3)) * 66'(r_3) + (66'd1 << 38);
         est   = (FRAC+1)'(prod >> 39);
         two_d = 36'(d_3) << 1;
-        rem   = (((c == 0) ? 36'(xs_3) : 36'(xt_3)) << FRAC) + 36'(d_3) - 36'(two_d * 36'(est));
+        // D Q mod 2^36 = Dl Ql + (Dl Qh + Dh Ql) 2^18 (Dh Qh 2^36 vanishes)
+        dq    = 36'(d_3[17:0]) * 36'(est[17:0])
+              + ((36'(d_3[17:0]) * 36'(est[FRAC:18]) + 36'(d_3[31:18]) * 36'(est[17:0])) << 18);
+        rem   = (((c == 0) ? 36'(xs_3) : 36'(xt_3)) << FRAC) + 36'(d_3) - (dq << 1);
         est   = est + (FRAC+1)'(rem >= two_d);
         if (c == 0) s <= zero_3 ? CW'(1 << (FRAC - 1)) : CW'(est);
         else        t <= zero_3 ? CW'(1 << (FRAC - 1)) : CW'(est);
       end
       face  <= zero_3 ? 3'd4 : face_3;
       zero  <= zero_3;
-      recip <= 18'(r_3 >> 14);
+      recip <= 17'(r_3 >> 15);
       k     <= k_3;
     end
   end

@@ -5,8 +5,9 @@
 // direction, whose face and exact coordinates tex_cube_face makes. A probe inside its face
 // (0 <= s, t <= 1) and any other probe pass unchanged; every probe takes the same 4 clocks, with
 // its side data beside it.
-// Handshake: stall-enable: every register loads when en is high (tex_cube_face's only while a
-//   probe to move is in them); the valid bits reset. Latency: 4 clocks. Throughput: 1 probe per clock.
+// Handshake: stall-enable: the probe advances when en is high (tex_cube_face's registers only
+//   while a probe to move is in them; the rest wait in a tex_delay line). Latency: 4 clocks.
+//   Throughput: 1 probe per clock.
 // Ports:
 //   in_valid        : a probe on the pins (out_valid: 4 clocks later)
 //   in_cube         : the probe is a cube map lookup's (not a texel fetch's)
@@ -62,7 +63,7 @@ module tex_cube_seam #(
   logic [2:0]           face;
   logic signed [CW-1:0] s, t;
   logic                 zero, rc_negative_1;  // (tex_cube's derivatives' outputs: not used here)
-  logic [17:0]          recip;
+  logic [16:0]          recip;
   logic [4:0]           k;
   logic [2:0]           face_1;
   tex_cube_face u_face (
@@ -72,22 +73,16 @@ module tex_cube_seam #(
   logic unused_derivative_outputs;
   assign unused_derivative_outputs = ^{zero, recip, k, face_1, rc_negative_1};
 
-  // The probe beside it, 4 registers.
-  logic [PW-1:0] line [4];
-  logic [3:0]    valid;
-  always_ff @(posedge clk) begin
-    if (rst) valid <= '0;
-    else if (en) valid <= {valid[2:0], in_valid};
-    if (en) begin
-      line[0] <= {outside, in_u, in_v, in_face, in_side};
-      for (int i = 1; i < 4; i++) line[i] <= line[i-1];
-    end
-  end
+  // The probe beside it, 4 clocks.
+  logic [PW-1:0] line_out;
+  tex_delay #(.W(PW), .DEPTH(4)) u_line (
+    .clk(clk), .rst(rst), .en(en), .in_valid(in_valid), .in_data({outside, in_u, in_v, in_face, in_side}),
+    .out_valid(out_valid), .out_data(line_out)
+  );
   logic                 moved;
   logic signed [CW-1:0] u4, v4;
   logic [2:0]           face4;
-  assign {moved, u4, v4, face4, out_side} = line[3];
-  assign out_valid = valid[3];
+  assign {moved, u4, v4, face4, out_side} = line_out;
   assign out_u    = moved ? s : u4;
   assign out_v    = moved ? t : v4;
   assign out_face = moved ? face : face4;

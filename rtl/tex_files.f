@@ -1,6 +1,7 @@
 rtl/tex_pkg.sv
 rtl/tex_lerp.sv
 rtl/tex_skid.sv
+rtl/tex_delay.sv
 rtl/tex_lod.sv
 rtl/tex_reduce.sv
 rtl/tex_scale.sv

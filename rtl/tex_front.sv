@@ -55,7 +55,8 @@
 //   zero                  : a texel fetch outside the texture (no texel read; clock 4)
 module tex_front #(
   parameter int XW = 10,  // bits of a wrapped x index: max(MAX_LOG2_W, 1)
-  parameter int YW = 10   // (sizes up to 2^XW x 2^YW)
+  parameter int YW = 10,  // (sizes up to 2^XW x 2^YW)
+  parameter int CUBE_MAPS = 0  // 1: req_cube is used (tex_unit_cached's CUBE_MAPS), else ignored
 ) (
   input  logic                                   clk,
   input  logic                                   en,
@@ -117,7 +118,7 @@ module tex_front #(
   logic [2:0]                             unnorm_q;  // req_unnormalized at clocks 1..3
   logic [3:0]                             fetch_q;   // req_fetch at clocks 1..4
   logic [3:0]                             gather_q;  // req_gather at clocks 1..4
-  logic [3:0]                             cube_q;    // req_cube at clocks 1..4
+  logic [3:0]                             cube_q;    // req_cube at clocks 1..4 (CUBE_MAPS; else 0)
   always_ff @(posedge clk) begin
     if (en) begin
       u_s1        <= req_u;
@@ -134,10 +135,16 @@ module tex_front #(
       unnorm_q <= {unnorm_q[1:0], req_unnormalized};
       fetch_q  <= {fetch_q[2:0], req_fetch};
       gather_q <= {gather_q[2:0], req_gather};
-      cube_q   <= {cube_q[2:0], req_cube};
     end
   end
   generate
+    if (CUBE_MAPS != 0) begin : g_cube
+      always_ff @(posedge clk) if (en) cube_q <= {cube_q[2:0], req_cube};
+    end else begin : g_no_cube
+      assign cube_q = '0;
+      logic unused_cube;
+      assign unused_cube = ^{req_cube, cube_q[2:1]};
+    end
     if (NB < NW) begin : g_size_high  // zero for every size this unit takes (1..2^ML)
       logic unused_size_high;
       assign unused_size_high = ^{req_w[NW-1:NB], req_h[NW-1:NB]};
@@ -264,21 +271,19 @@ module tex_front #(
         end
         assign size[(s*2 + a)*NW +: NW] = NW'(n_s4);
         logic [tex_pkg::WRAP_W-1:0] mode;  // the sampler's, a fetch's clamp to border, a cube face's skirt
-        assign mode = fetch_q[3] ? tex_pkg::WRAP_BORDER : cube_q[3] ? tex_pkg::WRAP_SKIRT
-                    : (a == 0) ? wrap_u_s4 : wrap_v_s4;
-        logic [OW-1:0] skirt;  // a cube face's fetch: its texel i at i + 1
-        assign skirt = OW'(fetch_q[3] && cube_q[3]);
+        assign mode = fetch_q[3] ? (cube_q[3] ? tex_pkg::WRAP_SKIRT_BORDER : tex_pkg::WRAP_BORDER)
+                    : cube_q[3] ? tex_pkg::WRAP_SKIRT : (a == 0) ? wrap_u_s4 : wrap_v_s4;
         tex_wrap #(.OUT_W(OW), .IW(IW), .NB(NB), .SECOND(1'b0)) u_wrap0 (.i(i0_s4), .n(n_s4), .pow2(pow2_s4),
                                         .mode(mode), .o(t0), .border(b0));
         tex_wrap #(.OUT_W(OW), .IW(IW), .NB(NB), .SECOND(1'b1)) u_wrap1 (.i(i1_s4), .n(n_s4), .pow2(pow2_s4),
                                         .mode(mode), .o(t1), .border(b1));
         if (a == 0) begin : g_x
-          assign x[(s*2 + 0)*XW +: XW] = t0 + skirt;
-          assign x[(s*2 + 1)*XW +: XW] = t1 + skirt;
+          assign x[(s*2 + 0)*XW +: XW] = t0;
+          assign x[(s*2 + 1)*XW +: XW] = t1;
           assign border_x[s*2 +: 2]    = {b1, b0} | {2{outside_s4}};
         end else begin : g_y
-          assign y[(s*2 + 0)*YW +: YW] = t0 + skirt;
-          assign y[(s*2 + 1)*YW +: YW] = t1 + skirt;
+          assign y[(s*2 + 0)*YW +: YW] = t0;
+          assign y[(s*2 + 1)*YW +: YW] = t1;
           assign border_y[s*2 +: 2]    = {b1, b0} | {2{outside_s4}};
         end
       end

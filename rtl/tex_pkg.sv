@@ -34,8 +34,10 @@ package tex_pkg;
   localparam logic [WRAP_W-1:0] WRAP_MIRROR       = 3'd2;  // MIRRORED_REPEAT
   localparam logic [WRAP_W-1:0] WRAP_BORDER       = 3'd3;  // CLAMP_TO_BORDER
   localparam logic [WRAP_W-1:0] WRAP_MIRROR_CLAMP = 3'd4;  // MIRROR_CLAMP_TO_EDGE
-  // (internal, never a sampler's: a cube face's taps in its skirted storage, tex_front and tex_wrap)
+  // (internal, never a sampler's: a cube face's taps in its skirted storage, tex_front and tex_wrap;
+  // a texel fetch of a face: clamp to border, then into the skirted storage)
   localparam logic [WRAP_W-1:0] WRAP_SKIRT        = 3'd5;
+  localparam logic [WRAP_W-1:0] WRAP_SKIRT_BORDER = 3'd6;
 
   // ---- cfg_smp_mip_mode
   localparam int MIP_W = 2;

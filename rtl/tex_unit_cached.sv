@@ -373,19 +373,15 @@ module tex_unit_cached #(
   logic               req_cube_tex;  // the request's texture is a cube map
   generate
     if (CUBE_MAPS != 0) begin : g_cube
-      localparam int LINE_W = 1 + 1 + 7*CC + RW;  // {valid, cube, u, v, derivatives, layer, rest}
-      logic [LINE_W-1:0] line [6];
-      logic              req_cube;
+      localparam int LINE_W = 1 + 7*CC + RW;  // {cube, u, v, derivatives, layer, rest}
+      logic req_cube;
       assign req_cube = req_valid && !desc_busy && req_cube_tex && req_op != tex_pkg::OP_FETCH;
-      always_ff @(posedge clk) begin
-        if (rst) begin
-          for (int i = 0; i < 6; i++) line[i][LINE_W-1] <= 1'b0;
-        end else if (probe_ready) begin
-          line[0] <= {req_valid && !desc_busy, req_cube, req_u, req_v, req_dudx, req_dvdx, req_dudy, req_dvdy,
-                      req_layer, req_rest};
-          for (int i = 1; i < 6; i++) line[i] <= line[i-1];
-        end
-      end
+      logic [LINE_W-1:0] line_out;
+      tex_delay #(.W(LINE_W), .DEPTH(6)) u_line (
+        .clk(clk), .rst(rst), .en(probe_ready), .in_valid(req_valid && !desc_busy),
+        .in_data({req_cube, req_u, req_v, req_dudx, req_dvdx, req_dudy, req_dvdy, req_layer, req_rest}),
+        .out_valid(line_valid), .out_data(line_out)
+      );
       logic signed [CC-1:0] s, t, dsdx, dtdx, dsdy, dtdy;
       tex_cube u_cube (
         .clk(clk), .en(probe_ready), .cube(req_cube), .rx(req_u), .ry(req_v), .rz(req_w),
@@ -393,7 +389,7 @@ module tex_unit_cached #(
         .face(line_face), .s(s), .t(t), .dsdx(dsdx), .dtdx(dtdx), .dsdy(dsdy), .dtdy(dtdy)
       );
       logic signed [CC-1:0] u5, v5, dudx5, dvdx5, dudy5, dvdy5;
-      assign {line_valid, line_cube, u5, v5, dudx5, dvdx5, dudy5, dvdy5, line_layer, line_rest} = line[5];
+      assign {line_cube, u5, v5, dudx5, dvdx5, dudy5, dvdy5, line_layer, line_rest} = line_out;
       assign line_u    = line_cube ? s : u5;
       assign line_v    = line_cube ? t : v5;
       assign line_dudx = line_cube ? dsdx : dudx5;
@@ -557,7 +553,7 @@ module tex_unit_cached #(
   logic            zero_s4;             // a texel fetch that reads nothing (its blend is 0)
   logic [3:0]      border_x_front, border_y_front;  // tex_front's (before a fetch's layer)
   logic            zero_front;
-  tex_front #(.XW(XW), .YW(YW)) u_front (
+  tex_front #(.XW(XW), .YW(YW), .CUBE_MAPS(CUBE_MAPS)) u_front (
     .clk(clk), .en(en_front), .req_u(probe_u), .req_v(probe_v), .req_lod(probe_lod), .req_bias(probe_bias),
     .req_w(probe_size[0 +: NW]), .req_h(probe_size[NW +: NW]), .req_last_level(probe_last_level),
     .req_wrap_u(probe_smp_front[0 +: WW]), .req_wrap_v(probe_smp_front[WW +: WW]),

@@ -7,10 +7,11 @@
 //           pair n-1, copy sits in two parity banks)
 //   clamp: min(max(i, 0), n-1)      mirror: m = i < 0 ? -1-i : i; m < n ? m : max(2n-1-m, 0)
 //   border: min(max(i, 0), n-1), and border = (i < 0 || i >= n): the tap takes the border colour
-//   mirror-clamp: min(i < 0 ? -1-i : i, n-1)     (the unused codes 6, 7 give 0)
+//   mirror-clamp: min(i < 0 ? -1-i : i, n-1)     (the unused code 7 gives 0)
 //   skirt (internal: a cube face, stored with a one-texel skirt, face texel i at i + 1; the model's
 //          stage::cube_taps): the first tap min(i, n-1) + 1 (a linear filter's i in -1..n-1, a
-//          nearest filter's in 0..n clamped to the face), the second i + 1 (0..n+1)
+//          nearest filter's in 0..n clamped to the face), the second i + 1 (0..n+1); skirt-border
+//          (a cube face's texel fetch): border's, then + 1
 // Handshake: none (combinational; tex_unit clock 5). Latency: 0. Throughput: 1 per clock.
 // Ports:
 //   i      : signed IW bits, unwrapped integer texel index (tex_address)
@@ -59,6 +60,10 @@ module tex_wrap #(
       tex_pkg::WRAP_SKIRT:
         if (SECOND) o = OUT_W'(ix + XW'(1));
         else        o = beyond ? OUT_W'(n) : OUT_W'(ix + XW'(1));
+      tex_pkg::WRAP_SKIRT_BORDER: begin
+        o      = negative ? OUT_W'(1) : (beyond ? OUT_W'(n) : OUT_W'(ix + XW'(1)));
+        border = negative || beyond;
+      end
       default:                    o = '0;
     endcase
   end

@@ -79,7 +79,7 @@ lint_blocks() {
   clean tex_cube verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_cube_face.sv \
     rtl/tex_cube.sv --top-module tex_cube
   clean tex_cube_seam verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv \
-    rtl/tex_cube_face.sv rtl/tex_cube_seam.sv --top-module tex_cube_seam
+    rtl/tex_delay.sv rtl/tex_cube_face.sv rtl/tex_cube_seam.sv --top-module tex_cube_seam
   echo "lint: verilator -Wall clean for tex_lambda, tex_cube and tex_cube_seam"
   # The block decoders and the sRGB table on their own, through their harnesses (tex_unit_cached's
   # taps call them; linted there too).

@@ -72,6 +72,10 @@ generic_check tex_lambda tex_lambda "read_verilog -sv rtl/tex_pkg.sv rtl/tex_lam
 # The AXI4-Lite configuration slave of tex_unit_axi on its own (default parameters).
 generic_check tex_axil_config tex_axil_config "read_verilog -sv rtl/tex_pkg.sv rtl/tex_axil_config.sv" \
   "tex_axil_config (AXI4-Lite configuration and counters)"
+# The cube stages (inside tex_unit_cached with CUBE_MAPS), after proc: Yosys reads them as written.
+cube_files="rtl/tex_pkg.sv rtl/tex_delay.sv rtl/tex_cube_face.sv rtl/tex_cube.sv rtl/tex_cube_seam.sv"
+generic_check tex_cube tex_cube "read_verilog -sv $cube_files" "tex_cube (a cube lookup's face and derivatives)" proc
+generic_check tex_cube_seam tex_cube_seam "read_verilog -sv $cube_files" "tex_cube_seam (probes across a seam)" proc
 [ "$mode" = latch ] && exit 0
 
 # ---- every compiled configuration on ECP5, Artix-7 and iCE40
@@ -132,15 +136,19 @@ for cfg in "${configs[@]}"; do
   set -- $cfg
   name=$1 w=$2 h=$3 cw=$4 cached=0
   if [ $# -ge 10 ]; then
-    cached=1 bw=$5 bh=$6 lines=$7 fifo=$8 mem_w=$9 miss=${10} formats=0
-    [ "${11:-}" = FORMATS ] && formats=1
+    cached=1 bw=$5 bh=$6 lines=$7 fifo=$8 mem_w=$9 miss=${10} formats=0 cubes=0
+    for option in "${@:11}"; do
+      case $option in FORMATS) formats=1;; CUBES) cubes=1;; *) fail "option $option of $name" sim/engines/rtl/CMakeLists.txt;; esac
+    done
     params="tex_unit_cached ${w}x${h}, CW $cw, ${bw}x${bh} blocks, $lines lines, FIFO $fifo, MEM_W $mem_w, MISS $miss"
     [ $formats = 1 ] && params="$params, block formats + sRGB"
+    [ $cubes = 1 ] && params="$params, cube maps"
     # (chparam, not read_verilog -defer with hierarchy -chparam: that hits Yosys 0.23's assertion
     # `modules_.count(module->name) == 0` on tex_unit_cached)
     read_cmd="read_verilog -sv $files; chparam -set MAX_LOG2_W $w -set MAX_LOG2_H $h -set CW $cw
       -set TAG_W 16 -set BLOCK_W $bw -set BLOCK_H $bh -set LINES $lines -set FIFO_DEPTH $fifo
-      -set MEM_W $mem_w -set MISS_DEPTH $miss -set BLOCK_FORMATS $formats -set SRGB $formats tex_unit_cached;
+      -set MEM_W $mem_w -set MISS_DEPTH $miss -set BLOCK_FORMATS $formats -set SRGB $formats
+      -set CUBE_MAPS $cubes tex_unit_cached;
       hierarchy -top tex_unit_cached"
   else
     params="tex_unit ${w}x${h}, CW $cw"

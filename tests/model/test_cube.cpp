@@ -103,7 +103,7 @@ TEST(CubeFace, ReciprocalIsWithinTheCorrectionStepsReach) {
     }
   }
   EXPECT_EQ(max_gap, 1);  // (one correction step: needed, and enough)
-  RecordProperty("worst_relative_error", std::to_string(double(worst)));
+  RecordProperty("worst_relative_error_log2", std::to_string(std::log2(double(worst))));
 }
 
 // The derivatives by the quotient rule, against the exact rational in long double: within tex_cube's
