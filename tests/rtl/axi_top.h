@@ -251,6 +251,9 @@ class AxiTop {
       t.req_component = q.component;
       t.req_layer = uint32_t(q.layer);
       t.req_ref = uint32_t(q.ref);
+      t.req_w = uint32_t(q.w);
+      t.req_dwdx = uint32_t(q.dwdx);
+      t.req_dwdy = uint32_t(q.dwdy);
       t.req_tag = uint16_t(next_req_);
     } else {
       t.req_u = junk();
@@ -268,6 +271,9 @@ class AxiTop {
       t.req_component = junk() & 3;
       t.req_layer = junk();
       t.req_ref = junk();
+      t.req_w = junk();
+      t.req_dwdx = junk();
+      t.req_dwdy = junk();
       t.req_tag = uint16_t(junk());
     }
     t.req_valid = req_valid;

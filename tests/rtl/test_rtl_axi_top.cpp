@@ -4,7 +4,8 @@
 // - Programming over AXI4-Lite only (docs/rtl-interface.md, "AXI4-Lite configuration
 //   (tex_unit_axi)"): the ID, VERSION and CAPS registers against the build's parameters; with the
 //   unit in reset (CONTROL.unit_reset) the cache geometry, FIFO limit, filter and LOD registers;
-//   then the unit released, 2 to 4 descriptors staged and committed (RGBA8 pyramids packed in
+//   then the unit released, 2 to 4 descriptors staged and committed (RGBA8 pyramids, arrays and cube
+//   maps through DESC_ATTR's layers and cube bit, packed in
 //   memory by texture_descriptors / build_memory_image), the counters cleared. Refused writes on
 //   the way: DESC_COMMIT while the unit is in reset, CACHE while it runs, DESC_COMMIT of an entry
 //   beyond TEXTURES, of a base off the line, of a size beyond MAX_LOG2_W (each SLVERR, the
@@ -109,10 +110,16 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
     Extent size{1 << kMaxLog2W, 1 << kMaxLog2H};
     if (i > 0 && rng() % 2) size = {1 << (rng() % (kMaxLog2W + 1)), 1 << (rng() % (kMaxLog2H + 1))};
     else if (i > 0) size = {1 + int(rng() % (1u << kMaxLog2W)), 1 + int(rng() % (1u << kMaxLog2H))};
-    const int layers = i > 0 && rng() % 3 == 0 ? 2 + int(rng() % 3) : 1;  // arrays (DESC_ATTR's layers)
-    const bool view = i > 0 && rng() % 3 == 0;  // a view: its chain cut (DESC_ATTR's last level)
+    int layers = i > 0 && rng() % 3 == 0 ? 2 + int(rng() % 3) : 1;  // arrays (DESC_ATTR's layers)
+    const bool cube = i > 0 && rng() % 4 == 0;  // a cube map, now and then an array of 2 (DESC_ATTR's cube)
+    if (cube) {
+      const int face = 1 + int(rng() % uint64_t((1 << std::min(kMaxLog2W, kMaxLog2H)) - 2));
+      size = {face, face};
+      layers = rng() % 3 ? 6 : 12;
+    }
+    const bool view = !cube && i > 0 && rng() % 3 == 0;  // a view: its chain cut (DESC_ATTR's last level)
     const uint64_t b = rng(), span = rng() % 3;
-    BoundTexture t;
+    BoundTexture t(nullptr, {}, cube ? TextureKind::Cube : TextureKind::Texture2D);
     for (int l = 0; l < layers; ++l) {
       c.pyramids.push_back(random_pyramid(size, rng()));
       if (view) {
@@ -155,6 +162,16 @@ Case random_case(uint64_t seed, size_t requests, bool errors) {
   fetches_and_gathers_among(rng, c.requests, 16, [&](int t) { return c.table[size_t(t)].pyramid->extent0(); });
   layers_among(rng, c.requests, [&](int t) { return c.table[size_t(t)].layers(); });
   compares_among(rng, c.requests, 16, c.samplers, [](int) { return true; });
+  // A cube map's requests: cube_request's, through a normalized sampler (sampler 0 made one).
+  c.samplers[0].unnormalized = false;
+  for (Request& q : c.requests) {
+    const BoundTexture& t = c.table[q.texture];
+    if (t.kind != TextureKind::Cube) continue;
+    q = cube_request(rng, q, t.pyramid->extent0().w, t.pyramid->last_level(), t.layers());
+    const SamplerConfig& s = c.samplers[q.sampler];
+    if (s.unnormalized || (q.op == Op::Compare && !s.compare_problem().empty())) q.sampler = 0;
+    if (q.op == Op::Compare && !c.samplers[q.sampler].compare_problem().empty()) q.op = Op::Sample;
+  }
   return c;
 }
 
@@ -436,10 +453,12 @@ TEST(RtlAxiTop, EndToEndAgainstModel) {
   ASSERT_TRUE(top.head_waits_visible()) << "tex_cached_fetch's head_waits is not public (rtl/tex_unit.vlt)";
   uint64_t samples = 0, flagged = 0, reads = 0, clocks = 0, out_stall = 0, req_stall = 0, mem_wait = 0;
   uint64_t lookups = 0, counter_reads = 0;
+  int cubes = 0;  // cube maps through DESC_ATTR's cube bit
   const int cases = 10;
   for (int ci = 0; ci < cases; ++ci) {
     const uint64_t seed = base + uint64_t(ci) * 7919;
     const Case c = random_case(seed, 4000, ci % 2 == 1);
+    for (const BoundTexture& t : c.table) cubes += t.kind == TextureKind::Cube;
     const CaseResult r = run_case(top, c);
     EXPECT_EQ(r.first_mismatch, "") << "case " << ci << " (seed " << seed << ")";
     EXPECT_TRUE(r.failures.empty()) << "case " << ci << " (seed " << seed << "):" << join(r.failures);
@@ -463,6 +482,7 @@ TEST(RtlAxiTop, EndToEndAgainstModel) {
               (unsigned long long)req_stall, (unsigned long long)mem_wait, (unsigned long long)counter_reads, secs);
   // The checks were not vacuous.
   EXPECT_GT(flagged, 0u);
+  EXPECT_GT(cubes, 0);
   EXPECT_LT(flagged, samples / 4);
   EXPECT_GT(out_stall, 0u);
   EXPECT_GT(req_stall, 0u);

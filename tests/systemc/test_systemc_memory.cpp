@@ -253,10 +253,11 @@ TEST(SystemcMemory, ExamplePlatformRuns) {
   std::remove("platform.txt");
 }
 
-// A frame as a real one binds it: five textures in the descriptor table (RGBA8 with sides that are
-// not powers of two, BC1 sRGB, BC7, RGBA8 sRGB, an RGBA8 array of 3 layers) and five random samplers, random requests over
-// them (tests/common/stimulus.h), the memory jittering. Both backends give the golden model's texels
-// and its miss stream, in order.
+// A frame as a real one binds it: six textures in the descriptor table (RGBA8 with sides that are
+// not powers of two, BC1 sRGB, BC7, RGBA8 sRGB, an RGBA8 array of 3 layers, a cube array of 2 cubes
+// of 12 x 12 faces) and six random samplers, random requests over them (tests/common/stimulus.h;
+// the cube's: cube_request's directions, a quarter of them with derivatives), the memory jittering.
+// Both backends give the golden model's texels and its miss stream, in order.
 TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
   std::vector<Pyramid> pyramids;
   pyramids.push_back(build_pyramid(stimulus::random_image(61, 37, 8, 1), PyramidMode::Exact));
@@ -274,13 +275,27 @@ TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
   std::vector<const Pyramid*> array = stimulus::pointers_to(layers);
   table.push_back({array[0], {array.begin() + 1, array.end()}});
   sizes.push_back(layers[0].extent0());
+  const std::vector<Pyramid> faces = stimulus::random_layers({12, 12}, 12, 7);  // and a cube array
+  std::vector<const Pyramid*> cube = stimulus::pointers_to(faces);
+  table.push_back(BoundTexture(cube[0], {cube.begin() + 1, cube.end()}, TextureKind::Cube));
+  sizes.push_back(faces[0].extent0());
   std::mt19937_64 rng(5);
   SamplerTable samplers;
-  for (int i = 0; i < 5; ++i) samplers.push_back(stimulus::random_sampler(rng));
+  for (int i = 0; i < 6; ++i) samplers.push_back(stimulus::random_sampler(rng));
+  samplers[5].unnormalized = false;  // (the cube's requests' sampler)
   std::vector<Request> requests = stimulus::random_requests(rng, sizes, samplers.size(), 3000);
   stimulus::fetches_and_gathers_among(rng, requests, 16, [&](int t) { return sizes[size_t(t)]; });
   stimulus::layers_among(rng, requests, [&](int t) { return table[size_t(t)].layers(); });
   stimulus::compares_among(rng, requests, 16, samplers, [&](int t) { return !table[size_t(t)].pyramid->srgb; });
+  int cube_requests = 0;
+  for (Request& q : requests)
+    if (q.texture == 5) {
+      q = stimulus::cube_request(rng, q, 12, faces[0].last_level(), 12);
+      q.sampler = 5;
+      if (q.op == Op::Compare && !samplers[5].compare_problem().empty()) q.op = Op::Sample;
+      ++cube_requests;
+    }
+  ASSERT_GT(cube_requests, 300);
   EngineOptions o = cached(60, 4);
   o.mem_jitter = 40;
   o.seed = 9;
