@@ -26,6 +26,32 @@ namespace {
 
 using namespace tex;
 
+// A cube map's texel fetches checked as they are read: the layer must be one of its faces.
+class CubeFetchCheck final : public RequestSource {
+ public:
+  CubeFetchCheck(RequestSource& inner, const TextureTable& table, std::string name)
+      : inner_(inner), table_(table), name_(std::move(name)) {}
+  size_t read(Request* out, size_t max) override {
+    const size_t n = inner_.read(out, max);
+    for (size_t i = 0; i < n; ++i) {
+      const Request& r = out[i];
+      if (r.op != Op::Fetch || r.texture >= table_.size() || table_[r.texture].kind != TextureKind::Cube) continue;
+      const int layers = table_[r.texture].layers();
+      if (r.layer < 0 || r.layer >= layers)
+        throw Error(name_ + ": query " + std::to_string(count_ + i) + ": layer " + std::to_string(r.layer) +
+                    " is not a face of the cube map (0.." + std::to_string(layers - 1) + ": face + 6 x cube)");
+    }
+    count_ += n;
+    return n;
+  }
+
+ private:
+  RequestSource& inner_;
+  const TextureTable& table_;
+  std::string name_;
+  size_t count_ = 0;
+};
+
 // --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M]
 // [border=C] [reduction=R] [compare=OP] [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
 // patterns as they are; `srgb`: the texels are sRGB codes; `unnormalized`: the sampler takes texel
@@ -269,7 +295,12 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   // One helper thread beside the engine: it parses a trace that streams, or else writes the results.
   QuerySource streamed(*reader, form);
   std::optional<ReadAheadSource> ahead;
-  RequestSource& source = kept ? static_cast<RequestSource&>(*parser) : ahead.emplace(streamed);
+  RequestSource& queries = kept ? static_cast<RequestSource&>(*parser) : ahead.emplace(streamed);
+  // A texel fetch of a cube map names a face (face + 6 x cube) as its layer: one outside the faces
+  // is a bad query here (the hardware answers 0, Vulkan's robust access to the faces' array view).
+  std::optional<CubeFetchCheck> faces;
+  const bool any_cube = std::any_of(table.begin(), table.end(), [](const BoundTexture& t) { return t.kind == TextureKind::Cube; });
+  RequestSource& source = op == Op::Fetch && any_cube ? faces.emplace(queries, table, reader->name()) : queries;
   bool srgb = false;  // sRGB textures give linear unorm16 results
   for (const BoundTexture& t : table) srgb = srgb || t.pyramid->srgb;
   CsvTexelWriter writer(result.open(), srgb ? "r16,g16,b16,a16" : "r,g,b,a");

@@ -370,8 +370,9 @@ TEST_F(TexsimCli, DepthCompareFiltersTheTests) {
 // +Z/+X edge (a tie: +Z, Vulkan's rule) weighs +Z's edge texel and +X's half and half; the corner
 // (1, 1, 1) weighs +Z's corner texel, +Y's, +X's and the skirt's corner, the average of the three:
 // round((30 + 97 + 250 + 10) / 4) with 97 = round((10 + 30 + 250) / 3). Faces of other sizes,
-// non-square faces, five faces, the on-chip RTL, a u,v header: one line, nothing written. The cached
-// RTL and SystemC sample it as the model does.
+// non-square faces, five faces, the on-chip RTL, a u,v header, a texel fetch of layer 6 (no face):
+// one line, nothing written. The cached RTL and SystemC sample it as the model does; a fetch of
+// face f's texel reads face f.
 TEST_F(TexsimCli, CubeMapsSampleAcrossTheSeams) {
   const int r[6] = {10, 80, 30, 160, 250, 200};
   std::string faces;
@@ -405,6 +406,18 @@ TEST_F(TexsimCli, CubeMapsSampleAcrossTheSeams) {
     EXPECT_EQ(read_text(dir / "e.csv"), read_text(dir / "c.csv")) << engine;
   }
   expect_clean_failure("sample --cube " + faces + " -e rtl -q q.csv -o bad.csv", "bad.csv", {"cube map", "--memory cached"});
+  // A texel fetch names the face as its layer: texel (1, 0) of each face; layer 6 is no face.
+  write_text(dir / "fetch.csv", "i,j,layer,level\n1,0,0,0\n1,0,1,0\n1,0,2,0\n1,0,3,0\n1,0,4,0\n1,0,5,0\n");
+  for (const char* engine : {"-e model", "-e rtl"}) {
+    const Result f = run(std::string("sample --cube ") + faces + " --memory cached --op fetch -q fetch.csv -o f.csv " + engine);
+    ASSERT_EQ(f.exit_code, 0) << engine << ": " << f.err;
+    const auto fetched = read_csv_rows(dir / "f.csv", h);
+    ASSERT_EQ(fetched.size(), 6u) << engine;
+    for (int f6 = 0; f6 < 6; ++f6) EXPECT_EQ(fetched[size_t(f6)][0], r[f6]) << engine << " face " << f6;
+  }
+  write_text(dir / "fetch6.csv", "i,j,layer,level\n1,0,2,0\n1,0,6,0\n");
+  expect_clean_failure("sample --cube " + faces + " --memory cached --op fetch -q fetch6.csv -o bad.csv", "bad.csv",
+                       {"fetch6.csv", "layer 6", "not a face"});
 
   write_text(dir / "uv.csv", "u,v,lod\n0.5,0.5,0\n");
   expect_clean_failure("sample --cube " + faces + " --memory cached -q uv.csv -o bad.csv", "bad.csv", {"uv.csv", "cube map"});
