@@ -54,7 +54,8 @@ class CubeFetchCheck final : public RequestSource {
 
 // --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M]
 // [border=C] [reduction=R] [compare=OP] [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
-// patterns as they are; `srgb`: the texels are sRGB codes; `unnormalized`: the sampler takes texel
+// patterns as they are; `srgb`: the texels are sRGB codes; `depth`: a depth texture, its R the depth
+// (what --op compare reads); `unnormalized`: the sampler takes texel
 // coordinates, the trace's u, v of this entry are texels). Line t is texture t of the
 // descriptor table and sampler t of the sampler table: the options' sampler with the line's wrap
 // modes and fields (min: nearest | linear | a GL minification name; mag: nearest | linear; mip:
@@ -66,12 +67,13 @@ struct TextureListEntry {
   bool srgb = false;
   std::optional<int> base_level, max_level;
   std::string at;  // "FILE:LINE: " of the line (errors of its fields found later)
+  bool depth = false;  // a depth texture (the line's `depth`, or --depth)
 };
 std::vector<TextureListEntry> read_texture_list(const std::string& path, const SamplerConfig& cfg) {
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (!f) throw Error(path + ": cannot open texture list");
   const std::string form =
-      "`id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M] [border=C] [reduction=R] [compare=OP] [base=N] [max=N]`";
+      "`id path [wrap_u [wrap_v]] [srgb] [depth] [unnormalized] [min=F] [mag=F] [mip=M] [border=C] [reduction=R] [compare=OP] [base=N] [max=N]`";
   std::vector<TextureListEntry> out;
   char buf[4096];
   int line_no = 0;
@@ -98,6 +100,8 @@ std::vector<TextureListEntry> read_texture_list(const std::string& path, const S
         if (eq == std::string::npos) {
           if (token == "srgb" && !e.srgb) {
             e.srgb = true;
+          } else if (token == "depth" && !e.depth) {
+            e.depth = true;
           } else if (token == "unnormalized" && !e.sampler.unnormalized) {
             e.sampler.unnormalized = true;
           } else if (wraps < 2 && !e.srgb && !e.sampler.unnormalized) {
@@ -174,7 +178,7 @@ std::string op_label(Op op, int component, const SamplerConfig& c) {
 
 int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const std::string& textures_path,
                const std::string& texture_layers, const std::string& cube_faces, const std::string& out_path,
-               const std::string& op_option, const std::string& component_option) {
+               const std::string& op_option, const std::string& component_option, bool depth) {
   const auto t0 = std::chrono::steady_clock::now();
   // Everything is checked before the work: options, engine, outputs, texture, every query.
   Op op{};
@@ -275,11 +279,17 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
         throw Error(reader->name() + ": header " + reader->header() + (reader->cube() ? " is a cube map's; " : " is a 2D texture's; ") +
                     (list.size() > 1 ? list[t].at : "") + list[t].path +
                     (table[t].kind == TextureKind::Cube ? " is a cube map (its queries: x,y,z,...)" : " is not a cube map (its queries: u,v,...)"));
-  if (op == Op::Compare)
-    for (size_t t = 0; t < table.size(); ++t)
-      if (table[t].pyramid->srgb)
-        throw Error((list.size() > 1 ? list[t].at : "") + "--op compare of an sRGB texture (" + list[t].path +
-                    "): a depth compare reads the R channel as a depth, not as a colour");
+  // A depth compare reads a depth texture's R (Vulkan: compareEnable with a depth format's view): a
+  // texture declared one (--depth, a list line's `depth`), never an sRGB (colour) one.
+  for (size_t t = 0; t < table.size(); ++t) {
+    const bool is_depth = depth || list[t].depth;
+    const std::string& at = list[t].at;  // ("" for --texture)
+    if (is_depth && table[t].pyramid->srgb)
+      throw Error(at + "a depth texture with sRGB texels (" + list[t].path + "): a depth is no colour");
+    if (op == Op::Compare && !is_depth)
+      throw Error(at + "--op compare of a colour texture (" + list[t].path + "): a depth compare reads a depth "
+                  "texture's R as its depth; declare the texture one (--depth, or `depth` on its --textures line)");
+  }
   const bool kept = parser && parser->kept();
   if (parser && (!kept || o.engine != "model")) parser->wait();
   const Pyramid& pyr = arrays[0][0];
@@ -522,6 +532,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   sample->add_option("--component", sample_component, "the component a gather gathers: 0 1 2 3 or r g b a (R G B A)")
       ->capture_default_str();
+  bool sample_depth = false;
+  sample->add_flag("--depth", sample_depth,
+                   "the texture is a depth texture: its R channel is the depth (16-bit units: D16; 8-bit units: D8), "
+                   "what --op compare reads; --op compare takes only depth textures (a --textures line: `depth`)");
   sample->add_option("--out,-o", out, "result CSV: header r,g,b,a (- = standard output)")->required();
   std::string textures_list, texture_layers, cube_faces;
   sample->add_option("--texture-layers", texture_layers,
@@ -688,7 +702,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (*sample)
-      return cmd_sample(sample_opts, queries, textures_list, texture_layers, cube_faces, out, sample_op, sample_component);
+      return cmd_sample(sample_opts, queries, textures_list, texture_layers, cube_faces, out, sample_op, sample_component,
+                        sample_depth);
     if (*mip)
       return cmd_mip(mip_texture, mip_mode, mip_resize, mip_format, mip_format_opt->count() > 0, mip_srgb, dump_dir, layout,
                      image);

@@ -337,7 +337,7 @@ TEST_F(TexsimCli, DepthCompareFiltersTheTests) {
       {"equal", [](int r, int d) { return r == d; }},         {"not-equal", [](int r, int d) { return r != d; }},
       {"never", [](int, int) { return false; }},              {"always", [](int, int) { return true; }}};
   for (const auto& [name, pass] : ops) {
-    const std::string base = std::string("sample -t d.png --op compare --compare-op ") + name + " -q q.csv ";
+    const std::string base = std::string("sample -t d.png --depth --op compare --compare-op ") + name + " -q q.csv ";
     ASSERT_EQ(run(base + "-f point -o p.csv").exit_code, 0) << name;
     std::string h;
     const auto rows = read_csv_rows(dir / "p.csv", h);
@@ -353,16 +353,24 @@ TEST_F(TexsimCli, DepthCompareFiltersTheTests) {
       for (int x : {1, 2}) passes += pass(ref_code, depth(x, y));
     EXPECT_EQ(corner, (std::vector<int>{(passes * 255 + 2) / 4, 0, 0, 255})) << name << ": the corner's four tests";
   }
-  ASSERT_EQ(run("sample -t d.png --op compare --compare-op greater -q q.csv -o m.csv").exit_code, 0);
+  ASSERT_EQ(run("sample -t d.png --depth --op compare --compare-op greater -q q.csv -o m.csv").exit_code, 0);
   for (const char* engine : {"-e rtl", "-e rtl --memory cached", "-e systemc --memory cached", "-e systemc-model"}) {
-    ASSERT_EQ(run(std::string("sample -t d.png --op compare --compare-op greater -q q.csv -o e.csv ") + engine).exit_code, 0) << engine;
+    ASSERT_EQ(run(std::string("sample -t d.png --depth --op compare --compare-op greater -q q.csv -o e.csv ") + engine).exit_code, 0) << engine;
     EXPECT_EQ(read_text(dir / "e.csv"), read_text(dir / "m.csv")) << engine;
   }
   write_text(dir / "plain.csv", "u,v,lod\n0.5,0.5,0\n");
-  expect_clean_failure("sample -t d.png --op compare -q plain.csv -o bad.csv", "bad.csv", {"plain.csv", "ref"});
-  expect_clean_failure("sample -t d.png --op compare --reduction max -q q.csv -o bad.csv", "bad.csv", {"q.csv:2", "min/max"});
-  expect_clean_failure("sample -t d.png --srgb --op compare -q q.csv -o bad.csv", "bad.csv", {"sRGB", "depth"});
-  expect_clean_failure("sample -t d.png --op compare --compare-op lesser -q q.csv -o bad.csv", "bad.csv", {"lesser", "less-or-equal"});
+  expect_clean_failure("sample -t d.png --depth --op compare -q plain.csv -o bad.csv", "bad.csv", {"plain.csv", "ref"});
+  expect_clean_failure("sample -t d.png --depth --op compare --reduction max -q q.csv -o bad.csv", "bad.csv", {"q.csv:2", "min/max"});
+  expect_clean_failure("sample -t d.png --srgb --depth --op compare -q q.csv -o bad.csv", "bad.csv", {"sRGB", "depth"});
+  expect_clean_failure("sample -t d.png --depth --op compare --compare-op lesser -q q.csv -o bad.csv", "bad.csv", {"lesser", "less-or-equal"});
+  // A colour texture (not declared a depth texture) takes no compare; a --textures line's `depth` declares one.
+  expect_clean_failure("sample -t d.png --op compare -q q.csv -o bad.csv", "bad.csv", {"colour texture", "d.png", "--depth"});
+  write_text(dir / "list.txt", "0 d.png clamp depth compare=greater\n");
+  const Result listed = run("sample --textures list.txt --op compare -q q.csv -o l.csv");
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  EXPECT_EQ(read_text(dir / "l.csv"), read_text(dir / "m.csv"));
+  write_text(dir / "list2.txt", "0 d.png clamp compare=greater\n");
+  expect_clean_failure("sample --textures list2.txt --op compare -q q.csv -o bad.csv", "bad.csv", {"list2.txt:1", "colour texture"});
 }
 
 // --cube +X,-X,+Y,-Y,+Z,-Z: a cube map sampled by direction (x,y,z headers), seamless. Faces of
