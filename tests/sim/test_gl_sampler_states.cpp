@@ -187,6 +187,30 @@ class GlSampling {
         colour = textureLod(tex, q, lod);
       })";
     cube_array_program_ = link(vs, cube_array_fs, 7);
+    // A cube map's textureGather (unit 5, the cube above) of component `comp` at direction q.xyz.
+    const char* cube_gather_fs = R"(#version 400 core
+      uniform samplerCube tex;
+      uniform sampler2D queries;
+      uniform int comp;
+      out vec4 colour;
+      void main() {
+        vec3 d = texelFetch(queries, ivec2(gl_FragCoord.xy), 0).xyz;
+        colour = comp == 0 ? textureGather(tex, d, 0) : comp == 1 ? textureGather(tex, d, 1)
+               : comp == 2 ? textureGather(tex, d, 2) : textureGather(tex, d, 3);
+      })";
+    cube_gather_program_ = link(vs, cube_gather_fs, 5);
+    // A depth cube's shadow lookup (unit 8, samplerCubeShadow) at direction q.xyz with reference q.w,
+    // level 0 (zero gradients: the magnification filter).
+    const char* cube_shadow_fs = R"(#version 330 core
+      uniform samplerCubeShadow tex;
+      uniform sampler2D queries;
+      out vec4 colour;
+      void main() {
+        vec4 q = texelFetch(queries, ivec2(gl_FragCoord.xy), 0);
+        colour = vec4(textureGrad(tex, q, vec3(0.0), vec3(0.0)), 0.0, 0.0, 1.0);
+      })";
+    cube_shadow_program_ = link(vs, cube_shadow_fs, 8);
+    glGenTextures(1, &cube_depth_);
     glGenTextures(1, &cube_array_);
     glGenTextures(1, &cube_);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -296,6 +320,42 @@ class GlSampling {
       }
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_BASE_LEVEL, 0);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, GLint(faces[0]->levels.size()) - 1);
+  }
+  // textureGather of `component` at each query's direction (q[0..2]) from the cube of upload_cube.
+  std::vector<std::array<float, 4>> gather_cube(int component, const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(cube_gather_program_);
+    glUniform1i(glGetUniformLocation(cube_gather_program_, "comp"), component);
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, cube_);
+    return draw(q);
+  }
+  // A depth cube (unit 8): each face's level 0 as DEPTH_COMPONENT16, its R code d as d * 257.
+  void upload_cube_depth(const std::vector<const Pyramid*>& faces) {
+    glActiveTexture(GL_TEXTURE8);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, cube_depth_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int f = 0; f < 6; ++f) {
+      const Image& img = faces[size_t(f)]->levels[0];
+      std::vector<uint16_t> d;
+      for (const Texel& t : img.texels) d.push_back(uint16_t(t[0] * 257));
+      glTexImage2D(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, GL_DEPTH_COMPONENT16, img.width, img.height, 0,
+                   GL_DEPTH_COMPONENT, GL_UNSIGNED_SHORT, d.data());
+    }
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  }
+  // A shadow lookup per query (direction q[0..2], reference q[3]) at level 0 under `c`'s
+  // magnification filter and compare op.
+  std::vector<std::array<float, 4>> sample_cube_shadow(const SamplerConfig& c, const std::vector<std::array<float, 4>>& q) {
+    glUseProgram(cube_shadow_program_);
+    glActiveTexture(GL_TEXTURE8);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, cube_depth_);
+    const GLint filter = c.filter.mag == TexelFilter::Linear ? GL_LINEAR : GL_NEAREST;
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_COMPARE_FUNC, GLint(GL_NEVER + int(c.compare_op)));
+    return draw(q);
   }
   // A cube array (unit 7): faces 6c + f of cube c, every level, RGBA8.
   void upload_cube_array(const std::vector<const Pyramid*>& faces) {
@@ -408,7 +468,7 @@ class GlSampling {
   GLuint fbo_ = 0, colour_ = 0, program_ = 0, rect_program_ = 0, fetch_program_ = 0, gather_program_ = 0, vao_ = 0,
          tex_ = 0, rect_ = 0, queries_ = 0, array_program_ = 0, array_fetch_program_ = 0, array_gather_program_ = 0,
          array_ = 0, shadow_program_ = 0, depth_ = 0, cube_program_ = 0, cube_ = 0, cube_array_program_ = 0,
-         cube_array_ = 0;
+         cube_array_ = 0, cube_gather_program_ = 0, cube_shadow_program_ = 0, cube_depth_ = 0;
   bool ready_ = false;
 };
 
@@ -1051,6 +1111,143 @@ TEST(GlSamplerStates, DepthCompareAgreesWithLlvmpipe) {
   EXPECT_GT(swapped, kW * kH / 4) << "a model with the operands swapped went unnoticed";
   std::printf("  %d depth compares in %d sampler states compared with llvmpipe: max %.2f LSB; references exactly on "
               "a depth code: %d of %d agree\n", compared, states, worst / 100.0, on_code_agree, on_code);
+}
+
+// textureGather and depth compare on a cube map (samplerCube's textureGather, samplerCubeShadow):
+// the four texels a bilinear footprint takes and the tests of each, across the seams and corners
+// (the skirt's neighbour texels and its average of three), against the model's Op::Gather and
+// Op::Compare. Gathers must be exact. The shadow cube's depths are multiples of 17 and each
+// reference lies 8 codes above one, so that no test is a tie in either arithmetic; nearest exact,
+// linear within 2 LSB (llvmpipe's weights, as for sampler2DShadow) — but at a corner: where a
+// linear footprint takes the skirt's corner texel, the unit tests the average of the three depths
+// that meet there (what the skirt holds) and llvmpipe averages their three tests; both are the
+// specification's "should", and such lookups are counted apart. A footprint edge (or a nearest texel's) within 1/64
+// texel is either side's and not compared; nor a tie of two major axes.
+TEST(GlSamplerStates, CubeGatherAndCompareAgreeWithLlvmpipe) {
+  GlSampling gl;
+  ASSERT_TRUE(gl.ready()) << "no GL 3.3 core context from OSMesa";
+  constexpr int kN = 8;
+  std::mt19937 rng(51);
+  std::vector<Pyramid> faces, depths;
+  for (int f = 0; f < 6; ++f) {
+    Image img = make_pattern("noise", kN, kN);
+    for (Texel& t : img.texels)
+      for (uint16_t& c : t) c = uint16_t((c * (f + 3) + 29 * f) & 255);
+    faces.push_back(build_pyramid(std::move(img)));
+    Image d(kN, kN);
+    for (Texel& t : d.texels) t = {uint16_t(17 * (rng() % 16)), 0, 0, 255};
+    depths.push_back(build_pyramid(std::move(d)));
+  }
+  std::vector<const Pyramid*> cube, depth_cube;
+  for (const Pyramid& p : faces) cube.push_back(&p);
+  for (const Pyramid& p : depths) depth_cube.push_back(&p);
+  gl.upload_cube(cube);
+  gl.upload_cube_depth(depth_cube);
+  auto grid = [&](double lo, double hi) { return lo + int(rng() % uint32_t((hi - lo) * 65536)) / 65536.0; };
+  // Directions, half of them within two texels of a face's edge or corner.
+  std::vector<std::array<float, 4>> dirs(size_t(kW) * kH);
+  for (size_t n = 0; n < dirs.size(); ++n) {
+    const int f = int(rng() % 6);
+    auto near_edge = [&] { return rng() % 2 ? grid(0, 2.0 / kN) : 1 - grid(0, 2.0 / kN); };
+    const double s = n % 2 ? grid(0, 1) : near_edge(), t = n % 2 || rng() % 3 ? grid(0, 1) : near_edge();
+    const double sc = 2 * s - 1, tc = 2 * t - 1;
+    const double table[6][3] = {{1, -tc, -sc}, {-1, -tc, sc}, {sc, 1, tc}, {sc, -1, -tc}, {sc, -tc, 1}, {-sc, -tc, -1}};
+    dirs[n] = {float(table[f][0]), float(table[f][1]), float(table[f][2]), 0.0f};
+  }
+  // Whether a query's footprint edge (linear) or texel edge (nearest) lies within 1/64 texel, or two
+  // major axes tie.
+  auto excluded = [&](const Request& r, bool linear) {
+    double a[3] = {std::fabs(r.u / 16777216.0), std::fabs(r.v / 16777216.0), std::fabs(r.w / 16777216.0)};
+    std::sort(a, a + 3);
+    if (a[2] - a[1] < 1e-5 * a[2]) return true;
+    int face = 0;
+    Request plain = r;
+    plain.op = Op::Sample;
+    const Request q = cube_face_request(plain, face);
+    for (int32_t c : {q.u, q.v}) {
+      const double t = c / 16777216.0 * kN - (linear ? 0.5 : 0.0);
+      if (std::fabs(t - std::round(t)) < 1.0 / 64) return true;
+    }
+    return false;
+  };
+  auto request_of = [&](const std::array<float, 4>& d) {
+    Request r;
+    EXPECT_TRUE(to_coord_fixed(d[0], r.u) && to_coord_fixed(d[1], r.v) && to_coord_fixed(d[2], r.w));
+    return r;
+  };
+  // Whether a linear footprint takes a skirt corner texel (outside the face on both axes).
+  auto at_corner = [&](const Request& r) {
+    int face = 0;
+    Request plain = r;
+    plain.op = Op::Sample;
+    const Request q = cube_face_request(plain, face);
+    bool out[2];
+    for (int a = 0; a < 2; ++a) {
+      const double t = (a == 0 ? q.u : q.v) / 16777216.0 * kN - 0.5;
+      out[a] = t < 0 || t > kN - 1;
+    }
+    return out[0] && out[1];
+  };
+  int gathers = 0, compares = 0, worst = 0, gather_excluded = 0, corners = 0, corners_differ = 0;
+  Sampler colour(cube, SamplerConfig{}, SamplerPaths::Both, TextureKind::Cube);
+  for (int component = 0; component < 4; ++component) {
+    const std::vector<std::array<float, 4>> got = gl.gather_cube(component, dirs);
+    for (size_t n = 0; n < dirs.size(); ++n) {
+      Request r = request_of(dirs[n]);
+      r.op = Op::Gather;
+      r.component = uint8_t(component);
+      if (excluded(r, true)) {
+        ++gather_excluded;
+        continue;
+      }
+      const Texel m = colour.sample(r);
+      for (int c = 0; c < 4; ++c)
+        ASSERT_EQ(std::lround(got[n][size_t(c)] * 255), m[size_t(c)])
+            << "component " << component << " direction (" << dirs[n][0] << ", " << dirs[n][1] << ", " << dirs[n][2]
+            << ") texel " << c;
+      ++gathers;
+    }
+  }
+  for (const CompareOp op : {CompareOp::LessOrEqual, CompareOp::Greater, CompareOp::Less, CompareOp::NotEqual})
+    for (const TexelFilter filter : {TexelFilter::Nearest, TexelFilter::Linear}) {
+      SamplerConfig cfg{{filter, MipMode::None}};
+      cfg.compare_op = op;
+      std::vector<std::array<float, 4>> queries = dirs;
+      std::vector<int> refs(queries.size());
+      for (size_t n = 0; n < queries.size(); ++n) {
+        refs[n] = int(17 * (rng() % 15) + 8);
+        queries[n][3] = float(refs[n] / 255.0);
+      }
+      const std::vector<std::array<float, 4>> got = gl.sample_cube_shadow(cfg, queries);
+      Sampler model(depth_cube, cfg, SamplerPaths::Both, TextureKind::Cube);
+      for (size_t n = 0; n < queries.size(); ++n) {
+        Request r = request_of(queries[n]);
+        r.op = Op::Compare;
+        r.lod = -8 * 256;  // (level 0, the magnification filter, as GL's zero gradients)
+        EXPECT_TRUE(to_coord_fixed(refs[n] / 255.0, r.ref));
+        if (excluded(r, filter == TexelFilter::Linear)) continue;
+        const int m = model.sample(r)[0];
+        const int err = int(std::lround(std::fabs(got[n][0] * 255 - m) * 100));
+        if (filter == TexelFilter::Linear && at_corner(r)) {
+          ++corners;
+          corners_differ += err > 200;
+          continue;
+        }
+        ASSERT_LE(err, filter == TexelFilter::Linear ? 200 : 0)
+            << compare_op_name(op) << " " << texel_filter_name(filter) << " direction (" << queries[n][0] << ", "
+            << queries[n][1] << ", " << queries[n][2] << ") ref " << refs[n] << ": model " << m << ", GL "
+            << got[n][0] * 255;
+        worst = std::max(worst, err);
+        ++compares;
+      }
+    }
+  EXPECT_GT(gathers, 4 * kW * kH * 3 / 4);
+  EXPECT_GT(compares, 8 * kW * kH * 3 / 4);
+  EXPECT_GT(corners, 0);
+  std::printf("  cube maps: %d gathers compared with llvmpipe, all exact (%d near a footprint edge left out); %d "
+              "compares under 4 operators and both filters: max %.2f LSB; %d linear compares at a corner, %d of them "
+              "more than 2 LSB from llvmpipe's average of three tests\n",
+              gathers, gather_excluded, compares, worst / 100.0, corners, corners_differ);
 }
 
 // Cube maps (samplerCube, GL_TEXTURE_CUBE_MAP_SEAMLESS; the unit's TextureKind::Cube over skirted
