@@ -64,7 +64,7 @@ glm::dmat4 to_glm(const aiMatrix4x4& m) {
 // A texture name as the model writes it -> the file: relative to the model's directory, Windows
 // separators (spider.mtl: ".\SpiderTex.jpg") as '/', and URI escapes (glTF: "my%20tex.png") decoded
 // when the name as written does not exist.
-fs::path resolve_texture(const fs::path& dir, std::string name) {
+fs::path literal_texture(const fs::path& dir, std::string name) {
   std::replace(name.begin(), name.end(), '\\', '/');
   const fs::path literal = (dir / name).lexically_normal();
   if (fs::exists(literal) || name.find('%') == std::string::npos) return literal;
@@ -79,6 +79,49 @@ fs::path resolve_texture(const fs::path& dir, std::string name) {
     }
   }
   return (dir / decoded).lexically_normal();
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The regular file in `dir` whose name is `name` but for case (the exact name first, then the first
+// in name order), or empty.
+fs::path file_named(const fs::path& dir, const std::string& name) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return {};
+  if (fs::is_regular_file(dir / name, ec)) return dir / name;
+  std::vector<fs::path> found;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, fs::directory_options::skip_permission_denied, ec))
+    if (lower(e.path().filename().string()) == lower(name) && e.is_regular_file(ec)) found.push_back(e.path());
+  if (found.empty()) return {};
+  std::sort(found.begin(), found.end());
+  return found[0];
+}
+
+// The texture file a model names (viewers' rules for files made on other machines): the path as
+// written (literal_texture); else its file name, case aside, next to the model, then in the model
+// folder's textures/ folder (case aside too). Never elsewhere: a path that names another folder is
+// found there or by its name in the model's own folder. `by_name`: the second way found it.
+fs::path resolve_texture(const fs::path& dir, const std::string& name, bool& by_name) {
+  by_name = false;
+  const fs::path literal = literal_texture(dir, name);
+  if (fs::exists(literal)) return literal;
+  std::string written = name;
+  std::replace(written.begin(), written.end(), '\\', '/');
+  const std::string file = fs::path(written).filename().string();
+  if (file.empty() || file == "." || file == "..") return literal;
+  std::vector<fs::path> places = {dir};
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, fs::directory_options::skip_permission_denied, ec))
+    if (lower(e.path().filename().string()) == "textures" && e.is_directory(ec)) places.push_back(e.path());
+  for (const fs::path& place : places)
+    if (const fs::path found = file_named(place, file); !found.empty()) {
+      by_name = true;
+      return found.lexically_normal();
+    }
+  return literal;
 }
 
 // Textures of a scene, each image once per pair of wrap modes (the same file with other wrap
@@ -321,9 +364,16 @@ class ModelLoader {
     } else if (name[0] == '*') {
       throw Error(path_ + ": material " + in_quotes(t.material) + ": embedded texture " + name + " does not exist");
     } else {
-      t.source = resolve_texture(dir_, name).string();
+      bool by_name = false;
+      t.source = resolve_texture(dir_, name, by_name).string();
       if (!fs::exists(t.source))
-        throw Error(path_ + ": material " + in_quotes(t.material) + ": texture file not found: " + t.source);
+        throw Error(path_ + ": material " + in_quotes(t.material) + ": texture file not found: " + t.source +
+                    " (nor " + fs::path(name).filename().string() + ", case aside, beside the model or in its textures/)");
+      if (by_name && std::find(resolved_.begin(), resolved_.end(), name) == resolved_.end()) {
+        resolved_.push_back(name);
+        out_.notes.push_back(path_ + ": material " + in_quotes(t.material) + " names texture " + in_quotes(name) +
+                             ", not there as written; found by its name: " + t.source);
+      }
     }
     if (const int id = textures_.find(t); id >= 0) return id;
 
@@ -370,6 +420,7 @@ class ModelLoader {
   MeshScene& out_;
   SceneTextureSet textures_;
   std::vector<int> material_texture_;  // per material: texture index, kNone or kUnknown (not asked yet)
+  std::vector<std::string> resolved_;   // texture names found by their file name (noted once each)
   std::vector<bool> mesh_noted_;       // per Assimp mesh: skip note written
   NodeTransforms fixed_transforms_;    // glTF 1.0: node matrices as the file means them
   bool gltf2_;                         // glTF 2.0: base colour textures are sRGB

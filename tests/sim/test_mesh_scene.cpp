@@ -502,6 +502,35 @@ TEST(MeshSceneErrors, MissingTexture) {
   EXPECT_EQ(fs::path(load_model(obj.string()).textures.at(0).source), dir / "sub/nothere x.png");
 }
 
+// Texture paths of files made elsewhere (assimp-testmodels: 3DS/test1.3ds names IMAGE1.JPG beside
+// IMAGE1.jpg, others absolute paths of their authors' machines): after the path as written, the file
+// name, case aside, beside the model, then in its textures/ folder — each noted once; never a folder
+// the path does not name.
+TEST(MeshScene, TexturesFoundByTheirNames) {
+  TempDir dir;
+  write_png(dir / "test.png", 4, 2, kTexels4x2);
+  fs::create_directories(dir / "Textures");
+  write_png(dir / "Textures/wood.PNG", 4, 2, kTexels4x2);
+  fs::create_directories(dir / "elsewhere");
+  write_png(dir / "elsewhere/far.png", 4, 2, kTexels4x2);
+  const MeshScene a = load_model(write_obj(dir.path, "upper", "paint", "TEST.PNG").string());
+  ASSERT_EQ(a.textures.size(), 1u);
+  EXPECT_EQ(fs::path(a.textures[0].source), dir / "test.png");
+  ASSERT_EQ(a.notes.size(), 1u);
+  EXPECT_NE(a.notes[0].find("'TEST.PNG'"), std::string::npos) << a.notes[0];
+  EXPECT_NE(a.notes[0].find((dir / "test.png").string()), std::string::npos) << a.notes[0];
+  const MeshScene b = load_model(write_obj(dir.path, "absolute", "paint", "D:\\projects\\art\\wood.png").string());
+  EXPECT_EQ(fs::path(b.textures.at(0).source), dir / "Textures/wood.PNG");
+  // The name alone is looked for only beside the model and in its textures/: not in other folders.
+  const fs::path far = write_obj(dir.path, "far", "paint", "e:/dev/far.png");
+  expect_error([&] { load_model(far.string()); }, {far.string(), "texture file not found", "far.png"});
+  // As written first: an exact path wins over a name match.
+  write_png(dir / "elsewhere/TEST.PNG", 4, 2, kTexels4x2);
+  const MeshScene c = load_model(write_obj(dir.path, "exact", "paint", "elsewhere/TEST.PNG").string());
+  EXPECT_EQ(fs::path(c.textures.at(0).source), dir / "elsewhere/TEST.PNG");
+  EXPECT_TRUE(c.notes.empty());
+}
+
 // A scene file places models: scale, rotation about x then y then z (degrees), translation.
 TEST(MeshSceneFile, PlacesAndMergesModels) {
   TempDir dir;
