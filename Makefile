@@ -4,7 +4,7 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test test-suites test-xprop unit-tests model-test model-alone formal-proofs bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes
+.PHONY: help deps build demo test test-suites test-xprop unit-tests model-test model-alone formal-proofs bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes hostile-models
 
 help:
 	@echo "make demo   - build texsim only (not the tests), then render the default scene (writes $(OUT)/)"
@@ -17,6 +17,7 @@ help:
 	@echo "make scenes - real frames: the assimp test models through the cached RTL at latency 200: $(OUT)/scenes/index.html (SCENES_ENGINE=systemc: behind the TLM sockets)"
 	@echo "make explore - sweep cache size, ways, block shape, latency, FIFO and pixel order over plane and panel, every point timed: $(OUT)/explore/index.html"
 	@echo "make rtl-soak  - RTL vs model lockstep and the block decoders (1.2 M blocks), 20x the random samples of make test, new seeds"
+	@echo "make hostile-models - every file of assimp-testmodels through texsim render: each renders or stops with one error line, within 1 GiB and 30 s"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make xprop  - 4-state X-propagation run of the RTL in Icarus Verilog, with planted bugs"
 	@echo "make formal - Yosys proofs of the handshakes (skid buffer, req_ready path), the AXI4 read master and the AXI4-Lite slave, each shown failing on a planted bug (about 5 minutes on one core; make test runs the proofs only)"
@@ -115,6 +116,10 @@ endif
 rtl-soak: build
 	@echo "rtl-soak: TEX_SEED_BASE=$(RTL_SOAK_SEED)"
 	cd $(BUILD) && TEX_SCALE=20 TEX_SEED_BASE=$(RTL_SOAK_SEED) ./tests/rtl/texunit_rtl_tests --gtest_filter='RtlRandom.*:RtlBlockDecode.*'
+
+# Every file of Debian's assimp-testmodels through texsim render (scripts/hostile_models.py).
+hostile-models: build
+	@/usr/bin/python3 scripts/hostile_models.py --texsim $(TEXSIM)
 
 lint:
 	@bash scripts/lint.sh
