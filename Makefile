@@ -4,7 +4,7 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test test-suites test-xprop unit-tests model-test model-alone formal-proofs bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes hostile-models
+.PHONY: help deps build demo test test-suites test-xprop unit-tests model-test model-alone formal-proofs bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes hostile-models test-sanitize
 
 help:
 	@echo "make demo   - build texsim only (not the tests), then render the default scene (writes $(OUT)/)"
@@ -17,6 +17,7 @@ help:
 	@echo "make scenes - real frames: the assimp test models through the cached RTL at latency 200: $(OUT)/scenes/index.html (SCENES_ENGINE=systemc: behind the TLM sockets)"
 	@echo "make explore - sweep cache size, ways, block shape, latency, FIFO and pixel order over plane and panel, every point timed: $(OUT)/explore/index.html"
 	@echo "make rtl-soak  - RTL vs model lockstep and the block decoders (1.2 M blocks), 20x the random samples of make test, new seeds"
+	@echo "make test-sanitize - the model, sim and CLI suites built with AddressSanitizer and UBSan (build-sanitize/) and run"
 	@echo "make hostile-models - every file of assimp-testmodels through texsim render: each renders or stops with one error line, within 1 GiB and 30 s"
 	@echo "make lint   - verilator -Wall on rtl/ in several configurations (zero warnings)"
 	@echo "make xprop  - 4-state X-propagation run of the RTL in Icarus Verilog, with planted bugs"
@@ -116,6 +117,20 @@ endif
 rtl-soak: build
 	@echo "rtl-soak: TEX_SEED_BASE=$(RTL_SOAK_SEED)"
 	cd $(BUILD) && TEX_SCALE=20 TEX_SEED_BASE=$(RTL_SOAK_SEED) ./tests/rtl/texunit_rtl_tests --gtest_filter='RtlRandom.*:RtlBlockDecode.*'
+
+# The model, sim and CLI suites with ASan + UBSan, in a tree of their own (docs/verification.md).
+SAN_BUILD ?= build-sanitize
+test-sanitize: deps
+	cmake -S . -B $(SAN_BUILD) -DTEXUNIT_SANITIZE=ON
+	cmake --build $(SAN_BUILD) -j $(JOBS) --target texunit_model_tests texunit_sim_tests texunit_reference_tests texsim
+	cd $(SAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitize/lsan.supp:print_suppressions=0 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:suppressions=$(CURDIR)/tests/sanitize/ubsan.supp \
+	  ctest -j $(JOBS) -L 'model|sim' -E '$(SAN_EXCLUDE)' --output-on-failure
+# Not run here (they run in make test): SampleStreamsInConstantMemory bounds texsim's resident
+# memory, which ASan's shadow and quarantine inflate; the CLI tests that run the SystemC engine, which
+# forks the threaded texsim: under ASan such a run now and then hangs (not diagnosed yet).
+SAN_EXCLUDE = SampleStreamsInConstantMemory|BadInputsFailCleanly|BlockFormatsThroughTheCli|CachedMissTraceIsTheSameForModelAndRtl|CubeMapsSampleAcrossTheSeams|DefaultsMeasureTheDesign|DepthCompareFiltersTheTests|EveryEngineGivesTheModelsTexels|GatherReadsTheLinearFiltersFourTexels|MemoryErrorsNameTheFlaggedSamples|QueriesFromStandardInput|ReductionMinAndMaxBoundTheAverage|ResponseClocksAreTheSameForModelAndRtl|SamplerStateOptions|SizesAreNamedRight|SrgbTexturesThroughTheCli|TerminatingSystemcEndsItsSimulationProcess|TexelFetchReadsTexelsAndZeroOutside|TextureLayersSampleTheLayerNamed|UnnormalizedCoordinatesAreTexels|ViewsSampleTheSameInEveryEngine
 
 # Every file of Debian's assimp-testmodels through texsim render (scripts/hostile_models.py).
 hostile-models: build

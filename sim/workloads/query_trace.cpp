@@ -99,6 +99,7 @@ QueryReader::~QueryReader() {
 
 // Lines come out of a large buffer (1 MiB, grown for a longer line): no read call and no copy per line.
 bool QueryReader::next_line(std::string_view& line) {
+  if (buf_.empty()) buf_.resize(size_t(1) << 20);  // (memchr and memmove take no null pointer, even for 0 bytes)
   for (;;) {
     const char* at = buf_.data() + begin_;
     if (const void* nl = std::memchr(at, '\n', end_ - begin_)) {
@@ -116,7 +117,6 @@ bool QueryReader::next_line(std::string_view& line) {
     std::memmove(buf_.data(), at, end_ - begin_);
     end_ -= begin_;
     begin_ = 0;
-    if (buf_.empty()) buf_.resize(size_t(1) << 20);
     if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);
     errno = 0;
     const size_t want = size_t(std::min<uint64_t>(buf_.size() - end_, file_end_ - file_pos_));
