@@ -18,6 +18,7 @@ packages=(
   z3                                     # yosys-smtbmc's solver (make formal)
   iverilog                               # 4-state simulation (make xprop)
   valgrind                               # instructions per clock (make bench-ir)
+  time                                   # GNU time: peak memory of each run (make hostile-models)
   python3 python3-matplotlib python3-numpy  # reports and plots (/usr/bin/python3)
 )
 missing=()
