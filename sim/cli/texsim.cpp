@@ -17,10 +17,12 @@
 #include "model/srgb.h"
 #include "reports/explore.h"
 #include "reports/figures.h"
+#include "workloads/limits.h"
 #include "workloads/query_trace.h"
 #include "workloads/scenes.h"
 #include "workloads/output_files.h"
 #include "workloads/texture_io.h"
+#include "workloads/texture_list.h"
 
 namespace {
 
@@ -51,117 +53,6 @@ class CubeFetchCheck final : public RequestSource {
   std::string name_;
   size_t count_ = 0;
 };
-
-// --textures FILE: one `id path [wrap_u [wrap_v]] [srgb] [unnormalized] [min=F] [mag=F] [mip=M]
-// [border=C] [reduction=R] [compare=OP] [base=N] [max=N]` per line (ids 0, 1, ... in order; paths relative to the file, built-in
-// patterns as they are; `srgb`: the texels are sRGB codes; `depth`: a depth texture, its R the depth
-// (what --op compare reads); `unnormalized`: the sampler takes texel
-// coordinates, the trace's u, v of this entry are texels). Line t is texture t of the
-// descriptor table and sampler t of the sampler table: the options' sampler with the line's wrap
-// modes and fields (min: nearest | linear | a GL minification name; mag: nearest | linear; mip:
-// none | nearest | linear; border: a border colour name), the texture's view from --base-level and
-// --max-level or the line's base= and max=.
-struct TextureListEntry {
-  std::string path;
-  SamplerConfig sampler;
-  bool srgb = false;
-  std::optional<int> base_level, max_level;
-  std::string at;  // "FILE:LINE: " of the line (errors of its fields found later)
-  bool depth = false;  // a depth texture (the line's `depth`, or --depth)
-};
-std::vector<TextureListEntry> read_texture_list(const std::string& path, const SamplerConfig& cfg) {
-  std::FILE* f = std::fopen(path.c_str(), "r");
-  if (!f) throw Error(path + ": cannot open texture list");
-  const std::string form =
-      "`id path [wrap_u [wrap_v]] [srgb] [depth] [unnormalized] [min=F] [mag=F] [mip=M] [border=C] [reduction=R] [compare=OP] [base=N] [max=N]`";
-  std::vector<TextureListEntry> out;
-  char buf[4096];
-  int line_no = 0;
-  try {
-    while (std::fgets(buf, sizeof buf, f)) {
-      ++line_no;
-      std::istringstream line(buf);
-      std::string id, file;
-      line >> id;
-      if (id.empty() || id[0] == '#') continue;
-      line >> file;
-      const std::string at = path + ":" + std::to_string(line_no) + ": ";
-      if (id != std::to_string(out.size()))
-        throw Error(at + "texture id " + quote_clipped(id) + ": expected " + std::to_string(out.size()) + " (ids 0, 1, ... in order)");
-      if (file.empty()) throw Error(at + "expected " + form);
-      TextureListEntry e{file, cfg, false, {}, {}, at};
-      // A file relative to the list's directory; a built-in pattern as it is (unless such a file exists).
-      const std::filesystem::path beside = std::filesystem::path(path).parent_path() / file;
-      if (std::filesystem::path(file).is_relative() && (!is_pattern_spec(file) || std::filesystem::exists(beside)))
-        e.path = beside.string();
-      int wraps = 0;
-      for (std::string token; line >> token;) {
-        const size_t eq = token.find('=');
-        if (eq == std::string::npos) {
-          if (token == "srgb" && !e.srgb) {
-            e.srgb = true;
-          } else if (token == "depth" && !e.depth) {
-            e.depth = true;
-          } else if (token == "unnormalized" && !e.sampler.unnormalized) {
-            e.sampler.unnormalized = true;
-          } else if (wraps < 2 && !e.srgb && !e.sampler.unnormalized) {
-            Wrap& w = wraps == 0 ? e.sampler.wrap_u : e.sampler.wrap_v;
-            if (!parse_wrap(token, w)) throw Error(at + "unknown wrap mode " + quote_clipped(token) + " (" + kWrapNames + ")");
-            if (wraps++ == 0) e.sampler.wrap_v = w;  // one mode: both axes
-          } else {
-            throw Error(at + "unexpected " + quote_clipped(token) + " (" + form + ")");
-          }
-          continue;
-        }
-        const std::string key = token.substr(0, eq), value = token.substr(eq + 1);
-        Filter& fl = e.sampler.filter;
-        if (key == "min") {
-          std::optional<MipMode> mip;
-          if (!parse_min_filter(value, fl.texel, mip))
-            throw Error(at + "min=" + quote_clipped(value) + ": not a minification filter (nearest, linear, or a GL name)");
-          if (mip) fl.mip = *mip;
-        } else if (key == "mag") {
-          if (!parse_texel_filter(value, fl.mag)) throw Error(at + "mag=" + quote_clipped(value) + ": not nearest or linear");
-        } else if (key == "mip") {
-          if (!parse_mip_mode(value, fl.mip)) throw Error(at + "mip=" + quote_clipped(value) + ": not none, nearest or linear");
-        } else if (key == "border") {
-          if (!parse_border_color(value, e.sampler.border))
-            throw Error(at + "border=" + quote_clipped(value) + ": not a border colour name (transparent-black, ...)");
-        } else if (key == "reduction") {
-          if (!parse_reduction(value, e.sampler.reduction))
-            throw Error(at + "reduction=" + quote_clipped(value) + ": not weighted-average, min or max");
-        } else if (key == "compare") {
-          if (!parse_compare_op(value, e.sampler.compare_op))
-            throw Error(at + "compare=" + quote_clipped(value) + ": not " + kCompareOpNames);
-        } else if (key == "base" || key == "max") {
-          int level = -1;
-          size_t used = 0;
-          try {
-            level = std::stoi(value, &used);
-          } catch (const std::exception&) {
-            used = 0;
-          }
-          if (used == 0 || used != value.size() || level < 0 || level >= kMaxLevels)
-            throw Error(at + key + "=" + quote_clipped(value) + ": not a level 0 to " + std::to_string(kMaxLevels - 1));
-          (key == "base" ? e.base_level : e.max_level) = level;
-        } else {
-          throw Error(at + "unknown field " + quote_clipped(key) + " (min, mag, mip, border, reduction, compare, base, max)");
-        }
-      }
-      check_sampler(e.sampler, at);
-      if (out.size() == size_t(kMaxTextures))
-        throw Error(at + "more than " + std::to_string(kMaxTextures) + " textures: the descriptor table holds " +
-                    std::to_string(kMaxTextures));
-      out.push_back(e);
-    }
-  } catch (...) {
-    std::fclose(f);
-    throw;
-  }
-  std::fclose(f);
-  if (out.empty()) throw Error(path + ": no textures listed (one " + form + " per line)");
-  return out;
-}
 
 // The filter as the summary line names it, with a reduction other than the weighted average.
 std::string filter_label(const SamplerConfig& c) {
@@ -504,16 +395,45 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
 
 }  // namespace
 
+// --max-memory, --import-memory and --import-timeout (workloads/limits.h), on every command that
+// reads files (the import's on those that read models).
+struct RunLimits {
+  std::string max_memory, import_memory;
+  double import_seconds = 0;
+  void add_to(CLI::App& cmd, bool models) {
+    cmd.add_option("--max-memory", max_memory,
+                   "the memory this run may take (e.g. 512M, 8G; default " + memory_words(default_memory_limit()) +
+                       ": half the machine's, or an inherited lower data limit); a file whose header asks for more "
+                       "is refused in one line, and any allocation past it fails");
+    if (models)
+      cmd.add_option("--import-memory", import_memory,
+                     "the memory a model file's import (Assimp) may take (default 256 MiB plus 64 times the bytes it "
+                     "reads, at most --max-memory); past it the import stops with one line");
+    if (models)
+      cmd.add_option("--import-timeout", import_seconds,
+                     "seconds a model file's import may take (default 30 plus 1 per MiB of the file); past it the "
+                     "run stops")
+          ->check(CLI::PositiveNumber);
+  }
+  void apply() const {
+    set_memory_limit(max_memory.empty() ? default_memory_limit() : parse_memory_size(max_memory, "--max-memory"));
+    if (!import_memory.empty()) set_import_memory(parse_memory_size(import_memory, "--import-memory"));
+    if (import_seconds > 0) set_import_timeout(import_seconds);
+  }
+};
+
 int main(int argc, char** argv) {
   CLI::App app{"texsim: cycle-accurate mip-mapping texture unit (Williams 1983) - model, RTL and SystemC"};
   // 0..1 plus the check after parse: CLI11 reports a missing subcommand before an unexpected
   // word, so `texsim smaple ...` would not name the typo.
   app.require_subcommand(0, 1);
 
+  RunLimits limits;
   SamplingOptions sample_opts;
   std::string queries, out;
   CLI::App* sample = app.add_subcommand("sample", "sample a query trace (CSV) and write one RGBA line per query");
   sample_opts.add_to(*sample);
+  limits.add_to(*sample, false);
   sample->add_option("--queries,-q", queries,
                      "CSV: header u,v,lod or u,v,dudx,dvdx,dudy,dvdy, either with a leading tex column, or "
                      "tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper; with --op gather u,v, with --op fetch i,j,level, "
@@ -558,6 +478,7 @@ int main(int argc, char** argv) {
   mip->add_option("--texture,-t", mip_texture, "image file, DDS/KTX/KTX2 texture file, or pattern NAME[:WxH]")
       ->capture_default_str();
   mip->add_option("--pyramid", mip_mode, "exact | cascade")->capture_default_str();
+  limits.add_to(*mip, false);
   mip->add_flag("--resize", mip_resize, "resample a texture whose sides are not powers of two to the nearest ones (no longer needed: every engine samples any size)");
   mip->add_flag("--srgb", mip_srgb, "the texture's R, G, B are sRGB codes: the pyramid averaged in linear space, "
                 "levels and memory image in sRGB codes");
@@ -581,6 +502,7 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand(
       "render", "render a scene of the paper, or frames of a textured 3D model (--model, --scene-file), through an engine");
   render_opts.add_to(*render);
+  limits.add_to(*render, true);
   ModelRenderArgs model_args;
   CLI::Option* scene_opt = nullptr;
   CLI::Option* model_opt = render->add_option(
@@ -625,6 +547,7 @@ int main(int argc, char** argv) {
   FiguresOptions fig;
   CLI::App* figures = app.add_subcommand("figures", "render every scene's variants, reference, errors and flicker");
   figures->add_option("--out,-o", fig.out_dir, "output directory")->capture_default_str();
+  limits.add_to(*figures, false);
   figures->add_option("--engine,-e", fig.engine, "engine of the variants: " + engine_list())->capture_default_str();
   figures->add_option("--width", fig.width, "still image width")->capture_default_str();
   figures->add_option("--height", fig.height, "still image height")->capture_default_str();
@@ -638,6 +561,7 @@ int main(int argc, char** argv) {
   CLI::App* explore = app.add_subcommand(
       "explore", "sweep caches, memory timing and rasterization order over scenes or a query trace (cached memory): "
                  "explore.csv, plots, index.html");
+  limits.add_to(*explore, true);
   CLI::Option* ex_scene = explore->add_option("--scene,-s", ex.scenes, "scenes, comma-separated: " + scene_list)
                               ->capture_default_str();
   CLI::Option* ex_queries =
@@ -701,6 +625,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    limits.apply();
     if (*sample)
       return cmd_sample(sample_opts, queries, textures_list, texture_layers, cube_faces, out, sample_op, sample_component,
                         sample_depth);
@@ -747,6 +672,10 @@ int main(int argc, char** argv) {
       ex.plots = !no_plots;
       return run_explore(ex, std::filesystem::read_symlink("/proc/self/exe").string());
     }
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "texsim: error: out of memory: this run needs more than --max-memory allows (%s)\n",
+                 memory_words(memory_limit()).c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "texsim: error: %s\n", e.what());
     return 1;

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "model/error.h"
+#include "workloads/limits.h"
 #include "workloads/text.h"
 
 namespace tex {
@@ -77,6 +78,7 @@ Camera orbit_camera(const glm::dvec3& lo, const glm::dvec3& hi, double aspect, i
 std::vector<Camera> read_camera_path(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open camera path");
+  check_json_memory(path);
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);

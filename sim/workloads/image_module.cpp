@@ -1,6 +1,7 @@
 // The image module: OpenImageIO behind image_module.h's plain buffers, and Mesa's BC7 encoder
 // (built as libtexsim_images.so; texture_io.cpp loads it on first use).
 #include "workloads/image_module.h"
+#include "workloads/limits.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -66,7 +67,8 @@ bool to_pixels(const OIIO::ImageBuf& src, Pixels& out, std::string& error) {
   return true;
 }
 
-bool read(const std::string& file, const void* data, size_t size, Pixels& out, std::string& error) {
+bool read(const std::string& file, const void* data, size_t size, uint64_t max_bytes, Pixels& out,
+          std::string& error) {
   try {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
@@ -77,7 +79,19 @@ bool read(const std::string& file, const void* data, size_t size, Pixels& out, s
     {
       QuietStderr quiet;
       src.reset(file, 0, 0, nullptr, &config, proxy.get());
-      ok = src.read(0, 0, true, OIIO::TypeDesc::UINT8);
+      ok = src.init_spec(file, 0, 0);  // the header alone
+      const OIIO::ImageSpec& spec = src.spec();
+      const uint64_t w = uint64_t(std::max(spec.width, 0)), h = uint64_t(std::max(spec.height, 0)),
+                     depth = uint64_t(std::max(spec.depth, 1));
+      // (OpenImageIO reads the native values first: up to 4 bytes a channel beside the 8-bit ones)
+      if (ok && tex::decoded_image_bytes(w, h * depth, 4 * std::max(spec.nchannels, 1)) > max_bytes) {
+        error = "an image of " + std::to_string(w) + " x " + std::to_string(h) +
+                (depth > 1 ? " x " + std::to_string(depth) : "") + " pixels needs " +
+                tex::memory_words(tex::decoded_image_bytes(w, h * depth, 4 * std::max(spec.nchannels, 1))) +
+                " once read, more than --max-memory allows (" + tex::memory_words(max_bytes) + ")";
+        return false;
+      }
+      ok = ok && src.read(0, 0, true, OIIO::TypeDesc::UINT8);
     }
     if (!ok) {
       error = "cannot read image (" + one_line(src.geterror()) + ")";

@@ -25,8 +25,10 @@ struct Pixels {
 struct Module {
   // The first subimage of `file`, or of the `size` bytes at `data` (then `file` only names the
   // format by its extension), as 8 bits per channel. Texels are data: unassociated alpha is kept as
-  // stored (OpenImageIO would premultiply it).
-  bool (*read)(const std::string& file, const void* data, size_t size, Pixels& out, std::string& error);
+  // stored (OpenImageIO would premultiply it). An image whose header's size needs more than
+  // `max_bytes` once read (decoded_image_bytes, workloads/limits.h) is refused before any pixel is.
+  bool (*read)(const std::string& file, const void* data, size_t size, uint64_t max_bytes, Pixels& out,
+               std::string& error);
   // A float file's values outside 0..1: how many, the least and the largest (0 when none).
   bool (*float_range)(const std::string& file, size_t& outside, size_t& total, float& low, float& high);
   // Resamples to w x h (OpenImageIO's default filter), the channels kept.

@@ -9,17 +9,24 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <thread>
 #include <tuple>
 
 #include "model/error.h"
+#include "workloads/limits.h"
+#include "workloads/output_files.h"
 #include "workloads/text.h"
 #include "workloads/texture_io.h"
 
@@ -29,13 +36,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A library's message (Assimp's, nlohmann's) on one line: every control character a space.
 std::string one_line(std::string s) {
-  std::replace_if(s.begin(), s.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace_if(s.begin(), s.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7F; }, ' ');
   while (!s.empty() && s.back() == ' ') s.pop_back();
   return s;
 }
 
-std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
+std::string in_quotes(const std::string& s) { return quote_name(s); }
 
 // Throws unless `path` is a regular file (a directory or a FIFO would hang or confuse the readers).
 void check_regular_file(const std::string& path, const std::string& what) {
@@ -463,6 +471,56 @@ void check_off_header(const std::string& path) {
                 " bytes hold at most " + std::to_string(size / 6) + " and " + std::to_string(size / 8));
 }
 
+// The bytes an import reads: the file, and a .gltf's external buffers (a .gltf is a few KB of JSON
+// that names its geometry's .bin files; data: URIs are in the file already).
+uint64_t import_input_bytes(const std::string& path) {
+  std::error_code ec;
+  uint64_t bytes = fs::file_size(path, ec);
+  if (ec) return 0;
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".gltf" || bytes > (uint64_t(64) << 20)) return bytes;
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);  // (no exceptions: Assimp judges the file)
+  if (!j.is_object() || !j.contains("buffers") || !j["buffers"].is_array()) return bytes;
+  for (const nlohmann::json& b : j["buffers"]) {
+    if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
+    const std::string uri = b["uri"].get<std::string>();
+    if (uri.rfind("data:", 0) == 0) continue;
+    const uint64_t size = fs::file_size(fs::path(path).parent_path() / uri, ec);
+    if (!ec) bytes += size;
+  }
+  return bytes;
+}
+
+// Stops the run if an import outlives its time (workloads/limits.h): Assimp's importers cannot be
+// interrupted, so the run ends here with one line, its staged outputs removed.
+class ImportWatchdog {
+ public:
+  ImportWatchdog(const std::string& path, double seconds)
+      : thread_([this, path, seconds] {
+          std::unique_lock<std::mutex> lock(mutex_);
+          if (done_changed_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return done_; })) return;
+          std::fprintf(stderr, "texsim: error: %s: Assimp's import has run %g s, longer than a file of this size needs; "
+                       "stopped (--import-timeout)\n", path.c_str(), seconds);
+          exit_removing_outputs(1);
+        }) {}
+  ~ImportWatchdog() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+    }
+    done_changed_.notify_one();
+    thread_.join();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable done_changed_;
+  bool done_ = false;
+  std::thread thread_;  // (last: it starts once the members it uses exist)
+};
+
 MeshScene load_model(const std::string& path, bool mirror) {
   check_regular_file(path, "model");
   check_off_header(path);
@@ -474,13 +532,37 @@ MeshScene load_model(const std::string& path, bool mirror) {
                          aiProcess_FlipUVs |  // Assimp's v = 0 is the image's bottom (GL); ours is its top
                          (mirror ? aiProcess_GenSmoothNormals : 0u);  // (a mirror's normals, where the file has none)
   const aiScene* ai = nullptr;
+  // The import within its memory and time (workloads/limits.h). An allocation past its budget or
+  // the data limit fails inside the importer, which reports it as its error string.
+  const uint64_t input = import_input_bytes(path);
+  const uint64_t budget_bytes = import_memory(input);
+  bool over_budget = false;
+  const auto out_of_memory = [&] {
+    if (!over_budget || budget_bytes >= memory_limit())
+      return Error(path + ": Assimp ran out of memory importing it (more than --max-memory allows: " +
+                   memory_words(memory_limit()) + ")");
+    return Error(path + ": Assimp's import needs more than " + memory_words(budget_bytes) + " (--import-memory" +
+                 (import_memory_given() ? "" : "'s default: 256 MiB plus 64 times the " + std::to_string(input) + " bytes it reads") +
+                 ")");
+  };
   try {
-    ai = importer.ReadFile(path, flags);
+    const ImportWatchdog watchdog(path, import_timeout(input));
+    const AllocationBudget budget(budget_bytes);
+    try {
+      ai = importer.ReadFile(path, flags);
+    } catch (...) {
+      over_budget = budget.exceeded();
+      throw;
+    }
+    over_budget = budget.exceeded();
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory();
   } catch (const std::exception& e) {
     throw Error(path + ": cannot read model: " + one_line(e.what()));
   }
   if (!ai || !ai->mRootNode) {
     const std::string why = one_line(importer.GetErrorString());
+    if (over_budget || why.find("bad_alloc") != std::string::npos) throw out_of_memory();
     throw Error(path + ": cannot read model: " + (why.empty() ? "no scene" : why));
   }
   MeshScene scene;
@@ -538,6 +620,7 @@ std::vector<ModelPlacement> read_scene_file(const std::string& path) {
   check_regular_file(path, "scene file");
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open scene file");
+  check_json_memory(path);
   nlohmann::json j;
   std::string last_key;  // where a syntax error or a number too large for a double (1e999) is
   try {
@@ -546,7 +629,7 @@ std::vector<ModelPlacement> read_scene_file(const std::string& path) {
       return true;
     });
   } catch (const nlohmann::json::exception& e) {
-    throw Error(path + ": not a valid JSON scene file" + (last_key.empty() ? "" : " (after key \"" + last_key + "\")") +
+    throw Error(path + ": not a valid JSON scene file" + (last_key.empty() ? "" : " (after key " + quote_clipped(last_key) + ")") +
                 ": " + one_line(e.what()));
   }
   auto fail = [&](const std::string& where, const std::string& what) { throw Error(path + ": " + where + ": " + what); };

@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -23,9 +24,14 @@ std::vector<std::string>* g_staged = nullptr;
 std::vector<std::string>* g_created_dirs = nullptr;
 constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 
-void on_fatal_signal(int sig) {
+void remove_staged() {
+  if (!g_staged) return;
   for (const std::string& p : *g_staged) ::unlink(p.c_str());
   for (auto it = g_created_dirs->rbegin(); it != g_created_dirs->rend(); ++it) ::rmdir(it->c_str());
+}
+
+void on_fatal_signal(int sig) {
+  remove_staged();
   ::signal(sig, SIG_DFL);
   ::raise(sig);  // delivered when the handler returns: the process ends as the signal would end it
 }
@@ -246,6 +252,12 @@ void OutputSet::commit() {
   committed_ = true;
   BlockSignals block;
   for (const std::string& d : created_dirs_) unregister(*g_created_dirs, d);
+}
+
+void exit_removing_outputs(int status) {
+  BlockSignals block;
+  remove_staged();
+  std::_Exit(status);
 }
 
 }  // namespace tex

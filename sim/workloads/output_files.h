@@ -80,4 +80,9 @@ class OutputSet {
   bool committed_ = false;
 };
 
+// Ends the process at once with `status` (no destructors run), first removing every live set's
+// staged files and created directories: for a thread that must stop a run another thread cannot
+// leave (a model import past its time, workloads/mesh_scene.cpp).
+[[noreturn]] void exit_removing_outputs(int status);
+
 }  // namespace tex

@@ -14,6 +14,8 @@
 #include <cstring>
 #include <vector>
 
+#include "workloads/limits.h"
+
 namespace tex::images {
 
 namespace {
@@ -32,6 +34,13 @@ void png_fail(png_structp png, png_const_charp text) {
   png_longjmp(png, 1);
 }
 void png_quiet(png_structp, png_const_charp) {}  // warnings: not for the user
+
+// The refusal of an image too large for the limit.
+std::string too_large(const char* format, uint64_t w, uint64_t h, int channels, uint64_t max_bytes) {
+  return std::string(format) + " of " + std::to_string(w) + " x " + std::to_string(h) + " pixels needs " +
+         memory_words(decoded_image_bytes(w, h, channels)) + " once read, more than --max-memory allows (" +
+         memory_words(max_bytes) + ")";
+}
 
 void png_from_memory(png_structp png, png_bytep out, size_t n) {
   auto* c = static_cast<PngContext*>(png_get_io_ptr(png));
@@ -72,7 +81,7 @@ bool png_rows(png_structp png, png_bytepp rows) {
   return true;
 }
 
-Direct read_png(std::FILE* file, const void* data, size_t size, Pixels& out, std::string& error) {
+Direct read_png(std::FILE* file, const void* data, size_t size, uint64_t max_bytes, Pixels& out, std::string& error) {
   PngContext ctx;
   ctx.data = static_cast<const unsigned char*>(data);
   ctx.size = size;
@@ -91,6 +100,9 @@ Direct read_png(std::FILE* file, const void* data, size_t size, Pixels& out, std
   if (png_begin(png, info, &shape)) {
     if (shape.sixteen_bits) {
       result = Direct::NotMine;  // (OpenImageIO's 16-to-8-bit conversion is its own)
+    } else if (decoded_image_bytes(shape.width, shape.height, shape.channels) > max_bytes) {
+      error = too_large("PNG", shape.width, shape.height, shape.channels, max_bytes);
+      result = Direct::TooLarge;
     } else if (png_get_rowbytes(png, info) != size_t(shape.width) * size_t(shape.channels)) {
       std::snprintf(ctx.message, sizeof ctx.message, "unexpected row size");
     } else {
@@ -161,7 +173,7 @@ bool jpeg_rows(jpeg_decompress_struct* c, JpegError* e, unsigned char* pixels, s
   return true;
 }
 
-Direct read_jpeg(std::FILE* file, const void* data, size_t size, Pixels& out, std::string& error) {
+Direct read_jpeg(std::FILE* file, const void* data, size_t size, uint64_t max_bytes, Pixels& out, std::string& error) {
   jpeg_decompress_struct c;
   JpegError e;
   c.err = jpeg_std_error(&e.manager);
@@ -173,6 +185,9 @@ Direct read_jpeg(std::FILE* file, const void* data, size_t size, Pixels& out, st
   if (jpeg_begin(&c, &e, file, data, size, &shape)) {
     if (!shape.mine) {
       result = Direct::NotMine;
+    } else if (decoded_image_bytes(shape.width, shape.height, shape.channels) > max_bytes) {
+      error = too_large("JPEG", shape.width, shape.height, shape.channels, max_bytes);
+      result = Direct::TooLarge;
     } else {
       out.width = int(shape.width);
       out.height = int(shape.height);
@@ -208,7 +223,8 @@ bool ends_with_ci(const std::string& s, const char* suffix) {
 
 }  // namespace
 
-Direct read_png_or_jpeg(const std::string& file, const void* data, size_t size, Pixels& out, std::string& error) {
+Direct read_png_or_jpeg(const std::string& file, const void* data, size_t size, uint64_t max_bytes, Pixels& out,
+                        std::string& error) {
   unsigned char head[8] = {};
   size_t have = 0;
   std::FILE* f = nullptr;
@@ -222,8 +238,8 @@ Direct read_png_or_jpeg(const std::string& file, const void* data, size_t size, 
     std::rewind(f);
   }
   Direct result = Direct::NotMine;
-  if (have == 8 && std::memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0) result = read_png(f, data, size, out, error);
-  else if (have >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) result = read_jpeg(f, data, size, out, error);
+  if (have == 8 && std::memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0) result = read_png(f, data, size, max_bytes, out, error);
+  else if (have >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) result = read_jpeg(f, data, size, max_bytes, out, error);
   if (f) std::fclose(f);
   return result;
 }

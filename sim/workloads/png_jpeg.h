@@ -4,6 +4,7 @@
 // and hands the image module whatever they do not take.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "workloads/image_module.h"
@@ -12,8 +13,10 @@ namespace tex::images {
 
 // The outcome of a direct read: the pixels, a file these readers leave to OpenImageIO (16-bit PNG,
 // a JPEG in CMYK, not a PNG or JPEG at all), or a broken file (then `error` says why in one line;
-// the caller may still ask OpenImageIO, whose message is the one users know).
-enum class Direct { Read, NotMine, Broken };
+// the caller may still ask OpenImageIO, whose message is the one users know), or a header whose
+// size needs more than `max_bytes` once read (decoded_image_bytes, workloads/limits.h: `error`
+// says so; nothing was allocated for it).
+enum class Direct { Read, NotMine, Broken, TooLarge };
 
 // An 8-bit (or 1, 2, 4-bit) PNG of any colour type, palette and tRNS expanded, or a baseline or
 // progressive JPEG in gray, RGB or YCbCr, from `file` or from the `size` bytes at `data`; the
@@ -22,7 +25,8 @@ enum class Direct { Read, NotMine, Broken };
 // each PNG colour type and bit depth): as stored, no gamma applied, alpha unassociated, gray as
 // one channel (two with alpha), palette as RGB (RGBA with tRNS), JPEG through libjpeg's default
 // (islow) DCT and fancy upsampling.
-Direct read_png_or_jpeg(const std::string& file, const void* data, size_t size, Pixels& out, std::string& error);
+Direct read_png_or_jpeg(const std::string& file, const void* data, size_t size, uint64_t max_bytes, Pixels& out,
+                        std::string& error);
 
 // Writes RGBA8 `pixels` as a PNG (no interlace, default compression) to `path`.
 bool write_png(const std::string& path, const Pixels& pixels, std::string& error);

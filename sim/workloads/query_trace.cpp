@@ -117,7 +117,9 @@ bool QueryReader::next_line(std::string_view& line) {
     std::memmove(buf_.data(), at, end_ - begin_);
     end_ -= begin_;
     begin_ = 0;
-    if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);
+    if (end_ == buf_.size())  // (a line is a few numbers: the buffer never grows)
+      throw Error(name_ + ":" + std::to_string(line_no_ + 1) + ": a line longer than " +
+                  std::to_string(buf_.size() >> 20) + " MiB (not a query trace?)");
     errno = 0;
     const size_t want = size_t(std::min<uint64_t>(buf_.size() - end_, file_end_ - file_pos_));
     const size_t n = want ? std::fread(buf_.data() + end_, 1, want, file_) : 0;

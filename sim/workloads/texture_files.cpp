@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <squish.h>
 #include <fstream>
 #include <iterator>
@@ -11,6 +12,7 @@
 #include "model/pyramid.h"
 #include "model/srgb.h"
 #include "workloads/image_module.h"
+#include "workloads/limits.h"
 #include "workloads/text.h"
 #include "workloads/texture_io.h"
 
@@ -118,6 +120,9 @@ class Reader {
   explicit Reader(const std::string& path) : path_(path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open the texture file");
+    std::error_code ec;
+    const uint64_t size = std::filesystem::file_size(path, ec);  // (read, then its levels copied)
+    if (!ec) check_memory(2 * size, path + ": a texture file of " + memory_words(size) + ", read,");
     bytes_.assign(std::istreambuf_iterator<char>(in), {});
   }
   [[noreturn]] void fail(const std::string& what) const { throw Error(path_ + ": " + what); }
@@ -699,13 +704,25 @@ std::vector<Pyramid> load_envmap(const std::string& spec, const TextureOptions& 
   return faces;
 }
 
-Pyramid pyramid_of(const TextureFile& file, PyramidMode mode) { return image_pyramid(file, file.levels, mode); }
+// The images' decoded pyramids against the memory limit: 8-byte texels, a third more for the
+// levels below level 0.
+static void check_decoded_memory(const TextureFile& file, uint64_t images) {
+  const uint64_t bytes = images * uint64_t(file.width) * uint64_t(file.height) * 8 * 4 / 3;
+  check_memory(bytes, std::to_string(images) + (images == 1 ? " image" : " images") + " of " + std::to_string(file.width) +
+                          " x " + std::to_string(file.height) + ", decoded,");
+}
+
+Pyramid pyramid_of(const TextureFile& file, PyramidMode mode) {
+  check_decoded_memory(file, 1);
+  return image_pyramid(file, file.levels, mode);
+}
 
 std::vector<Pyramid> pyramids_of(const TextureFile& file, PyramidMode mode) {
   const size_t images = size_t(file.layers) * size_t(file.faces);
   if (file.layers < 1 || (file.faces != 1 && file.faces != 6) || file.more_images.size() + 1 != images)
     throw Error("pyramids_of: " + std::to_string(file.layers) + " layers x " + std::to_string(file.faces) + " faces, but " +
                 std::to_string(file.more_images.size() + 1) + " images");
+  check_decoded_memory(file, images);
   std::vector<Pyramid> out;
   out.reserve(images);
   out.push_back(image_pyramid(file, file.levels, mode));

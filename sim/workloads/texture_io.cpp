@@ -15,6 +15,7 @@
 
 #include "model/error.h"
 #include "workloads/image_module.h"
+#include "workloads/limits.h"
 #include "workloads/png_jpeg.h"
 #include "workloads/query_trace.h"
 
@@ -103,8 +104,11 @@ images::Pixels read_uint8(const std::string& name, const std::string& file, cons
   std::string error;
   // PNG and JPEG directly; anything else, or a file they find broken, through OpenImageIO (whose
   // messages are the ones users know).
-  if (images::read_png_or_jpeg(file, data, size, p, error) == images::Direct::Read) return p;
-  if (!images::module().read(file, data, size, p, error)) throw Error(name + ": " + error);
+  const uint64_t max_bytes = memory_limit();
+  const images::Direct direct = images::read_png_or_jpeg(file, data, size, max_bytes, p, error);
+  if (direct == images::Direct::Read) return p;
+  if (direct == images::Direct::TooLarge) throw Error(name + ": " + error);
+  if (!images::module().read(file, data, size, max_bytes, p, error)) throw Error(name + ": " + error);
   return p;
 }
 

@@ -50,7 +50,7 @@ void write_image(const fs::path& p, int w, int h, int channels, F value) {
 inline std::vector<uint8_t> read_image(const fs::path& p, int& w, int& h) {
   tex::images::Pixels px;
   std::string error;
-  if (!tex::images::module().read(p.string(), nullptr, 0, px, error) || px.channels != 4) return {};
+  if (!tex::images::module().read(p.string(), nullptr, 0, UINT64_MAX, px, error) || px.channels != 4) return {};
   w = px.width;
   h = px.height;
   return px.values;

@@ -184,7 +184,7 @@ void check_scene(const MeshScene& s) {
     if (t.source.find("#embedded:") == std::string::npos) {  // a file: its size as OpenImageIO reads it
       tex::images::Pixels px;
       std::string error;
-      ASSERT_TRUE(tex::images::module().read(t.source, nullptr, 0, px, error)) << error;
+      ASSERT_TRUE(tex::images::module().read(t.source, nullptr, 0, UINT64_MAX, px, error)) << error;
       EXPECT_EQ(t.file_width, px.width);
       EXPECT_EQ(t.file_height, px.height);
     }

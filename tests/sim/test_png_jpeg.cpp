@@ -120,10 +120,10 @@ void write_test_jpeg(const fs::path& path, bool gray, bool progressive, int w, i
 void expect_same_as_oiio(const fs::path& path, Direct expect = Direct::Read) {
   Pixels direct, oiio;
   std::string error, oiio_error;
-  const Direct d = tex::images::read_png_or_jpeg(path.string(), nullptr, 0, direct, error);
+  const Direct d = tex::images::read_png_or_jpeg(path.string(), nullptr, 0, UINT64_MAX, direct, error);
   ASSERT_EQ(int(d), int(expect)) << path << ": " << error;
   if (d != Direct::Read) return;
-  ASSERT_TRUE(tex::images::module().read(path.string(), nullptr, 0, oiio, oiio_error)) << path << ": " << oiio_error;
+  ASSERT_TRUE(tex::images::module().read(path.string(), nullptr, 0, UINT64_MAX, oiio, oiio_error)) << path << ": " << oiio_error;
   EXPECT_EQ(direct.width, oiio.width) << path;
   EXPECT_EQ(direct.height, oiio.height) << path;
   ASSERT_EQ(direct.channels, oiio.channels) << path;
@@ -135,7 +135,7 @@ void expect_same_as_oiio(const fs::path& path, Direct expect = Direct::Read) {
   std::ifstream in(path, std::ios::binary);
   const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   Pixels mem;
-  ASSERT_EQ(int(tex::images::read_png_or_jpeg("embedded", bytes.data(), bytes.size(), mem, error)), int(Direct::Read));
+  ASSERT_EQ(int(tex::images::read_png_or_jpeg("embedded", bytes.data(), bytes.size(), UINT64_MAX, mem, error)), int(Direct::Read));
   EXPECT_EQ(mem.values, direct.values) << path;
 }
 
@@ -189,7 +189,7 @@ TEST(PngJpeg, EveryImageOfTheAssimpTestModelsAsOpenImageIO) {
     if (!e.is_regular_file() || (ext != ".png" && ext != ".jpg" && ext != ".jpeg")) continue;
     Pixels p;
     std::string error;
-    const Direct d = tex::images::read_png_or_jpeg(e.path().string(), nullptr, 0, p, error);
+    const Direct d = tex::images::read_png_or_jpeg(e.path().string(), nullptr, 0, UINT64_MAX, p, error);
     if (d == Direct::NotMine) continue;  // (16-bit PNGs, CMYK JPEGs: OpenImageIO's)
     SCOPED_TRACE(e.path().string());
     expect_same_as_oiio(e.path());
@@ -208,16 +208,16 @@ TEST(PngJpeg, BrokenFilesAreReportedNotRead) {
   std::string error;
   for (size_t cut : {size_t(8), size_t(30), bytes.size() / 2}) {  // truncated: header, IHDR, data
     error.clear();
-    EXPECT_EQ(int(tex::images::read_png_or_jpeg("cut.png", bytes.data(), cut, p, error)), int(Direct::Broken)) << cut;
+    EXPECT_EQ(int(tex::images::read_png_or_jpeg("cut.png", bytes.data(), cut, UINT64_MAX, p, error)), int(Direct::Broken)) << cut;
     EXPECT_NE(error.find("PNG"), std::string::npos) << error;
   }
   std::vector<char> flipped = bytes;
   flipped[20] ^= 0x40;  // IHDR's width: its CRC no longer matches
-  EXPECT_EQ(int(tex::images::read_png_or_jpeg("bad.png", flipped.data(), flipped.size(), p, error)), int(Direct::Broken));
+  EXPECT_EQ(int(tex::images::read_png_or_jpeg("bad.png", flipped.data(), flipped.size(), UINT64_MAX, p, error)), int(Direct::Broken));
   const char jpeg_head[] = "\xFF\xD8\xFF\xE0 not a JPEG";
-  EXPECT_EQ(int(tex::images::read_png_or_jpeg("bad.jpg", jpeg_head, sizeof jpeg_head - 1, p, error)), int(Direct::Broken));
+  EXPECT_EQ(int(tex::images::read_png_or_jpeg("bad.jpg", jpeg_head, sizeof jpeg_head - 1, UINT64_MAX, p, error)), int(Direct::Broken));
   EXPECT_NE(error.find("JPEG"), std::string::npos) << error;
-  EXPECT_EQ(int(tex::images::read_png_or_jpeg("x.tga", "TRUEVISION", 10, p, error)), int(Direct::NotMine));
+  EXPECT_EQ(int(tex::images::read_png_or_jpeg("x.tga", "TRUEVISION", 10, UINT64_MAX, p, error)), int(Direct::NotMine));
   fs::remove_all(dir);
 }
 
@@ -232,7 +232,7 @@ TEST(PngJpeg, WrittenPngsReadBackThroughOpenImageIO) {
   std::string error;
   ASSERT_TRUE(tex::images::write_png((dir / "w.png").string(), p, error)) << error;
   Pixels back;
-  ASSERT_TRUE(tex::images::module().read((dir / "w.png").string(), nullptr, 0, back, error)) << error;
+  ASSERT_TRUE(tex::images::module().read((dir / "w.png").string(), nullptr, 0, UINT64_MAX, back, error)) << error;
   EXPECT_EQ(back.width, p.width);
   EXPECT_EQ(back.channels, 4);
   EXPECT_EQ(back.values, p.values);
