@@ -130,9 +130,8 @@ test-sanitize: deps
 	  ctest -j $(JOBS) -L 'model|sim' -E '$(SAN_EXCLUDE)' --output-on-failure
 # Not run here (they run in make test): SampleStreamsInConstantMemory bounds texsim's resident
 # memory, which ASan's shadow and quarantine inflate; MaxMemoryValuesAreChecked runs texsim under
-# a data limit, which a build with ASan does not set (its shadow memory would count); the CLI tests that run the SystemC engine, which
-# forks the threaded texsim: under ASan such a run now and then hangs (not diagnosed yet).
-SAN_EXCLUDE = SampleStreamsInConstantMemory|MaxMemoryValuesAreChecked|BadInputsFailCleanly|BlockFormatsThroughTheCli|CachedMissTraceIsTheSameForModelAndRtl|CubeMapsSampleAcrossTheSeams|DefaultsMeasureTheDesign|DepthCompareFiltersTheTests|EveryEngineGivesTheModelsTexels|GatherReadsTheLinearFiltersFourTexels|MemoryErrorsNameTheFlaggedSamples|QueriesFromStandardInput|ReductionMinAndMaxBoundTheAverage|ResponseClocksAreTheSameForModelAndRtl|SamplerStateOptions|SizesAreNamedRight|SrgbTexturesThroughTheCli|TerminatingSystemcEndsItsSimulationProcess|TexelFetchReadsTexelsAndZeroOutside|TextureLayersSampleTheLayerNamed|UnnormalizedCoordinatesAreTexels|ViewsSampleTheSameInEveryEngine
+# a data limit, which a build with ASan does not set (its shadow memory would count).
+SAN_EXCLUDE = SampleStreamsInConstantMemory|MaxMemoryValuesAreChecked
 
 # The fuzz targets (tests/fuzz/README.md) with clang's libFuzzer in a tree of their own.
 FUZZ_BUILD ?= build-fuzz

@@ -19,6 +19,11 @@ size_t VectorSource::read(Request* out, size_t max) {
   return n;
 }
 
+std::shared_mutex& fork_gate() {
+  static std::shared_mutex gate;
+  return gate;
+}
+
 struct ReadAheadSource::Impl {
   struct Chunk {
     std::vector<Request> requests;
@@ -40,6 +45,7 @@ struct ReadAheadSource::Impl {
   }
   void run() {
     for (;;) {
+      std::shared_lock gate(fork_gate());  // (released while it waits)
       Chunk c;
       c.requests.resize(chunk);
       const auto t0 = std::chrono::steady_clock::now();
@@ -56,8 +62,9 @@ struct ReadAheadSource::Impl {
       if (n || c.error) ready.push_back(std::move(c));
       done = last;
       changed.notify_all();
-      if (last) return;
-      changed.wait(lock, [this] { return stop || ready.size() < depth; });
+      gate.unlock();
+      // At the end, the thread waits for its owner's stop (fork_gate: it ends no sooner).
+      changed.wait(lock, [this, last] { return stop || (!last && ready.size() < depth); });
       if (stop) return;
     }
   }
@@ -105,7 +112,7 @@ struct WriteBehindSink::Impl {
   std::condition_variable changed;
   std::deque<std::vector<Texel>> queue, spare;  // full chunks, in order; emptied ones for reuse
   std::vector<Texel> current;
-  bool writing = false, stop = false;
+  bool writing = false, stop = false, started = false;
   std::exception_ptr error;
   double busy = 0;
   std::thread worker;
@@ -113,9 +120,15 @@ struct WriteBehindSink::Impl {
   Impl(TexelSink& sink, size_t chunk_size, size_t max_chunks) : inner(sink), chunk(chunk_size), depth(max_chunks) {
     current.reserve(chunk);
     worker = std::thread([this] { run(); });
+    // Returns once the worker waits: a thread starting up may hold an allocator lock, and the
+    // SystemC engine forks next (such a lock stays held in the child).
+    std::unique_lock lock(mutex);
+    changed.wait(lock, [this] { return started; });
   }
   void run() {
     std::unique_lock lock(mutex);
+    started = true;
+    changed.notify_all();
     for (;;) {
       changed.wait(lock, [this] { return stop || !queue.empty(); });
       if (queue.empty()) return;  // (stop)
@@ -124,6 +137,7 @@ struct WriteBehindSink::Impl {
       writing = true;
       const bool failed = error != nullptr;
       lock.unlock();
+      std::shared_lock gate(fork_gate());  // (released before it waits again)
       const auto t0 = std::chrono::steady_clock::now();
       std::exception_ptr e;
       if (!failed) try {
@@ -139,6 +153,7 @@ struct WriteBehindSink::Impl {
       spare.push_back(std::move(c));
       writing = false;
       changed.notify_all();
+      gate.unlock();
     }
   }
   // Hands the current chunk to the thread (waits while `depth` chunks are queued).

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <memory>
+#include <shared_mutex>
 #include <vector>
 
 #include "model/sampler.h"
@@ -19,6 +20,13 @@ class RequestSource {
   // Up to `max` next requests into `out`; 0 at the end. Throws tex::Error on bad input.
   virtual size_t read(Request* out, size_t max) = 0;
 };
+
+// The threads that work beside an engine (ReadAheadSource's, WriteBehindSink's) hold this shared
+// while they work, and the SystemC engine holds it alone across fork(): no other thread is then
+// inside an allocator, whose lock the child would inherit held forever (glibc's malloc takes its
+// locks around fork itself; GCC 12's AddressSanitizer runtime does not). Such a thread also stays
+// alive until its owner ends it: a thread that ends frees memory too.
+std::shared_mutex& fork_gate();
 
 // Reads a source ahead in a thread of its own, a chunk at a time, while the caller works on the
 // previous chunks: parsing overlaps sampling. The requests, and any error of the source (thrown by

@@ -463,7 +463,8 @@ QueryFileParser::~QueryFileParser() {
     std::lock_guard lock(mutex_);
     stop_ = true;
   }
-  for (std::thread& t : threads_) t.join();
+  for (std::thread& t : threads_)
+    if (t.joinable()) t.join();
 }
 
 void QueryFileParser::parse(size_t k) {
@@ -517,8 +518,14 @@ void QueryFileParser::finish_locked() {
 }
 
 void QueryFileParser::wait() {
-  std::unique_lock lock(mutex_);
-  changed_.wait(lock, [&] { return parts_done_ == parts_.size(); });
+  {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return parts_done_ == parts_.size(); });
+  }
+  // Joined, not only done: a thread still ending frees its memory, and the SystemC engine forks
+  // next (an allocator lock held by a thread at the fork stays held in the child).
+  for (std::thread& t : threads_)
+    if (t.joinable()) t.join();
   for (const auto& p : parts_)
     if (p->error) std::rethrow_exception(p->error);
 }

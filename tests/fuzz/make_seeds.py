@@ -100,8 +100,10 @@ out('texture_file', 'ktx2_rgba8_cube_array', ktx2(37, 2, 2, [chain(2, 2, 0) for 
 out('texture_file', 'ktx2_bc2_array', ktx2(135, 4, 8, [chain(4, 8, 16) for _ in range(2)], layers=2))
 
 # query_trace: every header form, with comments, a byte-order mark, CRLF, spaces
-out('query_trace', 'lod', '# a comment\nu,v,lod\n0.5,0.5,0\n0.25, 0.75, 1.5\n\n-3,1e3,-2\n')
-out('query_trace', 'deriv_bias', 'tex,smp,u,v,dudx,dvdx,dudy,dvdy,bias\r\n0,1,0.5,0.5,0.01,0,0,0.01,-1\r\n3,0,0.1,0.9,1,2,3,4,0.5\r\n')
+out('query_trace', 'lod', '# a comment\nu,v,lod\n0.5,0.5,0\n0.25, 0.75, 1.5\n\n-3,1e3,-2\n' +
+    ''.join('%g,%g,%g\n' % (rng.random(), rng.random() * 2 - 0.5, rng.random() * 8 - 2) for _ in range(12)))
+out('query_trace', 'deriv_bias', 'tex,smp,u,v,dudx,dvdx,dudy,dvdy,bias\r\n0,1,0.5,0.5,0.01,0,0,0.01,-1\r\n3,0,0.1,0.9,1,2,3,4,0.5\r\n' +
+    ''.join('%d,%d,%g,%g,%g,0,0,%g,%g\r\n' % (i % 16, i % 3, rng.random(), rng.random(), rng.random() / 64, rng.random() / 64, i / 4 - 1) for i in range(10)))
 out('query_trace', 'frame', 'tex,u,v,dudx,dvdx,dudy,dvdy,quad,x,y,helper\n'
     '0,0.5,0.5,0.01,0,0,0.01,0,0,0,0\n0,0.51,0.5,0.01,0,0,0.01,0,1,0,1\n1,0.5,0.5,0.01,0,0,0.01,1,2,0,0\n')
 out('query_trace', 'fetch_layer', '\ufefftex,i,j,layer,level\n0,3,4,1,0\n1,-1,70000,2,3\n')

@@ -535,11 +535,12 @@ void run_descriptor_tables(const std::string& config, int cases) {
   EXPECT_GT(full_samplers, 0);
   EXPECT_GT(array_textures, 0);
   EXPECT_EQ(cube_textures > 0, rc.cube_maps);
-  if (rc.cube_maps)
+  if (rc.cube_maps) {
     for (const char* c : {"a face's texel fetch", "a fetch outside the faces", "a gather", "a depth compare", "derivatives",
                           "a lod", "at a corner", "at an edge", "inside a face", "face 0", "face 1", "face 2", "face 3",
                           "face 4", "face 5", "a probe moved to another face"})
       EXPECT_GT(cube_cases[c], 0u) << "cube requests: " << c;
+  }
   for (const char* c : {"fetch inside the layers", "fetch outside the layers", "below layer 0", "beyond the last layer",
                         "a tie, rounded up to even", "a tie, rounded down to even", "between two layers"})
     EXPECT_GT(layer_cases[c], 0u) << "array requests: " << c;

@@ -15,12 +15,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
+#include <shared_mutex>
 #include <nlohmann/json.hpp>
 
 #include "engines/rtl/driver.h"
 #include "engines/systemc/stream_initiator.h"
 #include "engines/systemc/memory_target.h"
 #include "engines/systemc/tex_unit_tlm.h"
+#include "engines/streams.h"
 #include "model/error.h"
 
 // libsystemc.so defines main() and needs sc_main; texsim and the tests have their own main and
@@ -286,7 +289,9 @@ EngineStats run_forked(RequestSource& source, TexelSink& sink, const Simulation&
   }
   std::fflush(nullptr);  // nothing buffered may be written twice
   const pid_t parent = ::getpid();
+  std::unique_lock gate(fork_gate());  // (no thread beside the engine inside an allocator)
   const pid_t pid = ::fork();
+  gate.unlock();
   if (pid < 0) {
     for (int fd : {to_child[0], to_child[1], from_child[0], from_child[1]}) ::close(fd);
     throw Error(std::string("fork: ") + std::strerror(errno));
