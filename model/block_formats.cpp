@@ -3,16 +3,23 @@
 #include <algorithm>
 
 #include "error.h"
+#include "etc2.h"
 
 namespace tex {
 
 namespace {
 
 constexpr FormatInfo kFormats[] = {
-    {TexelFormat::Rgba8, "rgba8", 0, 4, true}, {TexelFormat::Bc1, "bc1", 8, 4, true},
-    {TexelFormat::Bc2, "bc2", 16, 4, true},    {TexelFormat::Bc3, "bc3", 16, 4, true},
-    {TexelFormat::Bc4, "bc4", 8, 1, false},    {TexelFormat::Bc5, "bc5", 16, 2, false},
-    {TexelFormat::Bc7, "bc7", 16, 4, true},
+    {TexelFormat::Rgba8, "rgba8", 0, 4, true, true},
+    {TexelFormat::Bc1, "bc1", 8, 4, true, true},
+    {TexelFormat::Bc2, "bc2", 16, 4, true, true},
+    {TexelFormat::Bc3, "bc3", 16, 4, true, true},
+    {TexelFormat::Bc4, "bc4", 8, 1, false, true},
+    {TexelFormat::Bc5, "bc5", 16, 2, false, true},
+    {TexelFormat::Bc7, "bc7", 16, 4, true, true},
+    {TexelFormat::Etc2Rgb, "etc2", 8, 3, true, false},
+    {TexelFormat::Etc2RgbA1, "etc2a1", 8, 4, true, false},
+    {TexelFormat::Etc2Rgba, "etc2a", 16, 4, true, false},
 };
 
 uint64_t le64(const uint8_t* p) {
@@ -264,9 +271,21 @@ bool parse_texel_format(const std::string& name, TexelFormat& out) {
   return false;
 }
 
+TexelFormat parse_encodable_format(const std::string& name) {
+  TexelFormat f = TexelFormat::Rgba8;
+  if (!parse_texel_format(name, f))
+    throw Error("unknown --format \"" + name.substr(0, 40) + (name.size() > 40 ? "...\"" : "\"") + " (" +
+                texel_format_names() + ")");
+  if (!format_info(f).encoder)
+    throw Error("--format " + name + ": no " + name + " encoder is built in (Debian has none); " + name +
+                " textures come from KTX and KTX2 files, read as they are");
+  return f;
+}
+
 std::string texel_format_names() {
   std::string s;
-  for (const FormatInfo& i : kFormats) s += (s.empty() ? "" : " | ") + std::string(i.name);
+  for (const FormatInfo& i : kFormats)
+    if (i.encoder) s += (s.empty() ? "" : " | ") + std::string(i.name);
   return s;
 }
 
@@ -288,6 +307,13 @@ Rgba8 decode_texel(TexelFormat f, const uint8_t* block, int i) {
       return {channel_palette(block)[size_t(channel_index(block, i))],
               channel_palette(block + 8)[size_t(channel_index(block + 8, i))], 0, 255};
     case TexelFormat::Bc7: return bc7_texel(unpack_bc7(block), i);
+    case TexelFormat::Etc2Rgb: return etc2_colour_texel(block, false, i);
+    case TexelFormat::Etc2RgbA1: return etc2_colour_texel(block, true, i);
+    case TexelFormat::Etc2Rgba: {
+      Rgba8 t = etc2_colour_texel(block + 8, false, i);
+      t[3] = eac_alpha_texel(block, i);
+      return t;
+    }
     case TexelFormat::Rgba8: break;
   }
   throw Error("decode_texel: " + std::string(format_info(f).name) + " is not a block format");

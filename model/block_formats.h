@@ -1,5 +1,5 @@
-// Texel formats of a texture in memory: RGBA8 and the block-compressed formats BC1-BC5 and BC7
-// (Khronos Data Format Specification, "S3TC" and "BPTC"; D3D names). A compressed level is a
+// Texel formats of a texture in memory: RGBA8 and the block-compressed formats BC1-BC5, BC7 and
+// ETC2 (Khronos Data Format Specification, "S3TC", "BPTC" and "ETC2"; D3D and GL names). A compressed level is a
 // row-major array of 4x4 blocks of 8 or 16 bytes. The decoders here are the bit-level
 // specification of the hardware's (docs/numerics.md, "Block-compressed formats"): every rounding
 // is stated, and independent decoders (libsquish, OpenImageIO, Mesa) check them
@@ -14,20 +14,30 @@
 
 namespace tex {
 
-enum class TexelFormat : uint8_t { Rgba8 = 0, Bc1 = 1, Bc2 = 2, Bc3 = 3, Bc4 = 4, Bc5 = 5, Bc7 = 7 };
+// ETC2 (model/etc2.h): Etc2Rgb is ETC2 RGB8 (and ETC1), Etc2RgbA1 ETC2 RGB8 with punch-through
+// alpha, Etc2Rgba ETC2 RGBA8 (an EAC alpha block, then the colour block). The model and its
+// engines sample them; the RTL's decoders are BC1-BC5 and BC7 (rtl::check_inputs refuses them).
+enum class TexelFormat : uint8_t {
+  Rgba8 = 0, Bc1 = 1, Bc2 = 2, Bc3 = 3, Bc4 = 4, Bc5 = 5, Bc7 = 7, Etc2Rgb = 8, Etc2RgbA1 = 9, Etc2Rgba = 10
+};
 
 struct FormatInfo {
   TexelFormat format;
   const char* name;  // as the CLI takes it: rgba8, bc1, ...
   int block_bytes;   // bytes per 4x4 block; 0 for RGBA8 (4 bytes per texel)
   int channels;      // channels the format stores (BC4: R; BC5: R, G)
-  bool srgb_allowed; // sRGB variants exist (BC1, BC2, BC3, BC7, RGBA8)
+  bool srgb_allowed; // sRGB variants exist (BC1, BC2, BC3, BC7, ETC2, RGBA8)
+  bool encoder;      // --format can make it from an image (libsquish, Mesa); ETC2 comes from files only
 };
 
 const FormatInfo& format_info(TexelFormat f);
 bool parse_texel_format(const std::string& name, TexelFormat& out);
-std::string texel_format_names();  // "rgba8 | bc1 | ..." for --help and errors
+// --format's value: a format with an encoder. Throws tex::Error: an unknown name (the names listed),
+// or a format that is read from files only (ETC2: KTX and KTX2).
+TexelFormat parse_encodable_format(const std::string& name);
+std::string texel_format_names();  // "rgba8 | bc1 | ..." (the formats with an encoder) for --help and errors
 inline bool is_compressed(TexelFormat f) { return f != TexelFormat::Rgba8; }
+inline bool is_etc2(TexelFormat f) { return f >= TexelFormat::Etc2Rgb; }
 
 using Rgba8 = std::array<uint8_t, 4>;
 

@@ -276,8 +276,7 @@ struct SamplingOptions {
     TextureOptions t;
     t.resize = resize;
     t.mode = pyramid_mode();
-    if (!parse_texel_format(format, t.format))
-      throw Error("unknown --format " + quote_clipped(format) + " (" + texel_format_names() + ")");
+    t.format = parse_encodable_format(format);
     t.format_given = format_opt->count() > 0;
     t.srgb = srgb;
     t.base_level = base_level;

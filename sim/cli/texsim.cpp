@@ -276,8 +276,7 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
   topts.resize = resize;
   if (!parse_pyramid_mode(mode_name, topts.mode))
     throw Error("unknown pyramid mode " + quote_clipped(mode_name) + " (exact, cascade)");
-  if (!parse_texel_format(format_name, topts.format))
-    throw Error("unknown --format " + quote_clipped(format_name) + " (" + texel_format_names() + ")");
+  topts.format = parse_encodable_format(format_name);
   topts.format_given = format_given;
   topts.srgb = srgb;
   OutputSet outputs;

@@ -155,9 +155,7 @@ Sweep parse_sweep(const ExploreArgs& a) {
     for (const std::string& o : s.order_names) parse_pixel_order(o);
   }
   for (const std::string& f : split_list(a.formats, "--format")) {
-    TexelFormat t;
-    if (!parse_texel_format(f, t)) throw Error("unknown --format " + quote_clipped(f) + " (" + texel_format_names() + ")");
-    s.formats.push_back(t);
+    s.formats.push_back(parse_encodable_format(f));
   }
   for (uint32_t k : parse_numbers(a.cache_kib, "--cache-kib", 1, 1024)) s.cache_kib.push_back(int(k));
   for (const std::string& w : split_list(a.ways, "--ways")) {

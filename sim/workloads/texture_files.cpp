@@ -88,6 +88,17 @@ constexpr Known kGl[] = {
     {0x8E8D, "GL_COMPRESSED_SRGB_ALPHA_BPTC_UNORM", TexelFormat::Bc7, true, true},
     {0x8E8E, "GL_COMPRESSED_RGB_BPTC_SIGNED_FLOAT", TexelFormat::Rgba8, false, false},
     {0x8E8F, "GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT", TexelFormat::Rgba8, false, false},
+    {0x8D64, "GL_ETC1_RGB8_OES", TexelFormat::Etc2Rgb, false, true},  // (ETC1 is ETC2 RGB8's subset)
+    {0x9274, "GL_COMPRESSED_RGB8_ETC2", TexelFormat::Etc2Rgb, false, true},
+    {0x9275, "GL_COMPRESSED_SRGB8_ETC2", TexelFormat::Etc2Rgb, true, true},
+    {0x9276, "GL_COMPRESSED_RGB8_PUNCHTHROUGH_ALPHA1_ETC2", TexelFormat::Etc2RgbA1, false, true},
+    {0x9277, "GL_COMPRESSED_SRGB8_PUNCHTHROUGH_ALPHA1_ETC2", TexelFormat::Etc2RgbA1, true, true},
+    {0x9278, "GL_COMPRESSED_RGBA8_ETC2_EAC", TexelFormat::Etc2Rgba, false, true},
+    {0x9279, "GL_COMPRESSED_SRGB8_ALPHA8_ETC2_EAC", TexelFormat::Etc2Rgba, true, true},
+    {0x9270, "GL_COMPRESSED_R11_EAC", TexelFormat::Rgba8, false, false},
+    {0x9271, "GL_COMPRESSED_SIGNED_R11_EAC", TexelFormat::Rgba8, false, false},
+    {0x9272, "GL_COMPRESSED_RG11_EAC", TexelFormat::Rgba8, false, false},
+    {0x9273, "GL_COMPRESSED_SIGNED_RG11_EAC", TexelFormat::Rgba8, false, false},
 };
 
 // VkFormat values (KTX2).
@@ -111,9 +122,21 @@ constexpr Known kVk[] = {
     {144, "VK_FORMAT_BC6H_SFLOAT_BLOCK", TexelFormat::Rgba8, false, false},
     {145, "VK_FORMAT_BC7_UNORM_BLOCK", TexelFormat::Bc7, false, true},
     {146, "VK_FORMAT_BC7_SRGB_BLOCK", TexelFormat::Bc7, true, true},
+    {147, "VK_FORMAT_ETC2_R8G8B8_UNORM_BLOCK", TexelFormat::Etc2Rgb, false, true},
+    {148, "VK_FORMAT_ETC2_R8G8B8_SRGB_BLOCK", TexelFormat::Etc2Rgb, true, true},
+    {149, "VK_FORMAT_ETC2_R8G8B8A1_UNORM_BLOCK", TexelFormat::Etc2RgbA1, false, true},
+    {150, "VK_FORMAT_ETC2_R8G8B8A1_SRGB_BLOCK", TexelFormat::Etc2RgbA1, true, true},
+    {151, "VK_FORMAT_ETC2_R8G8B8A8_UNORM_BLOCK", TexelFormat::Etc2Rgba, false, true},
+    {152, "VK_FORMAT_ETC2_R8G8B8A8_SRGB_BLOCK", TexelFormat::Etc2Rgba, true, true},
+    {153, "VK_FORMAT_EAC_R11_UNORM_BLOCK", TexelFormat::Rgba8, false, false},
+    {154, "VK_FORMAT_EAC_R11_SNORM_BLOCK", TexelFormat::Rgba8, false, false},
+    {155, "VK_FORMAT_EAC_R11G11_UNORM_BLOCK", TexelFormat::Rgba8, false, false},
+    {156, "VK_FORMAT_EAC_R11G11_SNORM_BLOCK", TexelFormat::Rgba8, false, false},
 };
 
-const char kSupported[] = "RGBA8, BC1 (with alpha), BC2, BC3, BC4 and BC5 (unorm), BC7, and the sRGB variants";
+const char kSupported[] =
+    "RGBA8, BC1 (with alpha), BC2, BC3, BC4 and BC5 (unorm), BC7, ETC2 RGB8 (and ETC1), RGB8A1 and RGBA8, and the sRGB "
+    "variants";
 
 class Reader {
  public:
@@ -481,6 +504,9 @@ TextureFile read_texture_file(const std::string& path) {
 
 Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format) {
   if (format == TexelFormat::Rgba8) return pyramid;
+  if (!format_info(format).encoder)
+    throw Error(std::string("no ") + format_info(format).name + " encoder is built in (Debian has none) to make the levels "
+                "below level 0: give a file with its whole mip chain");
   if (pyramid.levels[0].channel_bits != 8) throw Error("--format: block formats hold 8-bit channels");
   pyramid.format = format;
   pyramid.blocks.clear();

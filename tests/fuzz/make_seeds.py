@@ -98,6 +98,9 @@ out('texture_file', 'ktx1_srgb_cube', ktx1(0x8C43, 2, 2, [chain(2, 2, 0) for _ i
 out('texture_file', 'ktx2_bc5_8x8', ktx2(141, 8, 8, [chain(8, 8, 16)]))
 out('texture_file', 'ktx2_rgba8_cube_array', ktx2(37, 2, 2, [chain(2, 2, 0) for _ in range(12)], layers=2, faces=6))
 out('texture_file', 'ktx2_bc2_array', ktx2(135, 4, 8, [chain(4, 8, 16) for _ in range(2)], layers=2))
+out('texture_file', 'ktx1_etc2_rgba', ktx1(0x9278, 8, 8, [chain(8, 8, 16)]))
+out('texture_file', 'ktx2_etc2_rgb_srgb', ktx2(148, 8, 4, [chain(8, 4, 8)]))
+out('texture_file', 'ktx2_etc2_a1_array', ktx2(149, 4, 4, [chain(4, 4, 8) for _ in range(2)], layers=2))
 
 # query_trace: every header form, with comments, a byte-order mark, CRLF, spaces
 out('query_trace', 'lod', '# a comment\nu,v,lod\n0.5,0.5,0\n0.25, 0.75, 1.5\n\n-3,1e3,-2\n' +

@@ -23,6 +23,7 @@
 #include <random>
 
 #include "model/block_formats.h"
+#include "model/etc2.h"
 #include "model/pyramid.h"
 #include "model/srgb.h"
 
@@ -126,6 +127,65 @@ TEST(BlockFormatsReference, MesaDecodesTheSame) {
     const Comparison c = compare_level(k.format, data, rgba, 4);
     report("Mesa", k.format, c);
     EXPECT_LE(c.max_diff, k.max_diff) << format_info(k.format).name;
+  }
+}
+
+// ETC2's colour blocks set to each mode in turn (individual, differential, T, H, planar: the last
+// three are differential blocks whose red, green or blue sum leaves 0..31), random bits elsewhere.
+std::vector<uint8_t> etc2_blocks(TexelFormat f, uint64_t seed) {
+  std::vector<uint8_t> data = random_blocks(f, seed);
+  const int bytes = format_info(f).block_bytes;
+  std::mt19937_64 rng(seed + 1);
+  for (int k = 0; k < kBlocks; ++k) {
+    uint8_t* c = &data[size_t(k) * bytes + (f == TexelFormat::Etc2Rgba ? 8 : 0)];
+    const int mode = k % 5;
+    auto set = [&](int byte, int base, int delta) { c[byte] = uint8_t(base << 3 | (delta & 7)); };
+    auto in_range = [&](int byte) { set(byte, 4 + int(rng() % 24), int(rng() % 8) - 4); };
+    if (f != TexelFormat::Etc2RgbA1) c[3] = uint8_t((c[3] & ~2) | (mode == 0 ? 0 : 2));  // bit 33: differential
+    if (mode == 0) continue;
+    in_range(0), in_range(1), in_range(2);
+    if (mode == 2) set(0, 30 + int(rng() % 2), 3);           // R + dR > 31: T
+    if (mode == 3) set(1, int(rng() % 2), -4 + int(rng() % 2));  // G + dG < 0: H
+    if (mode == 4) set(2, 31, 1 + int(rng() % 3));            // B + dB > 31: planar
+    if (mode == 3 && k / 5 % 4 == 0) {  // an H block of two equal colours (the order bit's tie)
+      uint64_t w = 0;
+      for (int i = 0; i < 8; ++i) w = w << 8 | c[i];
+      const uint64_t r1 = w >> 59 & 15, g1 = (w >> 56 & 7) << 1 | (w >> 52 & 1), b1 = (w >> 51 & 1) << 3 | (w >> 47 & 7);
+      w = (w & ~(uint64_t(0xFFF) << 35)) | (r1 << 43 | g1 << 39 | b1 << 35);
+      for (int i = 7; i >= 0; --i, w >>= 8) c[i] = uint8_t(w);
+    }
+  }
+  return data;
+}
+
+TEST(BlockFormatsReference, MesaDecodesEtc2TheSame) {
+  setenv("GALLIUM_DRIVER", "softpipe", 1);
+  const struct {
+    TexelFormat format;
+    GLenum gl;
+  } cases[] = {{TexelFormat::Etc2Rgb, GL_COMPRESSED_RGB8_ETC2},
+               {TexelFormat::Etc2RgbA1, GL_COMPRESSED_RGB8_PUNCHTHROUGH_ALPHA1_ETC2},
+               {TexelFormat::Etc2Rgba, GL_COMPRESSED_RGBA8_ETC2_EAC}};
+  for (const auto& k : cases) {
+    const std::vector<uint8_t> data = etc2_blocks(k.format, 2000 + uint64_t(k.format));
+    // Every mode is decoded (RGB8A1 has no individual mode: its bit 33 says opaque, half the blocks).
+    const int bytes = format_info(k.format).block_bytes, colour = k.format == TexelFormat::Etc2Rgba ? 8 : 0;
+    int modes[5] = {}, see_through = 0;
+    for (int b = 0; b < kBlocks; ++b) {
+      const uint8_t* c = &data[size_t(b) * bytes + colour];
+      ++modes[int(etc2_mode_of(c, k.format == TexelFormat::Etc2RgbA1))];
+      see_through += k.format == TexelFormat::Etc2RgbA1 && !(c[3] & 2);
+    }
+    for (int m = k.format == TexelFormat::Etc2RgbA1 ? 1 : 0; m < 5; ++m)
+      EXPECT_GT(modes[m], kBlocks / 8) << format_info(k.format).name << " mode " << m;
+    if (k.format == TexelFormat::Etc2RgbA1) {
+      EXPECT_GT(see_through, kBlocks / 4);
+    }
+    std::vector<uint8_t> rgba;
+    ASSERT_TRUE(mesa_decode(k.gl, data, rgba)) << "Mesa cannot decode " << format_info(k.format).name;
+    const Comparison c = compare_level(k.format, data, rgba, 4);
+    report("Mesa", k.format, c);
+    EXPECT_EQ(c.max_diff, 0) << format_info(k.format).name;  // ETC2 leaves no rounding to the decoder
   }
 }
 
