@@ -86,7 +86,9 @@ void check_stream(const std::vector<Input>& inputs, double stall, double other, 
       for (int c = 0; c < 3; ++c) in.r[c] = int32_t(uint32_t(rng())), in.dx[c] = int32_t(uint32_t(rng()));
     const Output out = unit.clock(in, en, cube);
     if (!en) {
-      if (have_last) ASSERT_EQ(out, last) << "the outputs moved while en was low";
+      if (have_last) {
+        ASSERT_EQ(out, last) << "the outputs moved while en was low";
+      }
       continue;
     }
     line.emplace_back(cube, cube ? next : 0);
