@@ -144,7 +144,7 @@ module tex_desc_table #(
   // A format's line, in texels: log2 across and down.
   function automatic logic [2*VW-1:0] line_shape(input logic [FW-1:0] fmt);
     int lb;  // log2 of the line's 4x4 blocks
-    lb = (fmt == tex_pkg::FMT_BC1 || fmt == tex_pkg::FMT_BC4) ? LOG2_LB - 3 : LOG2_LB - 4;
+    lb = tex_pkg::line_kind(fmt) == tex_pkg::LINE_BLOCKS8 ? LOG2_LB - 3 : LOG2_LB - 4;  // 8- or 16-byte blocks
     if (fmt == tex_pkg::FMT_RGBA8) line_shape = {VW'($clog2(BH)), VW'($clog2(BW))};
     else line_shape = {VW'(2 + lb / 2), VW'(2 + (lb + 1) / 2)};
   endfunction

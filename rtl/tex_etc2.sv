@@ -1,9 +1,8 @@
 // tex_etc2: one texel of an ETC2 colour block (RGB8 and ETC1, RGB8A1) and of an EAC alpha block
 // (ETC2 RGBA8's), as the model's etc2_colour_texel and eac_alpha_texel (model/etc2.h,
 // docs/numerics.md "ETC2") decode them, bit for bit. Functions, as tex_bc_colour's, so that the
-// block decoder can call them only for the taps that read such a block. Not yet called by
-// tex_bc_decode: the cached unit's format field is 3 bits wide and holds BC1-BC5 and BC7
-// (tested alone through rtl/synth/tex_etc2_top.sv).
+// block decoder (tex_bc_decode) calls them only for the taps that read such a block (also tested
+// alone through rtl/synth/tex_etc2_top.sv).
 // Handshake: none (combinational). Latency: 0. Throughput: 1 per call.
 // colour(block, texel, punch_through) -> rgba:
 //   block         : the 64-bit colour block as stored, byte i at bits 8i+7..8i (ETC's big-endian
@@ -51,7 +50,7 @@ package tex_etc2;
   // A base colour plus a signed offset per channel, clamped: {B, G, R}. (No loop: a loop variable
   // in a function called inside an `if` is a latch to Yosys.)
   function automatic logic [7:0] offset1(input logic [7:0] c, input logic signed [9:0] d);
-    offset1 = clamp8(14'(signed'({2'b0, c})) + 14'(d));
+    offset1 = clamp8(14'($signed({2'b0, c})) + 14'(d));
   endfunction
   function automatic logic [23:0] offset(input logic [23:0] c, input logic signed [9:0] d);
     offset = {offset1(c[23:16], d), offset1(c[15:8], d), offset1(c[7:0], d)};
@@ -62,10 +61,10 @@ package tex_etc2;
   function automatic logic [7:0] plane(input logic [1:0] x, input logic [1:0] y, input logic [7:0] o,
                                        input logic [7:0] h, input logic [7:0] v);
     logic signed [13:0] dh, dv, sum;
-    dh  = 14'(signed'({1'b0, h})) - 14'(signed'({1'b0, o}));
-    dv  = 14'(signed'({1'b0, v})) - 14'(signed'({1'b0, o}));
+    dh  = 14'($signed({1'b0, h})) - 14'($signed({1'b0, o}));
+    dv  = 14'($signed({1'b0, v})) - 14'($signed({1'b0, o}));
     sum = (x[1] ? dh <<< 1 : 14'sd0) + (x[0] ? dh : 14'sd0) + (y[1] ? dv <<< 1 : 14'sd0) + (y[0] ? dv : 14'sd0) +
-          14'(signed'({1'b0, o, 2'b10}));
+          14'($signed({1'b0, o, 2'b10}));
     plane = clamp8(sum >>> 2);
   endfunction
 
@@ -106,9 +105,9 @@ package tex_etc2;
       d  = distance({w[35:34], w[32]});
       case (index)
         2'd0:    colour = {8'd255, c1};
-        2'd1:    colour = {8'd255, offset(c2, 10'(signed'({2'b0, d})))};
+        2'd1:    colour = {8'd255, offset(c2, 10'($signed({2'b0, d})))};
         2'd2:    colour = {8'd255, c2};
-        default: colour = {8'd255, offset(c2, -(10'(signed'({2'b0, d}))))};
+        default: colour = {8'd255, offset(c2, -(10'($signed({2'b0, d}))))};
       endcase
     end else if (mode_h) begin
       // The distance's low bit is the order of the two 12-bit colours.
@@ -117,10 +116,10 @@ package tex_etc2;
       c2    = {ext4(w[38:35]), ext4(w[42:39]), ext4(w[46:43])};
       d     = distance({w[34], w[32], order});
       case (index)
-        2'd0:    colour = {8'd255, offset(c1, 10'(signed'({2'b0, d})))};
-        2'd1:    colour = {8'd255, offset(c1, -(10'(signed'({2'b0, d}))))};
-        2'd2:    colour = {8'd255, offset(c2, 10'(signed'({2'b0, d})))};
-        default: colour = {8'd255, offset(c2, -(10'(signed'({2'b0, d}))))};
+        2'd0:    colour = {8'd255, offset(c1, 10'($signed({2'b0, d})))};
+        2'd1:    colour = {8'd255, offset(c1, -(10'($signed({2'b0, d}))))};
+        2'd2:    colour = {8'd255, offset(c2, 10'($signed({2'b0, d})))};
+        default: colour = {8'd255, offset(c2, -(10'($signed({2'b0, d}))))};
       endcase
     end else begin
       // Individual or differential: two sub-blocks (bit 32: 4x2 above each other, else 2x4).
@@ -135,10 +134,10 @@ package tex_etc2;
       a = see_through ? 8'd0 : modifier_a(table_index);  // (RGB8A1 not opaque: index 0 adds 0)
       b = modifier_b(table_index);
       case (index)
-        2'd0:    m = 10'(signed'({2'b0, a}));
-        2'd1:    m = 10'(signed'({2'b0, b}));
-        2'd2:    m = -(10'(signed'({2'b0, a})));
-        default: m = -(10'(signed'({2'b0, b})));
+        2'd0:    m = 10'($signed({2'b0, a}));
+        2'd1:    m = 10'($signed({2'b0, b}));
+        2'd2:    m = -(10'($signed({2'b0, a})));
+        default: m = -(10'($signed({2'b0, b})));
       endcase
       colour = {8'd255, offset(base, m)};
     end
@@ -178,7 +177,7 @@ package tex_etc2;
     index = 3'(w >> (45 - ((32'(p) << 1) + 32'(p))));  // (3 p as a shift and an add)
     // base + modifier x multiplier (4 bits): shifts and adds.
     m     = 14'(eac_modifier(w[51:48], index));
-    sum   = 14'(signed'({1'b0, w[63:56]}));
+    sum   = 14'($signed({1'b0, w[63:56]}));
     for (int i = 0; i < 4; i++) sum = sum + (w[52 + i] ? m <<< i : 14'sd0);
     alpha = clamp8(sum);
   endfunction

@@ -70,23 +70,30 @@ package tex_pkg;
   localparam logic [OP_W-1:0] OP_FETCH  = 2'd3;  // texelFetch: req_u, req_v, req_lod are i, j, level
 
   // ---- texel formats (model/block_formats.h TexelFormat): how memory holds a texture
-  localparam int FORMAT_W = 3;
-  localparam logic [FORMAT_W-1:0] FMT_RGBA8 = 3'd0;
-  localparam logic [FORMAT_W-1:0] FMT_BC1   = 3'd1;
-  localparam logic [FORMAT_W-1:0] FMT_BC2   = 3'd2;
-  localparam logic [FORMAT_W-1:0] FMT_BC3   = 3'd3;
-  localparam logic [FORMAT_W-1:0] FMT_BC4   = 3'd4;
-  localparam logic [FORMAT_W-1:0] FMT_BC5   = 3'd5;
-  localparam logic [FORMAT_W-1:0] FMT_BC7   = 3'd7;
+  localparam int FORMAT_W = 4;
+  localparam logic [FORMAT_W-1:0] FMT_RGBA8     = 4'd0;
+  localparam logic [FORMAT_W-1:0] FMT_BC1       = 4'd1;
+  localparam logic [FORMAT_W-1:0] FMT_BC2       = 4'd2;
+  localparam logic [FORMAT_W-1:0] FMT_BC3       = 4'd3;
+  localparam logic [FORMAT_W-1:0] FMT_BC4       = 4'd4;
+  localparam logic [FORMAT_W-1:0] FMT_BC5       = 4'd5;
+  localparam logic [FORMAT_W-1:0] FMT_BC7       = 4'd7;
+  localparam logic [FORMAT_W-1:0] FMT_ETC2      = 4'd8;   // ETC2 RGB8 (and ETC1)
+  localparam logic [FORMAT_W-1:0] FMT_ETC2_A1   = 4'd9;   // ETC2 RGB8 with punch-through alpha
+  localparam logic [FORMAT_W-1:0] FMT_ETC2_RGBA = 4'd10;  // ETC2 RGBA8: EAC alpha, then the colour
+  // A block format the unit decodes (codes 6 and 11..15 are none).
+  function automatic logic block_format(input logic [FORMAT_W-1:0] fmt);
+    block_format = (fmt >= FMT_BC1 && fmt <= FMT_BC5) || (fmt >= FMT_BC7 && fmt <= FMT_ETC2_RGBA);
+  endfunction
 
   // A cached line's kind in the data banks (tex_cache_data's wr_kind): what a bank word holds.
   localparam int LINE_KIND_W = 2;
   localparam logic [LINE_KIND_W-1:0] LINE_TEXELS   = 2'd0;
-  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS8  = 2'd1;  // BC1, BC4: 8-byte 4x4 blocks
-  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS16 = 2'd2;  // BC2, BC3, BC5, BC7: 16-byte blocks
+  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS8  = 2'd1;  // BC1, BC4, ETC2 RGB8, RGB8A1: 8-byte 4x4 blocks
+  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS16 = 2'd2;  // BC2, BC3, BC5, BC7, ETC2 RGBA8: 16-byte blocks
   function automatic logic [LINE_KIND_W-1:0] line_kind(input logic [FORMAT_W-1:0] fmt);
     if (fmt == FMT_RGBA8) line_kind = LINE_TEXELS;
-    else if (fmt == FMT_BC1 || fmt == FMT_BC4) line_kind = LINE_BLOCKS8;
+    else if (fmt == FMT_BC1 || fmt == FMT_BC4 || fmt == FMT_ETC2 || fmt == FMT_ETC2_A1) line_kind = LINE_BLOCKS8;
     else line_kind = LINE_BLOCKS16;
   endfunction
 endpackage

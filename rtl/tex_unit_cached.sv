@@ -737,7 +737,7 @@ module tex_unit_cached #(
                     cfg_desc_w, cfg_desc_h, 1 << MLW, 1 << MLH);
     if (!rst && cfg_desc_we)
       assert (cfg_desc_format == tex_pkg::FMT_RGBA8
-              || (BLOCK_FORMATS != 0 && cfg_desc_format != 3'd6))
+              || (BLOCK_FORMATS != 0 && tex_pkg::block_format(cfg_desc_format)))
         else $error("tex_unit_cached: cfg_desc_format %0d is not a format of this unit (BLOCK_FORMATS = %0d)",
                     cfg_desc_format, BLOCK_FORMATS);
     if (!rst && cfg_desc_we && cfg_desc_srgb)

@@ -84,16 +84,16 @@ lint_blocks() {
   # The block decoders and the sRGB table on their own, through their harnesses (tex_unit_cached's
   # taps call them; linted there too).
   lint_decode() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
-                    rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
+                    rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_etc2.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
                     --top-module tex_bc_decode_top "$@"; }
   clean tex_bc_decode lint_decode
   clean "tex_bc_decode (-DSYNTHESIS: the synthesis form)" lint_decode -DSYNTHESIS
-  fires "tex_bc_decode_top: parameter FORMAT must be" "tex_bc_decode_top FORMAT=8" lint_decode -GFORMAT=8
+  fires "tex_bc_decode_top: parameter FORMAT must be" "tex_bc_decode_top FORMAT=16" lint_decode -GFORMAT=16
   clean tex_srgb_decode verilator --lint-only -Irtl -Wall rtl/tex_srgb_decode.sv rtl/synth/tex_srgb_decode_top.sv \
     --top-module tex_srgb_decode_top
   clean tex_etc2 verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt rtl/tex_etc2.sv rtl/synth/tex_etc2_top.sv \
     --top-module tex_etc2_top
-  echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7; as simulated and with -DSYNTHESIS), tex_etc2 (ETC2, EAC alpha) and tex_srgb_decode; FORMAT check fires for FORMAT=8"
+  echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7, ETC2; as simulated and with -DSYNTHESIS), tex_etc2 alone and tex_srgb_decode; FORMAT check fires for FORMAT=16"
   # The AXI4-Lite configuration slave on its own (-Wno-UNUSEDPARAM: alone it uses few of tex_pkg's
   # constants; inside tex_unit_axi below it is linted with all warnings), and the AXI top.
   lint_axil() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_axil_config.sv \

@@ -342,14 +342,14 @@ TEST(RtlCached, NonSquareRgba8) {
   run_suite({"Vtex_cached_6x3", {{64, 8}, {37, 7}, {32, 8}, {60, 5}, {8, 1}, {1, 7}, {64, 4}, {13, 3}, {36, 6}}, 63, 10000});
 }
 
-// Every block format on the unit with the formats (64-byte lines: BC1 and BC4 lines of 16x8
-// texels, the others 8x8), random blocks (every BC7 mode), decoded by the RTL's 8 tap decoders
+// Every block format on the unit with the formats (64-byte lines: BC1, BC4, ETC2 RGB8 and RGB8A1
+// lines of 16x8 texels, the others 8x8), random blocks (every BC7 mode, every ETC2 mode), decoded by the RTL's 8 tap decoders
 // after the cache: samples, miss streams and response clocks against the model. (The cache bins
 // above are RGBA8's line shape; these lines are wider.)
 TEST(RtlCached, BlockFormats) {
   run_suite({"Vtex_cached_13x13", {{64, 8}, {61, 7}, {32, 4}, {4, 4}, {13, 5}, {64, 4}, {16, 8}, {30, 6}}, 32, 6000, false,
              {TexelFormat::Bc1, TexelFormat::Bc2, TexelFormat::Bc3, TexelFormat::Bc4, TexelFormat::Bc5,
-              TexelFormat::Bc7}});
+              TexelFormat::Bc7, TexelFormat::Etc2Rgb, TexelFormat::Etc2RgbA1, TexelFormat::Etc2Rgba}});
 }
 
 // The sRGB configuration (8-bit channels in memory, a 16-bit filter): every format, sRGB in every
@@ -358,7 +358,7 @@ TEST(RtlCached, BlockFormats) {
 TEST(RtlCached, SrgbAndLinearEveryFormat) {
   run_suite({"Vtex_cached_13x13", {{64, 8}, {32, 4}, {50, 6}, {4, 4}, {64, 4}, {9, 11}, {32, 4}}, 28, 4000, false,
              {TexelFormat::Rgba8, TexelFormat::Bc1, TexelFormat::Bc7, TexelFormat::Bc4, TexelFormat::Bc3,
-              TexelFormat::Bc2, TexelFormat::Bc5},
+              TexelFormat::Bc2, TexelFormat::Bc5, TexelFormat::Etc2Rgb, TexelFormat::Etc2Rgba, TexelFormat::Etc2RgbA1},
              true});
 }
 
@@ -376,8 +376,9 @@ TEST(RtlCached, LargestTextures) {
   run_suite({"Vtex_cached_13x13", {{8192, 4}, {2, 8192}, {8192, 8192}, {8191, 3}, {5, 8191}}, 5, 20000, false});
 }
 
-const std::vector<TexelFormat> kBlockFormats = {TexelFormat::Bc1, TexelFormat::Bc2, TexelFormat::Bc3,
-                                                TexelFormat::Bc4, TexelFormat::Bc5, TexelFormat::Bc7};
+const std::vector<TexelFormat> kBlockFormats = {TexelFormat::Bc1,     TexelFormat::Bc2,       TexelFormat::Bc3,
+                                                TexelFormat::Bc4,     TexelFormat::Bc5,       TexelFormat::Bc7,
+                                                TexelFormat::Etc2Rgb, TexelFormat::Etc2RgbA1, TexelFormat::Etc2Rgba};
 
 // The descriptor table: 2 to 16 textures of random sizes, wrap modes and formats (RGBA8 and block
 // formats mixed; with the sRGB tables, half of them sRGB) in memory at once, a random texture in

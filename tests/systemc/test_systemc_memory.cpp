@@ -253,9 +253,9 @@ TEST(SystemcMemory, ExamplePlatformRuns) {
   std::remove("platform.txt");
 }
 
-// A frame as a real one binds it: six textures in the descriptor table (RGBA8 with sides that are
-// not powers of two, BC1 sRGB, BC7, RGBA8 sRGB, an RGBA8 array of 3 layers, a cube array of 2 cubes
-// of 12 x 12 faces) and six random samplers, random requests over them (tests/common/stimulus.h;
+// A frame as a real one binds it: seven textures in the descriptor table (RGBA8 with sides that are
+// not powers of two, BC1 sRGB, BC7, RGBA8 sRGB, ETC2 RGBA8, an RGBA8 array of 3 layers, a cube array
+// of 2 cubes of 12 x 12 faces) and seven random samplers, random requests over them (tests/common/stimulus.h;
 // the cube's: cube_request's directions, a quarter of them with derivatives), the memory jittering.
 // Both backends give the golden model's texels and its miss stream, in order.
 TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
@@ -265,6 +265,7 @@ TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
   decode_srgb_levels(pyramids.back());
   pyramids.push_back(stimulus::random_block_texture(TexelFormat::Bc7, {32, 32}, 3));
   pyramids.push_back(build_srgb_pyramid(stimulus::random_image(16, 64, 8, 4), PyramidMode::Exact));
+  pyramids.push_back(stimulus::random_block_texture(TexelFormat::Etc2Rgba, {32, 16}, 5));
   TextureTable table;
   std::vector<Extent> sizes;
   for (const Pyramid& p : pyramids) {
@@ -281,18 +282,18 @@ TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
   sizes.push_back(faces[0].extent0());
   std::mt19937_64 rng(5);
   SamplerTable samplers;
-  for (int i = 0; i < 6; ++i) samplers.push_back(stimulus::random_sampler(rng));
-  samplers[5].unnormalized = false;  // (the cube's requests' sampler)
+  for (int i = 0; i < 7; ++i) samplers.push_back(stimulus::random_sampler(rng));
+  samplers[6].unnormalized = false;  // (the cube's requests' sampler)
   std::vector<Request> requests = stimulus::random_requests(rng, sizes, samplers.size(), 3000);
   stimulus::fetches_and_gathers_among(rng, requests, 16, [&](int t) { return sizes[size_t(t)]; });
   stimulus::layers_among(rng, requests, [&](int t) { return table[size_t(t)].layers(); });
   stimulus::compares_among(rng, requests, 16, samplers, [&](int t) { return !table[size_t(t)].pyramid->srgb; });
   int cube_requests = 0;
   for (Request& q : requests)
-    if (q.texture == 5) {
+    if (q.texture == 6) {
       q = stimulus::cube_request(rng, q, 12, faces[0].last_level(), 12);
-      q.sampler = 5;
-      if (q.op == Op::Compare && !samplers[5].compare_problem().empty()) q.op = Op::Sample;
+      q.sampler = 6;
+      if (q.op == Op::Compare && !samplers[6].compare_problem().empty()) q.op = Op::Sample;
       ++cube_requests;
     }
   ASSERT_GT(cube_requests, 300);

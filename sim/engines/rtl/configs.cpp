@@ -126,10 +126,6 @@ void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::ve
                                 : std::to_string(config.cw) + "-bit channels") +
                 "; this texture has " + std::to_string(config.formats ? pyramid.memory_channel_bits() : bits) +
                 "-bit channels");
-  // The cached unit's decoders are BC1-BC5 and BC7 (on chip every block format is held decoded).
-  if (is_etc2(pyramid.format) && config.cached)
-    throw Error(std::string("a ") + format_info(pyramid.format).name + " texture: the cached RTL decodes BC1-BC5 and BC7 "
-                "after its caches, not ETC2 yet (the model engine samples ETC2: -e model, or --memory onchip)");
   // (on chip a block-format or sRGB texture is held decoded, as the paper's memories hold texels)
   if ((pyramid.srgb || is_compressed(pyramid.format)) && config.cached && !config.formats)
     throw Error(std::string("a ") + format_info(pyramid.format).name + (pyramid.srgb ? " sRGB" : "") + " texture: " +
