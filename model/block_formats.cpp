@@ -17,9 +17,9 @@ constexpr FormatInfo kFormats[] = {
     {TexelFormat::Bc4, "bc4", 8, 1, false, true},
     {TexelFormat::Bc5, "bc5", 16, 2, false, true},
     {TexelFormat::Bc7, "bc7", 16, 4, true, true},
-    {TexelFormat::Etc2Rgb, "etc2", 8, 3, true, false},
+    {TexelFormat::Etc2Rgb, "etc2", 8, 3, true, true},
     {TexelFormat::Etc2RgbA1, "etc2a1", 8, 4, true, false},
-    {TexelFormat::Etc2Rgba, "etc2a", 16, 4, true, false},
+    {TexelFormat::Etc2Rgba, "etc2a", 16, 4, true, true},
 };
 
 uint64_t le64(const uint8_t* p) {
@@ -277,7 +277,7 @@ TexelFormat parse_encodable_format(const std::string& name) {
     throw Error("unknown --format \"" + name.substr(0, 40) + (name.size() > 40 ? "...\"" : "\"") + " (" +
                 texel_format_names() + ")");
   if (!format_info(f).encoder)
-    throw Error("--format " + name + ": no " + name + " encoder is built in (Debian has none); " + name +
+    throw Error("--format " + name + ": no " + name + " encoder is built in; " + name +
                 " textures come from KTX and KTX2 files, read as they are");
   return f;
 }

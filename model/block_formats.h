@@ -27,13 +27,13 @@ struct FormatInfo {
   int block_bytes;   // bytes per 4x4 block; 0 for RGBA8 (4 bytes per texel)
   int channels;      // channels the format stores (BC4: R; BC5: R, G)
   bool srgb_allowed; // sRGB variants exist (BC1, BC2, BC3, BC7, ETC2, RGBA8)
-  bool encoder;      // --format can make it from an image (libsquish, Mesa); ETC2 comes from files only
+  bool encoder;      // --format can make it from an image (libsquish, Mesa, workloads/etc2_encode.h); not ETC2 RGB8A1
 };
 
 const FormatInfo& format_info(TexelFormat f);
 bool parse_texel_format(const std::string& name, TexelFormat& out);
 // --format's value: a format with an encoder. Throws tex::Error: an unknown name (the names listed),
-// or a format that is read from files only (ETC2: KTX and KTX2).
+// or a format that is read from files only (ETC2 RGB8A1: KTX and KTX2).
 TexelFormat parse_encodable_format(const std::string& name);
 std::string texel_format_names();  // "rgba8 | bc1 | ..." (the formats with an encoder) for --help and errors
 inline bool is_compressed(TexelFormat f) { return f != TexelFormat::Rgba8; }

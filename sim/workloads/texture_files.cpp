@@ -11,6 +11,7 @@
 #include "model/error.h"
 #include "model/pyramid.h"
 #include "model/srgb.h"
+#include "workloads/etc2_encode.h"
 #include "workloads/image_module.h"
 #include "workloads/limits.h"
 #include "workloads/text.h"
@@ -468,6 +469,7 @@ std::vector<uint8_t> compress_level(const Image& img, TexelFormat f) {
   std::vector<uint8_t> rgba(size_t(img.width) * img.height * 4);
   for (size_t i = 0; i < img.texels.size(); ++i)
     for (int c = 0; c < 4; ++c) rgba[i * 4 + size_t(c)] = uint8_t(img.texels[i][size_t(c)]);
+  if (is_etc2(f)) return encode_etc2_level(img, f);  // (ours: Debian packages no ETC2 encoder)
   if (f == TexelFormat::Bc7) {  // Mesa's encoder, in the image module
     const images::Pixels pixels{img.width, img.height, 4, false, std::move(rgba)};
     std::vector<uint8_t> blocks;
@@ -505,8 +507,8 @@ TextureFile read_texture_file(const std::string& path) {
 Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format) {
   if (format == TexelFormat::Rgba8) return pyramid;
   if (!format_info(format).encoder)
-    throw Error(std::string("no ") + format_info(format).name + " encoder is built in (Debian has none) to make the levels "
-                "below level 0: give a file with its whole mip chain");
+    throw Error(std::string("no ") + format_info(format).name + " encoder is built in to make the levels below level 0: "
+                "give a file with its whole mip chain");
   if (pyramid.levels[0].channel_bits != 8) throw Error("--format: block formats hold 8-bit channels");
   pyramid.format = format;
   pyramid.blocks.clear();
