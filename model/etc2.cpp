@@ -24,18 +24,8 @@ int ext5(uint32_t v) { return int(v << 3 | v >> 2); }
 int ext6(uint32_t v) { return int(v << 2 | v >> 4); }
 int ext7(uint32_t v) { return int(v << 1 | v >> 6); }
 
-// ETC1's intensity modifier tables: (a, b) give +a, +b, -a, -b for pixel indices 0..3.
-constexpr int kModifiers[8][2] = {{2, 8}, {5, 17}, {9, 29}, {13, 42}, {18, 60}, {24, 80}, {33, 106}, {47, 183}};
 // The T and H modes' distances.
 constexpr int kDistances[8] = {3, 6, 11, 16, 23, 32, 41, 64};
-// EAC's modifier tables.
-constexpr int kEac[16][8] = {
-    {-3, -6, -9, -15, 2, 5, 8, 14}, {-3, -7, -10, -13, 2, 6, 9, 12}, {-2, -5, -8, -13, 1, 4, 7, 12},
-    {-2, -4, -6, -13, 1, 3, 5, 12}, {-3, -6, -8, -12, 2, 5, 7, 11},  {-3, -7, -9, -11, 2, 6, 8, 10},
-    {-4, -7, -8, -11, 3, 6, 7, 10}, {-3, -5, -8, -11, 2, 4, 7, 10},  {-2, -6, -8, -10, 1, 5, 7, 9},
-    {-2, -5, -8, -10, 1, 4, 7, 9},  {-2, -4, -8, -10, 1, 3, 7, 9},   {-2, -5, -7, -10, 1, 4, 6, 9},
-    {-3, -4, -7, -10, 2, 3, 6, 9},  {-1, -2, -3, -10, 0, 1, 2, 9},   {-4, -6, -8, -9, 3, 5, 7, 8},
-    {-3, -5, -7, -9, 2, 4, 6, 8}};
 
 struct Rgb {
   int r, g, b;
@@ -81,7 +71,7 @@ std::array<uint8_t, 4> etc2_colour_texel(const uint8_t* block, bool punch_throug
                             ext5(uint32_t(int(b) + signed3(bits(w, 42, 40))))}
                       : Rgb{ext5(r), ext5(g), ext5(b)};
       }
-      const int* m = kModifiers[second ? bits(w, 36, 34) : bits(w, 39, 37)];
+      const int* m = kEtcModifiers[second ? bits(w, 36, 34) : bits(w, 39, 37)];
       // RGB8A1 without its opaque bit: index 0 adds nothing (index 2 is transparent, above).
       const int small = punch_through && !(w >> 33 & 1) ? 0 : m[0];
       const int modifier[4] = {small, m[1], -small, -m[1]};
@@ -130,7 +120,7 @@ uint8_t eac_alpha_texel(const uint8_t* block, int i) {
   const uint64_t w = be64(block);
   const int base = int(w >> 56), multiplier = int(w >> 52 & 15), table = int(w >> 48 & 15);
   const int p = 4 * (i % 4) + i / 4;  // (column-major)
-  return clamp255(base + kEac[table][w >> (45 - 3 * p) & 7] * multiplier);
+  return clamp255(base + kEacModifiers[table][w >> (45 - 3 * p) & 7] * multiplier);
 }
 
 }  // namespace tex

@@ -6,20 +6,11 @@
 #include <cmath>
 
 #include "model/error.h"
+#include "model/etc2.h"
 
 namespace tex {
 
 namespace {
-
-// ETC1's modifier pairs and EAC's tables (the decoder's, model/etc2.cpp, as the specification gives them).
-constexpr int kModifiers[8][2] = {{2, 8}, {5, 17}, {9, 29}, {13, 42}, {18, 60}, {24, 80}, {33, 106}, {47, 183}};
-constexpr int kEac[16][8] = {
-    {-3, -6, -9, -15, 2, 5, 8, 14}, {-3, -7, -10, -13, 2, 6, 9, 12}, {-2, -5, -8, -13, 1, 4, 7, 12},
-    {-2, -4, -6, -13, 1, 3, 5, 12}, {-3, -6, -8, -12, 2, 5, 7, 11},  {-3, -7, -9, -11, 2, 6, 8, 10},
-    {-4, -7, -8, -11, 3, 6, 7, 10}, {-3, -5, -8, -11, 2, 4, 7, 10},  {-2, -6, -8, -10, 1, 5, 7, 9},
-    {-2, -5, -8, -10, 1, 4, 7, 9},  {-2, -4, -8, -10, 1, 3, 7, 9},   {-2, -5, -7, -10, 1, 4, 6, 9},
-    {-3, -4, -7, -10, 2, 3, 6, 9},  {-1, -2, -3, -10, 0, 1, 2, 9},   {-4, -6, -8, -9, 3, 5, 7, 8},
-    {-3, -5, -7, -9, 2, 4, 6, 8}};
 
 using Rgb = std::array<int, 3>;
 struct Texels {
@@ -38,7 +29,7 @@ struct SubBlock {
 SubBlock fit(const Texels& t, const std::vector<int>& texels, const Rgb& base) {
   SubBlock best;
   for (int table = 0; table < 8; ++table) {
-    const int mods[4] = {kModifiers[table][0], kModifiers[table][1], -kModifiers[table][0], -kModifiers[table][1]};
+    const int mods[4] = {kEtcModifiers[table][0], kEtcModifiers[table][1], -kEtcModifiers[table][0], -kEtcModifiers[table][1]};
     SubBlock s;
     s.table = table;
     s.error = 0;
@@ -121,7 +112,7 @@ std::array<uint8_t, 8> encode_alpha(const Texels& t) {
         long texel_best = LONG_MAX;
         int index = 0;
         for (int k = 0; k < 8; ++k) {
-          const long d = clamp255(base + kEac[table][k] * multiplier) - t.alpha[size_t(i)];
+          const long d = clamp255(base + kEacModifiers[table][k] * multiplier) - t.alpha[size_t(i)];
           if (d * d < texel_best) texel_best = d * d, index = k;
         }
         error += texel_best;
