@@ -34,7 +34,7 @@ struct ReadAheadSource::Impl {
   std::mutex mutex;
   std::condition_variable changed;
   std::deque<Chunk> ready;
-  bool done = false, stop = false;
+  bool done = false, stop = false, started = false;
   double busy = 0;
   Chunk current;
   size_t at = 0;
@@ -42,8 +42,17 @@ struct ReadAheadSource::Impl {
 
   Impl(RequestSource& source, size_t chunk_size, size_t max_chunks) : inner(source), chunk(chunk_size), depth(max_chunks) {
     worker = std::thread([this] { run(); });
+    // Returns once the worker runs: a thread starting up may hold an allocator lock, and the
+    // SystemC engine forks next (such a lock stays held in the child).
+    std::unique_lock lock(mutex);
+    changed.wait(lock, [this] { return started; });
   }
   void run() {
+    {
+      std::lock_guard lock(mutex);
+      started = true;
+    }
+    changed.notify_all();
     for (;;) {
       std::shared_lock gate(fork_gate());  // (released while it waits)
       Chunk c;

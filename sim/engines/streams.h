@@ -25,7 +25,8 @@ class RequestSource {
 // while they work, and the SystemC engine holds it alone across fork(): no other thread is then
 // inside an allocator, whose lock the child would inherit held forever (glibc's malloc takes its
 // locks around fork itself; GCC 12's AddressSanitizer runtime does not). Such a thread also stays
-// alive until its owner ends it: a thread that ends frees memory too.
+// alive until its owner ends it, and its owner's constructor returns only once it runs: a thread
+// that starts or ends allocates and frees too.
 std::shared_mutex& fork_gate();
 
 // Reads a source ahead in a thread of its own, a chunk at a time, while the caller works on the
