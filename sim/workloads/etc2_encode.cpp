@@ -54,8 +54,10 @@ std::array<uint8_t, 8> encode_colour(const Texels& t) {
   long best_error = LONG_MAX;
   std::array<uint8_t, 8> best{};
   for (int flip = 0; flip < 2; ++flip) {
+    // The half block of texel i (x + 4 y): the lower 4x2 with flip, else the right 2x4.
+    const auto second = [flip](int i) { return flip ? i / 4 >= 2 : i % 4 >= 2; };
     std::vector<int> sub[2];
-    for (int i = 0; i < 16; ++i) sub[flip ? (i / 4 >= 2) : (i % 4 >= 2)].push_back(i);
+    for (int i = 0; i < 16; ++i) sub[second(i)].push_back(i);
     std::array<double, 3> mean[2];
     for (int s = 0; s < 2; ++s)
       for (int c = 0; c < 3; ++c) {
@@ -88,7 +90,7 @@ std::array<uint8_t, 8> encode_colour(const Texels& t) {
       }
       w |= uint64_t(a.table) << 37 | uint64_t(b.table) << 34 | uint64_t(differential) << 33 | uint64_t(flip) << 32;
       for (int i = 0; i < 16; ++i) {
-        const int k = (sub[0].end() != std::find(sub[0].begin(), sub[0].end(), i) ? a : b).index[size_t(i)];
+        const int k = (second(i) ? b : a).index[size_t(i)];
         const int p = 4 * (i % 4) + i / 4;  // (column-major)
         w |= uint64_t(k >> 1) << (16 + p) | uint64_t(k & 1) << p;
       }

@@ -84,10 +84,10 @@ bool read(const std::string& file, const void* data, size_t size, uint64_t max_b
       const uint64_t w = uint64_t(std::max(spec.width, 0)), h = uint64_t(std::max(spec.height, 0)),
                      depth = uint64_t(std::max(spec.depth, 1));
       // (OpenImageIO reads the native values first: up to 4 bytes a channel beside the 8-bit ones)
-      if (ok && tex::decoded_image_bytes(w, h * depth, 4 * std::max(spec.nchannels, 1)) > max_bytes) {
+      const uint64_t needed = tex::decoded_image_bytes(w, h * depth, 4 * std::max(spec.nchannels, 1));
+      if (ok && needed > max_bytes) {
         error = "an image of " + std::to_string(w) + " x " + std::to_string(h) +
-                (depth > 1 ? " x " + std::to_string(depth) : "") + " pixels needs " +
-                tex::memory_words(tex::decoded_image_bytes(w, h * depth, 4 * std::max(spec.nchannels, 1))) +
+                (depth > 1 ? " x " + std::to_string(depth) : "") + " pixels needs " + tex::memory_words(needed) +
                 " once read, more than --max-memory allows (" + tex::memory_words(max_bytes) + ")";
         return false;
       }

@@ -43,8 +43,6 @@ std::string one_line(std::string s) {
   return s;
 }
 
-std::string in_quotes(const std::string& s) { return quote_name(s); }
-
 // Throws unless `path` is a regular file (a directory or a FIFO would hang or confuse the readers).
 void check_regular_file(const std::string& path, const std::string& what) {
   std::error_code ec;
@@ -251,7 +249,7 @@ class ModelLoader {
   static constexpr int kUnknown = -2, kNone = -1;
 
   void skip(unsigned index, const std::string& name, const std::string& why) {
-    if (!mesh_noted_[index]) out_.notes.push_back(path_ + ": mesh " + in_quotes(name) + " skipped: " + why);
+    if (!mesh_noted_[index]) out_.notes.push_back(path_ + ": mesh " + quote_name(name) + " skipped: " + why);
     mesh_noted_[index] = true;
   }
 
@@ -264,7 +262,7 @@ class ModelLoader {
     if (m.mMaterialIndex >= ai_.mNumMaterials) return skip(index, d.name, "no material");
     d.texture = texture_of(m.mMaterialIndex);
     if (d.texture == kNone)
-      return skip(index, d.name, "material " + in_quotes(material_name(m.mMaterialIndex)) +
+      return skip(index, d.name, "material " + quote_name(material_name(m.mMaterialIndex)) +
                                      " has no base-colour or diffuse texture");
     int two_sided = 0;
     ai_.mMaterials[m.mMaterialIndex]->Get(AI_MATKEY_TWOSIDED, two_sided);
@@ -277,9 +275,9 @@ class ModelLoader {
       const aiVector3D& t = m.mTextureCoords[0][i];
       const glm::dvec3 w(world * glm::dvec4(p.x, p.y, p.z, 1.0));
       if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
-        throw Error(path_ + ": mesh " + in_quotes(d.name) + ": vertex " + std::to_string(i) + " has a non-finite position");
+        throw Error(path_ + ": mesh " + quote_name(d.name) + ": vertex " + std::to_string(i) + " has a non-finite position");
       if (!std::isfinite(t.x) || !std::isfinite(t.y))
-        throw Error(path_ + ": mesh " + in_quotes(d.name) + ": vertex " + std::to_string(i) +
+        throw Error(path_ + ": mesh " + quote_name(d.name) + ": vertex " + std::to_string(i) +
                     " has non-finite texture coordinates");
       d.positions.push_back(w);
       d.uvs.emplace_back(t.x, t.y);  // FlipUVs made v = 0 the image's top row
@@ -307,7 +305,7 @@ class ModelLoader {
       const glm::dvec3 w(world * glm::dvec4(p.x, p.y, p.z, 1.0)), wn = normal_matrix * glm::dvec3(n.x, n.y, n.z);
       if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z) || !std::isfinite(wn.x) ||
           !std::isfinite(wn.y) || !std::isfinite(wn.z))
-        throw Error(path_ + ": mesh " + in_quotes(d.name) + ": vertex " + std::to_string(i) + " has a non-finite position or normal");
+        throw Error(path_ + ": mesh " + quote_name(d.name) + ": vertex " + std::to_string(i) + " has a non-finite position or normal");
       d.positions.push_back(w);
       d.uvs.emplace_back(0.0, 0.0);
       d.normals.push_back(wn);
@@ -350,7 +348,7 @@ class ModelLoader {
       mat.Get(AI_MATKEY_GLTF_MAPPINGFILTER_MIN(type, 0), min);
       int uv_set = 0;
       if (mat.Get(AI_MATKEY_UVWSRC(type, 0), uv_set) == AI_SUCCESS && uv_set != 0)
-        out_.notes.push_back(path_ + ": material " + in_quotes(material_name(material)) + " names texture coordinate set " +
+        out_.notes.push_back(path_ + ": material " + quote_name(material_name(material)) + " names texture coordinate set " +
                              std::to_string(uv_set) + "; set 0 is used");
       id = texture(material, name.C_Str(), to_wrap(u), to_wrap(v), mag, min, gltf2_);
       break;
@@ -370,16 +368,16 @@ class ModelLoader {
     if (embedded) {
       t.source = path_ + "#embedded:" + std::to_string(embedded_index);
     } else if (name[0] == '*') {
-      throw Error(path_ + ": material " + in_quotes(t.material) + ": embedded texture " + name + " does not exist");
+      throw Error(path_ + ": material " + quote_name(t.material) + ": embedded texture " + name + " does not exist");
     } else {
       bool by_name = false;
       t.source = resolve_texture(dir_, name, by_name).string();
       if (!fs::exists(t.source))
-        throw Error(path_ + ": material " + in_quotes(t.material) + ": texture file not found: " + t.source +
+        throw Error(path_ + ": material " + quote_name(t.material) + ": texture file not found: " + t.source +
                     " (nor " + fs::path(name).filename().string() + ", case aside, beside the model or in its textures/)");
       if (by_name && std::find(resolved_.begin(), resolved_.end(), name) == resolved_.end()) {
         resolved_.push_back(name);
-        out_.notes.push_back(path_ + ": material " + in_quotes(t.material) + " names texture " + in_quotes(name) +
+        out_.notes.push_back(path_ + ": material " + quote_name(t.material) + " names texture " + quote_name(name) +
                              ", not there as written; found by its name: " + t.source);
       }
     }
@@ -408,7 +406,7 @@ class ModelLoader {
         loaded = model_texture(t.source, std::move(img));
       }
     } catch (const Error& e) {
-      throw Error(path_ + ": material " + in_quotes(t.material) + ": " + e.what());
+      throw Error(path_ + ": material " + quote_name(t.material) + ": " + e.what());
     }
     t.image = std::move(loaded.image);
     t.file_width = loaded.file_width;
@@ -646,7 +644,7 @@ std::vector<ModelPlacement> read_scene_file(const std::string& path) {
 
   if (!j.is_object()) fail("top level", "must be an object {\"models\": [...]}");
   for (const auto& [key, value] : j.items())
-    if (key != "models") fail(in_quotes(key), "unknown key (the scene file has \"models\")");
+    if (key != "models") fail(quote_name(key), "unknown key (the scene file has \"models\")");
   if (!j.contains("models")) fail("\"models\"", "missing");
   const nlohmann::json& list = j["models"];
   if (!list.is_array()) fail("models", "must be a list of models");

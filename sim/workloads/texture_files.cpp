@@ -466,10 +466,10 @@ int squish_flags(TexelFormat f) {
 }
 
 std::vector<uint8_t> compress_level(const Image& img, TexelFormat f) {
+  if (is_etc2(f)) return encode_etc2_level(img, f);  // (ours: Debian packages no ETC2 encoder)
   std::vector<uint8_t> rgba(size_t(img.width) * img.height * 4);
   for (size_t i = 0; i < img.texels.size(); ++i)
     for (int c = 0; c < 4; ++c) rgba[i * 4 + size_t(c)] = uint8_t(img.texels[i][size_t(c)]);
-  if (is_etc2(f)) return encode_etc2_level(img, f);  // (ours: Debian packages no ETC2 encoder)
   if (f == TexelFormat::Bc7) {  // Mesa's encoder, in the image module
     const images::Pixels pixels{img.width, img.height, 4, false, std::move(rgba)};
     std::vector<uint8_t> blocks;

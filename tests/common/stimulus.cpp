@@ -358,8 +358,32 @@ Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed) {
         const int r = int(rng() % 16), mode = r % 8;  // 15: the reserved mode (byte 0 = 0)
         level[i] = r == 15 ? 0 : uint8_t((level[i] << (mode + 1)) | (1 << mode));
       }
+    if (is_etc2(format))
+      for (size_t i = 0; i < level.size(); i += size_t(bytes)) {
+        const size_t block = i / size_t(bytes);
+        const bool punch_through = format == TexelFormat::Etc2RgbA1;
+        set_etc2_mode(rng, &level[i + (format == TexelFormat::Etc2Rgba ? 8 : 0)],
+                      int(block % (punch_through ? 4 : 5)) + (punch_through ? 1 : 0), punch_through, block % 20 == 3);
+      }
   }
   return pyramid_of_blocks(format, size, std::move(blocks));
+}
+
+void set_etc2_mode(std::mt19937_64& rng, uint8_t* c, int mode, bool punch_through, bool tie) {
+  auto set = [&](int byte, int base, int delta) { c[byte] = uint8_t(base << 3 | (delta & 7)); };
+  if (!punch_through) c[3] = uint8_t((c[3] & ~2) | (mode == 0 ? 0 : 2));  // bit 33: differential
+  if (mode == 0) return;
+  for (int byte = 0; byte < 3; ++byte) set(byte, 4 + int(rng() % 24), int(rng() % 8) - 4);  // sums in range
+  if (mode == 2) set(0, 30 + int(rng() % 2), 3);               // R + dR > 31: T
+  if (mode == 3) set(1, int(rng() % 2), -4 + int(rng() % 2));  // G + dG < 0: H
+  if (mode == 4) set(2, 31, 1 + int(rng() % 3));               // B + dB > 31: planar
+  if (mode == 3 && tie) {
+    uint64_t w = 0;
+    for (int i = 0; i < 8; ++i) w = w << 8 | c[i];
+    const uint64_t r1 = w >> 59 & 15, g1 = (w >> 56 & 7) << 1 | (w >> 52 & 1), b1 = (w >> 51 & 1) << 3 | (w >> 47 & 7);
+    w = (w & ~(uint64_t(0xFFF) << 35)) | (r1 << 43 | g1 << 39 | b1 << 35);
+    for (int i = 7; i >= 0; --i, w >>= 8) c[i] = uint8_t(w);
+  }
 }
 
 Stimulus random_stalls(std::mt19937_64& rng, std::string& name) {

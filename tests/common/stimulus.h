@@ -161,8 +161,14 @@ std::vector<Pyramid> random_layers(Extent size, int layers, uint64_t seed);
 // Pointers to each, for BoundTexture and Sampler.
 std::vector<const Pyramid*> pointers_to(const std::vector<Pyramid>& layers);
 // Random blocks of a block format (sides >= 1), every level: each BC7 block in a random one of its
-// 8 modes and 1 in 16 in the reserved mode (decoded to 0).
+// 8 modes and 1 in 16 in the reserved mode (decoded to 0); ETC2 colour blocks in each mode in turn
+// (set_etc2_mode).
 Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed);
+// Sets an ETC2 colour block (8 bytes, random bits otherwise) to `mode` (model/etc2.h Etc2Mode:
+// individual, differential, T, H, planar; the last three are differential blocks whose red, green
+// or blue sum leaves 0..31). RGB8A1 (`punch_through`) has no individual mode: its bit 33 (opaque)
+// is left as it is. `tie`: an H block's two colours made equal (the order bit's tie).
+void set_etc2_mode(std::mt19937_64& rng, uint8_t* colour_block, int mode, bool punch_through, bool tie = false);
 
 // ---------------------------------------------------------------- stall profiles
 // One of: ideal, light, heavy (about 30% of clocks without a gap), long stalls (hundreds of

@@ -26,6 +26,7 @@
 #include "model/etc2.h"
 #include "model/pyramid.h"
 #include "model/srgb.h"
+#include "stimulus.h"
 
 using namespace tex;
 
@@ -136,25 +137,9 @@ std::vector<uint8_t> etc2_blocks(TexelFormat f, uint64_t seed) {
   std::vector<uint8_t> data = random_blocks(f, seed);
   const int bytes = format_info(f).block_bytes;
   std::mt19937_64 rng(seed + 1);
-  for (int k = 0; k < kBlocks; ++k) {
-    uint8_t* c = &data[size_t(k) * bytes + (f == TexelFormat::Etc2Rgba ? 8 : 0)];
-    const int mode = k % 5;
-    auto set = [&](int byte, int base, int delta) { c[byte] = uint8_t(base << 3 | (delta & 7)); };
-    auto in_range = [&](int byte) { set(byte, 4 + int(rng() % 24), int(rng() % 8) - 4); };
-    if (f != TexelFormat::Etc2RgbA1) c[3] = uint8_t((c[3] & ~2) | (mode == 0 ? 0 : 2));  // bit 33: differential
-    if (mode == 0) continue;
-    in_range(0), in_range(1), in_range(2);
-    if (mode == 2) set(0, 30 + int(rng() % 2), 3);           // R + dR > 31: T
-    if (mode == 3) set(1, int(rng() % 2), -4 + int(rng() % 2));  // G + dG < 0: H
-    if (mode == 4) set(2, 31, 1 + int(rng() % 3));            // B + dB > 31: planar
-    if (mode == 3 && k / 5 % 4 == 0) {  // an H block of two equal colours (the order bit's tie)
-      uint64_t w = 0;
-      for (int i = 0; i < 8; ++i) w = w << 8 | c[i];
-      const uint64_t r1 = w >> 59 & 15, g1 = (w >> 56 & 7) << 1 | (w >> 52 & 1), b1 = (w >> 51 & 1) << 3 | (w >> 47 & 7);
-      w = (w & ~(uint64_t(0xFFF) << 35)) | (r1 << 43 | g1 << 39 | b1 << 35);
-      for (int i = 7; i >= 0; --i, w >>= 8) c[i] = uint8_t(w);
-    }
-  }
+  for (int k = 0; k < kBlocks; ++k)
+    stimulus::set_etc2_mode(rng, &data[size_t(k) * bytes + (f == TexelFormat::Etc2Rgba ? 8 : 0)], k % 5,
+                            f == TexelFormat::Etc2RgbA1, k / 5 % 4 == 0);
   return data;
 }
 
