@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "astc.h"
 #include "error.h"
 #include "etc2.h"
 
@@ -10,7 +11,7 @@ namespace tex {
 namespace {
 
 constexpr FormatInfo kFormats[] = {
-    {TexelFormat::Rgba8, "rgba8", 0, 4, true, true},
+    {TexelFormat::Rgba8, "rgba8", 0, 4, true, true, 1, 1},
     {TexelFormat::Bc1, "bc1", 8, 4, true, true},
     {TexelFormat::Bc2, "bc2", 16, 4, true, true},
     {TexelFormat::Bc3, "bc3", 16, 4, true, true},
@@ -20,6 +21,20 @@ constexpr FormatInfo kFormats[] = {
     {TexelFormat::Etc2Rgb, "etc2", 8, 3, true, true},
     {TexelFormat::Etc2RgbA1, "etc2a1", 8, 4, true, false},
     {TexelFormat::Etc2Rgba, "etc2a", 16, 4, true, true},
+    {TexelFormat::Astc4x4, "astc4x4", 16, 4, true, true, 4, 4},
+    {TexelFormat::Astc5x4, "astc5x4", 16, 4, true, true, 5, 4},
+    {TexelFormat::Astc5x5, "astc5x5", 16, 4, true, true, 5, 5},
+    {TexelFormat::Astc6x5, "astc6x5", 16, 4, true, true, 6, 5},
+    {TexelFormat::Astc6x6, "astc6x6", 16, 4, true, true, 6, 6},
+    {TexelFormat::Astc8x5, "astc8x5", 16, 4, true, true, 8, 5},
+    {TexelFormat::Astc8x6, "astc8x6", 16, 4, true, true, 8, 6},
+    {TexelFormat::Astc8x8, "astc8x8", 16, 4, true, true, 8, 8},
+    {TexelFormat::Astc10x5, "astc10x5", 16, 4, true, true, 10, 5},
+    {TexelFormat::Astc10x6, "astc10x6", 16, 4, true, true, 10, 6},
+    {TexelFormat::Astc10x8, "astc10x8", 16, 4, true, true, 10, 8},
+    {TexelFormat::Astc10x10, "astc10x10", 16, 4, true, true, 10, 10},
+    {TexelFormat::Astc12x10, "astc12x10", 16, 4, true, true, 12, 10},
+    {TexelFormat::Astc12x12, "astc12x12", 16, 4, true, true, 12, 12},
 };
 
 uint64_t le64(const uint8_t* p) {
@@ -289,7 +304,11 @@ std::string texel_format_names() {
   return s;
 }
 
-Rgba8 decode_texel(TexelFormat f, const uint8_t* block, int i) {
+Rgba8 decode_texel(TexelFormat f, const uint8_t* block, int i, bool srgb) {
+  if (is_astc(f)) {
+    const FormatInfo& info = format_info(f);
+    return astc_unorm8(astc_texel16(block, info.block_w, info.block_h, srgb, i % info.block_w, i / info.block_w));
+  }
   switch (f) {
     case TexelFormat::Bc1: return colour_palette(block, true)[size_t(colour_index(block, i))];
     case TexelFormat::Bc2: {
@@ -314,38 +333,45 @@ Rgba8 decode_texel(TexelFormat f, const uint8_t* block, int i) {
       t[3] = eac_alpha_texel(block, i);
       return t;
     }
-    case TexelFormat::Rgba8: break;
+    default: break;
   }
   throw Error("decode_texel: " + std::string(format_info(f).name) + " is not a block format");
 }
 
-std::array<Rgba8, 16> decode_block(TexelFormat f, const uint8_t* block) {
-  std::array<Rgba8, 16> out;
+void decode_block(TexelFormat f, const uint8_t* block, Rgba8* out, bool srgb) {
   if (f == TexelFormat::Bc7) {
     const Bc7Block b = unpack_bc7(block);
-    for (int i = 0; i < 16; ++i) out[size_t(i)] = bc7_texel(b, i);
+    for (int i = 0; i < 16; ++i) out[i] = bc7_texel(b, i);
+  } else if (is_astc(f)) {
+    const FormatInfo& info = format_info(f);
+    AstcTexel16 c[kMaxBlockTexels];
+    astc_block16(block, info.block_w, info.block_h, srgb, c);
+    for (int i = 0; i < info.block_w * info.block_h; ++i) out[i] = astc_unorm8(c[i]);
   } else {
-    for (int i = 0; i < 16; ++i) out[size_t(i)] = decode_texel(f, block, i);
+    for (int i = 0; i < 16; ++i) out[i] = decode_texel(f, block, i);
   }
-  return out;
 }
 
 uint64_t level_bytes(TexelFormat f, int width, int height) {
   const FormatInfo& info = format_info(f);
   if (!info.block_bytes) return uint64_t(width) * uint64_t(height) * 4;
-  return uint64_t((width + 3) / 4) * uint64_t((height + 3) / 4) * uint64_t(info.block_bytes);
+  return uint64_t((width + info.block_w - 1) / info.block_w) * uint64_t((height + info.block_h - 1) / info.block_h) *
+         uint64_t(info.block_bytes);
 }
 
-Image decode_level(TexelFormat f, const uint8_t* blocks, int width, int height) {
+Image decode_level(TexelFormat f, const uint8_t* blocks, int width, int height, bool srgb) {
   Image img(width, height, 8);
-  const int bw = (width + 3) / 4, bh = (height + 3) / 4, bytes = format_info(f).block_bytes;
+  const FormatInfo& info = format_info(f);
+  const int fw = info.block_w, fh = info.block_h;
+  const int bw = (width + fw - 1) / fw, bh = (height + fh - 1) / fh;
+  Rgba8 t[kMaxBlockTexels];
   for (int by = 0; by < bh; ++by)
     for (int bx = 0; bx < bw; ++bx) {
-      const std::array<Rgba8, 16> t = decode_block(f, blocks + (size_t(by) * bw + bx) * size_t(bytes));
-      for (int i = 0; i < 16; ++i) {
-        const int x = bx * 4 + i % 4, y = by * 4 + i / 4;
+      decode_block(f, blocks + (size_t(by) * size_t(bw) + size_t(bx)) * size_t(info.block_bytes), t, srgb);
+      for (int i = 0; i < fw * fh; ++i) {
+        const int x = bx * fw + i % fw, y = by * fh + i / fw;
         if (x < width && y < height)
-          for (int c = 0; c < 4; ++c) img.at(x, y)[size_t(c)] = t[size_t(i)][size_t(c)];
+          for (int c = 0; c < 4; ++c) img.at(x, y)[size_t(c)] = t[i][size_t(c)];
       }
     }
   return img;

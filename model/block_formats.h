@@ -1,6 +1,7 @@
-// Texel formats of a texture in memory: RGBA8 and the block-compressed formats BC1-BC5, BC7 and
-// ETC2 (Khronos Data Format Specification, "S3TC", "BPTC" and "ETC2"; D3D and GL names). A compressed level is a
-// row-major array of 4x4 blocks of 8 or 16 bytes. The decoders here are the bit-level
+// Texel formats of a texture in memory: RGBA8 and the block-compressed formats BC1-BC5, BC7, ETC2
+// and ASTC (Khronos Data Format Specification, "S3TC", "BPTC", "ETC2" and "ASTC"; D3D and GL names).
+// A compressed level is a row-major array of blocks of 8 or 16 bytes, each 4x4 texels (ASTC: its
+// footprint, 4x4 .. 12x12), the last column and row cut by the level's edge. The decoders here are the bit-level
 // specification of the hardware's (docs/numerics.md, "Block-compressed formats"): every rounding
 // is stated, and independent decoders (libsquish, OpenImageIO, Mesa) check them
 // (tests/sim/test_block_formats_reference.cpp).
@@ -15,20 +16,27 @@
 namespace tex {
 
 // ETC2 (model/etc2.h): Etc2Rgb is ETC2 RGB8 (and ETC1), Etc2RgbA1 ETC2 RGB8 with punch-through
-// alpha, Etc2Rgba ETC2 RGBA8 (an EAC alpha block, then the colour block). The model and its
-// engines sample them; the RTL's decoders are BC1-BC5 and BC7 (rtl::check_inputs refuses them).
+// alpha, Etc2Rgba ETC2 RGBA8 (an EAC alpha block, then the colour block).
+// ASTC LDR (model/astc.h): one format per footprint, codes 16 + the footprint's index in
+// kAstcFootprints. The model and its engines sample them; the RTL has no ASTC decoder yet
+// (rtl::check_inputs refuses them).
 enum class TexelFormat : uint8_t {
-  Rgba8 = 0, Bc1 = 1, Bc2 = 2, Bc3 = 3, Bc4 = 4, Bc5 = 5, Bc7 = 7, Etc2Rgb = 8, Etc2RgbA1 = 9, Etc2Rgba = 10
+  Rgba8 = 0, Bc1 = 1, Bc2 = 2, Bc3 = 3, Bc4 = 4, Bc5 = 5, Bc7 = 7, Etc2Rgb = 8, Etc2RgbA1 = 9, Etc2Rgba = 10,
+  Astc4x4 = 16, Astc5x4, Astc5x5, Astc6x5, Astc6x6, Astc8x5, Astc8x6, Astc8x8, Astc10x5, Astc10x6, Astc10x8,
+  Astc10x10, Astc12x10, Astc12x12 = 29
 };
 
 struct FormatInfo {
   TexelFormat format;
   const char* name;  // as the CLI takes it: rgba8, bc1, ...
-  int block_bytes;   // bytes per 4x4 block; 0 for RGBA8 (4 bytes per texel)
+  int block_bytes;   // bytes per block; 0 for RGBA8 (4 bytes per texel)
   int channels;      // channels the format stores (BC4: R; BC5: R, G)
-  bool srgb_allowed; // sRGB variants exist (BC1, BC2, BC3, BC7, ETC2, RGBA8)
-  bool encoder;      // --format can make it from an image (libsquish, Mesa, workloads/etc2_encode.h); not ETC2 RGB8A1
+  bool srgb_allowed; // sRGB variants exist (BC1, BC2, BC3, BC7, ETC2, ASTC, RGBA8)
+  bool encoder;      // --format can make it from an image (libsquish, Mesa, workloads/etc2_encode.h,
+                     // astcenc); not ETC2 RGB8A1
+  int block_w = 4, block_h = 4;  // texels a block covers (RGBA8: 1 x 1)
 };
+constexpr int kMaxBlockTexels = 144;  // ASTC 12x12
 
 const FormatInfo& format_info(TexelFormat f);
 bool parse_texel_format(const std::string& name, TexelFormat& out);
@@ -37,18 +45,20 @@ bool parse_texel_format(const std::string& name, TexelFormat& out);
 TexelFormat parse_encodable_format(const std::string& name);
 std::string texel_format_names();  // "rgba8 | bc1 | ..." (the formats with an encoder) for --help and errors
 inline bool is_compressed(TexelFormat f) { return f != TexelFormat::Rgba8; }
-inline bool is_etc2(TexelFormat f) { return f >= TexelFormat::Etc2Rgb; }
+inline bool is_etc2(TexelFormat f) { return f >= TexelFormat::Etc2Rgb && f <= TexelFormat::Etc2Rgba; }
+inline bool is_astc(TexelFormat f) { return f >= TexelFormat::Astc4x4; }
 
 using Rgba8 = std::array<uint8_t, 4>;
 
-// Texel i (x + 4 y) of one block. BC4 decodes to (R, 0, 0, 255) and BC5 to (R, G, 0, 255), as GL
+// Texel i (x + block_w y) of one block. BC4 decodes to (R, 0, 0, 255) and BC5 to (R, G, 0, 255), as GL
 // returns RED and RG textures. A BC7 block with the reserved mode 8 (low byte 0) decodes to
-// (0, 0, 0, 0), as D3D11 specifies.
-Rgba8 decode_texel(TexelFormat f, const uint8_t* block, int i);
-// All 16 texels of one block (the same values as decode_texel, faster).
-std::array<Rgba8, 16> decode_block(TexelFormat f, const uint8_t* block);
-// A level of blocks (row-major, ceil(w/4) x ceil(h/4) blocks) as an 8-bit image of w x h texels.
-Image decode_level(TexelFormat f, const uint8_t* blocks, int width, int height);
+// (0, 0, 0, 0), as D3D11 specifies. `srgb`: the texture is sRGB, which changes how ASTC expands its
+// endpoints (model/astc.h; the other formats decode the same codes either way).
+Rgba8 decode_texel(TexelFormat f, const uint8_t* block, int i, bool srgb = false);
+// All block_w x block_h texels of one block into `out`, row-major (the values of decode_texel, faster).
+void decode_block(TexelFormat f, const uint8_t* block, Rgba8* out, bool srgb = false);
+// A level of blocks (row-major, ceil(w/block_w) x ceil(h/block_h) blocks) as an 8-bit image of w x h texels.
+Image decode_level(TexelFormat f, const uint8_t* blocks, int width, int height, bool srgb = false);
 // Bytes of a level of w x h texels in format f.
 uint64_t level_bytes(TexelFormat f, int width, int height);
 

@@ -79,6 +79,10 @@ Pyramid build_srgb_pyramid(const Image& level0, PyramidMode mode) {
 void decode_srgb_levels(Pyramid& pyramid) {
   pyramid.srgb = true;
   if (!is_compressed(pyramid.format)) pyramid.codes = pyramid.levels;
+  if (is_astc(pyramid.format))  // ASTC's sRGB mode decodes other codes (model/astc.h)
+    for (size_t k = 0; k < pyramid.levels.size(); ++k)
+      pyramid.levels[k] = decode_level(pyramid.format, pyramid.blocks[k].data(), pyramid.levels[k].width,
+                                       pyramid.levels[k].height, true);
   for (Image& level : pyramid.levels) level = decode_srgb_level(level);
 }
 

@@ -11,6 +11,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libassimp-dev libglm-dev assimp-testmodels  # 3D models (render --model), vector math, the test models
   libsquish-dev                          # BC1-BC5 encoder (--format) and reference decoder (tests)
+  libastcenc-dev                         # ASTC encoder (--format astc*) and reference decoder (tests)
   libosmesa6-dev libglu1-mesa-dev        # OpenGL (Mesa) as the reference of real frames (tests)
   verilator zlib1g-dev                   # RTL simulation (FST traces need zlib)
   libsystemc-dev                         # SystemC/TLM-2.0 wrapper

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "model/astc.h"
 #include "model/block_formats.h"
 
 namespace tex::stimulus {
@@ -365,8 +366,42 @@ Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed) {
         set_etc2_mode(rng, &level[i + (format == TexelFormat::Etc2Rgba ? 8 : 0)],
                       int(block % (punch_through ? 4 : 5)) + (punch_through ? 1 : 0), punch_through, block % 20 == 3);
       }
+    if (is_astc(format))
+      for (size_t i = 0; i < level.size(); i += size_t(bytes))
+        random_astc_block(rng, format_info(format).block_w, format_info(format).block_h, &level[i]);
   }
   return pyramid_of_blocks(format, size, std::move(blocks));
+}
+
+void random_astc_block(std::mt19937_64& rng, int fw, int fh, uint8_t* block) {
+  auto fill = [&]() {
+    for (int i = 0; i < 16; ++i) block[i] = uint8_t(rng());
+  };
+  fill();
+  const int kind = int(rng() % 16);
+  if (kind == 0) {  // void extent: bits 8..0 = 1 1111 1100, bit 9 LDR, bits 10, 11 set
+    block[0] = 0xFC;
+    block[1] = uint8_t((block[1] & 0xF0) | 0x0D);
+    const int variant = int(rng() % 16);
+    if (variant < 8) {  // no extent: all coordinates ones
+      block[1] |= 0xF0;
+      for (int i = 2; i < 8; ++i) block[i] = 0xFF;
+    } else if (variant < 12) {  // an extent: s0 < s1, t0 < t1 (13 bits each from bit 12)
+      uint64_t w = 0;
+      for (int i = 7; i >= 0; --i) w = w << 8 | block[i];
+      const uint64_t s0 = rng() % 4096, s1 = s0 + 1 + rng() % (8191 - s0), t0 = rng() % 4096,
+                     t1 = t0 + 1 + rng() % (8191 - t0);
+      w = (w & 0xFFF) | s0 << 12 | s1 << 25 | t0 << 38 | t1 << 51;
+      for (int i = 0; i < 8; ++i, w >>= 8) block[i] = uint8_t(w);
+    } else if (variant == 12) {
+      block[1] |= 0x02;  // HDR
+    } else if (variant == 13) {
+      block[1] &= uint8_t(~(4 << int(rng() % 2)));  // a reserved bit cleared
+    }  // else: random coordinates, mostly an empty extent
+    return;
+  }
+  if (kind == 1) return;  // random bits
+  for (int tries = 0; tries < 256 && astc_mode_of(block, fw, fh).error; ++tries) fill();
 }
 
 void set_etc2_mode(std::mt19937_64& rng, uint8_t* c, int mode, bool punch_through, bool tie) {

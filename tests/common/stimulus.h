@@ -162,13 +162,19 @@ std::vector<Pyramid> random_layers(Extent size, int layers, uint64_t seed);
 std::vector<const Pyramid*> pointers_to(const std::vector<Pyramid>& layers);
 // Random blocks of a block format (sides >= 1), every level: each BC7 block in a random one of its
 // 8 modes and 1 in 16 in the reserved mode (decoded to 0); ETC2 colour blocks in each mode in turn
-// (set_etc2_mode).
+// (set_etc2_mode); ASTC blocks of random_astc_block.
 Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed);
 // Sets an ETC2 colour block (8 bytes, random bits otherwise) to `mode` (model/etc2.h Etc2Mode:
 // individual, differential, T, H, planar; the last three are differential blocks whose red, green
 // or blue sum leaves 0..31). RGB8A1 (`punch_through`) has no individual mode: its bit 33 (opaque)
 // is left as it is. `tie`: an H block's two colours made equal (the order bit's tie).
 void set_etc2_mode(std::mt19937_64& rng, uint8_t* colour_block, int mode, bool punch_through, bool tie = false);
+// A random ASTC block (16 bytes) for a footprint fw x fh: 1 in 16 a void-extent block (a quarter of
+// those with an HDR flag, a reserved bit cleared or an empty extent: the error colour), 1 in 16
+// random bits (mostly illegal), the others random bits redrawn until they make a legal block (every
+// block mode, partition count, endpoint mode and range the footprint allows, in proportion to
+// their encodings).
+void random_astc_block(std::mt19937_64& rng, int fw, int fh, uint8_t* block);
 
 // ---------------------------------------------------------------- stall profiles
 // One of: ideal, light, heavy (about 30% of clocks without a gap), long stalls (hundreds of

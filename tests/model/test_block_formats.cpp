@@ -8,6 +8,7 @@
 #include <random>
 #include <set>
 
+#include "model/astc.h"
 #include "model/block_formats.h"
 
 using namespace tex;
@@ -191,8 +192,9 @@ TEST(BlockFormats, BlockAndTexelDecodersAgree) {
       uint8_t b[16];
       for (uint8_t& x : b) x = uint8_t(rng());
       if (f == TexelFormat::Bc7) b[0] = uint8_t((b[0] << (k % 8 + 1)) | (1 << (k % 8)));
-      const std::array<Rgba8, 16> all = decode_block(f, b);
-      for (int i = 0; i < 16; ++i) ASSERT_EQ(all[size_t(i)], decode_texel(f, b, i)) << format_info(f).name;
+      Rgba8 all[16];
+      decode_block(f, b, all);
+      for (int i = 0; i < 16; ++i) ASSERT_EQ(all[i], decode_texel(f, b, i)) << format_info(f).name;
       if (f == TexelFormat::Bc7) {
         const Bc7Mode m = bc7_mode_of(b);
         ASSERT_EQ(m.mode, k % 8);
@@ -212,4 +214,47 @@ TEST(BlockFormats, LevelsSmallerThanABlockUseItsTopLeft) {
   EXPECT_EQ(level_bytes(TexelFormat::Bc1, 2, 1), 8u);
   EXPECT_EQ(level_bytes(TexelFormat::Bc7, 16, 8), 128u);
   EXPECT_EQ(level_bytes(TexelFormat::Rgba8, 16, 8), 512u);
+}
+
+// ASTC by hand (model/astc.h; astcenc checks every mode in tests/sim/test_astc_reference.cpp).
+TEST(BlockFormats, AstcVoidExtentAndErrorColour) {
+  // A void-extent LDR block without an extent: bits 8..0 = 1 1111 1100, bits 10..11 set, the
+  // coordinates all ones, then R, G, B, A as 16-bit values.
+  uint8_t b[16] = {0xFC, 0xFD, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x34, 0x12, 0xFF, 0x80, 0x00, 0x00, 0xFF, 0xFF};
+  for (TexelFormat f : {TexelFormat::Astc4x4, TexelFormat::Astc12x12})
+    for (bool srgb : {false, true}) EXPECT_EQ(decode_texel(f, b, 5, srgb), (Rgba8{0x12, 0x80, 0x00, 0xFF}));
+  EXPECT_TRUE(astc_mode_of(b, 4, 4).void_extent);
+  b[1] = 0xFF;  // bit 9: an HDR void extent, the error colour in the LDR profile
+  EXPECT_EQ(decode_texel(TexelFormat::Astc6x6, b, 0), (Rgba8{255, 0, 255, 255}));
+  b[1] = 0xF9;  // bit 10 clear: reserved
+  EXPECT_EQ(decode_texel(TexelFormat::Astc6x6, b, 0), (Rgba8{255, 0, 255, 255}));
+  const uint8_t reserved[16] = {};  // block mode bits 3..0 all 0: reserved
+  EXPECT_TRUE(astc_mode_of(reserved, 8, 8).error);
+  EXPECT_EQ(decode_texel(TexelFormat::Astc8x8, reserved, 63), (Rgba8{255, 0, 255, 255}));
+}
+
+TEST(BlockFormats, AstcSrgbExpandsEndpointsBelowTheCode) {
+  // One partition, CEM 0 (luminance direct), a 2x2 grid of 1-bit weights... built from the fields:
+  // block mode 0x042: bits 1..0 = 10 (rho 1..2), bits 3..2 = 00: grid (bits 8..7 + 4) x (bits 6..5
+  // + 2) = 4 x 4 with rho = bit 4 | bits 1..0 << 1 = 4 (0..3, 2 bits): 32 weight bits.
+  // Endpoints: 8-bit values from bit 17 (range 0..255: 2 values x 8 bits fit the 79 bits left).
+  uint8_t b[16] = {};
+  b[0] = 0x42;                 // block mode 0x042, partitions 1 (bits 12..11 = 0)
+  const int v0 = 10, v1 = 200;  // bits 17..24 and 25..32
+  b[2] = uint8_t(v0 << 1);
+  b[3] = uint8_t(v0 >> 7 | v1 << 1);
+  b[4] = uint8_t(v1 >> 7);
+  // Weights from bit 127 down: the first weight (texel 0) = 1 of 0..3, which unquantizes to 21.
+  b[15] = 0x80;                // bit 127 set: weight 0's stream bits are bits 127, 126: value 01 reversed
+  const AstcMode m = astc_mode_of(b, 4, 4);
+  ASSERT_FALSE(m.error);
+  ASSERT_EQ(m.grid_w, 4);
+  ASSERT_EQ(m.weight_levels, 4);
+  ASSERT_EQ(m.colour_levels, 256);
+  // Texel 0: i = 21; linear C = (0x0A0A * 43 + 0xC8C8 * 21 + 32) >> 6, sRGB C = (0x0A80 * 43 + 0xC880 * 21 + 32) >> 6.
+  const int lin = (0x0A0A * 43 + 0xC8C8 * 21 + 32) >> 6, srgb = (0x0A80 * 43 + 0xC880 * 21 + 32) >> 6;
+  EXPECT_EQ(astc_texel16(b, 4, 4, false, 0, 0)[0], lin);
+  EXPECT_EQ(astc_texel16(b, 4, 4, true, 0, 0)[0], srgb);
+  EXPECT_EQ(decode_texel(TexelFormat::Astc4x4, b, 0)[0], lin >> 8);
+  EXPECT_EQ(decode_texel(TexelFormat::Astc4x4, b, 1)[0], 10);  // weight 0: the first endpoint
 }
