@@ -55,13 +55,17 @@ MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& p
   if (channel_bits < 1 || channel_bits > kMaxChannelBits)
     throw Error("channel width " + std::to_string(channel_bits) + " bits: must be 1 to " +
                 std::to_string(kMaxChannelBits));
-  log2_bw_ = log2_of_side(params.block_w, "width");
-  log2_bh_ = log2_of_side(params.block_h, "height");
+  log2_lbx_ = log2_of_side(params.block_w, "width");
+  log2_lby_ = log2_of_side(params.block_h, "height");
   texel_bytes_ = channel_bits > 8 ? 8 : 4;
   line_bytes_ = params.block_w * params.block_h * texel_bytes_;
   if (is_compressed(format)) {
-    // Whole 4x4 blocks per line, as 2^a x 2^b blocks with a = b or b + 1 (wider than tall).
+    // Whole blocks per line, as 2^a x 2^b blocks with a = b or b + 1 (wider than tall).
     block_bytes_ = format_info(format).block_bytes;
+    fw_ = format_info(format).block_w;
+    fh_ = format_info(format).block_h;
+    recip_w_ = ((uint64_t(1) << 32) + uint64_t(fw_) - 1) / uint64_t(fw_);
+    recip_h_ = ((uint64_t(1) << 32) + uint64_t(fh_) - 1) / uint64_t(fh_);
     if (channel_bits != 8)
       throw Error(std::string(format_info(format).name) + " holds 8-bit channels, not " + std::to_string(channel_bits));
     if (line_bytes_ < block_bytes_)
@@ -69,28 +73,34 @@ MemoryLayout::MemoryLayout(Extent size0, int channel_bits, const LayoutParams& p
                   std::to_string(params.block_h) + ") cannot hold a " + std::to_string(block_bytes_) + "-byte " +
                   format_info(format).name + " block");
     const int log2_blocks = log2_exact(line_bytes_ / block_bytes_);
-    log2_bw_ = 2 + (log2_blocks + 1) / 2;
-    log2_bh_ = 2 + log2_blocks / 2;
+    log2_lbx_ = (log2_blocks + 1) / 2;
+    log2_lby_ = log2_blocks / 2;
   }
   if (params.base % uint32_t(line_bytes_) != 0)
     throw Error("memory base address " + std::to_string(params.base) + " is not a multiple of the " +
                 std::to_string(line_bytes_) + "-byte line");
-  // The seam copy's index along a side n: none for a power of two, else n (texels) or n rounded up
-  // to the 4x4 block (a block format), and the texels a level row then spans.
-  const uint32_t seam_align = block_bytes_ ? 4 : 1;
-  // A cube face: its skirt on both sides and no seam copy.
-  auto seam_of = [&](int n) {
-    return cube || is_power_of_two(n) ? 0u : (uint32_t(n) + seam_align - 1) / seam_align * seam_align;
+  // The seam copy's index along a side n: n (texels) or n rounded up to the block (a block format:
+  // fw across, fh down), and the texels a level row then spans. A side has one where the repeat
+  // seam's pair (n - 1, 0) would otherwise read two blocks of one parity: a side that is not a power
+  // of two, or one longer than a block that the block does not divide (ASTC 5, 6, 10, 12: 32 texels
+  // of 6x6 blocks end in block column 5, of parity 0 as block column 0's). A cube face: its skirt on
+  // both sides and no seam copy.
+  auto has_seam = [&](int n, uint32_t align) {
+    return !cube && (!is_power_of_two(n) || (uint32_t(n) > align && uint32_t(n) % align != 0));
   };
-  auto span_of = [&](int n) { return cube ? uint32_t(n) + 2 : is_power_of_two(n) ? uint32_t(n) : seam_of(n) + seam_align; };
+  auto seam_of = [&](int n, uint32_t align) { return has_seam(n, align) ? (uint32_t(n) + align - 1) / align * align : 0u; };
+  auto span_of = [&](int n, uint32_t align) {
+    return cube ? uint32_t(n) + 2 : has_seam(n, align) ? seam_of(n, align) + align : uint32_t(n);
+  };
+  const uint32_t line_w = uint32_t(block_w()), line_h = uint32_t(block_h());
   uint64_t at = params.base;
   for (int k = 0; k < levels; ++k) {
     Level l;
     l.size = level_extent(size0, k);
-    l.seam_x = seam_of(l.size.w);
-    l.seam_y = seam_of(l.size.h);
-    l.nbx = std::max(1u, (span_of(l.size.w) + (1u << log2_bw_) - 1) >> log2_bw_);
-    l.nby = std::max(1u, (span_of(l.size.h) + (1u << log2_bh_) - 1) >> log2_bh_);
+    l.seam_x = seam_of(l.size.w, uint32_t(fw_));
+    l.seam_y = seam_of(l.size.h, uint32_t(fh_));
+    l.nbx = std::max(1u, (span_of(l.size.w, uint32_t(fw_)) + line_w - 1) / line_w);
+    l.nby = std::max(1u, (span_of(l.size.h, uint32_t(fh_)) + line_h - 1) / line_h);
     l.log2_bx = log2_ceil(int(l.nbx));
     l.log2_by = log2_ceil(int(l.nby));
     l.base = uint32_t(at);
@@ -149,7 +159,7 @@ bool MemoryLayout::locate_line(uint32_t address, int& layer, int& level, uint32_
 
 bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
                  const std::function<void(int layer, int level, int x, int y, const Texel& t)>& texel,
-                 bool seam_copies) {
+                 bool seam_copies, bool srgb) {
   int layer = 0, level = 0;
   uint32_t bx = 0, by = 0;
   if (!layout.locate_line(address, layer, level, bx, by)) return false;
@@ -157,9 +167,11 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
   const uint32_t w = uint32_t(layout.level_size(level).w), h = uint32_t(layout.level_size(level).h);
   const bool blocks = is_compressed(layout.format());
   // A stored column (row) past the side: the seam copy's (of column 0 .. align - 1) or padding.
-  const uint32_t align = blocks ? 4 : 1, seam_x = layout.seam_x(level), seam_y = layout.seam_y(level);
+  const FormatInfo& info = format_info(layout.format());
+  const uint32_t align_x = blocks ? uint32_t(info.block_w) : 1, align_y = blocks ? uint32_t(info.block_h) : 1;
+  const uint32_t seam_x = layout.seam_x(level), seam_y = layout.seam_y(level);
   const bool cube = layout.kind() == TextureKind::Cube;
-  auto original = [&](uint32_t i, uint32_t n, uint32_t seam, uint32_t& o) {
+  auto original = [&](uint32_t i, uint32_t n, uint32_t seam, uint32_t align, uint32_t& o) {
     if (cube) {  // the face at 1..n; the skirt (0, n + 1) holds copies
       o = i - 1;
       return i >= 1 && i <= n;
@@ -173,11 +185,11 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
     for (int tx = 0; tx < bw; ++tx) {
       const uint32_t x = bx * uint32_t(bw) + uint32_t(tx), y = by * uint32_t(bh) + uint32_t(ty);
       uint32_t ox = 0, oy = 0;
-      if (!original(x, w, seam_x, ox) || !original(y, h, seam_y, oy)) continue;  // padding (and seam copies)
+      if (!original(x, w, seam_x, align_x, ox) || !original(y, h, seam_y, align_y, oy)) continue;  // padding (and seam copies)
       const uint8_t* at = line + layout.texel_offset(x, y);
       Texel t{};
       if (blocks) {
-        const Rgba8 d = decode_texel(layout.format(), at, int((x & 3) + 4 * (y & 3)));
+        const Rgba8 d = decode_texel(layout.format(), at, layout.texel_in_block(x, y), srgb);
         for (size_t c = 0; c < 4; ++c) t[c] = d[c];
       } else {
         for (size_t c = 0; c < 4; ++c) t[c] = tb == 4 ? at[c] : uint16_t(at[2 * c] | at[2 * c + 1] << 8);
@@ -243,14 +255,16 @@ std::vector<uint8_t> build_memory_image(const std::vector<const Pyramid*>& layer
       with_seam_copies(int(x), int(y), int(layout.seam_x(k)), int(layout.seam_y(k)),
                        [&](int sx, int sy) { put(uint32_t(sx), uint32_t(sy)); });
     };
-    if (is_compressed(layout.format())) {  // each 4x4 block where its top-left texel goes
-      const size_t bytes = size_t(format_info(layout.format()).block_bytes);
+    if (is_compressed(layout.format())) {  // each block where its top-left texel goes
+      const FormatInfo& info = format_info(layout.format());
+      const size_t bytes = size_t(info.block_bytes);
+      const int fw = info.block_w, fh = info.block_h;
       for (int k = 0; k < layout.levels(); ++k) {
         const Image& img = pyramid.levels[size_t(k)];
-        const int nbx = (img.width + 3) / 4, nby = (img.height + 3) / 4;
+        const int nbx = (img.width + fw - 1) / fw, nby = (img.height + fh - 1) / fh;
         for (int by = 0; by < nby; ++by)
           for (int bx = 0; bx < nbx; ++bx)
-            each_place(k, uint32_t(bx) * 4, uint32_t(by) * 4, [&](uint32_t x, uint32_t y) {
+            each_place(k, uint32_t(bx * fw), uint32_t(by * fh), [&](uint32_t x, uint32_t y) {
               std::copy_n(&pyramid.blocks[size_t(k)][(size_t(by) * size_t(nbx) + size_t(bx)) * bytes], bytes,
                           &image[layout.line_address(k, x, y, layer) - base + layout.texel_offset(x, y)]);
             });

@@ -2,9 +2,11 @@
 // one block per cache line, blocks in row-major or Morton order, levels one after another from a
 // base address. A level side that is not a power of two carries the repeat seam's copy of texel
 // column (row) 0 after its last one (seam_x: at the side itself, or for a block format a whole
-// 4x4-block column at the side rounded up to 4). The model builds the memory image the cached RTL reads. A block-compressed texture
-// (model/block_formats.h) has lines of the same bytes, holding whole 4x4 blocks: a BC1 line of 64
-// bytes holds 4 x 2 blocks (16 x 8 texels), a BC7 line 2 x 2 blocks (8 x 8 texels).
+// block column at the side rounded up to the format's block). The model builds the memory image the
+// cached RTL reads. A block-compressed texture (model/block_formats.h) has lines of the same bytes,
+// holding whole blocks, 2^a x 2^b of them: a BC1 line of 64 bytes holds 4 x 2 blocks (16 x 8
+// texels), a BC7 line 2 x 2 blocks (8 x 8 texels), an ASTC 6x6 line 2 x 2 blocks (12 x 12 texels:
+// a line's texels need not be a power of two; the block of texel x is x / 6).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -64,18 +66,21 @@ class MemoryLayout {
   int texel_bytes() const { return texel_bytes_; }    // RGBA: 4 (channels <= 8 bits) or 8
   int line_bytes() const { return line_bytes_; }      // params' block_w * block_h * texel_bytes
   // Texels per line in this format (RGBA: the params' block; a block format: its blocks' texels).
-  int block_w() const { return 1 << log2_bw_; }
-  int block_h() const { return 1 << log2_bh_; }
-  int log2_block_w() const { return log2_bw_; }
-  int log2_block_h() const { return log2_bh_; }
+  int block_w() const { return fw_ << log2_lbx_; }
+  int block_h() const { return fh_ << log2_lby_; }
+  // The line column (row) of stored texel column x (row y): x / block_w(). A block format's
+  // footprint need not be a power of two (ASTC 5, 6, 10, 12): x / fw is a multiply by the footprint's
+  // reciprocal, exact for every x below 2^16 (a hardware constant multiplier).
+  uint32_t line_x(uint32_t x) const { return block_column(x) >> log2_lbx_; }
+  uint32_t line_y(uint32_t y) const { return block_row(y) >> log2_lby_; }
   // The block grid of a level: NBX_k x NBY_k blocks, each at least 1, covering the level and its
   // seam copies (row-major: the row pitch; Morton orders the grid rounded up to powers of two).
   uint32_t blocks_x(int level) const { return levels_[size_t(level)].nbx; }
   uint32_t blocks_y(int level) const { return levels_[size_t(level)].nby; }
   // Where a level keeps texel column 0's copy that the repeat seam's second tap reads (stage::wrap's
-  // index w_k on a side that is not a power of two): w_k for texels, w_k rounded up to a whole 4x4
-  // block for a block format (a copy of block column 0: no block is re-encoded). A power-of-two side
-  // has none (its seam tap is index 0).
+  // index w_k, `seam` = seam_x != 0): w_k for texels, w_k rounded up to a whole block for a block
+  // format (a copy of block column 0: no block is re-encoded). 0: the side has none, its seam tap is
+  // index 0 (a power-of-two side, unless longer than an ASTC block that does not divide it).
   uint32_t seam_x(int level) const { return levels_[size_t(level)].seam_x; }
   uint32_t seam_y(int level) const { return levels_[size_t(level)].seam_y; }
   // The stored column (row) of a wrapped tap index: the seam index w_k moves to seam_x.
@@ -99,17 +104,23 @@ class MemoryLayout {
   uint32_t block_address(int level, uint32_t bx, uint32_t by, int layer = 0) const {
     return level_base(level) + uint32_t(layer) * layer_bytes_ + block_index(level, bx, by) * uint32_t(line_bytes_);
   }
-  // Byte address of the line holding stored texel (x, y) of `level` (stored_x/y of a tap index).
-  uint32_t line_address(int level, uint32_t x, uint32_t y, int layer = 0) const {
-    return block_address(level, x >> log2_bw_, y >> log2_bh_, layer);
-  }
+  // Byte address of the line holding stored texel (x, y) of `level` (stored_x/y of a tap index): below.
   // The layer, level and block of the line at `address`; false if no level's block starts there.
   bool locate_line(uint32_t address, int& layer, int& level, uint32_t& bx, uint32_t& by) const;
-  // Byte offset of texel (x, y) inside its line; in a block format, of the 4x4 block holding it.
+  uint32_t line_address(int level, uint32_t x, uint32_t y, int layer = 0) const {
+    return block_address(level, line_x(x), line_y(y), layer);
+  }
+  // Byte offset of texel (x, y) inside its line; in a block format, of the block holding it.
   uint32_t texel_offset(uint32_t x, uint32_t y) const {
-    const uint32_t lx = x & ((1u << log2_bw_) - 1), ly = y & ((1u << log2_bh_) - 1);
-    if (block_bytes_) return (((ly >> 2) << (log2_bw_ - 2)) | (lx >> 2)) * uint32_t(block_bytes_);
-    return ((ly << log2_bw_) | lx) * uint32_t(texel_bytes_);
+    const uint32_t bx = block_column(x) & ((1u << log2_lbx_) - 1), by = block_row(y) & ((1u << log2_lby_) - 1);
+    return ((by << log2_lbx_) | bx) * uint32_t(block_bytes_ ? block_bytes_ : texel_bytes_);
+  }
+  // A block format's block of texel (x, y): its column and row in the level (RGBA: x, y), and the
+  // texel's index in it (x mod fw + fw * (y mod fh)).
+  uint32_t block_column(uint32_t x) const { return uint32_t((uint64_t(x) * recip_w_) >> 32); }
+  uint32_t block_row(uint32_t y) const { return uint32_t((uint64_t(y) * recip_h_) >> 32); }
+  int texel_in_block(uint32_t x, uint32_t y) const {
+    return int(x - block_column(x) * uint32_t(fw_)) + fw_ * int(y - block_row(y) * uint32_t(fh_));
   }
 
  private:
@@ -124,8 +135,11 @@ class MemoryLayout {
   Extent size0_;
   int channel_bits_;
   TexelFormat format_;
-  int texel_bytes_, line_bytes_, log2_bw_, log2_bh_;
-  int block_bytes_ = 0;  // a block format's bytes per 4x4 block; 0 for RGBA
+  int texel_bytes_, line_bytes_;
+  int block_bytes_ = 0;   // a block format's bytes per block; 0 for RGBA
+  int fw_ = 1, fh_ = 1;   // a block format's footprint (RGBA: a texel)
+  uint64_t recip_w_ = uint64_t(1) << 32, recip_h_ = uint64_t(1) << 32;  // ceil(2^32 / fw), ceil(2^32 / fh)
+  int log2_lbx_ = 0, log2_lby_ = 0;  // blocks (RGBA: texels) per line across and down, log2
   std::vector<Level> levels_;
   int layers_ = 1;
   uint32_t layer_bytes_ = 0;
@@ -145,10 +159,11 @@ inline MemoryLayout layout_of(const Pyramid& pyramid, const LayoutParams& params
 // (`line`: its line_bytes() bytes as memory holds them; blocks decoded); padding is skipped, and so
 // are the repeat seam's copies unless `seam_copies`: then each copy is reported as the texel it
 // copies (column 0, row 0: the same value; a unit whose taps read the copy needs it even when the
-// original's line was never read). False if the address is not a line of the layout.
+// original's line was never read). `srgb`: the texture is sRGB (ASTC decodes other codes then).
+// False if the address is not a line of the layout.
 bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* line,
                  const std::function<void(int layer, int level, int x, int y, const Texel& t)>& texel,
-                 bool seam_copies = false);
+                 bool seam_copies = false, bool srgb = false);
 
 // The bytes at addresses base .. base + image_bytes - 1 (padding 0): texels, or a block format's
 // blocks as the pyramids keep them, layer after layer (a cube's faces with their skirts). Throws tex::Error when a pyramid is not the

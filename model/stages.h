@@ -119,12 +119,14 @@ constexpr int32_t kBorderTap = -1;
 // is the second tap of a pair (i1 = i0 + 1). The repeat seam of a side that is not a power of two:
 // the pair (n-1, 0) gives (n-1, n), index n naming texel 0's copy stored after the last texel
 // (stored_side), so the two taps sit in different parity banks (n - 1 and 0 are both even when n
-// is odd) and, in the cached unit, in neighbouring blocks.
-inline int32_t wrap(int32_t i, int32_t n, Wrap mode, bool second = false) {
+// is odd) and, in the cached unit, in neighbouring blocks. `seam`: the side has that copy (every
+// side that is not a power of two; in the cached unit's memory also a power-of-two side that an
+// ASTC footprint does not divide: MemoryLayout::seam_x).
+inline int32_t wrap(int32_t i, int32_t n, Wrap mode, bool second = false, bool seam = false) {
   switch (mode) {
     case Wrap::Repeat: {
       const int32_t m = (i % n + n) % n;
-      return second && m == 0 && !is_power_of_two(n) ? n : m;
+      return second && m == 0 && (seam || !is_power_of_two(n)) ? n : m;
     }
     case Wrap::Clamp: return std::clamp(i, 0, n - 1);
     case Wrap::Mirror: {
@@ -144,9 +146,10 @@ struct WrappedTaps {
   int32_t i0 = 0, i1 = 0;
   int w = 0;
 };
-inline WrappedTaps axis_taps(int32_t reduced, int n, Wrap mode, TexelFilter filter, bool unnormalized) {
+inline WrappedTaps axis_taps(int32_t reduced, int n, Wrap mode, TexelFilter filter, bool unnormalized,
+                             bool seam = false) {
   const AxisTaps t = address(scale(reduced, n, unnormalized), filter);
-  return {wrap(t.i0, n, mode), wrap(t.i1, n, mode, true), t.w};
+  return {wrap(t.i0, n, mode), wrap(t.i1, n, mode, true, seam), t.w};
 }
 
 // The border colour in a level's channel width: the sampler's unorm16 value c as

@@ -182,8 +182,11 @@ SampleLookup TextureCache::lookup_at(const Request& r, int layer, bool cube, std
     // The footprint of level k: a tap whose weight is 0 reads nothing, unless `all` (a gather).
     auto footprint = [&](int k, TexelFilter filter, bool all) -> Taps {
       const Extent e = layout.level_size(k);
-      const stage::WrappedTaps tu = cube ? stage::cube_taps(ru, e.w, filter) : stage::axis_taps(ru, e.w, smp.wrap_u, filter, smp.unnormalized);
-      const stage::WrappedTaps tv = cube ? stage::cube_taps(rv, e.h, filter) : stage::axis_taps(rv, e.h, smp.wrap_v, filter, smp.unnormalized);
+      // (the repeat seam's second tap reads the copy wherever the layout keeps one)
+      const stage::WrappedTaps tu = cube ? stage::cube_taps(ru, e.w, filter)
+                                         : stage::axis_taps(ru, e.w, smp.wrap_u, filter, smp.unnormalized, layout.seam_x(k) != 0);
+      const stage::WrappedTaps tv = cube ? stage::cube_taps(rv, e.h, filter)
+                                         : stage::axis_taps(rv, e.h, smp.wrap_v, filter, smp.unnormalized, layout.seam_y(k) != 0);
       return {{tu.i0, tu.i1}, {tv.i0, tv.i1}, all || tu.w != 0 ? 2 : 1, all || tv.w != 0 ? 2 : 1};
     };
     if (r.op == Op::Gather) {  // the linear filter's four taps at the base level, all read
@@ -215,7 +218,7 @@ SampleLookup TextureCache::lookup_at(const Request& r, int layer, bool cube, std
         if (x[j] == stage::kBorderTap || y[i] == stage::kBorderTap) continue;
         const uint32_t sx = cube ? uint32_t(x[j]) : layout.stored_x(k, uint32_t(x[j]));  // (a cube: no seam copy)
         const uint32_t sy = cube ? uint32_t(y[i]) : layout.stored_y(k, uint32_t(y[i]));
-        const uint32_t bx = sx >> layout.log2_block_w(), by = sy >> layout.log2_block_h();
+        const uint32_t bx = layout.line_x(sx), by = layout.line_y(sy);
         const int p = int((by & 1) << 1 | (bx & 1));
         // Two blocks of one parity would need two lookups in one set group: the layout (the
         // seam copies included) rules it out.

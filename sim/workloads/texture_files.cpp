@@ -8,9 +8,11 @@
 #include <fstream>
 #include <iterator>
 
+#include "model/astc.h"
 #include "model/error.h"
 #include "model/pyramid.h"
 #include "model/srgb.h"
+#include "workloads/astc_encode.h"
 #include "workloads/etc2_encode.h"
 #include "workloads/image_module.h"
 #include "workloads/limits.h"
@@ -23,6 +25,7 @@ namespace {
 
 constexpr uint8_t kDdsMagic[4] = {'D', 'D', 'S', ' '};
 constexpr uint8_t kKtx1Magic[12] = {0xAB, 'K', 'T', 'X', ' ', '1', '1', 0xBB, '\r', '\n', 0x1A, '\n'};
+constexpr uint8_t kAstcMagic[4] = {0x13, 0xAB, 0xA1, 0x5C};  // astcenc's .astc: 0x5CA1AB13, little-endian
 constexpr uint8_t kKtx2Magic[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
 
 // A format the unit reads, as a file format names it.
@@ -100,6 +103,34 @@ constexpr Known kGl[] = {
     {0x9271, "GL_COMPRESSED_SIGNED_R11_EAC", TexelFormat::Rgba8, false, false},
     {0x9272, "GL_COMPRESSED_RG11_EAC", TexelFormat::Rgba8, false, false},
     {0x9273, "GL_COMPRESSED_SIGNED_RG11_EAC", TexelFormat::Rgba8, false, false},
+    {0x93B0, "GL_COMPRESSED_RGBA_ASTC_4x4_KHR", TexelFormat::Astc4x4, false, true},
+    {0x93B1, "GL_COMPRESSED_RGBA_ASTC_5x4_KHR", TexelFormat::Astc5x4, false, true},
+    {0x93B2, "GL_COMPRESSED_RGBA_ASTC_5x5_KHR", TexelFormat::Astc5x5, false, true},
+    {0x93B3, "GL_COMPRESSED_RGBA_ASTC_6x5_KHR", TexelFormat::Astc6x5, false, true},
+    {0x93B4, "GL_COMPRESSED_RGBA_ASTC_6x6_KHR", TexelFormat::Astc6x6, false, true},
+    {0x93B5, "GL_COMPRESSED_RGBA_ASTC_8x5_KHR", TexelFormat::Astc8x5, false, true},
+    {0x93B6, "GL_COMPRESSED_RGBA_ASTC_8x6_KHR", TexelFormat::Astc8x6, false, true},
+    {0x93B7, "GL_COMPRESSED_RGBA_ASTC_8x8_KHR", TexelFormat::Astc8x8, false, true},
+    {0x93B8, "GL_COMPRESSED_RGBA_ASTC_10x5_KHR", TexelFormat::Astc10x5, false, true},
+    {0x93B9, "GL_COMPRESSED_RGBA_ASTC_10x6_KHR", TexelFormat::Astc10x6, false, true},
+    {0x93BA, "GL_COMPRESSED_RGBA_ASTC_10x8_KHR", TexelFormat::Astc10x8, false, true},
+    {0x93BB, "GL_COMPRESSED_RGBA_ASTC_10x10_KHR", TexelFormat::Astc10x10, false, true},
+    {0x93BC, "GL_COMPRESSED_RGBA_ASTC_12x10_KHR", TexelFormat::Astc12x10, false, true},
+    {0x93BD, "GL_COMPRESSED_RGBA_ASTC_12x12_KHR", TexelFormat::Astc12x12, false, true},
+    {0x93D0, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_4x4_KHR", TexelFormat::Astc4x4, true, true},
+    {0x93D1, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_5x4_KHR", TexelFormat::Astc5x4, true, true},
+    {0x93D2, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_5x5_KHR", TexelFormat::Astc5x5, true, true},
+    {0x93D3, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_6x5_KHR", TexelFormat::Astc6x5, true, true},
+    {0x93D4, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_6x6_KHR", TexelFormat::Astc6x6, true, true},
+    {0x93D5, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_8x5_KHR", TexelFormat::Astc8x5, true, true},
+    {0x93D6, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_8x6_KHR", TexelFormat::Astc8x6, true, true},
+    {0x93D7, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_8x8_KHR", TexelFormat::Astc8x8, true, true},
+    {0x93D8, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_10x5_KHR", TexelFormat::Astc10x5, true, true},
+    {0x93D9, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_10x6_KHR", TexelFormat::Astc10x6, true, true},
+    {0x93DA, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_10x8_KHR", TexelFormat::Astc10x8, true, true},
+    {0x93DB, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_10x10_KHR", TexelFormat::Astc10x10, true, true},
+    {0x93DC, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_12x10_KHR", TexelFormat::Astc12x10, true, true},
+    {0x93DD, "GL_COMPRESSED_SRGB8_ALPHA8_ASTC_12x12_KHR", TexelFormat::Astc12x12, true, true},
 };
 
 // VkFormat values (KTX2).
@@ -133,11 +164,53 @@ constexpr Known kVk[] = {
     {154, "VK_FORMAT_EAC_R11_SNORM_BLOCK", TexelFormat::Rgba8, false, false},
     {155, "VK_FORMAT_EAC_R11G11_UNORM_BLOCK", TexelFormat::Rgba8, false, false},
     {156, "VK_FORMAT_EAC_R11G11_SNORM_BLOCK", TexelFormat::Rgba8, false, false},
+    {157, "VK_FORMAT_ASTC_4x4_UNORM_BLOCK", TexelFormat::Astc4x4, false, true},
+    {158, "VK_FORMAT_ASTC_4x4_SRGB_BLOCK", TexelFormat::Astc4x4, true, true},
+    {159, "VK_FORMAT_ASTC_5x4_UNORM_BLOCK", TexelFormat::Astc5x4, false, true},
+    {160, "VK_FORMAT_ASTC_5x4_SRGB_BLOCK", TexelFormat::Astc5x4, true, true},
+    {161, "VK_FORMAT_ASTC_5x5_UNORM_BLOCK", TexelFormat::Astc5x5, false, true},
+    {162, "VK_FORMAT_ASTC_5x5_SRGB_BLOCK", TexelFormat::Astc5x5, true, true},
+    {163, "VK_FORMAT_ASTC_6x5_UNORM_BLOCK", TexelFormat::Astc6x5, false, true},
+    {164, "VK_FORMAT_ASTC_6x5_SRGB_BLOCK", TexelFormat::Astc6x5, true, true},
+    {165, "VK_FORMAT_ASTC_6x6_UNORM_BLOCK", TexelFormat::Astc6x6, false, true},
+    {166, "VK_FORMAT_ASTC_6x6_SRGB_BLOCK", TexelFormat::Astc6x6, true, true},
+    {167, "VK_FORMAT_ASTC_8x5_UNORM_BLOCK", TexelFormat::Astc8x5, false, true},
+    {168, "VK_FORMAT_ASTC_8x5_SRGB_BLOCK", TexelFormat::Astc8x5, true, true},
+    {169, "VK_FORMAT_ASTC_8x6_UNORM_BLOCK", TexelFormat::Astc8x6, false, true},
+    {170, "VK_FORMAT_ASTC_8x6_SRGB_BLOCK", TexelFormat::Astc8x6, true, true},
+    {171, "VK_FORMAT_ASTC_8x8_UNORM_BLOCK", TexelFormat::Astc8x8, false, true},
+    {172, "VK_FORMAT_ASTC_8x8_SRGB_BLOCK", TexelFormat::Astc8x8, true, true},
+    {173, "VK_FORMAT_ASTC_10x5_UNORM_BLOCK", TexelFormat::Astc10x5, false, true},
+    {174, "VK_FORMAT_ASTC_10x5_SRGB_BLOCK", TexelFormat::Astc10x5, true, true},
+    {175, "VK_FORMAT_ASTC_10x6_UNORM_BLOCK", TexelFormat::Astc10x6, false, true},
+    {176, "VK_FORMAT_ASTC_10x6_SRGB_BLOCK", TexelFormat::Astc10x6, true, true},
+    {177, "VK_FORMAT_ASTC_10x8_UNORM_BLOCK", TexelFormat::Astc10x8, false, true},
+    {178, "VK_FORMAT_ASTC_10x8_SRGB_BLOCK", TexelFormat::Astc10x8, true, true},
+    {179, "VK_FORMAT_ASTC_10x10_UNORM_BLOCK", TexelFormat::Astc10x10, false, true},
+    {180, "VK_FORMAT_ASTC_10x10_SRGB_BLOCK", TexelFormat::Astc10x10, true, true},
+    {181, "VK_FORMAT_ASTC_12x10_UNORM_BLOCK", TexelFormat::Astc12x10, false, true},
+    {182, "VK_FORMAT_ASTC_12x10_SRGB_BLOCK", TexelFormat::Astc12x10, true, true},
+    {183, "VK_FORMAT_ASTC_12x12_UNORM_BLOCK", TexelFormat::Astc12x12, false, true},
+    {184, "VK_FORMAT_ASTC_12x12_SRGB_BLOCK", TexelFormat::Astc12x12, true, true},
+    {1000066000, "VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066001, "VK_FORMAT_ASTC_5x4_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066002, "VK_FORMAT_ASTC_5x5_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066003, "VK_FORMAT_ASTC_6x5_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066004, "VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066005, "VK_FORMAT_ASTC_8x5_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066006, "VK_FORMAT_ASTC_8x6_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066007, "VK_FORMAT_ASTC_8x8_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066008, "VK_FORMAT_ASTC_10x5_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066009, "VK_FORMAT_ASTC_10x6_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066010, "VK_FORMAT_ASTC_10x8_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066011, "VK_FORMAT_ASTC_10x10_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066012, "VK_FORMAT_ASTC_12x10_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
+    {1000066013, "VK_FORMAT_ASTC_12x12_SFLOAT_BLOCK (HDR)", TexelFormat::Rgba8, false, false},
 };
 
 const char kSupported[] =
-    "RGBA8, BC1 (with alpha), BC2, BC3, BC4 and BC5 (unorm), BC7, ETC2 RGB8 (and ETC1), RGB8A1 and RGBA8, and the sRGB "
-    "variants";
+    "RGBA8, BC1 (with alpha), BC2, BC3, BC4 and BC5 (unorm), BC7, ETC2 RGB8 (and ETC1), RGB8A1 and RGBA8, ASTC LDR "
+    "4x4 to 12x12, and the sRGB variants";
 
 class Reader {
  public:
@@ -189,7 +262,7 @@ int check_shape(const Reader& r, TextureFile& t, uint32_t width, uint32_t height
            std::to_string(kMaxSize));
   t.width = int(width);
   t.height = int(height);
-  if (is_compressed(t.format) && (width % 4 || height % 4))
+  if (is_compressed(t.format) && !is_astc(t.format) && (width % 4 || height % 4))
     r.fail(std::to_string(width) + "x" + std::to_string(height) + ": a " + format_info(t.format).name +
            " texture needs sides that are multiples of 4 at level 0");
   if (t.srgb && !format_info(t.format).srgb_allowed) r.fail("sRGB " + std::string(format_info(t.format).name) + " does not exist");
@@ -414,6 +487,36 @@ TextureFile read_ktx1(const Reader& r) {
   return t;
 }
 
+// astcenc's .astc file: the magic, the block footprint (x, y, z: a byte each), the size (x, y, z:
+// 3 bytes each, little-endian), then the blocks of one 2D level, row-major. It names no colour
+// space: linear, unless --srgb says sRGB (read_for).
+TextureFile read_astc(const Reader& r) {
+  TextureFile t;
+  const uint8_t* h = r.at(0, 16, "the .astc header");
+  const int bw = h[4], bh = h[5], bd = h[6];
+  auto u24 = [&](int at) { return uint32_t(h[at]) | uint32_t(h[at + 1]) << 8 | uint32_t(h[at + 2]) << 16; };
+  const uint32_t width = u24(7), height = u24(10), depth = u24(13);
+  if (bd != 1 || depth != 1)
+    r.fail("block " + std::to_string(bw) + "x" + std::to_string(bh) + "x" + std::to_string(bd) + ", depth " +
+           std::to_string(depth) + ": a 3D ASTC texture (the unit reads 2D ASTC, the LDR profile)");
+  bool found = false;
+  for (int i = 0; i < 14; ++i)
+    if (kAstcFootprints[i].w == bw && kAstcFootprints[i].h == bh) {
+      t.format = TexelFormat(int(TexelFormat::Astc4x4) + i);
+      found = true;
+    }
+  if (!found) r.fail("block footprint " + std::to_string(bw) + "x" + std::to_string(bh) + " is not one of ASTC's 2D footprints (4x4 .. 12x12)");
+  t.format_name = std::string("ASTC ") + std::to_string(bw) + "x" + std::to_string(bh) + " (.astc, no colour space)";
+  t.colour_space_given = false;
+  check_shape(r, t, width, height, 1);
+  const uint64_t want = bytes_of_level(t, 0);
+  if (r.size() - 16 != want)
+    r.fail(std::to_string(r.size() - 16) + " bytes of blocks; a " + std::to_string(width) + "x" + std::to_string(height) +
+           " " + format_info(t.format).name + " level has " + std::to_string(want));
+  take_images(r, t, 1, [](int, int) { return uint64_t(16); });
+  return t;
+}
+
 TextureFile read_ktx2(const Reader& r) {
   TextureFile t;
   const uint32_t vk = r.u32(12, "the KTX2 header"), width = r.u32(20, "the KTX2 header"),
@@ -465,8 +568,9 @@ int squish_flags(TexelFormat f) {
   }
 }
 
-std::vector<uint8_t> compress_level(const Image& img, TexelFormat f) {
+std::vector<uint8_t> compress_level(const Image& img, TexelFormat f, bool srgb) {
   if (is_etc2(f)) return encode_etc2_level(img, f);  // (ours: Debian packages no ETC2 encoder)
+  if (is_astc(f)) return encode_astc_level(img, f, srgb);
   std::vector<uint8_t> rgba(size_t(img.width) * img.height * 4);
   for (size_t i = 0; i < img.texels.size(); ++i)
     for (int c = 0; c < 4; ++c) rgba[i * 4 + size_t(c)] = uint8_t(img.texels[i][size_t(c)]);
@@ -492,7 +596,8 @@ bool starts_with(const std::string& path, const uint8_t* magic, size_t n) {
 }  // namespace
 
 bool is_texture_file(const std::string& path) {
-  return starts_with(path, kDdsMagic, 4) || starts_with(path, kKtx1Magic, 12) || starts_with(path, kKtx2Magic, 12);
+  return starts_with(path, kDdsMagic, 4) || starts_with(path, kKtx1Magic, 12) || starts_with(path, kKtx2Magic, 12) ||
+         starts_with(path, kAstcMagic, 4);
 }
 
 TextureFile read_texture_file(const std::string& path) {
@@ -501,10 +606,11 @@ TextureFile read_texture_file(const std::string& path) {
   if (r.size() >= 4 && std::memcmp(head, kDdsMagic, 4) == 0) return read_dds(r);
   if (r.size() >= 12 && std::memcmp(head, kKtx1Magic, 12) == 0) return read_ktx1(r);
   if (r.size() >= 12 && std::memcmp(head, kKtx2Magic, 12) == 0) return read_ktx2(r);
-  r.fail("not a DDS, KTX or KTX2 file");
+  if (r.size() >= 4 && std::memcmp(head, kAstcMagic, 4) == 0) return read_astc(r);
+  r.fail("not a DDS, KTX, KTX2 or .astc file");
 }
 
-Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format) {
+Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format, bool srgb) {
   if (format == TexelFormat::Rgba8) return pyramid;
   if (!format_info(format).encoder)
     throw Error(std::string("no ") + format_info(format).name + " encoder is built in to make the levels below level 0: "
@@ -513,8 +619,8 @@ Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format) {
   pyramid.format = format;
   pyramid.blocks.clear();
   for (Image& level : pyramid.levels) {
-    pyramid.blocks.push_back(compress_level(level, format));
-    level = decode_level(format, pyramid.blocks.back().data(), level.width, level.height);
+    pyramid.blocks.push_back(compress_level(level, format, srgb));
+    level = decode_level(format, pyramid.blocks.back().data(), level.width, level.height, srgb);
   }
   return pyramid;
 }
@@ -555,7 +661,7 @@ Pyramid make_pyramid(Image level0, const TextureOptions& o) {
   if (!format_info(o.format).srgb_allowed)
     throw Error(std::string("--srgb: an sRGB ") + format_info(o.format).name + " does not exist (" +
                 format_info(o.format).name + " holds data, not colour)");
-  Pyramid p = compress_pyramid(box_pyramid(std::move(level0), o.mode, true), o.format);
+  Pyramid p = compress_pyramid(box_pyramid(std::move(level0), o.mode, true), o.format, true);
   decode_srgb_levels(p);
   return view_of(std::move(p), o);
 }
@@ -568,6 +674,7 @@ TextureFile read_for(const std::string& spec, const TextureOptions& o) {
   if (o.format_given && o.format != file.format)
     throw Error(spec + ": --format " + format_info(o.format).name + ", but the file holds " + file.format_name +
                 " (a texture file keeps its format)");
+  if (o.srgb && !file.colour_space_given) file.srgb = true;  // (.astc names none)
   if (o.srgb && !file.srgb)
     throw Error(spec + ": --srgb, but the file holds " + file.format_name + ", not an sRGB format (a texture file keeps its own)");
   return file;
@@ -583,10 +690,10 @@ Pyramid image_pyramid(const TextureFile& file, const std::vector<std::vector<uin
         for (int c = 0; c < 4; ++c) img.texels[i][size_t(c)] = levels[size_t(k)][i * 4 + size_t(c)];
       return img;
     }
-    return decode_level(file.format, levels[size_t(k)].data(), s.width(), s.height());
+    return decode_level(file.format, levels[size_t(k)].data(), s.width(), s.height(), file.srgb);
   };
   if (levels.size() == 1) {
-    Pyramid p = compress_pyramid(box_pyramid(decoded(0), mode, file.srgb), file.format);
+    Pyramid p = compress_pyramid(box_pyramid(decoded(0), mode, file.srgb), file.format, file.srgb);
     if (is_compressed(file.format)) {  // level 0 as the file has it
       p.blocks[0] = levels[0];
       p.levels[0] = decoded(0);

@@ -22,12 +22,13 @@ struct TextureFile {
   int layers = 1;                            // array elements (cubes of a cube array); 1: not an array
   int faces = 1;                             // 6: a cube map or cube array; else 1
   std::string format_name;                   // as the file names it, e.g. "DXGI_FORMAT_BC1_UNORM_SRGB"
-  std::vector<std::vector<uint8_t>> levels;  // image 0 as stored: 4x4 blocks, or RGBA8 texels; level 0 first
+  bool colour_space_given = true;            // false: an .astc file, linear unless --srgb says sRGB
+  std::vector<std::vector<uint8_t>> levels;  // image 0 as stored: blocks, or RGBA8 texels; level 0 first
   std::vector<std::vector<std::vector<uint8_t>>> more_images;  // images 1 .. layers*faces-1, each like `levels`
 };
 
-// True if the file begins with a DDS, KTX 1 or KTX2 signature (false for anything else,
-// including a missing file).
+// True if the file begins with a DDS, KTX 1, KTX2 or .astc (astcenc's) signature (false for anything
+// else, including a missing file).
 bool is_texture_file(const std::string& path);
 
 // Reads every image and every level the file has: one level, or the whole chain down to 1x1, for
@@ -38,9 +39,10 @@ bool is_texture_file(const std::string& path);
 // truncated file or bytes after the last level (DDS, KTX 1), a format this unit does not read (its
 // DXGI, GL or Vulkan name), a volume, a layer count outside those bounds, a face count other than 1
 // or 6, a DDS cube map missing a face, a cube whose faces are not square, sides of 0 or above 8192
-// (or, for a block format, not multiples of 4 at level 0), a partial mip chain (the level count
-// named), a KTX 1 imageSize or KTX2 level length that is not the level's, KTX2 supercompression,
-// sRGB on BC4/BC5. Every range the header implies is checked against the file's size before any
+// (or, for a 4x4-block format, not multiples of 4 at level 0; ASTC takes any size, its last blocks
+// cut), a partial mip chain (the level count named), a KTX 1 imageSize or KTX2 level length that is
+// not the level's, KTX2 supercompression, sRGB on BC4/BC5; an .astc file of a 3D footprint or size,
+// a footprint ASTC has not got, or blocks that are not its size's. Every range the header implies is checked against the file's size before any
 // of it is copied: a header claiming more than the file holds allocates nothing.
 TextureFile read_texture_file(const std::string& path);
 
@@ -56,9 +58,10 @@ Pyramid pyramid_of(const TextureFile& file, PyramidMode mode);
 std::vector<Pyramid> pyramids_of(const TextureFile& file, PyramidMode mode);
 
 // Every level of an RGBA8 pyramid compressed to `format` by libsquish (BC1-BC5, cluster fit; BC4
-// takes red, BC5 red and green) or by Mesa (BC7, through the image module), then decoded again
-// into `levels`: the texture as the unit sees it. RGBA8 returns the pyramid as it is.
-Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format);
+// takes red, BC5 red and green), by Mesa (BC7, through the image module), by our ETC2 encoder or by
+// astcenc (ASTC; `srgb`: the levels are sRGB codes, encoded and decoded in ASTC's sRGB mode), then
+// decoded again into `levels`: the texture as the unit sees it. RGBA8 returns the pyramid as it is.
+Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format, bool srgb = false);
 
 // How a texture becomes a pyramid (texsim's --resize, --pyramid, --format).
 struct TextureOptions {

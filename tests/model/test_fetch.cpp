@@ -114,8 +114,8 @@ TEST(TexelFetch, CacheReadsTheTexelsLineOrNothing) {
           ASSERT_TRUE(l.slot[0].needed);
           EXPECT_FALSE(l.slot[1].needed);
           EXPECT_EQ(l.slot[0].blocks, 1);
-          const uint32_t want = layout.block_address(k, layout.stored_x(k, uint32_t(i)) >> layout.log2_block_w(),
-                                                     layout.stored_y(k, uint32_t(j)) >> layout.log2_block_h());
+          const uint32_t want = layout.block_address(k, layout.stored_x(k, uint32_t(i)) / uint32_t(layout.block_w()),
+                                                     layout.stored_y(k, uint32_t(j)) / uint32_t(layout.block_h()));
           EXPECT_EQ(cache.stats().total_lookups(), 1u);
           EXPECT_EQ(cache.stats().lookups[size_t(k & 1)], 1u) << "level " << k << ": the other parity's cache";
           if (!misses.empty()) {

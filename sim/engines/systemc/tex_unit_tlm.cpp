@@ -195,7 +195,7 @@ void TexUnitTlm::read_line(uint32_t address, sc_time& delay) {
       }
       views_[t][size_t(layer)].levels[size_t(level)].at(x, y) = texel;
       model_samplers_->write_texel(int(t), level, x, y, texel, layer);
-    }, true);  // a repeat seam's copy as its original: the taps may read the copy's line alone
+    }, true, is_srgb);  // a repeat seam's copy as its original: the taps may read the copy's line alone
     if (mine) return;
   }
   fail("memory socket: line " + rtl::hex_address(address) + " is in no texture of the descriptor table");
