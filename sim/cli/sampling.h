@@ -99,7 +99,7 @@ struct SamplingOptions {
 
   void add_to(CLI::App& cmd) {
     texture_opt = cmd.add_option("--texture,-t", texture,
-                                 "image file (any OpenImageIO format), DDS/KTX/KTX2 texture file, or pattern NAME[:WxH]")
+                                 "image file (any OpenImageIO format), DDS/KTX/KTX2/.astc texture file, or pattern NAME[:WxH]")
                       ->capture_default_str();
     cmd.add_option("--filter,-f", filter,
                    "point | bilinear | mip_nearest | trilinear | anisotropic (trilinear probes along the "
@@ -135,7 +135,8 @@ struct SamplingOptions {
     cmd.add_option("--pyramid", pyramid, "exact (mean of the level-0 footprint) | cascade")->capture_default_str();
     format_opt = cmd.add_option("--format", format,
                                 texel_format_names() + ": how memory holds an image file or pattern (each level "
-                                "compressed: libsquish, Mesa for bc7); a DDS/KTX file keeps its own")
+                                "compressed: libsquish, Mesa for bc7, ours for etc2, astcenc for astc); a DDS/KTX/.astc "
+                                "file keeps its own")
                      ->capture_default_str();
     cmd.add_flag("--srgb", srgb,
                  "the texture's R, G, B are sRGB codes: decoded to linear (16 bits) before filtering, its pyramid "

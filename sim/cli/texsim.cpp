@@ -474,7 +474,7 @@ int main(int argc, char** argv) {
   std::string mip_texture = "testcard", mip_mode = "exact", mip_format = "rgba8", dump_dir, layout;
   bool mip_resize = false, mip_srgb = false;
   CLI::App* mip = app.add_subcommand("mip", "build a pyramid; dump its levels or the paper's Figure 1 layout");
-  mip->add_option("--texture,-t", mip_texture, "image file, DDS/KTX/KTX2 texture file, or pattern NAME[:WxH]")
+  mip->add_option("--texture,-t", mip_texture, "image file, DDS/KTX/KTX2/.astc texture file, or pattern NAME[:WxH]")
       ->capture_default_str();
   mip->add_option("--pyramid", mip_mode, "exact | cascade")->capture_default_str();
   limits.add_to(*mip, false);
@@ -483,7 +483,7 @@ int main(int argc, char** argv) {
                 "levels and memory image in sRGB codes");
   CLI::Option* mip_format_opt = mip->add_option("--format", mip_format,
                                                 texel_format_names() + ": how memory holds an image file or pattern "
-                                                "(libsquish, Mesa for bc7; a DDS/KTX file keeps its own)")
+                                                "(libsquish, Mesa for bc7, ours for etc2, astcenc for astc; a DDS/KTX/.astc file keeps its own)")
                                     ->capture_default_str();
   mip->add_option("--dump-levels", dump_dir, "write DIR/level00.png, level01.png, ...");
   mip->add_option("--layout", layout, "write the packed R/G/B memory layout (paper Figure 1)");
@@ -578,7 +578,7 @@ int main(int argc, char** argv) {
   explore->add_option("--order", ex.orders, "rasterization orders: scanline,tiled")->capture_default_str();
   explore->add_option("--format", ex.formats,
                       "texture formats, comma-separated: " + texel_format_names() + " (each level compressed: "
-                      "libsquish, Mesa for bc7)")
+                      "libsquish, Mesa for bc7, ours for etc2, astcenc for astc)")
       ->capture_default_str();
   explore->add_option("--tile", ex.tile, "tiled order: tile side in pixels")->capture_default_str();
   explore->add_option("--cache-kib", ex.cache_kib, "sizes of each cache (even, odd levels) in KiB, 1..1024")

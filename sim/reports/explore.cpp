@@ -349,6 +349,7 @@ std::string rtl_unavailable(const Sweep& s, const Point& p) {
                                                         &cache, p.fifo);
     rtl::cache_pins(rc, p.layout, cache, p.fifo);
     if (p.bandwidth > uint32_t(rc.line_bytes())) throw Error("the bandwidth is more than a line per clock");
+    for (const Pyramid& pyramid : w.pyramids) rtl::check_inputs(rc, pyramid);  // (formats it has no decoder for)
   } catch (const Error& e) {
     return e.what();
   }

@@ -12,6 +12,7 @@
 
 #include "model/error.h"
 #include "model/memory_layout.h"
+#include "stimulus.h"
 
 using namespace tex;
 
@@ -397,16 +398,21 @@ TEST(MemoryLayout, BlockFormatsPackWholeBlocksPerLine) {
 // The memory image of a compressed pyramid holds its blocks; decoding every line of it gives back
 // every texel of every level exactly once, in both block orders.
 TEST(MemoryLayout, CompressedImageDecodesToTheLevels) {
-  for (TexelFormat f : {TexelFormat::Bc1, TexelFormat::Bc3, TexelFormat::Bc7})
+  for (TexelFormat f : {TexelFormat::Bc1, TexelFormat::Bc3, TexelFormat::Bc7, TexelFormat::Astc5x4, TexelFormat::Astc6x6,
+                        TexelFormat::Astc8x8, TexelFormat::Astc12x10})
     for (BlockOrder order : {BlockOrder::RowMajor, BlockOrder::Morton})
       for (Extent size : {Extent{64, 16}, Extent{12, 20}, Extent{100, 60}}) {
-      const Pyramid pyr = random_block_pyramid(f, size, 7 + uint64_t(f));
+      // (ASTC: the stimulus's blocks, of every mode; random bytes would be the error colour)
+      const Pyramid pyr = is_astc(f) ? stimulus::random_block_texture(f, size, 7 + uint64_t(f))
+                                     : random_block_pyramid(f, size, 7 + uint64_t(f));
       const MemoryLayout l(size, 8, params(4, 4, order, 512), f);
       const std::vector<uint8_t> img = build_memory_image(pyr, l);
       ASSERT_EQ(img.size(), l.image_bytes());
       std::vector<std::vector<int>> seen;
       for (const Image& level : pyr.levels) seen.emplace_back(size_t(level.width) * level.height, 0);
-      const bool holes = order == BlockOrder::Morton && (!is_power_of_two(size.w) || !is_power_of_two(size.h));
+      bool holes = false;  // a Morton grid that is not a power of two (also ASTC's seam copies)
+      for (int k = 0; k < l.levels(); ++k)
+        holes |= order == BlockOrder::Morton && (!is_power_of_two(int(l.blocks_x(k))) || !is_power_of_two(int(l.blocks_y(k))));
       for (uint32_t a = 512; a < 512 + l.image_bytes(); a += uint32_t(l.line_bytes())) {
         const bool line = decode_line(l, a, &img[a - 512], [&](int, int k, int x, int y, const Texel& t) {
           ++seen[size_t(k)][size_t(y) * pyr.levels[size_t(k)].width + size_t(x)];
@@ -461,6 +467,45 @@ TEST(MemoryLayout, NonPowerOfTwoLevelsKeepTheSeamCopies) {
   for (int i = 0; i < 8; ++i) EXPECT_EQ(bimg[bat(2, 4, 0) + size_t(i)], bimg[bat(2, 0, 0) + size_t(i)]) << i;
 }
 
+
+// ASTC (docs/memory.md §1): a 64-byte line holds 2 x 2 blocks of the footprint, so a line's texels
+// need not be a power of two; the block of texel x is x / fw (a reciprocal multiply, exact for every
+// x below 2^16). The repeat seam's copy: a side that is not a power of two, and a power-of-two side
+// longer than a block that the footprint does not divide, keep block column (row) 0 again after the
+// last, at the side rounded up to the footprint.
+TEST(MemoryLayout, AstcLinesHoldTwoByTwoBlocksOfAnyFootprint) {
+  const MemoryLayout l({64, 64}, 8, LayoutParams{}, TexelFormat::Astc6x5);
+  EXPECT_EQ(l.block_w(), 12);
+  EXPECT_EQ(l.block_h(), 10);
+  EXPECT_EQ(l.line_x(11), 0u);
+  EXPECT_EQ(l.line_x(12), 1u);
+  EXPECT_EQ(l.line_y(29), 2u);
+  EXPECT_EQ(l.texel_offset(7, 3), 1u * 16);        // block (1, 0) of its line
+  EXPECT_EQ(l.texel_offset(13, 17), 2u * 16);      // block (2, 3): (0, 1) of line (1, 1)
+  EXPECT_EQ(l.texel_in_block(13, 17), 1 + 6 * 2);  // (13 - 12, 17 - 15)
+  for (uint32_t x = 0; x < 70000; ++x) ASSERT_EQ(l.block_column(x), x / 6) << x;
+  for (uint32_t y = 0; y < 70000; ++y) ASSERT_EQ(l.block_row(y), y / 5) << y;
+  // 64 = 10 blocks of 6 + 4: a seam copy at 66 (block column 11), the row spans 72 texels: 6 lines.
+  EXPECT_EQ(l.seam_x(0), 66u);
+  EXPECT_EQ(l.seam_y(0), 65u);  // 13 blocks of 5: the copy at 65
+  EXPECT_EQ(l.blocks_x(0), 6u);
+  EXPECT_EQ(l.blocks_y(0), 7u);  // rows 0..69
+  // Level 4 (4 x 4): inside one block, no copy needed. Level 3 (8 x 8): past one block across.
+  EXPECT_EQ(l.seam_x(4), 0u);
+  EXPECT_EQ(l.seam_x(3), 12u);
+  EXPECT_EQ(l.seam_y(3), 10u);
+  // 4x4 and 8x8 divide every power-of-two side past a block: no copies, as BC's.
+  const MemoryLayout a8({64, 64}, 8, LayoutParams{}, TexelFormat::Astc8x8);
+  for (int k = 0; k < a8.levels(); ++k) EXPECT_EQ(a8.seam_x(k), 0u) << k;
+  EXPECT_EQ(a8.block_w(), 16);
+  // The copy holds block column 0's blocks, byte for byte.
+  const Pyramid p = stimulus::random_block_texture(TexelFormat::Astc6x5, {64, 64}, 5);
+  const std::vector<uint8_t> img = build_memory_image(p, l);
+  auto at = [&](uint32_t x, uint32_t y) { return l.line_address(0, x, y) + l.texel_offset(x, y); };
+  for (uint32_t y = 0; y < 64; y += 5)
+    for (int i = 0; i < 16; ++i) ASSERT_EQ(img[at(66, y) + size_t(i)], img[at(0, y) + size_t(i)]) << y;
+  for (int i = 0; i < 16; ++i) ASSERT_EQ(img[at(66, 65) + size_t(i)], img[at(0, 0) + size_t(i)]);
+}
 
 // A view (GL's base and max level) is a pyramid of its own: levels b..min(m, last) of the
 // texture, with GL's sizes of level b's chain. Its layout placed where level b of the whole

@@ -351,6 +351,65 @@ TEST(TextureCache, NonPowerOfTwoFootprintsNeverShareAParity) {
   EXPECT_GT(probes, 100000u);
 }
 
+// ASTC footprints (docs/memory.md §1): the taps of a level's 2x2 footprint, after the address mode
+// (the repeat seam's second tap at the copy where the layout keeps one), read at most 4 blocks of
+// 4 different block parities (the cached unit's data banks) in at most 4 lines of 4 different line
+// parities (its set groups), for every footprint, sides powers of two and not, every address
+// mode. Checked from the stages and the layout, not through the cache (which checks the line rule).
+TEST(TextureCache, AstcFootprintsReadFourBanksAndFourSetGroups) {
+  std::mt19937_64 rng(41);
+  const Extent sizes[] = {{32, 32}, {64, 16}, {128, 2}, {1, 64}, {100, 60}, {13, 7}, {256, 256}};
+  size_t checked = 0;
+  for (int fi = 0; fi < 14; ++fi) {
+    const TexelFormat f = TexelFormat(int(TexelFormat::Astc4x4) + fi);
+    for (const Extent& e : sizes) {
+      LayoutParams lp;
+      lp.order = rng() & 1 ? BlockOrder::Morton : BlockOrder::RowMajor;
+      const MemoryLayout l(e, 8, lp, f);
+      for (Wrap w : {Wrap::Repeat, Wrap::Mirror, Wrap::Clamp, Wrap::MirrorClamp})
+        for (int k = 0; k < l.levels(); ++k) {
+          const Extent s = level_extent(e, k);
+          for (int i = 0; i < 64; ++i) {
+            const int32_t ru = int32_t(rng() % (4u << 24)) - (2 << 24), rv = int32_t(rng() % (4u << 24)) - (2 << 24);
+            const stage::WrappedTaps tu = stage::axis_taps(ru, s.w, w, TexelFilter::Linear, false, l.seam_x(k) != 0);
+            const stage::WrappedTaps tv = stage::axis_taps(rv, s.h, w, TexelFilter::Linear, false, l.seam_y(k) != 0);
+            const uint32_t xs[2] = {l.stored_x(k, uint32_t(tu.i0)), l.stored_x(k, uint32_t(tu.i1))};
+            const uint32_t ys[2] = {l.stored_y(k, uint32_t(tv.i0)), l.stored_y(k, uint32_t(tv.i1))};
+            uint32_t block_at[4][2], line_at[4][2];
+            bool block_used[4] = {}, line_used[4] = {};
+            for (uint32_t x : xs)
+              for (uint32_t y : ys) {
+                const uint32_t bx = l.block_column(x), by = l.block_row(y), lx = l.line_x(x), ly = l.line_y(y);
+                const int bp = int((by & 1) << 1 | (bx & 1)), lp2 = int((ly & 1) << 1 | (lx & 1));
+                ASSERT_TRUE(!block_used[bp] || (block_at[bp][0] == bx && block_at[bp][1] == by))
+                    << format_info(f).name << " " << e.w << "x" << e.h << " level " << k << " " << wrap_name(w)
+                    << ": two blocks of bank " << bp << " (taps " << tu.i0 << ", " << tu.i1 << " / " << tv.i0 << ", " << tv.i1 << ")";
+                ASSERT_TRUE(!line_used[lp2] || (line_at[lp2][0] == lx && line_at[lp2][1] == ly))
+                    << format_info(f).name << " " << e.w << "x" << e.h << " level " << k << " " << wrap_name(w)
+                    << ": two lines of parity " << lp2;
+                block_used[bp] = line_used[lp2] = true;
+                block_at[bp][0] = bx;
+                block_at[bp][1] = by;
+                line_at[lp2][0] = lx;
+                line_at[lp2][1] = ly;
+                ++checked;
+              }
+          }
+        }
+      // And the cache itself takes them.
+      TextureCache c(l, {4096, 2}, filter(TexelFilter::Linear, MipMode::Linear, Wrap::Repeat, Wrap::Mirror));
+      for (int i = 0; i < 500; ++i) {
+        Request r;
+        r.u = int32_t(int64_t(rng() % (6u << 24)) - (3 << 24));
+        r.v = int32_t(int64_t(rng() % (6u << 24)) - (3 << 24));
+        r.lod = int32_t(rng() % uint64_t(256 * (l.levels() + 1)));
+        ASSERT_NO_THROW(c.lookup(r, nullptr)) << format_info(f).name << " " << e.w << "x" << e.h;
+      }
+    }
+  }
+  EXPECT_GT(checked, 500000u);
+}
+
 // The sampler table: each request's sampler (Request::sampler) gives its address modes, so one
 // texture read through two samplers reads other lines at the same coordinates; a request naming a
 // sampler beyond the table is an error.
