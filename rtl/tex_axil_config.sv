@@ -185,7 +185,7 @@ module tex_axil_config #(
   localparam int NCNT = 9;  // CYCLES, SAMPLES, SAMPLE_ERRORS, LOOKUPS, MISSES, MEM_BYTES,
                             // OUT_STALL, MEM_WAIT, REQ_STALL
   localparam logic [31:0] ID      = 32'h5445_5855;  // "TEXU"
-  localparam logic [31:0] VERSION = 32'h0003_0005;  // major 3 (any texture size: DESC_SIZE), minor 5 (ETC2: DESC_ATTR's format 4 bits)
+  localparam logic [31:0] VERSION = 32'h0003_0006;  // major 3 (any texture size: DESC_SIZE), minor 6 (ASTC: DESC_ATTR's format 5 bits)
                                                     // (FILTER.unnormalized, FILTER.reduction)
 
   localparam int FLW       = $clog2(FIFO_DEPTH + 1);
@@ -228,7 +228,7 @@ module tex_axil_config #(
   logic                             desc_we;
   logic [tex_pkg::TEX_ID_W-1:0]     desc_index;
   logic [tex_pkg::MEM_ADDR_W-1:0]   desc_base;
-  logic [5:0]                       desc_attr;  // {cube, srgb, format} (DESC_ATTR bits 21:16)
+  logic [6:0]                       desc_attr;  // {cube, srgb, format} (DESC_ATTR bits 22:16)
   logic [tex_pkg::LEVEL_W-1:0]      desc_last;  // DESC_ATTR bits 11:8
   logic [tex_pkg::LAYER_W-1:0]      desc_layers_m1;  // DESC_ATTR bits 31:24
   logic [tex_pkg::SIZE_W-1:0]       desc_w, desc_h;
@@ -246,10 +246,10 @@ module tex_axil_config #(
   // The staged descriptor as DESC_COMMIT checks it
   logic [tex_pkg::FORMAT_W-1:0] attr_format;
   logic                         attr_srgb;
-  assign attr_format = desc_attr[3:0];
-  assign attr_srgb   = desc_attr[4];
+  assign attr_format = desc_attr[4:0];
+  assign attr_srgb   = desc_attr[5];
   logic                         attr_cube;
-  assign attr_cube   = desc_attr[5];
+  assign attr_cube   = desc_attr[6];
   logic [tex_pkg::WRAP_W-1:0] wrap_u, wrap_v;
   assign wrap_u = wrap[2:0];
   assign wrap_v = wrap[6:4];
@@ -374,7 +374,7 @@ module tex_axil_config #(
       if (wr_en && sel_min)    min_lod <= wd[15:0];
       if (wr_en && sel_max)    max_lod <= wd[15:0];
       if (wr_en && sel_base)   desc_base <= wd;
-      if (wr_en && sel_attr)   {desc_layers_m1, desc_attr, desc_last} <= {wd[31:24], wd[21:16], wd[11:8]};
+      if (wr_en && sel_attr)   {desc_layers_m1, desc_attr, desc_last} <= {wd[31:24], wd[22:16], wd[11:8]};
       if (wr_en && sel_size)   {desc_h, desc_w} <= {wd[16 +: tex_pkg::SIZE_W], wd[0 +: tex_pkg::SIZE_W]};
       if (wr_en && sel_wrap)   wrap <= wd[6:0] & 7'h77;
       if (wr_en && sel_smp_commit) smp_index <= wd[3:0];
@@ -492,7 +492,7 @@ module tex_axil_config #(
         R_MIN_LOD:     rd_data = {16'd0, min_lod};
         R_MAX_LOD:     rd_data = {16'd0, max_lod};
         R_DESC_BASE:   rd_data = desc_base;
-        R_DESC_ATTR:   rd_data = {desc_layers_m1, 2'd0, desc_attr, 4'd0, desc_last, 8'd0};
+        R_DESC_ATTR:   rd_data = {desc_layers_m1, 1'd0, desc_attr, 4'd0, desc_last, 8'd0};
         R_DESC_SIZE:   rd_data = {2'd0, desc_h, 2'd0, desc_w};
         R_DESC_COMMIT: rd_data = {28'd0, desc_index};
         R_BORDER_RG:   rd_data = border[31:0];

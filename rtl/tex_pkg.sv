@@ -70,20 +70,41 @@ package tex_pkg;
   localparam logic [OP_W-1:0] OP_FETCH  = 2'd3;  // texelFetch: req_u, req_v, req_lod are i, j, level
 
   // ---- texel formats (model/block_formats.h TexelFormat): how memory holds a texture
-  localparam int FORMAT_W = 4;
-  localparam logic [FORMAT_W-1:0] FMT_RGBA8     = 4'd0;
-  localparam logic [FORMAT_W-1:0] FMT_BC1       = 4'd1;
-  localparam logic [FORMAT_W-1:0] FMT_BC2       = 4'd2;
-  localparam logic [FORMAT_W-1:0] FMT_BC3       = 4'd3;
-  localparam logic [FORMAT_W-1:0] FMT_BC4       = 4'd4;
-  localparam logic [FORMAT_W-1:0] FMT_BC5       = 4'd5;
-  localparam logic [FORMAT_W-1:0] FMT_BC7       = 4'd7;
-  localparam logic [FORMAT_W-1:0] FMT_ETC2      = 4'd8;   // ETC2 RGB8 (and ETC1)
-  localparam logic [FORMAT_W-1:0] FMT_ETC2_A1   = 4'd9;   // ETC2 RGB8 with punch-through alpha
-  localparam logic [FORMAT_W-1:0] FMT_ETC2_RGBA = 4'd10;  // ETC2 RGBA8: EAC alpha, then the colour
-  // A block format the unit decodes (codes 6 and 11..15 are none).
+  localparam int FORMAT_W = 5;
+  localparam logic [FORMAT_W-1:0] FMT_RGBA8     = 5'd0;
+  localparam logic [FORMAT_W-1:0] FMT_BC1       = 5'd1;
+  localparam logic [FORMAT_W-1:0] FMT_BC2       = 5'd2;
+  localparam logic [FORMAT_W-1:0] FMT_BC3       = 5'd3;
+  localparam logic [FORMAT_W-1:0] FMT_BC4       = 5'd4;
+  localparam logic [FORMAT_W-1:0] FMT_BC5       = 5'd5;
+  localparam logic [FORMAT_W-1:0] FMT_BC7       = 5'd7;
+  localparam logic [FORMAT_W-1:0] FMT_ETC2      = 5'd8;   // ETC2 RGB8 (and ETC1)
+  localparam logic [FORMAT_W-1:0] FMT_ETC2_A1   = 5'd9;   // ETC2 RGB8 with punch-through alpha
+  localparam logic [FORMAT_W-1:0] FMT_ETC2_RGBA = 5'd10;  // ETC2 RGBA8: EAC alpha, then the colour
+  // ASTC LDR: one code per footprint, FMT_ASTC_4X4 + i for footprint i of 4x4, 5x4, 5x5, 6x5, 6x6,
+  // 8x5, 8x6, 8x8, 10x5, 10x6, 10x8, 10x10, 12x10, 12x12 (astc_footprint)
+  localparam logic [FORMAT_W-1:0] FMT_ASTC_4X4   = 5'd16;
+  localparam logic [FORMAT_W-1:0] FMT_ASTC_12X12 = 5'd29;
+
+  // A block format the unit decodes (codes 6, 11..15 and 30, 31 are none).
   function automatic logic block_format(input logic [FORMAT_W-1:0] fmt);
     block_format = (fmt >= FMT_BC1 && fmt <= FMT_BC5) || (fmt >= FMT_BC7 && fmt <= FMT_ETC2_RGBA);
+  endfunction
+  function automatic logic astc(input logic [FORMAT_W-1:0] fmt);
+    astc = fmt >= FMT_ASTC_4X4 && fmt <= FMT_ASTC_12X12;
+  endfunction
+  // The texels a block covers, {height, width} (4 bits each): an ASTC format's footprint, 4 x 4
+  // for the other block formats, 1 x 1 (a texel) for RGBA8.
+  function automatic logic [7:0] footprint(input logic [FORMAT_W-1:0] fmt);
+    case (fmt)
+      FMT_RGBA8: footprint = {4'd1, 4'd1};
+      5'd16: footprint = {4'd4, 4'd4};    5'd17: footprint = {4'd4, 4'd5};    5'd18: footprint = {4'd5, 4'd5};
+      5'd19: footprint = {4'd5, 4'd6};    5'd20: footprint = {4'd6, 4'd6};    5'd21: footprint = {4'd5, 4'd8};
+      5'd22: footprint = {4'd6, 4'd8};    5'd23: footprint = {4'd8, 4'd8};    5'd24: footprint = {4'd5, 4'd10};
+      5'd25: footprint = {4'd6, 4'd10};   5'd26: footprint = {4'd8, 4'd10};   5'd27: footprint = {4'd10, 4'd10};
+      5'd28: footprint = {4'd10, 4'd12};  5'd29: footprint = {4'd12, 4'd12};
+      default: footprint = {4'd4, 4'd4};
+    endcase
   endfunction
 
   // A cached line's kind in the data banks (tex_cache_data's wr_kind): what a bank word holds.

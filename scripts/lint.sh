@@ -88,14 +88,14 @@ lint_blocks() {
                     --top-module tex_bc_decode_top "$@"; }
   clean tex_bc_decode lint_decode
   clean "tex_bc_decode (-DSYNTHESIS: the synthesis form)" lint_decode -DSYNTHESIS
-  fires "tex_bc_decode_top: parameter FORMAT must be" "tex_bc_decode_top FORMAT=16" lint_decode -GFORMAT=16
+  fires "tex_bc_decode_top: parameter FORMAT must be" "tex_bc_decode_top FORMAT=32" lint_decode -GFORMAT=32
   clean tex_srgb_decode verilator --lint-only -Irtl -Wall rtl/tex_srgb_decode.sv rtl/synth/tex_srgb_decode_top.sv \
     --top-module tex_srgb_decode_top
   clean tex_etc2 verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt rtl/tex_etc2.sv rtl/synth/tex_etc2_top.sv \
     --top-module tex_etc2_top
   clean tex_astc verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt rtl/tex_astc.sv rtl/synth/tex_astc_top.sv \
     --top-module tex_astc_top
-  echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7, ETC2; as simulated and with -DSYNTHESIS), tex_etc2 and tex_astc alone and tex_srgb_decode; FORMAT check fires for FORMAT=16"
+  echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7, ETC2; as simulated and with -DSYNTHESIS), tex_etc2 and tex_astc alone and tex_srgb_decode; FORMAT check fires for FORMAT=32"
   # The AXI4-Lite configuration slave on its own (-Wno-UNUSEDPARAM: alone it uses few of tex_pkg's
   # constants; inside tex_unit_axi below it is linted with all warnings), and the AXI top.
   lint_axil() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_axil_config.sv \

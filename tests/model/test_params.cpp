@@ -109,6 +109,8 @@ TEST(Params, RtlPackageAgreesWithModel) {
       {"FMT_BC4", int(TexelFormat::Bc4)},
       {"FMT_BC5", int(TexelFormat::Bc5)},
       {"FMT_BC7", int(TexelFormat::Bc7)},
+      {"FMT_ASTC_4X4", int(TexelFormat::Astc4x4)},
+      {"FMT_ASTC_12X12", int(TexelFormat::Astc12x12)},
       {"TEX_ID_W", std::bit_width(unsigned(kMaxTextures - 1))},
       // cfg_w, cfg_h hold every side 1..kMaxSize.
       {"SIZE_W", std::bit_width(unsigned(kMaxSize))},

@@ -63,8 +63,8 @@ struct Reference {
   }
   bool descriptor_ok(uint32_t d) const {
     const uint32_t index = d & 15, w = desc_size & 0x3FFF, h = (desc_size >> 16) & 0x3FFF;
-    const uint32_t format = (desc_attr >> 16) & 15;
-    const bool srgb = (desc_attr >> 20) & 1, cube = (desc_attr >> 21) & 1;
+    const uint32_t format = (desc_attr >> 16) & 31;
+    const bool srgb = (desc_attr >> 21) & 1, cube = (desc_attr >> 22) & 1;
     const uint32_t layers = (desc_attr >> 24) + 1;
     return index < kTextures && w >= 1 && w <= (1u << kMaxLog2W) && h >= 1 && h <= (1u << kMaxLog2H) &&
            (format == 0 || (kBlockFormats && format != 6 && format <= 10)) && (!srgb || (kSrgb && format != 4 && format != 5)) &&
@@ -104,7 +104,7 @@ struct Reference {
       case kMinLod: min_lod = d & 0xFFFF; break;
       case kMaxLod: max_lod = d & 0xFFFF; break;
       case kDescBase: desc_base = d; break;
-      case kDescAttr: desc_attr = d & 0xFF3F0F00; break;
+      case kDescAttr: desc_attr = d & 0xFF7F0F00; break;
       case kDescSize: desc_size = d & 0x3FFF3FFF; break;
       case kWrap: wrap = d & 0x77; break;
       case kSmpCommit: smp_index = d & 15; break;
@@ -141,7 +141,7 @@ struct Reference {
     }
     switch (a) {
       case kId: return {0x54455855u, kOkay};
-      case kVersion: return {0x00030005u, kOkay};
+      case kVersion: return {0x00030006u, kOkay};
       case kCaps0: return {caps0(), kOkay};
       case kCaps1: return {caps1(), kOkay};
       case kControl: return {control, kOkay};
@@ -447,10 +447,10 @@ class Slave {
     EXPECT_EQ(t.cfg_smp_index, r.smp_index);
     EXPECT_EQ(t.cfg_smp_wrap_u, r.wrap & 7);
     EXPECT_EQ(t.cfg_smp_wrap_v, (r.wrap >> 4) & 7);
-    EXPECT_EQ(t.cfg_desc_format, (r.desc_attr >> 16) & 15);
+    EXPECT_EQ(t.cfg_desc_format, (r.desc_attr >> 16) & 31);
     EXPECT_EQ(t.cfg_desc_last_level, (r.desc_attr >> 8) & 15);
-    EXPECT_EQ(t.cfg_desc_srgb, (r.desc_attr >> 20) & 1);
-    EXPECT_EQ(t.cfg_desc_cube, (r.desc_attr >> 21) & 1);
+    EXPECT_EQ(t.cfg_desc_srgb, (r.desc_attr >> 21) & 1);
+    EXPECT_EQ(t.cfg_desc_cube, (r.desc_attr >> 22) & 1);
     EXPECT_EQ(t.cfg_desc_layers_m1, (r.desc_attr >> 24) & 255);
     EXPECT_EQ(t.cfg_smp_border_rgba, uint64_t(r.border_rg) | uint64_t(r.border_ba) << 32);
     EXPECT_EQ(t.cfg_smp_min_linear, r.filter & 1);

@@ -25,7 +25,7 @@ using namespace axil_harness;
 TEST(RtlAxilConfig, IdVersionCapabilitiesAndResetValues) {
   Slave s(1);
   EXPECT_EQ(s.read(kId).data, 0x54455855u);  // "TEXU"
-  EXPECT_EQ(s.read(kVersion).data, 0x00030005u);
+  EXPECT_EQ(s.read(kVersion).data, 0x00030006u);
   EXPECT_EQ(s.read(kCaps0).data, uint32_t(10 | 9 << 4 | 8 << 8 | 1 << 16 | 1 << 17 | 1 << 18 | 4 << 20));
   EXPECT_EQ(s.read(kCaps1).data, uint32_t(8 | 4 << 8 | 8 << 16 | 6 << 24 | 4 << 28));
   // reset: the unit held in reset, the whole cache of 4 ways, trilinear, no LOD clamp
@@ -117,13 +117,13 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   // DESC_COMMIT while in reset (the unit drops cfg_desc_we under rst) and of invalid descriptors
   EXPECT_EQ(s.write(kDescCommit, 1), kSlverr);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
-  // (format 6 and 11..15 are none; sRGB BC4 and BC5 do not exist)
-  const uint32_t bad_attr[] = {6u << 16, 11u << 16, 15u << 16, 1u << 20 | 4u << 16, 1u << 20 | 5u << 16};
+  // (format 6, 11..15 and 30, 31 are none; sRGB BC4 and BC5 do not exist)
+  const uint32_t bad_attr[] = {6u << 16, 11u << 16, 15u << 16, 30u << 16, 31u << 16, 1u << 21 | 4u << 16, 1u << 21 | 5u << 16};
   for (uint32_t attr : bad_attr) {
     ASSERT_EQ(s.write(kDescAttr, attr), kOkay);
     EXPECT_EQ(s.write(kDescCommit, 2), kSlverr) << std::hex << attr;
   }
-  ASSERT_EQ(s.write(kDescAttr, 0x104335), kOkay);  // sRGB RGBA (bits 15:0 reserved, ignored): valid
+  ASSERT_EQ(s.write(kDescAttr, 0x204335), kOkay);  // sRGB RGBA (bits 15:0 reserved, ignored): valid
   // sizes 0 and beyond the largest (1024 x 512 here; 14 bits each, bits 15:14 ignored)
   for (uint32_t size : {0u, 5u, 1u << 16, 1025u | 1u << 16, 1u | 513u << 16, 0xC000u | 1u << 16}) {
     ASSERT_EQ(s.write(kDescSize, size), kOkay);
@@ -223,7 +223,7 @@ TEST(RtlAxilConfig, ResponsesHeldUnderBackpressureBothChannelsAtOnce) {
       if ((w.addr & ~3u) == kCache) w.data = uint32_t(rng() % 3) << 16 | uint32_t(rng() % 8) << 8 | (w.data & 1);
       if ((w.addr & ~3u) == kControl) w.data &= (rng() % 8 == 0) ? 7 : 3;  // a clear now and then
       if ((w.addr & ~3u) == kDescBase && rng() % 2) w.data &= ~63u;
-      if ((w.addr & ~3u) == kDescAttr) w.data &= 0x1F3311u;  // (format 0..15, sRGB)
+      if ((w.addr & ~3u) == kDescAttr) w.data &= 0x3F3311u;  // (format 0..31, sRGB)
       if ((w.addr & ~3u) == kDescSize) w.data &= rng() % 2 ? 0x01FF03FFu : 0xFFFFFFFFu;  // mostly valid
       if ((w.addr & ~3u) == kWrap) w.data &= 0x33u | (rng() % 4 ? 0u : 0x44u);  // mostly valid
       if ((w.addr & ~3u) == kSmpCommit && rng() % 2) w.data &= 3u;
@@ -247,7 +247,7 @@ TEST(RtlAxilConfig, DescriptorCommitPulsesOnce) {
   Slave s(6);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
   ASSERT_EQ(s.write(kDescBase, 0x12340040), kOkay);
-  ASSERT_EQ(s.write(kDescAttr, 1u << 20 | 7u << 16), kOkay);  // BC7 sRGB
+  ASSERT_EQ(s.write(kDescAttr, 1u << 21 | 7u << 16), kOkay);  // BC7 sRGB
   ASSERT_EQ(s.write(kDescSize, 511u << 16 | 1000u), kOkay);
   EXPECT_EQ(s.desc_pulses, 0);
   // the pulse: exactly the clock after the commit's edge (checked by the monitor), with the staged

@@ -27,7 +27,7 @@ constexpr const char* kCounterNames[kCounters] = {"CYCLES",    "SAMPLES",   "SAM
 
 // Constants and CONTROL's bits.
 constexpr uint32_t kIdValue = 0x54455855;       // "TEXU"
-constexpr uint32_t kVersionValue = 0x00030005;  // 3.5: any texture size (DESC_SIZE), FILTER.unnormalized, .reduction, .compare_op, DESC_ATTR.layers, .cube; DESC_ATTR.format 4 bits (ETC2)
+constexpr uint32_t kVersionValue = 0x00030006;  // 3.6: any texture size (DESC_SIZE), FILTER.unnormalized, .reduction, .compare_op, DESC_ATTR.layers, .cube; DESC_ATTR.format 5 bits (ASTC)
 constexpr uint32_t kUnitReset = 1, kFreeze = 2, kClear = 4;
 constexpr uint32_t kOkay = 0, kSlverr = 2;
 
@@ -62,8 +62,8 @@ inline uint32_t border_ba_word(const SamplerConfig& c) {
 // The staged descriptor's DESC_ATTR for a texture's last level, format, sRGB flag, cube flag and
 // layer count, and its DESC_SIZE.
 inline uint32_t desc_attr_word(const MemoryLayout& l, bool srgb = false) {
-  return uint32_t(l.levels() - 1) << 8 | uint32_t(l.format()) << 16 | uint32_t(srgb) << 20 |
-         uint32_t(l.kind() == TextureKind::Cube) << 21 | uint32_t(l.layers() - 1) << 24;
+  return uint32_t(l.levels() - 1) << 8 | uint32_t(l.format()) << 16 | uint32_t(srgb) << 21 |
+         uint32_t(l.kind() == TextureKind::Cube) << 22 | uint32_t(l.layers() - 1) << 24;
 }
 inline uint32_t desc_size_word(Extent e) { return uint32_t(e.w) | uint32_t(e.h) << 16; }
 
