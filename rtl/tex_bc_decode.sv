@@ -1,6 +1,7 @@
-// tex_bc_decode: one texel of a 4x4 block of any block format (docs/numerics.md
+// tex_bc_decode: one texel of a block of any block format (docs/numerics.md
 // "Block-compressed formats"): BC1 (with its transparent index), BC2 (4-bit alpha), BC3 (BC4-style
-// alpha), BC4 (R, 0, 0, 255), BC5 (R, G, 0, 255), BC7, ETC2 RGB8, RGB8A1 and RGBA8 (tex_etc2). The model's decode_texel
+// alpha), BC4 (R, 0, 0, 255), BC5 (R, G, 0, 255), BC7, ETC2 RGB8, RGB8A1 and RGBA8 (tex_etc2), and
+// ASTC of every footprint, linear or sRGB (tex_astc). The model's decode_texel
 // (model/block_formats.h) is its specification, bit for bit.
 // The formats' decoders are functions (packages tex_bc_colour, tex_bc_channel, tex_bc7) called
 // inside `if (en)` and only for their formats, so that a simulator spends nothing on them in the
@@ -14,22 +15,30 @@
 //   en     : decode (else rgba is 0 and nothing is evaluated)
 //   format : tex_pkg::FMT_* (FMT_RGBA8 gives 0: not a block format)
 //   block  : 128 bits, byte i at bits 8i+7..8i; BC1, BC4, ETC2 RGB8 and RGB8A1 use bits 63..0
-//   texel  : 0..15, x + 4 y inside the block
+//   x, y   : the texel's place in the block, 0..3 (ASTC: 0..F-1 of its footprint)
+//   srgb   : the texture is sRGB (ASTC widens its endpoints differently; the others ignore it)
 //   rgba   : unorm8 R (bits 7..0), G, B, A (31..24)
 module tex_bc_decode (
   input  logic                         en,
   input  logic [tex_pkg::FORMAT_W-1:0] format,
   input  logic [127:0]                 block,
-  input  logic [3:0]                   texel,
+  input  logic [3:0]                   x,
+  input  logic [3:0]                   y,
+  input  logic                         srgb,
   output logic [31:0]                  rgba
 );
+  logic [3:0] texel;  // x + 4 y in a 4x4 block
+  logic [3:0] fw, fh; // an ASTC footprint
+  assign texel    = {y[1:0], x[1:0]};
+  assign {fh, fw} = tex_pkg::footprint(format);
   // The texel from the formats' parts: BC1's colour (black if transparent), BC2's 4-bit alpha,
   // BC3's channel alpha, BC4's red, BC5's red and green, BC7's texel.
   function automatic logic [31:0] texel_of(input logic [tex_pkg::FORMAT_W-1:0] f, input logic [24:0] colour,
                                            input logic [7:0] low, input logic [7:0] high, input logic [3:0] nibble,
                                            input logic [31:0] bc7, input logic [31:0] etc2,
-                                           input logic [7:0] eac);
-    case (f)
+                                           input logic [7:0] eac, input logic [31:0] astc);
+    if (tex_pkg::astc(f)) texel_of = astc;
+    else case (f)
       tex_pkg::FMT_BC1: texel_of = colour[24] ? 32'd0 : {8'd255, colour[23:0]};
       tex_pkg::FMT_BC2: texel_of = {nibble, nibble, colour[23:0]};  // x 17
       tex_pkg::FMT_BC3: texel_of = {low, colour[23:0]};
@@ -49,7 +58,7 @@ module tex_bc_decode (
 `ifdef SYNTHESIS
   logic [24:0] colour;   // {transparent, rgb}
   logic [7:0]  low, high;
-  logic [31:0] bc7, etc2;
+  logic [31:0] bc7, etc2, astc;
   logic [7:0]  eac;
   // Yosys inlines a function where it is called: inside an `if`, every assignment of its body
   // becomes a multiplexer (Yosys's `proc` took minutes for the 8 taps); as continuous logic, none
@@ -61,7 +70,8 @@ module tex_bc_decode (
   assign etc2   = tex_etc2::colour(format == tex_pkg::FMT_ETC2_RGBA ? block[127:64] : block[63:0], texel,
                                    format == tex_pkg::FMT_ETC2_A1);
   assign eac    = tex_etc2::alpha(block[63:0], texel);
-  assign rgba = en ? texel_of(format, colour, low, high, nibble, bc7, etc2, eac) : 32'd0;
+  assign astc   = tex_astc::texel(block, fw, fh, x, y, srgb);
+  assign rgba = en ? texel_of(format, colour, low, high, nibble, bc7, etc2, eac, astc) : 32'd0;
 `else
   // A simulator: nothing without `en` (the clocks without a block sample cost a test), and each
   // format's decoder only for that format. (No `else` branches: Verilator makes a ?: of an
@@ -69,10 +79,10 @@ module tex_bc_decode (
   always_comb begin
     logic [24:0] colour;   // {transparent, rgb}
     logic [7:0]  low, high;
-    logic [31:0] bc7, etc2;
+    logic [31:0] bc7, etc2, astc;
     logic [7:0]  eac;
     rgba = '0;
-    {colour, low, high, bc7, etc2, eac} = '0;
+    {colour, low, high, bc7, etc2, eac, astc} = '0;
     if (en) begin
       if (bc1 || format == tex_pkg::FMT_BC2 || format == tex_pkg::FMT_BC3)
         colour = tex_bc_colour::texel_rgb(bc1 ? block[63:0] : block[127:64], texel, !bc1);
@@ -88,7 +98,9 @@ module tex_bc_decode (
         etc2 = tex_etc2::colour(block[127:64], texel, 1'b0);
         eac  = tex_etc2::alpha(block[63:0], texel);
       end
-      rgba = texel_of(format, colour, low, high, nibble, bc7, etc2, eac);
+      if (tex_pkg::astc(format))
+        astc = tex_astc::texel(block, fw, fh, x, y, srgb);
+      rgba = texel_of(format, colour, low, high, nibble, bc7, etc2, eac, astc);
     end
   end
 `endif

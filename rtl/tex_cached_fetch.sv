@@ -158,7 +158,7 @@ module tex_cached_fetch #(
   localparam int LCW  = $clog2(FILL_DEPTH + 1);
   localparam int RD   = SLW + OFW;                  // a bank read: {slot, offset}
   localparam int FW   = tex_pkg::FORMAT_W;
-  localparam int PB   = (BLOCK_FORMATS != 0) ? 3 : 1;  // low bits of a tap coordinate the taps need
+  localparam int PB   = (BLOCK_FORMATS != 0) ? 5 : 1;  // a tap coordinate's unit parity and place in its block
   localparam int WW   = LINE_BITS / 4;              // bits of a bank word
   localparam int KW   = tex_pkg::LINE_KIND_W;
   localparam int DSW  = KW + 1 + SLW;               // a miss's destination: {line kind, cache, line slot}

@@ -5,9 +5,11 @@
 //   write    desc_we registers the descriptor (clock 0); in clock 1 its size, last level, format
 //            and sRGB flag are written and the set-up starts;
 //   set-up   then one level per clock, all 2^LEVEL_W level slots (those past the chain's last
-//            level are never read): level k's grid NBX x NBY blocks of the format's line
-//            covering its max(1, w >> k) x max(1, h >> k) texels and, on a side that is not a
-//            power of two, the repeat seam's copy of column (row) 0; its first line = the last
+//            level are never read): level k's grid NBX x NBY lines of the format covering its
+//            max(1, w >> k) x max(1, h >> k) texels, in units of the format's block (a texel for
+//            RGBA8, 4 x 4 texels, or an ASTC footprint: ceil(n_k / F) units a side) and, on a side
+//            that is not a power of two or that an ASTC footprint F does not divide (n_k > F),
+//            the repeat seam's copy of unit column (row) 0; its first line = the last
 //            one's + NBX * NBY (row-major) or + 2^(ceil log2 NBX + ceil log2 NBY) (Morton). One
 //            multiplier, used once per level, where one per level in a single clock would be 16.
 //            A cube map's faces (desc_cube) are stored with a one-texel skirt and no seam copy:
@@ -31,7 +33,8 @@
 //                       6 layers a cube, +X .. -Z, square RGBA faces (CUBE_MAPS only)
 //   block_morton      : the block order of every level (a registered cfg pin; set under reset)
 //   size_tex_a/_b     : two entries whose size is read: size_a, size_b = {h, w}, SIZE_W bits each;
-//                       last_b: entry b's last level; layers_a: entry a's layer count - 1,
+//                       last_b: entry b's last level; footprint_b: entry b's block footprint {h, w}
+//                       (4 bits each: tex_pkg::footprint; the repeat seam's rule); layers_a: entry a's layer count - 1,
 //                       cubes_a its cube count - 1 (a cube map's: the clamp of its cube index);
 //                       cube_b: entry b is a cube map
 //   cube_tex_c, cube_c : an entry and whether it is a cube map (read at the request port)
@@ -41,8 +44,8 @@
 //   tag_pitch         : per slot, NBX (row-major: the block row's pitch), PTW bits unsigned
 //   tag_square        : per slot, min(ceil log2 NBX, ceil log2 NBY) (Morton: the interleaved square)
 //   tag_format, tag_srgb, tag_log2_lw, tag_log2_lh : the entry's format, sRGB flag and line shape
-//                       (log2 texels across and down a line: the BW x BH block, or a block
-//                       format's 4x4 blocks, 2^a x 2^b of them in the line's bytes, a = b or b + 1)
+//                       (log2 units across and down a line: the BW x BH texels, or a block format's
+//                       blocks, 2^a x 2^b of them in the line's bytes, a = b or b + 1)
 `include "tex_param_error.svh"
 module tex_desc_table #(
   parameter int MAX_LOG2_W    = 10,
@@ -80,6 +83,7 @@ module tex_desc_table #(
   input  logic [TXW-1:0]                  size_tex_b,
   output logic [2*tex_pkg::SIZE_W-1:0]    size_b,
   output logic [tex_pkg::LEVEL_W-1:0]     last_b,
+  output logic [7:0]                      footprint_b,
   output logic                            cube_b,
   input  logic [TXW-1:0]                  cube_tex_c,
   output logic                            cube_c,
@@ -141,26 +145,27 @@ module tex_desc_table #(
   logic [YL-1:0] cubes_m1;
   assign cubes_m1 = YL'((YL+1)'(layers_q) / (YL+1)'(6));
 
-  // A format's line, in texels: log2 across and down.
+  // A format's line, in units (texels, or blocks): log2 across and down.
   function automatic logic [2*VW-1:0] line_shape(input logic [FW-1:0] fmt);
-    int lb;  // log2 of the line's 4x4 blocks
+    int lb;  // log2 of the line's blocks
     lb = tex_pkg::line_kind(fmt) == tex_pkg::LINE_BLOCKS8 ? LOG2_LB - 3 : LOG2_LB - 4;  // 8- or 16-byte blocks
     if (fmt == tex_pkg::FMT_RGBA8) line_shape = {VW'($clog2(BH)), VW'($clog2(BW))};
-    else line_shape = {VW'(2 + lb / 2), VW'(2 + (lb + 1) / 2)};
+    else line_shape = {VW'(lb / 2), VW'((lb + 1) / 2)};
   endfunction
-  // The blocks across one side of level k: the side max(1, n >> k) and, if that is not a power of
-  // two, its seam copy (texels: at index n_k; a block format: a 4x4-block column at n_k rounded
-  // up to 4), in lines of 2^lb texels; a cube face's n_k and its skirt's two.
+  // The lines across one side of level k: the side max(1, n >> k) in units of the footprint side
+  // f (ceil(n_k / f)) and the repeat seam's copy of unit column 0 where the side has one (not a
+  // power of two, or longer than an f that is not: ASTC 5, 6, 10, 12), in lines of 2^lb units; a
+  // cube face's n_k and its skirt's two.
   function automatic logic [PTW-1:0] side_blocks(input logic [NW-1:0] n, input logic [VW-1:0] k,
-                                                 input logic [VW-1:0] lb, input logic bc, input logic cube);
-    logic [NW+2:0] nk, span;
+                                                 input logic [VW-1:0] lb, input logic [3:0] f, input logic cube);
+    logic [NW+2:0] nk, units;
+    logic          seam;
     nk = (NW+3)'(n) >> k;
     if (nk == '0) nk = (NW+3)'(1);
-    if (cube) span = nk + (NW+3)'(2);
-    else if ((nk & (nk - 1'b1)) == '0) span = nk;                   // a power of two: no copy
-    else if (bc) span = ((nk + (NW+3)'(3)) & ~(NW+3)'(3)) + (NW+3)'(4);
-    else span = nk + 1'b1;
-    side_blocks = PTW'((span + (NW+3)'((1 << lb) - 1)) >> lb);
+    seam = (nk & (nk - 1'b1)) != '0 || ((f & (f - 4'd1)) != 4'd0 && nk > (NW+3)'(f));
+    if (cube) units = nk + (NW+3)'(2);
+    else units = (NW+3)'(tex_pkg::div_footprint(16'(nk + (NW+3)'(f) - (NW+3)'(1)), f)) + (NW+3)'(seam);
+    side_blocks = PTW'((units + (NW+3)'((1 << lb) - 1)) >> lb);
   endfunction
   function automatic logic [VW-1:0] log2_ceil(input logic [PTW-1:0] v);
     log2_ceil = '0;
@@ -175,10 +180,12 @@ module tex_desc_table #(
   logic [PTW-1:0] nbx, nby;
   logic [VW-1:0] lbx, lby;
   logic [LNW-1:0] lines;    // the level's lines in memory
+  logic [7:0]    foot_q;    // the format's footprint {h, w}
   assign {lh, lw} = line_shape(format_q);
+  assign foot_q   = tex_pkg::footprint(format_q);
   always_comb begin
-    nbx   = side_blocks(w_q, lev, lw, format_q != tex_pkg::FMT_RGBA8, cube_q);
-    nby   = side_blocks(h_q, lev, lh, format_q != tex_pkg::FMT_RGBA8, cube_q);
+    nbx   = side_blocks(w_q, lev, lw, foot_q[3:0], cube_q);
+    nby   = side_blocks(h_q, lev, lh, foot_q[7:4], cube_q);
     lbx   = log2_ceil(nbx);
     lby   = log2_ceil(nby);
     lines = block_morton ? LNW'(1) << (5'(lbx) + 5'(lby)) : LNW'(nbx) * LNW'(nby);
@@ -240,6 +247,7 @@ module tex_desc_table #(
   assign size_a = {size_h[size_tex_a], size_w[size_tex_a]};
   assign size_b = {size_h[size_tex_b], size_w[size_tex_b]};
   assign last_b = last[size_tex_b];
+  assign footprint_b = tex_pkg::footprint(format[size_tex_b]);
   assign layers_a = layers[size_tex_a];
   assign cubes_a  = cubes[size_tex_a];
   assign cube_b   = cube[size_tex_b];

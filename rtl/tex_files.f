@@ -23,6 +23,7 @@ rtl/tex_bc_colour.sv
 rtl/tex_bc_channel.sv
 rtl/tex_bc7.sv
 rtl/tex_etc2.sv
+rtl/tex_astc.sv
 rtl/tex_bc_decode.sv
 rtl/tex_srgb_decode.sv
 rtl/tex_cache_data.sv

@@ -30,6 +30,9 @@
 //   req_fetch             : a texel fetch: req_u, req_v, req_lod are the signed integers i, j, k
 //   req_gather            : a gather (req_lod, req_bias and the sampler's filters and LOD fields unused)
 //   req_cube              : the texture is a cube map (its faces stored with their skirts)
+//   req_footprint         : the texture's block footprint {h, w}, 4 bits each (tex_pkg::footprint;
+//                           1 x 1 for texels): a power-of-two side longer than a footprint side
+//                           that is not a power of two (ASTC 5, 6, 10, 12) has a repeat-seam copy
 //   req_w, req_h          : unsigned SIZE_W bits, level 0's size of the request's texture, each
 //                           1..2^max(XW, YW) (any value: GL's sizes)
 //   req_last_level        : unsigned LEVEL_W bits, the texture's last level (its level count - 1:
@@ -49,7 +52,8 @@
 //   x, y                  : wrapped texel indices, unsigned XW (YW) bits; slot s tap j (0: i0,
 //                           1: i0 + 1) at [(s*2 + j)*XW +: XW]; each inside its level, or the
 //                           repeat seam's index = size (texel 0's copy, a side that is not a
-//                           power of two; docs/numerics.md stage 3)
+//                           power of two or that the footprint asks one for; docs/numerics.md
+//                           stage 3, docs/memory.md §1)
 //   border_x, border_y    : slot s tap j at [s*2 + j]: the tap is outside its level in address
 //                           mode border (tex_wrap's border; x, y are then don't-care indices)
 //   zero                  : a texel fetch outside the texture (no texel read; clock 4)
@@ -79,6 +83,7 @@ module tex_front #(
   input  logic                                   req_fetch,
   input  logic                                   req_gather,
   input  logic                                   req_cube,
+  input  logic [7:0]                             req_footprint,
   output logic [2*tex_pkg::LEVEL_W-1:0]          level,
   output logic [tex_pkg::WEIGHT_BITS-1:0]        f,
   output logic [4*tex_pkg::WEIGHT_BITS-1:0]      w,
@@ -119,6 +124,7 @@ module tex_front #(
   logic [3:0]                             fetch_q;   // req_fetch at clocks 1..4
   logic [3:0]                             gather_q;  // req_gather at clocks 1..4
   logic [3:0]                             cube_q;    // req_cube at clocks 1..4 (CUBE_MAPS; else 0)
+  logic [3*8-1:0]                         foot_q;    // req_footprint at clocks 1..3
   always_ff @(posedge clk) begin
     if (en) begin
       u_s1        <= req_u;
@@ -135,6 +141,7 @@ module tex_front #(
       unnorm_q <= {unnorm_q[1:0], req_unnormalized};
       fetch_q  <= {fetch_q[2:0], req_fetch};
       gather_q <= {gather_q[2:0], req_gather};
+      foot_q   <= {foot_q[0 +: 2*8], req_footprint};
     end
   end
   generate
@@ -247,7 +254,8 @@ module tex_front #(
         localparam int OW = (a == 0) ? XW : YW;
         logic signed [IW-1:0] i0_s4, i1_s4;  // the taps, unwrapped
         logic [NB-1:0]        n_s3, n_s4;    // the slot's level size along the axis
-        logic                 pow2_s4;       // it is a power of two (no seam copy)
+        logic                 pow2_s4;       // it has no seam copy: a power of two (not one the footprint asks a copy for)
+        logic [3:0]           fp;            // the footprint's side along the axis
         logic signed [TW-1:0] t9_s3;
         logic [OW-1:0]        t0, t1;        // wrapped taps i0, i0 + 1
         logic                 b0, b1;        // their border flags
@@ -266,9 +274,10 @@ module tex_front #(
         always_ff @(posedge clk) begin
           if (en) begin
             n_s4    <= n_s3;
-            pow2_s4 <= (n_s3 & (n_s3 - NB'(1))) == '0;
+            pow2_s4 <= (n_s3 & (n_s3 - NB'(1))) == '0 && !((fp & (fp - 4'd1)) != 4'd0 && n_s3 > NB'(fp));
           end
         end
+        assign fp = foot_q[2*8 + a*4 +: 4];
         assign size[(s*2 + a)*NW +: NW] = NW'(n_s4);
         logic [tex_pkg::WRAP_W-1:0] mode;  // the sampler's, a fetch's clamp to border, a cube face's skirt
         assign mode = fetch_q[3] ? (cube_q[3] ? tex_pkg::WRAP_SKIRT_BORDER : tex_pkg::WRAP_BORDER)

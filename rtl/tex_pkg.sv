@@ -88,7 +88,8 @@ package tex_pkg;
 
   // A block format the unit decodes (codes 6, 11..15 and 30, 31 are none).
   function automatic logic block_format(input logic [FORMAT_W-1:0] fmt);
-    block_format = (fmt >= FMT_BC1 && fmt <= FMT_BC5) || (fmt >= FMT_BC7 && fmt <= FMT_ETC2_RGBA);
+    block_format = (fmt >= FMT_BC1 && fmt <= FMT_BC5) || (fmt >= FMT_BC7 && fmt <= FMT_ETC2_RGBA) ||
+                   (fmt >= FMT_ASTC_4X4 && fmt <= FMT_ASTC_12X12);
   endfunction
   function automatic logic astc(input logic [FORMAT_W-1:0] fmt);
     astc = fmt >= FMT_ASTC_4X4 && fmt <= FMT_ASTC_12X12;
@@ -107,11 +108,26 @@ package tex_pkg;
     endcase
   endfunction
 
+  // v / f for a footprint side f (1, 4, 5, 6, 8, 10, 12) and v < 2^16: shifts, and the odd factors
+  // 3 and 5 as reciprocal multiplies, (v * 43691) >> 17 and (v * 52429) >> 18, exact below 2^16
+  // (docs/memory.md §1; the model's MemoryLayout::block_column).
+  function automatic logic [15:0] div_footprint(input logic [15:0] v, input logic [3:0] f);
+    case (f)
+      4'd4: div_footprint = v >> 2;
+      4'd5: div_footprint = 16'((34'(v) * 34'd52429) >> 18);
+      4'd6: div_footprint = 16'(((34'(v) >> 1) * 34'd43691) >> 17);
+      4'd8: div_footprint = v >> 3;
+      4'd10: div_footprint = 16'(((34'(v) >> 1) * 34'd52429) >> 18);
+      4'd12: div_footprint = 16'(((34'(v) >> 2) * 34'd43691) >> 17);
+      default: div_footprint = v;  // 1
+    endcase
+  endfunction
+
   // A cached line's kind in the data banks (tex_cache_data's wr_kind): what a bank word holds.
   localparam int LINE_KIND_W = 2;
   localparam logic [LINE_KIND_W-1:0] LINE_TEXELS   = 2'd0;
   localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS8  = 2'd1;  // BC1, BC4, ETC2 RGB8, RGB8A1: 8-byte 4x4 blocks
-  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS16 = 2'd2;  // BC2, BC3, BC5, BC7, ETC2 RGBA8: 16-byte blocks
+  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS16 = 2'd2;  // BC2, BC3, BC5, BC7, ETC2 RGBA8, ASTC: 16-byte blocks
   function automatic logic [LINE_KIND_W-1:0] line_kind(input logic [FORMAT_W-1:0] fmt);
     if (fmt == FMT_RGBA8) line_kind = LINE_TEXELS;
     else if (fmt == FMT_BC1 || fmt == FMT_BC4 || fmt == FMT_ETC2 || fmt == FMT_ETC2_A1) line_kind = LINE_BLOCKS8;

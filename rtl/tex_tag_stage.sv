@@ -20,15 +20,18 @@
 //   line, pitch, square: per slot, tex_desc_table's entry: first line, row-major pitch in
 //                        blocks, Morton square's log2
 //   fmt                : the texture's format (FMT_RGBA8 without push); log2_lw, log2_lh the
-//                        line's texels across and down (log2)
+//                        line's units across and down (log2): a unit is a texel (RGBA8) or a
+//                        block of the format's footprint (tex_pkg::footprint: 4 x 4, or ASTC's),
+//                        unit column x / F of texel column x (docs/memory.md §1)
 //   misses             : the sample's k-th miss at [k*MEW +: MEW] (k < fills), {line number,
 //                        line kind, cache, line slot}; 0 beyond
 //   fills, lookups     : misses (0..8) and lines looked up (0..8) of the sample
 //   reads              : slot s bank b's read at [(s*4 + b)*RD +: RD]: {line slot, offset of the
-//                        texel or 4x4 block in the bank word}
+//                        texel or block in the bank word}
 //   need               : slot s bank b reads a line the sample looked up (its error counts)
-//   tap_low            : per slot at [s*4*PB +: 4*PB]: {y1, y0, x1, x0} mod 2^PB (the taps' bank
-//                        and place in a block)
+//   tap_low            : per slot at [s*4*PB +: 4*PB]: {y1, y0, x1, x0}, each its unit's parity
+//                        (the tap's bank) and, with BLOCK_FORMATS, below it its place in the block
+//                        (4 bits, 0..F-1): {parity, place}
 module tex_tag_stage #(
   parameter int MAX_LOG2_W    = 10,
   parameter int MAX_LOG2_H    = 10,
@@ -36,7 +39,7 @@ module tex_tag_stage #(
   parameter int BH            = 4,
   parameter int LINES         = 256, // lines per cache (power of two)
   parameter int MAX_WAYS      = 4,
-  parameter int BLOCK_FORMATS = 0,   // 1: lines of 4x4 blocks too (banks by block parity)
+  parameter int BLOCK_FORMATS = 0,   // 1: lines of blocks too (banks by block parity)
   parameter int LNW           = 26,  // bits of a line number
   parameter int XW            = (MAX_LOG2_W > 0) ? MAX_LOG2_W : 1,  // derived, do not override
   parameter int YW            = (MAX_LOG2_H > 0) ? MAX_LOG2_H : 1,
@@ -44,7 +47,7 @@ module tex_tag_stage #(
   parameter int SLW           = $clog2(LINES),
   parameter int OFW           = ($clog2(BW) + $clog2(BH) - 2 > 0) ? $clog2(BW) + $clog2(BH) - 2 : 1,
   parameter int RD            = SLW + OFW,
-  parameter int PB            = (BLOCK_FORMATS != 0) ? 3 : 1,
+  parameter int PB            = (BLOCK_FORMATS != 0) ? 5 : 1,
   parameter int MEW           = LNW + tex_pkg::LINE_KIND_W + 1 + SLW
 ) (
   input  logic                              clk,
@@ -91,17 +94,20 @@ module tex_tag_stage #(
     for (int i = 0; i < XSW; i++) interleave[2*i]     = a[i];
     for (int i = 0; i < YSW; i++) interleave[2*i + 1] = b[i];
   endfunction
-  // The stored coordinate of a second tap (the only one the repeat seam moves: stage::wrap gives
-  // it index n on a side n that is not a power of two): a block format's copy is at n rounded up
-  // to a whole 4x4 block; texels keep theirs at n.
-  function automatic logic [NW:0] block_seam(input logic [NW-1:0] n);
-    block_seam = ({1'b0, n} + (NW+1)'(3)) & ~(NW+1)'(3);
-  endfunction
-  function automatic logic [XSW-1:0] stored_x(input logic [XW-1:0] i, input logic [NW-1:0] n, input logic bc);
-    stored_x = (bc && (NW+1)'(i) == {1'b0, n}) ? XSW'(block_seam(n)) : XSW'(i);
-  endfunction
-  function automatic logic [YSW-1:0] stored_y(input logic [YW-1:0] i, input logic [NW-1:0] n, input logic bc);
-    stored_y = (bc && (NW+1)'(i) == {1'b0, n}) ? YSW'(block_seam(n)) : YSW'(i);
+  // A tap's unit (its texel's block, or the texel) and its place in the block: x / F and x mod F
+  // for a footprint side F; the repeat seam's second tap (stage::wrap gives it index n on a side
+  // with a copy) reads unit column 0's copy, kept at ceil(n / F), at place 0 (docs/memory.md §1).
+  // {unit (16 bits), place (4 bits)}.
+  function automatic logic [19:0] unit_of(input logic [NW-1:0] i, input logic [NW-1:0] n, input logic [3:0] fp,
+                                          input logic second);
+    logic [15:0] u;
+    if (second && i == n) begin
+      u = tex_pkg::div_footprint(16'(i) + 16'(fp) - 16'd1, fp);
+      unit_of = {u, 4'd0};
+    end else begin
+      u = tex_pkg::div_footprint(16'(i), fp);
+      unit_of = {u, 4'(16'(i) - u * 16'(fp))};
+    end
   endfunction
   // The set index >> 2 (docs/memory.md §2): (xh ^ reverse_k(yh mod 2^k) ^ (yh >> k)) mod 2^k with
   // xh = bx >> 1, yh = by >> 1, k = log2(sets) - 2; rows, columns and neighbouring block rows
@@ -120,8 +126,12 @@ module tex_tag_stage #(
     set_high = SHW'(xh) ^ (rev >> (32'(SHW) - 32'(k))) ^ SHW'(yh >> k);
   endfunction
 
-  logic blk;  // a block format: banks by 4x4-block parity, not texel parity
-  assign blk = fmt != tex_pkg::FMT_RGBA8;
+  logic [3:0] fw, fh;  // the format's footprint (RGBA8: 1 x 1)
+  assign {fh, fw} = tex_pkg::footprint(fmt);
+  // A tap's tap_low: its unit's parity, and with BLOCK_FORMATS its place in the block below it.
+  function automatic logic [PB-1:0] low_of(input logic parity, input logic [3:0] place);
+    low_of = (PB > 1) ? PB'({parity, place}) : PB'(parity);
+  endfunction
 
   // Per slot s and block parity p = {y parity, x parity}: the lookup, its line number and set.
   logic [3:0]       look [2];
@@ -138,8 +148,10 @@ module tex_tag_stage #(
         logic [VW-1:0]  m;            // Morton: the interleaved square's log2
         logic [PTW-1:0] pt;           // row-major: blocks per block row
         logic [NW-1:0]  nw, nh;       // the level's size
-        logic [XSW-1:0] x0, x1, bx0, bx1, bx;
+        logic [XSW-1:0] x0, x1, bx0, bx1, bx;  // the taps' units, their lines' columns
         logic [YSW-1:0] y0, y1, by0, by1, by;
+        logic [3:0]     rx0, rx1, ry0, ry1;    // the taps' places in their blocks
+        logic [19:0]    ux0, ux1, uy0, uy1;    // unit_of's {unit, place}
         logic [LNW-1:0] row0, row1;   // row-major: the first block of by0's (by1's) row
         logic          nx1, ny1;     // the second tap along x (y) is needed: its weight != 0
         logic          nx0, ny0;     // the first tap along x (y) is inside its level (not a border tap)
@@ -148,11 +160,11 @@ module tex_tag_stage #(
         logic [LNW-1:0] level_base;  // the level's first line
         logic [XSW-1:0] xs;
         logic [YSW-1:0] ys;
-        logic          px0, py0;  // tap 0's bank parity: of its texel (bit 0) or 4x4 block (bit 2)
-        logic [4:0]    pq;                  // the parity bit's position + 1
+        logic          px0, py0;  // tap 0's bank parity: of its unit
         // (temporaries too: a value on every path, no latch)
         {m, pt, nw, nh, x0, x1, bx0, bx1, bx, y0, y1, by0, by1, by, row0, row1} = '0;
-        {nx0, ny0, nx1, ny1, has_x, has_y, index, level_base, xs, ys, px0, py0, pq} = '0;
+        {rx0, rx1, ry0, ry1, ux0, ux1, uy0, uy1} = '0;
+        {nx0, ny0, nx1, ny1, has_x, has_y, index, level_base, xs, ys, px0, py0} = '0;
         look[s]        = '0;
         look_line[s]   = '0;
         look_set_hi[s] = '0;
@@ -166,10 +178,15 @@ module tex_tag_stage #(
           m     = square[s*VW +: VW];
           nw    = size[(s*2 + 0)*NW +: NW];
           nh    = size[(s*2 + 1)*NW +: NW];
-          x0    = XSW'(x[(s*2 + 0)*XW +: XW]);
-          x1    = stored_x(x[(s*2 + 1)*XW +: XW], nw, blk);
-          y0    = YSW'(y[(s*2 + 0)*YW +: YW]);
-          y1    = stored_y(y[(s*2 + 1)*YW +: YW], nh, blk);
+          ux0  = unit_of(NW'(x[(s*2 + 0)*XW +: XW]), nw, fw, 1'b0);
+          ux1  = unit_of(NW'(x[(s*2 + 1)*XW +: XW]), nw, fw, 1'b1);
+          uy0  = unit_of(NW'(y[(s*2 + 0)*YW +: YW]), nh, fh, 1'b0);
+          uy1  = unit_of(NW'(y[(s*2 + 1)*YW +: YW]), nh, fh, 1'b1);
+          x0   = XSW'(ux0 >> 4);
+          x1   = XSW'(ux1 >> 4);
+          y0   = YSW'(uy0 >> 4);
+          y1   = YSW'(uy1 >> 4);
+          {rx0, rx1, ry0, ry1} = {ux0[3:0], ux1[3:0], uy0[3:0], uy1[3:0]};
           bx0  = x0 >> log2_lw;
           bx1  = x1 >> log2_lw;
           by0  = y0 >> log2_lh;
@@ -183,10 +200,9 @@ module tex_tag_stage #(
           ny0  = !border_y[s*2];
           nx1  = w[(s*2 + 0)*WB +: WB] != '0 && !border_x[s*2 + 1];
           ny1  = w[(s*2 + 1)*WB +: WB] != '0 && !border_y[s*2 + 1];
-          low[s] = {PB'(y1), PB'(y0), PB'(x1), PB'(x0)};
-          pq  = blk ? 5'd3 : 5'd1;
-          px0 = 1'(32'(x0) >> (pq - 5'd1));
-          py0 = 1'(32'(y0) >> (pq - 5'd1));
+          low[s] = {low_of(y1[0], ry1), low_of(y0[0], ry0), low_of(x1[0], rx1), low_of(x0[0], rx0)};
+          px0 = x0[0];
+          py0 = y0[0];
           for (int q = 0; q < 4; q++) begin
             // The needed x taps whose block has x parity q[0] (likewise y): bx0 if its parity
             // matches, else bx1 (two distinct blocks of a footprint differ in parity).
@@ -213,8 +229,8 @@ module tex_tag_stage #(
             ys = y0 ^ ({YSW{py0 ^ k[1]}} & (y0 ^ y1));
             bank_block[s][k*2 +: 2] = {(py0 == k[1]) ? by0[0] : by1[0], (px0 == k[0]) ? bx0[0] : bx1[0]};
             bank_offset[s][k*OFW +: OFW] =
-                OFW'((((32'(ys) >> pq) & ((32'd1 << (log2_lh - VW'(pq))) - 1)) << (log2_lw - VW'(pq)))
-                     | ((32'(xs) >> pq) & ((32'd1 << (log2_lw - VW'(pq))) - 1)));
+                OFW'((((32'(ys) >> 1) & ((32'd1 << (log2_lh - VW'(1))) - 1)) << (log2_lw - VW'(1)))
+                     | ((32'(xs) >> 1) & ((32'd1 << (log2_lw - VW'(1))) - 1)));
           end
         end
       end

@@ -11,7 +11,8 @@
 // Latency: 0. Throughput: 8 taps per clock.
 // Ports:
 //   c0, fmt, srgb : slot 0's cache, the texture's format (tex_pkg::FMT_*), sRGB (SRGB only)
-//   low           : slot s at [s*4*PB +: 4*PB]: {y1, y0, x1, x0} mod 2^PB (tex_tag_stage)
+//   low           : slot s at [s*4*PB +: 4*PB]: {y1, y0, x1, x0}, each {its unit's parity, with
+//                   BLOCK_FORMATS its place in the block (4 bits)} (tex_tag_stage)
 //   reads         : the sample's bank reads, slot s bank b at [(s*4 + b)*RD +: RD]: {line slot,
 //                   offset}; the offsets place each tap in its word
 //   word0, word1  : cache 0's (1's) bank b's word at [b*WW +: WW] (tex_cache_data, read in R)
@@ -32,7 +33,7 @@ module tex_tap_select #(
   parameter int SLW           = $clog2(LINES),
   parameter int OFW           = ($clog2(BW) + $clog2(BH) - 2 > 0) ? $clog2(BW) + $clog2(BH) - 2 : 1,
   parameter int RD            = SLW + OFW,
-  parameter int PB            = (BLOCK_FORMATS != 0) ? 3 : 1
+  parameter int PB            = (BLOCK_FORMATS != 0) ? 5 : 1
 ) (
   input  logic                         valid,
   input  logic                         c0,
@@ -45,8 +46,6 @@ module tex_tap_select #(
   output logic [8*DW-1:0]              texels
 );
   /*verilator inline_module*/  // (one evaluation with its caller, as before the split)
-  logic blk;
-  assign blk = (BLOCK_FORMATS != 0) && fmt != tex_pkg::FMT_RGBA8;  // (the table keeps RGBA8 without them)
 
   // Each tap's bank and its offset in the bank's word (only while a sample is in T).
   logic [8*2-1:0]   tap_bank;    // tap i's bank at [i*2 +: 2]
@@ -62,7 +61,7 @@ module tex_tap_select #(
       for (int i = 0; i < 8; i++) begin
         xl = low[(i/4*4 + i%2)*PB +: PB];
         yl = low[(i/4*4 + 2 + i%4/2)*PB +: PB];
-        tap_bank[i*2 +: 2] = blk ? {yl[PB-1], xl[PB-1]} : {yl[0], xl[0]};
+        tap_bank[i*2 +: 2] = {yl[PB-1], xl[PB-1]};
         tap_offset[i*OFW +: OFW] = reads[(i/4*4 + 32'(tap_bank[i*2 +: 2]))*RD +: OFW];
         tap_cache[i] = c0 ^ 1'(i/4);
       end
@@ -79,6 +78,8 @@ module tex_tap_select #(
   logic [8*DWC-1:0] cached;
   generate
     if (BLOCK_FORMATS != 0) begin : g_decode
+      logic blk;
+      assign blk = fmt != tex_pkg::FMT_RGBA8;
       logic [8*128-1:0] blocks;  // tap i's block at [i*128 +: 128] (8-byte blocks in the low half;
                                  // a word holds whole blocks, WW >= 128)
       logic [8*32-1:0]  rgbas;   // and its decoded texel, unorm8
@@ -96,7 +97,7 @@ module tex_tap_select #(
       end
       for (genvar g = 0; g < 8; g++) begin : g_tap
         tex_bc_decode u_dec (.en(valid && blk), .format(fmt), .block(blocks[g*128 +: 128]),
-                             .texel({low[(g/4*4 + 2 + g%4/2)*PB +: 2], low[(g/4*4 + g%2)*PB +: 2]}),
+                             .x(low[(g/4*4 + g%2)*PB +: 4]), .y(low[(g/4*4 + 2 + g%4/2)*PB +: 4]), .srgb(srgb),
                              .rgba(rgbas[g*32 +: 32]));
       end
       always_comb begin
@@ -109,6 +110,8 @@ module tex_tap_select #(
             cached[i*DWC +: DWC] = `TAP_BITS(i, DWC);
       end
     end else begin : g_texels
+      logic fmt_unused;  // (RGBA8 only without BLOCK_FORMATS)
+      assign fmt_unused = ^fmt;
       always_comb begin
         cached = '0;
         if (valid)

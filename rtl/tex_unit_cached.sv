@@ -291,6 +291,7 @@ module tex_unit_cached #(
   localparam int YL = tex_pkg::LAYER_W;
   logic [YL-1:0]   req_layers_m1;            // the request's texture's layer count - 1 (at tex_probe's port)
   logic            probe_cube;               // the probe's texture is a cube map
+  logic [7:0]      probe_footprint;          // and its block footprint {h, w} (the repeat seam's rule)
   logic [TXW-1:0]  stride_tex;               // the front's clock-3 texture
   logic [LNW-1:0]  stride;                   // and its layer stride, in lines
   tex_desc_table #(
@@ -303,7 +304,8 @@ module tex_unit_cached #(
     .desc_layers_m1(cfg_desc_layers_m1), .desc_cube(cfg_desc_cube), .block_morton(cfg_block_morton_q),
     .busy(desc_busy),
     .size_tex_a(line_tex), .size_a(req_size), .layers_a(req_layers_m1), .cubes_a(line_cubes_m1),
-    .size_tex_b(probe_tex), .size_b(probe_size), .last_b(probe_last_level), .cube_b(probe_cube),
+    .size_tex_b(probe_tex), .size_b(probe_size), .last_b(probe_last_level), .footprint_b(probe_footprint),
+    .cube_b(probe_cube),
     .cube_tex_c(TXW'(req_tex)), .cube_c(req_cube_tex), .stride_tex(stride_tex), .stride(stride),
     .tag_tex(tex_s4), .tag_level(level_s4), .tag_line(line_s4), .tag_pitch(pitch_s4),
     .tag_square(square_s4), .tag_format(format_s4), .tag_srgb(srgb_s4),
@@ -562,6 +564,7 @@ module tex_unit_cached #(
     .req_min_lod(probe_smp_front[2*WW + 2 + PW + LW +: LW]),
     .req_max_lod(probe_smp_front[2*WW + 2 + PW + 2*LW +: LW]), .req_unnormalized(probe_smp_front[FRW - 1]),
     .req_fetch(probe_op == tex_pkg::OP_FETCH), .req_gather(probe_op == tex_pkg::OP_GATHER), .req_cube(probe_cube),
+    .req_footprint(probe_footprint),
     .level(level_s4), .f(f_s4), .w(w_s4), .size(size_s4), .x(x), .y(y),
     .border_x(border_x_front), .border_y(border_y_front), .zero(zero_front)
   );

@@ -3,8 +3,8 @@
 // (tex_reduce: repeat indices lie in [-1, n], mirror in [-1, 2n], the clamping modes in
 // [-2n-1, 2n]), so compares replace the modulo:
 //   repeat: i < 0 ? n-1 : i; the second tap (SECOND = 1) of the seam, i = 0 or n: 0 on a
-//           power-of-two side, else n (texel 0's copy stored after the last texel, so that the
-//           pair n-1, copy sits in two parity banks)
+//           power-of-two side (pow2), else n (texel 0's copy stored after the last texel, so that
+//           the pair n-1, copy sits in two parity banks)
 //   clamp: min(max(i, 0), n-1)      mirror: m = i < 0 ? -1-i : i; m < n ? m : max(2n-1-m, 0)
 //   border: min(max(i, 0), n-1), and border = (i < 0 || i >= n): the tap takes the border colour
 //   mirror-clamp: min(i < 0 ? -1-i : i, n-1)     (the unused code 7 gives 0)
@@ -16,7 +16,8 @@
 // Ports:
 //   i      : signed IW bits, unwrapped integer texel index (tex_address)
 //   n      : unsigned NB bits, the level's side, 1..2^(NB-1) (registered, tex_front clock 4)
-//   pow2   : n is a power of two (registered beside it)
+//   pow2   : the side has no seam copy: n is a power of two (and the cached unit's block footprint
+//            asks none; tex_front, registered beside n)
 //   mode   : tex_pkg::WRAP_*
 //   o      : unsigned OUT_W bits, the wrapped index: [0, n), or n at a repeat seam (skirt: 0..n+1)
 //   border : 1 bit, the tap is outside the level in mode border (o is then a don't-care index

@@ -84,7 +84,7 @@ lint_blocks() {
   # The block decoders and the sRGB table on their own, through their harnesses (tex_unit_cached's
   # taps call them; linted there too).
   lint_decode() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_bc_colour.sv \
-                    rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_etc2.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
+                    rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_etc2.sv rtl/tex_astc.sv rtl/tex_bc_decode.sv rtl/synth/tex_bc_decode_top.sv \
                     --top-module tex_bc_decode_top "$@"; }
   clean tex_bc_decode lint_decode
   clean "tex_bc_decode (-DSYNTHESIS: the synthesis form)" lint_decode -DSYNTHESIS

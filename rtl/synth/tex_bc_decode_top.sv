@@ -5,7 +5,8 @@
 // Ports:
 //   format : tex_pkg::FMT_* (used when FORMAT < 0)
 //   block  : 128 bits, byte i at bits 8i+7..8i; BC1 and BC4 use bits 63..0
-//   texel  : 0..15, x + 4 y inside the block
+//   x, y   : the texel's place in the block (0..3; ASTC 0..F-1)
+//   srgb   : an sRGB texture (ASTC's endpoints)
 //   rgba   : unorm8 R (bits 7..0), G, B, A (31..24)
 `include "tex_param_error.svh"
 module tex_bc_decode_top #(
@@ -13,7 +14,9 @@ module tex_bc_decode_top #(
 ) (
   input  logic [tex_pkg::FORMAT_W-1:0] format,
   input  logic [127:0]                 block,
-  input  logic [3:0]                   texel,
+  input  logic [3:0]                   x,
+  input  logic [3:0]                   y,
+  input  logic                         srgb,
   output logic [31:0]                  rgba
 );
   generate
@@ -22,5 +25,5 @@ module tex_bc_decode_top #(
     end
   endgenerate
   tex_bc_decode u_decode (.en(1'b1), .format(FORMAT < 0 ? format : tex_pkg::FORMAT_W'(FORMAT)), .block(block),
-                          .texel(texel), .rgba(rgba));
+                          .x(x), .y(y), .srgb(srgb), .rgba(rgba));
 endmodule

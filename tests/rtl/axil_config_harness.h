@@ -67,7 +67,7 @@ struct Reference {
     const bool srgb = (desc_attr >> 21) & 1, cube = (desc_attr >> 22) & 1;
     const uint32_t layers = (desc_attr >> 24) + 1;
     return index < kTextures && w >= 1 && w <= (1u << kMaxLog2W) && h >= 1 && h <= (1u << kMaxLog2H) &&
-           (format == 0 || (kBlockFormats && format != 6 && format <= 10)) && (!srgb || (kSrgb && format != 4 && format != 5)) &&
+           (format == 0 || (kBlockFormats && ((format != 6 && format <= 10) || (format >= 16 && format <= 29)))) && (!srgb || (kSrgb && format != 4 && format != 5)) &&
            desc_base % kLineBytes == 0 &&
            (!cube || (kCubeMaps && format == 0 && w == h && layers % 6 == 0 && w + 2 <= (1u << std::min(kMaxLog2W, kMaxLog2H))));
   }

@@ -38,19 +38,23 @@ class Decoder {
       : ctx_(std::make_unique<VerilatedContext>()),
         sim_(std::make_unique<Vtex_bc_decode>(ctx_.get())),
         synthesis_(std::make_unique<Vtex_bc_decode_synthesis>(ctx_.get())) {}
-  Rgba8 texel(TexelFormat f, const uint8_t* block, int i, bool synthesis) {
-    return synthesis ? eval(*synthesis_, f, block, i) : eval(*sim_, f, block, i);
+  // Texel i (x + block_w y) of a block; `srgb`: an sRGB texture (ASTC's endpoints).
+  Rgba8 texel(TexelFormat f, const uint8_t* block, int i, bool synthesis, bool srgb = false) {
+    return synthesis ? eval(*synthesis_, f, block, i, srgb) : eval(*sim_, f, block, i, srgb);
   }
 
  private:
   template <class Top>
-  static Rgba8 eval(Top& top, TexelFormat f, const uint8_t* block, int i) {
+  static Rgba8 eval(Top& top, TexelFormat f, const uint8_t* block, int i, bool srgb) {
     if constexpr (std::is_same_v<Top, Vtex_bc_decode>) top.en = 1;
     top.format = uint8_t(f);
     for (int w = 0; w < 4; ++w)
       top.block[w] = uint32_t(block[4 * w]) | uint32_t(block[4 * w + 1]) << 8 | uint32_t(block[4 * w + 2]) << 16 |
                      uint32_t(block[4 * w + 3]) << 24;
-    top.texel = uint8_t(i);
+    const int fw = format_info(f).block_w;
+    top.x = uint8_t(i % fw);
+    top.y = uint8_t(i / fw);
+    top.srgb = srgb;
     top.eval();
     const uint32_t v = top.rgba;
     return {uint8_t(v), uint8_t(v >> 8), uint8_t(v >> 16), uint8_t(v >> 24)};
@@ -162,7 +166,8 @@ TEST(RtlBlockDecode, NothingWithoutEnable) {
   top.en = 0;
   top.format = uint8_t(TexelFormat::Bc7);
   for (int w = 0; w < 4; ++w) top.block[w] = 0x12345678u * uint32_t(w + 1) | 1u;  // mode 0
-  top.texel = 5;
+  top.x = 1;
+  top.y = 1;
   top.eval();
   EXPECT_EQ(top.rgba, 0u);
   top.en = 1;
@@ -267,6 +272,23 @@ TEST(RtlBlockDecode, AstcBlocksOfEveryFootprintAndMode) {
   EXPECT_EQ(partitions.size(), 4u);
   EXPECT_EQ(weight_levels.size(), 12u);
   EXPECT_EQ(cems.size(), 16u);
+  // Through the taps' decoder (tex_bc_decode, as simulated and in its synthesis form): the format
+  // code gives the footprint (tex_pkg::footprint) and sRGB reaches the decoder.
+  Decoder dec;
+  std::mt19937_64 rng2(rtltest::seed_base() ^ 0xA57D);
+  for (int fi = 0; fi < 14; ++fi) {
+    const TexelFormat f = TexelFormat(int(TexelFormat::Astc4x4) + fi);
+    const FormatInfo& info = format_info(f);
+    for (int k = 0; k < 20; ++k) {
+      uint8_t block[16];
+      stimulus::random_astc_block(rng2, info.block_w, info.block_h, block);
+      for (int i = 0; i < info.block_w * info.block_h; ++i)
+        for (bool synthesis : {false, true})
+          for (bool srgb : {false, true})
+            ASSERT_EQ(dec.texel(f, block, i, synthesis, srgb), decode_texel(f, block, i, srgb))
+                << info.name << (srgb ? " sRGB" : "") << (synthesis ? " (synthesis form)" : "") << " texel " << i;
+    }
+  }
   EXPECT_EQ(ccs.size(), 4u);
   EXPECT_GE(colour_levels.size(), 16u);
   EXPECT_GT(void_extents, 0);

@@ -362,6 +362,18 @@ TEST(RtlCached, SrgbAndLinearEveryFormat) {
              true});
 }
 
+// ASTC, all 14 footprints (lines of 2 x 2 blocks: 8x8 .. 24x24 texels; the texel's block is x / F),
+// linear and sRGB in turn, random blocks of every mode (stimulus::random_astc_block), sides powers
+// of two (a footprint of 5, 6, 10 or 12 does not divide them: the repeat seam's copy) and not,
+// decoded by the RTL's 8 tap decoders (tex_astc) after the cache: samples, miss streams and
+// response clocks against the model.
+TEST(RtlCached, AstcFootprints) {
+  std::vector<TexelFormat> astc;  // each footprint twice: linear (even cases), then sRGB (odd)
+  for (int i = 0; i < 28; ++i) astc.push_back(TexelFormat(int(TexelFormat::Astc4x4) + i / 2));
+  run_suite({"Vtex_cached_13x13", {{64, 32}, {61, 7}, {32, 32}, {30, 13}, {128, 16}, {100, 24}, {16, 64}, {13, 5}, {4, 4}},
+             28, 3000, false, astc, true});
+}
+
 // 32x16 with 16-bit channels, 2x4 blocks (128-byte lines), 64-bit memory beats.
 TEST(RtlCached, Channels16Blocks2x4) {
   run_suite({"Vtex_cached_5x4_cw16", {{32, 16}, {27, 13}, {16, 16}, {1, 8}, {32, 2}, {31, 11}}, 60, 10000});
@@ -378,7 +390,9 @@ TEST(RtlCached, LargestTextures) {
 
 const std::vector<TexelFormat> kBlockFormats = {TexelFormat::Bc1,     TexelFormat::Bc2,       TexelFormat::Bc3,
                                                 TexelFormat::Bc4,     TexelFormat::Bc5,       TexelFormat::Bc7,
-                                                TexelFormat::Etc2Rgb, TexelFormat::Etc2RgbA1, TexelFormat::Etc2Rgba};
+                                                TexelFormat::Etc2Rgb, TexelFormat::Etc2RgbA1, TexelFormat::Etc2Rgba,
+                                                TexelFormat::Astc4x4, TexelFormat::Astc6x5,   TexelFormat::Astc8x8,
+                                                TexelFormat::Astc10x6, TexelFormat::Astc12x12};
 
 // The descriptor table: 2 to 16 textures of random sizes, wrap modes and formats (RGBA8 and block
 // formats mixed; with the sRGB tables, half of them sRGB) in memory at once, a random texture in

@@ -253,9 +253,9 @@ TEST(SystemcMemory, ExamplePlatformRuns) {
   std::remove("platform.txt");
 }
 
-// A frame as a real one binds it: seven textures in the descriptor table (RGBA8 with sides that are
+// A frame as a real one binds it: nine textures in the descriptor table (RGBA8 with sides that are
 // not powers of two, BC1 sRGB, BC7, RGBA8 sRGB, ETC2 RGBA8, an RGBA8 array of 3 layers, a cube array
-// of 2 cubes of 12 x 12 faces) and seven random samplers, random requests over them (tests/common/stimulus.h;
+// of 2 cubes of 12 x 12 faces, ASTC 6x6 sRGB and ASTC 12x10) and seven random samplers, random requests over them (tests/common/stimulus.h;
 // the cube's: cube_request's directions, a quarter of them with derivatives), the memory jittering.
 // Both backends give the golden model's texels and its miss stream, in order.
 TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
@@ -280,6 +280,14 @@ TEST(SystemcMemory, DescriptorAndSamplerTablesOfMixedFormats) {
   std::vector<const Pyramid*> cube = stimulus::pointers_to(faces);
   table.push_back(BoundTexture(cube[0], {cube.begin() + 1, cube.end()}, TextureKind::Cube));
   sizes.push_back(faces[0].extent0());
+  std::vector<Pyramid> astc;  // and ASTC, sRGB and linear
+  astc.push_back(stimulus::random_block_texture(TexelFormat::Astc6x6, {64, 40}, 8));
+  decode_srgb_levels(astc.back());
+  astc.push_back(stimulus::random_block_texture(TexelFormat::Astc12x10, {37, 64}, 9));
+  for (const Pyramid& p : astc) {
+    table.push_back({&p});
+    sizes.push_back(p.extent0());
+  }
   std::mt19937_64 rng(5);
   SamplerTable samplers;
   for (int i = 0; i < 7; ++i) samplers.push_back(stimulus::random_sampler(rng));

@@ -130,9 +130,6 @@ void check_inputs(const RtlConfig& config, const Pyramid& pyramid, const std::ve
   if ((pyramid.srgb || is_compressed(pyramid.format)) && config.cached && !config.formats)
     throw Error(std::string("a ") + format_info(pyramid.format).name + (pyramid.srgb ? " sRGB" : "") + " texture: " +
                 config.name + " has no block decoders or sRGB tables (built without FORMATS)");
-  if (is_astc(pyramid.format) && config.cached)
-    throw Error(std::string("an ") + format_info(pyramid.format).name + " texture: the cached RTL has no ASTC decoder yet "
-                "(the model engine samples ASTC with --memory cached; the on-chip RTL holds it decoded)");
   for (size_t i = 0; i < requests.size(); ++i) check_request(requests[i], i);
 }
 
