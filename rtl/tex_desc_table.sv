@@ -159,12 +159,14 @@ module tex_desc_table #(
   function automatic logic [PTW-1:0] side_blocks(input logic [NW-1:0] n, input logic [VW-1:0] k,
                                                  input logic [VW-1:0] lb, input logic [3:0] f, input logic cube);
     logic [NW+2:0] nk, units;
+    logic [15:0]   whole;  // ceil(n_k / f)
     logic          seam;
     nk = (NW+3)'(n) >> k;
     if (nk == '0) nk = (NW+3)'(1);
     seam = (nk & (nk - 1'b1)) != '0 || ((f & (f - 4'd1)) != 4'd0 && nk > (NW+3)'(f));
+    whole = tex_pkg::div_footprint(16'(nk + (NW+3)'(f) - (NW+3)'(1)), f);
     if (cube) units = nk + (NW+3)'(2);
-    else units = (NW+3)'(tex_pkg::div_footprint(16'(nk + (NW+3)'(f) - (NW+3)'(1)), f)) + (NW+3)'(seam);
+    else units = (NW+3)'(whole) + (NW+3)'(seam);
     side_blocks = PTW'((units + (NW+3)'((1 << lb) - 1)) >> lb);
   endfunction
   function automatic logic [VW-1:0] log2_ceil(input logic [PTW-1:0] v);
