@@ -17,6 +17,13 @@
 package tex_astc;
   localparam logic [31:0] ERROR_RGBA = 32'hFF_FF_00_FF;  // A, B, G, R
 
+  // a * b (b of 8 bits) as shifts and adds: the decoder's products are small, and as adders they
+  // stay out of an FPGA's DSP blocks (Yosys maps every $mul of 2 bits or more to one).
+  function automatic logic [31:0] umul(input logic [23:0] a, input logic [7:0] b);
+    umul = '0;
+    for (int k = 0; k < 8; k++) umul = umul + ((32'(a) << k) & {32{b[k]}});
+  endfunction
+
   // ---- ranges of an integer sequence: {kind, n} with kind 0 bits (2^n), 1 trits (3 * 2^n), 2 quints
   // (5 * 2^n). Weights: range 0..11 = 2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 24, 32 values; endpoint
   // values: 0..16 = 6, 8, 10, 12, 16, 20, 24, 32, 40, 48, 64, 80, 96, 128, 160, 192, 256 values.
@@ -41,16 +48,16 @@ package tex_astc;
 
   // Divisions by 5 and 3 as reciprocal multiplies, exact for the numerators they get (below 1024
   // and 512).
-  function automatic logic [9:0] div5(input logic [9:0] v); div5 = 10'((20'(v) * 20'd205) >> 10); endfunction
-  function automatic logic [8:0] div3(input logic [8:0] v); div3 = 9'((18'(v) * 18'd171) >> 9); endfunction
+  function automatic logic [9:0] div5(input logic [9:0] v); div5 = 10'(umul(24'(v), 8'd205) >> 10); endfunction
+  function automatic logic [8:0] div3(input logic [8:0] v); div3 = 9'(umul(24'(v), 8'd171) >> 9); endfunction
 
   // Bits of `count` values of a range (the specification's data size).
   function automatic logic [9:0] ise_bits(input logic [6:0] count, input logic [5:0] range);
     logic [9:0] low;
-    low = 10'(count) * 10'(range[3:0]);
+    low = 10'(umul(24'(count), 8'(range[3:0])));
     case (range[5:4])
-      2'd1: ise_bits = low + div5(10'(count) * 10'd8 + 10'd4);
-      2'd2: ise_bits = low + 10'(div3(9'(count) * 9'd7 + 9'd2));
+      2'd1: ise_bits = low + div5((10'(count) << 3) + 10'd4);
+      2'd2: ise_bits = low + 10'(div3((9'(count) << 3) - 9'(count) + 9'd2));
       default: ise_bits = low;
     endcase
   endfunction
@@ -115,64 +122,74 @@ package tex_astc;
     quints_of = {q2, q1, q0};
   endfunction
 
+  // A trit block's 8 bits T (low bits of n each at 0, n + 2, 2n + 4, 3n + 5, 4n + 7; T1:0 at n,
+  // T3:2 at 2n + 2, T4 at 3n + 4, T6:5 at 4n + 5, T7 at 5n + 7) and a quint block's 7 bits Q (Q2:0
+  // at n, Q4:3 at 2n + 3, Q6:5 at 3n + 5), from the block's first bits: fixed slices per n.
+  function automatic logic [7:0] tbits(input logic [47:0] b, input logic [3:0] n);
+    case (n)
+      4'd0: tbits = {b[7], b[6:5], b[4], b[3:2], b[1:0]};
+      4'd1: tbits = {b[12], b[10:9], b[7], b[5:4], b[2:1]};
+      4'd2: tbits = {b[17], b[14:13], b[10], b[7:6], b[3:2]};
+      4'd3: tbits = {b[22], b[18:17], b[13], b[9:8], b[4:3]};
+      4'd4: tbits = {b[27], b[22:21], b[16], b[11:10], b[5:4]};
+      4'd5: tbits = {b[32], b[26:25], b[19], b[13:12], b[6:5]};
+      default: tbits = {b[37], b[30:29], b[22], b[15:14], b[7:6]};  // 6
+    endcase
+  endfunction
+  function automatic logic [6:0] qbits(input logic [47:0] b, input logic [3:0] n);
+    case (n)
+      4'd0: qbits = {b[6:5], b[4:3], b[2:0]};
+      4'd1: qbits = {b[9:8], b[6:5], b[3:1]};
+      4'd2: qbits = {b[12:11], b[8:7], b[4:2]};
+      4'd3: qbits = {b[15:14], b[10:9], b[5:3]};
+      4'd4: qbits = {b[18:17], b[12:11], b[6:4]};
+      default: qbits = {b[21:20], b[14:13], b[7:5]};  // 5
+    endcase
+  endfunction
+
   // Value i of a sequence of `count` values of `range` starting at bit 0 of `s`: {trit or quint
   // (3 bits), low bits (8)}. A trit (quint) block's bits that follow values past the end are 0.
+  // Every kind's positions are computed and then chosen, two shifters in all, no shift under a
+  // branch (Yosys's resource sharing explores every branch's shifters).
   function automatic logic [10:0] ise_value(input logic [127:0] s, input logic [6:0] i, input logic [6:0] count,
                                             input logic [5:0] range);
     logic [3:0] n;
-    logic [6:0] blk, j, prior;
-    logic [9:0] base, at;
+    logic trit, quint;
+    logic [6:0] tb, tj, qb, qj, tfirst, qfirst;  // the trit (quint) block of value i, i's place, the block's first value
+    logic [9:0] tbase, qbase, tat, qat, at, base;
     logic [7:0] low, t;
     logic [6:0] q;
-    logic [127:0] from;
+    logic [47:0] from;
+    logic [9:0] trits;
+    logic [8:0] quints;
     n = range[3:0];
-    low = 8'd0;
-    ise_value = 11'd0;
-    case (range[5:4])
-      2'd1: begin  // trits: 5 values in 8 + 5n bits
-        blk = 7'(div5(10'(i)));
-        j = i - 7'(blk * 7'd5);
-        prior = 7'(blk * 7'd5);  // values prior the block
-        base = 10'(blk) * (10'd8 + 10'd5 * 10'(n));
-        case (j)
-          7'd0: at = base;
-          7'd1: at = base + 10'(n) + 10'd2;
-          7'd2: at = base + 10'd2 * 10'(n) + 10'd4;
-          7'd3: at = base + 10'd3 * 10'(n) + 10'd5;
-          default: at = base + 10'd4 * 10'(n) + 10'd7;
-        endcase
-        from = s >> base;
-        t[1:0] = (prior + 7'd1 <= count) ? 2'(from >> n) : 2'd0;
-        t[3:2] = (prior + 7'd2 <= count) ? 2'(from >> (5'd2 * 5'(n) + 5'd2)) : 2'd0;
-        t[4]   = (prior + 7'd3 <= count) ? 1'(from >> (6'd3 * 6'(n) + 6'd4)) : 1'b0;
-        t[6:5] = (prior + 7'd4 <= count) ? 2'(from >> (6'd4 * 6'(n) + 6'd5)) : 2'd0;
-        t[7]   = (prior + 7'd5 <= count) ? 1'(from >> (6'd5 * 6'(n) + 6'd7)) : 1'b0;
-        low = 8'(s >> at) & ((8'd1 << n) - 8'd1);
-        ise_value = {3'(trits_of(t) >> (2 * j)) & 3'd3, low};
-      end
-      2'd2: begin  // quints: 3 values in 7 + 3n bits
-        blk = 7'(div3(9'(i)));
-        j = i - 7'(blk * 7'd3);
-        prior = 7'(blk * 7'd3);
-        base = 10'(blk) * (10'd7 + 10'd3 * 10'(n));
-        case (j)
-          7'd0: at = base;
-          7'd1: at = base + 10'(n) + 10'd3;
-          default: at = base + 10'd2 * 10'(n) + 10'd5;
-        endcase
-        from = s >> base;
-        q[2:0] = (prior + 7'd1 <= count) ? 3'(from >> n) : 3'd0;
-        q[4:3] = (prior + 7'd2 <= count) ? 2'(from >> (5'd2 * 5'(n) + 5'd3)) : 2'd0;
-        q[6:5] = (prior + 7'd3 <= count) ? 2'(from >> (5'd3 * 5'(n) + 5'd5)) : 2'd0;
-        low = 8'(s >> at) & ((8'd1 << n) - 8'd1);
-        ise_value = {3'(quints_of(q) >> (3 * j)), low};
-      end
-      default: begin
-        at = 10'(i) * 10'(n);
-        low = 8'(s >> at) & 8'(({1'b0, 8'hFF} << n) ^ 9'h1FF);
-        ise_value = {3'd0, low};
-      end
-    endcase
+    trit = range[5:4] == 2'd1;
+    quint = range[5:4] == 2'd2;
+    // Trits: 5 values in 8 + 5n bits, value j's low bits at 0, n+2, 2n+4, 3n+5, 4n+7 and the
+    // block's T bits at n (T1:0), 2n+2 (T3:2), 3n+4 (T4), 4n+5 (T6:5), 5n+7 (T7).
+    tb = 7'(div5(10'(i)));
+    tfirst = (tb << 2) + tb;
+    tj = i - tfirst;
+    tbase = 10'(umul(24'(tb), 8'd8 + (8'(n) << 2) + 8'(n)));
+    tat = tbase + (tj == 7'd0 ? 10'd0 : tj == 7'd1 ? 10'(n) + 10'd2 : tj == 7'd2 ? (10'(n) << 1) + 10'd4 :
+                   tj == 7'd3 ? (10'(n) << 1) + 10'(n) + 10'd5 : (10'(n) << 2) + 10'd7);
+    // Quints: 3 values in 7 + 3n bits, low bits at 0, n+3, 2n+5; Q bits at n (Q2:0), 2n+3 (Q4:3),
+    // 3n+5 (Q6:5).
+    qb = 7'(div3(9'(i)));
+    qfirst = (qb << 1) + qb;
+    qj = i - qfirst;
+    qbase = 10'(umul(24'(qb), 8'd7 + (8'(n) << 1) + 8'(n)));
+    qat = qbase + (qj == 7'd0 ? 10'd0 : qj == 7'd1 ? 10'(n) + 10'd3 : (10'(n) << 1) + 10'd5);
+    at = trit ? tat : quint ? qat : 10'(umul(24'(i), 8'(n)));
+    low = 8'(s >> at) & 8'(({1'b0, 8'hFF} << n) ^ 9'h1FF);
+    base = trit ? tbase : qbase;
+    from = 48'(s >> base);  // the block's first 48 bits hold its T (Q) bits: 5n + 7 < 48
+    t = tbits(from, n) & {tfirst + 7'd5 <= count, {2{tfirst + 7'd4 <= count}}, tfirst + 7'd3 <= count,
+                          {2{tfirst + 7'd2 <= count}}, {2{tfirst + 7'd1 <= count}}};
+    q = qbits(from, n) & {{2{qfirst + 7'd3 <= count}}, {2{qfirst + 7'd2 <= count}}, {3{qfirst + 7'd1 <= count}}};
+    trits = trits_of(t);
+    quints = quints_of(q);
+    ise_value = {trit ? {1'b0, 2'(trits >> (2 * tj))} : quint ? 3'(quints >> (3 * qj)) : 3'd0, low};
   endfunction
 
   // ---- unquantization
@@ -214,7 +231,7 @@ package tex_astc;
       5'd15: begin b = {ff, ee, dd, cc, bb, 3'b000, ff}; c = 9'd5; end                             // 192
       default: ;
     endcase
-    unq = (9'(d) * c + b) ^ a;
+    unq = (9'(umul(24'(c), 8'(d))) + b) ^ a;
     if (range[5:4] == 2'd0) unquantize_colour = replicate8(low, range[3:0]);
     else unquantize_colour = {a[7], 7'(unq >> 2)};
   endfunction
@@ -241,7 +258,7 @@ package tex_astc;
       4'd10: begin b = {cc, bb, 3'b000, cc, bb}; c = 7'd11; end         // 24
       default: ;
     endcase
-    x = (7'(d) * c + b) ^ a;
+    x = (7'(umul(24'(c), 8'(d))) + b) ^ a;
     if (range[5:4] == 2'd0) unq = {1'b0, 6'(wide >> 2)};
     else if (r == 4'd1) unq = d == 3'd0 ? 7'd0 : d == 3'd1 ? 7'd32 : 7'd63;               // 3: 0, 32, 63
     else if (r == 4'd3) unq = d == 3'd0 ? 7'd0 : d == 3'd1 ? 7'd16 : d == 3'd2 ? 7'd32 : d == 3'd3 ? 7'd47 : 7'd63;
@@ -301,7 +318,7 @@ package tex_astc;
 
   // The endpoint values of a colour endpoint mode: 2 per class (cem >> 2) + 1.
   function automatic logic [6:0] values_of(input logic [3:0] cem);
-    values_of = ((7'(cem) >> 2) + 7'd1) * 7'd2;
+    values_of = ((7'(cem) >> 2) + 7'd1) << 1;
   endfunction
 
   function automatic logic [64:0] endpoints(input logic [3:0] cem, input logic [63:0] vals);
@@ -336,7 +353,7 @@ package tex_astc;
       4'd6, 4'd10: begin
         a0 = cem == 4'd6 ? 8'd255 : v4;
         a1 = cem == 4'd6 ? 8'd255 : v5;
-        e0 = {a0, 8'((16'(v2) * 16'(v3)) >> 8), 8'((16'(v1) * 16'(v3)) >> 8), 8'((16'(v0) * 16'(v3)) >> 8)};
+        e0 = {a0, 8'(umul(24'(v2), v3) >> 8), 8'(umul(24'(v1), v3) >> 8), 8'(umul(24'(v0), v3) >> 8)};
         e1 = {a1, v2, v1, v0};
       end
       4'd8, 4'd12: begin
@@ -388,16 +405,16 @@ package tex_astc;
     logic [7:0] s1, s2, s3, s4, s5, s6, s7, s8;
     logic [2:0] sh1, sh2;
     logic [5:0] a, b, c, d;
-    seed = 12'(seed10) + (12'(partitions) - 12'd1) * 12'd1024;
+    seed = 12'(seed10) + ((12'(partitions) - 12'd1) << 10);
     rnum = hash52(32'(seed));
-    s1 = 8'(rnum[3:0]) * 8'(rnum[3:0]);
-    s2 = 8'(rnum[7:4]) * 8'(rnum[7:4]);
-    s3 = 8'(rnum[11:8]) * 8'(rnum[11:8]);
-    s4 = 8'(rnum[15:12]) * 8'(rnum[15:12]);
-    s5 = 8'(rnum[19:16]) * 8'(rnum[19:16]);
-    s6 = 8'(rnum[23:20]) * 8'(rnum[23:20]);
-    s7 = 8'(rnum[27:24]) * 8'(rnum[27:24]);
-    s8 = 8'(rnum[31:28]) * 8'(rnum[31:28]);
+    s1 = 8'(umul(24'(rnum[3:0]), 8'(rnum[3:0])));
+    s2 = 8'(umul(24'(rnum[7:4]), 8'(rnum[7:4])));
+    s3 = 8'(umul(24'(rnum[11:8]), 8'(rnum[11:8])));
+    s4 = 8'(umul(24'(rnum[15:12]), 8'(rnum[15:12])));
+    s5 = 8'(umul(24'(rnum[19:16]), 8'(rnum[19:16])));
+    s6 = 8'(umul(24'(rnum[23:20]), 8'(rnum[23:20])));
+    s7 = 8'(umul(24'(rnum[27:24]), 8'(rnum[27:24])));
+    s8 = 8'(umul(24'(rnum[31:28]), 8'(rnum[31:28])));
     if (seed[0]) begin
       sh1 = seed[1] ? 3'd4 : 3'd5;
       sh2 = partitions == 3'd3 ? 3'd6 : 3'd5;
@@ -405,10 +422,10 @@ package tex_astc;
       sh1 = partitions == 3'd3 ? 3'd6 : 3'd5;
       sh2 = seed[1] ? 3'd4 : 3'd5;
     end
-    a = 6'((s1 >> sh1) * 8'(x) + (s2 >> sh2) * 8'(y) + 8'(rnum >> 14));
-    b = 6'((s3 >> sh1) * 8'(x) + (s4 >> sh2) * 8'(y) + 8'(rnum >> 10));
-    c = partitions < 3'd3 ? 6'd0 : 6'((s5 >> sh1) * 8'(x) + (s6 >> sh2) * 8'(y) + 8'(rnum >> 6));
-    d = partitions < 3'd4 ? 6'd0 : 6'((s7 >> sh1) * 8'(x) + (s8 >> sh2) * 8'(y) + 8'(rnum >> 2));
+    a = 6'(umul(24'(s1) >> sh1, 8'(x)) + umul(24'(s2) >> sh2, 8'(y)) + 32'(rnum >> 14));
+    b = 6'(umul(24'(s3) >> sh1, 8'(x)) + umul(24'(s4) >> sh2, 8'(y)) + 32'(rnum >> 10));
+    c = 6'(umul(24'(s5) >> sh1, 8'(x)) + umul(24'(s6) >> sh2, 8'(y)) + 32'(rnum >> 6)) & {6{partitions >= 3'd3}};
+    d = 6'(umul(24'(s7) >> sh1, 8'(x)) + umul(24'(s8) >> sh2, 8'(y)) + 32'(rnum >> 2)) & {6{partitions == 3'd4}};
     if (a >= b && a >= c && a >= d) partition = 2'd0;
     else if (b >= c && b >= d) partition = 2'd1;
     else if (c >= d) partition = 2'd2;
@@ -441,23 +458,23 @@ package tex_astc;
     logic [6:0] v0, count, planes;
     logic [7:0] w11, w10, w01, w00;
     logic [14:0] sum;
-    gs = (18'(scale_d(fw)) * 18'(x) * (18'(gw) - 18'd1) + 18'd32) >> 6;
-    gt = (18'(scale_d(fh)) * 18'(y) * (18'(gh) - 18'd1) + 18'd32) >> 6;
+    gs = 18'((umul(24'(umul(24'(scale_d(fw)), 8'(x))), 8'(gw) - 8'd1) + 32'd32) >> 6);
+    gt = 18'((umul(24'(umul(24'(scale_d(fh)), 8'(y))), 8'(gh) - 8'd1) + 32'd32) >> 6);
     js = 4'(gs >> 4);
     fs = gs[3:0];
     jt = 4'(gt >> 4);
     ft = gt[3:0];
     planes = dual ? 7'd2 : 7'd1;
-    count = 7'(gw) * 7'(gh) * planes;
-    v0 = 7'(js) + 7'(jt) * 7'(gw);
-    w11 = 8'((8'(fs) * 8'(ft) + 8'd8) >> 4);
+    count = 7'(umul(24'(gw), 8'(gh))) << (planes - 7'd1);
+    v0 = 7'(js) + 7'(umul(24'(jt), 8'(gw)));
+    w11 = 8'((umul(24'(fs), 8'(ft)) + 32'd8) >> 4);
     w10 = 8'(ft) - w11;
     w01 = 8'(fs) - w11;
     w00 = 8'd16 - 8'(fs) - 8'(ft) + w11;
-    sum = 15'(grid_weight(ws, v0 * planes + 7'(plane), count, wr)) * 15'(w00) +
-          15'(grid_weight(ws, (v0 + 7'd1) * planes + 7'(plane), count, wr)) * 15'(w01) +
-          15'(grid_weight(ws, (v0 + 7'(gw)) * planes + 7'(plane), count, wr)) * 15'(w10) +
-          15'(grid_weight(ws, (v0 + 7'(gw) + 7'd1) * planes + 7'(plane), count, wr)) * 15'(w11) + 15'd8;
+    sum = 15'(umul(24'(grid_weight(ws, (v0 << (planes - 7'd1)) + 7'(plane), count, wr)), w00) +
+              umul(24'(grid_weight(ws, ((v0 + 7'd1) << (planes - 7'd1)) + 7'(plane), count, wr)), w01) +
+              umul(24'(grid_weight(ws, ((v0 + 7'(gw)) << (planes - 7'd1)) + 7'(plane), count, wr)), w10) +
+              umul(24'(grid_weight(ws, ((v0 + 7'(gw) + 7'd1) << (planes - 7'd1)) + 7'(plane), count, wr)), w11) + 32'd8);
     infill = 7'(sum >> 4);
   endfunction
 
@@ -468,7 +485,8 @@ package tex_astc;
     logic [22:0] c;
     c0 = {e0, srgb ? 8'h80 : e0};
     c1 = {e1, srgb ? 8'h80 : e1};
-    c = (23'(c0) * (23'd64 - 23'(i)) + 23'(c1) * 23'(i) + 23'd32) >> 6;
+    // C0 (64 - i) + C1 i = 64 C0 + (C1 - C0) i: one product a channel
+    c = 23'(($signed({7'd0, c0} << 6) + $signed({7'd0, c1} - {7'd0, c0}) * $signed({16'd0, i}) + 23'sd32) >>> 6);
     apply = 8'(c >> 8);
   endfunction
 
@@ -498,7 +516,7 @@ package tex_astc;
       mode = block_mode(block[10:0]);
       {legal, dual, gw, gh, wr} = mode;
       partitions = 3'(block[12:11]) + 3'd1;
-      weight_count = 7'(gw) * 7'(gh) * (dual ? 7'd2 : 7'd1);
+      weight_count = 7'(umul(24'(gw), 8'(gh))) << dual;
       weight_bits = ise_bits(weight_count, weight_range(wr));
       error = !legal || gw * gh * (dual ? 2 : 1) > 64 || weight_bits < 10'd24 || weight_bits > 10'd96 ||
               gw > fw || gh > fh || (dual && partitions == 3'd4);
@@ -547,8 +565,8 @@ package tex_astc;
       else if (ise_bits(colour_values, colour_range(5'd1)) <= remaining) cr = 5'd1;
       else cr = 5'd0;
       // The texel's partition, and its endpoint values (they follow the earlier partitions').
-      p = partitions == 3'd1 ? 2'd0 : partition(block[22:13], partitions, fw * fh < 31 ? 5'(x) << 1 : 5'(x),
-                                                fw * fh < 31 ? 5'(y) << 1 : 5'(y));
+      p = partition(block[22:13], partitions, fw * fh < 31 ? 5'(x) << 1 : 5'(x), fw * fh < 31 ? 5'(y) << 1 : 5'(y)) &
+          {2{partitions != 3'd1}};
       case (p)
         2'd0: cem = cem0;
         2'd1: cem = cem1;
