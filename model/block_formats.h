@@ -18,8 +18,7 @@ namespace tex {
 // ETC2 (model/etc2.h): Etc2Rgb is ETC2 RGB8 (and ETC1), Etc2RgbA1 ETC2 RGB8 with punch-through
 // alpha, Etc2Rgba ETC2 RGBA8 (an EAC alpha block, then the colour block).
 // ASTC LDR (model/astc.h): one format per footprint, codes 16 + the footprint's index in
-// kAstcFootprints. The model and its engines sample them; the RTL has no ASTC decoder yet
-// (rtl::check_inputs refuses them).
+// kAstcFootprints (tex_pkg::FMT_ASTC_4X4 + i, tex_pkg::footprint in the RTL).
 enum class TexelFormat : uint8_t {
   Rgba8 = 0, Bc1 = 1, Bc2 = 2, Bc3 = 3, Bc4 = 4, Bc5 = 5, Bc7 = 7, Etc2Rgb = 8, Etc2RgbA1 = 9, Etc2Rgba = 10,
   Astc4x4 = 16, Astc5x4, Astc5x5, Astc6x5, Astc6x6, Astc8x5, Astc8x6, Astc8x8, Astc10x5, Astc10x6, Astc10x8,

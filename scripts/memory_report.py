@@ -97,21 +97,19 @@ def main():
     # Texture formats: the caches and memory hold compressed blocks (docs/memory.md §1), decoded by
     # the cached RTL's 8 tap decoders.
     lines += ["", "Texture formats, plane 640×480, 8 KiB × 2 caches, latency 200, 16 B/clock: each level compressed "
-              "(`--format`: libsquish for BC1, Mesa's BC7 encoder, ours for ETC2, astcenc for ASTC); engine rtl, "
-              "and for ASTC, which the cached RTL does not decode yet, the model's clock-exact timing model; "
+              "(`--format`: libsquish for BC1, Mesa's BC7 encoder, ours for ETC2, astcenc for ASTC), engine rtl; "
               "'bytes vs RGBA8' = RGBA8's bytes per sample / this format's.", "",
-              "| workload | format | engine | samples/clock | cached / onchip | hit rate | bytes/sample | bytes vs RGBA8 | "
-              "clocks waiting for memory |", "|---|---|---|---|---|---|---|---|---|"]
+              "| workload | format | samples/clock | cached / onchip | hit rate | bytes/sample | bytes vs RGBA8 | "
+              "clocks waiting for memory |", "|---|---|---|---|---|---|---|---|"]
     for order in ["scanline", "tiled"]:
         extra = ["--order", order]
         onchip = texsim(SCENE + extra + ["-e", "rtl"], exe, a.out)
         rgba_bytes = None
         for fmt in ["rgba8", "bc1", "bc7", "etc2", "astc4x4", "astc6x6", "astc8x8", "astc12x12"]:
-            engine = "model" if fmt.startswith("astc") else "rtl"
-            r = texsim(SCENE + extra + ["-e", engine, "--memory", "cached", "--format", fmt] + mem, exe, a.out)
+            r = texsim(SCENE + extra + ["-e", "rtl", "--memory", "cached", "--format", fmt] + mem, exe, a.out)
             rgba_bytes = rgba_bytes or r["bytes_per_sample"]
             label = f"plane, {order}" + (" 8×8" if order == "tiled" else "")
-            lines.append(f"| {label} | {fmt} | {engine} | {r['samples_per_clock']:.3f} | "
+            lines.append(f"| {label} | {fmt} | {r['samples_per_clock']:.3f} | "
                          f"**{r['samples_per_clock'] / onchip['samples_per_clock']:.3f}** | {100 * r['hit_rate']:.1f} % | "
                          f"{r['bytes_per_sample']:.2f} | {rgba_bytes / r['bytes_per_sample']:.1f}× | "
                          f"{r['memory_stall_cycles']} |")
