@@ -19,9 +19,12 @@ package tex_astc;
 
   // a * b (b of 8 bits) as shifts and adds: the decoder's products are small, and as adders they
   // stay out of an FPGA's DSP blocks (Yosys maps every $mul of 2 bits or more to one).
+  // (No loop: a loop variable in a function called under an `if` is a latch to Yosys.)
   function automatic logic [31:0] umul(input logic [23:0] a, input logic [7:0] b);
-    umul = '0;
-    for (int k = 0; k < 8; k++) umul = umul + ((32'(a) << k) & {32{b[k]}});
+    logic [31:0] w;
+    w = 32'(a);
+    umul = (w & {32{b[0]}}) + ((w << 1) & {32{b[1]}}) + ((w << 2) & {32{b[2]}}) + ((w << 3) & {32{b[3]}}) +
+           ((w << 4) & {32{b[4]}}) + ((w << 5) & {32{b[5]}}) + ((w << 6) & {32{b[6]}}) + ((w << 7) & {32{b[7]}});
   endfunction
 
   // ---- ranges of an integer sequence: {kind, n} with kind 0 bits (2^n), 1 trits (3 * 2^n), 2 quints

@@ -145,5 +145,14 @@ for root, _, files in sorted(os.walk(models)):
             out('model', ext + '_' + f.replace('.', '_'), bytes([exts.index(ext)]) + data)
             if taken[ext] == 1:  # loaded as a mirror (render --envmap): the selector's top bit
                 out('model', 'mirror_' + ext + '_' + f.replace('.', '_'), bytes([128 + exts.index(ext)]) + data)
+# ASTC (at the end: the seeds above keep their bytes): astcenc's .astc file and a KTX2 of 5x5 blocks.
+def astc_level(w, h, fw, fh):
+    return bytes(rng.getrandbits(8) for _ in range(((w + fw - 1) // fw) * ((h + fh - 1) // fh) * 16))
+out('texture_file', 'astc_6x6_10x6.astc', bytes([0x13, 0xAB, 0xA1, 0x5C, 6, 6, 1, 10, 0, 0, 6, 0, 0, 1, 0, 0]) +
+    astc_level(10, 6, 6, 6))
+out('texture_file', 'ktx2_astc_5x5_srgb', ktx2(162, 8, 8, [[astc_level(8, 8, 5, 5), astc_level(4, 4, 5, 5),
+                                                             astc_level(2, 2, 5, 5), astc_level(1, 1, 5, 5)]]))
+
 print('seeds:', {t: len(os.listdir(os.path.join(HERE, 'corpus', t))) for t in sorted(os.listdir(os.path.join(HERE, 'corpus')))})
 print('model formats without a seed:', [e for e in exts if e not in taken])
+
