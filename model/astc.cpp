@@ -358,6 +358,7 @@ Decoded decode(const uint8_t* block, int fw, int fh) {
   // Void extent: bits 8..0 = 1 1111 1100.
   if (b.bits(0, 9) == 0x1FC) {
     m.void_extent = true;
+    m.hdr = b.bit(9);
     if (b.bit(9) || !b.bit(10) || !b.bit(11)) return illegal();  // HDR (LDR profile: error), reserved bits
     const uint32_t s0 = b.bits(12, 13), s1 = b.bits(25, 13), t0 = b.bits(38, 13), t1 = b.bits(51, 13);
     const bool all_ones = s0 == 0x1FFF && s1 == 0x1FFF && t0 == 0x1FFF && t1 == 0x1FFF;
@@ -415,6 +416,7 @@ Decoded decode(const uint8_t* block, int fw, int fh) {
   for (int p = 0, at = 0; p < m.partitions; ++p) {
     const int cem = m.cem[size_t(p)];
     d.hdr_partition[p] = !interpret_endpoints(cem, values + at, d.e0[p], d.e1[p]);
+    m.hdr = m.hdr || d.hdr_partition[p];
     at += 2 * ((cem >> 2) + 1);
   }
 

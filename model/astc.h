@@ -38,6 +38,7 @@ struct AstcMode {
   std::array<int, 4> cem{}; // each partition's colour endpoint mode, 0 .. 15
   int colour_values = 0;    // endpoint values, 2 .. 18
   int colour_levels = 0;    // their range, 6 .. 256 values
+  bool hdr = false;         // an HDR void extent or HDR endpoint mode: the LDR profile's error colour
 };
 AstcMode astc_mode_of(const uint8_t* block, int fw, int fh);
 

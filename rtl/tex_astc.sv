@@ -156,6 +156,7 @@ package tex_astc;
   // branch (Yosys's resource sharing explores every branch's shifters).
   function automatic logic [10:0] ise_value(input logic [127:0] s, input logic [6:0] i, input logic [6:0] count,
                                             input logic [5:0] range);
+    /*verilator no_inline_task*/  // (one C++ function, not a copy at each call: 8 taps x 16 values)
     logic [3:0] n;
     logic trit, quint;
     logic [6:0] tb, tj, qb, qj, tfirst, qfirst;  // the trit (quint) block of value i, i's place, the block's first value
@@ -403,6 +404,7 @@ package tex_astc;
   endfunction
   function automatic logic [1:0] partition(input logic [9:0] seed10, input logic [2:0] partitions,
                                            input logic [4:0] x, input logic [4:0] y);
+    /*verilator no_inline_task*/  // (one C++ function, not a copy at each call: 8 taps x 16 values)
     logic [11:0] seed;
     logic [31:0] rnum;
     logic [7:0] s1, s2, s3, s4, s5, s6, s7, s8;
@@ -456,6 +458,7 @@ package tex_astc;
   function automatic logic [6:0] infill(input logic [127:0] ws, input logic [3:0] fw, input logic [3:0] fh,
                                         input logic [3:0] x, input logic [3:0] y, input logic [3:0] gw,
                                         input logic [3:0] gh, input logic dual, input logic plane, input logic [3:0] wr);
+    /*verilator no_inline_task*/  // (one C++ function, not a copy at each call: 8 taps x 16 values)
     logic [17:0] gs, gt;
     logic [3:0] js, jt, fs, ft;
     logic [6:0] v0, count, planes;
@@ -495,6 +498,7 @@ package tex_astc;
 
   function automatic logic [31:0] texel(input logic [127:0] block, input logic [3:0] fw, input logic [3:0] fh,
                                         input logic [3:0] x, input logic [3:0] y, input logic srgb);
+    /*verilator no_inline_task*/  // (one C++ function, not a copy at each call: 8 taps x 16 values)
     logic [13:0] mode;
     logic legal, dual;
     logic [3:0] gw, gh, wr;

@@ -675,6 +675,21 @@ TextureFile read_for(const std::string& spec, const TextureOptions& o) {
     throw Error(spec + ": --format " + format_info(o.format).name + ", but the file holds " + file.format_name +
                 " (a texture file keeps its format)");
   if (o.srgb && !file.colour_space_given) file.srgb = true;  // (.astc names none)
+  if (is_astc(file.format)) {  // the unit is the LDR profile: say so where a file holds HDR blocks
+    const FormatInfo& info = format_info(file.format);
+    uint64_t hdr = 0, blocks = 0;
+    auto count = [&](const std::vector<std::vector<uint8_t>>& levels) {
+      for (const std::vector<uint8_t>& level : levels)
+        for (size_t i = 0; i + 16 <= level.size(); i += 16, ++blocks)
+          hdr += astc_mode_of(&level[i], info.block_w, info.block_h).hdr;
+    };
+    count(file.levels);
+    for (const auto& image : file.more_images) count(image);
+    if (hdr)
+      std::fprintf(stderr, "texsim: note: %s: %llu of %llu ASTC blocks are HDR; the unit decodes the LDR profile, so "
+                   "their texels are the error colour (magenta)\n", spec.c_str(), (unsigned long long)hdr,
+                   (unsigned long long)blocks);
+  }
   if (o.srgb && !file.srgb)
     throw Error(spec + ": --srgb, but the file holds " + file.format_name + ", not an sRGB format (a texture file keeps its own)");
   return file;

@@ -920,6 +920,23 @@ TEST(TextureFiles, AstcFilesSampleThroughTexsim) {
   EXPECT_EQ(text("rm.txt"), text("mm.txt"));
   EXPECT_EQ(text("rc.txt"), text("mc.txt"));
   EXPECT_GT(text("rm.txt").size(), 100u);
+  // A file with HDR blocks is sampled with a note: the unit is LDR. (The random blocks above have
+  // HDR endpoint modes and void extents; astcenc's LDR encoding has none.)
+  EXPECT_NE(sample(t, "", "x.csv").second.find("t.ktx2: 34 of 80 ASTC blocks are HDR"), std::string::npos);
+  const Pyramid ldr = compress_pyramid(build_pyramid(stimulus::random_image(64, 48, 8, 13, 2)), TexelFormat::Astc10x6);
+  save(s / "ldr.ktx2", ktx2(157 + 2 * 9, 64, 48, ldr.blocks));
+  EXPECT_EQ(sample((s / "ldr.ktx2").string(), "", "ldr.csv").second, "");
+  std::vector<std::vector<uint8_t>> hdr = ldr.blocks;
+  for (int b = 0; b < 3; ++b) {
+    uint8_t* at = &hdr[0][size_t(b) * 16];
+    std::fill(at, at + 8, uint8_t(0xFF));
+    at[0] = 0xFC;  // bits 8..0 = 1 1111 1100, bits 9..11 (HDR, reserved) set, no extent
+  }
+  save(s / "hdr.ktx2", ktx2(157 + 2 * 9, 64, 48, hdr));
+  const auto noted = sample((s / "hdr.ktx2").string(), "", "hdr.csv");
+  EXPECT_EQ(noted.first, 0);
+  EXPECT_NE(noted.second.find("hdr.ktx2: 3 of 80 ASTC blocks are HDR; the unit decodes the LDR profile"),
+            std::string::npos) << noted.second;
   // --format: astcenc's encoding of the test card (sharp edges and fine lines), within a few steps
   // of the picture at 6x6 (measured 1.2) and 4x4 (0.14); 12x12 at 0.89 bits a texel blurs it (13.6).
   const Pyramid rgba = build_pyramid(load_texture("testcard:128x128"));
