@@ -157,6 +157,15 @@ std::string error_of(const fs::path& p) {
   return "";
 }
 
+// Saves `bytes` as `path` and expects read_texture_file's error: one line naming the file and `want`.
+void expect_file_error(const fs::path& path, const std::vector<uint8_t>& bytes, const std::string& want) {
+  save(path, bytes);
+  const std::string e = error_of(path);
+  EXPECT_NE(e.find(want), std::string::npos) << path.filename() << ": " << e;
+  EXPECT_NE(e.find(path.filename().string()), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}
+
 }  // namespace
 
 TEST(TextureFiles, EveryContainerGivesBackItsLevels) {
@@ -228,10 +237,7 @@ TEST(TextureFiles, BadFilesNameTheProblem) {
   Scratch s;
   const auto bc1 = random_levels(TexelFormat::Bc1, 16, 16, 5, 1);
   auto expect_error = [&](const std::string& name, const std::vector<uint8_t>& bytes, const std::string& want) {
-    save(s / name, bytes);
-    const std::string e = error_of(s / name);
-    EXPECT_NE(e.find(want), std::string::npos) << name << ": " << e;
-    EXPECT_NE(e.find(name), std::string::npos) << e;
+    expect_file_error(s / name, bytes, want);
   };
   std::vector<uint8_t> full = dds("DXT1", 0, 16, 16, bc1);
   expect_error("truncated.dds", std::vector<uint8_t>(full.begin(), full.end() - 3), "truncated: level 4 needs 8 bytes");
@@ -536,11 +542,7 @@ TEST(TextureFiles, BadArraysAndCubeMapsNameTheProblem) {
   const auto six = random_images(TexelFormat::Bc1, 16, 16, 5, 6, 2);
   const auto flat = random_images(TexelFormat::Bc1, 16, 8, 5, 6, 3);  // 16x8
   auto expect_error = [&](const std::string& name, const std::vector<uint8_t>& bytes, const std::string& want) {
-    save(s / name, bytes);
-    const std::string e = error_of(s / name);
-    EXPECT_NE(e.find(want), std::string::npos) << name << ": " << e;
-    EXPECT_NE(e.find(name), std::string::npos) << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    expect_file_error(s / name, bytes, want);
   };
   auto cut = [](std::vector<uint8_t> b, size_t n) { return std::vector<uint8_t>(b.begin(), b.end() - std::ptrdiff_t(n)); };
   // Truncated: the error names the image and level where the file ends.
@@ -864,11 +866,7 @@ TEST(TextureFiles, AstcFilesGiveBackTheirBlocks) {
       ASSERT_EQ(srgb.levels[0].at(x, y)[0], srgb_decode_table()[codes.at(x, y)[0]]) << x << " " << y;
   // Bad files.
   auto expect_error = [&](const std::string& name, const std::vector<uint8_t>& bytes, const std::string& want) {
-    save(s / name, bytes);
-    const std::string e = error_of(s / name);
-    EXPECT_NE(e.find(want), std::string::npos) << name << ": " << e;
-    EXPECT_NE(e.find(name), std::string::npos) << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    expect_file_error(s / name, bytes, want);
   };
   std::vector<uint8_t> blocks = p.blocks[0];
   expect_error("short.astc", astc_file(6, 5, 1, 40, 22, 1, std::vector<uint8_t>(blocks.begin(), blocks.end() - 16)),
