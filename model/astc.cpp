@@ -110,38 +110,29 @@ std::array<int, 3> quints_of(uint32_t q) {
 // values past the sequence's end are 0.
 void ise_decode(const Bits128& b, int start, int count, int levels, int* high, int* low) {
   const IseRange r = ise_range(levels);
+  // A block of 5 trits (3 quints; 1 value of bits alone): after value j's low bits, `packed[j]`
+  // bits of the block's T (Q) at `shift[j]`.
+  static constexpr int kTBits[5] = {2, 2, 1, 2, 1}, kTShift[5] = {0, 2, 4, 5, 7};
+  static constexpr int kQBits[5] = {3, 2, 2}, kQShift[5] = {0, 3, 5}, kNone[5] = {};
+  const int per = r.trits ? 5 : r.quints ? 3 : 1;
+  const int* packed = r.trits ? kTBits : r.quints ? kQBits : kNone;
+  const int* shift = r.trits ? kTShift : r.quints ? kQShift : kNone;
   int at = start;
-  if (r.trits) {
-    static constexpr int kTBits[5] = {2, 2, 1, 2, 1}, kTShift[5] = {0, 2, 4, 5, 7};
-    for (int block = 0; block * 5 < count; ++block) {
-      uint32_t t = 0;
-      for (int j = 0; j < 5 && block * 5 + j < count; ++j) {
-        low[block * 5 + j] = int(b.bits(at, r.bits));
-        at += r.bits;
-        t |= b.bits(at, kTBits[j]) << kTShift[j];
-        at += kTBits[j];
-      }
-      const std::array<int, 5> v = trits_of(t);
-      for (int j = 0; j < 5 && block * 5 + j < count; ++j) high[block * 5 + j] = v[size_t(j)];
+  for (int first = 0; first < count; first += per) {
+    uint32_t t = 0;
+    for (int j = 0; j < per && first + j < count; ++j) {
+      low[first + j] = int(b.bits(at, r.bits));
+      at += r.bits;
+      t |= b.bits(at, packed[j]) << shift[j];
+      at += packed[j];
     }
-  } else if (r.quints) {
-    static constexpr int kQBits[3] = {3, 2, 2}, kQShift[3] = {0, 3, 5};
-    for (int block = 0; block * 3 < count; ++block) {
-      uint32_t q = 0;
-      for (int j = 0; j < 3 && block * 3 + j < count; ++j) {
-        low[block * 3 + j] = int(b.bits(at, r.bits));
-        at += r.bits;
-        q |= b.bits(at, kQBits[j]) << kQShift[j];
-        at += kQBits[j];
-      }
-      const std::array<int, 3> v = quints_of(q);
-      for (int j = 0; j < 3 && block * 3 + j < count; ++j) high[block * 3 + j] = v[size_t(j)];
+    std::array<int, 5> v{};
+    if (r.trits) v = trits_of(t);
+    if (r.quints) {
+      const std::array<int, 3> q = quints_of(t);
+      std::copy(q.begin(), q.end(), v.begin());
     }
-  } else {
-    for (int i = 0; i < count; ++i, at += r.bits) {
-      high[i] = 0;
-      low[i] = int(b.bits(at, r.bits));
-    }
+    for (int j = 0; j < per && first + j < count; ++j) high[first + j] = v[size_t(j)];
   }
 }
 
@@ -269,7 +260,7 @@ struct Decoded {
   int weights[64] = {};                 // the grid, plane 0 and 1 interleaved in a dual-plane block
 };
 
-// Endpoints of one partition from its CEM and values v (0..255 each). false: an HDR mode.
+// The endpoint modes' helpers: a's top bit to b, a to -32..31; blue contraction; the clamp.
 void bit_transfer_signed(int& a, int& b) {
   b >>= 1;
   b |= a & 0x80;
@@ -282,6 +273,7 @@ void clamp_unorm8(std::array<int, 4>& c) {
   for (int& v : c) v = std::clamp(v, 0, 255);
 }
 
+// Endpoints of one partition from its CEM and values v (0..255 each). false: an HDR mode.
 bool interpret_endpoints(int cem, const int* v0, std::array<int, 4>& e0, std::array<int, 4>& e1) {
   int v[8];
   for (int i = 0; i < 8; ++i) v[i] = v0[i];

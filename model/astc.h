@@ -11,7 +11,7 @@
 // An illegal block, an HDR endpoint mode (that partition's texels) or an HDR void-extent block
 // decodes to the error colour, opaque magenta. The unit is the LDR profile: it returns the top 8 bits
 // of C (decode_unorm8, and the sRGB operation mode, whose endpoints expand with 0x80 below them).
-// astcenc decodes the same (tests/sim/test_block_formats_reference.cpp).
+// astcenc decodes the same (tests/sim/test_astc_reference.cpp).
 #pragma once
 #include <array>
 #include <cstdint>

@@ -1,6 +1,8 @@
 #include "memory_layout.h"
 
 #include <algorithm>
+#include <array>
+#include <vector>
 
 #include "cube_map.h"
 #include "error.h"
@@ -181,6 +183,11 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
     o = i - seam;
     return seam_copies && seam != 0 && i >= seam && o < align && o < n;
   };
+  // A block format's blocks decoded once each (an ASTC block decodes its weights and endpoints
+  // as a whole), on first use: the line's block b at decoded[b].
+  const int block_bytes = blocks ? info.block_bytes : 0;
+  std::vector<std::array<Rgba8, kMaxBlockTexels>> decoded(blocks ? size_t(layout.line_bytes() / block_bytes) : 0);
+  std::vector<bool> done(decoded.size(), false);
   for (int ty = 0; ty < bh; ++ty)
     for (int tx = 0; tx < bw; ++tx) {
       const uint32_t x = bx * uint32_t(bw) + uint32_t(tx), y = by * uint32_t(bh) + uint32_t(ty);
@@ -189,7 +196,10 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
       const uint8_t* at = line + layout.texel_offset(x, y);
       Texel t{};
       if (blocks) {
-        const Rgba8 d = decode_texel(layout.format(), at, layout.texel_in_block(x, y), srgb);
+        const size_t b = size_t((at - line) / block_bytes);
+        if (!done[b]) decode_block(layout.format(), at, decoded[b].data(), srgb);
+        done[b] = true;
+        const Rgba8& d = decoded[b][size_t(layout.texel_in_block(x, y))];
         for (size_t c = 0; c < 4; ++c) t[c] = d[c];
       } else {
         for (size_t c = 0; c < 4; ++c) t[c] = tb == 4 ? at[c] : uint16_t(at[2 * c] | at[2 * c + 1] << 8);

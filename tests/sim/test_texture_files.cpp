@@ -166,6 +166,31 @@ void expect_file_error(const fs::path& path, const std::vector<uint8_t>& bytes, 
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
+// `n` random queries (u, v in -0.5..1.5, lod in -1 .. lod_top - 1) as the scratch's q.csv.
+void save_queries(const Scratch& s, int n, int lod_top, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::string q = "u,v,lod\n";
+  for (int i = 0; i < n; ++i)
+    q += std::to_string(double(rng() % 4096) / 2048 - 0.5) + "," + std::to_string(double(rng() % 4096) / 2048 - 0.5) + "," +
+         std::to_string(double(rng() % uint64_t(256 * lod_top)) / 256 - 1) + "\n";
+  save(s / "q.csv", std::vector<uint8_t>(q.begin(), q.end()));
+}
+
+// texsim sample of `texture` over the scratch's q.csv into its file `out`: {exit status, stderr}.
+std::pair<int, std::string> texsim_sample(const Scratch& s, const std::string& texture, const std::string& args,
+                                          const std::string& out) {
+  const std::string cmd = std::string(TEXSIM_PATH) + " sample -t " + texture + " -q " + (s / "q.csv").string() + " -o " +
+                          (s / out).string() + " " + args + " > /dev/null 2> " + (s / "err.txt").string();
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(s / "err.txt");
+  return {WEXITSTATUS(status), std::string{std::istreambuf_iterator<char>(in), {}}};
+}
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string{std::istreambuf_iterator<char>(in), {}};
+}
+
 }  // namespace
 
 TEST(TextureFiles, EveryContainerGivesBackItsLevels) {
@@ -749,25 +774,11 @@ TEST(TextureFiles, Etc2FilesSampleThroughTexsim) {
   }
   const auto levels = random_levels(TexelFormat::Etc2Rgba, 32, 16, 6, 90);
   save(s / "rgba.ktx2", ktx2(151, 32, 16, levels));
-  std::mt19937_64 rng(91);
-  std::string q = "u,v,lod\n";
-  for (int i = 0; i < 300; ++i)
-    q += std::to_string(double(rng() % 4096) / 2048 - 0.5) + "," + std::to_string(double(rng() % 4096) / 2048 - 0.5) + "," +
-         std::to_string(double(rng() % 1024) / 256 - 1) + "\n";
-  save(s / "q.csv", std::vector<uint8_t>(q.begin(), q.end()));
+  save_queries(s, 300, 4, 91);
   auto sample = [&](const std::string& args, const std::string& out) {
-    const std::string cmd = std::string(TEXSIM_PATH) + " sample -t " + (s / "rgba.ktx2").string() + " -q " +
-                            (s / "q.csv").string() + " -o " + (s / out).string() + " " + args + " > /dev/null 2> " +
-                            (s / "err.txt").string();
-    const int status = std::system(cmd.c_str());
-    std::ifstream in(s / "err.txt");
-    const std::string err{std::istreambuf_iterator<char>(in), {}};
-    return std::make_pair(WEXITSTATUS(status), err);
+    return texsim_sample(s, (s / "rgba.ktx2").string(), args, out);
   };
-  auto text = [&](const std::string& name) {
-    std::ifstream in(s / name);
-    return std::string{std::istreambuf_iterator<char>(in), {}};
-  };
+  auto text = [&](const std::string& name) { return text_of(s / name); };
   EXPECT_EQ(sample("", "onchip.csv").first, 0);
   EXPECT_EQ(sample("--memory cached", "cached.csv").first, 0);
   EXPECT_EQ(sample("-e rtl", "rtl.csv").first, 0);
@@ -886,23 +897,11 @@ TEST(TextureFiles, AstcFilesSampleThroughTexsim) {
   Scratch s;
   const Pyramid p = stimulus::random_block_texture(TexelFormat::Astc10x6, {64, 48}, 11);
   save(s / "t.ktx2", ktx2(157 + 2 * 9, 64, 48, p.blocks));
-  std::mt19937_64 rng(12);
-  std::string q = "u,v,lod\n";
-  for (int i = 0; i < 400; ++i)
-    q += std::to_string(double(rng() % 4096) / 2048 - 0.5) + "," + std::to_string(double(rng() % 4096) / 2048 - 0.5) + "," +
-         std::to_string(double(rng() % 1536) / 256 - 1) + "\n";
-  save(s / "q.csv", std::vector<uint8_t>(q.begin(), q.end()));
+  save_queries(s, 400, 6, 12);
   auto sample = [&](const std::string& texture, const std::string& args, const std::string& out) {
-    const std::string cmd = std::string(TEXSIM_PATH) + " sample -t " + texture + " -q " + (s / "q.csv").string() +
-                            " -o " + (s / out).string() + " " + args + " > /dev/null 2> " + (s / "err.txt").string();
-    const int status = std::system(cmd.c_str());
-    std::ifstream in(s / "err.txt");
-    return std::make_pair(WEXITSTATUS(status), std::string{std::istreambuf_iterator<char>(in), {}});
+    return texsim_sample(s, texture, args, out);
   };
-  auto text = [&](const std::string& name) {
-    std::ifstream in(s / name);
-    return std::string{std::istreambuf_iterator<char>(in), {}};
-  };
+  auto text = [&](const std::string& name) { return text_of(s / name); };
   auto in_s = [&](const std::string& name) { return (s / name).string(); };
   const std::string t = (s / "t.ktx2").string();
   EXPECT_EQ(sample(t, "", "onchip.csv").first, 0);
