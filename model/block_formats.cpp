@@ -21,6 +21,10 @@ constexpr FormatInfo kFormats[] = {
     {TexelFormat::Etc2Rgb, "etc2", 8, 3, true, true},
     {TexelFormat::Etc2RgbA1, "etc2a1", 8, 4, true, false},
     {TexelFormat::Etc2Rgba, "etc2a", 16, 4, true, true},
+    {TexelFormat::EacR11, "eac_r11", 8, 1, false, true, 4, 4, 16},
+    {TexelFormat::EacR11Snorm, "eac_r11_snorm", 8, 1, false, false, 4, 4, 16, true},
+    {TexelFormat::EacRg11, "eac_rg11", 16, 2, false, true, 4, 4, 16},
+    {TexelFormat::EacRg11Snorm, "eac_rg11_snorm", 16, 2, false, false, 4, 4, 16, true},
     {TexelFormat::Astc4x4, "astc4x4", 16, 4, true, true, 4, 4},
     {TexelFormat::Astc5x4, "astc5x4", 16, 4, true, true, 5, 4},
     {TexelFormat::Astc5x5, "astc5x5", 16, 4, true, true, 5, 5},
@@ -335,7 +339,8 @@ Rgba8 decode_texel(TexelFormat f, const uint8_t* block, int i, bool srgb) {
     }
     default: break;
   }
-  throw Error("decode_texel: " + std::string(format_info(f).name) + " is not a block format");
+  throw Error("decode_texel: " + std::string(format_info(f).name) +
+              (is_eac(f) ? " decodes to 16-bit channels (decode_block into Texel)" : " is not a block format"));
 }
 
 void decode_block(TexelFormat f, const uint8_t* block, Rgba8* out, bool srgb) {
@@ -352,6 +357,20 @@ void decode_block(TexelFormat f, const uint8_t* block, Rgba8* out, bool srgb) {
   }
 }
 
+void decode_block(TexelFormat f, const uint8_t* block, Texel* out, bool srgb) {
+  if (is_eac(f)) {
+    const bool snorm = format_info(f).snorm, rg = f == TexelFormat::EacRg11 || f == TexelFormat::EacRg11Snorm;
+    const uint16_t zero = snorm ? 32768 : 0;
+    for (int i = 0; i < 16; ++i)
+      out[i] = {eac_r11_code(block, snorm, i), rg ? eac_r11_code(block + 8, snorm, i) : zero, zero, 65535};
+    return;
+  }
+  Rgba8 t[kMaxBlockTexels];
+  decode_block(f, block, t, srgb);
+  const FormatInfo& info = format_info(f);
+  for (int i = 0; i < info.block_w * info.block_h; ++i) out[i] = {t[i][0], t[i][1], t[i][2], t[i][3]};
+}
+
 uint64_t level_bytes(TexelFormat f, int width, int height) {
   const FormatInfo& info = format_info(f);
   if (!info.block_bytes) return uint64_t(width) * uint64_t(height) * 4;
@@ -360,18 +379,17 @@ uint64_t level_bytes(TexelFormat f, int width, int height) {
 }
 
 Image decode_level(TexelFormat f, const uint8_t* blocks, int width, int height, bool srgb) {
-  Image img(width, height, 8);
   const FormatInfo& info = format_info(f);
+  Image img(width, height, info.channel_bits);
   const int fw = info.block_w, fh = info.block_h;
   const int bw = (width + fw - 1) / fw, bh = (height + fh - 1) / fh;
-  Rgba8 t[kMaxBlockTexels];
+  Texel t[kMaxBlockTexels];
   for (int by = 0; by < bh; ++by)
     for (int bx = 0; bx < bw; ++bx) {
       decode_block(f, blocks + (size_t(by) * size_t(bw) + size_t(bx)) * size_t(info.block_bytes), t, srgb);
       for (int i = 0; i < fw * fh; ++i) {
         const int x = bx * fw + i % fw, y = by * fh + i / fw;
-        if (x < width && y < height)
-          for (int c = 0; c < 4; ++c) img.at(x, y)[size_t(c)] = t[i][size_t(c)];
+        if (x < width && y < height) img.at(x, y) = t[i];
       }
     }
   return img;

@@ -123,4 +123,25 @@ uint8_t eac_alpha_texel(const uint8_t* block, int i) {
   return clamp255(base + kEacModifiers[table][w >> (45 - 3 * p) & 7] * multiplier);
 }
 
+int eac_r11_value(const uint8_t* block, bool snorm, int i) {
+  const uint64_t w = be64(block);
+  const int multiplier = int(w >> 52 & 15), table = int(w >> 48 & 15);
+  const int p = 4 * (i % 4) + i / 4;  // (column-major)
+  const int modifier = kEacModifiers[table][w >> (45 - 3 * p) & 7];
+  const int step = multiplier ? modifier * multiplier * 8 : modifier;
+  if (!snorm) return std::clamp(int(w >> 56) * 8 + 4 + step, 0, 2047);
+  const int base = std::max(int(int8_t(w >> 56)), -127);
+  return std::clamp(base * 8 + step, -1023, 1023);
+}
+
+int eac_r11_widened(int v, bool snorm) {
+  if (!snorm) return v << 5 | v >> 6;
+  const int m = v < 0 ? -v : v;
+  return (v < 0 ? -1 : 1) * (m << 5 | m >> 5);
+}
+
+uint16_t eac_r11_code(const uint8_t* block, bool snorm, int i) {
+  return uint16_t(eac_r11_widened(eac_r11_value(block, snorm, i), snorm) + (snorm ? 32768 : 0));
+}
+
 }  // namespace tex

@@ -1,5 +1,6 @@
 // ETC2 and EAC blocks (OpenGL ES 3.0 specification, Annex C; Khronos Data Format Specification,
-// "ETC2"): the decoders behind decode_texel for TexelFormat::Etc2Rgb, Etc2RgbA1 and Etc2Rgba
+// "ETC2"): the decoders behind decode_texel for TexelFormat::Etc2Rgb, Etc2RgbA1 and Etc2Rgba, and
+// behind decode_block's 16-bit texels for the EAC formats EacR11, EacRg11 and their signed forms
 // (model/block_formats.h). An ETC2 colour block is a big-endian 64-bit word: ETC1's individual
 // and differential modes, and the T, H and planar modes that ETC2 puts where the differential
 // mode's red, green or blue sum leaves 0..31. Its pixel indices run down the columns (texel x, y
@@ -35,5 +36,19 @@ std::array<uint8_t, 4> etc2_colour_texel(const uint8_t* colour_block, bool punch
 
 // Texel i (x + 4 y) of an EAC block with 8-bit values (ETC2 RGBA8's alpha).
 uint8_t eac_alpha_texel(const uint8_t* alpha_block, int i);
+
+// Texel i (x + 4 y) of an EAC R11 block (each channel of EAC R11 and RG11), as the specification
+// gives it: 11 bits, unsigned 0..2047 (base x 8 + 4 + modifier x multiplier x 8, multiplier 0
+// counting as 1/8), or signed -1023..1023 (`snorm`: base a signed byte with -128 read as -127, no
+// + 4). Negative values only where `snorm`.
+int eac_r11_value(const uint8_t* r11_block, bool snorm, int i);
+// That value widened to 16 bits by replicating its top bits (the specification lets a decoder
+// widen to any width; Mesa widens so): unsigned v -> v << 5 | v >> 6 (0..65535); signed
+// -> the same of |v| on 10 bits, v << 5 | v >> 5, with v's sign (-32767..32767).
+int eac_r11_widened(int value, bool snorm);
+// The unit's code for it (the filter's arithmetic is unsigned): unsigned as it is, signed in
+// offset binary, widened + 32768 (1..65535; 32768 is 0.0). Linear filtering, min/max and the
+// mean of probes commute with the offset, so a filtered code - 32768 is the signed result.
+uint16_t eac_r11_code(const uint8_t* r11_block, bool snorm, int i);
 
 }  // namespace tex

@@ -186,7 +186,7 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
   // A block format's blocks decoded once each (an ASTC block decodes its weights and endpoints
   // as a whole), on first use: the line's block b at decoded[b].
   const int block_bytes = blocks ? info.block_bytes : 0;
-  std::vector<std::array<Rgba8, kMaxBlockTexels>> decoded(blocks ? size_t(layout.line_bytes() / block_bytes) : 0);
+  std::vector<std::array<Texel, kMaxBlockTexels>> decoded(blocks ? size_t(layout.line_bytes() / block_bytes) : 0);
   std::vector<bool> done(decoded.size(), false);
   for (int ty = 0; ty < bh; ++ty)
     for (int tx = 0; tx < bw; ++tx) {
@@ -199,8 +199,7 @@ bool decode_line(const MemoryLayout& layout, uint32_t address, const uint8_t* li
         const size_t b = size_t((at - line) / block_bytes);
         if (!done[b]) decode_block(layout.format(), at, decoded[b].data(), srgb);
         done[b] = true;
-        const Rgba8& d = decoded[b][size_t(layout.texel_in_block(x, y))];
-        for (size_t c = 0; c < 4; ++c) t[c] = d[c];
+        t = decoded[b][size_t(layout.texel_in_block(x, y))];
       } else {
         for (size_t c = 0; c < 4; ++c) t[c] = tb == 4 ? at[c] : uint16_t(at[2 * c] | at[2 * c + 1] << 8);
       }

@@ -1,6 +1,7 @@
 // The mip pyramid: level 0 and its 2x2 box-filtered reductions down to 1x1.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "block_formats.h"
@@ -42,6 +43,14 @@ struct Pyramid {
   std::vector<Image> codes;  // an sRGB RGBA8 texture's levels as stored
   // Bits per channel in memory: 8 for a block format or an sRGB texture, else the levels' own.
   int memory_channel_bits() const { return srgb || is_compressed(format) ? 8 : levels[0].channel_bits; }
+  // Why a depth compare cannot read it ("" if it can): its R is no depth where its texels are
+  // sRGB colours or EAC's (a colour format: Vulkan compares depth formats only; the unit's formats
+  // configuration compares 8-bit depths).
+  std::string depth_problem() const {
+    if (srgb) return "an sRGB texture (a depth is no colour)";
+    if (is_eac(format)) return std::string("an ") + format_info(format).name + " texture (EAC is a colour format, not a depth one)";
+    return "";
+  }
   Extent extent0() const { return {levels[0].width, levels[0].height}; }
   int last_level() const { return int(levels.size()) - 1; }
 };

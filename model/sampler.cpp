@@ -70,7 +70,7 @@ Sampler::Sampler(const std::vector<const Pyramid*>& layers, const SamplerConfig&
       size0_(layers.empty() ? Extent{} : layers[0]->extent0()),
       last_level_(layers.empty() ? 0 : layers[0]->last_level()),
       layers_(int(layers.size())),
-      srgb_(!layers.empty() && layers[0]->srgb),
+      depth_problem_(layers.empty() ? "" : layers[0]->depth_problem()),
       kind_(kind) {
   if (layers_ < 1 || layers_ > kMaxLayers)
     throw Error("sampler: " + std::to_string(layers_) + " layers; an array texture has 1 to " + std::to_string(kMaxLayers));
@@ -158,7 +158,7 @@ Texel Sampler::sample(const Request& r) {
   if (r.op == Op::Gather) return gather(r);
   if (r.op == Op::Compare) {
     if (const std::string p = config_.compare_problem(); !p.empty()) throw Error("sampler: " + p);
-    if (srgb_) throw Error("sampler: a depth compare of an sRGB texture (a depth is no colour)");
+    if (!depth_problem_.empty()) throw Error("sampler: a depth compare of " + depth_problem_);
   }
   // A cube: the face's 2D request, each probe on the face it lies over (a cube array: the layer
   // picks the cube).

@@ -206,7 +206,7 @@ class Sampler {
   Extent size0_;
   int last_level_;
   int layers_;
-  bool srgb_;  // (no depth compare: a depth is no colour)
+  std::string depth_problem_;  // why no depth compare reads the texture (Pyramid::depth_problem)
   TextureKind kind_;
   uint64_t samples_ = 0, multiplies_ = 0;
   std::array<uint64_t, kMaxAniso + 1> probes_{};

@@ -551,8 +551,9 @@ package tex_astc;
       colour_values = values_of(cem0) + (partitions >= 3'd2 ? values_of(cem1) : 7'd0) +
                       (partitions >= 3'd3 ? values_of(cem2) : 7'd0) +
                       (partitions == 3'd4 ? values_of(cem3) : 7'd0);
-      remaining = 10'd128 - config_bits - weight_bits;
-      if (!error && (colour_values > 7'd18 || remaining < div5(10'd13 * 10'(colour_values) + 10'd4))) error = 1'b1;
+      remaining = 10'd128 - config_bits - weight_bits;  // (wraps where they exceed 128: an error below)
+      if (!error && (colour_values > 7'd18 || config_bits + weight_bits > 10'd128 ||
+                     remaining < div5(10'd13 * 10'(colour_values) + 10'd4))) error = 1'b1;
       // The largest endpoint range that fits (no loop: a priority chain).
       if (ise_bits(colour_values, colour_range(5'd16)) <= remaining) cr = 5'd16;
       else if (ise_bits(colour_values, colour_range(5'd15)) <= remaining) cr = 5'd15;

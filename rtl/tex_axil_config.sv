@@ -185,7 +185,7 @@ module tex_axil_config #(
   localparam int NCNT = 9;  // CYCLES, SAMPLES, SAMPLE_ERRORS, LOOKUPS, MISSES, MEM_BYTES,
                             // OUT_STALL, MEM_WAIT, REQ_STALL
   localparam logic [31:0] ID      = 32'h5445_5855;  // "TEXU"
-  localparam logic [31:0] VERSION = 32'h0003_0006;  // major 3 (any texture size: DESC_SIZE), minor 6 (ASTC: DESC_ATTR's format 5 bits)
+  localparam logic [31:0] VERSION = 32'h0003_0007;  // major 3 (any texture size: DESC_SIZE), minor 7 (EAC: formats 11..14)
                                                     // (FILTER.unnormalized, FILTER.reduction)
 
   localparam int FLW       = $clog2(FIFO_DEPTH + 1);
@@ -277,8 +277,8 @@ module tex_axil_config #(
               && desc_w != '0 && 32'(desc_w) <= (1 << MAX_LOG2_W)
               && desc_h != '0 && 32'(desc_h) <= (1 << MAX_LOG2_H)
               && (attr_format == tex_pkg::FMT_RGBA8 || (BLOCK_FORMATS != 0 && tex_pkg::block_format(attr_format)))
-              && (!attr_srgb || (SRGB != 0 && attr_format != tex_pkg::FMT_BC4
-                                 && attr_format != tex_pkg::FMT_BC5))
+              && (!attr_srgb || (SRGB != 0 && tex_pkg::srgb_format(attr_format)))
+              && (!tex_pkg::eac(attr_format) || SRGB != 0)  // EAC's 16-bit channels: the CW = 16 filter
               && (desc_base & 32'(LINE_BYTES - 1)) == '0
               // a cube map: square RGBA faces of n + 2 <= the smaller side, 6 layers a cube
               && (!attr_cube || (CUBE_MAPS != 0 && attr_format == tex_pkg::FMT_RGBA8 && desc_w == desc_h

@@ -396,8 +396,8 @@ module tex_cached_fetch #(
   );
 
   // Address mode border: a tap outside its level takes its sampler's border colour (model
-  // BankedMipMemory::fetch), in the filter's width: CW bits (tex_border); SRGB: an sRGB
-  // texture's filter takes 16-bit linear channels, a linear texture's 8-bit ones zero-extended.
+  // BankedMipMemory::fetch), in the filter's width: CW bits (tex_border); SRGB: an sRGB or EAC
+  // texture's filter takes 16-bit channels, a linear 8-bit texture's 8-bit ones zero-extended.
   // The table holds each colour converted (tex_border at the write, off the sample path); the
   // sample's colour is read in R and registered into T beside its bank words.
   localparam int BCW = (SRGB != 0) ? 64 + 32 : DW;  // SRGB: {8-bit, 16-bit}
@@ -420,7 +420,7 @@ module tex_cached_fetch #(
   assign r_border = border_table[r_entry[P_SMP +: SXW]];
   generate
     if (SRGB != 0) begin : g_border_srgb_read
-      assign r_border_texel = r_entry[P_SRGB] ? DW'(r_border[63:0])
+      assign r_border_texel = (r_entry[P_SRGB] || tex_pkg::eac(r_entry[P_FMT +: FW])) ? DW'(r_border[63:0])
                                               : DW'({8'd0, r_border[64+24 +: 8], 8'd0, r_border[64+16 +: 8],
                                                      8'd0, r_border[64+8 +: 8], 8'd0, r_border[64 +: 8]});
     end else begin : g_border_read

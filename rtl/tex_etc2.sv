@@ -11,6 +11,9 @@
 //   punch_through : 1 for RGB8A1 (bit 33 reads "opaque"; no individual mode)
 //   rgba          : unorm8 R (bits 7..0), G, B, A (31..24)
 // alpha(block, texel) -> unorm8 alpha of the EAC block (the first 8 bytes of an RGBA8 block)
+// r11(block, texel, snorm) -> the 16-bit code of an EAC R11 block's texel (each channel of EAC R11
+//   and RG11; model/etc2.h eac_r11_code): the 11-bit value widened by replicating its top bits,
+//   unsigned, or with `snorm` signed and then offset by 32768 (offset binary, 32768 = 0.0)
 package tex_etc2;
   // ETC's big-endian word from the bytes as stored.
   function automatic logic [63:0] word(input logic [63:0] block);
@@ -180,5 +183,32 @@ package tex_etc2;
     sum   = 14'($signed({1'b0, w[63:56]}));
     for (int i = 0; i < 4; i++) sum = sum + (w[52 + i] ? m <<< i : 14'sd0);
     alpha = clamp8(sum);
+  endfunction
+
+  // EAC R11: base x 8 (+ 4 unsigned) + modifier x multiplier x 8 (multiplier 0: the modifier
+  // alone), clamped to 0..2047 or -1023..1023, widened to 16 bits.
+  function automatic logic [15:0] r11(input logic [63:0] block, input logic [3:0] texel, input logic snorm);
+    logic [63:0] w;
+    logic [3:0]  p;
+    logic [2:0]  index;
+    logic signed [13:0] m, base, sum;
+    logic [10:0] u;    // the unsigned value
+    logic [9:0]  mag;  // the signed one's magnitude
+    w     = word(block);
+    p     = {texel[1:0], texel[3:2]};  // (column-major)
+    index = 3'(w >> (45 - ((32'(p) << 1) + 32'(p))));
+    m     = 14'(eac_modifier(w[51:48], index));
+    // the base: unsigned x 8 + 4; signed a two's-complement byte (-128 read as -127) x 8
+    base  = snorm ? ((w[63:56] == 8'h80) ? -14'sd1016 : 14'($signed(w[63:56])) <<< 3)
+                  : 14'($signed({3'b0, w[63:56], 3'b100}));
+    // modifier x multiplier x 8 as shifts and adds; multiplier 0: the modifier alone
+    sum = base + ((w[55:52] == 4'd0) ? m : 14'sd0);
+    for (int i = 0; i < 4; i++) sum = sum + (w[52 + i] ? m <<< (i + 3) : 14'sd0);
+    u   = sum < 0 ? 11'd0 : sum > 14'sd2047 ? 11'd2047 : sum[10:0];
+    mag = (sum < -14'sd1023 || sum > 14'sd1023) ? 10'd1023 : sum < 0 ? 10'(-sum) : sum[9:0];
+    // widened: u << 5 | u >> 6; the signed magnitude's mag << 5 | mag >> 5 (15 bits), +- from 32768
+    if (!snorm) r11 = {u, u[10:6]};
+    else if (sum < 0) r11 = 16'd32768 - {1'b0, mag, mag[9:5]};
+    else r11 = 16'd32768 + {1'b0, mag, mag[9:5]};
   endfunction
 endpackage

@@ -81,15 +81,31 @@ package tex_pkg;
   localparam logic [FORMAT_W-1:0] FMT_ETC2      = 5'd8;   // ETC2 RGB8 (and ETC1)
   localparam logic [FORMAT_W-1:0] FMT_ETC2_A1   = 5'd9;   // ETC2 RGB8 with punch-through alpha
   localparam logic [FORMAT_W-1:0] FMT_ETC2_RGBA = 5'd10;  // ETC2 RGBA8: EAC alpha, then the colour
+  // EAC R11 and RG11 (one or two EAC blocks of 11-bit values), unsigned and signed: 16-bit channels
+  // into the CW = 16 filter, signed ones in offset binary (model/etc2.h eac_r11_code)
+  localparam logic [FORMAT_W-1:0] FMT_EAC_R11        = 5'd11;
+  localparam logic [FORMAT_W-1:0] FMT_EAC_R11_SNORM  = 5'd12;
+  localparam logic [FORMAT_W-1:0] FMT_EAC_RG11       = 5'd13;
+  localparam logic [FORMAT_W-1:0] FMT_EAC_RG11_SNORM = 5'd14;
   // ASTC LDR: one code per footprint, FMT_ASTC_4X4 + i for footprint i of 4x4, 5x4, 5x5, 6x5, 6x6,
   // 8x5, 8x6, 8x8, 10x5, 10x6, 10x8, 10x10, 12x10, 12x12 (astc_footprint)
   localparam logic [FORMAT_W-1:0] FMT_ASTC_4X4   = 5'd16;
   localparam logic [FORMAT_W-1:0] FMT_ASTC_12X12 = 5'd29;
 
-  // A block format the unit decodes (codes 6, 11..15 and 30, 31 are none).
+  // A block format the unit decodes (codes 6, 15 and 30, 31 are none).
   function automatic logic block_format(input logic [FORMAT_W-1:0] fmt);
-    block_format = (fmt >= FMT_BC1 && fmt <= FMT_BC5) || (fmt >= FMT_BC7 && fmt <= FMT_ETC2_RGBA) ||
+    block_format = (fmt >= FMT_BC1 && fmt <= FMT_BC5) || (fmt >= FMT_BC7 && fmt <= FMT_EAC_RG11_SNORM) ||
                    (fmt >= FMT_ASTC_4X4 && fmt <= FMT_ASTC_12X12);
+  endfunction
+  function automatic logic eac(input logic [FORMAT_W-1:0] fmt);
+    eac = fmt >= FMT_EAC_R11 && fmt <= FMT_EAC_RG11_SNORM;
+  endfunction
+  function automatic logic snorm(input logic [FORMAT_W-1:0] fmt);
+    snorm = fmt == FMT_EAC_R11_SNORM || fmt == FMT_EAC_RG11_SNORM;
+  endfunction
+  // A format with an sRGB form (the descriptor's sRGB bit is legal): not BC4, BC5 or EAC.
+  function automatic logic srgb_format(input logic [FORMAT_W-1:0] fmt);
+    srgb_format = fmt != FMT_BC4 && fmt != FMT_BC5 && !eac(fmt);
   endfunction
   function automatic logic astc(input logic [FORMAT_W-1:0] fmt);
     astc = fmt >= FMT_ASTC_4X4 && fmt <= FMT_ASTC_12X12;
@@ -126,11 +142,12 @@ package tex_pkg;
   // A cached line's kind in the data banks (tex_cache_data's wr_kind): what a bank word holds.
   localparam int LINE_KIND_W = 2;
   localparam logic [LINE_KIND_W-1:0] LINE_TEXELS   = 2'd0;
-  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS8  = 2'd1;  // BC1, BC4, ETC2 RGB8, RGB8A1: 8-byte 4x4 blocks
-  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS16 = 2'd2;  // BC2, BC3, BC5, BC7, ETC2 RGBA8, ASTC: 16-byte blocks
+  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS8  = 2'd1;  // BC1, BC4, ETC2 RGB8, RGB8A1, EAC R11: 8-byte 4x4 blocks
+  localparam logic [LINE_KIND_W-1:0] LINE_BLOCKS16 = 2'd2;  // BC2, BC3, BC5, BC7, ETC2 RGBA8, EAC RG11, ASTC: 16-byte blocks
   function automatic logic [LINE_KIND_W-1:0] line_kind(input logic [FORMAT_W-1:0] fmt);
     if (fmt == FMT_RGBA8) line_kind = LINE_TEXELS;
-    else if (fmt == FMT_BC1 || fmt == FMT_BC4 || fmt == FMT_ETC2 || fmt == FMT_ETC2_A1) line_kind = LINE_BLOCKS8;
+    else if (fmt == FMT_BC1 || fmt == FMT_BC4 || fmt == FMT_ETC2 || fmt == FMT_ETC2_A1 || fmt == FMT_EAC_R11
+             || fmt == FMT_EAC_R11_SNORM) line_kind = LINE_BLOCKS8;
     else line_kind = LINE_BLOCKS16;
   endfunction
 endpackage

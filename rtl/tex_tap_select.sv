@@ -3,7 +3,8 @@
 // t bit 0 the second x tap, bit 1 the second y tap). Each tap reads the bank of its parity (of its
 // texel, or of its 4x4 block) at that bank's offset: a texel of the word, or a block decoded by
 // one tex_bc_decode per tap (BLOCK_FORMATS); with SRGB an sRGB texture's R, G, B through the
-// function tex_srgb_decode::linear (24 per sample), its alpha widened exactly. The decoders are
+// function tex_srgb_decode::linear (24 per sample), its alpha widened exactly; an EAC texture's
+// 16-bit R and G as they are, with B 0 (signed: 32768, offset binary's 0.0) and A 65535. The decoders are
 // functions called only for the taps that need them: a simulator spends nothing on them in the
 // clocks that read RGBA8 texels (as plain modules, Verilator evaluated all 8 every clock).
 // Handshake: none (combinational). Everything is 0 unless `valid` (a sample is in T), so that a
@@ -17,8 +18,8 @@
 //                   offset}; the offsets place each tap in its word
 //   word0, word1  : cache 0's (1's) bank b's word at [b*WW +: WW] (tex_cache_data, read in R)
 //   texels        : tap i's texel at [i*DW +: DW], DW = 4*CW, {A, B, G, R}: the cache's channels
-//                   (SRGB: an sRGB texture's R, G, B linear unorm16 and A x 257; a linear
-//                   texture's 8-bit channels zero-extended)
+//                   (SRGB: an sRGB texture's R, G, B linear unorm16 and A x 257; EAC's 16-bit
+//                   codes; a linear texture's 8-bit channels zero-extended)
 module tex_tap_select #(
   parameter int CW            = 8,
   parameter int BW            = 4,
@@ -140,6 +141,11 @@ module tex_tap_select #(
             t   = cached[i*32 +: 32];
             rgb = {tex_srgb_decode::linear(t[23:16]), tex_srgb_decode::linear(t[15:8]), tex_srgb_decode::linear(t[7:0])};
             texels[i*DW +: DW] = DW'({t[31:24], t[31:24], rgb});
+          end
+        else if (valid && tex_pkg::eac(fmt))
+          for (int i = 0; i < 8; i++) begin
+            t = cached[i*32 +: 32];
+            texels[i*DW +: DW] = DW'({16'hFFFF, tex_pkg::snorm(fmt), 15'd0, t});
           end
         else
           for (int i = 0; i < 8; i++) begin

@@ -743,9 +743,13 @@ module tex_unit_cached #(
               || (BLOCK_FORMATS != 0 && tex_pkg::block_format(cfg_desc_format)))
         else $error("tex_unit_cached: cfg_desc_format %0d is not a format of this unit (BLOCK_FORMATS = %0d)",
                     cfg_desc_format, BLOCK_FORMATS);
+    if (!rst && cfg_desc_we && tex_pkg::eac(cfg_desc_format))
+      assert (SRGB != 0)
+        else $error("tex_unit_cached: cfg_desc_format %0d is EAC, whose 16-bit channels need the CW = 16 filter (SRGB = 1)",
+                    cfg_desc_format);
     if (!rst && cfg_desc_we && cfg_desc_srgb)
-      assert (SRGB != 0 && cfg_desc_format != tex_pkg::FMT_BC4 && cfg_desc_format != tex_pkg::FMT_BC5)
-        else $error("tex_unit_cached: cfg_desc_srgb for format %0d (SRGB = %0d; BC4 and BC5 have no sRGB)",
+      assert (SRGB != 0 && tex_pkg::srgb_format(cfg_desc_format))
+        else $error("tex_unit_cached: cfg_desc_srgb for format %0d (SRGB = %0d; BC4, BC5 and EAC have no sRGB)",
                     cfg_desc_format, SRGB);
     if (!rst && cfg_desc_we && cfg_desc_cube)
       assert (CUBE_MAPS != 0 && cfg_desc_format == tex_pkg::FMT_RGBA8 && cfg_desc_w == cfg_desc_h

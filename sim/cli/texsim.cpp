@@ -175,8 +175,8 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   for (size_t t = 0; t < table.size(); ++t) {
     const bool is_depth = depth || list[t].depth;
     const std::string& at = list[t].at;  // ("" for --texture)
-    if (is_depth && table[t].pyramid->srgb)
-      throw Error(at + "a depth texture with sRGB texels (" + list[t].path + "): a depth is no colour");
+    if (is_depth && !table[t].pyramid->depth_problem().empty())
+      throw Error(at + "a depth texture (" + list[t].path + ") that is " + table[t].pyramid->depth_problem());
     if (op == Op::Compare && !is_depth)
       throw Error(at + "--op compare of a colour texture (" + list[t].path + "): a depth compare reads a depth "
                   "texture's R as its depth; declare the texture one (--depth, or `depth` on its --textures line)");

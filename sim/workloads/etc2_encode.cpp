@@ -127,11 +127,56 @@ std::array<uint8_t, 8> encode_alpha(const Texels& t) {
   return out;
 }
 
+// An EAC R11 block (unsigned) for 16 values of `bits` bits: each aimed at v * 2047 / (2^bits - 1)
+// in 11 bits; the base at their mean, every table and multiplier (0: steps of 1) tried.
+std::array<uint8_t, 8> encode_r11(const std::array<int, 16>& v, int bits) {
+  std::array<int, 16> want{};
+  double sum = 0;
+  for (int i = 0; i < 16; ++i) sum += want[size_t(i)] = int(std::lround(v[size_t(i)] * 2047.0 / ((1 << bits) - 1)));
+  const int base = clamp255(int(std::lround((sum / 16 - 4) / 8)));
+  long best_error = LONG_MAX;
+  uint64_t best = 0;
+  for (int table = 0; table < 16; ++table)
+    for (int multiplier = 0; multiplier < 16; ++multiplier) {
+      long error = 0;
+      uint64_t w = uint64_t(base) << 56 | uint64_t(multiplier) << 52 | uint64_t(table) << 48;
+      for (int i = 0; i < 16 && error < best_error; ++i) {
+        long texel_best = LONG_MAX;
+        int index = 0;
+        for (int k = 0; k < 8; ++k) {
+          const int m = kEacModifiers[table][k];
+          const long d = std::clamp(base * 8 + 4 + (multiplier ? m * multiplier * 8 : m), 0, 2047) - want[size_t(i)];
+          if (d * d < texel_best) texel_best = d * d, index = k;
+        }
+        error += texel_best;
+        w |= uint64_t(index) << (45 - 3 * (4 * (i % 4) + i / 4));
+      }
+      if (error < best_error) best_error = error, best = w;
+    }
+  std::array<uint8_t, 8> out{};
+  for (int i = 0; i < 8; ++i) out[size_t(i)] = uint8_t(best >> (56 - 8 * i));
+  return out;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_etc2_level(const Image& level, TexelFormat format) {
+  if (format == TexelFormat::EacR11 || format == TexelFormat::EacRg11) {
+    const int bw = (level.width + 3) / 4, bh = (level.height + 3) / 4, channels = format_info(format).channels;
+    std::vector<uint8_t> out(size_t(bw) * size_t(bh) * size_t(8 * channels));
+    for (int by = 0; by < bh; ++by)
+      for (int bx = 0; bx < bw; ++bx)
+        for (int c = 0; c < channels; ++c) {
+          std::array<int, 16> v{};
+          for (int i = 0; i < 16; ++i)
+            v[size_t(i)] = level.at(std::min(bx * 4 + i % 4, level.width - 1), std::min(by * 4 + i / 4, level.height - 1))[size_t(c)];
+          const std::array<uint8_t, 8> block = encode_r11(v, level.channel_bits);
+          std::copy(block.begin(), block.end(), &out[((size_t(by) * size_t(bw) + size_t(bx)) * size_t(channels) + size_t(c)) * 8]);
+        }
+    return out;
+  }
   if (format != TexelFormat::Etc2Rgb && format != TexelFormat::Etc2Rgba)
-    throw Error(std::string("no ") + format_info(format).name + " encoder (etc2 and etc2a are encoded)");
+    throw Error(std::string("no ") + format_info(format).name + " encoder (etc2, etc2a, eac_r11 and eac_rg11 are encoded)");
   const int bw = (level.width + 3) / 4, bh = (level.height + 3) / 4, bytes = format_info(format).block_bytes;
   std::vector<uint8_t> out(size_t(bw) * size_t(bh) * size_t(bytes));
   for (int by = 0; by < bh; ++by)

@@ -99,10 +99,10 @@ constexpr Known kGl[] = {
     {0x9277, "GL_COMPRESSED_SRGB8_PUNCHTHROUGH_ALPHA1_ETC2", TexelFormat::Etc2RgbA1, true, true},
     {0x9278, "GL_COMPRESSED_RGBA8_ETC2_EAC", TexelFormat::Etc2Rgba, false, true},
     {0x9279, "GL_COMPRESSED_SRGB8_ALPHA8_ETC2_EAC", TexelFormat::Etc2Rgba, true, true},
-    {0x9270, "GL_COMPRESSED_R11_EAC", TexelFormat::Rgba8, false, false},
-    {0x9271, "GL_COMPRESSED_SIGNED_R11_EAC", TexelFormat::Rgba8, false, false},
-    {0x9272, "GL_COMPRESSED_RG11_EAC", TexelFormat::Rgba8, false, false},
-    {0x9273, "GL_COMPRESSED_SIGNED_RG11_EAC", TexelFormat::Rgba8, false, false},
+    {0x9270, "GL_COMPRESSED_R11_EAC", TexelFormat::EacR11, false, true},
+    {0x9271, "GL_COMPRESSED_SIGNED_R11_EAC", TexelFormat::EacR11Snorm, false, true},
+    {0x9272, "GL_COMPRESSED_RG11_EAC", TexelFormat::EacRg11, false, true},
+    {0x9273, "GL_COMPRESSED_SIGNED_RG11_EAC", TexelFormat::EacRg11Snorm, false, true},
     {0x93B0, "GL_COMPRESSED_RGBA_ASTC_4x4_KHR", TexelFormat::Astc4x4, false, true},
     {0x93B1, "GL_COMPRESSED_RGBA_ASTC_5x4_KHR", TexelFormat::Astc5x4, false, true},
     {0x93B2, "GL_COMPRESSED_RGBA_ASTC_5x5_KHR", TexelFormat::Astc5x5, false, true},
@@ -160,10 +160,10 @@ constexpr Known kVk[] = {
     {150, "VK_FORMAT_ETC2_R8G8B8A1_SRGB_BLOCK", TexelFormat::Etc2RgbA1, true, true},
     {151, "VK_FORMAT_ETC2_R8G8B8A8_UNORM_BLOCK", TexelFormat::Etc2Rgba, false, true},
     {152, "VK_FORMAT_ETC2_R8G8B8A8_SRGB_BLOCK", TexelFormat::Etc2Rgba, true, true},
-    {153, "VK_FORMAT_EAC_R11_UNORM_BLOCK", TexelFormat::Rgba8, false, false},
-    {154, "VK_FORMAT_EAC_R11_SNORM_BLOCK", TexelFormat::Rgba8, false, false},
-    {155, "VK_FORMAT_EAC_R11G11_UNORM_BLOCK", TexelFormat::Rgba8, false, false},
-    {156, "VK_FORMAT_EAC_R11G11_SNORM_BLOCK", TexelFormat::Rgba8, false, false},
+    {153, "VK_FORMAT_EAC_R11_UNORM_BLOCK", TexelFormat::EacR11, false, true},
+    {154, "VK_FORMAT_EAC_R11_SNORM_BLOCK", TexelFormat::EacR11Snorm, false, true},
+    {155, "VK_FORMAT_EAC_R11G11_UNORM_BLOCK", TexelFormat::EacRg11, false, true},
+    {156, "VK_FORMAT_EAC_R11G11_SNORM_BLOCK", TexelFormat::EacRg11Snorm, false, true},
     {157, "VK_FORMAT_ASTC_4x4_UNORM_BLOCK", TexelFormat::Astc4x4, false, true},
     {158, "VK_FORMAT_ASTC_4x4_SRGB_BLOCK", TexelFormat::Astc4x4, true, true},
     {159, "VK_FORMAT_ASTC_5x4_UNORM_BLOCK", TexelFormat::Astc5x4, false, true},
@@ -209,8 +209,8 @@ constexpr Known kVk[] = {
 };
 
 const char kSupported[] =
-    "RGBA8, BC1 (with alpha), BC2, BC3, BC4 and BC5 (unorm), BC7, ETC2 RGB8 (and ETC1), RGB8A1 and RGBA8, ASTC LDR "
-    "4x4 to 12x12, and the sRGB variants";
+    "RGBA8, BC1 (with alpha), BC2, BC3, BC4 and BC5 (unorm), BC7, ETC2 RGB8 (and ETC1), RGB8A1 and RGBA8, EAC R11 "
+    "and RG11 (unsigned and signed), ASTC LDR 4x4 to 12x12, and the sRGB variants";
 
 class Reader {
  public:
@@ -569,7 +569,7 @@ int squish_flags(TexelFormat f) {
 }
 
 std::vector<uint8_t> compress_level(const Image& img, TexelFormat f, bool srgb) {
-  if (is_etc2(f)) return encode_etc2_level(img, f);  // (ours: Debian packages no ETC2 encoder)
+  if (is_etc2(f) || is_eac(f)) return encode_etc2_level(img, f);  // (ours: Debian packages no ETC2 encoder)
   if (is_astc(f)) return encode_astc_level(img, f, srgb);
   std::vector<uint8_t> rgba(size_t(img.width) * img.height * 4);
   for (size_t i = 0; i < img.texels.size(); ++i)
@@ -615,7 +615,8 @@ Pyramid compress_pyramid(Pyramid pyramid, TexelFormat format, bool srgb) {
   if (!format_info(format).encoder)
     throw Error(std::string("no ") + format_info(format).name + " encoder is built in to make the levels below level 0: "
                 "give a file with its whole mip chain");
-  if (pyramid.levels[0].channel_bits != 8) throw Error("--format: block formats hold 8-bit channels");
+  if (pyramid.levels[0].channel_bits != 8 && !is_eac(format))  // (EAC encodes up to 16 bits: its own levels)
+    throw Error("--format: block formats hold 8-bit channels");
   pyramid.format = format;
   pyramid.blocks.clear();
   for (Image& level : pyramid.levels) {

@@ -369,8 +369,16 @@ Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed) {
     if (is_astc(format))
       for (size_t i = 0; i < level.size(); i += size_t(bytes))
         random_astc_block(rng, format_info(format).block_w, format_info(format).block_h, &level[i]);
+    if (is_eac(format))
+      for (size_t i = 0; i < level.size(); i += 8) random_eac_block(rng, &level[i]);
   }
   return pyramid_of_blocks(format, size, std::move(blocks));
+}
+
+void random_eac_block(std::mt19937_64& rng, uint8_t* block) {
+  for (int i = 0; i < 8; ++i) block[i] = uint8_t(rng());
+  if (rng() % 8 == 0) block[1] &= 0x0F;  // multiplier 0
+  if (rng() % 4 == 0) block[0] = std::array<uint8_t, 4>{0, 127, 128, 255}[rng() % 4];
 }
 
 void random_astc_block(std::mt19937_64& rng, int fw, int fh, uint8_t* block) {

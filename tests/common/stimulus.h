@@ -125,7 +125,7 @@ void texel_coordinates_where_unnormalized(std::mt19937_64& rng, std::vector<Requ
 int32_t random_reference(std::mt19937_64& rng);
 // One in `one_in` of the sample requests made depth compares (random_reference) where their sampler
 // takes one (SamplerConfig::compare_problem) and compares(texture) says the texture does (not an
-// sRGB texture: a depth is no colour).
+// sRGB or EAC texture: Pyramid::depth_problem).
 template <class Compares>
 void compares_among(std::mt19937_64& rng, std::vector<Request>& requests, int one_in, const SamplerTable& samplers,
                     Compares compares) {
@@ -162,7 +162,7 @@ std::vector<Pyramid> random_layers(Extent size, int layers, uint64_t seed);
 std::vector<const Pyramid*> pointers_to(const std::vector<Pyramid>& layers);
 // Random blocks of a block format (sides >= 1), every level: each BC7 block in a random one of its
 // 8 modes and 1 in 16 in the reserved mode (decoded to 0); ETC2 colour blocks in each mode in turn
-// (set_etc2_mode); ASTC blocks of random_astc_block.
+// (set_etc2_mode); EAC blocks of random_eac_block; ASTC blocks of random_astc_block.
 Pyramid random_block_texture(TexelFormat format, Extent size, uint64_t seed);
 // Sets an ETC2 colour block (8 bytes, random bits otherwise) to `mode` (model/etc2.h Etc2Mode:
 // individual, differential, T, H, planar; the last three are differential blocks whose red, green
@@ -175,6 +175,10 @@ void set_etc2_mode(std::mt19937_64& rng, uint8_t* colour_block, int mode, bool p
 // block mode, partition count, endpoint mode and range the footprint allows, in proportion to
 // their encodings).
 void random_astc_block(std::mt19937_64& rng, int fw, int fh, uint8_t* block);
+// A random EAC block (8 bytes: EAC R11, each half of RG11, ETC2 RGBA8's alpha): random bits, with
+// 1 in 8 of multiplier 0 (the modifier alone) and 1 in 4 of a base at an edge, 0, 127, 128 (signed:
+// -128, read as -127) or 255, where values clamp.
+void random_eac_block(std::mt19937_64& rng, uint8_t* block);
 
 // ---------------------------------------------------------------- stall profiles
 // One of: ideal, light, heavy (about 30% of clocks without a gap), long stalls (hundreds of

@@ -141,7 +141,7 @@ struct Reference {
     }
     switch (a) {
       case kId: return {0x54455855u, kOkay};
-      case kVersion: return {0x00030006u, kOkay};
+      case kVersion: return {0x00030007u, kOkay};
       case kCaps0: return {caps0(), kOkay};
       case kCaps1: return {caps1(), kOkay};
       case kControl: return {control, kOkay};

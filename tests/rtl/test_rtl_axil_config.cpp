@@ -25,7 +25,7 @@ using namespace axil_harness;
 TEST(RtlAxilConfig, IdVersionCapabilitiesAndResetValues) {
   Slave s(1);
   EXPECT_EQ(s.read(kId).data, 0x54455855u);  // "TEXU"
-  EXPECT_EQ(s.read(kVersion).data, 0x00030006u);
+  EXPECT_EQ(s.read(kVersion).data, 0x00030007u);
   EXPECT_EQ(s.read(kCaps0).data, uint32_t(10 | 9 << 4 | 8 << 8 | 1 << 16 | 1 << 17 | 1 << 18 | 4 << 20));
   EXPECT_EQ(s.read(kCaps1).data, uint32_t(8 | 4 << 8 | 8 << 16 | 6 << 24 | 4 << 28));
   // reset: the unit held in reset, the whole cache of 4 ways, trilinear, no LOD clamp
@@ -117,8 +117,9 @@ TEST(RtlAxilConfig, ErrorsAnswerSlverrAndChangeNothing) {
   // DESC_COMMIT while in reset (the unit drops cfg_desc_we under rst) and of invalid descriptors
   EXPECT_EQ(s.write(kDescCommit, 1), kSlverr);
   ASSERT_EQ(s.write(kControl, 0), kOkay);
-  // (format 6, 11..15 and 30, 31 are none; sRGB BC4 and BC5 do not exist)
-  const uint32_t bad_attr[] = {6u << 16, 11u << 16, 15u << 16, 30u << 16, 31u << 16, 1u << 21 | 4u << 16, 1u << 21 | 5u << 16};
+  // (format 6, 15 and 30, 31 are none; sRGB BC4, BC5 and EAC (11..14) do not exist)
+  const uint32_t bad_attr[] = {6u << 16,  15u << 16, 30u << 16, 31u << 16, 1u << 21 | 4u << 16, 1u << 21 | 5u << 16,
+                               1u << 21 | 11u << 16, 1u << 21 | 14u << 16};
   for (uint32_t attr : bad_attr) {
     ASSERT_EQ(s.write(kDescAttr, attr), kOkay);
     EXPECT_EQ(s.write(kDescCommit, 2), kSlverr) << std::hex << attr;

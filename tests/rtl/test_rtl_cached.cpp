@@ -61,9 +61,9 @@ struct CacheCoverage {
 };
 
 // A random texture for a configuration: RGBA (channels as memory holds them) or random blocks of a
-// block format; sRGB if asked and the configuration has the tables (not BC4, BC5: no sRGB).
+// block format; sRGB if asked and the configuration has the tables (not BC4, BC5, EAC: no sRGB).
 Pyramid random_pyramid(const rtl::RtlConfig& rc, TexelFormat format, Extent size, bool srgb, uint64_t seed) {
-  srgb = srgb && rc.formats && format != TexelFormat::Bc4 && format != TexelFormat::Bc5;
+  srgb = srgb && rc.formats && format_info(format).srgb_allowed;
   if (is_compressed(format)) {
     Pyramid p = random_block_texture(format, size, seed);
     if (srgb) decode_srgb_levels(p);
@@ -296,7 +296,7 @@ void run_suite(const CachedSuite& suite) {
                                                  : random_requests(rng, size, suite.requests_per_case);
     fetches_and_gathers_among(rng, requests, 16, [&](int) { return pyr.extent0(); });  // texelFetch and textureGather, 1 in 16
     cfg.compare_op = CompareOp(rng() % kCompareOps);
-    compares_among(rng, requests, 16, SamplerTable{cfg}, [&](int) { return !pyr.srgb; });  // depth compares, 1 in 16
+    compares_among(rng, requests, 16, SamplerTable{cfg}, [&](int) { return pyr.depth_problem().empty(); });  // depth compares, 1 in 16
     // A quarter of the cases use a shallower FIFO (cfg_fifo_limit), down to 1 sample.
     const uint32_t fifo_depth = rng() % 4 == 0 ? 1 + uint32_t(rng() % uint64_t(rc.fifo_depth)) : 0;
     const std::vector<uint64_t> errors = random_error_reads(rng, ci);
@@ -342,14 +342,16 @@ TEST(RtlCached, NonSquareRgba8) {
   run_suite({"Vtex_cached_6x3", {{64, 8}, {37, 7}, {32, 8}, {60, 5}, {8, 1}, {1, 7}, {64, 4}, {13, 3}, {36, 6}}, 63, 10000});
 }
 
-// Every block format on the unit with the formats (64-byte lines: BC1, BC4, ETC2 RGB8 and RGB8A1
-// lines of 16x8 texels, the others 8x8), random blocks (every BC7 mode, every ETC2 mode), decoded by the RTL's 8 tap decoders
+// Every block format on the unit with the formats (64-byte lines: BC1, BC4, ETC2 RGB8 and RGB8A1,
+// EAC R11 lines of 16x8 texels, the others 8x8), random blocks (every BC7 mode, every ETC2 mode,
+// EAC's 16-bit channels, signed ones in offset binary), decoded by the RTL's 8 tap decoders
 // after the cache: samples, miss streams and response clocks against the model. (The cache bins
 // above are RGBA8's line shape; these lines are wider.)
 TEST(RtlCached, BlockFormats) {
   run_suite({"Vtex_cached_13x13", {{64, 8}, {61, 7}, {32, 4}, {4, 4}, {13, 5}, {64, 4}, {16, 8}, {30, 6}}, 32, 6000, false,
              {TexelFormat::Bc1, TexelFormat::Bc2, TexelFormat::Bc3, TexelFormat::Bc4, TexelFormat::Bc5,
-              TexelFormat::Bc7, TexelFormat::Etc2Rgb, TexelFormat::Etc2RgbA1, TexelFormat::Etc2Rgba}});
+              TexelFormat::Bc7, TexelFormat::Etc2Rgb, TexelFormat::Etc2RgbA1, TexelFormat::Etc2Rgba, TexelFormat::EacR11,
+              TexelFormat::EacRg11Snorm, TexelFormat::EacRg11, TexelFormat::EacR11Snorm}});
 }
 
 // The sRGB configuration (8-bit channels in memory, a 16-bit filter): every format, sRGB in every
@@ -391,6 +393,8 @@ TEST(RtlCached, LargestTextures) {
 const std::vector<TexelFormat> kBlockFormats = {TexelFormat::Bc1,     TexelFormat::Bc2,       TexelFormat::Bc3,
                                                 TexelFormat::Bc4,     TexelFormat::Bc5,       TexelFormat::Bc7,
                                                 TexelFormat::Etc2Rgb, TexelFormat::Etc2RgbA1, TexelFormat::Etc2Rgba,
+                                                TexelFormat::EacR11,  TexelFormat::EacR11Snorm, TexelFormat::EacRg11,
+                                                TexelFormat::EacRg11Snorm,
                                                 TexelFormat::Astc4x4, TexelFormat::Astc6x5,   TexelFormat::Astc8x8,
                                                 TexelFormat::Astc10x6, TexelFormat::Astc12x12};
 
@@ -476,7 +480,7 @@ void run_descriptor_tables(const std::string& config, int cases) {
     texel_coordinates_where_unnormalized(rng, requests, samplers, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
     fetches_and_gathers_among(rng, requests, 16, [&](int t) { return table[size_t(t)].pyramid->extent0(); });
     layers_among(rng, requests, [&](int t) { return table[size_t(t)].layers(); });
-    compares_among(rng, requests, 16, samplers, [&](int t) { return !table[size_t(t)].pyramid->srgb; });
+    compares_among(rng, requests, 16, samplers, [&](int t) { return table[size_t(t)].pyramid->depth_problem().empty(); });
     // A cube map's requests: cube_request's, through a sampler a cube takes (normalized; a
     // compare's, one that compares): sampler 0 is made one.
     if (cube_textures) samplers[0].unnormalized = false;
@@ -529,7 +533,16 @@ void run_descriptor_tables(const std::string& config, int cases) {
     if (!r.failure.empty()) {
       ADD_FAILURE() << "case " << ci << " (replay: TEX_SEED=" << seed << "): " << n << " textures, " << ns
                     << " samplers (0: " << describe(samplers[0]) << "), " << cache.size_bytes << " B x " << cache.ways << " ways, " << memory_name << ", stimulus "
-                    << timing_name << ": " << r.failure;
+                    << timing_name << ": " << r.failure << "; the textures:" << [&] {
+                         std::string list;
+                         for (size_t t = 0; t < table.size(); ++t) {
+                           const Pyramid& p = *table[t].pyramid;
+                           list += " " + std::to_string(t) + " " + format_info(p.format).name + (p.srgb ? " sRGB " : " ") +
+                                   std::to_string(p.extent0().w) + "x" + std::to_string(p.extent0().h);
+                         }
+                         for (size_t t = 0; t < samplers.size(); ++t) list += "; sampler " + std::to_string(t) + ": " + describe(samplers[t]);
+                         return list;
+                       }();
       unit->reset();
       if (++failures >= 3) break;
     }

@@ -91,6 +91,23 @@ bool mesa_decode(GLenum internal_format, const std::vector<uint8_t>& data, std::
   return glGetError() == GL_NO_ERROR;
 }
 
+// The same for EAC R11/RG11: Mesa's 16-bit channels (GL_RED or GL_RG; GL_UNSIGNED_SHORT, or
+// GL_SHORT for the signed forms), 1 or 2 per texel.
+bool mesa_decode16(GLenum internal_format, int channels, bool snorm, const std::vector<uint8_t>& data,
+                   std::vector<uint16_t>& out) {
+  std::vector<uint8_t> unused;
+  if (!mesa_decode(internal_format, data, unused)) return false;  // (the context, and the format's support)
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glCompressedTexImage2D(GL_TEXTURE_2D, 0, internal_format, kSide, kSide, 0, GLsizei(data.size()), data.data());
+  out.assign(size_t(kSide) * kSide * size_t(channels), 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTexImage(GL_TEXTURE_2D, 0, channels == 1 ? GL_RED : GL_RG, snorm ? GL_SHORT : GL_UNSIGNED_SHORT, out.data());
+  glDeleteTextures(1, &tex);
+  return glGetError() == GL_NO_ERROR;
+}
+
 Comparison compare_level(TexelFormat f, const std::vector<uint8_t>& data, const std::vector<uint8_t>& rgba,
                          int channels) {
   const Image ours = decode_level(f, data.data(), kSide, kSide);
@@ -184,6 +201,47 @@ TEST(BlockFormatsReference, MesaDecodesEtc2TheSame) {
     const Comparison c = compare_level(k.format, data, rgba, 4);
     report("Mesa (the encoded test card)", k.format, c);
     EXPECT_EQ(c.max_diff, 0) << format_info(k.format).name;
+  }
+}
+
+// EAC R11 and RG11, unsigned and signed: the model's 16-bit channels (decode_level; the signed
+// ones' offset binary less 32768) against Mesa's R16/RG16 and R16_SNORM/RG16_SNORM, on random
+// blocks (stimulus::random_eac_block: multiplier 0, the bases where values clamp) and on the test
+// card through texsim's encoder (the unsigned forms).
+TEST(BlockFormatsReference, MesaDecodesEacTheSame) {
+  setenv("GALLIUM_DRIVER", "softpipe", 1);
+  const struct {
+    TexelFormat format;
+    GLenum gl;
+  } cases[] = {{TexelFormat::EacR11, GL_COMPRESSED_R11_EAC},
+               {TexelFormat::EacR11Snorm, GL_COMPRESSED_SIGNED_R11_EAC},
+               {TexelFormat::EacRg11, GL_COMPRESSED_RG11_EAC},
+               {TexelFormat::EacRg11Snorm, GL_COMPRESSED_SIGNED_RG11_EAC}};
+  const Image card = load_texture("testcard:" + std::to_string(kSide) + "x" + std::to_string(kSide));
+  for (const auto& k : cases) {
+    const FormatInfo& info = format_info(k.format);
+    std::mt19937_64 rng(3000 + uint64_t(k.format));
+    std::vector<uint8_t> data(size_t(kBlocks) * size_t(info.block_bytes));
+    for (size_t i = 0; i < data.size(); i += 8) stimulus::random_eac_block(rng, &data[i]);
+    for (int encoded = 0; encoded < (info.encoder ? 2 : 1); ++encoded) {
+      if (encoded) data = encode_etc2_level(card, k.format);
+      std::vector<uint16_t> mesa;
+      ASSERT_TRUE(mesa_decode16(k.gl, info.channels, info.snorm, data, mesa)) << "Mesa cannot decode " << info.name;
+      const Image ours = decode_level(k.format, data.data(), kSide, kSide);
+      ASSERT_EQ(ours.channel_bits, 16);
+      int differ = 0, max_diff = 0;
+      for (size_t t = 0; t < ours.texels.size(); ++t)
+        for (int c = 0; c < info.channels; ++c) {
+          const int want = int(ours.texels[t][size_t(c)]) - (info.snorm ? 32768 : 0);
+          const int got = info.snorm ? int(int16_t(mesa[t * size_t(info.channels) + size_t(c)]))
+                                     : int(mesa[t * size_t(info.channels) + size_t(c)]);
+          differ += want != got;
+          max_diff = std::max(max_diff, std::abs(want - got));
+        }
+      std::printf("  Mesa%s %s: %d of %zu channels differ, by at most %d\n", encoded ? " (the encoded test card)" : "",
+                  info.name, differ, ours.texels.size() * size_t(info.channels), max_diff);
+      EXPECT_EQ(differ, 0) << info.name;  // EAC leaves no rounding to the decoder
+    }
   }
 }
 

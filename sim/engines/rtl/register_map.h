@@ -27,7 +27,7 @@ constexpr const char* kCounterNames[kCounters] = {"CYCLES",    "SAMPLES",   "SAM
 
 // Constants and CONTROL's bits.
 constexpr uint32_t kIdValue = 0x54455855;       // "TEXU"
-constexpr uint32_t kVersionValue = 0x00030006;  // 3.6: any texture size (DESC_SIZE), FILTER.unnormalized, .reduction, .compare_op, DESC_ATTR.layers, .cube; DESC_ATTR.format 5 bits (ASTC)
+constexpr uint32_t kVersionValue = 0x00030007;  // 3.7: any texture size (DESC_SIZE), FILTER.unnormalized, .reduction, .compare_op, DESC_ATTR.layers, .cube; DESC_ATTR.format 5 bits (ASTC); EAC formats 11..14
 constexpr uint32_t kUnitReset = 1, kFreeze = 2, kClear = 4;
 constexpr uint32_t kOkay = 0, kSlverr = 2;
 

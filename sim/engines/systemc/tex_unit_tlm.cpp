@@ -132,7 +132,7 @@ SampleTransfer* TexUnitTlm::decode(tlm_generic_payload& trans) {
       (s->op != uint8_t(Op::Sample) && s->op != uint8_t(Op::Compare) && s->has_derivatives) ||
       s->component > 3 ||  // no such operation
       (s->op == uint8_t(Op::Compare) &&  // a compare the sampler or the texture cannot take
-       (!samplers_[s->sampler].compare_problem().empty() || textures_[s->texture].pyramid->srgb))) {
+       (!samplers_[s->sampler].compare_problem().empty() || !textures_[s->texture].pyramid->depth_problem().empty()))) {
     trans.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
     return nullptr;
   }
