@@ -52,8 +52,9 @@
 //                      (MEM_ADDR_W bits, line aligned) of cfg_desc_w x cfg_desc_h texels (1 to
 //                      2^MAX_LOG2_W x 2^MAX_LOG2_H, any size; a chain of levels of GL's sizes
 //                      from 0 to cfg_desc_last_level, or to 1x1 if that comes first: docs/memory.md §1) in format cfg_desc_format (tex_pkg::FMT_*: RGBA, or with BLOCK_FORMATS a
-//                      block format, decoded after the cache to unorm8 texels; docs/memory.md §1),
-//                      its R, G, B sRGB-encoded if cfg_desc_srgb (SRGB only; not BC4, BC5); an
+//                      block format, decoded after the cache to unorm8 texels, EAC's to 16-bit
+//                      channels (SRGB only; signed ones in offset binary); docs/memory.md §1),
+//                      its R, G, B sRGB-encoded if cfg_desc_srgb (SRGB only; not BC4, BC5, EAC); an
 //                      array of cfg_desc_layers_m1 + 1 such pyramids one after another (1..256
 //                      layers; each layer's first line a whole number of lines after the last's);
 //                      a cube map or cube array if cfg_desc_cube (CUBE_MAPS): 6 layers a cube

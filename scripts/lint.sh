@@ -93,6 +93,8 @@ lint_blocks() {
     --top-module tex_srgb_decode_top
   clean tex_etc2 verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt rtl/tex_etc2.sv rtl/synth/tex_etc2_top.sv \
     --top-module tex_etc2_top
+  clean tex_eac verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt rtl/tex_etc2.sv rtl/synth/tex_eac_top.sv \
+    --top-module tex_eac_top
   clean tex_astc verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt rtl/tex_astc.sv rtl/synth/tex_astc_top.sv \
     --top-module tex_astc_top
   echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7, ETC2; as simulated and with -DSYNTHESIS), tex_etc2 and tex_astc alone and tex_srgb_decode; FORMAT check fires for FORMAT=32"

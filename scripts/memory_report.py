@@ -97,7 +97,7 @@ def main():
     # Texture formats: the caches and memory hold compressed blocks (docs/memory.md §1), decoded by
     # the cached RTL's 8 tap decoders.
     lines += ["", "Texture formats, plane 640×480, 8 KiB × 2 caches, latency 200, 16 B/clock: each level compressed "
-              "(`--format`: libsquish for BC1, Mesa's BC7 encoder, ours for ETC2, astcenc for ASTC), engine rtl; "
+              "(`--format`: libsquish for BC1, Mesa's BC7 encoder, ours for ETC2 and EAC, astcenc for ASTC), engine rtl; "
               "'bytes vs RGBA8' = RGBA8's bytes per sample / this format's.", "",
               "| workload | format | samples/clock | cached / onchip | hit rate | bytes/sample | bytes vs RGBA8 | "
               "clocks waiting for memory |", "|---|---|---|---|---|---|---|---|"]
@@ -105,7 +105,7 @@ def main():
         extra = ["--order", order]
         onchip = texsim(SCENE + extra + ["-e", "rtl"], exe, a.out)
         rgba_bytes = None
-        for fmt in ["rgba8", "bc1", "bc7", "etc2", "astc4x4", "astc6x6", "astc8x8", "astc12x12"]:
+        for fmt in ["rgba8", "bc1", "bc7", "etc2", "eac_r11", "eac_rg11", "astc4x4", "astc6x6", "astc8x8", "astc12x12"]:
             r = texsim(SCENE + extra + ["-e", "rtl", "--memory", "cached", "--format", fmt] + mem, exe, a.out)
             rgba_bytes = rgba_bytes or r["bytes_per_sample"]
             label = f"plane, {order}" + (" 8×8" if order == "tiled" else "")

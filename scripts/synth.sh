@@ -79,6 +79,8 @@ generic_check tex_cube_seam tex_cube_seam "read_verilog -sv $cube_files" "tex_cu
 # The ETC2 decoders (inside tex_bc_decode too), through their harness, after proc.
 generic_check tex_etc2 tex_etc2_top "read_verilog -sv -DSYNTHESIS rtl/tex_etc2.sv rtl/synth/tex_etc2_top.sv" \
   "tex_etc2 (the ETC2 and EAC decoders)" proc
+generic_check tex_eac tex_eac_top "read_verilog -sv -DSYNTHESIS rtl/tex_etc2.sv rtl/synth/tex_eac_top.sv" \
+  "tex_etc2::r11 (an EAC R11 channel, unsigned and signed)" proc
 # The ASTC decoder, through its harness, after proc.
 generic_check tex_astc tex_astc_top "read_verilog -sv -DSYNTHESIS rtl/tex_astc.sv rtl/synth/tex_astc_top.sv" \
   "tex_astc (the ASTC LDR decoder, every footprint)" proc
@@ -260,13 +262,14 @@ fi
 # BUILD/synth/decoders.md.
 if [ "${SYNTH_DECODERS:-1}" != 0 ]; then
 # (one line: a newline inside `yosys -p` ends a command)
-decoder_files="rtl/tex_pkg.sv rtl/tex_bc_colour.sv rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_etc2.sv rtl/tex_astc.sv rtl/tex_bc_decode.sv rtl/tex_srgb_decode.sv rtl/synth/tex_bc_decode_top.sv rtl/synth/tex_srgb_decode_top.sv rtl/synth/tex_etc2_top.sv rtl/synth/tex_astc_top.sv"
+decoder_files="rtl/tex_pkg.sv rtl/tex_bc_colour.sv rtl/tex_bc_channel.sv rtl/tex_bc7.sv rtl/tex_etc2.sv rtl/tex_astc.sv rtl/tex_bc_decode.sv rtl/tex_srgb_decode.sv rtl/synth/tex_bc_decode_top.sv rtl/synth/tex_srgb_decode_top.sv rtl/synth/tex_etc2_top.sv rtl/synth/tex_eac_top.sv rtl/synth/tex_astc_top.sv"
 # name:top:FORMAT (empty: none):what
 decoders=("bc1:tex_bc_decode_top:1:BC1 (tex_bc_colour; also the colour of BC2, BC3)"
           "bc4:tex_bc_decode_top:4:BC4 (tex_bc_channel; also BC3's alpha, each half of BC5)"
           "bc7:tex_bc_decode_top:7:BC7 (tex_bc7)" "all:tex_bc_decode_top::every format but ASTC (what each tap calls; ASTC below)"
           "srgb:tex_srgb_decode_top::sRGB, one channel (tex_srgb_decode; 3 per texel)"
           "etc2:tex_etc2_top::ETC2 RGB8, RGB8A1 and RGBA8 with EAC alpha (tex_etc2; inside every)"
+          "eac:tex_eac_top::EAC R11, one channel, unsigned and signed (tex_etc2::r11; RG11 takes two; inside every)"
           "astc:tex_astc_top::ASTC LDR, every footprint 4x4 .. 12x12, linear and sRGB (tex_astc, without resource sharing)")
 {
   echo "| decoder | formats | iCE40 SB_LUT4 | iCE40 SB_CARRY | ECP5 LUT4 | ECP5 CCU2C | ECP5 MULT18X18D |"

@@ -135,8 +135,9 @@ struct SamplingOptions {
     cmd.add_option("--pyramid", pyramid, "exact (mean of the level-0 footprint) | cascade")->capture_default_str();
     format_opt = cmd.add_option("--format", format,
                                 texel_format_names() + ": how memory holds an image file or pattern (each level "
-                                "compressed: libsquish, Mesa for bc7, ours for etc2, astcenc for astc); a DDS/KTX/.astc "
-                                "file keeps its own")
+                                "compressed: libsquish, Mesa for bc7, ours for etc2 and eac, astcenc for astc); a DDS/KTX/.astc "
+                                "file keeps its own (also ETC2 RGB8A1 and signed EAC R11/RG11). EAC filters 16-bit channels "
+                                "(CSV r16,g16,b16,a16; signed ones in offset binary: value - 32768)")
                      ->capture_default_str();
     cmd.add_flag("--srgb", srgb,
                  "the texture's R, G, B are sRGB codes: decoded to linear (16 bits) before filtering, its pyramid "

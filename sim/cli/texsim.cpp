@@ -202,9 +202,9 @@ int cmd_sample(const SamplingOptions& o, const std::string& queries_path, const 
   std::optional<CubeFetchCheck> faces;
   const bool any_cube = std::any_of(table.begin(), table.end(), [](const BoundTexture& t) { return t.kind == TextureKind::Cube; });
   RequestSource& source = op == Op::Fetch && any_cube ? faces.emplace(queries, table, reader->name()) : queries;
-  bool srgb = false;  // sRGB textures give linear unorm16 results
-  for (const BoundTexture& t : table) srgb = srgb || t.pyramid->srgb;
-  CsvTexelWriter writer(result.open(), srgb ? "r16,g16,b16,a16" : "r,g,b,a");
+  bool wide = false;  // sRGB textures give linear unorm16 results, EAC ones its 16-bit channels
+  for (const BoundTexture& t : table) wide = wide || t.pyramid->srgb || is_eac(t.pyramid->format);
+  CsvTexelWriter writer(result.open(), wide ? "r16,g16,b16,a16" : "r,g,b,a");
   std::optional<WriteBehindSink> behind;
   TexelSink& sink = kept ? static_cast<TexelSink&>(behind.emplace(writer)) : writer;
   EngineStats stats = run_engine(o, eo, outputs, trace, table, samplers, source, sink);
@@ -483,7 +483,7 @@ int main(int argc, char** argv) {
                 "levels and memory image in sRGB codes");
   CLI::Option* mip_format_opt = mip->add_option("--format", mip_format,
                                                 texel_format_names() + ": how memory holds an image file or pattern "
-                                                "(libsquish, Mesa for bc7, ours for etc2, astcenc for astc; a DDS/KTX/.astc file keeps its own)")
+                                                "(libsquish, Mesa for bc7, ours for etc2 and eac, astcenc for astc; a DDS/KTX/.astc file keeps its own)")
                                     ->capture_default_str();
   mip->add_option("--dump-levels", dump_dir, "write DIR/level00.png, level01.png, ...");
   mip->add_option("--layout", layout, "write the packed R/G/B memory layout (paper Figure 1)");

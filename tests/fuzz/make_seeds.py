@@ -152,6 +152,9 @@ out('texture_file', 'astc_6x6_10x6.astc', bytes([0x13, 0xAB, 0xA1, 0x5C, 6, 6, 1
     astc_level(10, 6, 6, 6))
 out('texture_file', 'ktx2_astc_5x5_srgb', ktx2(162, 8, 8, [[astc_level(8, 8, 5, 5), astc_level(4, 4, 5, 5),
                                                              astc_level(2, 2, 5, 5), astc_level(1, 1, 5, 5)]]))
+# EAC R11 / RG11 (after ASTC, for the same reason): KTX 1 unsigned R11, KTX2 signed RG11.
+out('texture_file', 'ktx1_eac_r11', ktx1(0x9270, 8, 4, [chain(8, 4, 8)]))
+out('texture_file', 'ktx2_eac_rg11_snorm', ktx2(156, 4, 8, [chain(4, 8, 16)]))
 
 print('seeds:', {t: len(os.listdir(os.path.join(HERE, 'corpus', t))) for t in sorted(os.listdir(os.path.join(HERE, 'corpus')))})
 print('model formats without a seed:', [e for e in exts if e not in taken])
