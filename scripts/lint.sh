@@ -97,7 +97,7 @@ lint_blocks() {
     --top-module tex_eac_top
   clean tex_astc verilator --lint-only -Irtl -Wall rtl/tex_unit.vlt rtl/tex_astc.sv rtl/synth/tex_astc_top.sv \
     --top-module tex_astc_top
-  echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7, ETC2; as simulated and with -DSYNTHESIS), tex_etc2 and tex_astc alone and tex_srgb_decode; FORMAT check fires for FORMAT=32"
+  echo "lint: verilator -Wall clean for tex_bc_decode (BC1-BC5, BC7, ETC2, EAC, ASTC; as simulated and with -DSYNTHESIS), tex_etc2, tex_eac_top and tex_astc alone and tex_srgb_decode; FORMAT check fires for FORMAT=32"
   # The AXI4-Lite configuration slave on its own (-Wno-UNUSEDPARAM: alone it uses few of tex_pkg's
   # constants; inside tex_unit_axi below it is linted with all warnings), and the AXI top.
   lint_axil() { verilator --lint-only -Irtl -Wall -Wno-UNUSEDPARAM rtl/tex_unit.vlt rtl/tex_pkg.sv rtl/tex_axil_config.sv \
