@@ -11,7 +11,7 @@ help:
 	@echo "make test   - build, then run every test suite"
 	@echo "make model-test - the golden model and its tests alone (no OpenImageIO, Verilator, SystemC)"
 	@echo "make bench  - samples/s of the model, OpenImageIO TextureSystem, every engine and the RTL per configuration"
-	@echo "make bench-ir - the RTL's instructions per clock per configuration, on RGBA8 and (the formats unit) BC1, BC7, sRGB textures (callgrind: independent of the machine's load)"
+	@echo "make bench-ir - the RTL's instructions per clock per configuration, on RGBA8 and (the formats unit) BC1, BC7, sRGB, ETC2, EAC and ASTC textures (callgrind: independent of the machine's load)"
 	@echo "make figures - the paper's experiments: comparisons, errors, flicker in $(OUT)/figures/index.html"
 	@echo "make memory-report - cached memory through the RTL: throughput, hit rate, bytes, FIFO vs latency (docs/memory.md)"
 	@echo "make scenes - real frames: the assimp test models through the cached RTL at latency 200: $(OUT)/scenes/index.html (SCENES_ENGINE=systemc: behind the TLM sockets)"

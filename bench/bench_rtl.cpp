@@ -11,6 +11,7 @@
 #include "model/image.h"
 #include "model/pyramid.h"
 #include "model/srgb.h"
+#include "stimulus.h"
 
 namespace bench {
 
@@ -31,30 +32,10 @@ void BM_rtl_sampling(benchmark::State& state, const tex::rtl::RtlConfig* config)
   state.counters["clocks/s"] = benchmark::Counter(double(clocks), benchmark::Counter::kIsRate);
 }
 
-// Random blocks at every level (BC7: each of the 8 modes equally often): the decoders' cost does not
-// depend on what the blocks show. (Not compressed from the noise: Mesa's BC7 encoder executes an
-// instruction that valgrind cannot, and make bench-ir runs under it.)
-tex::Pyramid random_blocks(tex::TexelFormat format, tex::Extent size) {
-  std::mt19937_64 rng(2);
-  std::vector<std::vector<uint8_t>> blocks;
-  const int bytes = tex::format_info(format).block_bytes;
-  for (int k = 0; k < tex::level_count(size); ++k) {
-    const tex::Extent s = tex::level_extent(size, k);
-    std::vector<uint8_t>& level = blocks.emplace_back(tex::level_bytes(format, s.width(), s.height()));
-    for (uint8_t& b : level) b = uint8_t(rng());
-    if (format == tex::TexelFormat::Bc7)
-      for (size_t i = 0; i < level.size(); i += size_t(bytes)) {
-        const int mode = int(rng() % 8);
-        level[i] = uint8_t((level[i] << (mode + 1)) | (1 << mode));
-      }
-  }
-  return tex::pyramid_of_blocks(format, size, std::move(blocks));
-}
-
 }  // namespace
 
 bool parse_rtl_texture(const std::string& name, RtlTexture& out) {
-  for (RtlTexture t : {RtlTexture::Rgba8, RtlTexture::Bc1, RtlTexture::Bc7, RtlTexture::Srgb})
+  for (RtlTexture t : kRtlTextures)
     if (name == rtl_texture_name(t)) {
       out = t;
       return true;
@@ -68,6 +49,9 @@ const char* rtl_texture_name(RtlTexture t) {
     case RtlTexture::Bc1: return "bc1";
     case RtlTexture::Bc7: return "bc7";
     case RtlTexture::Srgb: return "srgb";
+    case RtlTexture::Etc2: return "etc2a";
+    case RtlTexture::Eac: return "eac_rg11";
+    case RtlTexture::Astc: return "astc8x8";
   }
   return "?";
 }
@@ -103,8 +87,15 @@ RtlWorkload make_rtl_workload(const tex::rtl::RtlConfig& config, RtlTexture text
             for (uint16_t& c : t) c = uint16_t(c * ((1u << config.cw) - 1) / 255);
         }
       break;
-    case RtlTexture::Bc1: pyr = random_blocks(TexelFormat::Bc1, {1 << lw, 1 << lh}); break;
-    case RtlTexture::Bc7: pyr = random_blocks(TexelFormat::Bc7, {1 << lw, 1 << lh}); break;
+    // Random blocks at every level, every mode of the format (BC7's 8, ETC2's 5, ASTC's legal ones
+    // and a few illegal): the decoders' cost does not depend on what the blocks show. (Not
+    // compressed from the noise: Mesa's BC7 encoder executes an instruction that valgrind cannot,
+    // and make bench-ir runs under it.)
+    case RtlTexture::Bc1: pyr = stimulus::random_block_texture(TexelFormat::Bc1, {1 << lw, 1 << lh}, 2); break;
+    case RtlTexture::Bc7: pyr = stimulus::random_block_texture(TexelFormat::Bc7, {1 << lw, 1 << lh}, 2); break;
+    case RtlTexture::Etc2: pyr = stimulus::random_block_texture(TexelFormat::Etc2Rgba, {1 << lw, 1 << lh}, 2); break;
+    case RtlTexture::Eac: pyr = stimulus::random_block_texture(TexelFormat::EacRg11, {1 << lw, 1 << lh}, 2); break;
+    case RtlTexture::Astc: pyr = stimulus::random_block_texture(TexelFormat::Astc8x8, {1 << lw, 1 << lh}, 2); break;
     case RtlTexture::Srgb: pyr = build_srgb_pyramid(noise, PyramidMode::Exact); break;
   }
   work.unit->load(pyr, LoadMethod::Backdoor);

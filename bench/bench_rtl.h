@@ -8,16 +8,19 @@
 
 namespace bench {
 
-// The texture of a speed workload: RGBA8 (every configuration), BC1, BC7 or sRGB RGBA8 (the
-// configurations with the block decoders and sRGB tables: what they cost when they are used).
-enum class RtlTexture { Rgba8, Bc1, Bc7, Srgb };
+// The texture of a speed workload: RGBA8 (every configuration), BC1, BC7, sRGB RGBA8, ETC2 RGBA8,
+// EAC RG11 or ASTC 8x8 (the configurations with the block decoders and sRGB tables: what they cost
+// when they are used).
+enum class RtlTexture { Rgba8, Bc1, Bc7, Srgb, Etc2, Eac, Astc };
+inline constexpr RtlTexture kRtlTextures[] = {RtlTexture::Rgba8, RtlTexture::Bc1, RtlTexture::Bc7, RtlTexture::Srgb,
+                                              RtlTexture::Etc2,  RtlTexture::Eac, RtlTexture::Astc};
 bool parse_rtl_texture(const std::string& name, RtlTexture& out);
 const char* rtl_texture_name(RtlTexture t);
-constexpr const char* kRtlTextureNames = "rgba8 | bc1 | bc7 | srgb";
+constexpr const char* kRtlTextureNames = "rgba8 | bc1 | bc7 | srgb | etc2a | eac_rg11 | astc8x8";
 bool config_takes(const tex::rtl::RtlConfig& config, RtlTexture t);
 
 // One configuration's speed workload: the driver after reset, its largest texture (at most
-// 1024x1024, noise; a block format: random blocks) loaded through the backdoor and configured
+// 1024x1024, noise; a block format: random blocks of every mode, tests/common/stimulus.h) loaded through the backdoor and configured
 // (trilinear, repeat; cached: the default caches where they fit, 16 B/clock), and 65536 random
 // trilinear requests (u, v uniform in [-2, 2), lambda uniform over the levels).
 struct RtlWorkload {

@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   app.add_option("configs", configs, "configurations (default: all): " + names);
   app.add_option("--texture", texture_name,
                  std::string("the texture: ") + bench::kRtlTextureNames +
-                     " (bc1, bc7, srgb: configurations with the block decoders and sRGB tables only)")
+                     " (all but rgba8: configurations with the block decoders and sRGB tables only)")
       ->capture_default_str();
   app.add_option("--repeat", repeat, "passes over the 65536 requests")->check(CLI::Range(1, 1000));
   bool list = false;
@@ -37,8 +37,7 @@ int main(int argc, char** argv) {
   if (list) {
     for (const tex::rtl::RtlConfig& c : tex::rtl::compiled_configs()) {
       std::printf("%s", c.name.c_str());
-      for (bench::RtlTexture t : {bench::RtlTexture::Rgba8, bench::RtlTexture::Bc1, bench::RtlTexture::Bc7,
-                                  bench::RtlTexture::Srgb})
+      for (bench::RtlTexture t : bench::kRtlTextures)
         if (bench::config_takes(c, t)) std::printf(" %s", bench::rtl_texture_name(t));
       std::printf("\n");
     }

@@ -185,14 +185,20 @@ package tex_astc;
     qbase = 10'(umul(24'(qb), 8'd7 + (8'(n) << 1) + 8'(n)));
     qat = qbase + (qj == 7'd0 ? 10'd0 : qj == 7'd1 ? 10'(n) + 10'd3 : (10'(n) << 1) + 10'd5);
     at = trit ? tat : quint ? qat : 10'(umul(24'(i), 8'(n)));
-    low = 8'(s >> at) & 8'(({1'b0, 8'hFF} << n) ^ 9'h1FF);
-    base = trit ? tbase : qbase;
-    from = 48'(s >> base);  // the block's first 48 bits hold its T (Q) bits: 5n + 7 < 48
+    base = trit ? tbase : quint ? qbase : at;
+    // One wide shift: the block's first 48 bits hold its T (Q) bits and value i's low bits (5n + 7
+    // < 48 for trits, 3n + 7 for quints); a plain value starts the window.
+    from = 48'(s >> base);
+    low = 8'(from >> (at - base)) & 8'(({1'b0, 8'hFF} << n) ^ 9'h1FF);
     t = tbits(from, n) & {tfirst + 7'd5 <= count, {2{tfirst + 7'd4 <= count}}, tfirst + 7'd3 <= count,
                           {2{tfirst + 7'd2 <= count}}, {2{tfirst + 7'd1 <= count}}};
     q = qbits(from, n) & {{2{qfirst + 7'd3 <= count}}, {2{qfirst + 7'd2 <= count}}, {3{qfirst + 7'd1 <= count}}};
-    trits = trits_of(t);
-    quints = quints_of(q);
+    // (each table only for its kind: a simulator skips the other; no `else`, which Verilator
+    // would make a ?: with both calls before it)
+    trits = '0;
+    quints = '0;
+    if (trit) trits = trits_of(t);
+    if (quint) quints = quints_of(q);
     ise_value = {trit ? {1'b0, 2'(trits >> (2 * tj))} : quint ? 3'(quints >> (3 * qj)) : 3'd0, low};
   endfunction
 
@@ -584,15 +590,24 @@ package tex_astc;
       off = (p >= 2'd1 ? values_of(cem0) : 7'd0) + (p >= 2'd2 ? values_of(cem1) : 7'd0) +
             (p == 2'd3 ? values_of(cem2) : 7'd0);
       cs = block >> (partitions == 3'd1 ? 7'd17 : 7'd29);
+      vals = '0;
       for (int k = 0; k < 8; k++) begin
-        v = ise_value(cs, off + 7'(k), colour_values, colour_range(cr));
+        v = '0;
+        if (7'(k) < values_of(cem))  // (the mode's 2 to 8 values: a simulator skips the rest)
+          v = ise_value(cs, off + 7'(k), colour_values, colour_range(cr));
         vals[8 * k +: 8] = unquantize_colour(cr, v[10:8], v[7:0]);
       end
       ep = endpoints(cem, vals);
       e0 = ep[31:0];
       e1 = ep[63:32];
       // The weights, and the endpoints interpolated.
+      // The weights run from bit 127 down. (Verilator takes the stream operator, one call: the
+      // loop is 128 steps of wide bit selects in its C++; Yosys 0.23 and Icarus 11 do not read it.)
+`ifdef VERILATOR
+      ws = {<<{block}};
+`else
       for (int k = 0; k < 128; k++) ws[k] = block[127 - k];
+`endif
       w0 = infill(ws, fw, fh, x, y, gw, gh, dual, 1'b0, wr);
       w1 = dual ? infill(ws, fw, fh, x, y, gw, gh, dual, 1'b1, wr) : w0;
       // Void extent (bits 8..0 = 1 1111 1100): one colour, its top 8 bits; the error colour for HDR
