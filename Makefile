@@ -4,7 +4,7 @@ JOBS  ?= $(shell nproc)
 OUT   ?= out
 TEXSIM = $(BUILD)/texsim
 
-.PHONY: help deps build demo test test-suites test-xprop unit-tests model-test model-alone formal-proofs bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes hostile-models test-sanitize fuzz
+.PHONY: help deps build demo test test-suites test-xprop unit-tests model-test model-alone formal-proofs bench bench-ir clean lint formal xprop synth synth-latch rtl-soak figures memory-report explore scenes hostile-models test-sanitize fuzz cluster-test
 
 help:
 	@echo "make demo   - build texsim only (not the tests), then render the default scene (writes $(OUT)/)"
@@ -16,6 +16,7 @@ help:
 	@echo "make memory-report - cached memory through the RTL: throughput, hit rate, bytes, FIFO vs latency (docs/memory.md)"
 	@echo "make scenes - real frames: the assimp test models through the cached RTL at latency 200: $(OUT)/scenes/index.html (SCENES_ENGINE=systemc: behind the TLM sockets)"
 	@echo "make explore - sweep cache size, ways, block shape, latency, FIFO and pixel order over plane and panel, every point timed: $(OUT)/explore/index.html"
+	@echo "make cluster-test - a real single-node Slurm on this machine (installs slurm-wlm and munge as root): a 240-point sweep as a job array, a failing task resubmitted, the merged CSV equal to a local one (docs/cluster.md)"
 	@echo "make rtl-soak  - RTL vs model lockstep and the block decoders (1.2 M blocks), 20x the random samples of make test, new seeds"
 	@echo "make test-sanitize - the model, sim and CLI suites built with AddressSanitizer and UBSan (build-sanitize/) and run"
 	@echo "make fuzz   - every parser of untrusted bytes under libFuzzer, ASan and UBSan (clang, build-fuzz/), FUZZ_SECONDS each (default 30); findings kept in tests/fuzz/findings/ (make test replays them)"
@@ -99,10 +100,15 @@ scenes: build
 # The default architecture sweep (docs/memory.md §6): plane and panel, 640x480, the 1024x1024 test
 # card, scanline and tiled order, caches 1..64 KiB of 1, 2 and 4 ways, blocks 4x4, 2x2 and 8x8,
 # latencies 50..800 clocks, 16 B/clock, FIFOs of 256 and 2048 samples, every point timed by the
-# model's timing layer (most of these have no Verilated build); points in $(JOBS) processes.
+# model's timing layer (most of these have no Verilated build); tasks in $(JOBS) processes, the
+# points already in the results store (~/.cache/texsim/results) reused.
 explore: build
 	$(TEXSIM) explore --scene plane,panel --cache-kib 1,2,4,8,16,32,64 --ways 1,2,4 --block 4x4,2x2,8x8 --format rgba8,bc1,bc7 \
 	  --mem-latency 50,100,200,400,800 --fifo-depth 256,max --jobs $(JOBS) --out $(OUT)/explore
+
+# texsim explore through a throw-away Slurm (scripts/cluster_test.sh; docs/cluster.md): about a minute.
+cluster-test: build
+	bash scripts/cluster_test.sh $(BUILD)
 
 # The paper's scenes through an engine (FIG_ENGINE, default model) vs a real-valued reference (docs/scenes.md).
 FIG_ENGINE ?= model

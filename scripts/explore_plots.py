@@ -37,12 +37,11 @@ except ImportError as missing:
 COLUMNS = ["workload", "order", "texture", "format", "width", "height", "filter", "cache_kib", "ways", "block", "block_order",
            "mem_latency", "mem_bytes_per_clock", "fifo_depth", "samples", "cache_lookups", "cache_hits",
            "cache_misses", "hit_rate", "memory_read_bytes", "bytes_per_sample", "timing_engine",
-           "samples_per_clock", "cycles", "memory_stall_cycles", "fifo_max_occupancy", "confirmed", "seconds"]
+           "samples_per_clock", "cycles", "memory_stall_cycles", "fifo_max_occupancy", "confirmed"]
 # Numbers every row has; the other numeric columns may be empty (not measured).
 REQUIRED_NUMBERS = ["cache_kib", "ways", "mem_latency", "mem_bytes_per_clock", "hit_rate", "bytes_per_sample"]
 OPTIONAL_NUMBERS = ["width", "height", "fifo_depth", "samples", "cache_lookups", "cache_hits", "cache_misses",
-                    "memory_read_bytes", "samples_per_clock", "cycles", "memory_stall_cycles", "fifo_max_occupancy",
-                    "seconds"]
+                    "memory_read_bytes", "samples_per_clock", "cycles", "memory_stall_cycles", "fifo_max_occupancy"]
 DEFAULTS = {"ways": 2.0, "block": "4x4", "block_order": "row-major", "mem_bytes_per_clock": 16.0,
             "mem_latency": 200.0}
 HELD = ["ways", "block", "block_order", "mem_bytes_per_clock", "mem_latency", "fifo_depth"]

@@ -20,6 +20,7 @@ packages=(
   iverilog                               # 4-state simulation (make xprop)
   valgrind                               # instructions per clock (make bench-ir)
   time                                   # GNU time: peak memory of each run (make hostile-models)
+  parallel                               # GNU parallel: emitted sweeps (texsim explore --emit parallel; tested)
   clang libclang-rt-14-dev               # libFuzzer, ASan and UBSan (make fuzz)
   python3 python3-matplotlib python3-numpy  # reports and plots (/usr/bin/python3)
 )

@@ -600,12 +600,26 @@ int main(int argc, char** argv) {
                       "rtl: also run every point a compiled configuration holds through the RTL and fail on any "
                       "difference from the timing model");
   explore->add_option("--out,-o", ex.out_dir, "output directory: explore.csv, *.png, index.html")->capture_default_str();
-  explore->add_option("--jobs,-j", ex.jobs, "points measured in this many processes at once")->capture_default_str();
-  explore->add_option("--emit-jobs", ex.emit_jobs_path,
-                      "write one command line per job (GNU parallel, a Slurm array) instead of running them; each "
-                      "writes OUT/points/jobNNNNNN.csv");
-  explore->add_option("--collect", ex.collect_dir, "merge DIR/points/*.csv of emitted jobs into DIR/explore.csv + plots");
-  explore->add_option("--rows", ex.rows_path, "measure here and write only the CSV rows to this file (what a job runs)");
+  explore->add_option("--jobs,-j", ex.jobs, "tasks measured in this many processes at once")->capture_default_str();
+  explore->add_option("--store", ex.store_dir,
+                      "the results store: every point measured is kept under a key of what determines it (texsim's "
+                      "build, the workload's inputs, the point), and a sweep measures only the points it lacks; "
+                      "concurrent writers welcome (default: $TEXSIM_STORE, else ~/.cache/texsim/results)");
+  std::vector<std::string> ex_emit;
+  explore->add_option("--emit", ex_emit,
+                      "slurm DIR | parallel DIR: write the tasks of the points the store lacks for a scheduler "
+                      "instead of running them: DIR/sweep.sbatch (a Slurm job array) or DIR/run-parallel.sh "
+                      "(GNU parallel, resumable), and DIR/sweep.txt for --collect DIR")
+      ->expected(2);
+  explore->add_option("--throttle", ex.throttle, "--emit slurm: at most this many tasks at once (--array=0-K%T; 0: no limit)")
+      ->capture_default_str();
+  explore->add_option("--sshloginfile", ex.sshloginfile, "--emit parallel: run the tasks on these hosts (GNU parallel's "
+                      "--sshloginfile; the store and DIR on a file system they share)");
+  explore->add_option("--collect", ex.collect_dir,
+                      "merge an emitted sweep's results from the store into DIR/explore.csv + plots, in sweep order; "
+                      "names the tasks that failed or did not run and writes DIR/resubmit.sh for exactly those");
+  explore->add_option("--task", ex.task_fingerprint, "(what an emitted task runs) measure into --store only; "
+                      "the workload must have this fingerprint");
   bool no_plots = false;
   explore->add_flag("--no-plots", no_plots, "write explore.csv only (no matplotlib needed)");
 
@@ -669,6 +683,10 @@ int main(int argc, char** argv) {
       if (ex_scene->count() && (ex_queries->count() || ex_model->count() || ex_scene_file->count()))
         throw tex::Error("explore: give --scene, --queries, --model or --scene-file, one of them");
       ex.plots = !no_plots;
+      if (!ex_emit.empty()) {
+        ex.emit_scheduler = ex_emit[0];
+        ex.emit_dir = ex_emit[1];
+      }
       return run_explore(ex, std::filesystem::read_symlink("/proc/self/exe").string());
     }
   } catch (const std::bad_alloc&) {

@@ -1,7 +1,5 @@
 #include "reports/explore.h"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -24,6 +22,8 @@
 #include "engines/rtl/driver.h"
 #include "model/error.h"
 #include "model/pyramid.h"
+#include "reports/result_store.h"
+#include "reports/sweep_tasks.h"
 #include "workloads/camera.h"
 #include "workloads/mesh_scene.h"
 #include "workloads/output_files.h"
@@ -32,8 +32,6 @@
 #include "workloads/scenes.h"
 #include "workloads/texture_files.h"
 #include "workloads/texture_io.h"
-
-extern char** environ;
 
 namespace tex {
 
@@ -124,6 +122,7 @@ struct Sweep {
   TimingMode timing = TimingMode::Model;
   bool confirm = false;  // --confirm rtl
   std::vector<Workload> workloads;
+  std::vector<std::string> fingerprints;  // each workload's (workload_fingerprint)
   std::vector<Point> points;  // in CSV order
 };
 
@@ -367,7 +366,6 @@ struct Row {
   double samples_per_clock = 0;
   uint64_t cycles = 0;
   uint32_t fifo_depth = 0;  // in use (timed rows; else the one asked for, 0 = max)
-  double seconds = 0;
 };
 
 class NullSink final : public TexelSink {
@@ -396,7 +394,6 @@ std::string point_name(const Sweep& s, const Point& p) {
 }
 
 Row measure(const Sweep& s, const Point& p, std::map<ModelKey, ModelRun>& model_memo) {
-  const auto t0 = std::chrono::steady_clock::now();
   const Workload& w = s.workloads[p.workload];
   Row r;
   r.point = p;
@@ -458,16 +455,17 @@ Row measure(const Sweep& s, const Point& p, std::map<ModelKey, ModelRun>& model_
       }
     }
   }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
 
 // ------------------------------------------------------------------------------ CSV
 
+// The columns that name a point (what --collect knows without the workloads), then those measured
+// (the results store's result). No wall time: a sweep's CSV is the same bytes whoever measured it.
 const char* kCsvHeader =
     "workload,order,texture,format,width,height,filter,cache_kib,ways,block,block_order,mem_latency,mem_bytes_per_clock,"
     "fifo_depth,samples,cache_lookups,cache_hits,cache_misses,hit_rate,memory_read_bytes,bytes_per_sample,"
-    "timing_engine,samples_per_clock,cycles,memory_stall_cycles,fifo_max_occupancy,confirmed,seconds";
+    "timing_engine,samples_per_clock,cycles,memory_stall_cycles,fifo_max_occupancy,confirmed";
 
 // A CSV field: quoted when it holds a comma, a quote or a line break.
 std::string csv_field(const std::string& text) {
@@ -477,52 +475,98 @@ std::string csv_field(const std::string& text) {
   return q + "\"";
 }
 
-std::string csv_row(const Sweep& s, const Row& r) {
-  const Workload& w = s.workloads[r.point.workload];
-  const Point& p = r.point;
-  const CacheCounters& k = r.cache;
+// workload .. mem_bytes_per_clock, with the comma after it.
+std::string csv_prefix(const Sweep& s, const Point& p) {
+  const Workload& w = s.workloads[p.workload];
   char buf[512];
   std::string line = csv_field(w.name) + "," + w.order + "," + csv_field(w.texture) + "," + format_info(w.format).name + ",";
   if (s.trace) line += ",,";
   else line += std::to_string(s.args.width) + "," + std::to_string(s.args.height) + ",";
   std::snprintf(buf, sizeof buf, "%s,%d,%d,%s,%s,%u,%u,", filter_name(w.config.filter).c_str(), p.cache_kib, p.ways,
                 block_size_name(p.layout).c_str(), block_order_name(p.layout.order).c_str(), p.latency, p.bandwidth);
-  line += buf;
-  line += r.fifo_depth ? std::to_string(r.fifo_depth) : "";
+  return line + buf;
+}
+
+// fifo_depth .. confirmed: what the store keeps.
+std::string csv_measured(const Row& r) {
+  const CacheCounters& k = r.cache;
+  char buf[512];
+  std::string line = r.fifo_depth ? std::to_string(r.fifo_depth) : "";
   std::snprintf(buf, sizeof buf, ",%llu,%llu,%llu,%llu,%.6f,%llu,%.4f,", (unsigned long long)r.samples,
                 (unsigned long long)k.lookups, (unsigned long long)k.hits, (unsigned long long)k.misses,
                 k.lookups ? double(k.hits) / double(k.lookups) : 0.0, (unsigned long long)k.memory_read_bytes,
                 r.samples ? double(k.memory_read_bytes) / double(r.samples) : 0.0);
   line += buf;
   if (!r.timing_engine.empty())
-    std::snprintf(buf, sizeof buf, "%s,%.5f,%llu,%llu,%u,%s,%.3f", r.timing_engine.c_str(), r.samples_per_clock,
+    std::snprintf(buf, sizeof buf, "%s,%.5f,%llu,%llu,%u,%s", r.timing_engine.c_str(), r.samples_per_clock,
                   (unsigned long long)r.cycles, (unsigned long long)k.memory_stall_cycles, k.fifo_max_occupancy,
-                  r.confirmed ? "rtl" : "", r.seconds);
+                  r.confirmed ? "rtl" : "");
   else
-    std::snprintf(buf, sizeof buf, ",,,,,,%.3f", r.seconds);
-  return line + buf + "\n";
+    std::snprintf(buf, sizeof buf, ",,,,,");
+  return line + buf;
 }
 
-// ------------------------------------------------------------------------------ jobs
+// ------------------------------------------------------------------------------ keys
 
-// Points of one workload and block shape form a job: one process builds the texture and the scene
-// once, runs the model's caches once per cache size and ways, and times every latency, bandwidth
-// and FIFO depth of each.
-struct Job {
-  size_t first = 0, count = 0;  // range of Sweep::points
+// What a workload's results depend on besides the point: its requests, textures (every level's
+// texels and blocks, the format), wrap modes and filter. Two runs that load the same inputs give
+// the same fingerprint; a changed file, pattern, scene or model gives another.
+std::string workload_fingerprint(const Workload& w) {
+  Fingerprint f;
+  f.text(filter_name(w.config.filter)).number(int(w.format)).number(int64_t(w.pyramids.size()));
+  for (size_t i = 0; i < w.pyramids.size(); ++i) {
+    const Pyramid& p = w.pyramids[i];
+    f.number(int(p.format)).number(p.srgb).number(int(w.wraps[i].first)).number(int(w.wraps[i].second));
+    f.number(int64_t(p.levels.size()));
+    for (const Image& l : p.levels) {
+      f.number(l.width).number(l.height).number(l.channel_bits);
+      f.bytes(l.texels.data(), l.texels.size() * sizeof(Texel));
+    }
+    for (const auto& b : p.blocks) f.number(int64_t(b.size())).bytes(b.data(), b.size());
+  }
+  f.number(int64_t(w.requests.size()));
+  for (const Request& q : w.requests) {
+    for (int32_t v : {q.u, q.v, q.lod, q.bias, q.layer, q.ref, q.w, q.dwdx, q.dwdy, q.deriv.dudx, q.deriv.dvdx,
+                      q.deriv.dudy, q.deriv.dvdy})
+      f.number(v);
+    f.number(q.texture).number(q.sampler).number(int(q.op)).number(q.component).number(q.has_derivatives);
+  }
+  return f.hex();
+}
+
+// A point's key in the results store: texsim's executable, the workload, the timing asked for and
+// every parameter of the point.
+std::string point_key(const Sweep& s, const Point& p) {
+  return "explore/1 texsim=" + executable_fingerprint() + " workload=" + s.fingerprints[p.workload] +
+         " timing=" + s.args.timing + " confirm=" + s.args.confirm + " cache_kib=" + std::to_string(p.cache_kib) +
+         " ways=" + std::to_string(p.ways) + " block=" + block_size_name(p.layout) + " block_order=" +
+         block_order_name(p.layout.order) + " latency=" + std::to_string(p.latency) + " bandwidth=" +
+         std::to_string(p.bandwidth) + " fifo=" + (p.fifo ? std::to_string(p.fifo) : std::string("max"));
+}
+
+// ------------------------------------------------------------------------------ tasks
+
+// Points of one workload and block shape and order form a task: one process builds the texture
+// and the scene once (a compressed texture's encoding takes seconds), runs the model's caches once
+// per cache geometry, and times every latency, bandwidth and FIFO depth of each.
+struct Task {
+  std::vector<size_t> points;  // indices into Sweep::points, in sweep order
 };
 
-std::tuple<size_t, int, int, int> job_key(const Point& p) {
+std::tuple<size_t, int, int, int> task_key(const Point& p) {
   return {p.workload, p.layout.block_w, p.layout.block_h, int(p.layout.order)};
 }
 
-std::vector<Job> jobs_of(const Sweep& s) {
-  std::vector<Job> jobs;
+// Every task of the sweep, in the order of their first points.
+std::vector<Task> tasks_of(const Sweep& s) {
+  std::vector<Task> tasks;
+  std::map<std::tuple<size_t, int, int, int>, size_t> index;
   for (size_t i = 0; i < s.points.size(); ++i) {
-    if (jobs.empty() || job_key(s.points[i]) != job_key(s.points[jobs.back().first])) jobs.push_back({i, 0});
-    ++jobs.back().count;
+    const auto [it, fresh] = index.try_emplace(task_key(s.points[i]), tasks.size());
+    if (fresh) tasks.emplace_back();
+    tasks[it->second].points.push_back(i);
   }
-  return jobs;
+  return tasks;
 }
 
 // A path as a command line of another machine or directory sees it: absolute if it exists here.
@@ -537,9 +581,9 @@ std::string join_numbers(const std::vector<uint32_t>& v, bool max_for_zero = fal
   return s;
 }
 
-// The command line of one job (argv), writing its rows to `rows`.
-std::vector<std::string> job_command(const Sweep& s, const Job& job, const std::string& self, const std::string& rows) {
-  const Point& p = s.points[job.first];
+// The command line of one task (argv): its sub-sweep, measured into the store.
+std::vector<std::string> task_command(const Sweep& s, const Task& task, const std::string& self, const std::string& store) {
+  const Point& p = s.points[task.points.front()];
   const Workload& w = s.workloads[p.workload];
   std::vector<std::string> c = {self, "explore"};
   const std::vector<std::string> frame = {"--order", w.order, "--width", std::to_string(s.args.width), "--height",
@@ -555,120 +599,76 @@ std::vector<std::string> job_command(const Sweep& s, const Job& job, const std::
     c.insert(c.end(), frame.begin(), frame.end());
   }
   c.insert(c.end(), {"--texture", portable_path(s.args.texture), "--format", format_info(w.format).name,
-                     "--filter", s.args.filter, "--cache-kib",
-                     s.args.cache_kib, "--ways", s.args.ways, "--block", block_size_name(p.layout),
-                     "--block-order", block_order_name(p.layout.order), "--mem-latency", join_numbers(s.latencies),
+                     "--filter", s.args.filter, "--cache-kib", s.args.cache_kib, "--ways", s.args.ways,
+                     "--block", block_size_name(p.layout), "--block-order",
+                     block_order_name(p.layout.order), "--mem-latency", join_numbers(s.latencies),
                      "--mem-bytes-per-clock", join_numbers(s.bandwidths), "--fifo-depth", join_numbers(s.fifos, true),
-                     "--timing", s.args.timing, "--rows", rows});
+                     "--timing", s.args.timing, "--store", store, "--task", s.fingerprints[p.workload]});
   if (s.confirm) c.insert(c.end(), {"--confirm", "rtl"});
   return c;
 }
 
-std::string shell_quote(const std::string& word) {
-  if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./:=,+@%") ==
-                           std::string::npos)
-    return word;
-  std::string q = "'";
-  for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot read " + path.string());
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Starts argv; with an `err_path`, stdout goes to /dev/null and stderr to that file (a job),
-// else both are this process's. Returns the pid.
-pid_t spawn(const std::vector<std::string>& argv, const std::string& err_path) {
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  if (!err_path.empty()) {
-    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  }
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, args[0], &fa, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) throw Error("cannot start " + argv[0] + ": " + std::strerror(rc));
-  return pid;
-}
-
-// The last non-empty line of a child's stderr (its one-line error).
-std::string last_line(const std::string& text) {
-  size_t end = text.find_last_not_of("\r\n");
-  if (end == std::string::npos) return "(no message)";
-  const size_t begin = text.find_last_of("\r\n", end);
-  return text.substr(begin == std::string::npos ? 0 : begin + 1, end - (begin == std::string::npos ? 0 : begin + 1) + 1);
-}
-
-// Removes a directory tree when it goes out of scope.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string t = (fs::temp_directory_path() / "texsim-explore-XXXXXX").string();
-    if (!mkdtemp(t.data())) throw Error("cannot create a temporary directory in " + fs::temp_directory_path().string());
-    path = t;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-// Runs every job in up to `parallel` child processes; returns the rows (no header) in sweep order.
-std::string run_jobs(const Sweep& s, const std::string& self, int parallel, bool progress) {
-  const std::vector<Job> jobs = jobs_of(s);
-  TempDir tmp;
-  std::map<pid_t, size_t> running;
-  size_t next = 0, done = 0;
-  auto stop_all = [&] {
-    for (const auto& [pid, j] : running) kill(pid, SIGTERM);
-    for (const auto& [pid, j] : running) waitpid(pid, nullptr, 0);
-    running.clear();
-  };
-  auto name = [&](size_t j, const char* ext) { return (tmp.path / ("job" + std::to_string(j) + ext)).string(); };
-  try {
-    while (done < jobs.size()) {
-      while (next < jobs.size() && running.size() < size_t(parallel)) {
-        running[spawn(job_command(s, jobs[next], self, name(next, ".csv")), name(next, ".err"))] = next;
-        ++next;
-      }
-      int status = 0;
-      const pid_t pid = waitpid(-1, &status, 0);
-      if (pid < 0) throw Error(std::string("waiting for the jobs: ") + std::strerror(errno));
-      const auto it = running.find(pid);
-      if (it == running.end()) continue;
-      const size_t j = it->second;
-      running.erase(it);
-      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        std::string cmd;
-        for (const std::string& a : job_command(s, jobs[j], self, name(j, ".csv"))) cmd += " " + shell_quote(a);
-        throw Error("explore: job " + std::to_string(j + 1) + " failed: " + last_line(read_file(name(j, ".err"))) +
-                    " (command:" + cmd + ")");
-      }
-      ++done;
-      if (progress) std::fprintf(stderr, "\rexplore: %zu/%zu jobs", done, jobs.size());
-    }
-  } catch (...) {
-    stop_all();
-    if (progress) std::fprintf(stderr, "\n");
-    throw;
+// Measures the points of `wanted` (indices into Sweep::points) here, each into the store.
+void measure_here(const Sweep& s, const std::vector<size_t>& wanted, const ResultStore& store, bool progress) {
+  std::map<ModelKey, ModelRun> memo;
+  for (size_t i = 0; i < wanted.size(); ++i) {
+    const Point& p = s.points[wanted[i]];
+    store.put(point_key(s, p), csv_measured(measure(s, p, memo)));
+    if (progress) std::fprintf(stderr, "\rexplore: %zu/%zu points", i + 1, wanted.size());
   }
   if (progress) std::fprintf(stderr, "\r%40s\r", "");
-  std::string rows;
-  for (size_t j = 0; j < jobs.size(); ++j) {
-    const std::string text = read_file(name(j, ".csv"));
-    const size_t nl = text.find('\n');
-    rows += text.substr(nl == std::string::npos ? text.size() : nl + 1);
+}
+
+// ------------------------------------------------------------------------------ the manifest
+
+// An emitted sweep's DIR/sweep.txt: what --collect needs without the workloads. Line 1 names it,
+// then `store DIR`, `scheduler NAME`, `tasks N`, `points N`, then one line per point in sweep
+// order: its task, its key and its CSV columns up to mem_bytes_per_clock, tab-separated.
+constexpr const char* kManifestMagic = "texsim explore sweep 1";
+
+struct ManifestPoint {
+  size_t task = 0;
+  std::string key, prefix;
+};
+struct Manifest {
+  std::string store;
+  Scheduler scheduler = Scheduler::Slurm;
+  size_t tasks = 0;
+  std::vector<ManifestPoint> points;
+};
+
+Manifest read_manifest(const std::string& dir) {
+  const fs::path path = fs::path(dir) / "sweep.txt";
+  std::ifstream in(path);
+  if (!in) throw Error("--collect: " + path.string() + " does not exist (emit the sweep with --emit slurm|parallel " + dir + " first)");
+  Manifest m;
+  std::string line;
+  size_t n = 0, count = 0;
+  auto bad = [&](const std::string& why) { throw Error("--collect: " + path.string() + " line " + std::to_string(n) + ": " + why); };
+  auto field = [&](const std::string& name) {
+    ++n;
+    if (!std::getline(in, line) || line.rfind(name + " ", 0) != 0) bad("expected `" + name + " ...`");
+    return line.substr(name.size() + 1);
+  };
+  ++n;
+  if (!std::getline(in, line) || line != kManifestMagic) bad(std::string("not a texsim explore sweep (\"") + kManifestMagic + "\")");
+  m.store = field("store");
+  m.scheduler = parse_scheduler(field("scheduler"));
+  m.tasks = parse_bounded(field("tasks"), "--collect: task count", 0, 1u << 30);
+  count = parse_bounded(field("points"), "--collect: point count", 1, 1u << 30);
+  while (std::getline(in, line)) {
+    ++n;
+    const size_t a = line.find('\t'), b = a == std::string::npos ? a : line.find('\t', a + 1);
+    if (b == std::string::npos) bad("not task<TAB>key<TAB>columns");
+    ManifestPoint p;
+    p.task = parse_bounded(line.substr(0, a), "--collect: task", 0, uint32_t(m.tasks ? m.tasks - 1 : 0));
+    p.key = line.substr(a + 1, b - a - 1);
+    p.prefix = line.substr(b + 1);
+    m.points.push_back(std::move(p));
   }
-  return rows;
+  if (m.points.size() != count)
+    bad("ends after " + std::to_string(m.points.size()) + " of " + std::to_string(count) + " points");
+  return m;
 }
 
 // ------------------------------------------------------------------------------ outputs
@@ -680,10 +680,7 @@ fs::path scripts_dir() {
 
 void run_plots(const std::string& out_dir) {
   const std::string script = (scripts_dir() / "explore_plots.py").string();
-  std::fflush(stdout);
-  int status = 0;
-  const pid_t pid = spawn({"/usr/bin/python3", script, out_dir}, "");
-  if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  if (run_command({"/usr/bin/python3", script, out_dir}) != 0)
     throw Error("explore: the plots failed (" + script + ", with /usr/bin/python3 and matplotlib); " + out_dir +
                 "/explore.csv is complete");
 }
@@ -704,76 +701,77 @@ void write_results(const std::string& out_dir, const std::string& rows, const st
   if (plots) run_plots(out_dir);
 }
 
-size_t count_lines(const std::string& text) {
-  size_t n = 0;
-  for (char c : text) n += c == '\n';
-  return n;
-}
-
-// --collect DIR: the row files of an --emit-jobs sweep, in job order, into DIR/explore.csv.
+// --collect DIR: the emitted sweep's rows from the store, in sweep order, into DIR/explore.csv;
+// or, where points are missing, each of their tasks' fate and DIR/resubmit.sh, and an error.
 int collect(const ExploreArgs& a) {
-  const fs::path points = fs::path(a.collect_dir) / "points";
-  const fs::path expected_path = points / "jobs";
-  std::error_code ec;
-  if (!fs::is_regular_file(expected_path, ec))
-    throw Error("--collect: " + expected_path.string() + " does not exist (write the jobs with --emit-jobs --out " +
-                a.collect_dir + " first)");
-  const std::string count_text = last_line(read_file(expected_path));
-  const uint32_t count = parse_bounded(count_text, "--collect: " + expected_path.string() + ": job count", 1, 1u << 30);
+  const Manifest m = read_manifest(a.collect_dir);
+  const ResultStore store(m.store);
   std::string rows;
-  size_t missing = 0;
-  std::string first_missing;
-  for (uint32_t j = 0; j < count; ++j) {
-    char name[32];
-    std::snprintf(name, sizeof name, "job%06u.csv", j + 1);
-    const fs::path p = points / name;
-    if (!fs::is_regular_file(p, ec)) {
-      if (!missing++) first_missing = p.string();
-      continue;
-    }
-    const std::string text = read_file(p);
-    const size_t nl = text.find('\n');
-    if (text.substr(0, nl) != kCsvHeader)
-      throw Error("--collect: " + p.string() + " line 1 is not the header of texsim explore's rows");
-    if (text.back() != '\n') throw Error("--collect: " + p.string() + " ends in the middle of a line");
-    rows += text.substr(nl + 1);
+  std::map<size_t, size_t> missing;  // task -> points missing
+  for (const ManifestPoint& p : m.points) {
+    if (const std::optional<std::string> r = store.get(p.key)) rows += p.prefix + *r + "\n";
+    else ++missing[p.task];
   }
-  if (missing)
-    throw Error("--collect: " + std::to_string(missing) + " of " + std::to_string(count) +
-                " jobs have no rows yet (first: " + first_missing + "); run their command lines first");
+  if (!missing.empty()) {
+    size_t points = 0;
+    std::vector<size_t> tasks;
+    for (const auto& [t, n] : missing) {
+      points += n;
+      tasks.push_back(t);
+      const TaskReport r = task_report(a.collect_dir, t);
+      std::fprintf(stderr, "explore: task %zu (%zu points missing): %s%s%s\n", t, n,
+                   !r.ended          ? "has not run, or has not ended"
+                   : r.exit_code == 0 ? "ended with exit code 0 but did not store its points (a --store that is not shared?)"
+                   : r.exit_code > 128 ? ("killed by signal " + std::to_string(r.exit_code - 128)).c_str()
+                                       : ("failed, exit code " + std::to_string(r.exit_code)).c_str(),
+                   r.log_tail.empty() ? "" : ": ", r.log_tail.c_str());
+    }
+    const std::string resubmit = write_resubmit(a.collect_dir, m.scheduler, tasks);
+    throw Error("--collect: " + std::to_string(points) + " of " + std::to_string(m.points.size()) + " points are missing, in " +
+                std::to_string(tasks.size()) + " of " + std::to_string(m.tasks) + " tasks (above); " + resubmit +
+                " runs them again, then --collect " + a.collect_dir);
+  }
   write_results(a.collect_dir, rows, {}, a.plots);
-  std::printf("texsim explore: collected %zu points of %u jobs into %s/explore.csv%s\n", count_lines(rows), count,
-              a.collect_dir.c_str(), a.plots ? (", index in " + a.collect_dir + "/index.html").c_str() : "");
+  std::printf("texsim explore: collected %zu points of %zu tasks from %s into %s/explore.csv%s\n", m.points.size(),
+              m.tasks, m.store.c_str(), a.collect_dir.c_str(),
+              a.plots ? (", index in " + a.collect_dir + "/index.html").c_str() : "");
   return 0;
 }
 
-// --emit-jobs FILE: one command line per job, each writing OUT/points/jobNNNNNN.csv.
-int emit_jobs(const Sweep& s, const std::string& self) {
-  const std::vector<Job> jobs = jobs_of(s);
+// --emit slurm|parallel DIR: the tasks of the points the store lacks, and the manifest.
+int emit(const Sweep& s, const std::vector<Task>& tasks, const std::vector<size_t>& task_of, const std::string& self,
+         const ResultStore& store, size_t reused) {
+  EmitOptions o;
+  o.scheduler = parse_scheduler(s.args.emit_scheduler);
+  o.dir = fs::absolute(s.args.emit_dir).string();
+  o.throttle = s.args.throttle;
+  o.sshloginfile = s.args.sshloginfile;
+  o.job_name = "texsim-explore";
+  std::vector<std::vector<std::string>> commands;
+  for (const Task& t : tasks) commands.push_back(task_command(s, t, self, store.dir()));
   OutputSet outputs;
-  outputs.add_input(s.args.texture, "--texture");
-  if (s.trace) outputs.add_input(s.args.queries, "--queries");
-  const fs::path points = fs::path(s.args.out_dir) / "points";
-  outputs.make_directory(points.string(), "--out");
-  OutputFile& file = outputs.declare(s.args.emit_jobs_path, "--emit-jobs");
-  OutputFile& count = outputs.declare((points / "jobs").string(), "--out");
-  std::FILE* f = file.open();
-  for (size_t j = 0; j < jobs.size(); ++j) {
-    char name[32];
-    std::snprintf(name, sizeof name, "job%06zu.csv", j + 1);
-    std::string line;
-    for (const std::string& w : job_command(s, jobs[j], self, fs::absolute(points / name).string()))
-      line += (line.empty() ? "" : " ") + shell_quote(w);
-    std::fprintf(f, "%s\n", line.c_str());
+  outputs.make_directory(o.dir, "--emit");
+  std::string manifest = std::string(kManifestMagic) + "\nstore " + store.dir() + "\nscheduler " +
+                         scheduler_name(o.scheduler) + "\ntasks " + std::to_string(tasks.size()) + "\npoints " +
+                         std::to_string(s.points.size()) + "\n";
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    std::string prefix = csv_prefix(s, s.points[i]);
+    if (prefix.find_first_of("\t\n") != std::string::npos)
+      throw Error("--emit: a workload name with a tab or a line break: " + quote_clipped(s.workloads[s.points[i].workload].name));
+    manifest += std::to_string(task_of[i]) + "\t" + point_key(s, s.points[i]) + "\t" + prefix + "\n";
   }
-  file.close();
-  std::fprintf(count.open(), "%zu\n", jobs.size());
-  count.close();
+  OutputFile& f = outputs.declare((fs::path(o.dir) / "sweep.txt").string(), "--emit");
+  std::fputs(manifest.c_str(), f.open());
+  f.close();
   outputs.commit();
-  std::printf("texsim explore: %zu points in %zu jobs -> %s (one command line each, e.g. `parallel < %s`); then "
+  if (!commands.empty()) emit_tasks(o, commands);
+  const std::string run = commands.empty() ? "nothing to run"
+                          : o.scheduler == Scheduler::Slurm ? "submit: sbatch " + o.dir + "/sweep.sbatch"
+                                                            : "run: " + o.dir + "/run-parallel.sh";
+  std::printf("texsim explore: %zu points, %zu in the store already, %zu to measure in %zu tasks -> %s (%s); then "
               "texsim explore --collect %s\n",
-              s.points.size(), jobs.size(), s.args.emit_jobs_path.c_str(), s.args.emit_jobs_path.c_str(),
-              s.args.out_dir.c_str());
+              s.points.size(), reused, s.points.size() - reused, commands.size(), o.dir.c_str(), run.c_str(),
+              s.args.emit_dir.c_str());
   return 0;
 }
 
@@ -782,48 +780,76 @@ int emit_jobs(const Sweep& s, const std::string& self) {
 int run_explore(const ExploreArgs& a, const std::string& self) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!a.collect_dir.empty()) return collect(a);
-  if (!a.rows_path.empty() && !a.emit_jobs_path.empty()) throw Error("explore: --rows and --emit-jobs exclude each other");
+  const bool emitting = !a.emit_scheduler.empty();
+  if (emitting && !a.task_fingerprint.empty()) throw Error("explore: --emit and --task exclude each other");
+  if (emitting) parse_scheduler(a.emit_scheduler);
+  if (a.throttle < 0) throw Error("--throttle " + std::to_string(a.throttle) + " is negative");
+  if (!a.sshloginfile.empty() && !fs::is_regular_file(a.sshloginfile))
+    throw Error("--sshloginfile " + a.sshloginfile + ": no such file");
   Sweep s = parse_sweep(a);
-  // Check the outputs before the work.
-  std::optional<OutputSet> row_outputs;
-  OutputFile* rows_file = nullptr;
-  if (!a.rows_path.empty()) {
-    row_outputs.emplace();
-    row_outputs->add_input(a.texture, "--texture");
-    if (s.trace) row_outputs->add_input(a.queries, "--queries");
-    rows_file = &row_outputs->declare(a.rows_path, "--rows");
-  }
+  const ResultStore store(a.store_dir.empty() ? default_store_dir() : a.store_dir);
   load_workloads(s);
   expand_points(s);
-  if (!a.emit_jobs_path.empty()) return emit_jobs(s, self);
+  for (const Workload& w : s.workloads) s.fingerprints.push_back(workload_fingerprint(w));
 
+  // Which points the store lacks, and their tasks.
+  std::vector<size_t> wanted;
+  for (size_t i = 0; i < s.points.size(); ++i)
+    if (!store.get(point_key(s, s.points[i]))) wanted.push_back(i);
+  const size_t reused = s.points.size() - wanted.size();
+
+  if (!a.task_fingerprint.empty()) {  // a task: measure into the store, nothing else
+    for (const std::string& f : s.fingerprints)
+      if (f != a.task_fingerprint)
+        throw Error("explore --task: the workload's fingerprint is " + f + ", the sweep's " + a.task_fingerprint +
+                    ": an input changed since the sweep was emitted (emit it again)");
+    measure_here(s, wanted, store, false);
+    std::printf("texsim explore --task: %zu points measured, %zu in the store already\n", wanted.size(), reused);
+    return 0;
+  }
+  const std::vector<Task> all = tasks_of(s);
+  std::vector<size_t> task_of(s.points.size());
+  std::vector<Task> todo;  // the tasks with points to measure, each with all of its points
+  {
+    std::set<size_t> wanted_set(wanted.begin(), wanted.end());
+    for (const Task& t : all) {
+      bool needed = false;
+      for (size_t i : t.points) needed = needed || wanted_set.count(i);
+      if (!needed) continue;
+      for (size_t i : t.points) task_of[i] = todo.size();
+      todo.push_back(t);
+    }
+  }
+  if (emitting) return emit(s, todo, task_of, self, store, reused);
+
+  // Here: the outputs checked before the work, then the tasks, then the rows from the store.
+  std::vector<std::string> inputs = {a.texture};
+  if (s.trace) inputs.push_back(a.queries);
+  {
+    OutputSet check;
+    for (const std::string& in : inputs) check.add_input(in, "--texture/--queries");
+    check.make_directory(a.out_dir, "--out");
+    check.declare((fs::path(a.out_dir) / "explore.csv").string(), "--out");
+  }
   std::map<std::string, size_t> no_rtl;  // why the RTL could not run a point -> points
   size_t rtl_points = 0;
   for (const Point& p : s.points)
     if (const std::string why = rtl_unavailable(s, p); !why.empty()) ++no_rtl[why];
     else ++rtl_points;
-
-  const bool progress = rows_file == nullptr && isatty(STDERR_FILENO);
-  std::string rows;
-  if (a.jobs > 1 && rows_file == nullptr) {
-    rows = run_jobs(s, self, a.jobs, progress);
+  const bool progress = isatty(STDERR_FILENO);
+  if (a.jobs > 1 && todo.size() > 1) {
+    std::vector<std::vector<std::string>> commands;
+    for (const Task& t : todo) commands.push_back(task_command(s, t, self, store.dir()));
+    run_tasks_here(commands, a.jobs, progress);
   } else {
-    std::map<ModelKey, ModelRun> memo;
-    for (size_t i = 0; i < s.points.size(); ++i) {
-      rows += csv_row(s, measure(s, s.points[i], memo));
-      if (progress) std::fprintf(stderr, "\rexplore: %zu/%zu points", i + 1, s.points.size());
-    }
-    if (progress) std::fprintf(stderr, "\r%40s\r", "");
+    measure_here(s, wanted, store, progress);
   }
-  if (rows_file) {
-    std::FILE* f = rows_file->open();
-    std::fprintf(f, "%s\n%s", kCsvHeader, rows.c_str());
-    rows_file->close();
-    row_outputs->commit();
-    return 0;
+  std::string rows;
+  for (const Point& p : s.points) {
+    const std::optional<std::string> r = store.get(point_key(s, p));
+    if (!r) throw Error("explore: " + point_name(s, p) + ": measured, but not in the store " + store.dir());
+    rows += csv_prefix(s, p) + *r + "\n";
   }
-  std::vector<std::string> inputs = {a.texture};
-  if (s.trace) inputs.push_back(a.queries);
   write_results(a.out_dir, rows, inputs, a.plots);
   if (s.timing == TimingMode::Rtl || s.confirm)
     for (const auto& [why, n] : no_rtl)
@@ -834,9 +860,9 @@ int run_explore(const ExploreArgs& a, const std::string& self) {
                              : s.timing == TimingMode::Rtl ? std::to_string(rtl_points) + " timed by the RTL, the rest by the timing model"
                              : s.confirm ? "all timed by the timing model, " + std::to_string(rtl_points) + " confirmed by the RTL"
                                          : "all timed by the timing model";
-  std::printf("texsim explore: %zu points (%s), %zu workloads, %.1f s -> %s/explore.csv%s\n", s.points.size(),
-              timing.c_str(), s.workloads.size(), secs, a.out_dir.c_str(),
-              a.plots ? (", index in " + a.out_dir + "/index.html").c_str() : "");
+  std::printf("texsim explore: %zu points (%zu measured, %zu reused from %s; %s), %zu workloads, %.1f s -> %s/explore.csv%s\n",
+              s.points.size(), wanted.size(), reused, store.dir().c_str(), timing.c_str(), s.workloads.size(), secs,
+              a.out_dir.c_str(), a.plots ? (", index in " + a.out_dir + "/index.html").c_str() : "");
   return 0;
 }
 

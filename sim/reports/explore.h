@@ -12,8 +12,11 @@
 // RTL reads is checked against them.
 //
 // Outputs in OUT: explore.csv, then scripts/explore_plots.py's latency.png, hit_rate.png,
-// bytes.png and index.html. Points run in this process, or in --jobs N child processes, or as
-// command lines for a cluster (--emit-jobs FILE) whose row files --collect OUT merges.
+// bytes.png and index.html. Every point's result is kept in a results store (reports/result_store.h)
+// under a key of what determines it, and a sweep measures only the points the store lacks: in this
+// process, in --jobs N child processes, or as the tasks of a Slurm job array or of GNU parallel
+// (--emit slurm|parallel DIR; reports/sweep_tasks.h), whose results --collect DIR merges in sweep
+// order. The CSV is the same bytes whichever way its points were measured (docs/cluster.md).
 #pragma once
 #include <string>
 
@@ -40,9 +43,13 @@ struct ExploreArgs {
   std::string timing = "model";  // model | rtl | none
   std::string confirm;           // "" | rtl
   std::string out_dir = "out/explore";
-  std::string rows_path;       // measure here and write only these rows (a job of --emit-jobs)
-  std::string emit_jobs_path;  // write one command line per job instead of running them
-  std::string collect_dir;     // merge the row files of emitted jobs
+  std::string store_dir;        // the results store ("": default_store_dir())
+  std::string emit_scheduler;   // --emit slurm|parallel DIR: write the tasks for a scheduler
+  std::string emit_dir;
+  int throttle = 0;             // Slurm: tasks at once (0: no limit)
+  std::string sshloginfile;     // GNU parallel: the hosts
+  std::string collect_dir;      // merge an emitted sweep's results from the store
+  std::string task_fingerprint; // --task FINGERPRINT: measure into the store only (what a task runs)
   int jobs = 1;
   bool plots = true;
 };

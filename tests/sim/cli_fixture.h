@@ -82,10 +82,12 @@ class TexsimCli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir); }
 
-  // Runs texsim ARGS in the test's directory; `input` is its standard input.
+  // Runs texsim ARGS in the test's directory; `input` is its standard input. Its default results
+  // store (explore) is the test's own, not the user's.
   Result run(const std::string& args, const std::string& input = "/dev/null") {
     const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    const std::string cmd = "cd '" + dir.string() + "' && timeout 300 '" + std::string(TEXSIM_PATH) + "' " + args + " > '" +
+    const std::string cmd = "cd '" + dir.string() + "' && TEXSIM_STORE='" + (dir / "store").string() + "' timeout 300 '" +
+                            std::string(TEXSIM_PATH) + "' " + args + " > '" +
                             out.string() + "' 2> '" + err.string() + "' < '" + input + "'";
     const int status = std::system(cmd.c_str());
     Result r;

@@ -1,5 +1,8 @@
-// texsim explore: a small sweep end to end (rows, engines, plots), the cluster path (--emit-jobs,
-// --collect) against --jobs, each row against texsim render at the same point, and bad input.
+// texsim explore: a small sweep end to end (rows, engines, plots), the results store (a sweep
+// measures only what it lacks), the emitted sweeps (GNU parallel for real, with a killed task
+// resumed; Slurm's array script run task by task as Slurm would) merged by --collect into the same
+// bytes as --jobs, each row against texsim render at the same point, and bad input. (A real Slurm:
+// make cluster-test, scripts/cluster_test.sh.)
 #include <nlohmann/json.hpp>
 
 #include "cli_fixture.h"
@@ -31,14 +34,6 @@ std::vector<Row> read_rows(const fs::path& csv) {
     rows.push_back(r);
   }
   return rows;
-}
-
-// The CSV without its last column (seconds: wall time).
-std::string without_seconds(const std::string& csv) {
-  std::istringstream in(csv);
-  std::string line, out;
-  while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
-  return out;
 }
 
 const std::string kScene =
@@ -88,6 +83,11 @@ TEST_F(TexsimCli, ExploreSweepsEveryPointAndPlotsIt) {
   EXPECT_EQ(shallow.at("cache_misses"), deep.at("cache_misses"));
   EXPECT_LT(std::stod(shallow.at("samples_per_clock")), 0.5);
   EXPECT_GT(std::stod(deep.at("samples_per_clock")), 0.8);
+  // A shorter latency, the same FIFO: more samples per clock, fewer clocks (each point its own
+  // result, whatever the store's keys share).
+  const Row& near = find("scanline", "4", "4x4", "30", "64");
+  EXPECT_GT(std::stod(near.at("samples_per_clock")), std::stod(shallow.at("samples_per_clock")) + 0.2);
+  EXPECT_LT(std::stoull(near.at("cycles")), std::stoull(shallow.at("cycles")));
   // A larger cache misses less.
   EXPECT_LT(std::stoull(find("scanline", "4", "4x4", "30", "2048").at("cache_misses")),
             std::stoull(find("scanline", "1", "4x4", "30", "2048").at("cache_misses")));
@@ -115,24 +115,133 @@ TEST_F(TexsimCli, ExploreSweepsEveryPointAndPlotsIt) {
   EXPECT_NE(r.out.find("index in ex/index.html"), std::string::npos) << r.out;
 }
 
-TEST_F(TexsimCli, ExploreEmittedJobsCollectToTheSameCsv) {
-  const std::string sweep = kScene + " --cache-kib 2 --no-plots";
-  ASSERT_EQ(run(sweep + " -o one").exit_code, 0);
-  const Result e = run(sweep + " --emit-jobs jobs.txt -o cluster");
-  ASSERT_EQ(e.exit_code, 0) << e.err;
-  // A collect before the jobs ran names what is missing and writes nothing.
-  expect_clean_failure("explore --collect cluster --no-plots", "cluster/explore.csv", {"4 of 4 jobs", "job000001.csv"});
-  std::istringstream jobs(read_text(dir / "jobs.txt"));
-  std::string cmd;
-  int n = 0;
-  while (std::getline(jobs, cmd)) {
-    ASSERT_EQ(std::system(("cd '" + dir.string() + "' && " + cmd).c_str()), 0) << cmd;
-    ++n;
+// The results store: a second sweep that overlaps half the first measures only the other half (the
+// summary line counts them), its shared rows are the first's, and its CSV is the bytes of the same
+// sweep on an empty store.
+TEST_F(TexsimCli, ExploreReusesTheStore) {
+  const std::string sweep = kScene + " --no-plots --store st";
+  const Result first = run(sweep + " --cache-kib 1,2 -o a");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_NE(first.out.find("24 points (24 measured, 0 reused"), std::string::npos) << first.out;
+  const Result second = run(sweep + " --cache-kib 2,4 -o b");
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_NE(second.out.find("32 points (16 measured, 16 reused"), std::string::npos) << second.out;
+  const Result fresh = run(kScene + " --no-plots --store other --cache-kib 2,4 -o c");
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+  EXPECT_EQ(read_text(dir / "b/explore.csv"), read_text(dir / "c/explore.csv"));
+  std::string shared;  // the 2 KiB rows of the first sweep are the second's
+  for (const auto* csv : {"a/explore.csv", "b/explore.csv"}) {
+    std::istringstream in(read_text(dir / csv));
+    std::string line, rows;
+    while (std::getline(in, line))
+      if (line.find(",2,2,") != std::string::npos) rows += line + "\n";
+    if (shared.empty()) shared = rows;
+    else EXPECT_EQ(rows, shared);
   }
-  EXPECT_EQ(n, 4);  // one job per (order, block): its latencies and FIFO depths in one process
-  const Result c = run("explore --collect cluster --no-plots");
-  ASSERT_EQ(c.exit_code, 0) << c.err;
-  EXPECT_EQ(without_seconds(read_text(dir / "cluster/explore.csv")), without_seconds(read_text(dir / "one/explore.csv")));
+  EXPECT_GT(shared.size(), 100u);
+  // Another texture is another workload: nothing reused.
+  std::string noise = kScene;
+  noise.replace(noise.find("testcard:256x256"), 16, "noise:256x256");
+  const Result other = run(noise + " --no-plots --store st --cache-kib 2 -o d");
+  EXPECT_NE(other.out.find("16 points (16 measured, 0 reused"), std::string::npos) << other.out << other.err;
+}
+
+namespace {
+
+// Line k (from 0) of a text file replaced; returns the old line.
+std::string replace_line(const fs::path& file, size_t k, const std::string& text) {
+  std::istringstream in(read_text(file));
+  std::vector<std::string> lines;
+  std::string line;
+  while (std::getline(in, line)) lines.push_back(line);
+  const std::string old = lines.at(k);
+  lines[k] = text;
+  std::string out;
+  for (const std::string& l : lines) out += l + "\n";
+  write_text(file, out);
+  return old;
+}
+
+}  // namespace
+
+// --emit parallel: GNU parallel runs the tasks (its job log); one task is killed, --collect names it
+// ("killed by signal 9"), writes nothing and a resubmit script; the task restored, the script runs
+// it again (parallel's --resume-failed: that task alone) and --collect merges the same bytes as a
+// local --jobs 2 sweep.
+TEST_F(TexsimCli, ExploreThroughGnuParallelResumesAKilledTask) {
+  ASSERT_EQ(std::system("command -v parallel > /dev/null"), 0) << "GNU parallel is not installed (make deps)";
+  const std::string sweep = kScene + " --cache-kib 2,4 --no-plots";
+  ASSERT_EQ(run(sweep + " --store local -o local --jobs 2").exit_code, 0);
+  const Result e = run(sweep + " --store shared --emit parallel em");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_NE(e.out.find("32 points, 0 in the store already, 32 to measure in 4 tasks"), std::string::npos) << e.out;
+  // Before any task ran: every task named (a line each, then the error), nothing written.
+  const Result none = run("explore --collect em --no-plots");
+  EXPECT_NE(none.exit_code, 0);
+  EXPECT_NE(none.err.find("task 3 (8 points missing): has not run"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("32 of 32 points are missing, in 4 of 4 tasks"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(dir / "em/explore.csv"));
+  const std::string kept = replace_line(dir / "em/commands.txt", 1, "sh -c 'kill -KILL $$'");
+  ASSERT_NE(std::system(("cd '" + dir.string() + "' && em/run-parallel.sh --jobs 2 > /dev/null 2>&1").c_str()), 0);
+  const Result c = run("explore --collect em --no-plots");
+  EXPECT_NE(c.exit_code, 0);
+  EXPECT_NE(c.err.find("task 1 (8 points missing): killed by signal 9"), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("8 of 32 points are missing, in 1 of 4 tasks"), std::string::npos) << c.err;
+  EXPECT_FALSE(fs::exists(dir / "em/explore.csv"));
+  ASSERT_TRUE(fs::exists(dir / "em/resubmit.sh"));
+  replace_line(dir / "em/commands.txt", 1, kept);
+  ASSERT_EQ(std::system(("cd '" + dir.string() + "' && em/resubmit.sh > /dev/null 2>&1").c_str()), 0);
+  size_t runs_of_1 = 0, lines = 0;  // parallel ran task 1 twice, the others once
+  std::istringstream joblog(read_text(dir / "em/parallel.joblog"));
+  std::string line;
+  std::getline(joblog, line);
+  while (std::getline(joblog, line)) {
+    ++lines;
+    runs_of_1 += line.size() > 2 && line.compare(line.size() - 2, 2, " 1") == 0;
+  }
+  EXPECT_EQ(runs_of_1, 2u);
+  EXPECT_EQ(lines, 5u);
+  const Result ok = run("explore --collect em --no-plots");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(read_text(dir / "em/explore.csv"), read_text(dir / "local/explore.csv"));
+}
+
+// --emit slurm: the job array's script (array range, throttle, log per task, task.sh), run task by
+// task as Slurm runs it (SLURM_ARRAY_TASK_ID) without a Slurm here (make cluster-test submits it to
+// a real one); a failing task's exit code and last log lines in --collect's report, a resubmit
+// script of exactly that task, and the same bytes as a local sweep once it ran. Tasks already in
+// the store are not emitted.
+TEST_F(TexsimCli, ExploreEmitsASlurmArray) {
+  const std::string sweep = kScene + " --cache-kib 2,4 --no-plots";
+  ASSERT_EQ(run(sweep + " --store local -o local").exit_code, 0);
+  ASSERT_EQ(run(kScene + " --cache-kib 2 --no-plots --store shared -o half").exit_code, 0);  // half in the store
+  const Result e = run(sweep + " --store shared --emit slurm sl --throttle 3");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_NE(e.out.find("32 points, 16 in the store already, 16 to measure in 4 tasks"), std::string::npos) << e.out;
+  const std::string sbatch = read_text(dir / "sl/sweep.sbatch");
+  EXPECT_NE(sbatch.find("#SBATCH --array=0-3%3\n"), std::string::npos) << sbatch;
+  EXPECT_NE(sbatch.find("#SBATCH --output=" + (dir / "sl/logs").string()), std::string::npos) << sbatch;
+  EXPECT_TRUE((fs::status(dir / "sl/task.sh").permissions() & fs::perms::owner_exec) != fs::perms::none);
+  replace_line(dir / "sl/commands.txt", 2, "echo 'no such file: the input' >&2; exit 3");
+  for (int k = 0; k < 4; ++k)
+    std::system(("cd '" + dir.string() + "' && SLURM_ARRAY_TASK_ID=" + std::to_string(k) + " bash sl/sweep.sbatch").c_str());
+  const Result c = run("explore --collect sl --no-plots");
+  EXPECT_NE(c.exit_code, 0);
+  EXPECT_NE(c.err.find("task 2 (4 points missing): failed, exit code 3: no such file: the input"), std::string::npos) << c.err;
+  const std::string resubmit = read_text(dir / "sl/resubmit.sh");
+  EXPECT_NE(resubmit.find("sbatch --array=2 "), std::string::npos) << resubmit;
+  // The task as emitted: run it as the resubmitted array would, then collect.
+  ASSERT_EQ(run(sweep + " --store shared --emit slurm sl2").exit_code, 0);
+  replace_line(dir / "sl/commands.txt", 2, [&] {
+    std::istringstream in(read_text(dir / "sl2/commands.txt"));
+    std::string l;
+    std::getline(in, l);  // (sl2 has only the one task left)
+    return l;
+  }());
+  ASSERT_EQ(std::system(("cd '" + dir.string() + "' && SLURM_ARRAY_TASK_ID=2 bash sl/sweep.sbatch").c_str()), 0);
+  const Result ok = run("explore --collect sl --no-plots");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(read_text(dir / "sl/explore.csv"), read_text(dir / "local/explore.csv"));
 }
 
 TEST_F(TexsimCli, ExploreTakesAQueryTrace) {
@@ -165,9 +274,9 @@ TEST_F(TexsimCli, ExploreSweepsTextureFormats) {
   EXPECT_EQ(rows[2].at("timing_engine"), "rtl");
   EXPECT_LT(std::stod(rows[1].at("bytes_per_sample")) * 4, std::stod(rows[0].at("bytes_per_sample")));
   EXPECT_LT(std::stod(rows[2].at("bytes_per_sample")) * 2, std::stod(rows[0].at("bytes_per_sample")));
-  const Result e = run("explore -q q.csv -t testcard:64x64 --format bc1 --cache-kib 1 --block 4x4 --emit-jobs jobs.txt -o j");
+  const Result e = run("explore -q q.csv -t testcard:64x64 --format bc1 --cache-kib 1 --block 4x4 --store new --emit parallel j");
   ASSERT_EQ(e.exit_code, 0) << e.err;
-  EXPECT_NE(read_text(dir / "jobs.txt").find("--format bc1"), std::string::npos);
+  EXPECT_NE(read_text(dir / "j/commands.txt").find("--format bc1"), std::string::npos);
   expect_clean_failure("explore -q q.csv --format bc6 -o bad", "bad/explore.csv", {"--format \"bc6\""});
 }
 
@@ -186,7 +295,14 @@ TEST_F(TexsimCli, ExploreBadInputFailsBeforeAnyWork) {
   expect_clean_failure("explore --confirm rtl --timing none -o bad", out, {"--confirm rtl", "--timing model"});
   expect_clean_failure("explore --scene plane -q q.csv -o bad", out, {"--scene, --queries, --model or --scene-file"});
   expect_clean_failure("explore -q missing.csv -o bad", out, {"missing.csv"});
-  expect_clean_failure("explore --collect nowhere", "nowhere/explore.csv", {"nowhere/points/jobs", "--emit-jobs"});
+  expect_clean_failure("explore --collect nowhere", "nowhere/explore.csv", {"nowhere/sweep.txt", "--emit slurm|parallel"});
+  expect_clean_failure("explore --emit pbs cl", "cl/sweep.txt", {"--emit pbs", "slurm", "parallel"});
+  expect_clean_failure("explore --emit slurm", "slurm/sweep.txt", {"--emit"});
+  expect_clean_failure("explore --emit slurm cl --throttle -2", "cl/sweep.txt", {"--throttle -2"});
+  expect_clean_failure("explore --emit parallel cl --sshloginfile nohosts", "cl/sweep.txt", {"--sshloginfile nohosts"});
+  fs::create_directories(dir / "notasweep");
+  write_text(dir / "notasweep/sweep.txt", "hello\n");
+  expect_clean_failure("explore --collect notasweep", "notasweep/explore.csv", {"line 1", "not a texsim explore sweep"});
   expect_clean_failure("explore --cache-kib 1 --block 8x8 --ways 4 -o bad", out, {"no point"});
 }
 
