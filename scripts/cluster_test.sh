@@ -6,7 +6,8 @@
 # points as a job array (--emit slurm), makes one task fail on purpose, submits with sbatch,
 # waits, checks that --collect names the failed task and writes nothing, resubmits exactly that
 # task with the written resubmit.sh, collects, and checks the merged explore.csv byte-identical to
-# a local --jobs 2 sweep. The daemons are stopped and the directory removed at the end, on failure
+# a local --jobs 2 sweep; then a frame batch (render --frames 6 --emit slurm) through the same
+# cluster, its pictures equal to a local render's. The daemons are stopped and the directory removed at the end, on failure
 # too. About a minute.
 set -euo pipefail
 case "${1:-}" in -h|--help|"") sed -n '2,/^set -/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0;; esac
@@ -115,4 +116,13 @@ cp "$t/commands.kept" "$t/sweep/commands.txt"
 "$t/sweep/resubmit.sh" --wait --quiet > /dev/null || fail "the resubmitted task failed: $(tail -3 "$t/sweep/logs/task-$broken.log")"
 "$texsim" explore --collect "$t/sweep" --no-plots
 cmp "$t/sweep/explore.csv" "$t/local/explore.csv" || fail "the collected explore.csv differs from the local --jobs 2 sweep's"
+# A frame batch: 6 frames of the plane scene, 2 a task, through the same Slurm.
+"$texsim" render --scene plane --width 96 --height 64 --frames 6 -o "$t/frame.png" > /dev/null
+"$texsim" render --scene plane --width 96 --height 64 --frames 6 -o "$t/frame.png" --emit slurm "$t/frames" --frames-per-task 2 > /dev/null
+sbatch --wait --quiet "$t/frames/sweep.sbatch" > /dev/null || fail "the frame batch's array failed"
+"$texsim" render --collect "$t/frames" > /dev/null
+for f in 0 1 2 3 4 5; do
+  cmp "$t/frames/frames/frame_00$f.png" "$t/frame_00$f.png" || fail "frame $f of the Slurm batch differs from the local render's"
+done
+echo "cluster-test: a batch of 6 frames in 3 array tasks collected, every picture the local render's"
 echo "cluster-test: PASS: $points points in $tasks Slurm array tasks; task $broken failed, named by --collect and resubmitted alone; explore.csv byte-identical to a local --jobs 2 sweep"

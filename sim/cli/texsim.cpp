@@ -8,6 +8,7 @@
 #include <thread>
 #include <sstream>
 
+#include "cli/render_batch.h"
 #include "cli/render_model.h"
 #include "cli/sampling.h"
 #include "engines/engine.h"
@@ -530,11 +531,26 @@ int main(int argc, char** argv) {
   scene_opt = render->add_option("--scene,-s", scene, scene_list)->capture_default_str();
   render->add_option("--width", width, "image width")->capture_default_str();
   render->add_option("--height", height, "image height")->capture_default_str();
-  render->add_option("--out,-o", render_out, "output image (PNG, TIFF, EXR, ...)")->required();
+  CLI::Option* render_out_opt = render->add_option("--out,-o", render_out, "output image (PNG, TIFF, EXR, ...)");
   int frame = 0, frames = 1;
   CLI::Option* frame_opt = render->add_option("--frame", frame, "animation frame to render (0-based)");
   render->add_option("--frames", frames, "frames of the animation; without --frame renders all to OUT_000.png ...")
       ->capture_default_str();
+  RenderBatchArgs batch;
+  std::vector<std::string> render_emit;
+  std::string render_collect;
+  render->add_option("--emit", render_emit,
+                     "slurm DIR | parallel DIR: write the --frames as tasks for a scheduler instead of rendering them "
+                     "(DIR/sweep.sbatch, a Slurm job array, or DIR/run-parallel.sh, GNU parallel, resumable): each "
+                     "frame's picture and --stats in DIR/frames/; then render --collect DIR")
+      ->expected(2);
+  render->add_option("--frames-per-task", batch.frames_per_task, "--emit: frames each task renders")->capture_default_str();
+  render->add_option("--throttle", batch.throttle, "--emit slurm: at most this many tasks at once (0: no limit)")
+      ->capture_default_str();
+  render->add_option("--sshloginfile", batch.sshloginfile, "--emit parallel: run the tasks on these hosts (a shared file system)");
+  render->add_option("--collect", render_collect,
+                     "check that every frame of an emitted batch is in DIR/frames and merge their statistics into "
+                     "DIR/frames.json, or name the tasks that failed or did not run and write DIR/resubmit.sh for them");
   std::string order = "tiled";
   int tile = 8;
   CLI::Option* order_opt = render->add_option("--order", order,
@@ -646,6 +662,31 @@ int main(int argc, char** argv) {
       return cmd_mip(mip_texture, mip_mode, mip_resize, mip_format, mip_format_opt->count() > 0, mip_srgb, dump_dir, layout,
                      image);
     if (*render) {
+      if (!render_collect.empty()) {
+        if (render->count("--emit") || render_out_opt->count())
+          throw tex::Error("render --collect DIR takes no --emit or --out (the batch's manifest names them)");
+        return collect_render_batch(render_collect);
+      }
+      if (!render_out_opt->count()) throw tex::Error("render: --out is required");
+      if (!render_emit.empty()) {
+        if (frame_opt->count()) throw tex::Error("render --emit renders every frame of --frames (no --frame)");
+        std::vector<std::string> args;
+        bool after = false;
+        for (int i = 1; i < argc; ++i) {
+          if (after) args.push_back(argv[i]);
+          after = after || std::string(argv[i]) == "render";
+        }
+        batch.scheduler = render_emit[0];
+        batch.dir = render_emit[1];
+        batch.frames = frames;
+        batch.out = render_out;
+        batch.self = std::filesystem::read_symlink("/proc/self/exe").string();
+        batch.args = render_task_arguments(args);
+        return emit_render_batch(batch);
+      }
+      for (const CLI::Option* opt : {render->get_option("--frames-per-task"), render->get_option("--throttle"),
+                                     render->get_option("--sshloginfile")})
+        if (opt->count()) throw tex::Error(opt->get_name() + " applies to render --emit");
       SceneOptions so;
       so.width = width;
       so.height = height;

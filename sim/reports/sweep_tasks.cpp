@@ -113,12 +113,21 @@ std::string shell_line(const std::vector<std::string>& argv) {
 }
 
 void emit_tasks(const EmitOptions& o, const std::vector<std::vector<std::string>>& commands) {
+  std::vector<std::string> lines;
+  for (const auto& c : commands) lines.push_back(shell_line(c));
+  emit_task_lines(o, lines);
+}
+
+void emit_task_lines(const EmitOptions& o, const std::vector<std::string>& commands) {
   const fs::path dir = fs::absolute(o.dir);
   OutputSet outputs;
   outputs.make_directory((dir / "logs").string(), "--emit");
   outputs.make_directory((dir / "status").string(), "--emit");
   std::string lines;
-  for (const auto& c : commands) lines += shell_line(c) + "\n";
+  for (const std::string& c : commands) {
+    if (c.find('\n') != std::string::npos) throw Error("--emit: a task's command line holds a line break");
+    lines += c + "\n";
+  }
   write_text(outputs, dir / "commands.txt", lines);
   write_text(outputs, dir / "task.sh",
              "#!/bin/bash\n"

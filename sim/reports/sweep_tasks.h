@@ -34,6 +34,8 @@ struct EmitOptions {
 // Writes the task files (above) for `commands` (each an argv) into opts.dir, which must exist.
 // Throws tex::Error.
 void emit_tasks(const EmitOptions& opts, const std::vector<std::vector<std::string>>& commands);
+// The same for tasks given as shell lines (several commands joined with &&, a cd first).
+void emit_task_lines(const EmitOptions& opts, const std::vector<std::string>& lines);
 
 // What became of task k of an emitted sweep: its status file (task.sh), or GNU parallel's job log
 // (a task.sh killed before it could write its status), or nothing yet.

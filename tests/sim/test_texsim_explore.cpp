@@ -332,3 +332,41 @@ TEST_F(TexsimCli, ExploreSweepsAModelsFrame) {
   expect_clean_failure("explore --model " + model + " --scene plane -o ex2", "ex2", {"--scene", "--model"});
   expect_clean_failure("explore --model " + model + " --queries q.csv -o ex2", "ex2", {"--queries", "--model"});
 }
+
+// render --frames N --emit parallel: a task per two frames through GNU parallel; a failing task is
+// named by render --collect (its exit code and log line), which writes nothing; restored and
+// resubmitted, the batch collects: every picture the bytes of a local --frames render's, and the
+// frames' statistics in frame order in frames.json. Bad batches are one-line errors.
+TEST_F(TexsimCli, RenderFramesThroughGnuParallel) {
+  ASSERT_EQ(std::system("command -v parallel > /dev/null"), 0) << "GNU parallel is not installed (make deps)";
+  const std::string render = "render --scene plane --width 64 --height 48 --frames 5";
+  ASSERT_EQ(run(render + " -o f.png").exit_code, 0);
+  const Result e = run(render + " -o f.png --emit parallel batch --frames-per-task 2");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_NE(e.out.find("5 frames in 3 tasks"), std::string::npos) << e.out;
+  const std::string kept = replace_line(dir / "batch/commands.txt", 1, "echo 'frame trouble' >&2; exit 5");
+  std::system(("cd '" + dir.string() + "' && batch/run-parallel.sh > /dev/null 2>&1").c_str());
+  const Result c = run("render --collect batch");
+  EXPECT_NE(c.exit_code, 0);
+  EXPECT_NE(c.err.find("task 1 (2 frames missing): failed, exit code 5: frame trouble"), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("2 of 5 frames are missing, in 1 of 3 tasks"), std::string::npos) << c.err;
+  EXPECT_FALSE(fs::exists(dir / "batch/frames.json"));
+  replace_line(dir / "batch/commands.txt", 1, kept);
+  ASSERT_EQ(std::system(("cd '" + dir.string() + "' && batch/resubmit.sh > /dev/null 2>&1").c_str()), 0);
+  const Result ok = run("render --collect batch");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  for (const char* f : {"f_000.png", "f_001.png", "f_002.png", "f_003.png", "f_004.png"}) {
+    EXPECT_GT(fs::file_size(dir / f), 100u) << f;
+    EXPECT_EQ(read_text(dir / "batch/frames" / f), read_text(dir / f)) << f;
+  }
+  const auto frames = nlohmann::json::parse(read_text(dir / "batch/frames.json"))["frames"];
+  ASSERT_EQ(frames.size(), 5u);
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(frames[i]["frame"].get<size_t>(), i);
+    EXPECT_GT(frames[i]["stats"]["samples"].get<uint64_t>(), 1000u);
+  }
+  expect_clean_failure("render --collect nowhere", "nowhere/frames.json", {"nowhere/render.txt", "--emit"});
+  expect_clean_failure(render + " -o g.png --frame 2 --emit slurm b2", "b2/render.txt", {"no --frame"});
+  expect_clean_failure(render + " -o g.png --emit slurm b2 --frames-per-task 0", "b2/render.txt", {"--frames-per-task 0"});
+  expect_clean_failure(render + " -o g.png --frames-per-task 2", "g.png", {"--frames-per-task", "render --emit"});
+}
