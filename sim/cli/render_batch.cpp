@@ -135,25 +135,7 @@ int collect_render_batch(const std::string& dir) {
     all.push_back({{"frame", f}, {"picture", picture}, {"stats", s}});
   }
   if (f != frames) bad("ends after " + std::to_string(f) + " of " + std::to_string(frames) + " frames");
-  if (!missing.empty()) {
-    size_t count = 0;
-    std::vector<size_t> failed;
-    for (const auto& [t, k] : missing) {
-      count += k;
-      failed.push_back(t);
-      const TaskReport r = task_report(dir, t);
-      std::fprintf(stderr, "render: task %zu (%zu frames missing): %s%s%s\n", t, k,
-                   !r.ended            ? "has not run, or has not ended"
-                   : r.exit_code == 0  ? "ended with exit code 0 but its frames are not there"
-                   : r.exit_code > 128 ? ("killed by signal " + std::to_string(r.exit_code - 128)).c_str()
-                                       : ("failed, exit code " + std::to_string(r.exit_code)).c_str(),
-                   r.log_tail.empty() ? "" : ": ", r.log_tail.c_str());
-    }
-    const std::string resubmit = write_resubmit(dir, scheduler, failed);
-    throw Error("--collect: " + std::to_string(count) + " of " + std::to_string(frames) + " frames are missing, in " +
-                std::to_string(failed.size()) + " of " + std::to_string(tasks) + " tasks (above); " + resubmit +
-                " runs them again, then render --collect " + dir);
-  }
+  if (!missing.empty()) fail_collect(dir, scheduler, missing, frames, tasks, "frames", "texsim render --collect " + dir);
   OutputSet outputs;
   OutputFile& out = outputs.declare((fs::path(dir) / "frames.json").string(), "--collect");
   const std::string text = nlohmann::json{{"frames", all}}.dump(1) + "\n";

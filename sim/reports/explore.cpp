@@ -712,25 +712,9 @@ int collect(const ExploreArgs& a) {
     if (const std::optional<std::string> r = store.get(p.key)) rows += p.prefix + *r + "\n";
     else ++missing[p.task];
   }
-  if (!missing.empty()) {
-    size_t points = 0;
-    std::vector<size_t> tasks;
-    for (const auto& [t, n] : missing) {
-      points += n;
-      tasks.push_back(t);
-      const TaskReport r = task_report(a.collect_dir, t);
-      std::fprintf(stderr, "explore: task %zu (%zu points missing): %s%s%s\n", t, n,
-                   !r.ended          ? "has not run, or has not ended"
-                   : r.exit_code == 0 ? "ended with exit code 0 but did not store its points (a --store that is not shared?)"
-                   : r.exit_code > 128 ? ("killed by signal " + std::to_string(r.exit_code - 128)).c_str()
-                                       : ("failed, exit code " + std::to_string(r.exit_code)).c_str(),
-                   r.log_tail.empty() ? "" : ": ", r.log_tail.c_str());
-    }
-    const std::string resubmit = write_resubmit(a.collect_dir, m.scheduler, tasks);
-    throw Error("--collect: " + std::to_string(points) + " of " + std::to_string(m.points.size()) + " points are missing, in " +
-                std::to_string(tasks.size()) + " of " + std::to_string(m.tasks) + " tasks (above); " + resubmit +
-                " runs them again, then --collect " + a.collect_dir);
-  }
+  if (!missing.empty())
+    fail_collect(a.collect_dir, m.scheduler, missing, m.points.size(), m.tasks, "points",
+                 "texsim explore --collect " + a.collect_dir);
   write_results(a.collect_dir, rows, {}, a.plots);
   std::printf("texsim explore: collected %zu points of %zu tasks from %s into %s/explore.csv%s\n", m.points.size(),
               m.tasks, m.store.c_str(), a.collect_dir.c_str(),

@@ -201,6 +201,27 @@ TaskReport task_report(const std::string& dir_name, size_t k) {
   return r;
 }
 
+void fail_collect(const std::string& dir, Scheduler scheduler, const std::map<size_t, size_t>& missing, size_t items,
+                  size_t tasks, const std::string& what, const std::string& collect) {
+  size_t count = 0;
+  std::vector<size_t> failed;
+  for (const auto& [t, n] : missing) {
+    count += n;
+    failed.push_back(t);
+    const TaskReport r = task_report(dir, t);
+    const std::string fate = !r.ended            ? std::string("has not run, or has not ended")
+                             : r.exit_code == 0  ? "ended with exit code 0 but its " + what + " are not there (a store or directory the task did not share?)"
+                             : r.exit_code > 128 ? "killed by signal " + std::to_string(r.exit_code - 128)
+                                                 : "failed, exit code " + std::to_string(r.exit_code);
+    std::fprintf(stderr, "texsim: task %zu (%zu %s missing): %s%s%s\n", t, n, what.c_str(), fate.c_str(),
+                 r.log_tail.empty() ? "" : ": ", r.log_tail.c_str());
+  }
+  const std::string resubmit = write_resubmit(dir, scheduler, failed);
+  throw Error("--collect: " + std::to_string(count) + " of " + std::to_string(items) + " " + what + " are missing, in " +
+              std::to_string(failed.size()) + " of " + std::to_string(tasks) + " tasks (above); " + resubmit +
+              " runs them again, then " + collect);
+}
+
 std::string write_resubmit(const std::string& dir_name, Scheduler scheduler, const std::vector<size_t>& tasks) {
   const fs::path dir = fs::absolute(dir_name);
   std::string list;

@@ -13,6 +13,7 @@
 //                  job log, so that running it again re-runs the failed tasks (--resume-failed)
 // The sweep's own manifest (which points, their keys and tasks) is the caller's.
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,13 @@ struct TaskReport {
   std::string log_tail; // the last lines of logs/task-K.log ("" if none)
 };
 TaskReport task_report(const std::string& dir, size_t k);
+
+// The end of a --collect that found items (points, frames) missing: names each task of `missing`
+// (task -> its items missing) on standard error with its fate (exit code or signal, or not run)
+// and its log's last lines, writes DIR/resubmit.sh for exactly those tasks, and throws the
+// tex::Error that says so. `what`: "points" or "frames"; `collect`: the command that collects.
+[[noreturn]] void fail_collect(const std::string& dir, Scheduler scheduler, const std::map<size_t, size_t>& missing,
+                               size_t items, size_t tasks, const std::string& what, const std::string& collect);
 
 // Writes DIR/resubmit.sh, which runs exactly these tasks again (Slurm: `sbatch --array=LIST`;
 // GNU parallel: run-parallel.sh, whose --resume-failed re-runs the failed ones and runs the rest).

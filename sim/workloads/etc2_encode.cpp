@@ -100,21 +100,22 @@ std::array<uint8_t, 8> encode_colour(const Texels& t) {
   return best;
 }
 
-std::array<uint8_t, 8> encode_alpha(const Texels& t) {
-  double sum = 0;
-  for (int a : t.alpha) sum += a;
-  const int base = clamp255(int(std::lround(sum / 16)));
+// An EAC block's search (alpha and R11 alike): the base given, every table and multiplier from
+// `first_multiplier`, each texel's best index; `value(multiplier, modifier)` is what a texel of
+// that index decodes to, compared with `want` in the same units.
+template <class Value>
+std::array<uint8_t, 8> eac_block(int base, int first_multiplier, const std::array<int, 16>& want, Value value) {
   long best_error = LONG_MAX;
   uint64_t best = 0;
   for (int table = 0; table < 16; ++table)
-    for (int multiplier = 1; multiplier < 16; ++multiplier) {
+    for (int multiplier = first_multiplier; multiplier < 16; ++multiplier) {
       long error = 0;
       uint64_t w = uint64_t(base) << 56 | uint64_t(multiplier) << 52 | uint64_t(table) << 48;
       for (int i = 0; i < 16 && error < best_error; ++i) {
         long texel_best = LONG_MAX;
         int index = 0;
         for (int k = 0; k < 8; ++k) {
-          const long d = clamp255(base + kEacModifiers[table][k] * multiplier) - t.alpha[size_t(i)];
+          const long d = value(multiplier, kEacModifiers[table][k]) - want[size_t(i)];
           if (d * d < texel_best) texel_best = d * d, index = k;
         }
         error += texel_best;
@@ -127,35 +128,24 @@ std::array<uint8_t, 8> encode_alpha(const Texels& t) {
   return out;
 }
 
+// ETC2 RGBA8's alpha: the base at the mean alpha, multipliers 1..15.
+std::array<uint8_t, 8> encode_alpha(const Texels& t) {
+  double sum = 0;
+  for (int a : t.alpha) sum += a;
+  const int base = clamp255(int(std::lround(sum / 16)));
+  return eac_block(base, 1, t.alpha, [&](int multiplier, int m) { return clamp255(base + m * multiplier); });
+}
+
 // An EAC R11 block (unsigned) for 16 values of `bits` bits: each aimed at v * 2047 / (2^bits - 1)
-// in 11 bits; the base at their mean, every table and multiplier (0: steps of 1) tried.
+// in 11 bits; the base at their mean, multipliers 0 (steps of 1) to 15.
 std::array<uint8_t, 8> encode_r11(const std::array<int, 16>& v, int bits) {
   std::array<int, 16> want{};
   double sum = 0;
   for (int i = 0; i < 16; ++i) sum += want[size_t(i)] = int(std::lround(v[size_t(i)] * 2047.0 / ((1 << bits) - 1)));
   const int base = clamp255(int(std::lround((sum / 16 - 4) / 8)));
-  long best_error = LONG_MAX;
-  uint64_t best = 0;
-  for (int table = 0; table < 16; ++table)
-    for (int multiplier = 0; multiplier < 16; ++multiplier) {
-      long error = 0;
-      uint64_t w = uint64_t(base) << 56 | uint64_t(multiplier) << 52 | uint64_t(table) << 48;
-      for (int i = 0; i < 16 && error < best_error; ++i) {
-        long texel_best = LONG_MAX;
-        int index = 0;
-        for (int k = 0; k < 8; ++k) {
-          const int m = kEacModifiers[table][k];
-          const long d = std::clamp(base * 8 + 4 + (multiplier ? m * multiplier * 8 : m), 0, 2047) - want[size_t(i)];
-          if (d * d < texel_best) texel_best = d * d, index = k;
-        }
-        error += texel_best;
-        w |= uint64_t(index) << (45 - 3 * (4 * (i % 4) + i / 4));
-      }
-      if (error < best_error) best_error = error, best = w;
-    }
-  std::array<uint8_t, 8> out{};
-  for (int i = 0; i < 8; ++i) out[size_t(i)] = uint8_t(best >> (56 - 8 * i));
-  return out;
+  return eac_block(base, 0, want, [&](int multiplier, int m) {
+    return std::clamp(base * 8 + 4 + (multiplier ? m * multiplier * 8 : m), 0, 2047);
+  });
 }
 
 }  // namespace

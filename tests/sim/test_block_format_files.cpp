@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <sstream>
 
 #include "model/astc.h"
@@ -18,6 +19,26 @@
 
 using namespace tex;
 using namespace tex::filetest;
+
+namespace {
+
+// KTX 1 (glInternalFormat `gl`) and KTX2 (vkFormat `vk`) files of 6 random levels of a 32x16
+// texture give them back, with their format and colour space; `more(path)` checks each further.
+void expect_ktx_round_trip(const Scratch& s, TexelFormat f, uint32_t gl, uint32_t vk, bool srgb, uint64_t seed,
+                           const std::function<void(const fs::path&)>& more = {}) {
+  const auto levels = random_levels(f, 32, 16, 6, seed);
+  for (const auto& [name, bytes] : std::vector<std::pair<std::string, std::vector<uint8_t>>>{
+           {"e.ktx", ktx1(gl, 32, 16, levels)}, {"e.ktx2", ktx2(vk, 32, 16, levels)}}) {
+    save(s / name, bytes);
+    const TextureFile t = read_texture_file((s / name).string());
+    EXPECT_EQ(t.format, f) << name;
+    EXPECT_EQ(t.srgb, srgb) << name;
+    EXPECT_EQ(t.levels, levels) << name << " " << t.format_name;
+    if (more) more(s / name);
+  }
+}
+
+}  // namespace
 
 // The ETC2 encoder (workloads/etc2_encode.h, ETC1's modes: Debian packages no ETC2 encoder) keeps
 // the picture within bounds a broken encoder (mean errors near 80) is far from: a colour ramp and
@@ -79,18 +100,7 @@ TEST(TextureFiles, Etc2FilesSampleThroughTexsim) {
   } cases[] = {{TexelFormat::Etc2Rgb, 0x9274, 147, false},   {TexelFormat::Etc2Rgb, 0x9275, 148, true},
                {TexelFormat::Etc2RgbA1, 0x9276, 149, false}, {TexelFormat::Etc2RgbA1, 0x9277, 150, true},
                {TexelFormat::Etc2Rgba, 0x9278, 151, false},  {TexelFormat::Etc2Rgba, 0x9279, 152, true}};
-  for (const auto& c : cases) {
-    const auto levels = random_levels(c.format, 32, 16, 6, 80 + uint64_t(c.format) + 10 * c.srgb);
-    for (const auto& [name, bytes] :
-         std::vector<std::pair<std::string, std::vector<uint8_t>>>{{"e.ktx", ktx1(c.gl, 32, 16, levels)},
-                                                                   {"e.ktx2", ktx2(c.vk, 32, 16, levels)}}) {
-      save(s / name, bytes);
-      const TextureFile t = read_texture_file((s / name).string());
-      EXPECT_EQ(t.format, c.format) << name;
-      EXPECT_EQ(t.srgb, c.srgb) << name;
-      EXPECT_EQ(t.levels, levels) << name << " " << t.format_name;
-    }
-  }
+  for (const auto& c : cases) expect_ktx_round_trip(s, c.format, c.gl, c.vk, c.srgb, 80 + uint64_t(c.format) + 10 * c.srgb);
   const auto levels = random_levels(TexelFormat::Etc2Rgba, 32, 16, 6, 90);
   save(s / "rgba.ktx2", ktx2(151, 32, 16, levels));
   save_queries(s, 300, 4, 91);
@@ -281,21 +291,12 @@ TEST(TextureFiles, EacFilesSampleThroughTexsim) {
                {TexelFormat::EacR11Snorm, 0x9271, 154},
                {TexelFormat::EacRg11, 0x9272, 155},
                {TexelFormat::EacRg11Snorm, 0x9273, 156}};
-  for (const auto& c : cases) {
-    const auto levels = random_levels(c.format, 32, 16, 6, 100 + uint64_t(c.format));
-    for (const auto& [name, bytes] :
-         std::vector<std::pair<std::string, std::vector<uint8_t>>>{{"e.ktx", ktx1(c.gl, 32, 16, levels)},
-                                                                   {"e.ktx2", ktx2(c.vk, 32, 16, levels)}}) {
-      save(s / name, bytes);
-      const TextureFile t = read_texture_file((s / name).string());
-      EXPECT_EQ(t.format, c.format) << name;
-      EXPECT_FALSE(t.srgb) << name;
-      EXPECT_EQ(t.levels, levels) << name << " " << t.format_name;
-      const Pyramid p = load_pyramid((s / name).string(), TextureOptions{});
-      EXPECT_EQ(p.levels[0].channel_bits, 16) << name;
-      EXPECT_EQ(p.levels[0].at(0, 0)[3], 65535) << name;  // (GL's RED and RG: A is 1)
-    }
-  }
+  for (const auto& c : cases)
+    expect_ktx_round_trip(s, c.format, c.gl, c.vk, false, 100 + uint64_t(c.format), [](const fs::path& path) {
+      const Pyramid p = load_pyramid(path.string(), TextureOptions{});
+      EXPECT_EQ(p.levels[0].channel_bits, 16) << path;
+      EXPECT_EQ(p.levels[0].at(0, 0)[3], 65535) << path;  // (GL's RED and RG: A is 1)
+    });
   const Pyramid signed_rg = stimulus::random_block_texture(TexelFormat::EacRg11Snorm, {64, 48}, 101);
   save(s / "rg.ktx2", ktx2(156, 64, 48, signed_rg.blocks));
   save_queries(s, 400, 6, 102);
