@@ -57,6 +57,7 @@ int emit_render_batch(const RenderBatchArgs& a) {
   o.throttle = a.throttle;
   o.sshloginfile = a.sshloginfile;
   o.job_name = "texsim-render";
+  o.collect = "texsim render --collect " + shell_quote(o.dir);
   if (a.frames < 1) throw Error("--frames " + std::to_string(a.frames) + " must be at least 1");
   if (a.frames_per_task < 1) throw Error("--frames-per-task " + std::to_string(a.frames_per_task) + " must be at least 1");
   if (a.throttle < 0) throw Error("--throttle " + std::to_string(a.throttle) + " is negative");
@@ -84,6 +85,10 @@ int emit_render_batch(const RenderBatchArgs& a) {
     }
     lines.push_back(line);
   }
+  prepare_emit_dir(a.dir);
+  std::error_code ec;  // (the frames of an earlier batch in this directory)
+  for (const auto& e : fs::directory_iterator(frames_dir, ec))
+    if (e.is_regular_file(ec)) fs::remove(e.path(), ec);
   OutputSet outputs;
   outputs.make_directory(frames_dir.string(), "--emit");
   OutputFile& m = outputs.declare((fs::path(o.dir) / "render.txt").string(), "--emit");

@@ -731,6 +731,7 @@ int emit(const Sweep& s, const std::vector<Task>& tasks, const std::vector<size_
   o.throttle = s.args.throttle;
   o.sshloginfile = s.args.sshloginfile;
   o.job_name = "texsim-explore";
+  o.collect = "texsim explore --collect " + shell_quote(o.dir);
   std::vector<std::vector<std::string>> commands;
   for (const Task& t : tasks) commands.push_back(task_command(s, t, self, store.dir()));
   OutputSet outputs;
@@ -771,6 +772,7 @@ int run_explore(const ExploreArgs& a, const std::string& self) {
   if (!a.sshloginfile.empty() && !fs::is_regular_file(a.sshloginfile))
     throw Error("--sshloginfile " + a.sshloginfile + ": no such file");
   Sweep s = parse_sweep(a);
+  if (emitting) prepare_emit_dir(a.emit_dir);  // (before the work: another directory of the user's is refused)
   const ResultStore store(a.store_dir.empty() ? default_store_dir() : a.store_dir);
   load_workloads(s);
   expand_points(s);

@@ -89,6 +89,31 @@ struct TempDir {
 
 }  // namespace
 
+void prepare_emit_dir(const std::string& dir_name) {
+  const fs::path dir = fs::absolute(dir_name);
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return;
+  if (!fs::is_directory(dir, ec)) throw Error("--emit " + dir_name + ": not a directory");
+  if (fs::is_empty(dir, ec)) return;
+  bool ours = false;
+  for (const char* manifest : {"sweep.txt", "render.txt"}) {
+    std::ifstream in(dir / manifest);
+    std::string first;
+    ours = ours || (std::getline(in, first) && first.rfind("texsim ", 0) == 0);
+  }
+  if (!ours)
+    throw Error("--emit " + dir_name + ": the directory holds other files (no sweep.txt or render.txt of an earlier "
+                "--emit); give a new directory");
+  // The earlier emission's traces would speak for the new tasks: its status files and logs, and
+  // GNU parallel's job log (--resume-failed would skip the tasks it says succeeded).
+  for (const char* sub : {"status", "logs"})
+    for (const auto& e : fs::directory_iterator(dir / sub, ec))
+      if (e.is_regular_file(ec)) fs::remove(e.path(), ec);
+  for (const char* f : {"parallel.joblog", "resubmit.sh", "tasks.txt", "run-parallel.sh", "sweep.sbatch", "commands.txt", "README.txt",
+                        "task.sh", "sweep.txt", "render.txt", "explore.csv", "frames.json"})
+    fs::remove(dir / f, ec);
+}
+
 Scheduler parse_scheduler(const std::string& name) {
   if (name == "slurm") return Scheduler::Slurm;
   if (name == "parallel") return Scheduler::Parallel;
@@ -144,6 +169,17 @@ void emit_task_lines(const EmitOptions& o, const std::vector<std::string>& comma
              "echo \"$code\" > \"$dir/status/.task-$k.$$\" && mv -f \"$dir/status/.task-$k.$$\" \"$dir/status/task-$k\"\n"
              "exit \"$code\"\n");
   const size_t n = commands.size();
+  const std::string run = o.scheduler == Scheduler::Slurm
+                              ? "sbatch " + shell_quote((dir / "sweep.sbatch").string()) +
+                                    "   (add the #SBATCH lines your site needs to sweep.sbatch first)"
+                              : shell_quote((dir / "run-parallel.sh").string()) + " [--jobs N]   (options go to GNU parallel)";
+  write_text(outputs, dir / "README.txt",
+             std::to_string(n) + " tasks of " + o.job_name + ", written by texsim --emit " + scheduler_name(o.scheduler) +
+                 " (docs/cluster.md).\n"
+                 "Run them:  " + run + "\n"
+                 "Then:      " + o.collect + "\n"
+                 "A task that failed or did not run is named by the collect, with its exit code and the last lines of\n"
+                 "logs/task-K.log, and resubmit.sh (written then) runs exactly those tasks again.\n");
   if (o.scheduler == Scheduler::Slurm) {
     write_text(outputs, dir / "sweep.sbatch",
                "#!/bin/bash\n"

@@ -4,6 +4,7 @@
 // puts their results in the results store (reports/result_store.h). texsim runs the tasks itself
 // (--jobs N: a pool of child processes), or writes them for a scheduler to run (--emit slurm DIR,
 // --emit parallel DIR), in a directory:
+//   README.txt     how to run the tasks and collect their results
 //   commands.txt   task k's command line on line k + 1 (k from 0)
 //   task.sh        `task.sh K` runs task K: its output in logs/task-K.log, its exit code in
 //                  status/task-K (written when it ends, by rename)
@@ -30,7 +31,14 @@ struct EmitOptions {
   int throttle = 0;           // Slurm: at most this many tasks at once (--array=0-K%T); 0: no limit
   std::string sshloginfile;   // GNU parallel: the hosts (--sshloginfile), "" = this machine
   std::string job_name = "texsim";
+  std::string collect;        // the command that collects the results (README.txt names it)
 };
+
+// Makes ready a directory to emit into: a new or empty one, or one an earlier --emit wrote (its
+// manifest, sweep.txt or render.txt, says so), whose task files, status files, logs and job log
+// are removed (they would speak for the new tasks). Throws tex::Error for any other directory
+// (nothing of the user's is removed) or a path that is not a directory.
+void prepare_emit_dir(const std::string& dir);
 
 // Writes the task files (above) for `commands` (each an argv) into opts.dir, which must exist.
 // Throws tex::Error.

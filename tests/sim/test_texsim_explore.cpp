@@ -204,6 +204,15 @@ TEST_F(TexsimCli, ExploreThroughGnuParallelResumesAKilledTask) {
   const Result ok = run("explore --collect em --no-plots");
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_EQ(read_text(dir / "em/explore.csv"), read_text(dir / "local/explore.csv"));
+  // Emitted again into the same directory: every point is stored, no task; the old job log is gone
+  // (its successes would make --resume-failed skip new tasks).
+  const Result again = run(sweep + " --store shared --emit parallel em");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("32 points, 32 in the store already, 0 to measure in 0 tasks"), std::string::npos) << again.out;
+  EXPECT_FALSE(fs::exists(dir / "em/parallel.joblog"));
+  const Result collected = run("explore --collect em --no-plots");
+  ASSERT_EQ(collected.exit_code, 0) << collected.err;
+  EXPECT_EQ(read_text(dir / "em/explore.csv"), read_text(dir / "local/explore.csv"));
 }
 
 // --emit slurm: the job array's script (array range, throttle, log per task, task.sh), run task by
@@ -222,6 +231,9 @@ TEST_F(TexsimCli, ExploreEmitsASlurmArray) {
   EXPECT_NE(sbatch.find("#SBATCH --array=0-3%3\n"), std::string::npos) << sbatch;
   EXPECT_NE(sbatch.find("#SBATCH --output=" + (dir / "sl/logs").string()), std::string::npos) << sbatch;
   EXPECT_TRUE((fs::status(dir / "sl/task.sh").permissions() & fs::perms::owner_exec) != fs::perms::none);
+  const std::string readme = read_text(dir / "sl/README.txt");
+  EXPECT_NE(readme.find("sbatch " + (dir / "sl/sweep.sbatch").string()), std::string::npos) << readme;
+  EXPECT_NE(readme.find("texsim explore --collect " + (dir / "sl").string()), std::string::npos) << readme;
   replace_line(dir / "sl/commands.txt", 2, "echo 'no such file: the input' >&2; exit 3");
   for (int k = 0; k < 4; ++k)
     std::system(("cd '" + dir.string() + "' && SLURM_ARRAY_TASK_ID=" + std::to_string(k) + " bash sl/sweep.sbatch").c_str());
@@ -300,6 +312,10 @@ TEST_F(TexsimCli, ExploreBadInputFailsBeforeAnyWork) {
   expect_clean_failure("explore --emit slurm", "slurm/sweep.txt", {"--emit"});
   expect_clean_failure("explore --emit slurm cl --throttle -2", "cl/sweep.txt", {"--throttle -2"});
   expect_clean_failure("explore --emit parallel cl --sshloginfile nohosts", "cl/sweep.txt", {"--sshloginfile nohosts"});
+  fs::create_directories(dir / "foreign");  // a directory of the user's: refused, nothing in it touched
+  write_text(dir / "foreign/notes.txt", "mine\n");
+  expect_clean_failure("explore --emit slurm foreign", "foreign/sweep.txt", {"--emit foreign", "holds other files"});
+  EXPECT_EQ(read_text(dir / "foreign/notes.txt"), "mine\n");
   fs::create_directories(dir / "notasweep");
   write_text(dir / "notasweep/sweep.txt", "hello\n");
   expect_clean_failure("explore --collect notasweep", "notasweep/explore.csv", {"line 1", "not a texsim explore sweep"});
