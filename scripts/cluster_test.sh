@@ -118,7 +118,7 @@ cp "$t/commands.kept" "$t/sweep/commands.txt"
 cmp "$t/sweep/explore.csv" "$t/local/explore.csv" || fail "the collected explore.csv differs from the local --jobs 2 sweep's"
 # A frame batch: 6 frames of the plane scene, 2 a task, through the same Slurm.
 "$texsim" render --scene plane --width 96 --height 64 --frames 6 -o "$t/frame.png" > /dev/null
-"$texsim" render --scene plane --width 96 --height 64 --frames 6 -o "$t/frame.png" --emit slurm "$t/frames" --frames-per-task 2 > /dev/null
+"$texsim" render --scene plane --width 96 --height 64 --frames 6 -o "$t/frame.png" --emit slurm "$t/frames" --frames-per-task 2 --store "$t/store" > /dev/null
 sbatch --wait --quiet "$t/frames/sweep.sbatch" > /dev/null || fail "the frame batch's array failed"
 "$texsim" render --collect "$t/frames" > /dev/null
 for f in 0 1 2 3 4 5; do

@@ -173,6 +173,16 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
       query_writer->comment(name);
       for (const Query& q : frame.queries) query_writer->write(q);
     }
+    if (a.store) {  // (one frame, no traces: checked by the caller)
+      a.store->set_inputs(requests, table, samplers);
+      if (a.store->reuse(*images[0], stats_out)) {
+        outputs.commit();
+        std::printf("texsim render: %s, frame %d of %d: reused from the store %s -> %s\n",
+                    a.model.empty() ? a.scene_file.c_str() : a.model.c_str(), f, a.frames, a.store->dir().c_str(),
+                    a.out.c_str());
+        return 0;
+      }
+    }
     LineSet lines(&all_lines);
     if (eo.memory == Memory::Cached) eo.miss_sink = &lines;
     VectorSource source(requests);
@@ -217,6 +227,7 @@ int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a) {
   extra["textures"] = scene.textures.size();
   write_stats(stats_out, last_stats, eo, secs, extra);  // engine counters of the last frame; figures of all
   outputs.commit();
+  if (a.store) a.store->keep(images[0]->path(), o.stats_path);
   print_cycle_stats(last_stats, eo);
   print_probe_stats(last_stats);
   std::printf("  %s%s\n", first == last ? "" : "total: ", total.summary().c_str());

@@ -1,5 +1,6 @@
 // texsim render --model / --scene-file: real frames of textured 3D models (docs/scenes.md).
 #pragma once
+#include "cli/frame_store.h"
 #include <string>
 
 #include "cli/sampling.h"
@@ -19,6 +20,7 @@ struct ModelRenderArgs {
   bool filter_given = false;          // --filter, --min-filter, ... replace the model's (glTF) filters
   PixelOrder order = PixelOrder::Tiled;
   int tile = 8;
+  FrameStore* store = nullptr;        // --store: the one frame kept in (or taken from) the results store
 };
 
 int cmd_render_model(const SamplingOptions& o, const ModelRenderArgs& a);

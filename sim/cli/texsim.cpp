@@ -8,6 +8,7 @@
 #include <thread>
 #include <sstream>
 
+#include "cli/frame_store.h"
 #include "cli/render_batch.h"
 #include "cli/render_model.h"
 #include "cli/sampling.h"
@@ -326,7 +327,7 @@ int cmd_mip(const std::string& texture, const std::string& mode_name, bool resiz
 // A scene with its own map (reflect, mesh) rejects --texture; one whose map is not periodic
 // (reflect, mesh) samples with clamp-to-edge unless a --wrap option is given.
 int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions so, bool all_frames,
-               bool texture_given, bool wrap_given, const std::string& out) {
+               bool texture_given, bool wrap_given, const std::string& out, FrameStore* store) {
   const auto t0 = std::chrono::steady_clock::now();
   SamplerConfig cfg = o.config();
   const TextureOptions topts = o.texture_options();
@@ -368,6 +369,15 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
     const std::vector<Query>& queries =
         unnormalized ? (in_texels = in_sampler_coordinates(frame.queries, samplers, {pyr.extent0()})) : frame.queries;
     const auto requests = to_requests(queries, "scene " + scene, QueryForm{unnormalized});
+    if (store) {  // (one frame, no traces: checked by the caller)
+      store->set_inputs(requests, {{&pyr}}, samplers);
+      if (store->reuse(*images[0], stats_out)) {
+        outputs.commit();
+        std::printf("texsim render: scene %s, frame %d of %d: reused from the store %s -> %s\n", scene.c_str(), f,
+                    so.frames, store->dir().c_str(), out.c_str());
+        return 0;
+      }
+    }
     VectorSource source(requests);
     VectorSink texels;
     last_stats = run_engine(o, eo, outputs, trace, {{&pyr}}, samplers, source, texels);
@@ -384,6 +394,7 @@ int cmd_render(const SamplingOptions& o, const std::string& scene, SceneOptions 
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_stats(stats_out, last_stats, eo, secs);  // counters of the last frame, time of them all
   outputs.commit();
+  if (store) store->keep(images[0]->path(), o.stats_path);
   print_cycle_stats(last_stats, eo);
   print_cache_stats(last_stats);
   print_probe_stats(last_stats);
@@ -548,6 +559,12 @@ int main(int argc, char** argv) {
   render->add_option("--throttle", batch.throttle, "--emit slurm: at most this many tasks at once (0: no limit)")
       ->capture_default_str();
   render->add_option("--sshloginfile", batch.sshloginfile, "--emit parallel: run the tasks on these hosts (a shared file system)");
+  std::string render_store;
+  CLI::Option* render_store_opt = render->add_option(
+      "--store", render_store,
+      "keep the frame in this results store, or take it from there if it was rendered before with the same "
+      "build, arguments and inputs (one frame; no traces); --emit passes it to every frame (default there: "
+      "$TEXSIM_STORE, else ~/.cache/texsim/results)");
   render->add_option("--collect", render_collect,
                      "check that every frame of an emitted batch is in DIR/frames and merge their statistics into "
                      "DIR/frames.json, or name the tasks that failed or did not run and write DIR/resubmit.sh for them");
@@ -668,13 +685,16 @@ int main(int argc, char** argv) {
         return collect_render_batch(render_collect);
       }
       if (!render_out_opt->count()) throw tex::Error("render: --out is required");
+      std::vector<std::string> args;  // (render's own, as given)
+      for (int i = 1, after = 0; i < argc; ++i) {
+        if (after) args.push_back(argv[i]);
+        after = after || std::string(argv[i]) == "render";
+      }
       if (!render_emit.empty()) {
         if (frame_opt->count()) throw tex::Error("render --emit renders every frame of --frames (no --frame)");
-        std::vector<std::string> args;
-        bool after = false;
-        for (int i = 1; i < argc; ++i) {
-          if (after) args.push_back(argv[i]);
-          after = after || std::string(argv[i]) == "render";
+        if (!render_store_opt->count()) {  // every frame kept, in the store the tasks share
+          args.push_back("--store");
+          args.push_back(std::filesystem::absolute(default_store_dir()).string());
         }
         batch.scheduler = render_emit[0];
         batch.dir = render_emit[1];
@@ -687,6 +707,14 @@ int main(int argc, char** argv) {
       for (const CLI::Option* opt : {render->get_option("--frames-per-task"), render->get_option("--throttle"),
                                      render->get_option("--sshloginfile")})
         if (opt->count()) throw tex::Error(opt->get_name() + " applies to render --emit");
+      std::optional<FrameStore> frame_store;
+      if (render_store_opt->count()) {
+        if (frames > 1 && !frame_opt->count())
+          throw tex::Error("render --store keeps one frame: give --frame F (or --emit, whose tasks render one frame each)");
+        for (const char* opt : {"--trace", "--miss-trace", "--response-clocks", "--trace-queries"})
+          if (render->count(opt)) throw tex::Error(std::string("render --store: ") + opt + " is not kept in the store (drop one of them)");
+        frame_store.emplace(render_store, args);
+      }
       SceneOptions so;
       so.width = width;
       so.height = height;
@@ -712,12 +740,13 @@ int main(int argc, char** argv) {
                                       render->count("--mag-filter") + render->count("--mipmap-mode") > 0;
         model_args.order = so.order;
         model_args.tile = tile;
+        model_args.store = frame_store ? &*frame_store : nullptr;
         return cmd_render_model(render_opts, model_args);
       }
       for (const CLI::Option* opt : {camera_opt, camera_path_opt, trace_queries_opt})
         if (opt->count()) throw tex::Error(opt->get_name() + " applies to --model and --scene-file");
       return cmd_render(render_opts, scene, so, frames > 1 && frame_opt->count() == 0,
-                        render_opts.texture_opt->count() > 0, wrap_given, render_out);
+                        render_opts.texture_opt->count() > 0, wrap_given, render_out, frame_store ? &*frame_store : nullptr);
     }
     if (*figures) return make_figures(fig);
     if (*explore) {

@@ -515,22 +515,10 @@ std::string workload_fingerprint(const Workload& w) {
   Fingerprint f;
   f.text(filter_name(w.config.filter)).number(int(w.format)).number(int64_t(w.pyramids.size()));
   for (size_t i = 0; i < w.pyramids.size(); ++i) {
-    const Pyramid& p = w.pyramids[i];
-    f.number(int(p.format)).number(p.srgb).number(int(w.wraps[i].first)).number(int(w.wraps[i].second));
-    f.number(int64_t(p.levels.size()));
-    for (const Image& l : p.levels) {
-      f.number(l.width).number(l.height).number(l.channel_bits);
-      f.bytes(l.texels.data(), l.texels.size() * sizeof(Texel));
-    }
-    for (const auto& b : p.blocks) f.number(int64_t(b.size())).bytes(b.data(), b.size());
+    add_pyramid(f, w.pyramids[i]);
+    f.number(int(w.wraps[i].first)).number(int(w.wraps[i].second));
   }
-  f.number(int64_t(w.requests.size()));
-  for (const Request& q : w.requests) {
-    for (int32_t v : {q.u, q.v, q.lod, q.bias, q.layer, q.ref, q.w, q.dwdx, q.dwdy, q.deriv.dudx, q.deriv.dvdx,
-                      q.deriv.dudy, q.deriv.dvdy})
-      f.number(v);
-    f.number(q.texture).number(q.sampler).number(int(q.op)).number(q.component).number(q.has_derivatives);
-  }
+  add_requests(f, w.requests);
   return f.hex();
 }
 

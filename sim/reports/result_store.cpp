@@ -11,7 +11,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "engines/engine.h"
 #include "model/error.h"
+#include "model/pyramid.h"
+#include "model/sampler.h"
 
 namespace tex {
 
@@ -38,6 +41,42 @@ std::string Fingerprint::hex() const {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
   return buf;
+}
+
+void add_pyramid(Fingerprint& f, const Pyramid& p) {
+  f.number(int(p.format)).number(p.srgb).number(int64_t(p.levels.size()));
+  for (const Image& l : p.levels) {
+    f.number(l.width).number(l.height).number(l.channel_bits);
+    f.bytes(l.texels.data(), l.texels.size() * sizeof(Texel));
+  }
+  f.number(int64_t(p.blocks.size()));
+  for (const auto& b : p.blocks) f.number(int64_t(b.size())).bytes(b.data(), b.size());
+}
+
+void add_requests(Fingerprint& f, const std::vector<Request>& requests) {
+  f.number(int64_t(requests.size()));
+  for (const Request& q : requests) {
+    for (int32_t v : {q.u, q.v, q.lod, q.bias, q.layer, q.ref, q.w, q.dwdx, q.dwdy, q.deriv.dudx, q.deriv.dvdx,
+                      q.deriv.dudy, q.deriv.dvdy})
+      f.number(v);
+    f.number(q.tag).number(q.texture).number(q.sampler).number(int(q.op)).number(q.component).number(q.has_derivatives);
+  }
+}
+
+void add_sampler(Fingerprint& f, const SamplerConfig& s) {
+  f.number(int(s.filter.texel)).number(int(s.filter.mip)).number(s.filter.anisotropic).number(int(s.filter.mag));
+  f.number(int(s.wrap_u)).number(int(s.wrap_v)).number(s.lod_bias).number(s.min_lod).number(s.max_lod);
+  f.number(s.max_aniso).number(s.aniso_pow2).number(int(s.border));
+  for (uint16_t c : s.border_custom) f.number(c);
+  f.number(s.unnormalized).number(int(s.reduction)).number(int(s.compare_op));
+}
+
+void add_table(Fingerprint& f, const std::vector<BoundTexture>& table) {
+  f.number(int64_t(table.size()));
+  for (const BoundTexture& t : table) {
+    f.number(int(t.kind)).number(t.layers());
+    for (const Pyramid* p : t.all_layers()) add_pyramid(f, *p);
+  }
 }
 
 const std::string& executable_fingerprint() {
@@ -81,6 +120,23 @@ std::optional<std::string> ResultStore::get(const std::string& key) const {
   if (!std::getline(in, k) || k != key || !std::getline(in, result) || in.eof() || std::getline(in, rest))
     return std::nullopt;  // (the result line ends in a line break: a file cut short is not a result)
   return result;
+}
+
+std::string ResultStore::file_of(const std::string& key, const std::string& suffix) const {
+  const fs::path p = path_of(key);
+  return (p.parent_path() / (p.stem().string() + suffix)).string();
+}
+
+void ResultStore::put_file(const std::string& key, const std::string& suffix, const std::string& from) const {
+  const fs::path target = file_of(key, suffix);
+  std::error_code ec;
+  fs::create_directories(target.parent_path(), ec);
+  const fs::path tmp = target.parent_path() / (".tmp-" + target.filename().string() + "-" + std::to_string(getpid()));
+  if (!fs::copy_file(from, tmp, fs::copy_options::overwrite_existing, ec) ||
+      std::rename(tmp.c_str(), target.c_str()) != 0) {
+    fs::remove(tmp, ec);
+    throw Error("--store: cannot keep " + from + " as " + target.string());
+  }
 }
 
 void ResultStore::put(const std::string& key, const std::string& result) const {

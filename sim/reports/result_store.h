@@ -30,6 +30,18 @@ class Fingerprint {
   uint64_t h_ = 0xcbf29ce484222325ull;
 };
 
+struct Pyramid;
+struct Request;
+struct SamplerConfig;
+struct BoundTexture;
+// What a sampled result depends on, fed to a fingerprint field by field (no padding bytes): a
+// pyramid (format, sRGB, every level's size, channel width and texels, every level's blocks), the
+// requests (every field), a sampler (every field), a descriptor table (kinds, layers, pyramids).
+void add_pyramid(Fingerprint& f, const Pyramid& p);
+void add_requests(Fingerprint& f, const std::vector<Request>& requests);
+void add_sampler(Fingerprint& f, const SamplerConfig& s);
+void add_table(Fingerprint& f, const std::vector<BoundTexture>& table);
+
 // The fingerprint of the running executable's file (texsim and the model, the timing layer and
 // the RTL compiled into it): results of another build are never reused. Read once.
 const std::string& executable_fingerprint();
@@ -48,6 +60,11 @@ class ResultStore {
   // Stores a result (one line, no line break) for a key (one line). Throws tex::Error on a write error.
   void put(const std::string& key, const std::string& result) const;
   std::string path_of(const std::string& key) const;
+  // A file kept beside a key's result (a frame's picture): DIR/<2 hex>/<16 hex><suffix>. Store it
+  // before put() stores the result, so that a stored result's files are complete (put_file copies
+  // `from` by a temporary name and a rename). Throws tex::Error.
+  void put_file(const std::string& key, const std::string& suffix, const std::string& from) const;
+  std::string file_of(const std::string& key, const std::string& suffix) const;
 
  private:
   std::string dir_;

@@ -352,12 +352,13 @@ TEST_F(TexsimCli, ExploreSweepsAModelsFrame) {
 // render --frames N --emit parallel: a task per two frames through GNU parallel; a failing task is
 // named by render --collect (its exit code and log line), which writes nothing; restored and
 // resubmitted, the batch collects: every picture the bytes of a local --frames render's, and the
-// frames' statistics in frame order in frames.json. Bad batches are one-line errors.
+// frames' statistics in frame order in frames.json. Emitted again, every frame comes from the
+// results store (--store): none is sampled. Bad batches are one-line errors.
 TEST_F(TexsimCli, RenderFramesThroughGnuParallel) {
   ASSERT_EQ(std::system("command -v parallel > /dev/null"), 0) << "GNU parallel is not installed (make deps)";
   const std::string render = "render --scene plane --width 64 --height 48 --frames 5";
   ASSERT_EQ(run(render + " -o f.png").exit_code, 0);
-  const Result e = run(render + " -o f.png --emit parallel batch --frames-per-task 2");
+  const Result e = run(render + " -o f.png --emit parallel batch --frames-per-task 2 --store st");
   ASSERT_EQ(e.exit_code, 0) << e.err;
   EXPECT_NE(e.out.find("5 frames in 3 tasks"), std::string::npos) << e.out;
   const std::string kept = replace_line(dir / "batch/commands.txt", 1, "echo 'frame trouble' >&2; exit 5");
@@ -381,6 +382,20 @@ TEST_F(TexsimCli, RenderFramesThroughGnuParallel) {
     EXPECT_EQ(frames[i]["frame"].get<size_t>(), i);
     EXPECT_GT(frames[i]["stats"]["samples"].get<uint64_t>(), 1000u);
   }
+  // The same batch again: every frame from the store (no frame sampled), the same pictures.
+  ASSERT_EQ(run(render + " -o f.png --emit parallel again --frames-per-task 2 --store st").exit_code, 0);
+  ASSERT_EQ(std::system(("cd '" + dir.string() + "' && again/run-parallel.sh > /dev/null 2>&1").c_str()), 0);
+  ASSERT_EQ(run("render --collect again").exit_code, 0);
+  for (int t = 0; t < 3; ++t) {
+    const std::string log = read_text(dir / ("again/logs/task-" + std::to_string(t) + ".log"));
+    EXPECT_NE(log.find("reused from the store"), std::string::npos) << log;
+    EXPECT_EQ(log.find("samples, trilinear"), std::string::npos) << log;  // (the line of a frame sampled)
+  }
+  for (const char* f : {"f_000.png", "f_004.png"}) EXPECT_EQ(read_text(dir / "again/frames" / f), read_text(dir / f)) << f;
+  // A frame of another animation (--frames 6) is another frame: sampled.
+  const Result other = run("render --scene plane --width 64 --height 48 --frames 6 --frame 2 -o o.png --store st");
+  EXPECT_EQ(other.out.find("reused"), std::string::npos) << other.out;
+  expect_clean_failure("render --scene plane --frames 5 -o x.png --store st", "x.png", {"--store keeps one frame"});
   expect_clean_failure("render --collect nowhere", "nowhere/frames.json", {"nowhere/render.txt", "--emit"});
   expect_clean_failure(render + " -o g.png --frame 2 --emit slurm b2", "b2/render.txt", {"no --frame"});
   expect_clean_failure(render + " -o g.png --emit slurm b2 --frames-per-task 0", "b2/render.txt", {"--frames-per-task 0"});
