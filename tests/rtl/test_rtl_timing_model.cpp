@@ -1,5 +1,5 @@
 // The timing model (model/timing.h) against the Verilated RTL, clock for clock. Every lockstep
-// suite compares each response's clock (lockstep(), test_rtl_cached.cpp's run_case); these tests
+// suite compares each response's clock (lockstep(), cached_lockstep.h's run_case); these tests
 // show that the comparison fires on a planted one-clock error, in each unit.
 #include <gtest/gtest.h>
 
