@@ -579,8 +579,11 @@ package tex_astc;
       else if (ise_bits(colour_values, colour_range(5'd1)) <= remaining) cr = 5'd1;
       else cr = 5'd0;
       // The texel's partition, and its endpoint values (they follow the earlier partitions').
-      p = partition(block[22:13], partitions, fw * fh < 31 ? 5'(x) << 1 : 5'(x), fw * fh < 31 ? 5'(y) << 1 : 5'(y)) &
-          {2{partitions != 3'd1}};
+      // (the calls under an `if` of their own: Verilator hoists a call out of a ?: and makes it in
+      // every case)
+      p = '0;
+      if (partitions != 3'd1)
+        p = partition(block[22:13], partitions, fw * fh < 31 ? 5'(x) << 1 : 5'(x), fw * fh < 31 ? 5'(y) << 1 : 5'(y));
       case (p)
         2'd0: cem = cem0;
         2'd1: cem = cem1;
@@ -609,7 +612,8 @@ package tex_astc;
       for (int k = 0; k < 128; k++) ws[k] = block[127 - k];
 `endif
       w0 = infill(ws, fw, fh, x, y, gw, gh, dual, 1'b0, wr);
-      w1 = dual ? infill(ws, fw, fh, x, y, gw, gh, dual, 1'b1, wr) : w0;
+      w1 = w0;
+      if (dual) w1 = infill(ws, fw, fh, x, y, gw, gh, dual, 1'b1, wr);
       // Void extent (bits 8..0 = 1 1111 1100): one colour, its top 8 bits; the error colour for HDR
       // (bit 9), reserved bits 10, 11 not set, or an empty extent (min >= max, unless all ones).
       if (block[8:0] == 9'h1FC) begin
