@@ -60,9 +60,7 @@ int emit_render_batch(const RenderBatchArgs& a) {
   o.collect = "texsim render --collect " + shell_quote(o.dir);
   if (a.frames < 1) throw Error("--frames " + std::to_string(a.frames) + " must be at least 1");
   if (a.frames_per_task < 1) throw Error("--frames-per-task " + std::to_string(a.frames_per_task) + " must be at least 1");
-  if (a.throttle < 0) throw Error("--throttle " + std::to_string(a.throttle) + " is negative");
-  if (!a.sshloginfile.empty() && !fs::is_regular_file(a.sshloginfile))
-    throw Error("--sshloginfile " + a.sshloginfile + ": no such file");
+  check_emit_options(o);
   const std::string ext = fs::path(a.out).extension().string();
   if (ext.empty()) throw Error("--out " + a.out + ": no extension to name the frames' pictures by (.png, .exr, ...)");
   const fs::path frames_dir = fs::path(o.dir) / "frames";
@@ -89,18 +87,13 @@ int emit_render_batch(const RenderBatchArgs& a) {
   std::error_code ec;  // (the frames of an earlier batch in this directory)
   for (const auto& e : fs::directory_iterator(frames_dir, ec))
     if (e.is_regular_file(ec)) fs::remove(e.path(), ec);
-  OutputSet outputs;
-  outputs.make_directory(frames_dir.string(), "--emit");
-  OutputFile& m = outputs.declare((fs::path(o.dir) / "render.txt").string(), "--emit");
-  std::fputs(manifest.c_str(), m.open());
-  m.close();
-  outputs.commit();
+  o.manifest_name = "render.txt";
+  o.manifest = manifest;
   emit_task_lines(o, lines);
+  fs::create_directories(frames_dir, ec);
+  if (!fs::is_directory(frames_dir, ec)) throw Error("--emit: cannot create " + frames_dir.string());
   std::printf("texsim render: %d frames in %d tasks -> %s (%s); then texsim render --collect %s\n", a.frames, tasks,
-              o.dir.c_str(),
-              (o.scheduler == Scheduler::Slurm ? "submit: sbatch " + o.dir + "/sweep.sbatch"
-                                               : "run: " + o.dir + "/run-parallel.sh").c_str(),
-              a.dir.c_str());
+              o.dir.c_str(), emit_hint(o).c_str(), a.dir.c_str());
   return 0;
 }
 

@@ -722,25 +722,17 @@ int emit(const Sweep& s, const std::vector<Task>& tasks, const std::vector<size_
   o.collect = "texsim explore --collect " + shell_quote(o.dir);
   std::vector<std::vector<std::string>> commands;
   for (const Task& t : tasks) commands.push_back(task_command(s, t, self, store.dir()));
-  OutputSet outputs;
-  outputs.make_directory(o.dir, "--emit");
-  std::string manifest = std::string(kManifestMagic) + "\nstore " + store.dir() + "\nscheduler " +
-                         scheduler_name(o.scheduler) + "\ntasks " + std::to_string(tasks.size()) + "\npoints " +
-                         std::to_string(s.points.size()) + "\n";
+  o.manifest_name = "sweep.txt";
+  o.manifest = std::string(kManifestMagic) + "\nstore " + store.dir() + "\nscheduler " + scheduler_name(o.scheduler) +
+               "\ntasks " + std::to_string(tasks.size()) + "\npoints " + std::to_string(s.points.size()) + "\n";
   for (size_t i = 0; i < s.points.size(); ++i) {
     std::string prefix = csv_prefix(s, s.points[i]);
     if (prefix.find_first_of("\t\n") != std::string::npos)
       throw Error("--emit: a workload name with a tab or a line break: " + quote_clipped(s.workloads[s.points[i].workload].name));
-    manifest += std::to_string(task_of[i]) + "\t" + point_key(s, s.points[i]) + "\t" + prefix + "\n";
+    o.manifest += std::to_string(task_of[i]) + "\t" + point_key(s, s.points[i]) + "\t" + prefix + "\n";
   }
-  OutputFile& f = outputs.declare((fs::path(o.dir) / "sweep.txt").string(), "--emit");
-  std::fputs(manifest.c_str(), f.open());
-  f.close();
-  outputs.commit();
-  if (!commands.empty()) emit_tasks(o, commands);
-  const std::string run = commands.empty() ? "nothing to run"
-                          : o.scheduler == Scheduler::Slurm ? "submit: sbatch " + o.dir + "/sweep.sbatch"
-                                                            : "run: " + o.dir + "/run-parallel.sh";
+  emit_tasks(o, commands);
+  const std::string run = commands.empty() ? "nothing to run" : emit_hint(o);
   std::printf("texsim explore: %zu points, %zu in the store already, %zu to measure in %zu tasks -> %s (%s); then "
               "texsim explore --collect %s\n",
               s.points.size(), reused, s.points.size() - reused, commands.size(), o.dir.c_str(), run.c_str(),
@@ -756,9 +748,12 @@ int run_explore(const ExploreArgs& a, const std::string& self) {
   const bool emitting = !a.emit_scheduler.empty();
   if (emitting && !a.task_fingerprint.empty()) throw Error("explore: --emit and --task exclude each other");
   if (emitting) parse_scheduler(a.emit_scheduler);
-  if (a.throttle < 0) throw Error("--throttle " + std::to_string(a.throttle) + " is negative");
-  if (!a.sshloginfile.empty() && !fs::is_regular_file(a.sshloginfile))
-    throw Error("--sshloginfile " + a.sshloginfile + ": no such file");
+  {
+    EmitOptions o;
+    o.throttle = a.throttle;
+    o.sshloginfile = a.sshloginfile;
+    check_emit_options(o);
+  }
   Sweep s = parse_sweep(a);
   if (emitting) prepare_emit_dir(a.emit_dir);  // (before the work: another directory of the user's is refused)
   const ResultStore store(a.store_dir.empty() ? default_store_dir() : a.store_dir);
@@ -767,9 +762,10 @@ int run_explore(const ExploreArgs& a, const std::string& self) {
   for (const Workload& w : s.workloads) s.fingerprints.push_back(workload_fingerprint(w));
 
   // Which points the store lacks, and their tasks.
+  std::vector<std::optional<std::string>> stored(s.points.size());  // (each point's result, read once)
   std::vector<size_t> wanted;
   for (size_t i = 0; i < s.points.size(); ++i)
-    if (!store.get(point_key(s, s.points[i]))) wanted.push_back(i);
+    if (!(stored[i] = store.get(point_key(s, s.points[i])))) wanted.push_back(i);
   const size_t reused = s.points.size() - wanted.size();
 
   if (!a.task_fingerprint.empty()) {  // a task: measure into the store, nothing else
@@ -818,12 +814,11 @@ int run_explore(const ExploreArgs& a, const std::string& self) {
   } else {
     measure_here(s, wanted, store, progress);
   }
+  for (size_t i : wanted)
+    if (!(stored[i] = store.get(point_key(s, s.points[i]))))
+      throw Error("explore: " + point_name(s, s.points[i]) + ": measured, but not in the store " + store.dir());
   std::string rows;
-  for (const Point& p : s.points) {
-    const std::optional<std::string> r = store.get(point_key(s, p));
-    if (!r) throw Error("explore: " + point_name(s, p) + ": measured, but not in the store " + store.dir());
-    rows += csv_prefix(s, p) + *r + "\n";
-  }
+  for (size_t i = 0; i < s.points.size(); ++i) rows += csv_prefix(s, s.points[i]) + *stored[i] + "\n";
   write_results(a.out_dir, rows, inputs, a.plots);
   if (s.timing == TimingMode::Rtl || s.confirm)
     for (const auto& [why, n] : no_rtl)

@@ -137,6 +137,19 @@ std::string shell_line(const std::vector<std::string>& argv) {
   return line;
 }
 
+void check_emit_options(const EmitOptions& o) {
+  if (o.throttle < 0) throw Error("--throttle " + std::to_string(o.throttle) + " is negative");
+  std::error_code ec;
+  if (!o.sshloginfile.empty() && !fs::is_regular_file(o.sshloginfile, ec))
+    throw Error("--sshloginfile " + o.sshloginfile + ": no such file");
+}
+
+std::string emit_hint(const EmitOptions& o) {
+  const fs::path dir = fs::absolute(o.dir);
+  return o.scheduler == Scheduler::Slurm ? "submit: sbatch " + (dir / "sweep.sbatch").string()
+                                         : "run: " + (dir / "run-parallel.sh").string();
+}
+
 void emit_tasks(const EmitOptions& o, const std::vector<std::vector<std::string>>& commands) {
   std::vector<std::string> lines;
   for (const auto& c : commands) lines.push_back(shell_line(c));
@@ -146,6 +159,24 @@ void emit_tasks(const EmitOptions& o, const std::vector<std::vector<std::string>
 void emit_task_lines(const EmitOptions& o, const std::vector<std::string>& commands) {
   const fs::path dir = fs::absolute(o.dir);
   OutputSet outputs;
+  outputs.make_directory(dir.string(), "--emit");
+  if (!o.manifest_name.empty()) write_text(outputs, dir / o.manifest_name, o.manifest);
+  const size_t n = commands.size();
+  const std::string run = o.scheduler == Scheduler::Slurm
+                              ? "sbatch " + shell_quote((dir / "sweep.sbatch").string()) +
+                                    "   (add the #SBATCH lines your site needs to sweep.sbatch first)"
+                              : shell_quote((dir / "run-parallel.sh").string()) + " [--jobs N]   (options go to GNU parallel)";
+  write_text(outputs, dir / "README.txt",
+             std::to_string(n) + " tasks of " + o.job_name + ", written by texsim --emit " + scheduler_name(o.scheduler) +
+                 " (docs/cluster.md).\n" +
+                 (n ? "Run them:  " + run + "\n" : std::string("Nothing to run: every result is in the store.\n")) +
+                 "Then:      " + o.collect + "\n"
+                 "A task that failed or did not run is named by the collect, with its exit code and the last lines of\n"
+                 "logs/task-K.log, and resubmit.sh (written then) runs exactly those tasks again.\n");
+  if (n == 0) {
+    outputs.commit();
+    return;
+  }
   outputs.make_directory((dir / "logs").string(), "--emit");
   outputs.make_directory((dir / "status").string(), "--emit");
   std::string lines;
@@ -168,18 +199,6 @@ void emit_task_lines(const EmitOptions& o, const std::vector<std::string>& comma
              "code=$?\n"
              "echo \"$code\" > \"$dir/status/.task-$k.$$\" && mv -f \"$dir/status/.task-$k.$$\" \"$dir/status/task-$k\"\n"
              "exit \"$code\"\n");
-  const size_t n = commands.size();
-  const std::string run = o.scheduler == Scheduler::Slurm
-                              ? "sbatch " + shell_quote((dir / "sweep.sbatch").string()) +
-                                    "   (add the #SBATCH lines your site needs to sweep.sbatch first)"
-                              : shell_quote((dir / "run-parallel.sh").string()) + " [--jobs N]   (options go to GNU parallel)";
-  write_text(outputs, dir / "README.txt",
-             std::to_string(n) + " tasks of " + o.job_name + ", written by texsim --emit " + scheduler_name(o.scheduler) +
-                 " (docs/cluster.md).\n"
-                 "Run them:  " + run + "\n"
-                 "Then:      " + o.collect + "\n"
-                 "A task that failed or did not run is named by the collect, with its exit code and the last lines of\n"
-                 "logs/task-K.log, and resubmit.sh (written then) runs exactly those tasks again.\n");
   if (o.scheduler == Scheduler::Slurm) {
     write_text(outputs, dir / "sweep.sbatch",
                "#!/bin/bash\n"

@@ -32,7 +32,14 @@ struct EmitOptions {
   std::string sshloginfile;   // GNU parallel: the hosts (--sshloginfile), "" = this machine
   std::string job_name = "texsim";
   std::string collect;        // the command that collects the results (README.txt names it)
+  std::string manifest_name;  // the caller's manifest (sweep.txt, render.txt), written with the task files
+  std::string manifest;
 };
+// Throws tex::Error for a throttle below 0 or an --sshloginfile that is not a file (before the work).
+void check_emit_options(const EmitOptions& opts);
+// How to start the emitted tasks, for a summary line: "submit: sbatch DIR/sweep.sbatch" or "run:
+// DIR/run-parallel.sh".
+std::string emit_hint(const EmitOptions& opts);
 
 // Makes ready a directory to emit into: a new or empty one, or one an earlier --emit wrote (its
 // manifest, sweep.txt or render.txt, says so), whose task files, status files, logs and job log
@@ -40,7 +47,8 @@ struct EmitOptions {
 // (nothing of the user's is removed) or a path that is not a directory.
 void prepare_emit_dir(const std::string& dir);
 
-// Writes the task files (above) for `commands` (each an argv) into opts.dir, which must exist.
+// Writes the task files (above) for `commands` (each an argv) and the caller's manifest into
+// opts.dir (created if need be), all or nothing; no tasks: the manifest and README.txt alone.
 // Throws tex::Error.
 void emit_tasks(const EmitOptions& opts, const std::vector<std::vector<std::string>>& commands);
 // The same for tasks given as shell lines (several commands joined with &&, a cd first).
