@@ -163,7 +163,7 @@ module tex_desc_table #(
     logic          seam;
     nk = (NW+3)'(n) >> k;
     if (nk == '0) nk = (NW+3)'(1);
-    seam = (nk & (nk - 1'b1)) != '0 || ((f & (f - 4'd1)) != 4'd0 && nk > (NW+3)'(f));
+    seam = tex_pkg::seam_copy(16'(nk), f);
     whole = tex_pkg::div_footprint(16'(nk + (NW+3)'(f) - (NW+3)'(1)), f);
     if (cube) units = nk + (NW+3)'(2);
     else units = (NW+3)'(whole) + (NW+3)'(seam);

@@ -274,7 +274,7 @@ module tex_front #(
         always_ff @(posedge clk) begin
           if (en) begin
             n_s4    <= n_s3;
-            pow2_s4 <= (n_s3 & (n_s3 - NB'(1))) == '0 && !((fp & (fp - 4'd1)) != 4'd0 && n_s3 > NB'(fp));
+            pow2_s4 <= !tex_pkg::seam_copy(16'(n_s3), fp);
           end
         end
         assign fp = foot_q[2*8 + a*4 +: 4];

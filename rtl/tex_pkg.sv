@@ -110,6 +110,12 @@ package tex_pkg;
   function automatic logic astc(input logic [FORMAT_W-1:0] fmt);
     astc = fmt >= FMT_ASTC_4X4 && fmt <= FMT_ASTC_12X12;
   endfunction
+  // A level side of n units (texels, or blocks of a footprint side f; n < 2^16) keeps a copy of
+  // its unit column (row) 0 past its end for the repeat seam: n not a power of two, or longer than
+  // an f that is not one (ASTC 5, 6, 10, 12) (docs/memory.md §1; the model's MemoryLayout).
+  function automatic logic seam_copy(input logic [15:0] n, input logic [3:0] f);
+    seam_copy = (n & (n - 16'd1)) != 16'd0 || ((f & (f - 4'd1)) != 4'd0 && n > 16'(f));
+  endfunction
   // The texels a block covers, {height, width} (4 bits each): an ASTC format's footprint, 4 x 4
   // for the other block formats, 1 x 1 (a texel) for RGBA8.
   function automatic logic [7:0] footprint(input logic [FORMAT_W-1:0] fmt);
